@@ -1,0 +1,1 @@
+"""The catalogue file format: pydantic models, the YAML loader and the bundled files."""

@@ -1,0 +1,1 @@
+"""The ``gyrovib`` command line: thin commands over :mod:`gyrovib.api`."""

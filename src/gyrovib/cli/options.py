@@ -1,0 +1,84 @@
+"""Options shared by several commands, and their parsing into library arguments."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import click
+
+from gyrovib import units
+from gyrovib.errors import OptionError
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+UNIT_CHOICES = tuple(units.RATE_UNITS)
+
+
+def files_argument(f: F) -> F:
+    return click.argument("files", nargs=-1, metavar="[FILE]...")(f)
+
+
+def selection_options(f: F) -> F:
+    f = click.option("--profile", "profiles", multiple=True, metavar="ID",
+                     help="Only this profile (repeatable).")(f)
+    f = click.option("--sensor", "sensors", multiple=True, metavar="ID",
+                     help="Only this sensor (repeatable).")(f)
+    return f
+
+
+def unit_option(f: F) -> F:
+    return click.option(
+        "--unit", default="deg/s", show_default=True, metavar="UNIT",
+        help=f"Rate unit of every output value: {', '.join(UNIT_CHOICES)}.",
+    )(f)
+
+
+def rate_option(f: F) -> F:
+    return click.option(
+        "--rate", metavar="R",
+        help="Override the carrier rate: Ω_K3 as one number, or Ω_K1,Ω_K2,Ω_K3; in --unit.",
+    )(f)
+
+
+def output_option(f: F) -> F:
+    return click.option("--output", "-o", metavar="PATH",
+                        help="Write to PATH (atomically) instead of standard output.")(f)
+
+
+def format_option(*choices: str) -> Callable[[F], F]:
+    def decorate(f: F) -> F:
+        return click.option(
+            "--format", "fmt", type=click.Choice(choices), default=choices[0],
+            show_default=True, help="Output format.",
+        )(f)
+
+    return decorate
+
+
+def parse_unit(text: str) -> str:
+    return units.canonical_unit(text)
+
+
+def parse_rate_option(text: str | None, unit: str) -> list[float] | None:
+    """``--rate`` in ``unit`` → list of deg/s values (1 or 3 of them)."""
+    if text is None:
+        return None
+    pieces = [p for p in text.replace(" ", "").split(",")]
+    if len(pieces) not in (1, 3) or any(not p for p in pieces):
+        raise OptionError(f"--rate {text!r}: give one number (Ω_K3) or three, comma-separated")
+    try:
+        return [units.parse_rate(p, unit) for p in pieces]
+    except OptionError as exc:
+        raise OptionError(f"--rate: {exc.problems[0].message}") from None
+
+
+def parse_budget(text: str, unit: str) -> float:
+    """``--budget`` → Δ*_V in deg/s; must be positive and finite."""
+    try:
+        value = units.parse_rate(text, unit)
+    except OptionError as exc:
+        raise OptionError(f"--budget: {exc.problems[0].message}") from None
+    if value <= 0:
+        raise OptionError(f"--budget {text!r}: the budget must be positive")
+    return value

@@ -1,0 +1,56 @@
+"""The one error root of gyrovib.
+
+Every problem a user can cause (a bad catalogue, a bad option, a profile a
+method cannot handle) is raised as a :class:`GyrovibError` carrying one or
+more :class:`Problem` records. The command line catches it once, prints one
+line per problem on standard error and exits with status 2.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One thing wrong with the input, with its place when it has one.
+
+    ``line`` and ``column`` are 1-based, as editors show them.
+    """
+
+    message: str
+    file: str | None = None
+    line: int | None = None
+    column: int | None = None
+
+    def __str__(self) -> str:
+        if self.file is None:
+            return self.message
+        if self.line is None:
+            return f"{self.file}: {self.message}"
+        return f"{self.file}:{self.line}:{self.column or 1}: {self.message}"
+
+
+class GyrovibError(Exception):
+    """Root of every error reported to a user; carries one or more problems."""
+
+    def __init__(self, problems: str | Problem | Iterable[Problem]) -> None:
+        if isinstance(problems, str):
+            problems = (Problem(problems),)
+        elif isinstance(problems, Problem):
+            problems = (problems,)
+        self.problems: tuple[Problem, ...] = tuple(problems)
+        super().__init__("\n".join(str(p) for p in self.problems))
+
+
+class CatalogError(GyrovibError):
+    """A catalogue file cannot be read or is not valid."""
+
+
+class OptionError(GyrovibError):
+    """A command-line option or library argument is not valid."""
+
+
+class ModelError(GyrovibError):
+    """The chosen method cannot handle a profile (e.g. ``paper`` with two tones)."""

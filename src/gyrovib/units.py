@@ -1,0 +1,90 @@
+"""Angular-rate units and the conversions of MODEL.md section 2.
+
+Pure Python, no numpy: used by the catalogue loader, the CLI option parsers
+and the result converters alike.
+
+Internally gyrovib computes in deg/s. A rate unit ``U`` equals ``s`` deg/s;
+a quantity carrying ``rate**p`` converts as ``q[U] = q[deg/s] * s**(-p)``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from gyrovib.errors import OptionError
+
+#: deg/s per unit.
+RATE_UNITS: dict[str, float] = {
+    "deg/s": 1.0,
+    "deg/h": 1.0 / 3600.0,
+    "rad/s": 180.0 / math.pi,
+    "rpm": 6.0,
+}
+
+_ALIASES: dict[str, str] = {
+    "°/s": "deg/s",
+    "dps": "deg/s",
+    "°/h": "deg/h",
+    "deg/hr": "deg/h",
+    "dph": "deg/h",
+    "rad/sec": "rad/s",
+}
+
+#: The power of "rate" carried by each conversion-function coefficient (eq. 2).
+COEFFICIENT_RATE_POWER: dict[str, int] = {
+    "k0": 1,
+    "k1": 0,
+    "A1": 0,
+    "k2": -1,
+    "k3": -2,
+    "k4": -3,
+    "k5": -4,
+    "m1": 0,
+    "m2": 0,
+    "m31": -1,
+    "m32": -1,
+}
+
+
+def canonical_unit(name: str) -> str:
+    """Return the canonical spelling of a rate unit, or raise :class:`OptionError`."""
+    key = name.strip()
+    key = _ALIASES.get(key, key)
+    if key not in RATE_UNITS:
+        known = ", ".join(RATE_UNITS)
+        raise OptionError(f"unknown rate unit {name!r}; use one of {known}")
+    return key
+
+
+def scale(unit: str) -> float:
+    """deg/s per ``unit``."""
+    return RATE_UNITS[canonical_unit(unit)]
+
+
+def factor(unit: str, power: int) -> float:
+    """Multiplier taking a quantity of ``rate**power`` from ``unit`` to deg/s."""
+    return scale(unit) ** power
+
+
+_QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)?\s*$")
+
+
+def parse_rate(text: str, default_unit: str) -> float:
+    """Parse ``"0.01"``, ``"36deg/h"`` or ``"0.01 deg/s"`` into deg/s.
+
+    A bare number is in ``default_unit``. Raises :class:`OptionError` for
+    anything else, and for NaN or infinite values.
+    """
+    match = _QUANTITY.match(text)
+    if match is None:
+        raise OptionError(
+            f"cannot read {text!r} as a rate: write a number, optionally with a unit, "
+            "e.g. 0.01, 36deg/h or '0.01 deg/s'"
+        )
+    value = float(match.group(1))
+    unit = canonical_unit(match.group(2)) if match.group(2) else canonical_unit(default_unit)
+    result = value * RATE_UNITS[unit]
+    if not math.isfinite(result):
+        raise OptionError(f"{text!r} is not a finite rate")
+    return result
