@@ -1,0 +1,137 @@
+"""An independent brute-force evaluation of MODEL.md, for the tests.
+
+It averages the conversion function eq. (2) itself over the vibration and
+subtracts eq. (2) at rest (MODEL.md section 7). Nothing here uses gyrovib's
+closed forms:
+
+* the polynomial and cross terms are averaged over a uniform grid of tone
+  phases (16 per tone: exact for trigonometric polynomials of degree < 16)
+  and Gauss-Hermite nodes for the Gaussian part (exact to degree 2n-1);
+* the asymmetry term |ω3| has a kink, so its average is taken with adaptive
+  quadrature (scipy.integrate.quad) split at the kink, over the arcsine law
+  of a tone's value and/or the normal law of the Gaussian part, with a
+  uniform phase grid over any further tones.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from scipy import integrate
+
+COEFFS = ("k0", "k1", "A1", "k2", "k3", "k4", "k5", "m1", "m2", "m31", "m32")
+
+
+def conversion(c: Mapping[str, float], w1, w2, w3):
+    """Eq. (2): Ω_F3 for rates ω1, ω2, ω3 (arrays)."""
+    k = {name: c.get(name, 1.0 if name == "k1" else 0.0) for name in COEFFS}
+    return (
+        k["k0"]
+        + k["k1"] * (1 + 0.5 * k["A1"] * np.sign(w3)) * w3
+        + k["k2"] * w3**2 + k["k3"] * w3**3 + k["k4"] * w3**4 + k["k5"] * w3**5
+        + k["m1"] * w1 + k["m2"] * w2 + k["m31"] * w3 * w1 + k["m32"] * w3 * w2
+    )
+
+
+def _tone_samples(tones: Sequence[tuple[Sequence[float], Sequence[float]]], n: int):
+    """x (3, N) over the product grid of n uniform phases per tone; weights 1/N."""
+    if not tones:
+        return np.zeros((3, 1))
+    grids = [2 * math.pi * (np.arange(n) + 0.5) / n for _ in tones]
+    mesh = np.array(list(itertools.product(*grids))).T  # (K, N)
+    x = np.zeros((3, mesh.shape[1]))
+    for k, (amp, phase) in enumerate(tones):
+        for axis in range(3):
+            x[axis] += amp[axis] * np.sin(mesh[k] + math.radians(phase[axis]))
+    return x
+
+
+def _gauss_samples(sigma: Sequence[float], rho: Sequence[float], n: int = 8):
+    """Gaussian x (3, M) with weights (M,), x3 = σ3 z3, xi = σi(ρ z3 + √(1−ρ²) zi)."""
+    z, w = np.polynomial.hermite_e.hermegauss(n)
+    w = w / w.sum()
+    z3, z1, z2 = (a.ravel() for a in np.meshgrid(z, z, z, indexing="ij"))
+    weight = np.einsum("i,j,k->ijk", w, w, w).ravel()
+    s1, s2, s3 = sigma
+    r1, r2 = rho
+    x = np.array([
+        s1 * (r1 * z3 + math.sqrt(max(0.0, 1 - r1 * r1)) * z1),
+        s2 * (r2 * z3 + math.sqrt(max(0.0, 1 - r2 * r2)) * z2),
+        s3 * z3,
+    ])
+    return x, weight
+
+
+def _mean_abs_tone(y: float, a: float) -> float:
+    """<|y + a·sin θ|> by quadrature over the arcsine law of u = a·sin θ."""
+    if a == 0:
+        return abs(y)
+    f = lambda u: abs(y + u)  # noqa: E731
+    pts = [-y] if -a < -y < a else []
+    edges = [-a, *pts, a]
+    total = 0.0
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        # u = a·sin θ over θ in [-π/2, π/2] covers the arcsine law once
+        val, _ = integrate.quad(
+            lambda t: f(a * math.sin(t)), math.asin(lo / a), math.asin(hi / a),
+            epsabs=1e-14, epsrel=1e-13, limit=200,
+        )
+        total += val
+    return total / math.pi
+
+
+def _mean_abs_gauss(y: float, s: float) -> float:
+    """<|y + s·Z|> by quadrature over the normal law, split at the kink."""
+    if s == 0:
+        return abs(y)
+    pdf = lambda z: math.exp(-0.5 * z * z) / math.sqrt(2 * math.pi)  # noqa: E731
+    kink = -y / s
+    lo, _ = integrate.quad(lambda z: -(y + s * z) * pdf(z), -np.inf, kink,
+                           epsabs=1e-15, epsrel=1e-13, limit=200)
+    hi, _ = integrate.quad(lambda z: (y + s * z) * pdf(z), kink, np.inf,
+                           epsabs=1e-15, epsrel=1e-13, limit=200)
+    return lo + hi
+
+
+def mean_abs(omega3: float, amplitudes: Sequence[float], sigma3: float, n_grid: int = 64) -> float:
+    """<|Ω + x3|> for tones of ``amplitudes`` (independent phases) plus Gaussian σ3."""
+    amps = [a for a in amplitudes if a > 0]
+    if not amps:
+        return _mean_abs_gauss(omega3, sigma3)
+    if sigma3 > 0:
+        shifts = _tone_samples([((0, 0, a), (0, 0, 0)) for a in amps], n_grid)[2]
+        return float(np.mean([_mean_abs_gauss(omega3 + s, sigma3) for s in shifts]))
+    last, others = amps[-1], amps[:-1]
+    shifts = _tone_samples([((0, 0, a), (0, 0, 0)) for a in others], n_grid)[2]
+    return float(np.mean([_mean_abs_tone(omega3 + s, last) for s in shifts]))
+
+
+def vibration_error(
+    coefficients: Mapping[str, float],
+    omega: Sequence[float],
+    tones: Sequence[tuple[Sequence[float], Sequence[float]]] = (),
+    sigma: Sequence[float] = (0.0, 0.0, 0.0),
+    rho: Sequence[float] = (1.0, 1.0),
+    n_grid: int = 64,
+) -> float:
+    """Δ_V: <eq. (2)> − eq. (2) at rest, by brute force.
+
+    ``tones``: (amplitude per axis, phase per axis in degrees) at the sensor,
+    of distinct frequencies. ``sigma``/``rho``: the Gaussian part at the sensor.
+    """
+    c = dict(coefficients)
+    a1 = c.pop("A1", 0.0)
+    xt = _tone_samples(tones, 16)
+    xg, wg = _gauss_samples(sigma, rho)
+    x = xt[:, :, None] + xg[:, None, :]
+    weight = np.broadcast_to(wg[None, :] / xt.shape[1], x.shape[1:])
+    w1, w2, w3 = (omega[i] + x[i] for i in range(3))
+    poly = float(np.sum(weight * conversion(c, w1, w2, w3)))
+    rest = float(conversion(c, np.array(omega[0]), np.array(omega[1]), np.array(omega[2])))
+    k1 = c.get("k1", 1.0)
+    amps3 = [math.hypot(0, a[2]) for a, _ in tones]
+    asym = 0.5 * k1 * a1 * (mean_abs(omega[2], amps3, sigma[2], n_grid) - abs(omega[2]))
+    return poly - rest + asym
