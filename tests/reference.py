@@ -84,16 +84,19 @@ def _mean_abs_tone(y: float, a: float) -> float:
 
 
 def _mean_abs_gauss(y: float, s: float) -> float:
-    """<|y + s·Z|> by quadrature over the normal law, split at the kink."""
+    """<|y + s·Z|> by quadrature over the normal law on [-40, 40], split at the kink."""
     if s == 0:
         return abs(y)
     pdf = lambda z: math.exp(-0.5 * z * z) / math.sqrt(2 * math.pi)  # noqa: E731
-    kink = -y / s
-    lo, _ = integrate.quad(lambda z: -(y + s * z) * pdf(z), -np.inf, kink,
-                           epsabs=1e-15, epsrel=1e-13, limit=200)
-    hi, _ = integrate.quad(lambda z: (y + s * z) * pdf(z), kink, np.inf,
-                           epsabs=1e-15, epsrel=1e-13, limit=200)
-    return lo + hi
+    kink = min(max(-y / s, -40.0), 40.0)
+    edges = sorted({-40.0, kink, 0.0, 40.0})
+    total = 0.0
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        sign = 1.0 if y + s * 0.5 * (lo + hi) >= 0 else -1.0
+        val, _ = integrate.quad(lambda z: sign * (y + s * z) * pdf(z), lo, hi,
+                                epsabs=1e-16, epsrel=1e-13, limit=200)
+        total += val
+    return total
 
 
 def mean_abs(omega3: float, amplitudes: Sequence[float], sigma3: float, n_grid: int = 64) -> float:

@@ -73,7 +73,9 @@ def paper_kind(vibration: Vibration) -> str:
         return "random" if vibration.has_random else "none"
     if n_tones == 1 and not vibration.has_random:
         return "tone"
-    what = f"{n_tones} tones" + (" and a random part" if vibration.has_random else "")
+    what = f"{n_tones} tone{'s' if n_tones > 1 else ''}" + (
+        " and a random part" if vibration.has_random else ""
+    )
     raise ModelError(
         f"the paper's formulas cover one harmonic tone or purely random vibration, "
         f"not {what}; use --method exact"

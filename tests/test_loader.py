@@ -1,0 +1,88 @@
+"""Catalogue loading: numbers as people write them, located errors, merging."""
+
+from __future__ import annotations
+
+import pytest
+
+from gyrovib.catalog.loader import CatalogError, load_catalog, parse_catalog
+
+
+def test_exponent_without_dot_is_a_number():
+    # plain YAML 1.1 reads 1e-5 as a string; gyrovib reads it as 1e-5
+    src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k2: 1e-5, k3: 2E+3}\n")
+    c = src.model.sensors[0].coefficients
+    assert (c.k2, c.k3) == (1e-5, 2000.0)
+
+
+def test_yes_no_and_dates_stay_strings():
+    src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n    name: no\n    notes: 2024-01-01\n"
+                        "    coefficients: {}\n")
+    assert src.model.sensors[0].name == "no"
+    assert src.model.sensors[0].notes == "2024-01-01"
+
+
+@pytest.mark.parametrize(
+    ("text", "token", "fragment"),
+    [
+        ("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k_2: 1}\n", "k_2", "did you mean 'k2'"),
+        ("gyrovib: 1\nunits: {rate: deg/min}\n", "deg/min", "deg/s"),
+        ("gyrovib: 1\nx: 1\nx: 2\n", "x: 2", "duplicate key"),
+        ("gyrovib: 2\n", "2", "unsupported format version"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    harmonic: [{frequency: 0, amplitude: [1, 1, 1]}]\n",
+         "0,", "greater than 0"),
+        ("gyrovib: 1\nsensors:\n  - id: s\n    output_coefficients: {K1: 0}\n", "0}", "K1"),
+        ("gyrovib: 1\nsensors:\n  - id: a b\n    coefficients: {}\n", "a b", "pattern"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    mount: [[20, 1], [10, 1]]\n", "[[20",
+         "must increase"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    random: {rms: [1, 1, 1], coherence: [2, 0]}\n",
+         "2, 0]", "less than or equal to 1"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    rate: [0, 0, .nan]\n", ".nan", "finite"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    rate: [0, 0, 1e400]\n", "1e400", "finite"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    rate: [0, 0]\n", "[0, 0]", "too few"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    rate: [0, 0, fast]\n", "fast", "number"),
+    ],
+)
+def test_errors_name_file_line_and_column(text, token, fragment):
+    # the expected place is that of ``token`` (its last occurrence) in the text
+    offset = text.rindex(token)
+    line = text.count("\n", 0, offset) + 1
+    column = offset - (text.rfind("\n", 0, offset) + 1) + 1
+    with pytest.raises(CatalogError) as info:
+        parse_catalog(text, "cat.yaml")
+    message = str(info.value)
+    assert message.startswith(f"cat.yaml:{line}:{column}:"), message
+    assert fragment in message
+
+
+def test_missing_version_points_at_the_top():
+    with pytest.raises(CatalogError, match=r"^cat.yaml:1:1: .*gyrovib: 1"):
+        parse_catalog("sensors: []\n", "cat.yaml")
+
+
+def test_duplicate_ids_across_files(tmp_path):
+    a = tmp_path / "a.yaml"
+    b = tmp_path / "b.yaml"
+    a.write_text("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {}\n")
+    b.write_text("gyrovib: 1\nsensors:\n  - id: t\n    coefficients: {}\n"
+                 "  - id: s\n    coefficients: {}\n")
+    with pytest.raises(CatalogError) as info:
+        load_catalog([a, b])
+    assert str(info.value) == f"{b}:5:9: duplicate sensor id 's' (first at {a}:3)"
+
+
+def test_merged_catalogue_keeps_order(tmp_path):
+    a = tmp_path / "a.yaml"
+    b = tmp_path / "b.yaml"
+    a.write_text("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {}\n")
+    b.write_text("gyrovib: 1\nprofiles:\n  - id: p\n")
+    cat = load_catalog([a, b])
+    assert [e.sensor.id for e in cat.sensors] == ["s"]
+    assert [e.profile.id for e in cat.profiles] == ["p"]
+
+
+def test_object_tags_are_refused_and_run_nothing(tmp_path):
+    marker = tmp_path / "pwned"
+    text = f"gyrovib: 1\nx: !!python/object/apply:os.system ['touch {marker}']\n"
+    with pytest.raises(CatalogError, match="not allowed"):
+        parse_catalog(text, "evil.yaml")
+    assert not marker.exists()
