@@ -73,7 +73,7 @@ def _mean_abs_tone(y: float, a: float) -> float:
     pts = [-y] if -a < -y < a else []
     edges = [-a, *pts, a]
     total = 0.0
-    for lo, hi in zip(edges[:-1], edges[1:]):
+    for lo, hi in itertools.pairwise(edges):
         # u = a·sin θ over θ in [-π/2, π/2] covers the arcsine law once
         val, _ = integrate.quad(
             lambda t: f(a * math.sin(t)), math.asin(lo / a), math.asin(hi / a),
@@ -91,9 +91,9 @@ def _mean_abs_gauss(y: float, s: float) -> float:
     kink = min(max(-y / s, -40.0), 40.0)
     edges = sorted({-40.0, kink, 0.0, 40.0})
     total = 0.0
-    for lo, hi in zip(edges[:-1], edges[1:]):
+    for lo, hi in itertools.pairwise(edges):
         sign = 1.0 if y + s * 0.5 * (lo + hi) >= 0 else -1.0
-        val, _ = integrate.quad(lambda z: sign * (y + s * z) * pdf(z), lo, hi,
+        val, _ = integrate.quad(lambda z, sign=sign: sign * (y + s * z) * pdf(z), lo, hi,
                                 epsabs=1e-16, epsrel=1e-13, limit=200)
         total += val
     return total

@@ -24,7 +24,8 @@ def test_yes_no_and_dates_stay_strings():
 @pytest.mark.parametrize(
     ("text", "token", "fragment"),
     [
-        ("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k_2: 1}\n", "k_2", "did you mean 'k2'"),
+        ("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k_2: 1}\n", "k_2",
+         "did you mean 'k2'"),
         ("gyrovib: 1\nunits: {rate: deg/min}\n", "deg/min", "deg/s"),
         ("gyrovib: 1\nx: 1\nx: 2\n", "x: 2", "duplicate key"),
         ("gyrovib: 2\n", "2", "unsupported format version"),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -71,7 +72,7 @@ def test_psd_integral_equals_adaptive_quadrature(psd_points, gain_points):
     breaks = np.unique(np.concatenate([psd[0], gain[0]]))
     breaks = breaks[(breaks >= psd[0][0]) & (breaks <= psd[0][-1])]
     expected = 0.0
-    for lo, hi in zip(breaks[:-1], breaks[1:], strict=True):
+    for lo, hi in itertools.pairwise(breaks):
         val, _ = integrate.quad(
             lambda f: float(loglog_interp(psd, f, hold=False) * loglog_interp(gain, f) ** 2),
             lo, hi, epsrel=1e-12, epsabs=0, limit=200,

@@ -38,7 +38,9 @@ profiles:
     rate: [{rate(1.0)}, 0, {rate(-3.0)}]
     harmonic: [{{frequency: 80, amplitude: [0, 0, {rate(2.0)}]}}]
     random:
-      psd: {{x1: [[20, {psd(1e-3)}], [2000, {psd(1e-3)}]], x3: [[20, {psd(2e-3)}], [2000, {psd(5e-4)}]]}}
+      psd:
+        x1: [[20, {psd(1e-3)}], [2000, {psd(1e-3)}]]
+        x3: [[20, {psd(2e-3)}], [2000, {psd(5e-4)}]]
       coherence: [0.3, 1]
     mount: [[20, 1], [500, 0.2]]
 """

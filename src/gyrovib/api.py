@@ -55,8 +55,7 @@ def select_entries(
 
     def pick(entries: Sequence[SensorEntry] | Sequence[ProfileEntry], wanted: Sequence[str],
              what: str) -> tuple[int, ...]:
-        ids = [e.sensor.id if isinstance(e, SensorEntry) else e.profile.id  # type: ignore[union-attr]
-               for e in entries]
+        ids = [e.sensor.id if isinstance(e, SensorEntry) else e.profile.id for e in entries]
         if not wanted:
             return tuple(range(len(ids)))
         unknown = [w for w in dict.fromkeys(wanted) if w not in ids]
@@ -253,8 +252,8 @@ def analyze(
     n_s, n_p = len(s_entries), len(p_entries)
     shape = (n_s, n_p)
     parts = {
-        "additive_terms": np.zeros(shape + (5,)),
-        "multiplicative_coefficients": np.zeros(shape + (3,)),
+        "additive_terms": np.zeros((*shape, 5)),
+        "multiplicative_coefficients": np.zeros((*shape, 3)),
         "additive": np.zeros(shape),
         "multiplicative": np.zeros(shape),
         "total": np.zeros(shape),

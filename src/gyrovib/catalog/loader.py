@@ -231,7 +231,7 @@ def _locate(text: str, path: Sequence[Any], want_key: bool) -> tuple[int, int] |
 _KNOWN_KEYS: dict[str, list[str]] = {}
 
 
-def _friendly(error: dict[str, Any], model_fields: Iterable[str] = ()) -> str:
+def _friendly(error: Any, model_fields: Iterable[str] = ()) -> str:
     kind = error["type"]
     loc = error["loc"]
     where = ".".join(str(p) for p in loc)

@@ -82,7 +82,9 @@ def paper_kind(vibration: Vibration) -> str:
     )
 
 
-def profile_multipliers(vibration: Vibration, omega: ArrayLike, method: str = "exact") -> Multipliers:
+def profile_multipliers(
+    vibration: Vibration, omega: ArrayLike, method: str = "exact"
+) -> Multipliers:
     """Multipliers of one vibration at the rates ``omega`` (any shape)."""
     w = np.asarray(omega, dtype=float)
     ones = np.ones_like(w)

@@ -125,17 +125,12 @@ def vibration_at_sensor(
 
 # --------------------------------------------------------------------------- E(Ω)
 
-_erf_scalar = np.frompyfunc(math.erf, 1, 1)
 _erfc_scalar = np.frompyfunc(math.erfc, 1, 1)
 
 
-def _erf(x: FloatArray) -> FloatArray:
-    out: FloatArray = _erf_scalar(x).astype(float)
-    return out
-
-
 def _erfc(x: FloatArray) -> FloatArray:
-    out: FloatArray = _erfc_scalar(x).astype(float)
+    """math.erfc elementwise (numpy has no erf; scipy would slow start-up)."""
+    out: FloatArray = np.asarray(_erfc_scalar(x), dtype=float)
     return out
 
 
@@ -197,7 +192,7 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
     if sigma <= 0 and a.size == 1:
         return arcsine_excess(w, float(a[0]))
     if sigma > 0:
-        counts = [int(math.ceil(8.0 * ak / sigma)) + 32 for ak in a]
+        counts = [math.ceil(8.0 * ak / sigma) + 32 for ak in a]
         grid_amps = a
     else:
         per_tone = {1: 4096, 2: 512}.get(a.size - 1, 96)
@@ -217,4 +212,5 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
         else:
             excess = arcsine_excess(y, float(a[0])) + y
         out[start : start + chunk] = excess.mean(axis=1) - w[start : start + chunk]
-    return out
+    result: FloatArray = out
+    return result

@@ -64,7 +64,8 @@ def to_csv(result: AnalysisResult) -> str:
         for i, j in _rows(result):
             yield [
                 result.sensors[i], result.profiles[j], *map(float, result.rates[j]),
-                *map(float, e.additive_terms[i, j]), *map(float, e.multiplicative_coefficients[i, j]),
+                *map(float, e.additive_terms[i, j]),
+                *map(float, e.multiplicative_coefficients[i, j]),
                 float(e.additive[i, j]), float(e.multiplicative[i, j]), float(e.total[i, j]),
                 float(e.rms[i, j]), "; ".join(result.warnings.get((i, j), ())),
             ]
@@ -77,8 +78,8 @@ def to_markdown(result: AnalysisResult) -> str:
     e = result.error
     head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_ADDITIVE_LABELS,
             "Δ_VA", "Δ_VM", "Δ_V", "Δ_V(RMS)"]
-    rows = []
-    notes = []
+    rows: list[list[str]] = []
+    notes: list[str] = []
     for i, j in _rows(result):
         mark = ""
         if (i, j) in result.warnings:
