@@ -352,7 +352,8 @@ WORST = math.sqrt(1 + float(allocation_constants().beta[0]) ** 2)
 
 @settings(max_examples=60, deadline=None)
 @given(
-    a=st.floats(0.05, 5.0), sigma=st.one_of(st.just(0.0), st.floats(0.01, 3.0)), omega=st.floats(-10.0, 10.0),
+    a=st.floats(0.05, 5.0), sigma=st.one_of(st.just(0.0), st.floats(0.01, 3.0)),
+    omega=st.floats(-10.0, 10.0),
     cross=st.floats(-1.0, 1.0), signs=st.lists(st.sampled_from([-1.0, 1.0]), min_size=7,
                                                max_size=7),
     k5_zero=st.booleans(),
@@ -366,8 +367,8 @@ def test_within_bounds_keeps_rms_within_budget(a: float, sigma: float, omega: fl
     at their bounds and of one sign |Δ(1)Ω̄| = √2·β1·Δ*, and Δ_V(RMS) can reach
     Δ*·√(1 + β1²) = 1.098·Δ* (MODEL.md 6; see docs/synthesis.md).
     """
-    from gyrovib.core.statistics import vibration_at_sensor
     from gyrovib.core.analysis import COLUMN, profile_multipliers
+    from gyrovib.core.statistics import vibration_at_sensor
 
     vib = vibration_at_sensor([(50.0, (a * cross, 0.3 * a, a), (0, 0, 0))],
                               rms=(0.5 * sigma, 0.0, sigma))
