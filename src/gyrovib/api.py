@@ -330,7 +330,7 @@ def resolve_allocation(
     ``exact`` derives the shares (eq. 20, 21, 24); ``paper`` uses the printed
     constants and therefore refuses any other allocation.
     """
-    where = "the allocation option"
+    where = "--allocation"
     if allocation is None:
         chosen = catalog.allocation
         if catalog.allocation is not None:
@@ -356,7 +356,7 @@ def resolve_allocation(
         if not _is_default(chosen):
             raise OptionError(
                 f"--method paper uses the paper's printed shares (0.44, 0.22, 0.49, 0.24, 0.35) "
-                f"and cannot honour the custom allocation given in {where}; "
+                f"and cannot honour the custom allocation given by {where}; "
                 "use --method exact, or drop the allocation"
             )
         return PAPER_CONSTANTS
