@@ -10,6 +10,7 @@ the requested output unit on the way out.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,6 +25,7 @@ from gyrovib.catalog.loader import (
     bundled_paths,
     load_catalog,
 )
+from gyrovib.catalog.schema import Allocation
 from gyrovib.core.analysis import (
     COEFFICIENTS,
     METHODS,
@@ -34,6 +36,17 @@ from gyrovib.core.analysis import (
     vibration_error,
 )
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
+from gyrovib.core.synthesis import (
+    BOUNDED,
+    DEFAULT_R,
+    DEFAULT_V,
+    DEFAULT_W,
+    PAPER_CONSTANTS,
+    AllocationConstants,
+    CoefficientBounds,
+    allocation_constants,
+    coefficient_bounds,
+)
 from gyrovib.core.transmissibility import FloatArray, Table, as_table
 from gyrovib.errors import GyrovibError, ModelError, OptionError
 
@@ -288,4 +301,307 @@ def analyze(
         rates=rates / units.scale(unit),
         error=error,
         warnings=warnings,
+    )
+
+
+# ----------------------------------------------------------------- synthesis
+
+
+def _bound_factors(unit: str) -> dict[str, float]:
+    """deg/s → ``unit`` factors of each bounded coefficient: ``s**(-p)`` for rate power p."""
+    s = units.scale(unit)
+    return {name: s ** (-units.COEFFICIENT_RATE_POWER[name]) for name in BOUNDED}
+
+
+def _is_default(allocation: Allocation) -> bool:
+    return (allocation.r == DEFAULT_R and tuple(allocation.w) == DEFAULT_W
+            and tuple(allocation.v) == DEFAULT_V)
+
+
+def resolve_allocation(
+    catalog: Catalog, method: str, allocation: Allocation | Sequence[float] | None = None
+) -> AllocationConstants:
+    """The shares of the budget for ``method``.
+
+    ``allocation`` (an :class:`Allocation`, or 1 number r, or 9 numbers
+    r, w1..w5, v1..v3) wins over the catalogue's ``allocation:`` section; the
+    paper's r = 1.5, w = (1, 1, 1, ½, ½), v = (1, ½, ½) is the default.
+    ``exact`` derives the shares (eq. 20, 21, 24); ``paper`` uses the printed
+    constants and therefore refuses any other allocation.
+    """
+    where = "--allocation"
+    if allocation is None:
+        chosen = catalog.allocation
+        if catalog.allocation is not None:
+            source = next((s for s in catalog.sources if s.model.allocation is not None), None)
+            where = f"the 'allocation:' section of {source.name}" if source else "the catalogue"
+    elif isinstance(allocation, Allocation):
+        chosen = allocation
+    else:
+        values = [float(x) for x in allocation]
+        if not all(math.isfinite(x) and x > 0 for x in values):
+            raise OptionError("an allocation's r, w and v must be positive and finite")
+        if len(values) == 1:
+            chosen = Allocation(r=values[0])
+        elif len(values) == 9:
+            chosen = Allocation(r=values[0], w=tuple(values[1:6]), v=tuple(values[6:9]))
+        else:
+            raise OptionError(
+                f"an allocation is r alone or 9 numbers r,w1,...,w5,v1,v2,v3; got {len(values)}"
+            )
+    if chosen is None:
+        chosen = Allocation()
+    if method == "paper":
+        if not _is_default(chosen):
+            raise OptionError(
+                f"--method paper uses the paper's printed shares (0.44, 0.22, 0.49, 0.24, 0.35) "
+                f"and cannot honour the custom allocation given by {where}; "
+                "use --method exact, or drop the allocation"
+            )
+        return PAPER_CONSTANTS
+    try:
+        return allocation_constants(chosen.r, chosen.w, chosen.v)
+    except ValueError as exc:
+        raise OptionError(f"allocation: {exc}") from None
+
+
+@dataclass(frozen=True)
+class BoundsResult:
+    """Allowable coefficients of eq. (23), (25) for every chosen profile.
+
+    ``bounds`` arrays have shape (profiles,), each in its coefficient's unit
+    built on :attr:`unit`; +inf means unconstrained. ``rates`` is Ω_K per
+    profile in :attr:`unit`, shape (profiles, 3); ``budget`` Δ* in :attr:`unit`.
+    The profile alone is taken: the sensor's own response is 1.
+    """
+
+    method: str
+    unit: str
+    budget: float
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    bounds: CoefficientBounds
+    allocation: AllocationConstants
+
+
+def _check_method_budget(method: str, budget: float) -> None:
+    if method not in METHODS:
+        raise OptionError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
+    if not (math.isfinite(budget) and budget > 0):
+        raise OptionError(f"the budget must be positive and finite, not {budget!r}")
+
+
+def _group_multipliers(
+    p_entries: Sequence[ProfileEntry], rates: FloatArray, method: str, response: Table | None
+) -> Multipliers:
+    vibrations = [profile_vibration(p, response) for p in p_entries]
+    return stack_multipliers(
+        [located_multipliers(p, v, r[2], method)
+         for p, v, r in zip(p_entries, vibrations, rates, strict=True)]
+    )
+
+
+def bounds(
+    catalog: Catalog,
+    *,
+    profiles: Sequence[str] = (),
+    method: str = "exact",
+    rate: Sequence[float] | None = None,
+    budget: float,
+    unit: str = "deg/s",
+    allocation: Allocation | Sequence[float] | None = None,
+) -> BoundsResult:
+    """The inverse problem: allowable coefficients per profile, eq. (23), (25).
+
+    ``budget`` is Δ*_V in deg/s; ``rate`` overrides Ω_K (deg/s) as in
+    :func:`analyze`; ``unit`` is the output unit.
+    """
+    _check_method_budget(method, budget)
+    unit = units.canonical_unit(unit)
+    constants = resolve_allocation(catalog, method, allocation)
+    _, p_entries = select_entries(catalog, (), profiles)
+    rates = np.array([resolve_rate(p, rate) for p in p_entries], dtype=float).reshape(-1, 3)
+    multipliers = _group_multipliers(p_entries, rates, method, None) if p_entries else None
+    if multipliers is None:
+        empty = np.zeros(0)
+        raw = CoefficientBounds(**{n: empty for n in CoefficientBounds.__dataclass_fields__})
+    else:
+        raw = coefficient_bounds(multipliers, budget, constants)
+    return BoundsResult(
+        method=method,
+        unit=unit,
+        budget=budget / units.scale(unit),
+        profiles=tuple(p.profile.id for p in p_entries),
+        rates=rates / units.scale(unit),
+        bounds=raw.scaled(_bound_factors(unit)),
+        allocation=constants,
+    )
+
+
+CRITERIA = ("bounds", "rms", "both")
+REQUIREMENTS = ("any", "all")
+#: Relative slack of every ≤ comparison: a value at its bound, up to rounding
+#: (e.g. a bound printed in deg/h and read back), passes.
+PASS_RTOL = 1e-9
+
+
+@dataclass(frozen=True)
+class Limit:
+    """What stops a failing sensor: the worst coefficient (or ``"rms"``) and where."""
+
+    name: str
+    profile: int
+    ratio: float
+
+
+@dataclass(frozen=True)
+class SelectionResult:
+    """Every chosen sensor checked against the budget under every chosen profile.
+
+    Arrays are indexed (sensor, profile[, coefficient of :data:`BOUNDED`]) and
+    are in :attr:`unit`. ``values`` are the sensors' |coefficients| (k1 taken
+    as 1); ``bounds`` each sensor's own bounds (its response ν_sensor included);
+    ``profile_bounds`` those of the profiles alone. ``margin`` is Δ*/Δ_V(RMS)
+    (+inf when Δ_V(RMS) = 0). ``passed`` is the verdict under
+    :attr:`criterion`; ``ranking`` orders the sensors by worst margin, best
+    first; ``limits`` names, per failing sensor, the largest value/bound ratio
+    (or Δ_V(RMS)/Δ*) among the criteria checked.
+    """
+
+    method: str
+    unit: str
+    budget: float
+    criterion: str
+    require: str
+    sensors: tuple[str, ...]
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    profile_bounds: CoefficientBounds
+    values: FloatArray
+    bounds: FloatArray
+    check_pass: FloatArray
+    rms: FloatArray
+    margin: FloatArray
+    bounds_pass: FloatArray
+    rms_pass: FloatArray
+    passed: FloatArray
+    sensor_pass: FloatArray
+    worst_margin: FloatArray
+    ranking: tuple[int, ...]
+    limits: dict[int, Limit]
+    requirement_met: bool
+    allocation: AllocationConstants
+
+
+def _at_most(value: FloatArray, bound: FloatArray | float) -> FloatArray:
+    out: FloatArray = value <= np.asarray(bound) * (1.0 + PASS_RTOL)
+    return out
+
+
+def _ratio(value: FloatArray, bound: FloatArray) -> FloatArray:
+    """value/bound: 0 for a zero value or an infinite bound, +inf for a zero bound."""
+    out: FloatArray = np.zeros(np.broadcast_shapes(value.shape, bound.shape))
+    v = np.broadcast_to(value, out.shape)
+    b = np.broadcast_to(bound, out.shape)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        q = v / b
+    return np.where(v == 0, 0.0, np.where(b == 0, np.inf, np.where(np.isinf(b), 0.0, q)))
+
+
+def select(
+    catalog: Catalog,
+    *,
+    sensors: Sequence[str] = (),
+    profiles: Sequence[str] = (),
+    method: str = "exact",
+    rate: Sequence[float] | None = None,
+    budget: float,
+    unit: str = "deg/s",
+    criterion: str = "bounds",
+    require: str = "any",
+    allocation: Allocation | Sequence[float] | None = None,
+) -> SelectionResult:
+    """Which sensors meet the budget: the bound checks and eq. (17), per profile.
+
+    Each sensor's bounds include its own response ν_sensor(f) (computed once
+    per distinct response). ``criterion``: ``bounds`` (every |coefficient| at
+    most its bound), ``rms`` (Δ_V(RMS) ≤ Δ*, eq. 17) or ``both``. A sensor
+    passes when it passes under every chosen profile; ``require`` ``any``
+    (at least one sensor passes) or ``all`` decides :attr:`requirement_met`.
+    ``budget`` and ``rate`` are in deg/s; ``unit`` is the output unit.
+    """
+    _check_method_budget(method, budget)
+    if criterion not in CRITERIA:
+        raise OptionError(f"unknown criterion {criterion!r}; use one of {', '.join(CRITERIA)}")
+    if require not in REQUIREMENTS:
+        raise OptionError(f"unknown requirement {require!r}; use one of {', '.join(REQUIREMENTS)}")
+    unit = units.canonical_unit(unit)
+    constants = resolve_allocation(catalog, method, allocation)
+    alone = bounds(catalog, profiles=profiles, method=method, rate=rate, budget=budget,
+                   unit=unit, allocation=allocation)
+    s_entries, p_entries = select_entries(catalog, sensors, profiles)
+    coeffs = coefficient_matrix(s_entries)
+    rates = np.array([resolve_rate(p, rate) for p in p_entries], dtype=float).reshape(-1, 3)
+    n_s, n_p, n_b = len(s_entries), len(p_entries), len(BOUNDED)
+    limits_deg = np.full((n_s, n_p, n_b), np.inf)
+    rms = np.zeros((n_s, n_p))
+    for response, idx in response_groups(s_entries) if n_p else []:
+        multipliers = _group_multipliers(p_entries, rates, method, response)
+        limits_deg[idx] = coefficient_bounds(multipliers, budget, constants).stacked()[None]
+        rms[idx] = vibration_error(coeffs[idx], multipliers).rms
+    if not np.all(np.isfinite(rms)):
+        raise GyrovibError(
+            "the vibration error overflows floating point: check the amplitudes, PSD levels, "
+            "rates and coefficients for absurd magnitudes"
+        )
+    values_deg = np.abs(coeffs[:, [COEFFICIENTS.index(c) for c in BOUNDED]])[:, None, :]
+    values_deg = np.broadcast_to(values_deg, (n_s, n_p, n_b))
+    check_pass = _at_most(values_deg, limits_deg)
+    bounds_pass = np.all(check_pass, axis=-1)
+    rms_pass = _at_most(rms, budget)
+    passed = {"bounds": bounds_pass, "rms": rms_pass,
+              "both": bounds_pass & rms_pass}[criterion]
+    sensor_pass = np.all(passed, axis=1)
+    with np.errstate(divide="ignore"):
+        margin = np.where(rms > 0, budget / np.where(rms > 0, rms, 1.0), np.inf)
+    worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
+    ranking = tuple(int(i) for i in sorted(range(n_s), key=lambda i: (-worst[i], i)))
+    limits: dict[int, Limit] = {}
+    ratios = _ratio(values_deg, limits_deg)
+    for i in np.nonzero(~sensor_pass)[0]:
+        candidates: list[Limit] = []
+        if criterion in ("bounds", "both"):
+            j, b = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
+            candidates.append(Limit(BOUNDED[b], int(j), float(ratios[i, j, b])))
+        if criterion in ("rms", "both"):
+            j = int(np.argmax(rms[i]))
+            candidates.append(Limit("rms", j, float(rms[i, j] / budget)))
+        limits[int(i)] = max(candidates, key=lambda c: c.ratio)
+    met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
+    factors = np.array([_bound_factors(unit)[c] for c in BOUNDED])
+    s = units.scale(unit)
+    return SelectionResult(
+        method=method,
+        unit=unit,
+        budget=budget / s,
+        criterion=criterion,
+        require=require,
+        sensors=tuple(e.sensor.id for e in s_entries),
+        profiles=tuple(p.profile.id for p in p_entries),
+        rates=rates / s,
+        profile_bounds=alone.bounds,
+        values=values_deg * factors,
+        bounds=limits_deg * factors,
+        check_pass=check_pass,
+        rms=rms / s,
+        margin=margin,
+        bounds_pass=bounds_pass,
+        rms_pass=rms_pass,
+        passed=passed,
+        sensor_pass=sensor_pass,
+        worst_margin=worst,
+        ranking=ranking,
+        limits=limits,
+        requirement_met=met,
+        allocation=constants,
     )

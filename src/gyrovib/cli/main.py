@@ -53,9 +53,11 @@ def cli() -> None:
 def _register() -> None:
     # Each command lives in its own module; they import only click at import time.
     from gyrovib.cli.analyze import analyze
+    from gyrovib.cli.bounds import bounds
+    from gyrovib.cli.select import select
     from gyrovib.cli.validate import validate
 
-    for command in (analyze, validate):
+    for command in (analyze, bounds, select, validate):
         cli.add_command(command)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import Any, TypeVar
 
@@ -82,3 +83,50 @@ def parse_budget(text: str, unit: str) -> float:
     if value <= 0:
         raise OptionError(f"--budget {text!r}: the budget must be positive")
     return value
+
+
+def budget_option(f: F) -> F:
+    return click.option(
+        "--budget", required=True, metavar="B",
+        help="Δ*_V, the allowed vibration error: a number in --unit, or with a unit "
+             "(36deg/h, '0.01 deg/s').",
+    )(f)
+
+
+def method_option(f: F) -> F:
+    return click.option(
+        "--method", type=click.Choice(["exact", "paper"]), default="exact", show_default=True,
+        help="exact: exact moments and derived shares; paper: the paper's printed formulas "
+             "and constants.",
+    )(f)
+
+
+def allocation_option(f: F) -> F:
+    return click.option(
+        "--allocation", metavar="r[,w1..w5,v1..v3]",
+        help="How the budget is split (eq. 18, 21, 24): r alone, or r and the weights "
+             "w (A1, k2, k4, m31, m32) and v (Ω, Ω², Ω³ terms), comma-separated. Default: "
+             "the catalogue's 'allocation:', else the paper's 1.5,1,1,1,0.5,0.5,1,0.5,0.5.",
+    )(f)
+
+
+def parse_allocation(text: str | None) -> list[float] | None:
+    """``--allocation`` → r alone or the 9 numbers r, w1..w5, v1..v3, positive and finite."""
+    if text is None:
+        return None
+    pieces = [p.strip() for p in text.split(",")]
+    values: list[float] = []
+    for piece in pieces:
+        try:
+            value = float(piece)
+        except ValueError:
+            raise OptionError(f"--allocation {text!r}: {piece!r} is not a number") from None
+        if not (math.isfinite(value) and value > 0):
+            raise OptionError(f"--allocation {text!r}: every value must be positive and finite")
+        values.append(value)
+    if len(values) not in (1, 9):
+        raise OptionError(
+            f"--allocation {text!r}: give r alone or 9 numbers r,w1,...,w5,v1,v2,v3 "
+            f"(got {len(values)})"
+        )
+    return values

@@ -1,0 +1,58 @@
+"""`gyrovib bounds`: the inverse problem, allowable coefficients per profile."""
+
+from __future__ import annotations
+
+import click
+
+from gyrovib.cli.common import load_catalog, use_color
+from gyrovib.cli.options import (
+    allocation_option,
+    budget_option,
+    files_argument,
+    format_option,
+    method_option,
+    output_option,
+    parse_allocation,
+    parse_budget,
+    parse_rate_option,
+    parse_unit,
+    rate_option,
+    unit_option,
+)
+
+
+@click.command()
+@files_argument
+@click.option("--profile", "profiles", multiple=True, metavar="ID",
+              help="Only this profile (repeatable).")
+@budget_option
+@method_option
+@rate_option
+@unit_option
+@allocation_option
+@format_option("table", "json", "csv", "markdown")
+@output_option
+def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, method: str,
+           rate: str | None, unit: str, allocation: str | None, fmt: str,
+           output: str | None) -> None:
+    """The inverse problem: the largest coefficients that keep the error within budget.
+
+    For each profile, bounds on |A1|, |k2|…|k5|, |m31|, |m32| from the paper's
+    split of the budget (eq. 18-25). A sensor within every bound meets the
+    budget (eq. 17). The sensor's own frequency response is taken as 1 here;
+    `gyrovib select` includes it.
+    """
+    from gyrovib import api
+    from gyrovib.cli.output import write_output
+    from gyrovib.render import bounds as render
+
+    unit = parse_unit(unit)
+    result = api.bounds(load_catalog(files), profiles=profiles, method=method,
+                        rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
+                        unit=unit, allocation=parse_allocation(allocation))
+    if fmt == "table":
+        text = render.to_table(result, color=use_color(output))
+    else:
+        text = {"json": render.to_json, "csv": render.to_csv,
+                "markdown": render.to_markdown}[fmt](result)
+    write_output(text, output)

@@ -1,0 +1,135 @@
+"""Renderers of :class:`gyrovib.api.BoundsResult` (eq. 23, 25)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+from gyrovib import units
+from gyrovib.api import BoundsResult
+from gyrovib.core.synthesis import BOUNDED, PARTS, AllocationConstants, CoefficientBounds
+from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+
+
+def coefficient_unit(name: str, unit: str) -> str:
+    """The unit of a coefficient's bound: ``1`` for A1, ``(deg/s)^-2`` for k3, …"""
+    power = units.COEFFICIENT_RATE_POWER[name.split("_")[0]]
+    if power == 0:
+        return "1"
+    return f"({unit})^{power}"
+
+
+def bounds_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
+    """The seven bounds of profile ``j`` for JSON (``null`` = unconstrained)."""
+    return {name: number(getattr(bounds, name)[j]) for name in BOUNDED}
+
+
+def parts_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
+    """The k4/k5 candidates of profile ``j`` for JSON."""
+    return {name: number(getattr(bounds, name)[j]) for name in PARTS}
+
+
+def profiles_json(profiles: tuple[str, ...], rates: Any, bounds: CoefficientBounds) -> list[Any]:
+    """The ``profiles`` list shared by ``bounds`` and ``select`` JSON."""
+    return [
+        {"profile": p, "rate": [float(x) for x in rates[j]],
+         "bounds": bounds_dict(bounds, j), "parts": parts_dict(bounds, j)}
+        for j, p in enumerate(profiles)
+    ]
+
+
+def to_json(result: BoundsResult) -> str:
+    """INTERFACE.md ``bounds --format json``."""
+    document = header(result.method, result.unit)
+    document["budget"] = result.budget
+    document["profiles"] = profiles_json(result.profiles, result.rates, result.bounds)
+    return dumps(document)
+
+
+def to_csv(result: BoundsResult) -> str:
+    """One row per profile; an unconstrained bound is written ``inf``."""
+    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *PARTS]
+
+    def rows() -> Iterator[list[Any]]:
+        for j, p in enumerate(result.profiles):
+            yield [p, *map(float, result.rates[j]),
+                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + PARTS)]
+
+    return csv_text(head, rows())
+
+
+def shares(constants: AllocationConstants) -> dict[str, str]:
+    """The share of Δ* behind each bound, as printed in the tables."""
+    a, b = constants.alpha, constants.beta
+    return {
+        "A1": f"α1 = {a[0]:.4g}",
+        "k2": f"α2 = {a[1]:.4g}",
+        "k3": f"β1/√2 = {constants.k3:.4g}",
+        "k4": f"α3 = {a[2]:.4g} | β2 = {b[1]:.4g}",
+        "k5": f"β1/√2 = {constants.k5_linear:.4g} | β3 = {b[2]:.4g}",
+        "m31": f"α4 = {a[3]:.4g}",
+        "m32": f"α5 = {a[4]:.4g}",
+    }
+
+
+def _which(bounds: CoefficientBounds, j: int, name: str) -> str:
+    """For k4/k5: the two candidates, the smaller one (the bound) marked."""
+    if name == "k4":
+        first, second = ("additive", bounds.k4_additive[j]), ("multiplicative",
+                                                              bounds.k4_multiplicative[j])
+    elif name == "k5":
+        first, second = ("linear", bounds.k5_linear[j]), ("cubic", bounds.k5_cubic[j])
+    else:
+        return ""
+    if first[1] == second[1] == float("inf"):
+        return f"{first[0]} ∞, {second[0]} ∞: unconstrained"
+    binding = first[0] if first[1] <= second[1] else second[0]
+    return f"{first[0]} {fmt(first[1])}, {second[0]} {fmt(second[1])}: {binding} binds"
+
+
+def _rows(result: BoundsResult, j: int) -> list[list[str]]:
+    share = shares(result.allocation)
+    return [[name, fmt(getattr(result.bounds, name)[j]), coefficient_unit(name, result.unit),
+             share[name], _which(result.bounds, j, name)] for name in BOUNDED]
+
+
+_HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
+
+
+def _title(result: BoundsResult, j: int) -> str:
+    return (f"{result.profiles[j]}  (Ω_K3 = {fmt(result.rates[j, 2])} {result.unit}, "
+            f"Δ* = {fmt(result.budget)} {result.unit}, method {result.method})")
+
+
+_LEGEND = ("A sensor whose every |coefficient| is at most its bound meets the budget "
+           "(eq. 17) under this allocation: sufficient, not necessary. ∞ = unconstrained "
+           "(the coefficient does not act under this profile). k1 = 1; the sensor's own "
+           "response is taken as 1 (see `gyrovib select`).")
+
+
+def to_markdown(result: BoundsResult) -> str:
+    """One Markdown table per profile."""
+    parts = [f"Allowable coefficients, eq. (23) and (25), method `{result.method}`, "
+             f"budget Δ* = {fmt(result.budget)} {result.unit}\n"]
+    for j in range(len(result.profiles)):
+        parts.append(f"**{_title(result, j)}**\n\n" + markdown_table(_HEAD, _rows(result, j)))
+    parts.append(_LEGEND + "\n")
+    return "\n".join(parts)
+
+
+def to_table(result: BoundsResult, width: int | None = None, color: bool = False) -> str:
+    """One rich table per profile, one row per bounded coefficient."""
+    from rich.table import Table
+    from rich.text import Text
+
+    out: list[Any] = []
+    for j in range(len(result.profiles)):
+        table = Table(title=_title(result, j), title_justify="left", header_style="bold")
+        for k, label in enumerate(_HEAD):
+            table.add_column(label, justify="right" if k == 1 else "left", no_wrap=True,
+                             style="bold" if k == 1 else None)
+        for row in _rows(result, j):
+            table.add_row(*row)
+        out.append(table)
+    out.append(Text(_LEGEND, style="dim"))
+    return rich_text(out, width=width, color=color)

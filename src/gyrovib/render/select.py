@@ -1,0 +1,251 @@
+"""Renderers of :class:`gyrovib.api.SelectionResult`."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+from gyrovib.api import SelectionResult
+from gyrovib.core.synthesis import BOUNDED
+from gyrovib.render.bounds import coefficient_unit, profiles_json, shares
+from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+
+_CRITERION = {
+    "bounds": "every |coefficient| within its bound (eq. 23, 25)",
+    "rms": "Δ_V(RMS) ≤ Δ* (eq. 17)",
+    "both": "every |coefficient| within its bound and Δ_V(RMS) ≤ Δ*",
+}
+
+
+# ------------------------------------------------------------------ reasons
+
+
+def failures(result: SelectionResult, i: int, j: int) -> list[str]:
+    """Why sensor ``i`` fails under profile ``j`` (empty when it passes there).
+
+    Only the criteria that count (``--criterion``) are listed.
+    """
+    reasons: list[str] = []
+    if result.criterion in ("bounds", "both"):
+        for b, name in enumerate(BOUNDED):
+            if not result.check_pass[i, j, b]:
+                unit = coefficient_unit(name, result.unit)
+                tail = "" if unit == "1" else f" {unit}"
+                reasons.append(
+                    f"|{name}| = {fmt(result.values[i, j, b])} exceeds its bound "
+                    f"{fmt(result.bounds[i, j, b])}{tail}"
+                )
+    if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
+        reasons.append(f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} exceeds the budget "
+                       f"{fmt(result.budget)} {result.unit}")
+    return reasons
+
+
+def limit_text(result: SelectionResult, i: int) -> str:
+    """One line on what limits failing sensor ``i``."""
+    limit = result.limits[i]
+    j = limit.profile
+    profile = result.profiles[j]
+    ratio = fmt(limit.ratio, 3)
+    if limit.name == "rms":
+        return (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} is {ratio}× the budget "
+                f"under {profile}")
+    b = BOUNDED.index(limit.name)
+    unit = coefficient_unit(limit.name, result.unit)
+    tail = "" if unit == "1" else f" {unit}"
+    return (f"{limit.name}: |{limit.name}| = {fmt(result.values[i, j, b])} is {ratio}× its "
+            f"bound {fmt(result.bounds[i, j, b])}{tail} under {profile}")
+
+
+def _margin(value: float) -> str:
+    return fmt(value, 3)
+
+
+def _summary(result: SelectionResult) -> str:
+    n_pass = int(result.sensor_pass.sum())
+    verdict = "met" if result.requirement_met else "NOT met"
+    need = "at least one sensor" if result.require == "any" else "every sensor"
+    return (f"Requirement ({result.require}: {need} passes under every profile): {verdict}; "
+            f"{n_pass} of {len(result.sensors)} sensor(s) pass.")
+
+
+def _heading(result: SelectionResult) -> str:
+    return (f"Sensors against Δ* = {fmt(result.budget)} {result.unit}, method {result.method}, "
+            f"criterion {result.criterion}: {_CRITERION[result.criterion]}")
+
+
+def _legend(result: SelectionResult) -> str:
+    share = shares(result.allocation)
+    return ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
+            "(> 1: the RMS error is within the budget; ∞: no error at all). Each sensor's "
+            "bounds include its own frequency response. Shares of Δ*: "
+            + ", ".join(f"{k} {v}" for k, v in share.items())
+            + ". The bounds are sufficient under this allocation, not necessary.")
+
+
+# ------------------------------------------------------------------ JSON, CSV
+
+
+def to_json(result: SelectionResult) -> str:
+    """INTERFACE.md ``select --format json`` (sensors in catalogue order)."""
+    document = header(result.method, result.unit)
+    document["budget"] = result.budget
+    document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
+    document["criterion"] = result.criterion
+    document["require"] = result.require
+    sensors = []
+    for i, sensor in enumerate(result.sensors):
+        cells = []
+        for j, profile in enumerate(result.profiles):
+            checks = {
+                name: {"value": number(result.values[i, j, b]),
+                       "bound": number(result.bounds[i, j, b]),
+                       "pass": bool(result.check_pass[i, j, b])}
+                for b, name in enumerate(BOUNDED)
+            }
+            cells.append({"profile": profile, "pass": bool(result.passed[i, j]),
+                          "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
+                          "checks": checks})
+        sensors.append({"sensor": sensor, "pass": bool(result.sensor_pass[i]),
+                        "profiles": cells})
+    document["sensors"] = sensors
+    return dumps(document)
+
+
+def to_csv(result: SelectionResult) -> str:
+    """One row per sensor × profile; an unconstrained bound or margin is ``inf``."""
+    head = ["sensor", "profile", "pass", "sensor_pass", "rms", "margin"]
+    for name in BOUNDED:
+        head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
+
+    def rows() -> Iterator[list[Any]]:
+        for i, sensor in enumerate(result.sensors):
+            for j, profile in enumerate(result.profiles):
+                row: list[Any] = [sensor, profile, bool(result.passed[i, j]),
+                                  bool(result.sensor_pass[i]), float(result.rms[i, j]),
+                                  float(result.margin[i, j])]
+                for b in range(len(BOUNDED)):
+                    row += [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
+                            bool(result.check_pass[i, j, b])]
+                yield row
+
+    return csv_text(head, rows())
+
+
+# ------------------------------------------------------------------ human
+
+
+def _cell(result: SelectionResult, i: int, j: int) -> str:
+    mark = "✓" if result.passed[i, j] else "✗"
+    return f"{mark} {_margin(result.margin[i, j])}"
+
+
+def _passing(result: SelectionResult) -> list[list[str]]:
+    rows = []
+    for rank, i in enumerate((k for k in result.ranking if result.sensor_pass[k]), 1):
+        j = int(result.margin[i].argmin()) if len(result.profiles) else 0
+        where = result.profiles[j] if len(result.profiles) else ""
+        rows.append([str(rank), result.sensors[i], _margin(result.worst_margin[i]), where])
+    return rows
+
+
+def _failing(result: SelectionResult) -> list[list[str]]:
+    return [[result.sensors[i], limit_text(result, i)]
+            for i in range(len(result.sensors)) if not result.sensor_pass[i]]
+
+
+def to_markdown(result: SelectionResult) -> str:
+    """The pass/fail matrix, the ranking and the limiting coefficients, in Markdown."""
+    text = [_heading(result) + "\n"]
+    head = ["sensor", *result.profiles, "verdict"]
+    rows = [[result.sensors[i], *(_cell(result, i, j) for j in range(len(result.profiles))),
+             "**PASS**" if result.sensor_pass[i] else "**FAIL**"]
+            for i in range(len(result.sensors))]
+    text.append(markdown_table(head, rows))
+    passing = _passing(result)
+    if passing:
+        text.append("Passing sensors, ranked by worst margin:\n\n"
+                    + markdown_table(["rank", "sensor", "worst margin", "under"], passing))
+    failing = _failing(result)
+    if failing:
+        text.append("Failing sensors, and what limits each:\n\n"
+                    + markdown_table(["sensor", "limited by"], failing))
+    text.append(_summary(result) + "\n\n" + _legend(result) + "\n")
+    return "\n".join(text)
+
+
+def to_table(result: SelectionResult, width: int | None = None, color: bool = False) -> str:
+    """Rich tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
+    from rich.table import Table
+    from rich.text import Text
+
+    out: list[Any] = [Text(_heading(result), style="bold")]
+    matrix = Table(header_style="bold")
+    longest = max((len(s) for s in result.sensors), default=6)
+    matrix.add_column("sensor", no_wrap=True, min_width=longest)
+    for profile in result.profiles:
+        matrix.add_column(profile, justify="center", overflow="fold", min_width=8)
+    matrix.add_column("verdict", justify="center", no_wrap=True, min_width=7)
+    for i, sensor in enumerate(result.sensors):
+        cells = [Text(_cell(result, i, j), style="green" if result.passed[i, j] else "bold red")
+                 for j in range(len(result.profiles))]
+        verdict = (Text("PASS", style="bold green") if result.sensor_pass[i]
+                   else Text("FAIL", style="bold red"))
+        matrix.add_row(sensor, *cells, verdict)
+    out.append(matrix)
+    passing = _passing(result)
+    if passing:
+        ranked = Table(title="Passing sensors, ranked by worst margin Δ*/Δ_V(RMS)",
+                       title_justify="left", header_style="bold")
+        for label, justify in (("rank", "right"), ("sensor", "left"),
+                               ("worst margin", "right"), ("under", "left")):
+            ranked.add_column(label, justify=justify, no_wrap=True)  # type: ignore[arg-type]
+        for row in passing:
+            ranked.add_row(*row)
+        out.append(ranked)
+    failing = _failing(result)
+    if failing:
+        limited = Table(title="Failing sensors: what limits each", title_justify="left",
+                        header_style="bold")
+        limited.add_column("sensor", no_wrap=True, style="red")
+        limited.add_column("limited by")
+        for row in failing:
+            limited.add_row(*row)
+        out.append(limited)
+    out.append(Text(_summary(result), style="bold green" if result.requirement_met
+                    else "bold red"))
+    out.append(Text(_legend(result), style="dim"))
+    return rich_text(out, width=width, color=color)
+
+
+# ------------------------------------------------------------------ JUnit
+
+
+def to_junit(result: SelectionResult) -> str:
+    """JUnit XML: one testcase per sensor × profile (classname = sensor, name = profile)."""
+    import xml.etree.ElementTree as ET
+
+    n_cases = len(result.sensors) * len(result.profiles)
+    n_fail = int((~result.passed.astype(bool)).sum())
+    suites = ET.Element("testsuites", name="gyrovib select", tests=str(n_cases),
+                        failures=str(n_fail), errors="0")
+    suite = ET.SubElement(
+        suites, "testsuite",
+        name=f"gyrovib select: budget {fmt(result.budget)} {result.unit}, method "
+             f"{result.method}, criterion {result.criterion}",
+        tests=str(n_cases), failures=str(n_fail), errors="0", skipped="0",
+    )
+    for i, sensor in enumerate(result.sensors):
+        for j, profile in enumerate(result.profiles):
+            case = ET.SubElement(suite, "testcase", classname=sensor, name=profile, time="0")
+            out = ET.SubElement(case, "system-out")
+            out.text = (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}, "
+                        f"margin {_margin(result.margin[i, j])}")
+            if not result.passed[i, j]:
+                reasons = failures(result, i, j)
+                failure = ET.Element("failure", message="; ".join(reasons),
+                                     type="BudgetExceeded")
+                failure.text = "\n".join(reasons)
+                case.insert(0, failure)
+    ET.indent(suites)
+    return ET.tostring(suites, encoding="unicode", xml_declaration=True) + "\n"
