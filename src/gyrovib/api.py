@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 from gyrovib import units
 from gyrovib.catalog.loader import (
@@ -479,13 +480,13 @@ class SelectionResult:
     profile_bounds: CoefficientBounds
     values: FloatArray
     bounds: FloatArray
-    check_pass: FloatArray
+    check_pass: NDArray[np.bool_]
     rms: FloatArray
     margin: FloatArray
-    bounds_pass: FloatArray
-    rms_pass: FloatArray
-    passed: FloatArray
-    sensor_pass: FloatArray
+    bounds_pass: NDArray[np.bool_]
+    rms_pass: NDArray[np.bool_]
+    passed: NDArray[np.bool_]
+    sensor_pass: NDArray[np.bool_]
     worst_margin: FloatArray
     ranking: tuple[int, ...]
     limits: dict[int, Limit]
@@ -493,8 +494,8 @@ class SelectionResult:
     allocation: AllocationConstants
 
 
-def _at_most(value: FloatArray, bound: FloatArray | float) -> FloatArray:
-    out: FloatArray = value <= np.asarray(bound) * (1.0 + PASS_RTOL)
+def _at_most(value: FloatArray, bound: FloatArray | float) -> NDArray[np.bool_]:
+    out: NDArray[np.bool_] = value <= np.asarray(bound) * (1.0 + PASS_RTOL)
     return out
 
 
@@ -571,11 +572,12 @@ def select(
     for i in np.nonzero(~sensor_pass)[0]:
         candidates: list[Limit] = []
         if criterion in ("bounds", "both"):
-            j, b = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
-            candidates.append(Limit(BOUNDED[b], int(j), float(ratios[i, j, b])))
+            jb = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
+            j, b = int(jb[0]), int(jb[1])
+            candidates.append(Limit(BOUNDED[b], j, float(ratios[i, j, b])))
         if criterion in ("rms", "both"):
-            j = int(np.argmax(rms[i]))
-            candidates.append(Limit("rms", j, float(rms[i, j] / budget)))
+            jr = int(np.argmax(rms[i]))
+            candidates.append(Limit("rms", jr, float(rms[i, jr] / budget)))
         limits[int(i)] = max(candidates, key=lambda c: c.ratio)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
     factors = np.array([_bound_factors(unit)[c] for c in BOUNDED])
