@@ -10,7 +10,8 @@ the requested output unit on the way out.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import zlib
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -203,6 +204,11 @@ class AnalysisResult:
     rates: FloatArray
     error: VibrationError
     warnings: dict[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
+    #: ``numeric`` only: standard error of ``error.total`` (0 where exact), else None.
+    stderr: FloatArray | None = None
+    #: ``numeric`` only: evaluations of eq. (2) per sensor × profile, and the seed.
+    samples: int | None = None
+    seed: int | None = None
 
 
 def to_unit(error: VibrationError, unit: str) -> VibrationError:
@@ -229,6 +235,33 @@ def check_finite(error: VibrationError, what: str = "the vibration error") -> No
             )
 
 
+#: Every method of :func:`analyze`: the closed forms, and brute force.
+ANALYZE_METHODS: tuple[str, ...] = (*METHODS, "numeric")
+#: Defaults of the numeric method.
+DEFAULT_SAMPLES = 200_000
+DEFAULT_SEED = 0
+
+ProgressCallback = Callable[[int, int], None]
+
+
+def profile_generator(seed: int, profile_id: str) -> np.random.Generator:
+    """The random stream of one profile: a function of the seed and the profile id only.
+
+    So a profile's numbers do not change when other profiles or sensors are
+    selected or deselected.
+    """
+    return np.random.default_rng([seed, zlib.crc32(profile_id.encode("utf-8"))])
+
+
+def _check_numeric_options(samples: int, seed: int) -> None:
+    from gyrovib.core.numeric import MIN_SAMPLES
+
+    if samples < MIN_SAMPLES:
+        raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")
+    if seed < 0:
+        raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
+
+
 def analyze(
     catalog: Catalog,
     *,
@@ -237,14 +270,28 @@ def analyze(
     method: str = "exact",
     rate: Sequence[float] | None = None,
     unit: str = "deg/s",
+    samples: int = DEFAULT_SAMPLES,
+    seed: int = DEFAULT_SEED,
+    progress: ProgressCallback | None = None,
 ) -> AnalysisResult:
     """Eq. (13)-(16) for every chosen sensor under every chosen profile.
 
     ``rate`` overrides Ω_K (in deg/s): one number for Ω_K3, or three.
     ``unit`` is the output unit.
+
+    ``method="numeric"`` averages eq. (2) itself over the vibration
+    (:func:`gyrovib.core.numeric.simulate`, ``samples`` evaluations per sensor
+    × profile, random streams from ``seed``): ``error.total`` is that
+    brute-force Δ_V and :attr:`AnalysisResult.stderr` its standard error. The
+    other fields of ``error`` come from the closed-form term formulas applied
+    to the sample moments (<x3²>, <x3⁴>, <x3·xi>, <|Ω+x3|>) of the same
+    samples, so they are brute-force estimates too, without their own stderr.
+    ``progress(done, total)`` is called as samples are evaluated.
     """
-    if method not in METHODS:
-        raise OptionError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
+    if method not in ANALYZE_METHODS:
+        raise OptionError(f"unknown method {method!r}; use one of {', '.join(ANALYZE_METHODS)}")
+    if method == "numeric":
+        _check_numeric_options(samples, seed)
     unit = units.canonical_unit(unit)
     s_entries, p_entries = select_entries(catalog, sensors, profiles)
     coeffs = coefficient_matrix(s_entries)
@@ -261,15 +308,25 @@ def analyze(
         "rms": np.zeros(shape),
     }
     warnings: dict[tuple[int, int], tuple[str, ...]] = {}
-    for response, idx in response_groups(s_entries) if n_p else []:
+    stderr = np.zeros(shape) if method == "numeric" else None
+    groups = response_groups(s_entries) if n_p and n_s else []
+    tracker = _Tracker(progress, len(groups) * n_p * samples)
+    for response, idx in groups:
         vibrations = [profile_vibration(p, response) for p in p_entries]
-        multipliers = stack_multipliers(
-            [located_multipliers(p, v, r[2], method)
-             for p, v, r in zip(p_entries, vibrations, rates, strict=True)]
-        )
-        err = vibration_error(coeffs[idx], multipliers)
-        for name, array in parts.items():
-            array[idx] = getattr(err, name)
+        if stderr is not None:
+            for j, (p, v) in enumerate(zip(p_entries, vibrations, strict=True)):
+                err, stderr[idx, j] = _simulate(coeffs[idx], v, rates[j], samples,
+                                                profile_generator(seed, p.profile.id), tracker)
+                for name, array in parts.items():
+                    array[idx, j] = getattr(err, name)
+        else:
+            multipliers = stack_multipliers(
+                [located_multipliers(p, v, r[2], method)
+                 for p, v, r in zip(p_entries, vibrations, rates, strict=True)]
+            )
+            err = vibration_error(coeffs[idx], multipliers)
+            for name, array in parts.items():
+                array[idx] = getattr(err, name)
         reach = np.abs(rates[:, 2]) + np.array([vibration_peak(v) for v in vibrations])
         over = reach[None, :] > ranges[idx][:, None]
         for i, j in zip(*np.nonzero(over), strict=True):
@@ -281,6 +338,7 @@ def analyze(
             )
     error = to_unit(VibrationError(**parts), unit)
     check_finite(error)
+    numeric = stderr is not None
     return AnalysisResult(
         method=method,
         unit=unit,
@@ -289,4 +347,47 @@ def analyze(
         rates=rates / units.scale(unit),
         error=error,
         warnings=warnings,
+        stderr=stderr / units.scale(unit) if numeric else None,
+        samples=samples if numeric else None,
+        seed=seed if numeric else None,
     )
+
+
+class _Tracker:
+    """Turns per-block sample counts into ``progress(done, total)`` calls."""
+
+    def __init__(self, callback: ProgressCallback | None, total: int) -> None:
+        self.callback = callback
+        self.total = total
+        self.done = 0
+
+    def __call__(self, advance: int) -> None:
+        self.done += advance
+        if self.callback is not None:
+            self.callback(min(self.done, self.total), self.total)
+
+    def finish_block(self, planned: int, used: int) -> None:
+        """Account for a scheme that evaluated fewer points than planned."""
+        if planned > used:
+            self(planned - used)
+
+
+def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, samples: int,
+              rng: np.random.Generator, tracker: _Tracker) -> tuple[VibrationError, FloatArray]:
+    """Brute force for one profile and one group of sensors (deg/s)."""
+    from gyrovib.core.numeric import simulate
+
+    before = tracker.done
+    estimate = simulate(coefficients, vibration, rate, samples=samples, rng=rng,
+                        progress=tracker)
+    tracker.finish_block(samples, tracker.done - before)
+    terms = vibration_error(coefficients, estimate.multipliers)
+    error = VibrationError(
+        additive_terms=terms.additive_terms,
+        multiplicative_coefficients=terms.multiplicative_coefficients,
+        additive=terms.additive,
+        multiplicative=terms.multiplicative,
+        total=estimate.total,
+        rms=terms.rms,
+    )
+    return error, estimate.stderr

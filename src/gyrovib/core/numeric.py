@@ -61,7 +61,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core.analysis import COLUMN, COEFFICIENTS, Multipliers
+from gyrovib.core.analysis import COEFFICIENTS, COLUMN, Multipliers
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
 
@@ -180,7 +180,7 @@ def _sensor_chunk(points: int) -> int:
 
 def _grid_counts(n_tones: int, samples: int) -> int | None:
     """Nodes per tone of the product grid, or None when it would be too coarse."""
-    m = int(math.floor(samples ** (1.0 / n_tones) + 1e-9))
+    m = round(samples ** (1.0 / n_tones)) + 1
     while m**n_tones > samples:
         m -= 1
     return m if m >= MIN_GRID_NODES else None
