@@ -391,3 +391,104 @@ def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, 
         rms=terms.rms,
     )
     return error, estimate.stderr
+
+
+# ----------------------------------------------------------------- rate sweeps
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """Δ_V and Δ_V(RMS) over a range of Ω_K3, by the exact and the paper's method.
+
+    ``rates`` (R,): the Ω_K3 values in :attr:`unit`; Ω_K1, Ω_K2 stay the
+    profile's. ``exact`` and ``paper`` hold arrays of shape (sensors,
+    profiles, rates) in :attr:`unit`; ``paper``'s are NaN for the profiles in
+    :attr:`paper_refused` (profile id → why the paper's formulas do not apply).
+    """
+
+    unit: str
+    sensors: tuple[str, ...]
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    exact: VibrationError
+    paper: VibrationError
+    paper_refused: dict[str, str] = field(default_factory=dict)
+
+
+def rate_range(start: float, stop: float, count: int) -> FloatArray:
+    """``count`` evenly spaced rates from ``start`` to ``stop`` inclusive (deg/s)."""
+    if count < 1:
+        raise OptionError("a rate range needs a count of at least 1")
+    if count > 1_000_000:
+        raise OptionError(f"a rate range of {count} points is too many (at most 1000000)")
+    if not (np.isfinite(start) and np.isfinite(stop)):
+        raise OptionError("a rate range needs finite start and stop")
+    out: FloatArray = np.linspace(start, stop, count)
+    return out
+
+
+def _nan_multipliers(omega: FloatArray) -> Multipliers:
+    nan = np.full(omega.shape, np.nan)
+    return Multipliers(asymmetry=nan, m2=nan, m4=nan, c31=nan, c32=nan, omega=omega.copy())
+
+
+def sweep(
+    catalog: Catalog,
+    rates: Sequence[float] | FloatArray,
+    *,
+    sensors: Sequence[str] = (),
+    profiles: Sequence[str] = (),
+    unit: str = "deg/s",
+) -> SweepResult:
+    """Eq. (13) and (16) at every Ω_K3 of ``rates`` (deg/s), exact and paper.
+
+    One vectorised evaluation per profile and sensor-response group: the
+    multipliers of :func:`profile_multipliers` are computed for the whole rate
+    array at once. A value at a rate equals :func:`analyze` with that ``rate``.
+    """
+    unit = units.canonical_unit(unit)
+    omega = np.asarray(rates, dtype=float).reshape(-1)
+    if omega.size == 0 or not np.all(np.isfinite(omega)):
+        raise OptionError("the swept rates must be finite, and at least one")
+    s_entries, p_entries = select_entries(catalog, sensors, profiles)
+    coeffs = coefficient_matrix(s_entries)
+    shape = (len(s_entries), len(p_entries), omega.size)
+    results: dict[str, dict[str, FloatArray]] = {
+        m: {
+            "additive_terms": np.zeros((*shape, 5)),
+            "multiplicative_coefficients": np.zeros((*shape, 3)),
+            "additive": np.zeros(shape),
+            "multiplicative": np.zeros(shape),
+            "total": np.zeros(shape),
+            "rms": np.zeros(shape),
+        }
+        for m in METHODS
+    }
+    refused: dict[str, str] = {}
+    groups = response_groups(s_entries) if p_entries and s_entries else []
+    for response, idx in groups:
+        vibrations = [profile_vibration(p, response) for p in p_entries]
+        for method in METHODS:
+            per_profile = []
+            for p, v in zip(p_entries, vibrations, strict=True):
+                try:
+                    per_profile.append(profile_multipliers(v, omega, method))
+                except ModelError as exc:
+                    refused[p.profile.id] = exc.problems[0].message.split("; use --method")[0]
+                    per_profile.append(_nan_multipliers(omega))
+            err = vibration_error(coeffs[idx], stack_multipliers(per_profile))
+            for name, array in results[method].items():
+                array[idx] = getattr(err, name)
+    exact = to_unit(VibrationError(**results["exact"]), unit)
+    check_finite(exact)
+    paper = to_unit(VibrationError(**results["paper"]), unit)
+    return SweepResult(
+        unit=unit,
+        sensors=tuple(e.sensor.id for e in s_entries),
+        profiles=tuple(p.profile.id for p in p_entries),
+        rates=omega / units.scale(unit),
+        exact=exact,
+        paper=paper,
+        paper_refused={p.profile.id: refused[p.profile.id] for p in p_entries
+                       if p.profile.id in refused},
+    )

@@ -53,9 +53,10 @@ def cli() -> None:
 def _register() -> None:
     # Each command lives in its own module; they import only click at import time.
     from gyrovib.cli.analyze import analyze
+    from gyrovib.cli.sweep import sweep
     from gyrovib.cli.validate import validate
 
-    for command in (analyze, validate):
+    for command in (analyze, sweep, validate):
         cli.add_command(command)
 
 
