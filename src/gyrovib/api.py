@@ -338,6 +338,7 @@ def analyze(
             )
     error = to_unit(VibrationError(**parts), unit)
     check_finite(error)
+    stderr_out = None if stderr is None else stderr / units.scale(unit)
     numeric = stderr is not None
     return AnalysisResult(
         method=method,
@@ -347,7 +348,7 @@ def analyze(
         rates=rates / units.scale(unit),
         error=error,
         warnings=warnings,
-        stderr=stderr / units.scale(unit) if numeric else None,
+        stderr=stderr_out,
         samples=samples if numeric else None,
         seed=seed if numeric else None,
     )

@@ -163,7 +163,10 @@ class _Moments:
 
     def multipliers(self) -> Multipliers:
         mean = self.sums / max(self.count, 1)
-        scalar = lambda v: np.asarray(float(v))  # noqa: E731
+
+        def scalar(value: float) -> FloatArray:
+            return np.asarray(float(value))
+
         return Multipliers(
             asymmetry=scalar(0.5 * (mean[0] - abs(self.omega3)) if self.count else 0.0),
             m2=scalar(mean[1]),
@@ -238,7 +241,7 @@ def _grid(c: FloatArray, phasors: NDArray[np.complex128], omega: FloatArray, res
     shape = (m,) * n_tones
     replicate_means = np.zeros((c.shape[0], REPLICATES))
     for r in range(REPLICATES):
-        shift = rng.uniform(0.0, 2.0 * math.pi / m, size=n_tones)
+        shift = np.asarray(rng.uniform(0.0, 2.0 * math.pi / m, size=n_tones), dtype=float)
         for start in range(0, per_grid, BLOCK):
             flat = np.arange(start, min(start + BLOCK, per_grid))
             index = np.stack(np.unravel_index(flat, shape), axis=1)  # (n, K)
