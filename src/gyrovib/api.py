@@ -11,7 +11,8 @@ the requested output unit on the way out.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+import zlib
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -216,6 +217,11 @@ class AnalysisResult:
     rates: FloatArray
     error: VibrationError
     warnings: dict[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
+    #: ``numeric`` only: standard error of ``error.total`` (0 where exact), else None.
+    stderr: FloatArray | None = None
+    #: ``numeric`` only: evaluations of eq. (2) per sensor × profile, and the seed.
+    samples: int | None = None
+    seed: int | None = None
 
 
 def to_unit(error: VibrationError, unit: str) -> VibrationError:
@@ -242,6 +248,33 @@ def check_finite(error: VibrationError, what: str = "the vibration error") -> No
             )
 
 
+#: Every method of :func:`analyze`: the closed forms, and brute force.
+ANALYZE_METHODS: tuple[str, ...] = (*METHODS, "numeric")
+#: Defaults of the numeric method.
+DEFAULT_SAMPLES = 200_000
+DEFAULT_SEED = 0
+
+ProgressCallback = Callable[[int, int], None]
+
+
+def profile_generator(seed: int, profile_id: str) -> np.random.Generator:
+    """The random stream of one profile: a function of the seed and the profile id only.
+
+    So a profile's numbers do not change when other profiles or sensors are
+    selected or deselected.
+    """
+    return np.random.default_rng([seed, zlib.crc32(profile_id.encode("utf-8"))])
+
+
+def _check_numeric_options(samples: int, seed: int) -> None:
+    from gyrovib.core.numeric import MIN_SAMPLES
+
+    if samples < MIN_SAMPLES:
+        raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")
+    if seed < 0:
+        raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
+
+
 def analyze(
     catalog: Catalog,
     *,
@@ -250,14 +283,28 @@ def analyze(
     method: str = "exact",
     rate: Sequence[float] | None = None,
     unit: str = "deg/s",
+    samples: int = DEFAULT_SAMPLES,
+    seed: int = DEFAULT_SEED,
+    progress: ProgressCallback | None = None,
 ) -> AnalysisResult:
     """Eq. (13)-(16) for every chosen sensor under every chosen profile.
 
     ``rate`` overrides Ω_K (in deg/s): one number for Ω_K3, or three.
     ``unit`` is the output unit.
+
+    ``method="numeric"`` averages eq. (2) itself over the vibration
+    (:func:`gyrovib.core.numeric.simulate`, ``samples`` evaluations per sensor
+    × profile, random streams from ``seed``): ``error.total`` is that
+    brute-force Δ_V and :attr:`AnalysisResult.stderr` its standard error. The
+    other fields of ``error`` come from the closed-form term formulas applied
+    to the sample moments (<x3²>, <x3⁴>, <x3·xi>, <|Ω+x3|>) of the same
+    samples, so they are brute-force estimates too, without their own stderr.
+    ``progress(done, total)`` is called as samples are evaluated.
     """
-    if method not in METHODS:
-        raise OptionError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
+    if method not in ANALYZE_METHODS:
+        raise OptionError(f"unknown method {method!r}; use one of {', '.join(ANALYZE_METHODS)}")
+    if method == "numeric":
+        _check_numeric_options(samples, seed)
     unit = units.canonical_unit(unit)
     s_entries, p_entries = select_entries(catalog, sensors, profiles)
     coeffs = coefficient_matrix(s_entries)
@@ -274,15 +321,25 @@ def analyze(
         "rms": np.zeros(shape),
     }
     warnings: dict[tuple[int, int], tuple[str, ...]] = {}
-    for response, idx in response_groups(s_entries) if n_p else []:
+    stderr = np.zeros(shape) if method == "numeric" else None
+    groups = response_groups(s_entries) if n_p and n_s else []
+    tracker = _Tracker(progress, len(groups) * n_p * samples)
+    for response, idx in groups:
         vibrations = [profile_vibration(p, response) for p in p_entries]
-        multipliers = stack_multipliers(
-            [located_multipliers(p, v, r[2], method)
-             for p, v, r in zip(p_entries, vibrations, rates, strict=True)]
-        )
-        err = vibration_error(coeffs[idx], multipliers)
-        for name, array in parts.items():
-            array[idx] = getattr(err, name)
+        if stderr is not None:
+            for j, (p, v) in enumerate(zip(p_entries, vibrations, strict=True)):
+                err, stderr[idx, j] = _simulate(coeffs[idx], v, rates[j], samples,
+                                                profile_generator(seed, p.profile.id), tracker)
+                for name, array in parts.items():
+                    array[idx, j] = getattr(err, name)
+        else:
+            multipliers = stack_multipliers(
+                [located_multipliers(p, v, r[2], method)
+                 for p, v, r in zip(p_entries, vibrations, rates, strict=True)]
+            )
+            err = vibration_error(coeffs[idx], multipliers)
+            for name, array in parts.items():
+                array[idx] = getattr(err, name)
         reach = np.abs(rates[:, 2]) + np.array([vibration_peak(v) for v in vibrations])
         over = reach[None, :] > ranges[idx][:, None]
         for i, j in zip(*np.nonzero(over), strict=True):
@@ -294,6 +351,8 @@ def analyze(
             )
     error = to_unit(VibrationError(**parts), unit)
     check_finite(error)
+    stderr_out = None if stderr is None else stderr / units.scale(unit)
+    numeric = stderr is not None
     return AnalysisResult(
         method=method,
         unit=unit,
@@ -302,6 +361,150 @@ def analyze(
         rates=rates / units.scale(unit),
         error=error,
         warnings=warnings,
+        stderr=stderr_out,
+        samples=samples if numeric else None,
+        seed=seed if numeric else None,
+    )
+
+
+class _Tracker:
+    """Turns per-block sample counts into ``progress(done, total)`` calls."""
+
+    def __init__(self, callback: ProgressCallback | None, total: int) -> None:
+        self.callback = callback
+        self.total = total
+        self.done = 0
+
+    def __call__(self, advance: int) -> None:
+        self.done += advance
+        if self.callback is not None:
+            self.callback(min(self.done, self.total), self.total)
+
+    def finish_block(self, planned: int, used: int) -> None:
+        """Account for a scheme that evaluated fewer points than planned."""
+        if planned > used:
+            self(planned - used)
+
+
+def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, samples: int,
+              rng: np.random.Generator, tracker: _Tracker) -> tuple[VibrationError, FloatArray]:
+    """Brute force for one profile and one group of sensors (deg/s)."""
+    from gyrovib.core.numeric import simulate
+
+    before = tracker.done
+    estimate = simulate(coefficients, vibration, rate, samples=samples, rng=rng,
+                        progress=tracker)
+    tracker.finish_block(samples, tracker.done - before)
+    terms = vibration_error(coefficients, estimate.multipliers)
+    error = VibrationError(
+        additive_terms=terms.additive_terms,
+        multiplicative_coefficients=terms.multiplicative_coefficients,
+        additive=terms.additive,
+        multiplicative=terms.multiplicative,
+        total=estimate.total,
+        rms=terms.rms,
+    )
+    return error, estimate.stderr
+
+
+# ----------------------------------------------------------------- rate sweeps
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """Δ_V and Δ_V(RMS) over a range of Ω_K3, by the exact and the paper's method.
+
+    ``rates`` (R,): the Ω_K3 values in :attr:`unit`; Ω_K1, Ω_K2 stay the
+    profile's. ``exact`` and ``paper`` hold arrays of shape (sensors,
+    profiles, rates) in :attr:`unit`; ``paper``'s are NaN for the profiles in
+    :attr:`paper_refused` (profile id → why the paper's formulas do not apply).
+    """
+
+    unit: str
+    sensors: tuple[str, ...]
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    exact: VibrationError
+    paper: VibrationError
+    paper_refused: dict[str, str] = field(default_factory=dict)
+
+
+def rate_range(start: float, stop: float, count: int) -> FloatArray:
+    """``count`` evenly spaced rates from ``start`` to ``stop`` inclusive (deg/s)."""
+    if count < 1:
+        raise OptionError("a rate range needs a count of at least 1")
+    if count > 1_000_000:
+        raise OptionError(f"a rate range of {count} points is too many (at most 1000000)")
+    if not (np.isfinite(start) and np.isfinite(stop)):
+        raise OptionError("a rate range needs finite start and stop")
+    out: FloatArray = np.linspace(start, stop, count)
+    return out
+
+
+def _nan_multipliers(omega: FloatArray) -> Multipliers:
+    nan = np.full(omega.shape, np.nan)
+    return Multipliers(asymmetry=nan, m2=nan, m4=nan, c31=nan, c32=nan, omega=omega.copy())
+
+
+def sweep(
+    catalog: Catalog,
+    rates: Sequence[float] | FloatArray,
+    *,
+    sensors: Sequence[str] = (),
+    profiles: Sequence[str] = (),
+    unit: str = "deg/s",
+) -> SweepResult:
+    """Eq. (13) and (16) at every Ω_K3 of ``rates`` (deg/s), exact and paper.
+
+    One vectorised evaluation per profile and sensor-response group: the
+    multipliers of :func:`profile_multipliers` are computed for the whole rate
+    array at once. A value at a rate equals :func:`analyze` with that ``rate``.
+    """
+    unit = units.canonical_unit(unit)
+    omega = np.asarray(rates, dtype=float).reshape(-1)
+    if omega.size == 0 or not np.all(np.isfinite(omega)):
+        raise OptionError("the swept rates must be finite, and at least one")
+    s_entries, p_entries = select_entries(catalog, sensors, profiles)
+    coeffs = coefficient_matrix(s_entries)
+    shape = (len(s_entries), len(p_entries), omega.size)
+    results: dict[str, dict[str, FloatArray]] = {
+        m: {
+            "additive_terms": np.zeros((*shape, 5)),
+            "multiplicative_coefficients": np.zeros((*shape, 3)),
+            "additive": np.zeros(shape),
+            "multiplicative": np.zeros(shape),
+            "total": np.zeros(shape),
+            "rms": np.zeros(shape),
+        }
+        for m in METHODS
+    }
+    refused: dict[str, str] = {}
+    groups = response_groups(s_entries) if p_entries and s_entries else []
+    for response, idx in groups:
+        vibrations = [profile_vibration(p, response) for p in p_entries]
+        for method in METHODS:
+            per_profile = []
+            for p, v in zip(p_entries, vibrations, strict=True):
+                try:
+                    per_profile.append(profile_multipliers(v, omega, method))
+                except ModelError as exc:
+                    refused[p.profile.id] = exc.problems[0].message.split("; use --method")[0]
+                    per_profile.append(_nan_multipliers(omega))
+            err = vibration_error(coeffs[idx], stack_multipliers(per_profile))
+            for name, array in results[method].items():
+                array[idx] = getattr(err, name)
+    exact = to_unit(VibrationError(**results["exact"]), unit)
+    check_finite(exact)
+    paper = to_unit(VibrationError(**results["paper"]), unit)
+    return SweepResult(
+        unit=unit,
+        sensors=tuple(e.sensor.id for e in s_entries),
+        profiles=tuple(p.profile.id for p in p_entries),
+        rates=omega / units.scale(unit),
+        exact=exact,
+        paper=paper,
+        paper_refused={p.profile.id: refused[p.profile.id] for p in p_entries
+                       if p.profile.id in refused},
     )
 
 

@@ -20,27 +20,41 @@ from gyrovib.cli.options import (
 @click.command()
 @files_argument
 @selection_options
-@click.option("--method", type=click.Choice(["exact", "paper"]), default="exact",
+@click.option("--method", type=click.Choice(["exact", "paper", "numeric"]), default="exact",
               show_default=True,
-              help="exact: exact moments; paper: the paper's printed formulas.")
+              help="exact: exact moments; paper: the paper's printed formulas; "
+                   "numeric: brute-force average of eq. (2) (total ± stderr).")
+@click.option("--samples", type=click.IntRange(min=1), default=200_000, show_default=True,
+              metavar="N", help="numeric: evaluations of eq. (2) per sensor × profile.")
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
+              metavar="S", help="numeric: random seed; the same seed gives the same numbers.")
 @rate_option
 @unit_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
-            method: str, rate: str | None, unit: str, fmt: str, output: str | None) -> None:
+            method: str, samples: int, seed: int, rate: str | None, unit: str, fmt: str,
+            output: str | None) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 
     Computes the additive terms Δ0 (eq. 14/15), Δ_VA, Δ_VM, the total Δ_V
     (eq. 13) and the RMS error Δ_V(RMS) (eq. 16).
+
+    With --method numeric the total Δ_V is the average of eq. (2) itself over
+    the vibration minus eq. (2) at rest, with its standard error; the term
+    breakdown uses the sample moments of the same samples.
     """
     from gyrovib import api
     from gyrovib.cli.output import write_output
+    from gyrovib.cli.progress import progress_bar
     from gyrovib.render import analysis as render
 
     unit = parse_unit(unit)
-    result = api.analyze(load_catalog(files), sensors=sensors, profiles=profiles, method=method,
-                         rate=parse_rate_option(rate, unit), unit=unit)
+    catalog = load_catalog(files)
+    with progress_bar("brute force", enabled=method == "numeric") as advance:
+        result = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
+                             rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
+                             seed=seed, progress=advance)
     renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
                  "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

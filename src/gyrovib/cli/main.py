@@ -55,9 +55,10 @@ def _register() -> None:
     from gyrovib.cli.analyze import analyze
     from gyrovib.cli.bounds import bounds
     from gyrovib.cli.select import select
+    from gyrovib.cli.sweep import sweep
     from gyrovib.cli.validate import validate
 
-    for command in (analyze, bounds, select, validate):
+    for command in (analyze, bounds, select, sweep, validate):
         cli.add_command(command)
 
 

@@ -1,0 +1,86 @@
+"""`gyrovib sweep`: the vibration error over a range of carrier rates Ω_K3."""
+
+from __future__ import annotations
+
+import click
+
+from gyrovib.cli.common import load_catalog
+from gyrovib.cli.options import (
+    files_argument,
+    format_option,
+    output_option,
+    parse_budget,
+    parse_unit,
+    selection_options,
+    unit_option,
+)
+from gyrovib.errors import OptionError
+
+DEFAULT_RANGE = "-200:200:401"
+
+
+def parse_rate_range(text: str, unit: str) -> tuple[float, float, int]:
+    """``START:STOP:COUNT`` with START, STOP in ``unit`` → (start, stop in deg/s, count)."""
+    from gyrovib import units
+
+    pieces = text.replace(" ", "").split(":")
+    if len(pieces) != 3 or not all(pieces):
+        raise OptionError(f"--rate-range {text!r}: write START:STOP:COUNT, e.g. {DEFAULT_RANGE}")
+    try:
+        start = units.parse_rate(pieces[0], unit)
+        stop = units.parse_rate(pieces[1], unit)
+    except OptionError as exc:
+        raise OptionError(f"--rate-range: {exc.problems[0].message}") from None
+    try:
+        count = int(pieces[2])
+    except ValueError:
+        raise OptionError(f"--rate-range {text!r}: COUNT must be a whole number") from None
+    if count < 1:
+        raise OptionError(f"--rate-range {text!r}: COUNT must be at least 1")
+    return start, stop, count
+
+
+@click.command()
+@files_argument
+@selection_options
+@click.option("--rate-range", "rate_range", default=DEFAULT_RANGE, show_default=True,
+              metavar="START:STOP:COUNT",
+              help="Ω_K3 values: COUNT evenly spaced from START to STOP inclusive, in --unit.")
+@click.option("--budget", metavar="B",
+              help="Δ*_V, drawn as a band on the plot (number in --unit, or e.g. 36deg/h).")
+@click.option("--plot", "plot", metavar="FILE.png",
+              help="Also draw Δ_V and Δ_V(RMS) against Ω_K3 into this PNG (needs "
+                   "matplotlib: pip install 'gyrovib[plot]').")
+@click.option("--log", "log_scale", is_flag=True,
+              help="Plot on logarithmic (Δ_V(RMS)) and symmetric-log (Δ_V) axes.")
+@unit_option
+@format_option("table", "json", "csv")
+@output_option
+def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
+          rate_range: str, budget: str | None, plot: str | None, log_scale: bool, unit: str,
+          fmt: str, output: str | None) -> None:
+    """Δ_V and Δ_V(RMS) over a range of Ω_K3, exact and paper side by side.
+
+    Each profile's Ω_K3 is replaced by every rate of --rate-range (Ω_K1, Ω_K2
+    stay the profile's); a value at a rate equals `analyze --rate` at that
+    rate. Where the paper's formulas do not cover a profile (several tones, or
+    tones with random vibration) its paper columns are left empty.
+    """
+    from gyrovib import api, units
+    from gyrovib.cli.output import write_binary, write_output
+    from gyrovib.render import sweep as render
+
+    unit = parse_unit(unit)
+    start, stop, count = parse_rate_range(rate_range, unit)
+    budget_value = parse_budget(budget, unit) / units.scale(unit) if budget is not None else None
+    result = api.sweep(load_catalog(files), api.rate_range(start, stop, count), sensors=sensors,
+                       profiles=profiles, unit=unit)
+    if result.paper_refused:
+        listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
+        click.echo(f"gyrovib: note: the paper's columns are empty for {listed}", err=True)
+    if plot is not None:
+        from gyrovib.render.plot import sweep_png
+
+        write_binary(sweep_png(result, budget_value, log=log_scale), plot)
+    renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv}
+    write_output(renderers[fmt](result, budget_value), output)

@@ -1,0 +1,88 @@
+"""Renderers of :class:`gyrovib.api.SweepResult`: Δ_V over a range of Ω_K3."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+from gyrovib.api import SweepResult
+from gyrovib.render.common import csv_text, dumps, fmt, header, number, rich_text
+
+METHODS = ("exact", "paper")
+
+
+def _series(result: SweepResult) -> Iterator[tuple[int, int]]:
+    for j in range(len(result.profiles)):
+        for i in range(len(result.sensors)):
+            yield i, j
+
+
+def to_json(result: SweepResult, budget: float | None = None) -> str:
+    """One series per sensor × profile; the paper's arrays are ``null`` where it refuses."""
+    document = header("exact", result.unit)
+    document["methods"] = list(METHODS)
+    if budget is not None:
+        document["budget"] = budget
+    document["rates"] = result.rates.tolist()
+    document["paper_refused"] = dict(result.paper_refused)
+    series: list[dict[str, Any]] = []
+    for i, j in _series(result):
+        row: dict[str, Any] = {"sensor": result.sensors[i], "profile": result.profiles[j]}
+        for method in METHODS:
+            err = getattr(result, method)
+            if method == "paper" and result.profiles[j] in result.paper_refused:
+                row[method] = None
+            else:
+                row[method] = {"total": [number(x) for x in err.total[i, j]],
+                               "rms": [number(x) for x in err.rms[i, j]]}
+        series.append(row)
+    document["series"] = series
+    return dumps(document)
+
+
+def to_csv(result: SweepResult, budget: float | None = None) -> str:
+    """Long format: one row per sensor × profile × rate; empty paper cells where it refuses."""
+
+    def rows() -> Iterator[list[Any]]:
+        for i, j in _series(result):
+            refused = result.profiles[j] in result.paper_refused
+            for r, rate in enumerate(result.rates.tolist()):
+                paper = ([None, None] if refused else
+                         [float(result.paper.total[i, j, r]), float(result.paper.rms[i, j, r])])
+                yield [result.sensors[i], result.profiles[j], float(rate),
+                       float(result.exact.total[i, j, r]), float(result.exact.rms[i, j, r]),
+                       *paper]
+
+    head = ["sensor", "profile", "rate_x3", "exact_total", "exact_rms", "paper_total",
+            "paper_rms"]
+    return csv_text(head, rows())
+
+
+def to_table(result: SweepResult, budget: float | None = None, width: int | None = None,
+             color: bool = False) -> str:
+    """One table per profile × sensor: the rates as rows, exact and paper side by side."""
+    from rich.table import Table
+    from rich.text import Text
+
+    out: list[Any] = []
+    for i, j in _series(result):
+        refused = result.profiles[j] in result.paper_refused
+        table = Table(title=f"{result.sensors[i]} / {result.profiles[j]}", title_justify="left",
+                      header_style="bold")
+        table.add_column(f"Ω_K3 ({result.unit})", justify="right", no_wrap=True)
+        for label in ("Δ_V exact", "Δ_V paper", "Δ_V(RMS) exact", "Δ_V(RMS) paper"):
+            table.add_column(label, justify="right", no_wrap=True)
+        for r, rate in enumerate(result.rates):
+            e, p = result.exact, result.paper
+            table.add_row(fmt(rate), fmt(e.total[i, j, r]),
+                          "" if refused else fmt(p.total[i, j, r]), fmt(e.rms[i, j, r]),
+                          "" if refused else fmt(p.rms[i, j, r]))
+        out.append(table)
+    legend = (f"All values in {result.unit}. Δ_V of eq. (13), Δ_V(RMS) of eq. (16), at each "
+              "Ω_K3 with Ω_K1, Ω_K2 of the profile.")
+    if budget is not None:
+        legend += f" Budget Δ*_V = {fmt(budget)} {result.unit}."
+    out.append(Text(legend, style="dim"))
+    for profile, why in result.paper_refused.items():
+        out.append(Text(f"paper: no values for {profile}: {why}", style="dim"))
+    return rich_text(out, width=width, color=color)
