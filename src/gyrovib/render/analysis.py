@@ -157,5 +157,5 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
 def _numeric_note(result: AnalysisResult) -> str:
     return (f"Numeric: Δ_V is the average of eq. (2) over up to {result.samples} points per "
             f"sensor × profile (seed {result.seed}) minus eq. (2) at rest, ± its standard "
-            "error (0 where the phase grid is exact); the other columns apply the term formulas to the "
-            "sample moments of the same points.")
+            "error (0 where the phase grid is exact); the other columns apply the term "
+            "formulas to the sample moments of the same points.")
