@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog
+from gyrovib.cli.common import load_catalog, use_color
 from gyrovib.cli.options import (
     files_argument,
     format_option,
@@ -41,6 +41,8 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     unit = parse_unit(unit)
     result = api.analyze(load_catalog(files), sensors=sensors, profiles=profiles, method=method,
                          rate=parse_rate_option(rate, unit), unit=unit)
-    renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
-                 "markdown": render.to_markdown}
+    if fmt == "table":
+        write_output(render.to_table(result, color=use_color(output)), output)
+        return
+    renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)
