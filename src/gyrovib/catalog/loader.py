@@ -191,8 +191,26 @@ def _check_depth(text: str) -> None:
         loader.dispose()
 
 
+#: Characters YAML does not allow in a stream (C0/C1 controls other than tab/newlines, ...).
+_NON_PRINTABLE = re.compile(
+    "[^\x09\x0a\x0d\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]"
+)
+
+
+def _check_characters(text: str, name: str) -> None:
+    bad = _NON_PRINTABLE.search(text)
+    if bad is not None:
+        at = bad.start()
+        line = text.count("\n", 0, at) + 1
+        column = at - (text.rfind("\n", 0, at) + 1) + 1
+        raise CatalogError(Problem(
+            f"the character U+{ord(bad.group()):04X} (a control character) is not allowed "
+            "in YAML; remove it", name, line, column))
+
+
 def _parse(text: str, name: str) -> Any:
     """Parse YAML text to plain Python data, raising located :class:`CatalogError`."""
+    _check_characters(text, name)
     loader = _Loader(text)
     try:
         _check_depth(text)
@@ -491,12 +509,14 @@ def _validation_problems(exc: ValidationError, text: str, name: str,
         index = (error.get("ctx") or {}).get("index")
         if isinstance(index, int):  # a table check naming the offending row
             loc = (*loc, index)
-        node, place = _find(root, loc, want_key=error["type"] == "extra_forbidden")
+        node, place = _find(root, loc,
+                            want_key=error["type"] in ("extra_forbidden", "invalid_key"))
         message = _friendly(error, _fields_at(tuple(error["loc"])), data, node)
         if place is None:
             problems.append(Problem(message, name))
         else:
             problems.append(Problem(message, name, place[0], place[1]))
+    problems.sort(key=lambda p: (p.line or 0, p.column or 0))
     hidden = exc.error_count() - MAX_PROBLEMS
     if hidden > 0:
         problems.append(Problem(f"... and {hidden} more problems", name))
@@ -653,6 +673,10 @@ def load_catalog(paths: Sequence[str | Path]) -> Catalog:
         except CatalogError as exc:
             problems.extend(exc.problems)
     if problems:
+        try:  # the files that did parse may still clash: report that too
+            merge(sources)
+        except CatalogError as exc:
+            problems.extend(exc.problems)
         raise CatalogError(problems)
     return merge(sources)
 
