@@ -85,6 +85,11 @@ DESCRIPTIONS: dict[str, dict[str, str]] = {
         "K1": "Scale factor, output per rate unit; required and non-zero.",
         "K0": "Bias, output units.",
         "A1": "Scale-factor asymmetry (dimensionless).",
+        **{
+            upper: f"As {lower} of eq. (2), times K1 (output units)."
+            for upper, lower in (("K2", "k2"), ("K3", "k3"), ("K4", "k4"), ("K5", "k5"),
+                                 ("M1", "m1"), ("M2", "m2"), ("M31", "m31"), ("M32", "m32"))
+        },
     },
     "Profile": {
         "id": "Unique id: letters, digits, '.', '_' and '-'.",
