@@ -1,4 +1,4 @@
-"""`gyrovib schema`: a draft-07 JSON Schema that accepts valid catalogues and rejects broken ones."""
+"""`gyrovib schema`: a draft-07 JSON Schema; valid catalogues pass, broken ones fail."""
 
 from __future__ import annotations
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -175,15 +175,16 @@ def _check_depth(text: str) -> None:
     try:
         depth = 0
         while loader.check_event():
-            event = loader.get_event()
+            event: Any = loader.get_event()
             if isinstance(event, yaml.CollectionStartEvent):
                 depth += 1
                 if depth > MAX_DEPTH:
+                    mark: Any = event.start_mark
                     raise yaml.constructor.ConstructorError(
                         None, None,
                         f"values are nested more than {MAX_DEPTH} levels deep; "
                         "a catalogue needs fewer than 10",
-                        event.start_mark,
+                        mark,
                     )
             elif isinstance(event, yaml.CollectionEndEvent):
                 depth -= 1
@@ -382,7 +383,7 @@ def _scalar_text(node: Any) -> str | None:
     return node.value if isinstance(node, yaml.ScalarNode) else None
 
 
-def _friendly(error: dict[str, Any], model_fields: Iterable[str] = (), data: Any = None,
+def _friendly(error: Mapping[str, Any], model_fields: Iterable[str] = (), data: Any = None,
               node: Any = None) -> str:
     """One pydantic error as a sentence: where, what is wrong, and what to write."""
     kind = error["type"]
@@ -460,7 +461,8 @@ def _friendly(error: dict[str, Any], model_fields: Iterable[str] = (), data: Any
     if kind == "literal_error":
         expected = str(ctx.get("expected", "")).replace("'", "")
         if loc and loc[-1] == "rate" and "units" in loc:
-            return f"{where}: unknown rate unit {value!r}; use one of {expected.replace(' or', ',')}"
+            known = expected.replace(" or", ",")
+            return f"{where}: unknown rate unit {value!r}; use one of {known}"
         return f"{where}: {value!r} is not allowed; use one of {expected.replace(' or', ',')}"
     if kind in {"model_type", "model_attributes_type", "dict_type"}:
         return f"{where}: must be a mapping of keys to values, not {_describe(value)}"

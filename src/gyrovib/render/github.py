@@ -8,8 +8,6 @@ Escaping follows the runner's rules: in the message (the "data") ``%``,
 ``:`` and ``,`` are encoded as well, since they separate properties.
 """
 
-from __future__ import annotations
-
 from collections.abc import Iterable
 
 from gyrovib.errors import Problem
