@@ -1,3 +1,5 @@
+"""Shared fixtures: a small valid catalogue, a catalogue writer and CLI runners."""
+
 from __future__ import annotations
 
 import textwrap
@@ -5,6 +7,59 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+
+VALID = """\
+gyrovib: 1
+units:
+  rate: deg/s
+sensors:
+  - id: fog-a
+    name: FOG A
+    range: 490
+    coefficients:
+      k2: 2.0e-7
+      A1: 1.0e-4
+      m31: 1.0e-6
+    response:
+      - [10, 1.0]
+      - [500, 0.7]
+  - id: mems-a
+    output_coefficients:
+      unit: mV
+      K1: 25.0
+      A1: 2.0e-3
+      K2: 1.0e-4
+profiles:
+  - id: cruise
+    rate: [0, 0, 30]
+    harmonic:
+      - frequency: 120
+        amplitude: [0.5, 0.5, 0.8]
+    random:
+      psd:
+        x3: [[20, 1.0e-4], [2000, 1.0e-4]]
+      coherence: [1.0, 1.0]
+    mount:
+      - [20, 1.0]
+      - [200, 0.3]
+"""
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    return CliRunner()  # click >= 8.2 keeps stdout and stderr apart
+
+
+@pytest.fixture
+def valid_text() -> str:
+    return VALID
+
+
+@pytest.fixture
+def valid_file(tmp_path: Path) -> Path:
+    path = tmp_path / "good.yaml"
+    path.write_text(VALID, encoding="utf-8")
+    return path
 
 
 @pytest.fixture

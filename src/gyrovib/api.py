@@ -10,11 +10,13 @@ the requested output unit on the way out.
 
 from __future__ import annotations
 
+import functools
 import math
 import zlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -52,12 +54,53 @@ from gyrovib.core.synthesis import (
 from gyrovib.core.transmissibility import FloatArray, Table, as_table
 from gyrovib.errors import GyrovibError, ModelError, OptionError
 
+P = ParamSpec("P")
+R = TypeVar("R")
+
 _RATE_POWERS = np.array([units.COEFFICIENT_RATE_POWER[c] for c in COEFFICIENTS], dtype=float)
 
 
 def load(paths: Sequence[str | Path] = ()) -> Catalog:
     """Load and merge catalogue files; no paths means the bundled catalogues."""
     return load_catalog(list(paths) if paths else bundled_paths())
+
+
+def sensor_location(catalog: Catalog, sensor_id: str) -> tuple[str | None, int | None]:
+    """The file and 1-based line where a sensor is defined (its ``id:``).
+
+    ``(None, None)`` for an id the catalogue does not have; the line is None
+    when it cannot be found.
+    """
+    for entry in catalog.sensors:
+        if entry.sensor.id == sensor_id:
+            place = catalog.sensor_line(entry)
+            return entry.source.name, (place[0] if place else None)
+    return None, None
+
+
+def profile_location(catalog: Catalog, profile_id: str) -> tuple[str | None, int | None]:
+    """The file and 1-based line where a profile is defined (its ``id:``)."""
+    for entry in catalog.profiles:
+        if entry.profile.id == profile_id:
+            place = entry.source.locate(("profiles", entry.index, "id"))
+            return entry.source.name, (place[0] if place else None)
+    return None, None
+
+
+def quiet_float(function: Callable[P, R]) -> Callable[P, R]:
+    """Run ``function`` with numpy's floating-point warnings off.
+
+    Absurd magnitudes (amplitudes of 1e200) overflow on the way; the result
+    is checked with :func:`check_finite`, which reports that once, instead of
+    numpy printing a RuntimeWarning per operation.
+    """
+
+    @functools.wraps(function)
+    def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+            return function(*args, **kwargs)
+
+    return wrapper
 
 
 # ----------------------------------------------------------------- selection
@@ -275,6 +318,27 @@ def _check_numeric_options(samples: int, seed: int) -> None:
         raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
 
 
+def _check_finite_located(error: VibrationError, s_entries: Sequence[SensorEntry],
+                          p_entries: Sequence[ProfileEntry]) -> None:
+    """Name the first sensor × profile whose error overflowed, at the profile's place."""
+    bad = ~(np.isfinite(error.total) & np.isfinite(error.rms)
+            & np.all(np.isfinite(error.additive_terms), axis=-1)
+            & np.all(np.isfinite(error.multiplicative_coefficients), axis=-1))
+    if not bad.any():
+        return
+    i, j = (int(k) for k in np.argwhere(bad)[0])
+    sensor, profile = s_entries[i], p_entries[j]
+    count = int(bad.sum())
+    more = f" ({count - 1} more sensor/profile pairs too)" if count > 1 else ""
+    raise GyrovibError(profile.source.problem(
+        f"sensor {sensor.sensor.id!r} under profile {profile.profile.id!r}: the vibration "
+        "error overflows floating point; check the amplitudes, PSD levels, rates and "
+        f"coefficients for absurd magnitudes{more}",
+        ("profiles", profile.index, "id"),
+    ))
+
+
+@quiet_float
 def analyze(
     catalog: Catalog,
     *,
@@ -350,6 +414,7 @@ def analyze(
                 "the static model does not hold in saturation",
             )
     error = to_unit(VibrationError(**parts), unit)
+    _check_finite_located(error, s_entries, p_entries)
     check_finite(error)
     stderr_out = None if stderr is None else stderr / units.scale(unit)
     numeric = stderr is not None

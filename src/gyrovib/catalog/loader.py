@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -32,6 +32,18 @@ _BaseLoader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 MAX_PROBLEMS = 50
 #: Expanded size above which a document with aliases is refused (alias bombs).
 MAX_EXPANDED_NODES = 2_000_000
+#: Deepest nesting of mappings and sequences accepted (a catalogue needs 7);
+#: libyaml's composer recurses in C, so a deeper document could crash it.
+MAX_DEPTH = 64
+#: Largest catalogue file read, in bytes.
+MAX_FILE_BYTES = 16 * 1024 * 1024
+
+_YAML_PREFIX = "tag:yaml.org,2002:"
+
+
+def _tag_name(tag: str) -> str:
+    """A tag as it is written in the file: ``!!python/name:x`` rather than the URI."""
+    return "!!" + tag[len(_YAML_PREFIX):] if tag.startswith(_YAML_PREFIX) else tag
 
 
 class _Loader(_BaseLoader):  # type: ignore[misc]
@@ -128,8 +140,8 @@ def _check_nodes(node: Any) -> None:
         if current.tag not in _ALLOWED_TAGS:
             raise yaml.constructor.ConstructorError(
                 None, None,
-                f"the YAML tag {current.tag!r} is not allowed in a catalogue; "
-                "write plain values",
+                f"the YAML tag {_tag_name(current.tag)!r} is not allowed in a catalogue "
+                "(it could build objects or run code); write plain values",
                 current.start_mark,
             )
         if isinstance(current, yaml.ScalarNode):
@@ -143,15 +155,66 @@ def _check_nodes(node: Any) -> None:
             else current.value
         )
         for child in children:
-            if id(child) in sizes and sizes[id(child)] == 0 and child is not current:
-                continue
+            if sizes.get(id(child)) == 0:  # still being expanded: an ancestor
+                raise yaml.constructor.ConstructorError(
+                    None, None,
+                    "an alias refers to a value that contains it (a recursive structure); "
+                    "refusing it",
+                    current.start_mark,
+                )
             stack.append((child, False))
+
+
+def _check_depth(text: str) -> None:
+    """Refuse documents nested deeper than :data:`MAX_DEPTH`, before composing them.
+
+    Only events are read (libyaml's parser keeps its own stack), and reading
+    stops at the first level too deep, so a hostile document costs little.
+    """
+    loader = _Loader(text)
+    try:
+        depth = 0
+        while loader.check_event():
+            event: Any = loader.get_event()
+            if isinstance(event, yaml.CollectionStartEvent):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    mark: Any = event.start_mark
+                    raise yaml.constructor.ConstructorError(
+                        None, None,
+                        f"values are nested more than {MAX_DEPTH} levels deep; "
+                        "a catalogue needs fewer than 10",
+                        mark,
+                    )
+            elif isinstance(event, yaml.CollectionEndEvent):
+                depth -= 1
+    finally:
+        loader.dispose()
+
+
+#: Characters YAML does not allow in a stream (C0/C1 controls other than tab/newlines, ...).
+_NON_PRINTABLE = re.compile(
+    "[^\x09\x0a\x0d\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]"
+)
+
+
+def _check_characters(text: str, name: str) -> None:
+    bad = _NON_PRINTABLE.search(text)
+    if bad is not None:
+        at = bad.start()
+        line = text.count("\n", 0, at) + 1
+        column = at - (text.rfind("\n", 0, at) + 1) + 1
+        raise CatalogError(Problem(
+            f"the character U+{ord(bad.group()):04X} (a control character) is not allowed "
+            "in YAML; remove it", name, line, column))
 
 
 def _parse(text: str, name: str) -> Any:
     """Parse YAML text to plain Python data, raising located :class:`CatalogError`."""
+    _check_characters(text, name)
     loader = _Loader(text)
     try:
+        _check_depth(text)
         node = loader.get_single_node()
         if node is None:
             return None
@@ -174,13 +237,31 @@ def _parse(text: str, name: str) -> Any:
 
 def _read_text(path: Path, name: str) -> str:
     try:
-        raw = path.read_bytes()
+        with path.open("rb") as handle:
+            raw = handle.read(MAX_FILE_BYTES + 1)
     except FileNotFoundError:
-        raise CatalogError(Problem("no such file", name)) from None
+        raise CatalogError(Problem("no such file or directory", name)) from None
     except IsADirectoryError:
-        raise CatalogError(Problem("is a directory, not a catalogue file", name)) from None
+        raise CatalogError(
+            Problem("is a directory; give the catalogue files in it (e.g. DIR/*.yaml)", name)
+        ) from None
     except OSError as exc:
         raise CatalogError(Problem(f"cannot read: {exc.strerror or exc}", name)) from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise CatalogError(
+            Problem(f"the file is larger than {MAX_FILE_BYTES // 2**20} MiB; "
+                    "that is not a catalogue", name)
+        )
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise CatalogError(Problem("the file is UTF-16 text; save the catalogue as UTF-8",
+                                   name, 1, 1))
+    if b"\0" in raw:
+        at = raw.index(b"\0")
+        before = raw[:at]
+        raise CatalogError(
+            Problem("binary data (a NUL byte), not a YAML text file", name,
+                    before.count(b"\n") + 1, at - (before.rfind(b"\n") + 1) + 1)
+        )
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -198,20 +279,29 @@ def _read_text(path: Path, name: str) -> str:
 # ---------------------------------------------------------------- locating errors
 
 
-def _locate(text: str, path: Sequence[Any], want_key: bool) -> tuple[int, int] | None:
-    """Line and column (1-based) of the value at ``path`` in the YAML ``text``."""
+def _compose(text: str) -> Any:
+    """The node tree of ``text`` (None when it cannot be composed)."""
     try:
-        node = yaml.compose(text, Loader=_Loader)
-    except yaml.YAMLError:
+        return yaml.compose(text, Loader=_Loader)
+    except (yaml.YAMLError, RecursionError):
         return None
-    if node is None:
-        return None
+
+
+def _find(root: Any, path: Sequence[Any], want_key: bool) -> tuple[Any, tuple[int, int] | None]:
+    """The node at ``path`` under ``root`` and its (line, column), 1-based.
+
+    Where the path leaves the document (a missing key), the deepest node
+    reached is returned. With ``want_key`` the last step gives the key's place.
+    """
+    if root is None:
+        return None, None
+    node = root
     mark = node.start_mark
     for i, part in enumerate(path):
         last = i == len(path) - 1
         if isinstance(node, yaml.MappingNode):
-            for key_node, value_node in reversed(node.value):
-                if key_node.value == str(part):
+            for key_node, value_node in reversed(_flat_pairs(node)):
+                if isinstance(key_node, yaml.ScalarNode) and key_node.value == str(part):
                     mark = key_node.start_mark if (last and want_key) else value_node.start_mark
                     node = value_node
                     break
@@ -225,42 +315,166 @@ def _locate(text: str, path: Sequence[Any], want_key: bool) -> tuple[int, int] |
                 break
         else:
             break
-    return mark.line + 1, mark.column + 1
+    return node, (mark.line + 1, mark.column + 1)
 
 
-_KNOWN_KEYS: dict[str, list[str]] = {}
+def _flat_pairs(node: Any, depth: int = 0) -> list[tuple[Any, Any]]:
+    """A mapping's key/value node pairs with ``<<`` merges expanded (merged first)."""
+    pairs: list[tuple[Any, Any]] = []
+    own: list[tuple[Any, Any]] = []
+    for key_node, value_node in node.value:
+        if key_node.tag == "tag:yaml.org,2002:merge" and depth < 8:
+            merged = value_node.value if isinstance(value_node, yaml.SequenceNode) else [value_node]
+            for m in merged:
+                if isinstance(m, yaml.MappingNode):
+                    pairs.extend(_flat_pairs(m, depth + 1))
+        else:
+            own.append((key_node, value_node))
+    return pairs + own
 
 
-def _friendly(error: Any, model_fields: Iterable[str] = ()) -> str:
+def _locate(text: str, path: Sequence[Any], want_key: bool) -> tuple[int, int] | None:
+    """Line and column (1-based) of the value at ``path`` in the YAML ``text``."""
+    return _find(_compose(text), path, want_key)[1]
+
+
+def _where(loc: Sequence[Any], data: Any) -> str:
+    """A readable path: ``sensor 'fog-a': coefficients.k2``, ``profiles[2].rate[1]``."""
+    parts: list[str] = []
+    start = 0
+    if (len(loc) >= 2 and loc[0] in ("sensors", "profiles") and isinstance(loc[1], int)
+            and isinstance(data, dict)):
+        items = data.get(loc[0])
+        item = items[loc[1]] if isinstance(items, list) and loc[1] < len(items) else None
+        ident = item.get("id") if isinstance(item, dict) else None
+        if isinstance(ident, str) and re.fullmatch(r"[A-Za-z0-9._-]{1,80}", ident):
+            parts.append(f"{loc[0][:-1]} {ident!r}")
+            start = 2
+    text = ""
+    for part in loc[start:]:
+        if isinstance(part, int):
+            text += f"[{part}]"
+        else:
+            text += ("." if text else "") + str(part)
+    if parts and text:
+        return f"{parts[0]}: {text}"
+    return parts[0] if parts else text
+
+
+def _describe(value: Any) -> str:
+    """A value as the user wrote it, for 'not ...' messages."""
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if value is None:
+        return "empty (null)"
+    if isinstance(value, str):
+        shown = value if len(value) <= 40 else value[:37] + "..."
+        return f"the text {shown!r}"
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return "a list"
+    if isinstance(value, int) and abs(value) > 10**20:
+        return "an integer too large for a floating-point number"
+    return repr(value)
+
+
+def _scalar_text(node: Any) -> str | None:
+    return node.value if isinstance(node, yaml.ScalarNode) else None
+
+
+def _friendly(error: Mapping[str, Any], model_fields: Iterable[str] = (), data: Any = None,
+              node: Any = None) -> str:
+    """One pydantic error as a sentence: where, what is wrong, and what to write."""
     kind = error["type"]
-    loc = error["loc"]
-    where = ".".join(str(p) for p in loc)
-    parent = ".".join(str(p) for p in loc[:-1])
+    loc = tuple(error["loc"])
+    value = error.get("input")
+    ctx = error.get("ctx") or {}
+    where = _where(loc, data)
+    parent = _where(loc[:-1], data)
     prefix = f"{parent}: " if parent else ""
     if kind == "extra_forbidden":
         key = str(loc[-1])
+        fields = list(model_fields)
         message = f"{prefix}unknown key {key!r}"
-        close = difflib.get_close_matches(key, list(model_fields), n=1)
+        close = [f for f in fields if f.lower() == key.lower().replace("-", "_")] or \
+            difflib.get_close_matches(key, fields, n=1, cutoff=0.6)
         if close:
             message += f"; did you mean {close[0]!r}?"
+        elif fields:
+            message += f"; allowed here: {', '.join(fields)}"
         return message
+    if kind == "invalid_key":
+        return f"{prefix}a key must be a name, not {_describe(value)}"
     if kind == "missing":
         if loc and isinstance(loc[-1], int):
             return f"{prefix}too few values (item {loc[-1] + 1} is missing)"
         return f"{prefix}missing required key {str(loc[-1])!r}" if loc else "missing required key"
+    if loc == ("gyrovib",) and kind != "value_error":
+        return f"gyrovib: the format version must be the number 1, not {_describe(value)}"
     if kind == "too_long":
+        expected = ctx.get("max_length")
+        have = ctx.get("actual_length")
+        if expected is not None and have is not None and isinstance(value, (list, tuple)):
+            return f"{where}: too many values ({have}; expected at most {expected})"
         return f"{where}: too many values"
+    if kind == "too_short":
+        expected = ctx.get("min_length")
+        return f"{where}: too few values (at least {expected} needed)" if expected else \
+            f"{where}: too few values"
+    if kind == "finite_number" or (kind == "float_type" and isinstance(value, int)
+                                    and not isinstance(value, bool)):
+        text = (_scalar_text(node) or "").strip().lower()
+        if "nan" in text:
+            what = "NaN is not a number gyrovib accepts"
+        elif "inf" in text:
+            what = "infinities are not accepted"
+        elif text:
+            shown = text if len(text) <= 24 else f"{text[:12]}...({len(text)} characters)"
+            what = f"{shown} overflows a floating-point number (max ~1.8e308)"
+        else:
+            what = "the value overflows or is not finite"
+        return f"{where}: {what}; write a finite number"
+    if kind in {"float_type", "int_type", "float_parsing", "int_parsing"}:
+        return f"{where}: must be a number, not {_describe(value)}"
+    if kind in {"greater_than_equal", "greater_than", "less_than_equal", "less_than"}:
+        bound = ctx.get("ge", ctx.get("gt", ctx.get("le", ctx.get("lt"))))
+        words = {"greater_than_equal": "must not be less than",
+                 "greater_than": "must be greater than",
+                 "less_than_equal": "must not be greater than",
+                 "less_than": "must be less than"}[kind]
+        what = f"{words} {bound}"
+        if kind == "greater_than_equal" and bound == 0:
+            what = "must not be negative"
+        elif kind == "greater_than" and bound == 0:
+            what = "must be positive (greater than 0)"
+        if "coherence" in loc:
+            what += " (a coherence lies in [-1, 1])"
+        return f"{where}: {what}, got {value!r}"
+    if kind == "string_pattern_mismatch" and loc and loc[-1] == "id":
+        return (f"{where}: the id {value!r} may hold only letters, digits, '.', '_' and '-' "
+                "(no spaces or slashes)")
+    if kind == "string_too_short" and loc and loc[-1] == "id":
+        return f"{where}: the id must not be empty"
+    if kind in {"string_type", "str_type"}:
+        return f"{where}: must be text, not {_describe(value)}"
+    if kind == "literal_error":
+        expected = str(ctx.get("expected", "")).replace("'", "")
+        if loc and loc[-1] == "rate" and "units" in loc:
+            known = expected.replace(" or", ",")
+            return f"{where}: unknown rate unit {value!r}; use one of {known}"
+        return f"{where}: {value!r} is not allowed; use one of {expected.replace(' or', ',')}"
+    if kind in {"model_type", "model_attributes_type", "dict_type"}:
+        return f"{where}: must be a mapping of keys to values, not {_describe(value)}"
+    if kind in {"list_type", "tuple_type"}:
+        return f"{where}: must be a list, not {_describe(value)}"
     msg = str(error["msg"])
-    if msg.startswith("Value error, "):
-        msg = msg[len("Value error, ") :]
-    elif msg.startswith("Assertion failed, "):
-        msg = msg[len("Assertion failed, ") :]
-    if kind == "finite_number":
-        msg = "must be a finite number (NaN, infinities and overflowing literals are refused)"
-    elif kind in {"float_type", "int_type"}:
-        msg = f"must be a number, not {type(error.get('input')).__name__}"
+    for lead in ("Value error, ", "Assertion failed, "):
+        if msg.startswith(lead):
+            msg = msg[len(lead):]
+            break
     else:
-        msg = msg[0].lower() + msg[1:] if msg else msg
+        msg = msg[0].lower() + msg[1:] if msg.startswith("Input ") else msg
     return f"{where}: {msg}" if where else msg
 
 
@@ -277,10 +491,10 @@ def _fields_at(loc: Sequence[Any]) -> list[str]:
             return []
         annotation = str(field.annotation)
         for candidate in (
-            schema.Sensor, schema.Profile, schema.Coefficients, schema.OutputCoefficients,
+            schema.Sensor, schema.Profile, schema.OutputCoefficients, schema.Coefficients,
             schema.Tone, schema.Random, schema.PSD, schema.Units, schema.Allocation,
         ):
-            if candidate.__name__ in annotation:
+            if re.search(rf"\b{candidate.__name__}\b", annotation):
                 model = candidate
                 break
         else:
@@ -288,16 +502,23 @@ def _fields_at(loc: Sequence[Any]) -> list[str]:
     return list(model.model_fields)
 
 
-def _validation_problems(exc: ValidationError, text: str, name: str) -> list[Problem]:
+def _validation_problems(exc: ValidationError, text: str, name: str,
+                         data: Any = None) -> list[Problem]:
+    root = _compose(text)
     problems = []
     for error in exc.errors()[:MAX_PROBLEMS]:
         loc = tuple(error["loc"])
-        message = _friendly(error, _fields_at(loc))
-        place = _locate(text, loc, want_key=error["type"] == "extra_forbidden")
+        index = (error.get("ctx") or {}).get("index")
+        if isinstance(index, int):  # a table check naming the offending row
+            loc = (*loc, index)
+        node, place = _find(root, loc,
+                            want_key=error["type"] in ("extra_forbidden", "invalid_key"))
+        message = _friendly(error, _fields_at(tuple(error["loc"])), data, node)
         if place is None:
             problems.append(Problem(message, name))
         else:
             problems.append(Problem(message, name, place[0], place[1]))
+    problems.sort(key=lambda p: (p.line or 0, p.column or 0))
     hidden = exc.error_count() - MAX_PROBLEMS
     if hidden > 0:
         problems.append(Problem(f"... and {hidden} more problems", name))
@@ -348,7 +569,7 @@ def parse_catalog(text: str, name: str = "<string>") -> CatalogSource:
     try:
         model = CatalogFile.model_validate(data)
     except ValidationError as exc:
-        raise CatalogError(_validation_problems(exc, text, name)) from None
+        raise CatalogError(_validation_problems(exc, text, name, data)) from None
     return CatalogSource(name=name, text=text, model=model)
 
 
@@ -454,6 +675,10 @@ def load_catalog(paths: Sequence[str | Path]) -> Catalog:
         except CatalogError as exc:
             problems.extend(exc.problems)
     if problems:
+        try:  # the files that did parse may still clash: report that too
+            merge(sources)
+        except CatalogError as exc:
+            problems.extend(exc.problems)
         raise CatalogError(problems)
     return merge(sources)
 

@@ -17,6 +17,7 @@ from pydantic import (
     field_validator,
     model_validator,
 )
+from pydantic_core import PydanticCustomError
 
 Number = Annotated[float, Field(strict=True, allow_inf_nan=False)]
 NonNegative = Annotated[float, Field(strict=True, allow_inf_nan=False, ge=0)]
@@ -36,15 +37,26 @@ RateUnit = Literal["deg/s", "deg/h", "rad/s", "rpm"]
 
 
 def _check_breakpoints(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
-    """Frequencies must increase; one repeat (a step) is allowed, not three in a row."""
+    """Frequencies must increase; one repeat (a step) is allowed, not three in a row.
+
+    The error's context carries ``index``, the offending row, so the loader
+    can point at it.
+    """
     for i in range(1, len(table)):
         f0, f1 = table[i - 1][0], table[i][0]
         if f1 < f0:
-            raise ValueError(
-                f"breakpoint frequencies must increase: {f1:g} Hz follows {f0:g} Hz"
+            raise PydanticCustomError(
+                "breakpoint_order",
+                f"breakpoint frequencies must increase: {f1:g} Hz follows {f0:g} Hz "
+                "(sort the rows by frequency)",
+                {"index": i},
             )
         if f1 == f0 and i >= 2 and table[i - 2][0] == f0:
-            raise ValueError(f"frequency {f0:g} Hz appears more than twice (a step uses two)")
+            raise PydanticCustomError(
+                "breakpoint_order",
+                f"frequency {f0:g} Hz appears more than twice (a step uses two rows)",
+                {"index": i},
+            )
     return table
 
 
@@ -97,7 +109,9 @@ class OutputCoefficients(_Model):
     @classmethod
     def _k1_nonzero(cls, value: float) -> float:
         if value == 0:
-            raise ValueError("K1 (output per rate unit) must not be zero")
+            raise ValueError(
+                "K1 (output per rate unit) must not be zero: it divides every other coefficient"
+            )
         return value
 
     def to_coefficients(self) -> Coefficients:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog
+from gyrovib.cli.common import load_catalog, use_color
 from gyrovib.cli.options import (
     files_argument,
     format_option,
@@ -55,6 +55,8 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         result = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
                              rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
                              seed=seed, progress=advance)
-    renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
-                 "markdown": render.to_markdown}
+    if fmt == "table":
+        write_output(render.to_table(result, color=use_color(output)), output)
+        return
+    renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

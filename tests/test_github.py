@@ -1,0 +1,153 @@
+"""GitHub annotations, --format github, --color and the pre-commit hook."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import yaml
+from click.testing import CliRunner
+
+from gyrovib import api
+from gyrovib.cli.common import resolve_color
+from gyrovib.cli.main import cli
+from gyrovib.errors import Problem
+from gyrovib.render.github import (
+    annotation,
+    annotations,
+    escape_data,
+    escape_property,
+    problems_to_github,
+)
+
+ROOT = Path(__file__).parent.parent
+
+
+def test_escape_data() -> None:
+    assert escape_data("100% done\r\nnext") == "100%25 done%0D%0Anext"
+    assert escape_data("a: b, c") == "a: b, c"
+
+
+def test_escape_property() -> None:
+    assert escape_property("C:\\dir,x%\n") == "C%3A\\dir%2Cx%25%0A"
+
+
+def test_annotation_fields() -> None:
+    assert annotation("bad: value", file="a,b.yaml", line=3, column=7, title="t:1") == (
+        "::error file=a%2Cb.yaml,line=3,col=7,title=t%3A1::bad: value")
+    assert annotation("m") == "::error::m"
+    assert annotation("m", level="warning", file="f.yaml") == "::warning file=f.yaml::m"
+    assert annotation("m", file="f", column=4) == "::error file=f::m"  # no col without a line
+    with pytest.raises(ValueError, match="level"):
+        annotation("m", level="fatal")
+
+
+def test_annotations_items() -> None:
+    text = annotations([
+        ("s.yaml", 12, "mems-a fails", "k2 = 3e-4 exceeds 1e-4\nsecond line", "error"),
+        (None, None, None, "no place", "notice"),
+    ])
+    assert text == ("::error file=s.yaml,line=12,title=mems-a fails::k2 = 3e-4 exceeds "
+                    "1e-4%0Asecond line\n::notice::no place\n")
+
+
+def test_problems_to_github() -> None:
+    text = problems_to_github([Problem("x 100%", "a.yaml", 2, 5), Problem("no file")])
+    assert text == ("::error file=a.yaml,line=2,col=5,title=gyrovib::x 100%25\n"
+                    "::error title=gyrovib::no file\n")
+
+
+def test_validate_format_github(tmp_path: Path) -> None:
+    path = tmp_path / "bad.yaml"
+    path.write_text("gyrovib: 1\nsensors:\n  - id: a\n    coefficients:\n      k_2: 1\n")
+    result = CliRunner().invoke(cli, ["validate", "--format", "github", str(path)])
+    assert result.exit_code == 2
+    assert result.stdout == (
+        f"::error file={escape_property(str(path))},line=5,col=7,title=gyrovib::"
+        "sensor 'a': coefficients: unknown key 'k_2'; did you mean 'k2'?\n")
+    # the plain FILE:LINE:COL line is still on stderr
+    assert result.stderr.startswith(f"{path}:5:7: ")
+
+
+def test_validate_format_github_valid(valid_file: Path) -> None:
+    result = CliRunner().invoke(cli, ["validate", "--format", "github", str(valid_file)])
+    assert result.exit_code == 0
+    assert result.stdout == ""
+
+
+def test_validate_format_text_has_no_annotations(tmp_path: Path) -> None:
+    path = tmp_path / "bad.yaml"
+    path.write_text("gyrovib: 3\n")
+    result = CliRunner().invoke(cli, ["validate", str(path)])
+    assert result.exit_code == 2
+    assert result.stdout == ""
+
+
+def test_sensor_location(valid_file: Path) -> None:
+    catalog = api.load([valid_file])
+    assert api.sensor_location(catalog, "fog-a") == (str(valid_file), 5)
+    assert api.sensor_location(catalog, "mems-a") == (str(valid_file), 15)
+    assert api.sensor_location(catalog, "nope") == (None, None)
+    assert api.profile_location(catalog, "cruise") == (str(valid_file), 22)
+
+
+@pytest.mark.parametrize(("mode", "env", "tty", "expected"), [
+    ("always", {"NO_COLOR": "1"}, False, True),
+    ("never", {"FORCE_COLOR": "1"}, True, False),
+    ("auto", {}, True, True),
+    ("auto", {}, False, False),
+    ("auto", {"NO_COLOR": "1"}, True, False),
+    ("auto", {"NO_COLOR": ""}, True, True),
+    ("auto", {"FORCE_COLOR": "1"}, False, True),
+    ("auto", {"FORCE_COLOR": "0"}, False, False),
+    ("auto", {"NO_COLOR": "1", "FORCE_COLOR": "1"}, False, False),
+])
+def test_resolve_color(mode: str, env: dict[str, str], tty: bool, expected: bool) -> None:
+    assert resolve_color(mode, env, tty) is expected
+
+
+ESC = "\x1b["
+
+
+def test_color_option_reaches_table(valid_file: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("NO_COLOR", raising=False)
+    monkeypatch.delenv("FORCE_COLOR", raising=False)
+    runner = CliRunner()
+    plain = runner.invoke(cli, ["analyze", str(valid_file)])
+    assert plain.exit_code == 0 and ESC not in plain.stdout
+    colored = runner.invoke(cli, ["--color", "always", "analyze", str(valid_file)])
+    assert colored.exit_code == 0 and ESC in colored.stdout
+    monkeypatch.setenv("FORCE_COLOR", "1")
+    forced = runner.invoke(cli, ["analyze", str(valid_file)])
+    assert ESC in forced.stdout
+    never = runner.invoke(cli, ["--color", "never", "analyze", str(valid_file)])
+    assert ESC not in never.stdout
+    monkeypatch.setenv("NO_COLOR", "1")
+    off = runner.invoke(cli, ["analyze", str(valid_file)])
+    assert ESC not in off.stdout
+
+
+def test_color_never_in_json(valid_file: Path) -> None:
+    result = CliRunner().invoke(cli, ["--color", "always", "analyze", str(valid_file),
+                                      "--format", "json"])
+    assert result.exit_code == 0 and ESC not in result.stdout
+
+
+def test_pre_commit_hook() -> None:
+    hooks = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())
+    hook = next(h for h in hooks if h["id"] == "gyrovib-validate")
+    assert hook["entry"] == "gyrovib validate"
+    assert hook["language"] == "python"
+    import re
+
+    pattern = re.compile(hook["files"])
+    assert pattern.search("catalogs/procurement.gyrovib.yaml")
+    assert pattern.search("x.gyrovib.yml")
+    assert not pattern.search("other.yaml")
+
+
+def test_help_documents_exit_codes() -> None:
+    result = CliRunner().invoke(cli, ["--help"])
+    assert result.exit_code == 0
+    assert "3 an internal error" in result.stdout
+    assert "--color" in result.stdout
