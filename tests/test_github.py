@@ -151,3 +151,36 @@ def test_help_documents_exit_codes() -> None:
     assert result.exit_code == 0
     assert "3 an internal error" in result.stdout
     assert "--color" in result.stdout
+
+
+def test_select_github_annotations_point_at_the_failing_sensor(write):
+    # k2 = 1 (deg/s)^-1 under a 1 deg/s tone: Δ0(2) = k2·a²/2 = 0.5 deg/s ≫ Δ* = 0.01,
+    # so 'bad' fails; 'good' has no nonlinearity at all and passes
+    path = write("""
+        gyrovib: 1
+        sensors:
+          - id: good
+            coefficients: {}
+          - id: bad
+            coefficients: {k2: 1.0}
+        profiles:
+          - id: tone
+            harmonic: [{frequency: 50, amplitude: [0, 0, 1]}]
+    """)
+    result = CliRunner().invoke(cli, ["select", str(path), "--budget", "0.01", "--format",
+                                      "github", "--require", "all"])
+    assert result.exit_code == 1
+    lines = result.stdout.splitlines()
+    # line 6 of the dedented file holds "  - id: bad" (the file starts with a blank line)
+    assert lines[1].startswith(f"::error file={path},line=6,title=bad fails the budget::")
+    assert "|k2| = 1 exceeds its bound" in lines[1]
+    assert lines[0].startswith(f"::notice file={path},line=4,title=good passes::")
+    assert lines[-1].startswith("::notice title=gyrovib select::")
+
+
+def test_select_github_reports_bad_input_as_annotation(write):
+    path = write("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k_2: 1}\n")
+    result = CliRunner().invoke(cli, ["select", str(path), "--budget", "0.01", "--format",
+                                      "github"])
+    assert result.exit_code == 2
+    assert f"::error file={path},line=4,col=20" in result.stdout

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog, use_color
+from gyrovib.cli.common import github_errors, load_catalog, use_color
 from gyrovib.cli.options import (
     allocation_option,
     budget_option,
@@ -37,7 +37,7 @@ from gyrovib.cli.options import (
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
-@format_option("table", "json", "csv", "markdown", "junit")
+@format_option("table", "json", "csv", "markdown", "junit", "github")
 @output_option
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
@@ -54,13 +54,17 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     from gyrovib.cli.output import write_output
     from gyrovib.render import select as render
 
+    github_errors(fmt == "github")
     unit = parse_unit(unit)
-    result = api.select(load_catalog(files), sensors=sensors, profiles=profiles, method=method,
+    catalog = load_catalog(files)
+    result = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, criterion=criterion, require=require,
                         allocation=parse_allocation(allocation))
     if fmt == "table":
         text = render.to_table(result, color=use_color(output))
+    elif fmt == "github":
+        text = render.to_github(result, [api.sensor_location(catalog, s) for s in result.sensors])
     else:
         text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
                 "junit": render.to_junit}[fmt](result)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 from gyrovib.api import SelectionResult
@@ -249,3 +249,32 @@ def to_junit(result: SelectionResult) -> str:
                 case.insert(0, failure)
     ET.indent(suites)
     return ET.tostring(suites, encoding="unicode", xml_declaration=True) + "\n"
+
+
+def to_github(
+    result: SelectionResult, locations: Sequence[tuple[str | None, int | None]]
+) -> str:
+    """GitHub workflow annotations: one ``::error`` per failing sensor at its catalogue line,
+    a ``::notice`` per passing sensor, and a closing summary notice.
+
+    ``locations[i]`` is the (file, line) of sensor ``i``'s ``id:``.
+    """
+    from gyrovib.render.github import annotations
+
+    items: list[tuple[str | None, int | None, str | None, str, str]] = []
+    for i, sensor in enumerate(result.sensors):
+        file, line = locations[i]
+        if result.sensor_pass[i]:
+            worst = _margin(float(result.worst_margin[i]))
+            items.append((file, line, f"{sensor} passes",
+                          f"{sensor} meets Δ* = {fmt(result.budget)} {result.unit} under every "
+                          f"profile; worst margin {worst}", "notice"))
+            continue
+        reasons = [f"{result.profiles[j]}: {'; '.join(failures(result, i, j))}"
+                   for j in range(len(result.profiles)) if not result.passed[i, j]]
+        items.append((file, line, f"{sensor} fails the budget",
+                      f"{sensor} fails Δ* = {fmt(result.budget)} {result.unit} "
+                      f"({_CRITERION[result.criterion]}). Limited by {limit_text(result, i)}. "
+                      + " | ".join(reasons), "error"))
+    items.append((None, None, "gyrovib select", _summary(result), "notice"))
+    return annotations(items)
