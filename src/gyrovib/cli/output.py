@@ -19,16 +19,30 @@ def write_output(text: str, path: str | None) -> None:
         sys.stdout.write(text)
         sys.stdout.flush()
         return
+    _replace(path, text.encode("utf-8"), "--output: ")
+
+
+def write_binary(data: bytes, path: str) -> None:
+    """Write ``data`` to ``path`` atomically (temp file + rename); never to stdout."""
+    _replace(path, data, "")
+
+
+def _replace(path: str, data: bytes, what: str) -> None:
+    """Put ``data`` at ``path`` through a temporary file in the same directory.
+
+    An existing file keeps its permissions; a new one gets the umask's. On any
+    failure the temporary file is removed and ``path`` is left as it was.
+    """
     target = Path(path)
     directory = target.parent if str(target.parent) else Path(".")
     if not directory.is_dir():
-        raise OptionError(f"--output: directory {str(directory)!r} does not exist")
+        raise OptionError(f"{what}directory {str(directory)!r} of {path!r} does not exist")
     if target.is_dir():
-        raise OptionError(f"--output: {path!r} is a directory")
+        raise OptionError(f"{what}{path!r} is a directory")
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=directory)
     try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as handle:
-            handle.write(text)
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
             handle.flush()
             os.fsync(handle.fileno())
         if target.exists():
@@ -39,32 +53,7 @@ def write_output(text: str, path: str | None) -> None:
             os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, target)
     except OSError as exc:
-        raise OptionError(f"--output: cannot write {path!r}: {exc.strerror or exc}") from None
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-
-
-def write_binary(data: bytes, path: str) -> None:
-    """Write ``data`` to ``path`` atomically (temp file + rename); never to stdout."""
-    target = Path(path)
-    directory = target.parent if str(target.parent) else Path(".")
-    if not directory.is_dir():
-        raise OptionError(f"directory {str(directory)!r} of {path!r} does not exist")
-    if target.is_dir():
-        raise OptionError(f"{path!r} is a directory")
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=directory)
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
-            handle.flush()
-            os.fsync(handle.fileno())
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, target)
-    except OSError as exc:
-        raise OptionError(f"cannot write {path!r}: {exc.strerror or exc}") from None
+        raise OptionError(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
