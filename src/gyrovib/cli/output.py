@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -13,13 +14,26 @@ from gyrovib.errors import OptionError
 def write_output(text: str, path: str | None) -> None:
     """Write ``text`` to ``path`` atomically (temp file + rename), or to stdout.
 
-    A failure leaves an existing file untouched.
+    A failure leaves an existing file untouched. A path that is not a regular
+    file (``/dev/null``, a FIFO, a terminal) is written to directly: renaming
+    a temporary file over it would replace the device with a plain file.
     """
     if path is None or path == "-":
         sys.stdout.write(text)
         sys.stdout.flush()
         return
     target = Path(path)
+    try:
+        mode = os.stat(target).st_mode
+    except OSError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
+        try:
+            with open(target, "w", encoding="utf-8", newline="") as handle:
+                handle.write(text)
+        except OSError as exc:
+            raise OptionError(f"--output: cannot write {path!r}: {exc.strerror or exc}") from None
+        return
     directory = target.parent if str(target.parent) else Path(".")
     if not directory.is_dir():
         raise OptionError(f"--output: directory {str(directory)!r} does not exist")
