@@ -14,6 +14,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,7 +27,7 @@ from gyrovib.catalog.loader import (
     bundled_paths,
     load_catalog,
 )
-from gyrovib.catalog.schema import Allocation
+from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import (
     COEFFICIENTS,
     METHODS,
@@ -336,8 +337,8 @@ def resolve_allocation(
         if catalog.allocation is not None:
             source = next((s for s in catalog.sources if s.model.allocation is not None), None)
             where = f"the 'allocation:' section of {source.name}" if source else "the catalogue"
-    elif isinstance(allocation, Allocation):
-        chosen = allocation
+    elif isinstance(allocation, Allocation) or hasattr(allocation, "r"):
+        chosen = cast(Allocation, allocation)  # the record, or the pydantic model alike
     else:
         values = [float(x) for x in allocation]
         if not all(math.isfinite(x) and x > 0 for x in values):

@@ -3,6 +3,10 @@
 The models describe one file exactly as written, in the file's own rate unit.
 Conversion to deg/s and the merging of several files happen in
 :mod:`gyrovib.catalog.loader`.
+
+These models are the authority on the format (the JSON Schema, and the
+messages for a file that is not valid); a valid file is built as the plain
+records of :mod:`gyrovib.catalog.records`, which mirror them without pydantic.
 """
 
 from __future__ import annotations
@@ -17,6 +21,8 @@ from pydantic import (
     field_validator,
     model_validator,
 )
+
+from gyrovib.catalog.records import check_breakpoints
 
 Number = Annotated[float, Field(strict=True, allow_inf_nan=False)]
 NonNegative = Annotated[float, Field(strict=True, allow_inf_nan=False, ge=0)]
@@ -34,18 +40,7 @@ Breakpoint = tuple[Positive, NonNegative]
 
 RateUnit = Literal["deg/s", "deg/h", "rad/s", "rpm"]
 
-
-def _check_breakpoints(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
-    """Frequencies must increase; one repeat (a step) is allowed, not three in a row."""
-    for i in range(1, len(table)):
-        f0, f1 = table[i - 1][0], table[i][0]
-        if f1 < f0:
-            raise ValueError(
-                f"breakpoint frequencies must increase: {f1:g} Hz follows {f0:g} Hz"
-            )
-        if f1 == f0 and i >= 2 and table[i - 2][0] == f0:
-            raise ValueError(f"frequency {f0:g} Hz appears more than twice (a step uses two)")
-    return table
+_check_breakpoints = check_breakpoints
 
 
 Table = Annotated[list[Breakpoint], Field(min_length=1, max_length=100_000)]
