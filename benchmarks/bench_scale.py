@@ -25,7 +25,8 @@ but realistic eq. (2) coefficients, a quarter of them in the eq. (1)
 ``output_coefficients`` form, a third with a ``response`` table (2-pole
 roll-off at one of a dozen bandwidths, as datasheets quote them), and eight
 profiles: one tone, several tones, flat PSD, shaped PSD with a mount, RMS,
-sine-on-random, a mounted tone and tones plus RMS.
+sine-on-random, a mounted tone in a fast turn (which saturates the sensors of
+smallest range, so some results carry a warning) and tones plus RMS.
 """
 
 from __future__ import annotations
@@ -89,8 +90,8 @@ profiles:
     random:
       psd:
         x3: [[20, 1.0e-3], [2000, 1.0e-3]]
-  - id: mounted-tone
-    rate: [0, 0, 10]
+  - id: mounted-tone-manoeuvre
+    rate: [0, 0, 70]
     harmonic:
       - {frequency: 180, amplitude: [2.0, 2.0, 6.0], phase: [10, 0, 0]}
     mount: [[20, 1.0], [100, 1.8], [200, 0.5], [1000, 0.05]]
