@@ -259,20 +259,10 @@ def _check_nodes(node: Any) -> None:
 
 def _parse(text: str, name: str) -> Any:
     """Parse YAML text to plain Python data, raising located :class:`CatalogError`."""
-    loader = _Loader(text)
     try:
         with _gc_paused():
-            node = loader.get_single_node()
-            if node is None:
-                return None
-            if "&" in text or "!" in text:
-                _check_nodes(node)
-            elif "<<" not in text:
-                try:
-                    return _build(node)
-                except (_Unusual, RecursionError):
-                    pass
-            return loader.construct_document(node)
+            # the node tree is freed before the collector resumes: only the data is new
+            return _construct(_Loader(text), text)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         message = exc.problem or "invalid YAML"
@@ -283,6 +273,22 @@ def _parse(text: str, name: str) -> Any:
         raise CatalogError(Problem(message, name, mark.line + 1, mark.column + 1)) from None
     except yaml.YAMLError as exc:
         raise CatalogError(Problem(f"invalid YAML: {exc}", name)) from None
+
+
+def _construct(loader: Any, text: str) -> Any:
+    """Compose and construct the single document of ``text``."""
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        if "&" in text or "!" in text:
+            _check_nodes(node)
+        elif "<<" not in text:
+            try:
+                return _build(node)
+            except (_Unusual, RecursionError):
+                pass
+        return loader.construct_document(node)
     finally:
         loader.dispose()
 
@@ -461,7 +467,8 @@ def parse_catalog(text: str, name: str = "<string>") -> CatalogSource:
             Problem("missing 'gyrovib: 1' (the format version) at the top level", name, 1, 1)
         )
     try:
-        model = records.catalog_file(data)
+        with _gc_paused():
+            model = records.catalog_file(data)
     except records.Unsure:
         model = _validate_with_schema(data, text, name)
     return CatalogSource(name=name, text=text, model=model)
