@@ -598,7 +598,11 @@ def load_catalog(paths: Sequence[str | Path]) -> Catalog:
 
 def bundled_paths() -> list[Path]:
     """The catalogues shipped with gyrovib, in name order."""
-    from importlib.resources import files
+    here = Path(__file__).parent.parent / "catalogs"
+    if here.is_dir():  # installed as files: no need for importlib.resources (slow import)
+        root: Any = here
+    else:
+        from importlib.resources import files
 
-    root = files("gyrovib") / "catalogs"
+        root = files("gyrovib") / "catalogs"
     return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith((".yaml", ".yml")))
