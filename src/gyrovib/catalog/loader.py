@@ -18,7 +18,6 @@ value, so errors read ``FILE:LINE:COL: message``.
 
 from __future__ import annotations
 
-import difflib
 import gc
 import math
 import re
@@ -353,6 +352,8 @@ _KNOWN_KEYS: dict[str, list[str]] = {}
 
 
 def _friendly(error: Any, model_fields: Iterable[str] = ()) -> str:
+    import difflib
+
     kind = error["type"]
     loc = error["loc"]
     where = ".".join(str(p) for p in loc)
