@@ -35,6 +35,7 @@ smallest range, so some results carry a warning) and tones plus RMS.
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import math
 import os
@@ -228,6 +229,27 @@ print(untimed)
 """
 
 
+PHASES = """
+import sys, time
+t0 = time.perf_counter()
+from gyrovib import api
+from gyrovib.cli.output import write_output
+from gyrovib.render import analysis as render
+t1 = time.perf_counter()
+catalog = api.load([sys.argv[1]])
+t2 = time.perf_counter()
+result = api.analyze(catalog)
+t3 = time.perf_counter()
+text = render.to_json(result)
+t4 = time.perf_counter()
+write_output(text, sys.argv[2])
+t5 = time.perf_counter()
+print(t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4)
+"""
+PHASE_NAMES = ("import gyrovib.api, render, cli.output", "load (YAML + validation)",
+               "analyze", "render JSON", "write the file")
+
+
 def gyrovib_command() -> list[str]:
     script = Path(PYTHON).with_name("gyrovib")
     return [str(script)] if script.exists() else [PYTHON, "-m", "gyrovib"]
@@ -329,6 +351,20 @@ def main() -> None:
         print(f"Growth {n0:,} → {n1:,} sensors: time × {t1 / t0:.2f} for size × {n1 / n0:.0f} "
               f"(log-log slope {math.log(t1 / t0) / math.log(n1 / n0):.2f}; 1 is linear, "
               "below 1 means fixed start-up cost still weighs).")
+    if len(scale) >= 2:
+        print("\nMarginal time per added sensor: " + ", ".join(
+            f"{a:,} → {b:,}: {(tb - ta) / (b - a) * 1e6:.0f} µs"
+            for (a, ta, *_), (b, tb, *_) in itertools.pairwise(scale)) + ".")
+
+    n = sizes[-1]
+    runs = [run([PYTHON, "-c", PHASES, str(work / f"catalogue-{n}.yaml"), str(work / "phases.json")])
+            for _ in range(args.repeat)]
+    phases = min((tuple(float(x) for x in out.split()) for _, _, out in runs), key=sum)
+    print(f"\n## Where the time goes, {n:,} sensors (in-process, best run)\n")
+    print("| phase | time |")
+    print("|---|---:|")
+    for name, seconds in zip(PHASE_NAMES, phases, strict=True):
+        print(f"| {name} | {seconds * 1000:.0f} ms |")
     if not args.keep:
         shutil.rmtree(work, ignore_errors=True)
 
