@@ -357,8 +357,9 @@ def main() -> None:
             for (a, ta, *_), (b, tb, *_) in itertools.pairwise(scale)) + ".")
 
     n = sizes[-1]
-    runs = [run([PYTHON, "-c", PHASES, str(work / f"catalogue-{n}.yaml"), str(work / "phases.json")])
-            for _ in range(args.repeat)]
+    phase_argv = [PYTHON, "-c", PHASES, str(work / f"catalogue-{n}.yaml"),
+                  str(work / "phases.json")]
+    runs = [run(phase_argv) for _ in range(args.repeat)]
     phases = min((tuple(float(x) for x in out.split()) for _, _, out in runs), key=sum)
     print(f"\n## Where the time goes, {n:,} sensors (in-process, best run)\n")
     print("| phase | time |")
