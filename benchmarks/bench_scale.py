@@ -95,7 +95,7 @@ profiles:
       psd:
         x3: [[20, 1.0e-3], [2000, 1.0e-3]]
   - id: mounted-tone-manoeuvre
-    rate: [0, 0, 70]
+    rate: [0, 0, 90]
     harmonic:
       - {frequency: 180, amplitude: [2.0, 2.0, 6.0], phase: [10, 0, 0]}
     mount: [[20, 1.0], [100, 1.8], [200, 0.5], [1000, 0.05]]
