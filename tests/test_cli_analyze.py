@@ -6,8 +6,11 @@ import csv
 import io
 import json
 import math
+import os
+import stat
 import subprocess
 import sys
+import threading
 
 import pytest
 
@@ -139,6 +142,21 @@ def test_output_file_written_atomically_and_kept_on_failure(run, catalog, tmp_pa
     assert failed.exit_code == 2
     assert out.read_text() == good
     assert sorted(p.name for p in tmp_path.iterdir()) == ["catalog.yaml", "result.json"]
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs")
+def test_output_to_a_fifo_writes_through_it(run, catalog, tmp_path):
+    # -o /dev/null, a FIFO or a terminal must be written to, never replaced by a file
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    received: list[bytes] = []
+    reader = threading.Thread(target=lambda: received.append(fifo.read_bytes()), daemon=True)
+    reader.start()
+    result = run("analyze", catalog, "--format", "json", "-o", fifo)
+    reader.join(timeout=30)
+    assert result.exit_code == 0, result.output
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode)
+    assert json.loads(received[0])["results"]
 
 
 def test_missing_file(run, tmp_path):

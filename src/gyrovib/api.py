@@ -12,11 +12,12 @@ from __future__ import annotations
 
 import functools
 import math
+import operator
 import zlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import ParamSpec, TypeVar
+from typing import ParamSpec, TypeVar, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,7 +30,7 @@ from gyrovib.catalog.loader import (
     bundled_paths,
     load_catalog,
 )
-from gyrovib.catalog.schema import Allocation
+from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import (
     COEFFICIENTS,
     METHODS,
@@ -133,24 +134,41 @@ def select_entries(
 # ----------------------------------------------------------------- conversion
 
 
+_GET_COEFFICIENTS = operator.attrgetter(*COEFFICIENTS)
+
+
+def _unit_scales(entries: Sequence[SensorEntry]) -> FloatArray:
+    """deg/s per rate unit of each entry's file."""
+    known: dict[str, float] = {}
+    out = []
+    for e in entries:
+        unit = e.unit
+        s = known.get(unit)
+        if s is None:
+            s = known[unit] = units.scale(unit)
+        out.append(s)
+    return np.array(out, dtype=float)
+
+
 def coefficient_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
     """Eq. (2) coefficients of every sensor in deg/s powers, shape (sensors, 11)."""
     raw = np.array(
-        [[getattr(e.sensor.rate_coefficients, c) for c in COEFFICIENTS] for e in entries],
-        dtype=float,
+        [_GET_COEFFICIENTS(e.sensor.rate_coefficients) for e in entries], dtype=float
     ).reshape(len(entries), len(COEFFICIENTS))
-    scales = np.array([units.scale(e.unit) for e in entries], dtype=float)
+    scales = _unit_scales(entries)
+    if np.all(scales == 1.0):
+        return raw
     out: FloatArray = raw * scales[:, None] ** _RATE_POWERS[None, :]
     return out
 
 
 def sensor_ranges(entries: Sequence[SensorEntry]) -> FloatArray:
     """Full-scale range of each sensor in deg/s (inf where not given)."""
-    return np.array(
-        [e.sensor.range * units.scale(e.unit) if e.sensor.range is not None else np.inf
-         for e in entries],
-        dtype=float,
+    ranges = np.array(
+        [np.inf if e.sensor.range is None else e.sensor.range for e in entries], dtype=float
     )
+    out: FloatArray = ranges * _unit_scales(entries)
+    return out
 
 
 def response_table(entry: SensorEntry) -> Table | None:
@@ -385,6 +403,7 @@ def analyze(
         "rms": np.zeros(shape),
     }
     warnings: dict[tuple[int, int], tuple[str, ...]] = {}
+    out_scale = units.scale(unit)
     stderr = np.zeros(shape) if method == "numeric" else None
     groups = response_groups(s_entries) if n_p and n_s else []
     tracker = _Tracker(progress, len(groups) * n_p * samples)
@@ -405,18 +424,22 @@ def analyze(
             for name, array in parts.items():
                 array[idx] = getattr(err, name)
         reach = np.abs(rates[:, 2]) + np.array([vibration_peak(v) for v in vibrations])
-        over = reach[None, :] > ranges[idx][:, None]
-        for i, j in zip(*np.nonzero(over), strict=True):
-            sensor = int(idx[i])
-            warnings[(sensor, int(j))] = (
-                f"|Ω_K3| + vibration peak = {reach[j] / units.scale(unit):.6g} {unit} exceeds "
-                f"the sensor's range {ranges[sensor] / units.scale(unit):.6g} {unit}: "
-                "the static model does not hold in saturation",
-            )
+        over_s, over_p = np.nonzero(reach[None, :] > ranges[idx][:, None])
+        messages: dict[tuple[int, float], tuple[str, ...]] = {}  # one text per value pair
+        for sensor, j in zip(idx[over_s].tolist(), over_p.tolist(), strict=True):
+            key = (j, float(ranges[sensor]))
+            message = messages.get(key)
+            if message is None:
+                message = messages[key] = (
+                    f"|Ω_K3| + vibration peak = {reach[j] / out_scale:.6g} {unit} exceeds "
+                    f"the sensor's range {ranges[sensor] / out_scale:.6g} {unit}: "
+                    "the static model does not hold in saturation",
+                )
+            warnings[(sensor, j)] = message
     error = to_unit(VibrationError(**parts), unit)
     _check_finite_located(error, s_entries, p_entries)
     check_finite(error)
-    stderr_out = None if stderr is None else stderr / units.scale(unit)
+    stderr_out = None if stderr is None else stderr / out_scale
     numeric = stderr is not None
     return AnalysisResult(
         method=method,
@@ -604,8 +627,8 @@ def resolve_allocation(
         if catalog.allocation is not None:
             source = next((s for s in catalog.sources if s.model.allocation is not None), None)
             where = f"the 'allocation:' section of {source.name}" if source else "the catalogue"
-    elif isinstance(allocation, Allocation):
-        chosen = allocation
+    elif isinstance(allocation, Allocation) or hasattr(allocation, "r"):
+        chosen = cast(Allocation, allocation)  # the record, or the pydantic model alike
     else:
         values = [float(x) for x in allocation]
         if not all(math.isfinite(x) and x > 0 for x in values):

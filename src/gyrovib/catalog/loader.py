@@ -6,25 +6,35 @@ dates and sexagesimal numbers are *not* special. Only plain mappings,
 sequences and scalars are constructed; any tag that would build an object is
 refused. libyaml's ``CSafeLoader`` is used when PyYAML was built with it.
 
-On the happy path nothing but parsing and validation runs. When validation
-fails, the file is composed once more to find the line and column of each
-offending value, so errors read ``FILE:LINE:COL: message``.
+On the happy path nothing but parsing and validation runs, and neither
+imports pydantic: plain data is built straight from libyaml's node tree, and
+checked and turned into records by :mod:`gyrovib.catalog.records`. Anything
+unusual (tags, anchors, merge keys, duplicate keys) goes through PyYAML's own
+constructor; anything the fast validator does not vouch for goes through the
+pydantic models of :mod:`gyrovib.catalog.schema`. When validation fails, the
+file is composed once more to find the line and column of each offending
+value, so errors read ``FILE:LINE:COL: message``.
 """
 
 from __future__ import annotations
 
-import difflib
+import gc
+import math
 import re
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, cast
 
 import yaml
-from pydantic import ValidationError
 
-from gyrovib.catalog.schema import Allocation, CatalogFile, Profile, Sensor
+from gyrovib.catalog import records
+from gyrovib.catalog.records import Allocation, CatalogFile, Profile, Sensor
 from gyrovib.errors import CatalogError, Problem
+
+if TYPE_CHECKING:
+    from pydantic import ValidationError
 
 _BaseLoader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
@@ -99,6 +109,104 @@ def _install_resolvers() -> None:
 
 
 _install_resolvers()
+
+_STR = "tag:yaml.org,2002:str"
+#: Implicit resolvers of a plain scalar by its first character ("" for empty).
+_PLAIN_RESOLVERS: dict[str, list[tuple[str, re.Pattern[str]]]] = {
+    first: list(entries) for first, entries in _Loader.yaml_implicit_resolvers.items()
+}
+assert None not in _PLAIN_RESOLVERS  # no wildcard resolver: dispatch on the first character
+
+
+def _resolve(self: Any, kind: Any, value: Any, implicit: Any) -> Any:
+    """BaseResolver.resolve without its generality: there are no path resolvers."""
+    if kind is yaml.ScalarNode:
+        if implicit[0]:
+            for tag, regexp in _PLAIN_RESOLVERS.get(value[:1], ()):
+                if regexp.match(value):
+                    return tag
+        return _STR
+    return _BaseLoader.resolve(self, kind, value, implicit)
+
+
+_Loader.resolve = _resolve
+
+
+class _Unusual(Exception):
+    """The fast construction cannot build this document; PyYAML's constructor will."""
+
+
+def _float(value: str) -> float:
+    try:
+        return float(value)
+    except ValueError:  # .inf, -.Inf, .nan: as SafeConstructor.construct_yaml_float
+        lowered = value.lower()
+        sign = -1.0 if lowered.startswith("-") else 1.0
+        lowered = lowered.lstrip("+-")
+        if lowered == ".inf":
+            return sign * math.inf
+        if lowered == ".nan":
+            return math.nan
+        raise _Unusual from None
+
+
+_SCALARS: dict[str, Any] = {
+    _STR: None,
+    "tag:yaml.org,2002:int": int,
+    "tag:yaml.org,2002:float": _float,
+    "tag:yaml.org,2002:bool": lambda v: v.lower() == "true",
+    "tag:yaml.org,2002:null": lambda v: None,
+}
+_SEQ, _MAP = "tag:yaml.org,2002:seq", "tag:yaml.org,2002:map"
+
+
+def _build(node: Any) -> Any:
+    """Plain data of a node tree holding only plain scalars, lists and mappings.
+
+    The result equals what the constructor builds; anything else (a tag, a
+    duplicate or non-scalar key) raises :class:`_Unusual`.
+    """
+    tag = node.tag
+    if tag == _MAP:
+        out: dict[Any, Any] = {}
+        for key_node, value_node in node.value:
+            if type(key_node) is not yaml.ScalarNode:
+                raise _Unusual
+            key_tag = key_node.tag
+            if key_tag == _STR:
+                key = key_node.value
+            elif key_tag in _SCALARS:
+                key = _SCALARS[key_tag](key_node.value)
+            else:
+                raise _Unusual
+            if key in out:
+                raise _Unusual
+            out[key] = _build(value_node)
+        return out
+    if tag == _SEQ:
+        return [_build(child) for child in node.value]
+    if tag == _STR:
+        return node.value
+    convert = _SCALARS.get(tag)
+    if convert is None or type(node) is not yaml.ScalarNode:
+        raise _Unusual
+    return convert(node.value)
+
+
+@contextmanager
+def _gc_paused() -> Iterator[None]:
+    """Pause the cyclic garbage collector while building large acyclic data.
+
+    Building a catalogue allocates hundreds of thousands of containers and no
+    cycle; each full collection would walk all of them again.
+    """
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 _ALLOWED_TAGS = {
     "tag:yaml.org,2002:map",
@@ -212,15 +320,11 @@ def _check_characters(text: str, name: str) -> None:
 def _parse(text: str, name: str) -> Any:
     """Parse YAML text to plain Python data, raising located :class:`CatalogError`."""
     _check_characters(text, name)
-    loader = _Loader(text)
     try:
         _check_depth(text)
-        node = loader.get_single_node()
-        if node is None:
-            return None
-        if "&" in text or "!" in text:
-            _check_nodes(node)
-        return loader.construct_document(node)
+        with _gc_paused():
+            # the node tree is freed before the collector resumes: only the data is new
+            return _construct(_Loader(text), text)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         message = exc.problem or "invalid YAML"
@@ -231,6 +335,22 @@ def _parse(text: str, name: str) -> Any:
         raise CatalogError(Problem(message, name, mark.line + 1, mark.column + 1)) from None
     except yaml.YAMLError as exc:
         raise CatalogError(Problem(f"invalid YAML: {exc}", name)) from None
+
+
+def _construct(loader: Any, text: str) -> Any:
+    """Compose and construct the single document of ``text``."""
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        if "&" in text or "!" in text:
+            _check_nodes(node)
+        elif "<<" not in text:
+            try:
+                return _build(node)
+            except (_Unusual, RecursionError):
+                pass
+        return loader.construct_document(node)
     finally:
         loader.dispose()
 
@@ -386,6 +506,8 @@ def _scalar_text(node: Any) -> str | None:
 def _friendly(error: Mapping[str, Any], model_fields: Iterable[str] = (), data: Any = None,
               node: Any = None) -> str:
     """One pydantic error as a sentence: where, what is wrong, and what to write."""
+    import difflib  # only on the error path: its import is slow
+
     kind = error["type"]
     loc = tuple(error["loc"])
     value = error.get("input")
@@ -482,7 +604,7 @@ def _fields_at(loc: Sequence[Any]) -> list[str]:
     """Known keys of the model that holds ``loc`` (for typo suggestions)."""
     from gyrovib.catalog import schema
 
-    model: Any = CatalogFile
+    model: Any = schema.CatalogFile
     for part in loc[:-1]:
         if isinstance(part, int):
             continue
@@ -567,10 +689,27 @@ def parse_catalog(text: str, name: str = "<string>") -> CatalogSource:
             Problem("missing 'gyrovib: 1' (the format version) at the top level", name, 1, 1)
         )
     try:
-        model = CatalogFile.model_validate(data)
+        with _gc_paused():
+            model = records.catalog_file(data)
+    except records.Unsure:
+        model = _validate_with_schema(data, text, name)
+    return CatalogSource(name=name, text=text, model=model)
+
+
+def _validate_with_schema(data: Any, text: str, name: str) -> CatalogFile:
+    """Validate with the pydantic models: located problems, or the records after all."""
+    from pydantic import ValidationError
+
+    from gyrovib.catalog import schema
+
+    try:
+        checked = schema.CatalogFile.model_validate(data)
     except ValidationError as exc:
         raise CatalogError(_validation_problems(exc, text, name, data)) from None
-    return CatalogSource(name=name, text=text, model=model)
+    try:  # valid, with something the fast validator leaves to pydantic (a huge int...)
+        return records.catalog_file(checked.model_dump())
+    except records.Unsure:  # pragma: no cover - the models' attributes are the same
+        return cast(CatalogFile, checked)
 
 
 def read_catalog(path: str | Path) -> CatalogSource:
@@ -685,7 +824,11 @@ def load_catalog(paths: Sequence[str | Path]) -> Catalog:
 
 def bundled_paths() -> list[Path]:
     """The catalogues shipped with gyrovib, in name order."""
-    from importlib.resources import files
+    here = Path(__file__).parent.parent / "catalogs"
+    if here.is_dir():  # installed as files: no need for importlib.resources (slow import)
+        root: Any = here
+    else:
+        from importlib.resources import files
 
-    root = files("gyrovib") / "catalogs"
+        root = files("gyrovib") / "catalogs"
     return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith((".yaml", ".yml")))

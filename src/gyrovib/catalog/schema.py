@@ -3,6 +3,10 @@
 The models describe one file exactly as written, in the file's own rate unit.
 Conversion to deg/s and the merging of several files happen in
 :mod:`gyrovib.catalog.loader`.
+
+These models are the authority on the format (the JSON Schema, and the
+messages for a file that is not valid); a valid file is built as the plain
+records of :mod:`gyrovib.catalog.records`, which mirror them without pydantic.
 """
 
 from __future__ import annotations
@@ -18,6 +22,8 @@ from pydantic import (
     model_validator,
 )
 from pydantic_core import PydanticCustomError
+
+from gyrovib.catalog.records import breakpoint_problem
 
 Number = Annotated[float, Field(strict=True, allow_inf_nan=False)]
 NonNegative = Annotated[float, Field(strict=True, allow_inf_nan=False, ge=0)]
@@ -37,26 +43,11 @@ RateUnit = Literal["deg/s", "deg/h", "rad/s", "rpm"]
 
 
 def _check_breakpoints(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
-    """Frequencies must increase; one repeat (a step) is allowed, not three in a row.
-
-    The error's context carries ``index``, the offending row, so the loader
-    can point at it.
-    """
-    for i in range(1, len(table)):
-        f0, f1 = table[i - 1][0], table[i][0]
-        if f1 < f0:
-            raise PydanticCustomError(
-                "breakpoint_order",
-                f"breakpoint frequencies must increase: {f1:g} Hz follows {f0:g} Hz "
-                "(sort the rows by frequency)",
-                {"index": i},
-            )
-        if f1 == f0 and i >= 2 and table[i - 2][0] == f0:
-            raise PydanticCustomError(
-                "breakpoint_order",
-                f"frequency {f0:g} Hz appears more than twice (a step uses two rows)",
-                {"index": i},
-            )
+    """Pydantic form of :func:`breakpoint_problem`: the error's context carries
+    ``index``, the offending row, so the loader can point at it."""
+    problem = breakpoint_problem(table)
+    if problem is not None:
+        raise PydanticCustomError("breakpoint_order", problem[1], {"index": problem[0]})
     return table
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -31,9 +32,22 @@ def _replace(path: str, data: bytes, what: str) -> None:
     """Put ``data`` at ``path`` through a temporary file in the same directory.
 
     An existing file keeps its permissions; a new one gets the umask's. On any
-    failure the temporary file is removed and ``path`` is left as it was.
+    failure the temporary file is removed and ``path`` is left as it was. A
+    path that is not a regular file (``/dev/null``, a FIFO, a terminal) is
+    written to directly: renaming over it would replace the device.
     """
     target = Path(path)
+    try:
+        mode = os.stat(target).st_mode
+    except OSError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
+        try:
+            with open(target, "wb") as handle:
+                handle.write(data)
+        except OSError as exc:
+            raise OptionError(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
+        return
     directory = target.parent if str(target.parent) else Path(".")
     if not directory.is_dir():
         raise OptionError(f"{what}directory {str(directory)!r} of {path!r} does not exist")

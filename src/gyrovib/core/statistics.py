@@ -160,7 +160,15 @@ def arcsine_excess(omega: ArrayLike, a: float) -> FloatArray:
 
 
 def _phase_nodes(n: int) -> FloatArray:
-    """``sin`` of ``n`` equally spaced phases (trapezoidal rule on a period)."""
+    """``sin`` of ``n`` equally spaced phases (trapezoidal rule on a period).
+
+    The values to average with equal weights: when 4 divides ``n`` each value
+    occurs twice (θ and π − θ), so only the ``n/2`` distinct ones are returned,
+    ``±sin θ_k`` for the first quarter period; the mean is the same.
+    """
+    if n % 4 == 0:
+        quarter: FloatArray = np.sin(2.0 * math.pi * (np.arange(n // 4) + 0.5) / n)
+        return np.concatenate([quarter, -quarter])
     nodes: FloatArray = np.sin(2.0 * math.pi * (np.arange(n) + 0.5) / n)
     return nodes
 

@@ -85,7 +85,9 @@ def psd_variance(psd: Table, gains: tuple[Table, ...] = ()) -> float:
     ``P(fa)·fa·L·(e^{(B+1)L} − 1)/((B+1)L)`` with ``L = ln(fb/fa)``.
     """
     pf, _ = psd
-    grid = np.unique(np.concatenate([pf, *[g[0] for g in gains]]))
+    # sorted distinct breakpoints (np.unique would import numpy.ma: slow at start-up)
+    grid = np.sort(np.concatenate([pf, *[g[0] for g in gains]]))
+    grid = grid[np.concatenate([[True], grid[1:] != grid[:-1]])]
     grid = grid[(grid >= pf[0]) & (grid <= pf[-1])]
     if grid.size < 2:
         return 0.0

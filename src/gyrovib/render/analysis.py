@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
 from typing import Any
+
+import numpy as np
 
 from gyrovib.api import AnalysisResult
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
@@ -18,8 +21,8 @@ def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
             yield i, j
 
 
-def to_json(result: AnalysisResult) -> str:
-    """INTERFACE.md ``analyze --format json``."""
+def _to_json_rows(result: AnalysisResult) -> str:
+    """INTERFACE.md ``analyze --format json``, one dict per row (the reference form)."""
     e = result.error
     extra = getattr(result, "stderr", None)
     results: list[dict[str, Any]] = []
@@ -44,12 +47,79 @@ def to_json(result: AnalysisResult) -> str:
             row["stderr"] = number(extra[i, j])
         row["warnings"] = list(result.warnings.get((i, j), ()))
         results.append(row)
+    document = _head(result)
+    document["results"] = results
+    return dumps(document)
+
+
+def _head(result: AnalysisResult) -> dict[str, Any]:
+    """The document's opening fields; the numeric method adds its samples and seed."""
     document = header(result.method, result.unit)
     if getattr(result, "samples", None) is not None:
         document["samples"] = result.samples
         document["seed"] = result.seed
-    document["results"] = results
-    return dumps(document)
+    return document
+
+
+#: Rows encoded per block: bounds the memory of the encoded columns.
+_BLOCK = 4096
+
+
+def _row_template(with_stderr: bool) -> str:
+    """The text of one result row with ``%s`` for every value, keys as json writes them."""
+    def obj(pairs: list[tuple[str, str]]) -> str:
+        return "{" + ", ".join(f"{json.dumps(k)}: {v}" for k, v in pairs) + "}"
+
+    fields = [("sensor", "%s"), ("profile", "%s"), ("rate", "%s"),
+              ("additive_terms", obj([(t, "%s") for t in ADDITIVE_TERMS])),
+              ("multiplicative_coefficients", obj([(q, "%s") for q in MULTIPLICATIVE_TERMS])),
+              ("additive", "%s"), ("multiplicative", "%s"), ("total", "%s"), ("rms", "%s")]
+    if with_stderr:
+        fields.append(("stderr", "%s"))
+    fields.append(("warnings", "%s"))
+    return obj(fields).replace("%s", "\0").replace("%", "%%").replace("\0", "%s")
+
+
+def to_json(result: AnalysisResult) -> str:
+    """INTERFACE.md ``analyze --format json``.
+
+    The same text as ``json.dumps`` of the document, written without a dict per
+    row: each numeric column is encoded once (``float.__repr__`` is what the
+    json encoder writes) and the rows are filled into a template, a block of
+    sensors at a time.
+    """
+    e = result.error
+    extra = getattr(result, "stderr", None)
+    columns = [e.additive_terms[..., t] for t in range(len(ADDITIVE_TERMS))]
+    columns += [e.multiplicative_coefficients[..., q] for q in range(len(MULTIPLICATIVE_TERMS))]
+    columns += [e.additive, e.multiplicative, e.total, e.rms]
+    if not all(np.isfinite(c).all() for c in columns) or not np.isfinite(result.rates).all():
+        return _to_json_rows(result)  # json refuses NaN/infinity; let it say so
+    template = _row_template(extra is not None)
+    n_s = len(result.sensors)
+    sensors = [json.dumps(s) for s in result.sensors]
+    by_profile: dict[int, list[tuple[int, tuple[str, ...]]]] = {}
+    for (i, j), messages in result.warnings.items():
+        by_profile.setdefault(j, []).append((i, messages))
+    blocks: list[str] = []
+    for j, profile in enumerate(result.profiles):
+        profile_text = json.dumps(profile)
+        rate_text = json.dumps(result.rates[j].tolist())
+        warnings = ["[]"] * n_s
+        for i, messages in by_profile.get(j, ()):
+            warnings[i] = json.dumps(list(messages))
+        for start in range(0, n_s, _BLOCK):
+            stop = min(start + _BLOCK, n_s)
+            count = stop - start
+            encoded = [list(map(float.__repr__, c[start:stop, j].tolist())) for c in columns]
+            if extra is not None:
+                encoded.append(["null" if v is None else float.__repr__(v)
+                                for v in map(number, extra[start:stop, j].tolist())])
+            rows = zip(sensors[start:stop], [profile_text] * count, [rate_text] * count,
+                       *encoded, warnings[start:stop], strict=True)
+            blocks.append(", ".join([template % row for row in rows]))
+    head = json.dumps(_head(result))[:-1]
+    return f"{head}, \"results\": [{', '.join(blocks)}]}}\n"
 
 
 def _csv_header(with_stderr: bool = False) -> list[str]:

@@ -1,0 +1,81 @@
+"""The JSON renderer writes exactly what json.dumps of the per-row document gives."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+from gyrovib import api
+from gyrovib.catalog.loader import merge, parse_catalog
+from gyrovib.render import analysis as render
+
+CATALOG = """
+gyrovib: 1
+units: {rate: deg/h}
+sensors:
+  - id: small
+    range: 10
+    coefficients: {A1: 1e-3, k2: 1e-4, k3: 1e-6, k5: -1e-12}
+  - id: odd.id_2
+    coefficients: {k2: -2e-4, m31: 1e-5}
+  - id: big
+    range: 1e6
+    output_coefficients: {K1: 3, K2: 1e-3, M32: 2e-5}
+    response: [[10, 1], [100, 0.5]]
+profiles:
+  - id: tone
+    rate: [0, 0, 5]
+    harmonic: [{frequency: 100, amplitude: [0, 0, 20000]}]
+  - id: random
+    random: {rms: [0, 0, 2]}
+"""
+
+
+@pytest.fixture
+def result():
+    catalog = merge([parse_catalog(CATALOG, "cat.yaml")])
+    return api.analyze(catalog, unit="deg/s")
+
+
+def test_same_text_as_the_row_by_row_document(result):
+    assert result.warnings  # a warning with non-ASCII text is part of the check
+    text = render.to_json(result)
+    assert text == render._to_json_rows(result)
+    assert json.loads(text)["results"][0]["warnings"]
+
+
+def test_same_text_in_blocks(result, monkeypatch):
+    monkeypatch.setattr(render, "_BLOCK", 2)
+    assert render.to_json(result) == render._to_json_rows(result)
+
+
+def test_bundled_catalogues_same_text():
+    result = api.analyze(api.load())
+    assert render.to_json(result) == render._to_json_rows(result)
+
+
+def test_stderr_column_with_non_finite_values(result):
+    stderr = np.arange(result.error.total.size, dtype=float).reshape(result.error.total.shape)
+    stderr[0, 0] = np.inf
+    numeric = dataclasses.replace(result, method="numeric", stderr=stderr, samples=64, seed=0)
+    text = render.to_json(numeric)
+    assert text == render._to_json_rows(numeric)
+    assert json.loads(text)["results"][0]["stderr"] is None
+
+
+def test_non_finite_values_are_refused_as_json_refuses_them(result):
+    error = dataclasses.replace(result.error, total=result.error.total * np.nan)
+    with pytest.raises(ValueError, match="JSON compliant"):
+        render.to_json(dataclasses.replace(result, error=error))
+
+
+def test_no_sensors():
+    result = api.analyze(api.load(), sensors=(), profiles=())
+    empty = dataclasses.replace(result, sensors=(), error=dataclasses.replace(
+        result.error, **{f.name: getattr(result.error, f.name)[:0]
+                         for f in dataclasses.fields(result.error)}), warnings={})
+    assert render.to_json(empty) == render._to_json_rows(empty)
+    assert json.loads(render.to_json(empty))["results"] == []
