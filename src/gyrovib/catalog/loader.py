@@ -753,42 +753,35 @@ class Catalog:
         return entry.source.locate(("sensors", entry.index, "id"))
 
 
+def _unique(sources: Sequence[CatalogSource], section: str,
+            problems: list[Problem]) -> list[tuple[CatalogSource, int, Any]]:
+    """The items of ``section`` ("sensors" or "profiles") of every file, in order,
+    keeping the first of each id; a repeated id becomes a problem at its place."""
+    kept: list[tuple[CatalogSource, int, Any]] = []
+    first: dict[str, tuple[CatalogSource, int]] = {}
+    kind = section[:-1]
+    for source in sources:
+        for i, item in enumerate(getattr(source.model, section)):
+            if item.id in first:
+                other, index = first[item.id]
+                place = other.locate((section, index, "id"))
+                at = f"{other.name}:{place[0]}" if place else other.name
+                problems.append(source.problem(
+                    f"duplicate {kind} id {item.id!r} (first at {at})", (section, i, "id")))
+                continue
+            first[item.id] = (source, i)
+            kept.append((source, i, item))
+    return kept
+
+
 def merge(sources: Sequence[CatalogSource]) -> Catalog:
     """Merge validated files; an id used twice (in one file or across files) is an error."""
     problems: list[Problem] = []
-    sensors: list[SensorEntry] = []
-    profiles: list[ProfileEntry] = []
-    first_sensor: dict[str, SensorEntry] = {}
-    first_profile: dict[str, ProfileEntry] = {}
+    sensors = [SensorEntry(s, i, x) for s, i, x in _unique(sources, "sensors", problems)]
+    profiles = [ProfileEntry(s, i, x) for s, i, x in _unique(sources, "profiles", problems)]
     allocation: Allocation | None = None
     allocation_source: CatalogSource | None = None
     for source in sources:
-        for i, sensor in enumerate(source.model.sensors):
-            s_entry = SensorEntry(source, i, sensor)
-            if sensor.id in first_sensor:
-                other = first_sensor[sensor.id]
-                place = other.source.locate(("sensors", other.index, "id"))
-                at = f"{other.source.name}:{place[0]}" if place else other.source.name
-                problems.append(
-                    source.problem(f"duplicate sensor id {sensor.id!r} (first at {at})",
-                                   ("sensors", i, "id"))
-                )
-                continue
-            first_sensor[sensor.id] = s_entry
-            sensors.append(s_entry)
-        for i, profile in enumerate(source.model.profiles):
-            p_entry = ProfileEntry(source, i, profile)
-            if profile.id in first_profile:
-                other_p = first_profile[profile.id]
-                place = other_p.source.locate(("profiles", other_p.index, "id"))
-                at = f"{other_p.source.name}:{place[0]}" if place else other_p.source.name
-                problems.append(
-                    source.problem(f"duplicate profile id {profile.id!r} (first at {at})",
-                                   ("profiles", i, "id"))
-                )
-                continue
-            first_profile[profile.id] = p_entry
-            profiles.append(p_entry)
         if source.model.allocation is not None:
             if allocation is not None and source.model.allocation != allocation:
                 assert allocation_source is not None
