@@ -1,7 +1,7 @@
-"""An independent brute-force evaluation of MODEL.md, for the tests.
+"""An independent brute-force evaluation of docs/model.md, for the tests.
 
 It averages the conversion function eq. (2) itself over the vibration and
-subtracts eq. (2) at rest (MODEL.md section 7). Nothing here uses gyrovib's
+subtracts eq. (2) at rest (docs/model.md). Nothing here uses gyrovib's
 closed forms:
 
 * the polynomial and cross terms are averaged over a uniform grid of tone

@@ -37,7 +37,7 @@ def error_of(vibration, omega, method="exact", **coefficients):
 
 
 class TestTermsByHand:
-    """Each term of MODEL.md section 4 for a3 = 2 (tone) or σ3 = 2 (random)."""
+    """Each term of docs/model.md for a3 = 2 (tone) or σ3 = 2 (random)."""
 
     def test_asymmetry_tone_at_rest(self):
         # Δ0(1) = ½·k1·A1·(2/π)·a = ½·1e-3·(2/π)·2 = 6.366197723675814e-4
@@ -90,7 +90,7 @@ class TestTermsByHand:
 
 
 class TestPaperFormulas:
-    """`paper` reproduces the printed eq. (14) and (15) (MODEL.md section 4 table)."""
+    """`paper` reproduces the printed eq. (14) and (15) (docs/model.md table)."""
 
     def test_tone(self):
         # Δ0(1) = k1·A1·0.673·a; Δ0(3) = k4·0.375·a⁴; Δ(1) = k3·1.5a² + k5·1.875a⁴
@@ -165,7 +165,7 @@ def _exact_total(c, omega, tone_list, sigma, rho):
     rho=st.tuples(st.floats(-1, 1), st.floats(-1, 1)),
 )
 def test_exact_equals_brute_force_with_random_part(c, omega, tone_list, sigma, rho):
-    # MODEL.md 4: 1e-9 relative where σ > 0
+    # docs/model.md: 1e-9 relative where σ > 0
     tone_list = tone_list[:1]
     got = _exact_total(c, omega, tone_list, sigma, rho)
     brute = reference.vibration_error(c, omega, tone_list, sigma, rho, n_grid=128)
@@ -180,7 +180,7 @@ def test_exact_equals_brute_force_with_random_part(c, omega, tone_list, sigma, r
     tone=st.tuples(st.tuples(amp, amp, st.floats(0.1, 3.0)), st.tuples(phase, phase, phase)),
 )
 def test_exact_equals_brute_force_single_tone(c, omega, tone):
-    # MODEL.md 4: 1e-9 relative for a single tone
+    # docs/model.md: 1e-9 relative for a single tone
     got = _exact_total(c, omega, [tone], None, (1.0, 1.0))
     brute = reference.vibration_error(c, omega, [tone])
     scale = sum(abs(v) for v in c.values()) * (1 + 10 ** 4)
@@ -197,7 +197,7 @@ def test_exact_equals_brute_force_single_tone(c, omega, tone):
     ),
 )
 def test_exact_equals_brute_force_several_tones(c, omega, tone_list):
-    # MODEL.md 4: 1e-6 relative for tones only
+    # docs/model.md: 1e-6 relative for tones only
     got = _exact_total(c, omega, tone_list, None, (1.0, 1.0))
     brute = reference.vibration_error(c, omega, tone_list, n_grid=512)
     scale = sum(abs(v) for v in c.values()) * (1 + 10 ** 4)

@@ -1,4 +1,4 @@
-"""`gyrovib analyze`: formats, options, exit codes (INTERFACE.md)."""
+"""`gyrovib analyze`: formats, options, exit codes (docs/output.md)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """The brute-force method (``--method numeric``) against the closed forms.
 
 The reference for every numeric value here is the ``exact`` method of the
-same catalogue (MODEL.md section 4), which MODEL.md section 7 says brute force
+same catalogue (docs/model.md), which docs/model.md says brute force
 must reproduce: within 6 standard errors where the estimate is statistical,
 and to 1e-6 relative where the phase grid is exact (stderr reported as 0).
 """
@@ -192,7 +192,7 @@ def test_sensor_estimate_does_not_depend_on_its_companions(catalog_path: str) ->
 
 
 def test_unit_conversion_uses_the_same_samples(catalog_path: str) -> None:
-    """deg/h = deg/s × 3600 (MODEL.md 2), and the same seed gives the same samples."""
+    """deg/h = deg/s × 3600 (docs/model.md), and the same seed gives the same samples."""
     catalog = api.load([catalog_path])
     kw = {"profiles": ["flat-psd"], "method": "numeric", "samples": 10_000, "seed": 5}
     dps = api.analyze(catalog, unit="deg/s", **kw)  # type: ignore[arg-type]

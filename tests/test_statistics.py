@@ -1,4 +1,4 @@
-"""Vibration statistics: moments and E(Ω) (MODEL.md section 4)."""
+"""Vibration statistics: moments and E(Ω) (docs/model.md)."""
 
 from __future__ import annotations
 
@@ -68,7 +68,7 @@ def test_folded_normal_excess_by_hand():
     # Ω = 0: E = σ·√(2/π); σ = 2 → 1.5957691216057308
     assert folded_normal_excess([0.0], 2.0)[0] == pytest.approx(2 * math.sqrt(2 / math.pi))
     # Ω = σ = 1: √(2/π)·e^{-1/2} + erf(1/√2) − 1 = 0.16666...; computed by hand in
-    # double precision from the folded-normal mean formula of MODEL.md
+    # double precision from the folded-normal mean formula of docs/model.md
     expected = math.sqrt(2 / math.pi) * math.exp(-0.5) + math.erf(1 / math.sqrt(2)) - 1
     assert folded_normal_excess([1.0], 1.0)[0] == pytest.approx(expected, rel=1e-13)
 
@@ -89,7 +89,7 @@ def test_sine_on_random_equals_brute_force(a, sigma, omega):
 @settings(max_examples=15, deadline=None)
 @given(a1=amplitude, a2=amplitude, omega=rate)
 def test_two_tones_equal_brute_force(a1, a2, omega):
-    # tones only: 1e-6 relative (MODEL.md 4); brute force: 1024 phases × quad per phase
+    # tones only: 1e-6 relative (docs/model.md); brute force: 1024 phases × quad per phase
     got = rectified_excess(omega, [a1, a2], 0.0)[0]
     brute = reference.mean_abs(omega, [a1, a2], 0.0, n_grid=1024) - abs(omega)
     assert got == pytest.approx(brute, rel=1e-6, abs=1e-7 * (a1 + a2))

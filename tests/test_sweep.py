@@ -106,7 +106,7 @@ def test_sweep_json_equals_analyze_json(catalog_path: str) -> None:
 
 
 def test_asymmetry_against_paper_for_a_tone(catalog_path: str) -> None:
-    """MODEL.md 4, item 1: exact Δ0(1) = 0.5·A1·E(Ω), E(0) = (2/π)·a and E = 0 for
+    """docs/model.md: exact Δ0(1) = 0.5·A1·E(Ω), E(0) = (2/π)·a and E = 0 for
     |Ω| ≥ a; the paper prints 0.673·A1·a at every Ω."""
     catalog = api.load([catalog_path])
     sweep = api.sweep(catalog, [0.0, A_TONE, -A_TONE, 10.0], sensors=["asym"],
@@ -118,7 +118,7 @@ def test_asymmetry_against_paper_for_a_tone(catalog_path: str) -> None:
 
 
 def test_asymmetry_against_paper_for_random(catalog_path: str) -> None:
-    """MODEL.md 4, item 2: exact 0.5·A1·√(2/π)·σ at Ω = 0, paper 0.5·A1·σ."""
+    """docs/model.md: exact 0.5·A1·√(2/π)·σ at Ω = 0, paper 0.5·A1·σ."""
     catalog = api.load([catalog_path])
     sweep = api.sweep(catalog, [0.0], sensors=["asym"], profiles=["random"])
     assert sweep.exact.total[0, 0, 0] == pytest.approx(

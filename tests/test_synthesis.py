@@ -1,6 +1,6 @@
-"""The synthesis of MODEL.md section 6: constants, bounds worked by hand, tightness.
+"""The synthesis of docs/model.md: constants, bounds worked by hand, tightness.
 
-Every expected number below is derived in a comment from MODEL.md; the code
+Every expected number below is derived in a comment from docs/model.md; the code
 under test is never used to produce an expected value.
 """
 
@@ -58,7 +58,7 @@ def test_paper_constants_are_the_printed_numbers() -> None:
     assert list(p.alpha) == [0.44, 0.44, 0.44, 0.22, 0.22]
     assert list(p.beta) == [0.49, 0.24, 0.24]
     assert p.k3 == 0.35 and p.k5_linear == 0.35
-    # the printed α are the derived ones rounded to 2 digits; 0.49 is not (MODEL.md 6)
+    # the printed α are the derived ones rounded to 2 digits; 0.49 is not (docs/model.md)
     derived = allocation_constants()
     assert [round(x, 2) for x in derived.alpha] == [0.44, 0.44, 0.44, 0.22, 0.22]
     assert round(float(derived.beta[0]), 2) == 0.45 != 0.49
@@ -118,7 +118,7 @@ def bounds_of(result: api.BoundsResult, j: int) -> dict[str, float]:
 
 # ---------------------------------------------------------------- single tone, by hand
 # Tone a3 = 2, a1 = 1, a2 = ½ deg/s, in phase; Ω̄ = 0.5 deg/s; Δ* = 0.01 deg/s.
-# Exact moments (MODEL.md 4): M2 = a²/2 = 2, M4 = 3a⁴/8 = 6, C31 = ½·2·1 = 1, C32 = ½.
+# Exact moments (docs/model.md): M2 = a²/2 = 2, M4 = 3a⁴/8 = 6, C31 = ½·2·1 = 1, C32 = ½.
 # E(0.5) = (2/π)(0.5·asin(0.25) + √(4 − 0.25)) − 0.5
 #        = 0.6366198·(0.1263402 + 1.9364917) − 0.5 = 0.8132395;  g_A = ½E = 0.4066198.
 TONE_EXACT = {
@@ -135,7 +135,7 @@ TONE_EXACT = {
 TONE_EXACT["k4"] = TONE_EXACT["k4_additive"]      # 0.00074125 < 0.00075485
 TONE_EXACT["k5"] = TONE_EXACT["k5_linear"]        # 0.000213504 < 0.000905822
 
-# Paper (MODEL.md 4 table, harmonic column): g_A = 0.673a = 1.346, M2' = ½a² = 2,
+# Paper (docs/model.md table, harmonic column): g_A = 0.673a = 1.346, M2' = ½a² = 2,
 # M4' = 0.375a⁴ = 6, 3M2' = 1.5a² = 6, 5M4' = 1.875a⁴ = 30, 6M2' = 3a² = 12,
 # 10M2' = 5a² = 20; printed constants 0.44, 0.22, 0.49, 0.24, 0.35.
 TONE_PAPER = {
@@ -214,7 +214,7 @@ def test_hand_numbers_themselves() -> None:
 
 
 def test_zero_rate_leaves_multiplicative_coefficients_unconstrained(tmp_path: Path) -> None:
-    # Ω̄ = 0: the denominators |Ω̄|·3M2, Ω̄²·6M2, ... vanish → +inf (MODEL.md 6)
+    # Ω̄ = 0: the denominators |Ω̄|·3M2, Ω̄²·6M2, ... vanish → +inf (docs/model.md)
     result = api.bounds(profiles_catalog(tmp_path), profiles=["tone"], rate=[0.0],
                         budget=BUDGET)
     got = bounds_of(result, 0)
@@ -222,7 +222,7 @@ def test_zero_rate_leaves_multiplicative_coefficients_unconstrained(tmp_path: Pa
     assert got["k5"] == math.inf and got["k5_linear"] == math.inf
     assert got["k4_multiplicative"] == math.inf
     assert got["k4"] == pytest.approx(0.4447496 * BUDGET / 6, rel=2e-6)  # additive only
-    # and |Ω̄| ≥ a: no sign change, E = 0, A1 unconstrained (MODEL.md 4, item 1)
+    # and |Ω̄| ≥ a: no sign change, E = 0, A1 unconstrained (docs/model.md)
     fast = api.bounds(profiles_catalog(tmp_path), profiles=["tone"], rate=[5.0], budget=BUDGET)
     assert bounds_of(fast, 0)["A1"] == math.inf
 
@@ -366,7 +366,7 @@ def test_within_bounds_keeps_rms_within_budget(a: float, sigma: float, omega: fl
 
     k3 and the linear k5 each get β1/√2 of Δ* but add linearly inside Δ(1), so with both
     at their bounds and of one sign |Δ(1)Ω̄| = √2·β1·Δ*, and Δ_V(RMS) can reach
-    Δ*·√(1 + β1²) = 1.098·Δ* (MODEL.md 6; see docs/synthesis.md).
+    Δ*·√(1 + β1²) = 1.098·Δ* (docs/model.md; see docs/synthesis.md).
     """
     from gyrovib.core.analysis import COLUMN, profile_multipliers
     from gyrovib.core.statistics import vibration_at_sensor

@@ -18,7 +18,7 @@ def test_loglog_interpolation_is_a_power_law_between_breakpoints():
     # (10 Hz, 1) to (1000 Hz, 0.01): slope -1 on log-log axes, so g(100) = 0.1
     table = as_table([[10, 1.0], [1000, 0.01]])
     assert loglog_interp(table, 100.0) == pytest.approx(0.1, rel=1e-14)
-    # held constant past the ends (MODEL.md 3): 1 below 10 Hz, 0.01 above 1 kHz
+    # held constant past the ends (docs/model.md): 1 below 10 Hz, 0.01 above 1 kHz
     assert loglog_interp(table, [1.0, 1e5]).tolist() == [1.0, 0.01]
 
 

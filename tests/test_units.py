@@ -9,10 +9,10 @@ import pytest
 
 from gyrovib import units
 
-# deg/s per unit (MODEL.md 2): deg/h 1/3600, rad/s 180/π, rpm 6
+# deg/s per unit (docs/model.md): deg/h 1/3600, rad/s 180/π, rpm 6
 SCALES = {"deg/s": 1.0, "deg/h": 1 / 3600, "rad/s": 180 / math.pi, "rpm": 6.0}
 
-BASE = {  # deg/s values; converted per MODEL.md 2: kn[U] = kn[deg/s]·s^(n−1)
+BASE = {  # deg/s values; converted per docs/model.md: kn[U] = kn[deg/s]·s^(n−1)
     "A1": 1e-3, "k2": 1e-4, "k3": -2e-6, "k4": 3e-7, "k5": -1e-9, "m31": 1e-4, "m32": -2e-4,
 }
 POWER = {"A1": 0, "k2": 1, "k3": 2, "k4": 3, "k5": 4, "m31": 1, "m32": 1}

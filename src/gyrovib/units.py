@@ -1,4 +1,4 @@
-"""Angular-rate units and the conversions of MODEL.md section 2.
+"""Angular-rate units and the conversions of docs/model.md.
 
 Pure Python, no numpy: used by the catalogue loader, the CLI option parsers
 and the result converters alike.

@@ -188,7 +188,7 @@ def catalog_schema() -> dict[str, Any]:
         "$schema": DRAFT_07,
         "title": "gyrovib catalogue",
         "description": "Angular-rate sensors and vibration profiles for gyrovib "
-        "(format version 1). See INTERFACE.md, 'Catalogue files'.",
+        "(format version 1). See the README, 'Catalogue files'.",
     }
     root.pop("title", None)
     root.pop("description", None)

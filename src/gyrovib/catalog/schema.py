@@ -1,4 +1,4 @@
-"""Pydantic models of a catalogue file (INTERFACE.md, "Catalogue files").
+"""Pydantic models of a catalogue file (README.md, "Catalogue files").
 
 The models describe one file exactly as written, in the file's own rate unit.
 Conversion to deg/s and the merging of several files happen in

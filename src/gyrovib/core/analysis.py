@@ -1,7 +1,7 @@
 """The vibration error of eq. (13)-(16), vectorised over sensors × profiles × rates.
 
 A sensor enters only through its eq. (2) coefficients; a profile only through
-five numbers per rate, its *multipliers* (MODEL.md section 4 table):
+five numbers per rate, its *multipliers* (docs/model.md table):
 
 =========  ===================================  ==========================
 name       exact                                paper (tone a | random σ)

@@ -1,4 +1,4 @@
-"""Brute force of the vibration error: averaging eq. (2) itself (MODEL.md section 7).
+"""Brute force of the vibration error: averaging eq. (2) itself (docs/model.md).
 
 No closed form is used here. For every sensor the conversion function of
 eq. (2), in rate units,
@@ -18,7 +18,7 @@ The vibration ``x`` is drawn from :class:`~gyrovib.core.statistics.Vibration`:
   of tone k on axis i, averaged over the phases θ_k;
 * a Gaussian part with per-axis σ_i and coherence ρ_3i, built as
   ``x3 = σ3·z3``, ``xi = σi·(ρ3i·z3 + √(1 − ρ3i²)·zi)`` from independent
-  standard normals z (MODEL.md gives only the 3–i correlations; this choice
+  standard normals z (docs/model.md gives only the 3–i correlations; this choice
   makes x1 and x2 correlate only through x3).
 
 Schemes, chosen from the vibration and the sample budget ``samples`` (the

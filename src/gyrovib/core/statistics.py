@@ -1,4 +1,4 @@
-"""Statistics of the angular vibration reaching the sensor (MODEL.md 3-4).
+"""Statistics of the angular vibration reaching the sensor (docs/model.md).
 
 The vibration about axis i is ``x_i(t)``: a sum of harmonic tones and at most
 one Gaussian broadband part. Everything the error of eq. (13)-(15) needs from
@@ -8,7 +8,7 @@ it is
 * ``E(Ω) = <|Ω + x3|> − |Ω|``, the rectified mean behind the asymmetry term.
 
 Tones of different frequencies are averaged as if their phases were
-independent and uniform (the brute force of MODEL.md section 7); tones given at
+independent and uniform (the brute force of docs/model.md); tones given at
 the same frequency are coherent and are first added as phasors.
 """
 
@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
 
 SQRT_2_OVER_PI = math.sqrt(2.0 / math.pi)
-#: The paper's printed multiplier of A1·a for a tone (eq. 14; MODEL.md 4, item 1).
+#: The paper's printed multiplier of A1·a for a tone (eq. 14; docs/model.md).
 PAPER_TONE_ASYMMETRY = 0.673
 #: The paper's printed multiplier of A1·σ for random vibration (eq. 15).
 PAPER_RANDOM_ASYMMETRY = 0.5
@@ -89,7 +89,7 @@ def vibration_at_sensor(
     ``psd``: per axis a breakpoint table (rate²/Hz) or None; ``rms``: per-axis
     RMS at the sensor (no transmissibility applies); at most one of the two.
     ``gains``: the transmissibility tables ν_j(f) whose product scales a tone's
-    amplitude by ν(f) and a PSD by ν(f)² (MODEL.md 3).
+    amplitude by ν(f) and a PSD by ν(f)² (docs/model.md).
     """
     merged: dict[float, NDArray[np.complex128]] = {}
     for frequency, amplitude, phase in tones:

@@ -1,6 +1,6 @@
 """The synthesis of eq. (18)-(25): allowable coefficients for a budget Δ*_V.
 
-The budget is split by fixed ratios (MODEL.md section 6):
+The budget is split by fixed ratios (docs/model.md):
 
 * eq. (18)-(20): Δ_VA(RMS) = r·Δ_VM(RMS), so the additive part gets
   ``c_A = r/√(1+r²)`` of Δ* and the multiplicative part ``c_M = 1/√(1+r²)``;
@@ -104,7 +104,7 @@ def allocation_constants(
 
 #: The constants printed in the paper, eq. (22) and (25): 0.44 (A1, k2, k4),
 #: 0.22 (m31, m32), 0.49 and 0.24 (β), 0.35 (k3 and the linear k5).
-#: 0.49 does not follow from the paper's own eq. (20) (MODEL.md section 6).
+#: 0.49 does not follow from the paper's own eq. (20) (docs/model.md).
 PAPER_CONSTANTS = AllocationConstants(
     alpha=np.array([0.44, 0.44, 0.44, 0.22, 0.22]),
     beta=np.array([0.49, 0.24, 0.24]),

@@ -5,7 +5,7 @@ A table is a pair of arrays ``(f, g)``: frequencies in Hz, non-decreasing
 breakpoints the value follows a straight line on log-log axes, i.e. a power law
 ``g(f) = g1·(f/f1)**b`` with ``b = ln(g2/g1)/ln(f2/f1)``; a segment with a zero
 end is zero inside. Past the ends a transmissibility is held constant
-(MODEL.md section 3) while a PSD is zero.
+(docs/model.md) while a PSD is zero.
 """
 
 from __future__ import annotations

@@ -22,7 +22,7 @@ def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
 
 
 def _to_json_rows(result: AnalysisResult) -> str:
-    """INTERFACE.md ``analyze --format json``, one dict per row (the reference form)."""
+    """``analyze --format json`` (docs/output.md), one dict per row (the reference form)."""
     e = result.error
     extra = getattr(result, "stderr", None)
     results: list[dict[str, Any]] = []
@@ -81,7 +81,7 @@ def _row_template(with_stderr: bool) -> str:
 
 
 def to_json(result: AnalysisResult) -> str:
-    """INTERFACE.md ``analyze --format json``.
+    """``analyze --format json`` (docs/output.md).
 
     The same text as ``json.dumps`` of the document, written without a dict per
     row: each numeric column is encoded once (``float.__repr__`` is what the

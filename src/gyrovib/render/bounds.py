@@ -39,7 +39,7 @@ def profiles_json(profiles: tuple[str, ...], rates: Any, bounds: CoefficientBoun
 
 
 def to_json(result: BoundsResult) -> str:
-    """INTERFACE.md ``bounds --format json``."""
+    """``bounds --format json`` (docs/output.md)."""
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.bounds)

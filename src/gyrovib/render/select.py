@@ -87,7 +87,7 @@ def _legend(result: SelectionResult) -> str:
 
 
 def to_json(result: SelectionResult) -> str:
-    """INTERFACE.md ``select --format json`` (sensors in catalogue order)."""
+    """``select --format json`` (docs/output.md) (sensors in catalogue order)."""
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
