@@ -100,3 +100,56 @@ def test_two_tones_plus_random_equal_brute_force():
     got = rectified_excess([0.0, 1.3], [2.0, 1.0], 0.5)
     brute = [reference.mean_abs(w, [2.0, 1.0], 0.5, n_grid=64) - abs(w) for w in (0.0, 1.3)]
     assert got == pytest.approx(np.array(brute), rel=1e-9)
+
+
+# Cases where |Ω| is large against the vibration: E(Ω) is tiny (or exactly 0)
+# and must keep its relative precision; the reference is nested adaptive
+# quadrature (tests/reference.py: excess), written without subtraction.
+TAIL_CASES = [
+    (55.0, [4.2], 7.9),            # sine on random, E ~ 8e-11... far tail
+    (30.0, [2.0], 3.0),            # E ~ 5e-22
+    (0.3587, [0.02445], 0.06097),  # E ~ 1e-10
+    (-9.3039, [1.0123, 0.2527], 1.4352),
+    (-14.399, [1.9235, 0.02885], 2.6226),
+    (1.7265353369777827, [1.1479731402513775, 0.5496681528428298, 0.05465523550682091], 0.0),
+    (3.3, [2.0, 1.0, 0.7], 0.0),
+    (2.9, [2.0, 1.0], 0.0),
+]
+
+
+@pytest.mark.parametrize(("omega", "amps", "sigma"), TAIL_CASES)
+def test_excess_keeps_relative_precision_in_the_tails(omega, amps, sigma):
+    expected = reference.excess(omega, amps, sigma)
+    assert expected > 0
+    got = rectified_excess([omega], amps, sigma)[0]
+    assert got == pytest.approx(expected, rel=1e-11)
+
+
+def test_tones_beyond_their_reach_rectify_nothing():
+    # |Ω| = 1.999 > Σa = 1.1007: Ω + x3 never changes sign, E is exactly 0
+    assert rectified_excess([1.999, -1.999], [0.7392, 0.0455, 0.316], 0.0).tolist() == [0, 0]
+    assert rectified_excess([3.5], [2.0, 1.0], 0.0)[0] == 0.0
+
+
+@settings(max_examples=20, deadline=None)
+@given(a1=amplitude, a2=amplitude, a3=amplitude, omega=rate)
+def test_three_tones_equal_nested_quadrature(a1, a2, a3, omega):
+    got = rectified_excess([omega], [a1, a2, a3], 0.0)[0]
+    expected = reference.excess(omega, [a1, a2, a3], 0.0)
+    assert got == pytest.approx(expected, rel=1e-9, abs=1e-15 * (a1 + a2 + a3))
+
+
+@settings(max_examples=10, deadline=None)
+@given(a1=amplitude, a2=amplitude, sigma=st.floats(0.3, 3.0), omega=st.floats(-30, 30))
+def test_two_tones_on_random_equal_nested_quadrature(a1, a2, sigma, omega):
+    got = rectified_excess([omega], [a1, a2], sigma)[0]
+    expected = reference.excess(omega, [a1, a2], sigma)
+    assert got == pytest.approx(expected, rel=1e-10, abs=1e-300)
+
+
+@settings(max_examples=30, deadline=None)
+@given(amps=st.lists(amplitude, min_size=1, max_size=3), sigma=st.floats(0, 3.0),
+       omega=st.floats(-200, 200))
+def test_excess_is_never_negative(amps, sigma, omega):
+    # <|Ω + x|> ≥ |<Ω + x>| = |Ω| (Jensen): E ≥ 0 always
+    assert rectified_excess([omega], amps, sigma)[0] >= 0.0
