@@ -178,3 +178,25 @@ def test_module_entry_point_and_version():
     out = subprocess.run([sys.executable, "-m", "gyrovib", "--version"],
                          capture_output=True, text=True, check=True)
     assert out.stdout.startswith("gyrovib, version ")
+
+
+def test_paper_names_every_refused_profile(run, write):
+    path = write("""
+        gyrovib: 1
+        sensors:
+          - id: s
+            coefficients: {k2: 1e-4}
+        profiles:
+          - id: two-tones
+            harmonic: [{frequency: 10, amplitude: [0, 0, 1]}, {frequency: 20, amplitude: [0, 0, 1]}]
+          - id: ok
+            random: {rms: [0, 0, 1]}
+          - id: mixed
+            harmonic: [{frequency: 10, amplitude: [0, 0, 1]}]
+            random: {rms: [0, 0, 1]}
+    """)
+    result = run("analyze", path, "--method", "paper")
+    assert result.exit_code == 2
+    lines = result.output.splitlines()
+    # one line per refused profile, at its id: lines 7 and 11 (the text opens with a blank line)
+    assert [line.split(": profile ")[0] for line in lines] == [f"{path}:7:9", f"{path}:11:9"]

@@ -53,7 +53,7 @@ from gyrovib.core.synthesis import (
     coefficient_bounds,
 )
 from gyrovib.core.transmissibility import FloatArray, Table, as_table
-from gyrovib.errors import GyrovibError, ModelError, OptionError
+from gyrovib.errors import GyrovibError, ModelError, OptionError, Problem
 
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -259,6 +259,24 @@ def located_multipliers(
         raise ModelError(entry.source.problem(message, ("profiles", entry.index, "id"))) from None
 
 
+def profiles_multipliers(
+    p_entries: Sequence[ProfileEntry], vibrations: Sequence[Vibration], rates: FloatArray,
+    method: str,
+) -> Multipliers:
+    """The multipliers of every profile, stacked; every profile the method refuses
+    is reported (one problem each), not only the first."""
+    items: list[Multipliers] = []
+    problems: list[Problem] = []
+    for p, v, r in zip(p_entries, vibrations, rates, strict=True):
+        try:
+            items.append(located_multipliers(p, v, r[2], method))
+        except ModelError as exc:
+            problems.extend(exc.problems)
+    if problems:
+        raise ModelError(problems)
+    return stack_multipliers(items)
+
+
 # ----------------------------------------------------------------- analysis
 
 
@@ -416,10 +434,7 @@ def analyze(
                 for name, array in parts.items():
                     array[idx, j] = getattr(err, name)
         else:
-            multipliers = stack_multipliers(
-                [located_multipliers(p, v, r[2], method)
-                 for p, v, r in zip(p_entries, vibrations, rates, strict=True)]
-            )
+            multipliers = profiles_multipliers(p_entries, vibrations, rates, method)
             err = vibration_error(coeffs[idx], multipliers)
             for name, array in parts.items():
                 array[idx] = getattr(err, name)
@@ -687,10 +702,7 @@ def _group_multipliers(
     p_entries: Sequence[ProfileEntry], rates: FloatArray, method: str, response: Table | None
 ) -> Multipliers:
     vibrations = [profile_vibration(p, response) for p in p_entries]
-    return stack_multipliers(
-        [located_multipliers(p, v, r[2], method)
-         for p, v, r in zip(p_entries, vibrations, rates, strict=True)]
-    )
+    return profiles_multipliers(p_entries, vibrations, rates, method)
 
 
 def bounds(

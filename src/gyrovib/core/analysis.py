@@ -78,7 +78,7 @@ def paper_kind(vibration: Vibration) -> str:
     )
     raise ModelError(
         f"the paper's formulas cover one harmonic tone or purely random vibration, "
-        f"not {what}; use --method exact"
+        f"not {what}; use --method exact, or choose other profiles with --profile"
     )
 
 
