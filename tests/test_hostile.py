@@ -139,7 +139,7 @@ CASES: list[tuple[str, str | bytes, int | None, int | None, tuple[str, ...]]] = 
     ("coherence-below", PROFILE + "    random:\n      rms: [1, 1, 1]\n"
      "      coherence: [0, -1.01]\n", 6, 22, ("[-1, 1]",)),
     ("psd-and-rms", PROFILE + "    random:\n      rms: [1, 1, 1]\n"
-     "      psd: {x3: [[1, 1]]}\n", 5, 7, ("exactly one",)),
+     "      psd: {x3: [[1, 1], [2, 1]]}\n", 5, 7, ("exactly one",)),
     ("k1-zero", HEADER + "sensors:\n  - id: s\n    output_coefficients:\n      K1: 0\n", 5, 11,
      ("K1", "zero")),
     ("k1-missing", HEADER + "sensors:\n  - id: s\n    output_coefficients:\n      K2: 1\n",

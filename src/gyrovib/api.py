@@ -108,9 +108,21 @@ def quiet_float(function: Callable[P, R]) -> Callable[P, R]:
 
 
 def select_entries(
-    catalog: Catalog, sensors: Sequence[str] = (), profiles: Sequence[str] = ()
+    catalog: Catalog, sensors: Sequence[str] = (), profiles: Sequence[str] = (),
+    need: Sequence[str] = ("sensors", "profiles"),
 ) -> tuple[tuple[SensorEntry, ...], tuple[ProfileEntry, ...]]:
-    """The sensors and profiles named (all when none are named), in catalogue order."""
+    """The sensors and profiles named (all when none are named), in catalogue order.
+
+    A catalogue without any of the kinds in ``need`` is an error: a check run
+    on nothing would pass vacuously (a CI gate given only the sensors file).
+    """
+    missing = [kind for kind in need if not getattr(catalog, kind)]
+    if missing:
+        files = ", ".join(s.name for s in catalog.sources) or "the catalogue"
+        raise OptionError(
+            f"no {' and no '.join(missing)} in {files}: give a file that has them too "
+            "(or no FILE at all for the bundled catalogues)"
+        )
 
     def pick(entries: Sequence[SensorEntry] | Sequence[ProfileEntry], wanted: Sequence[str],
              what: str) -> tuple[int, ...]:
@@ -532,14 +544,20 @@ class SweepResult:
     paper_refused: dict[str, str] = field(default_factory=dict)
 
 
+#: Most rates in one sweep: several tones cost about 10^4 kernel values per rate.
+MAX_SWEEP_POINTS = 20_000
+
+
 def rate_range(start: float, stop: float, count: int) -> FloatArray:
     """``count`` evenly spaced rates from ``start`` to ``stop`` inclusive (deg/s)."""
     if count < 1:
         raise OptionError("a rate range needs a count of at least 1")
-    if count > 1_000_000:
-        raise OptionError(f"a rate range of {count} points is too many (at most 1000000)")
-    if not (np.isfinite(start) and np.isfinite(stop)):
-        raise OptionError("a rate range needs finite start and stop")
+    if count > MAX_SWEEP_POINTS:
+        raise OptionError(
+            f"a rate range of {count} points is too many (at most {MAX_SWEEP_POINTS})"
+        )
+    if not (np.isfinite(start) and np.isfinite(stop) and np.isfinite(stop - start)):
+        raise OptionError("a rate range needs finite start and stop, and a finite span")
     out: FloatArray = np.linspace(start, stop, count)
     return out
 
@@ -723,7 +741,7 @@ def bounds(
     _check_method_budget(method, budget)
     unit = units.canonical_unit(unit)
     constants = resolve_allocation(catalog, method, allocation)
-    _, p_entries = select_entries(catalog, (), profiles)
+    _, p_entries = select_entries(catalog, (), profiles, need=("profiles",))
     rates = np.array([resolve_rate(p, rate) for p in p_entries], dtype=float).reshape(-1, 3)
     multipliers = _group_multipliers(p_entries, rates, method, None) if p_entries else None
     if multipliers is None:

@@ -82,6 +82,22 @@ class _Loader(_BaseLoader):  # type: ignore[misc]
                 seen[key] = key_node.start_mark
         return super().construct_mapping(node, deep=deep)
 
+    def construct_object(self, node: Any, deep: bool = False) -> Any:
+        """Place a scalar that cannot be converted (``!!float abc``, an integer
+        of more digits than Python converts) at its node."""
+        try:
+            return super().construct_object(node, deep=deep)
+        except (ValueError, OverflowError) as exc:
+            if isinstance(exc, yaml.YAMLError):
+                raise
+            text = str(node.value)
+            shown = text[:40] + ("..." if len(text) > 40 else "")
+            why = " (too many digits)" if "digits" in str(exc) else ""
+            kind = node.tag.rsplit(":", 1)[-1]
+            raise yaml.constructor.ConstructorError(
+                None, None, f"{shown!r} is not a valid {kind}{why}", node.start_mark,
+            ) from None
+
 
 def _install_resolvers() -> None:
     resolvers: dict[Any, list[tuple[str, re.Pattern[str]]]] = {}
@@ -348,8 +364,8 @@ def _construct(loader: Any, text: str) -> Any:
         elif "<<" not in text:
             try:
                 return _build(node)
-            except (_Unusual, RecursionError):
-                pass
+            except (_Unusual, RecursionError, ValueError, OverflowError):
+                pass  # PyYAML's constructor builds it, or places the error
         return loader.construct_document(node)
     finally:
         loader.dispose()

@@ -21,6 +21,7 @@ are immutable.
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable
 from typing import Any, ClassVar, TypeVar
@@ -51,6 +52,11 @@ def breakpoint_problem(table: list[tuple[float, float]]) -> tuple[int, str] | No
         if f1 == f0 and i >= 2 and table[i - 2][0] == f0:
             return i, f"frequency {f0:g} Hz appears more than twice (a step uses two rows)"
     return None
+
+
+def psd_has_band(table: list[tuple[float, float]]) -> bool:
+    """Whether a PSD table spans a band (two different frequencies at least)."""
+    return table[0][0] != table[-1][0]
 
 
 def check_breakpoints(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
@@ -363,7 +369,9 @@ def _output_coefficients(x: Any) -> OutputCoefficients:
     unit = _text(x.get("unit"))
     values = _numbers({k: v for k, v in x.items() if k != "unit"}, OutputCoefficients)
     values["unit"] = unit
-    if values["K1"] == 0.0:
+    k1 = values["K1"]
+    if k1 == 0.0 or not all(math.isfinite(v / k1) for k, v in values.items()
+                            if k not in ("unit", "A1", "K1")):
         raise Unsure
     return OutputCoefficients._make(values)
 
@@ -399,7 +407,11 @@ def _tone(x: Any) -> Tone:
 
 def _psd(x: Any) -> PSD:
     x = _mapping(x, PSD)
-    return PSD._make({axis: _table(x.get(axis)) for axis in ("x1", "x2", "x3")})
+    tables = {axis: _table(x.get(axis)) for axis in ("x1", "x2", "x3")}
+    present = [t for t in tables.values() if t is not None]
+    if not present or not all(psd_has_band(t) for t in present):
+        raise Unsure
+    return PSD._make(tables)
 
 
 def _random(x: Any) -> Random:

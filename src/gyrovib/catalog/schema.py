@@ -11,6 +11,7 @@ records of :mod:`gyrovib.catalog.records`, which mirror them without pydantic.
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Literal
 
 from pydantic import (
@@ -23,7 +24,7 @@ from pydantic import (
 )
 from pydantic_core import PydanticCustomError
 
-from gyrovib.catalog.records import breakpoint_problem
+from gyrovib.catalog.records import breakpoint_problem, psd_has_band
 
 Number = Annotated[float, Field(strict=True, allow_inf_nan=False)]
 NonNegative = Annotated[float, Field(strict=True, allow_inf_nan=False, ge=0)]
@@ -48,6 +49,16 @@ def _check_breakpoints(table: list[tuple[float, float]]) -> list[tuple[float, fl
     problem = breakpoint_problem(table)
     if problem is not None:
         raise PydanticCustomError("breakpoint_order", problem[1], {"index": problem[0]})
+    return table
+
+
+def _check_band(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """A PSD is integrated between its breakpoints: it needs two distinct frequencies."""
+    if not psd_has_band(table):
+        raise ValueError(
+            "a PSD needs breakpoints at two different frequencies at least: "
+            "it is integrated over the band between them"
+        )
     return table
 
 
@@ -104,6 +115,16 @@ class OutputCoefficients(_Model):
                 "K1 (output per rate unit) must not be zero: it divides every other coefficient"
             )
         return value
+
+    @model_validator(mode="after")
+    def _divisible(self) -> OutputCoefficients:
+        for name in ("K0", "K2", "K3", "K4", "K5", "M1", "M2", "M31", "M32"):
+            if not math.isfinite(getattr(self, name) / self.K1):
+                raise ValueError(
+                    f"K1 = {self.K1:g} is so small that {name} / K1 overflows; "
+                    "check the units of K1"
+                )
+        return self
 
     def to_coefficients(self) -> Coefficients:
         """``k0 = K0/K1``, ``kn = Kn/K1``, ``mi = Mi/K1``, ``m3i = M3i/K1``; k1 = 1."""
@@ -174,8 +195,14 @@ class PSD(_Model):
     x3: Table | None = None
 
     _check = field_validator("x1", "x2", "x3")(
-        classmethod(lambda cls, v: None if v is None else _check_breakpoints(v))
+        classmethod(lambda cls, v: None if v is None else _check_band(_check_breakpoints(v)))
     )
+
+    @model_validator(mode="after")
+    def _some_axis(self) -> PSD:
+        if self.x1 is None and self.x2 is None and self.x3 is None:
+            raise ValueError("give the PSD of at least one axis (x1, x2 or x3)")
+        return self
 
 
 class Random(_Model):

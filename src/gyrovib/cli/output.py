@@ -36,6 +36,8 @@ def _replace(path: str, data: bytes, what: str) -> None:
     path that is not a regular file (``/dev/null``, a FIFO, a terminal) is
     written to directly: renaming over it would replace the device.
     """
+    if not path:
+        raise OptionError(f"{what}give a file name")
     target = Path(path)
     try:
         mode = os.stat(target).st_mode
@@ -53,7 +55,11 @@ def _replace(path: str, data: bytes, what: str) -> None:
         raise OptionError(f"{what}directory {str(directory)!r} of {path!r} does not exist")
     if target.is_dir():
         raise OptionError(f"{what}{path!r} is a directory")
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=directory)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=directory)
+    except OSError as exc:
+        raise OptionError(f"{what}cannot write in {str(directory)!r}: "
+                          f"{exc.strerror or exc}") from None
     try:
         with os.fdopen(fd, "wb") as handle:
             handle.write(data)

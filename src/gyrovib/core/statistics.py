@@ -241,10 +241,12 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
         # the kinks, any others on a midpoint grid
         closed, inner = float(a[0]), float(a[1])
         if a.size == 2:
-            return _pair_mean(w, inner, closed)
+            return _grid_mean(w, a[:0], [], lambda m: _pair_mean(m, inner, closed),
+                              cost=_PAIR_NODES)
         outer, others = float(a[2]), a[3:]
         counts = [{0: 1, 1: 64}.get(others.size, 16)] * others.size
-        return _grid_mean(w, others, counts, lambda m: _triple_mean(m, outer, inner, closed))
+        return _grid_mean(w, others, counts, lambda m: _triple_mean(m, outer, inner, closed),
+                          cost=_TRIPLE_NODES)
 
     reach = float(a.sum())
     out: FloatArray = np.zeros_like(w)
@@ -265,6 +267,9 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
 
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
+#: Values one :func:`_pair_mean` / :func:`_triple_mean` argument makes (3 and 5 pieces).
+_PAIR_NODES = 3 * _GL_X.size
+_TRIPLE_NODES = 5 * _GL_X.size * _PAIR_NODES
 #: Gauss-Legendre nodes on [0, 1] mapped by θ = lo + L·(1 − cos πv)/2, which
 #: makes the (θ − θ*)^(3/2) behaviour at a kink smooth in v; with the Jacobian.
 _V = (_GL_X + 1.0) / 2.0
@@ -325,12 +330,16 @@ def _pair_mean(m: FloatArray, inner: float, closed: float) -> FloatArray:
 
 def _grid_mean(
     w: FloatArray, amplitudes: FloatArray, counts: Sequence[int],
-    kernel: Callable[[FloatArray], FloatArray],
+    kernel: Callable[[FloatArray], FloatArray], cost: int = 1,
 ) -> FloatArray:
-    """``mean over the phase grid of kernel(w + Σ a_k·sin θ_k)``, per entry of ``w``."""
+    """``mean over the phase grid of kernel(w + Σ a_k·sin θ_k)``, per entry of ``w``.
+
+    ``cost`` is the number of values the kernel makes per argument; rates are
+    taken in chunks so that about 4 million values exist at a time.
+    """
     shifts = _tone_grid(amplitudes, counts)
     out = np.empty_like(w)
-    chunk = max(1, (1 << 22) // shifts.size)
+    chunk = max(1, (1 << 22) // (shifts.size * cost))
     for start in range(0, w.size, chunk):
         block = w[start : start + chunk, None] + shifts[None, :]
         out[start : start + chunk] = kernel(block).mean(axis=1)

@@ -1,0 +1,80 @@
+"""Inputs that used to slip through or crash: each must be refused with exit 2,
+located where a file is at fault."""
+
+from __future__ import annotations
+
+import pytest
+
+
+@pytest.mark.parametrize(
+    ("text", "place", "fragment"),
+    [
+        # dividing by a subnormal K1 overflows: refused at output_coefficients
+        ("gyrovib: 1\nsensors:\n  - id: s\n    output_coefficients: {K1: 1e-320, K2: 1}\n",
+         ":4:26:", "overflows"),
+        # a PSD with one frequency (or only a step) spans no band: σ would be 0
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    random: {psd: {x3: [[100, 1.0]]}}\n",
+         ":4:24:", "two different frequencies"),  # column of the x3 table
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    random: {psd: {x3: [[100, 1], [100, 2]]}}\n",
+         ":4:24:", "two different frequencies"),
+        ("gyrovib: 1\nprofiles:\n  - id: p\n    random: {psd: {}}\n", ":4:19:",
+         "at least one axis"),
+        # scalars PyYAML cannot convert
+        ("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k2: !!float abc}\n", ":4:24:",
+         "'abc' is not a valid float"),
+        ("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k2: 1" + "0" * 5000 + "}\n",
+         ":4:24:", "too many digits"),
+    ],
+)
+def test_refused_with_place(run, write, text, place, fragment):
+    path = write(text)
+    result = run("validate", path)
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith(f"{path}{place}"), result.output
+    assert fragment in result.output
+
+
+def test_select_without_profiles_is_an_error_not_a_pass(run, write):
+    # a CI gate given only the sensors file must not pass vacuously
+    path = write("gyrovib: 1\nsensors:\n  - id: bad\n    coefficients: {A1: 1000, k2: 1000}\n")
+    result = run("select", path, "--budget", "1e-9", "--require", "all")
+    assert result.exit_code == 2
+    assert "no profiles" in result.output
+    profiles_only = write("gyrovib: 1\nprofiles:\n  - id: p\n    random: {rms: [0, 0, 1]}\n",
+                          "profiles.yaml")
+    result = run("select", profiles_only, "--budget", "1")
+    assert result.exit_code == 2
+    assert "no sensors" in result.output
+    # bounds needs only profiles
+    assert run("bounds", profiles_only, "--budget", "1").exit_code == 0
+
+
+def test_unwritable_output_directory(run, tmp_path, monkeypatch):
+    # a directory we may not create files in (simulated: the tests may run as root)
+    import tempfile
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(tempfile, "mkstemp", refuse)
+    result = run("schema", "-o", tmp_path / "schema.json")
+    assert result.exit_code == 2
+    assert "cannot write in" in result.output and "Permission denied" in result.output
+
+
+def test_output_into_a_missing_special_directory(run):
+    # /proc cannot hold a temporary file: an input problem (2), not a crash (3)
+    result = run("schema", "-o", "/proc/gyrovib-schema.json")
+    assert result.exit_code == 2
+    assert "--output" in result.output
+
+
+def test_empty_output_name(run):
+    result = run("schema", "-o", "")
+    assert result.exit_code == 2
+    assert "give a file name" in result.output
+
+
+def test_sweep_limits(run):
+    assert "at most 20000" in run("sweep", "--rate-range", "0:1:20001").output
+    assert "finite span" in run("sweep", "--rate-range", "-1e308:1e308:3").output
