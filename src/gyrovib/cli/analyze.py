@@ -24,7 +24,7 @@ from gyrovib.cli.options import (
               show_default=True,
               help="exact: exact moments; paper: the paper's printed formulas; "
                    "numeric: brute-force average of eq. (2) (total ± stderr).")
-@click.option("--samples", type=click.IntRange(min=1), default=200_000, show_default=True,
+@click.option("--samples", type=click.IntRange(min=32), default=200_000, show_default=True,
               metavar="N", help="numeric: evaluations of eq. (2) per sensor × profile.")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               metavar="S", help="numeric: random seed; the same seed gives the same numbers.")

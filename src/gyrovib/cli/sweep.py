@@ -79,6 +79,8 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
         listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
         click.echo(f"gyrovib: note: the paper's columns are empty for {listed}", err=True)
     if plot is not None:
+        if plot == "-":
+            raise OptionError("--plot writes a PNG file: give a file name, not '-'")
         from gyrovib.render.plot import sweep_png
 
         write_binary(sweep_png(result, budget_value, log=log_scale), plot)
