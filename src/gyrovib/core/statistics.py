@@ -255,7 +255,7 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
     with np.errstate(over="ignore", divide="ignore"):  # a subnormal σ: capped below
         scale = 8.0 / sigma + (w + reach) / sigma**2
         bucket = np.exp2(np.ceil(np.log2(scale)))
-    for level in np.unique(bucket[live]):
+    for level in sorted(set(bucket[live].tolist())):  # (np.unique imports numpy.ma)
         chosen = live & (bucket == level)
         counts = [4 * math.ceil((min(1.25 * level * ak, _MAX_NODES) + 32) / 4) for ak in a]
         total = math.prod(counts)
@@ -266,7 +266,29 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
     return out
 
 
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
+def _gauss_legendre(n: int) -> tuple[FloatArray, FloatArray]:
+    """Gauss-Legendre nodes and weights on [−1, 1] by Newton's method on P_n
+    (numpy.polynomial would import numpy.ma and numpy.linalg at start-up)."""
+    x = np.cos(math.pi * (np.arange(1, n + 1) - 0.25) / (n + 0.5))
+    for _ in range(100):
+        p0, p1 = np.ones_like(x), x
+        for k in range(2, n + 1):
+            p0, p1 = p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k
+        derivative = n * (x * p1 - p0) / (x * x - 1.0)
+        step = p1 / derivative
+        x = x - step
+        if np.max(np.abs(step)) < 1e-16:
+            break
+    p0, p1 = np.ones_like(x), x
+    for k in range(2, n + 1):
+        p0, p1 = p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k
+    derivative = n * (x * p1 - p0) / (x * x - 1.0)
+    weights: FloatArray = 2.0 / ((1.0 - x * x) * derivative**2)
+    nodes: FloatArray = x[::-1].copy()
+    return nodes, weights[::-1].copy()
+
+
+_GL_X, _GL_W = _gauss_legendre(24)
 #: Values one :func:`_pair_mean` / :func:`_triple_mean` argument makes (3 and 5 pieces).
 _PAIR_NODES = 3 * _GL_X.size
 _TRIPLE_NODES = 5 * _GL_X.size * _PAIR_NODES
