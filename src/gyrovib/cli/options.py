@@ -38,7 +38,8 @@ def unit_option(f: F) -> F:
 def rate_option(f: F) -> F:
     return click.option(
         "--rate", metavar="R",
-        help="Override the carrier rate: Ω_K3 as one number, or Ω_K1,Ω_K2,Ω_K3; in --unit.",
+        help="Override the carrier rate: Ω_K3 as one number, or Ω_K1,Ω_K2,Ω_K3; each "
+             "in --unit unless it carries its own (e.g. 36deg/h).",
     )(f)
 
 
