@@ -315,6 +315,10 @@ class AnalysisResult:
     seed: int | None = None
 
 
+def _error_arrays(error: VibrationError) -> list[FloatArray]:
+    return [error.additive_terms, error.multiplicative_coefficients, error.total, error.rms]
+
+
 def to_unit(error: VibrationError, unit: str) -> VibrationError:
     """Convert an error computed in deg/s to ``unit`` (Δ(q) carries rate^(1−q))."""
     s = units.scale(unit)
@@ -327,16 +331,6 @@ def to_unit(error: VibrationError, unit: str) -> VibrationError:
         total=error.total / s,
         rms=error.rms / s,
     )
-
-
-def check_finite(error: VibrationError, what: str = "the vibration error") -> None:
-    """Refuse results that overflowed (huge amplitudes or coefficients)."""
-    for name in ("additive_terms", "multiplicative_coefficients", "total", "rms"):
-        if not np.all(np.isfinite(getattr(error, name))):
-            raise GyrovibError(
-                f"{what} overflows floating point: check the amplitudes, PSD levels, "
-                "rates and coefficients for absurd magnitudes"
-            )
 
 
 #: Every method of :func:`analyze`: the closed forms, and brute force.
@@ -366,12 +360,19 @@ def _check_numeric_options(samples: int, seed: int) -> None:
         raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
 
 
-def _check_finite_located(error: VibrationError, s_entries: Sequence[SensorEntry],
-                          p_entries: Sequence[ProfileEntry]) -> None:
-    """Name the first sensor × profile whose error overflowed, at the profile's place."""
-    bad = ~(np.isfinite(error.total) & np.isfinite(error.rms)
-            & np.all(np.isfinite(error.additive_terms), axis=-1)
-            & np.all(np.isfinite(error.multiplicative_coefficients), axis=-1))
+def check_finite(arrays: Sequence[FloatArray], s_entries: Sequence[SensorEntry],
+                 p_entries: Sequence[ProfileEntry]) -> None:
+    """Refuse results that overflowed (absurd amplitudes or coefficients).
+
+    Each array is indexed (sensor, profile, ...); the first sensor × profile
+    with a non-finite value is named, at the profile's place in its file.
+    """
+    bad = np.zeros((len(s_entries), len(p_entries)), dtype=bool)
+    if bad.size == 0:
+        return
+    for array in arrays:
+        finite = np.isfinite(array).reshape((*bad.shape, -1))
+        bad |= ~np.all(finite, axis=-1)
     if not bad.any():
         return
     i, j = (int(k) for k in np.argwhere(bad)[0])
@@ -464,8 +465,7 @@ def analyze(
                 )
             warnings[(sensor, j)] = message
     error = to_unit(VibrationError(**parts), unit)
-    _check_finite_located(error, s_entries, p_entries)
-    check_finite(error)
+    check_finite(_error_arrays(error), s_entries, p_entries)
     stderr_out = None if stderr is None else stderr / out_scale
     numeric = stderr is not None
     return AnalysisResult(
@@ -615,7 +615,7 @@ def sweep(
             for name, array in results[method].items():
                 array[idx] = getattr(err, name)
     exact = to_unit(VibrationError(**results["exact"]), unit)
-    check_finite(exact)
+    check_finite(_error_arrays(exact), s_entries, p_entries)
     paper = to_unit(VibrationError(**results["paper"]), unit)
     return SweepResult(
         unit=unit,
@@ -871,11 +871,7 @@ def select(
         multipliers = _group_multipliers(p_entries, rates, method, response)
         limits_deg[idx] = coefficient_bounds(multipliers, budget, constants).stacked()[None]
         rms[idx] = vibration_error(coeffs[idx], multipliers).rms
-    if not np.all(np.isfinite(rms)):
-        raise GyrovibError(
-            "the vibration error overflows floating point: check the amplitudes, PSD levels, "
-            "rates and coefficients for absurd magnitudes"
-        )
+    check_finite([rms], s_entries, p_entries)
     values_deg = np.abs(coeffs[:, [COEFFICIENTS.index(c) for c in BOUNDED]])[:, None, :]
     values_deg = np.broadcast_to(values_deg, (n_s, n_p, n_b))
     check_pass = _at_most(values_deg, limits_deg)
