@@ -98,6 +98,8 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert bad_tone["pass"] is False and bad_noise["pass"] is True
     k2 = bad_tone["checks"]["k2"]
     assert k2["value"] == 3.0e-3 and k2["pass"] is False
+    # eq. (23): |k2| ≤ α2·Δ*/M2, α2 = c_A/‖w‖ = 0.83205/√3.5 = 0.4447496;
+    # tone a3 = 2: M2 = a²/2 = 2; noise σ3 = 1: M2 = 1
     assert k2["bound"] == pytest.approx(0.4447496 * BUDGET / 2, rel=1e-6)
     assert bad_noise["checks"]["k2"]["bound"] == pytest.approx(0.4447496 * BUDGET, rel=1e-6)
     # rms = k2·M2 = 3e-3·2 = 6e-3, margin = 0.01/6e-3 = 1.6667
