@@ -289,6 +289,9 @@ def _check_nodes(node: Any) -> None:
             stack.append((child, False))
 
 
+_TOO_DEEP = f"values are nested more than {MAX_DEPTH} levels deep; a catalogue needs fewer than 10"
+
+
 def _check_depth(text: str) -> None:
     """Refuse documents nested deeper than :data:`MAX_DEPTH`, before composing them.
 
@@ -306,8 +309,7 @@ def _check_depth(text: str) -> None:
                     mark: Any = event.start_mark
                     raise yaml.constructor.ConstructorError(
                         None, None,
-                        f"values are nested more than {MAX_DEPTH} levels deep; "
-                        "a catalogue needs fewer than 10",
+                        _TOO_DEEP,
                         mark,
                     )
             elif isinstance(event, yaml.CollectionEndEvent):
@@ -344,6 +346,9 @@ def _parse(text: str, name: str) -> Any:
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         message = exc.problem or "invalid YAML"
+        if "nesting depth" in message:
+            # PyYAML >= 6.0.2 has a nesting limit of its own that may answer before ours
+            message = _TOO_DEEP
         if exc.context and exc.problem_mark is not None:
             message = f"{message} ({exc.context})"
         if mark is None:
