@@ -53,4 +53,22 @@ class OptionError(GyrovibError):
 
 
 class ModelError(GyrovibError):
-    """The chosen method cannot handle a profile (e.g. ``paper`` with two tones)."""
+    """A method of the model cannot handle a vibration (e.g. ``paper`` with two tones).
+
+    Raised by :mod:`gyrovib.core` with ``reason`` in the model's own words and,
+    when the raiser knows it, ``profile``: the index of the profile in the
+    batch. The library re-raises it placed at the profile in its file, worded
+    for the user.
+    """
+
+    def __init__(self, problems: str | Problem | Iterable[Problem] | None = None, *,
+                 reason: str | None = None, profile: int | None = None) -> None:
+        if problems is None:
+            problems = reason or "the model cannot handle this vibration"
+        super().__init__(problems)
+        self.reason: str = reason if reason is not None else self.problems[0].message
+        self.profile: int | None = profile
+
+
+class RangeError(GyrovibError):
+    """A result or an intermediate value overflows floating point (absurd magnitudes)."""

@@ -64,7 +64,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     if fmt == "table":
         text = render.to_table(result, color=use_color(output))
     elif fmt == "github":
-        text = render.to_github(result, [api.sensor_location(catalog, s) for s in result.sensors])
+        text = render.to_github(result, api.sensor_locations(catalog, result.sensors))
     else:
         text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
                 "junit": render.to_junit}[fmt](result)

@@ -76,10 +76,9 @@ def paper_kind(vibration: Vibration) -> str:
     what = f"{n_tones} tone{'s' if n_tones > 1 else ''}" + (
         " and a random part" if vibration.has_random else ""
     )
-    raise ModelError(
-        f"the paper's formulas cover one harmonic tone or purely random vibration, "
-        f"not {what}; use --method exact, or choose other profiles with --profile"
-    )
+    raise ModelError(reason=(
+        f"the paper's formulas cover one harmonic tone or purely random vibration, not {what}"
+    ))
 
 
 def profile_multipliers(
@@ -103,7 +102,7 @@ def profile_multipliers(
         else:
             asym = 0.0 * ones
     else:
-        raise ModelError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
+        raise ModelError(reason=f"unknown method {method!r}; the methods are {', '.join(METHODS)}")
     return Multipliers(
         asymmetry=asym,
         m2=m2 * ones,

@@ -1,0 +1,5 @@
+"""One module per command: ``analyze``, ``sweep``, ``bounds``, ``select``.
+
+Each runs the shared pipeline of :mod:`gyrovib.api.prepare`, evaluates the
+model on what it prepared and returns a result of :mod:`gyrovib.api.results`.
+"""

@@ -1,0 +1,148 @@
+"""``select``: which sensors meet a budget, by the bound checks and eq. (17)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gyrovib import units
+from gyrovib.api.commands.bounds import bounds, check_method_budget, resolve_allocation
+from gyrovib.api.convert import bound_factors
+from gyrovib.api.prepare import check_bounds, check_finite, float_guard, prepare
+from gyrovib.api.results import Limit, SelectionResult
+from gyrovib.catalog.loader import Catalog
+from gyrovib.catalog.records import Allocation
+from gyrovib.core.analysis import COEFFICIENTS, vibration_error
+from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import OptionError
+
+CRITERIA = ("bounds", "rms", "both")
+REQUIREMENTS = ("any", "all")
+#: Relative slack of every ≤ comparison: a value at its bound, up to rounding
+#: (e.g. a bound printed in deg/h and read back), passes.
+PASS_RTOL = 1e-9
+
+
+def _at_most(value: FloatArray, bound: FloatArray | float) -> NDArray[np.bool_]:
+    out: NDArray[np.bool_] = value <= np.asarray(bound) * (1.0 + PASS_RTOL)
+    return out
+
+
+def _ratio(value: FloatArray, bound: FloatArray) -> FloatArray:
+    """value/bound: 0 for a zero value or an infinite bound, +inf for a zero bound."""
+    out: FloatArray = np.zeros(np.broadcast_shapes(value.shape, bound.shape))
+    v = np.broadcast_to(value, out.shape)
+    b = np.broadcast_to(bound, out.shape)
+    q = v / b
+    return np.where(v == 0, 0.0, np.where(b == 0, np.inf, np.where(np.isinf(b), 0.0, q)))
+
+
+def _limits(criterion: str, failing: NDArray[np.intp], ratios: FloatArray, rms: FloatArray,
+            budget: float) -> dict[int, Limit]:
+    """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts."""
+    limits: dict[int, Limit] = {}
+    for i in failing.tolist():
+        candidates: list[Limit] = []
+        if criterion in ("bounds", "both"):
+            jb = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
+            j, b = int(jb[0]), int(jb[1])
+            candidates.append(Limit(BOUNDED[b], j, float(ratios[i, j, b])))
+        if criterion in ("rms", "both"):
+            jr = int(np.argmax(rms[i]))
+            candidates.append(Limit("rms", jr, float(rms[i, jr] / budget)))
+        limits[int(i)] = max(candidates, key=lambda c: c.ratio)
+    return limits
+
+
+def select(
+    catalog: Catalog,
+    *,
+    sensors: Sequence[str] = (),
+    profiles: Sequence[str] = (),
+    method: str = "exact",
+    rate: Sequence[float] | None = None,
+    budget: float,
+    unit: str = "deg/s",
+    criterion: str = "bounds",
+    require: str = "any",
+    allocation: Allocation | Sequence[float] | None = None,
+) -> SelectionResult:
+    """Which sensors meet the budget: the bound checks and eq. (17), per profile.
+
+    Each sensor's bounds include its own response ν_sensor(f) (computed once
+    per distinct response). ``criterion``: ``bounds`` (every |coefficient| at
+    most its bound), ``rms`` (Δ_V(RMS) ≤ Δ*, eq. 17) or ``both``. A sensor
+    passes when it passes under every chosen profile; ``require`` ``any``
+    (at least one sensor passes) or ``all`` decides :attr:`requirement_met`.
+    ``budget`` and ``rate`` are in deg/s; ``unit`` is the output unit.
+    """
+    check_method_budget(method, budget)
+    if criterion not in CRITERIA:
+        raise OptionError(f"unknown criterion {criterion!r}; use one of {', '.join(CRITERIA)}")
+    if require not in REQUIREMENTS:
+        raise OptionError(f"unknown requirement {require!r}; use one of {', '.join(REQUIREMENTS)}")
+    unit = units.canonical_unit(unit)
+    constants = resolve_allocation(catalog, method, allocation)
+    alone = bounds(catalog, profiles=profiles, method=method, rate=rate, budget=budget,
+                   unit=unit, allocation=allocation)
+    with float_guard():
+        prepared = prepare(catalog, sensors=sensors, profiles=profiles, rate=rate,
+                           methods=(method,))
+        coeffs = prepared.coefficients
+        n_s, n_p, n_b = len(prepared.sensors), len(prepared.profiles), len(BOUNDED)
+        limits_deg = np.full((n_s, n_p, n_b), np.inf)
+        rms = np.zeros((n_s, n_p))
+        for group in prepared.groups:
+            multipliers = group.multipliers[method]
+            limits_deg[group.index] = coefficient_bounds(multipliers, budget,
+                                                         constants).stacked()[None]
+            rms[group.index] = vibration_error(coeffs[group.index], multipliers).rms
+        check_finite([rms], prepared)
+        check_bounds(limits_deg, prepared)
+        factors = np.array([bound_factors(unit)[c] for c in BOUNDED])
+        values_deg = np.abs(coeffs[:, [COEFFICIENTS.index(c) for c in BOUNDED]])[:, None, :]
+        values_deg = np.broadcast_to(values_deg, (n_s, n_p, n_b))
+        values, limits_out = values_deg * factors, limits_deg * factors
+        check_finite([values], prepared)
+        check_bounds(limits_out, prepared)
+        check_pass = _at_most(values_deg, limits_deg)
+        bounds_pass = np.all(check_pass, axis=-1)
+        rms_pass = _at_most(rms, budget)
+        passed = {"bounds": bounds_pass, "rms": rms_pass,
+                  "both": bounds_pass & rms_pass}[criterion]
+        sensor_pass = np.all(passed, axis=1)
+        margin = np.where(rms > 0, budget / np.where(rms > 0, rms, 1.0), np.inf)
+        worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
+        ranking = tuple(int(i) for i in sorted(range(n_s), key=lambda i: (-worst[i], i)))
+        limits = _limits(criterion, np.nonzero(~sensor_pass)[0],
+                         _ratio(values_deg, limits_deg), rms, budget)
+    met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
+    s = units.scale(unit)
+    return SelectionResult(
+        method=method,
+        unit=unit,
+        budget=budget / s,
+        criterion=criterion,
+        require=require,
+        sensors=tuple(e.sensor.id for e in prepared.sensors),
+        profiles=tuple(p.profile.id for p in prepared.profiles),
+        rates=prepared.rates / s,
+        profile_bounds=alone.bounds,
+        values=values,
+        bounds=limits_out,
+        check_pass=check_pass,
+        rms=rms / s,
+        margin=margin,
+        bounds_pass=bounds_pass,
+        rms_pass=rms_pass,
+        passed=passed,
+        sensor_pass=sensor_pass,
+        worst_margin=worst,
+        ranking=ranking,
+        limits=limits,
+        requirement_met=met,
+        allocation=constants,
+    )

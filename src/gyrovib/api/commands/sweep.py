@@ -1,0 +1,84 @@
+"""``sweep``: eq. (13) and (16) over a range of Ω_K3, exact and paper side by side."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from gyrovib import units
+from gyrovib.api.convert import error_arrays, to_unit
+from gyrovib.api.prepare import check_finite, float_guard, prepare
+from gyrovib.api.results import SweepResult
+from gyrovib.catalog.loader import Catalog
+from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import OptionError
+
+#: Most rates in one sweep: several tones cost about 10^4 kernel values per rate.
+MAX_SWEEP_POINTS = 20_000
+
+
+def rate_range(start: float, stop: float, count: int) -> FloatArray:
+    """``count`` evenly spaced rates from ``start`` to ``stop`` inclusive (deg/s)."""
+    if count < 1:
+        raise OptionError("a rate range needs a count of at least 1")
+    if count > MAX_SWEEP_POINTS:
+        raise OptionError(
+            f"a rate range of {count} points is too many (at most {MAX_SWEEP_POINTS})"
+        )
+    if not (np.isfinite(start) and np.isfinite(stop) and np.isfinite(stop - start)):
+        raise OptionError("a rate range needs finite start and stop, and a finite span")
+    out: FloatArray = np.linspace(start, stop, count)
+    return out
+
+
+def sweep(
+    catalog: Catalog,
+    rates: Sequence[float] | FloatArray,
+    *,
+    sensors: Sequence[str] = (),
+    profiles: Sequence[str] = (),
+    unit: str = "deg/s",
+) -> SweepResult:
+    """Eq. (13) and (16) at every Ω_K3 of ``rates`` (deg/s), exact and paper.
+
+    One vectorised evaluation per profile and sensor-response group: the
+    multipliers are computed for the whole rate array at once. A value at a
+    rate equals :func:`~gyrovib.api.analyze` with that ``rate``. Profiles the
+    paper's formulas do not cover get NaN paper values and an entry in
+    :attr:`SweepResult.paper_refused`; anything that overflows is refused.
+    """
+    unit = units.canonical_unit(unit)
+    omega = np.asarray(rates, dtype=float).reshape(-1)
+    if omega.size == 0 or not np.all(np.isfinite(omega)):
+        raise OptionError("the swept rates must be finite, and at least one")
+    with float_guard():
+        prepared = prepare(catalog, sensors=sensors, profiles=profiles, omega=omega,
+                           methods=METHODS, tolerate_refusals=True)
+        shape = (len(prepared.sensors), len(prepared.profiles), omega.size)
+        tails = {"additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
+                 "multiplicative": (), "total": (), "rms": ()}
+        results = {m: {name: np.zeros((*shape, *tail)) for name, tail in tails.items()}
+                   for m in METHODS}
+        refused: dict[int, str] = {}
+        for group in prepared.groups:
+            refused.update(group.refused.get("paper", {}))
+            for method in METHODS:
+                err = vibration_error(prepared.coefficients[group.index],
+                                      group.multipliers[method])
+                for name, array in results[method].items():
+                    array[group.index] = getattr(err, name)
+        exact = to_unit(VibrationError(**results["exact"]), unit)
+        paper = to_unit(VibrationError(**results["paper"]), unit)
+        check_finite(error_arrays(exact), prepared)
+        check_finite(error_arrays(paper), prepared, exclude=sorted(refused))
+    return SweepResult(
+        unit=unit,
+        sensors=tuple(e.sensor.id for e in prepared.sensors),
+        profiles=tuple(p.profile.id for p in prepared.profiles),
+        rates=omega / units.scale(unit),
+        exact=exact,
+        paper=paper,
+        paper_refused={prepared.profiles[j].profile.id: refused[j] for j in sorted(refused)},
+    )

@@ -1,0 +1,102 @@
+"""Unit handling: catalogue values to deg/s on the way in, results to the output unit out.
+
+A rate unit ``U`` equals ``s`` deg/s; a quantity carrying ``rate**p``
+converts as ``q[U] = q[deg/s]·s**(-p)`` (docs/model.md, units).
+"""
+
+from __future__ import annotations
+
+import operator
+from collections.abc import Sequence
+
+import numpy as np
+
+from gyrovib import units
+from gyrovib.catalog.loader import ProfileEntry, SensorEntry
+from gyrovib.core.analysis import COEFFICIENTS, VibrationError
+from gyrovib.core.synthesis import BOUNDED
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import OptionError
+
+_RATE_POWERS = np.array([units.COEFFICIENT_RATE_POWER[c] for c in COEFFICIENTS], dtype=float)
+_GET_COEFFICIENTS = operator.attrgetter(*COEFFICIENTS)
+
+
+def unit_scales(entries: Sequence[SensorEntry] | Sequence[ProfileEntry]) -> FloatArray:
+    """deg/s per rate unit of each entry's file."""
+    known: dict[str, float] = {}
+    out = []
+    for e in entries:
+        unit = e.unit
+        s = known.get(unit)
+        if s is None:
+            s = known[unit] = units.scale(unit)
+        out.append(s)
+    return np.array(out, dtype=float)
+
+
+def coefficient_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
+    """Eq. (2) coefficients of every sensor in deg/s powers, shape (sensors, 11)."""
+    raw = np.array(
+        [_GET_COEFFICIENTS(e.sensor.rate_coefficients) for e in entries], dtype=float
+    ).reshape(len(entries), len(COEFFICIENTS))
+    scales = unit_scales(entries)
+    if np.all(scales == 1.0):
+        return raw
+    out: FloatArray = raw * scales[:, None] ** _RATE_POWERS[None, :]
+    return out
+
+
+def sensor_ranges(entries: Sequence[SensorEntry]) -> FloatArray:
+    """Full-scale range of each sensor in deg/s (inf where not given)."""
+    ranges = np.array(
+        [np.inf if e.sensor.range is None else e.sensor.range for e in entries], dtype=float
+    )
+    out: FloatArray = ranges * unit_scales(entries)
+    return out
+
+
+def profile_rate(entry: ProfileEntry) -> FloatArray:
+    """The profile's carrier rate Ω_K about x1, x2, x3 in deg/s."""
+    return np.asarray(entry.profile.rate, dtype=float) * units.scale(entry.unit)
+
+
+def resolve_rate(entry: ProfileEntry, override: Sequence[float] | None) -> FloatArray:
+    """Ω_K in deg/s: the profile's, or an override (one number: Ω_K3 only; three: all)."""
+    rate = profile_rate(entry)
+    if override is None:
+        return rate
+    values = np.asarray(override, dtype=float)
+    if values.size == 1:
+        rate = rate.copy()
+        rate[2] = float(values[0])
+        return rate
+    if values.size == 3:
+        out: FloatArray = values.astype(float)
+        return out
+    raise OptionError("a rate is one number (Ω_K3) or three (Ω_K1, Ω_K2, Ω_K3)")
+
+
+def to_unit(error: VibrationError, unit: str) -> VibrationError:
+    """Convert an error computed in deg/s to ``unit`` (Δ(q) carries rate^(1−q))."""
+    s = units.scale(unit)
+    q_factor = np.array([1.0, s, s * s])
+    return VibrationError(
+        additive_terms=error.additive_terms / s,
+        multiplicative_coefficients=error.multiplicative_coefficients * q_factor,
+        additive=error.additive / s,
+        multiplicative=error.multiplicative / s,
+        total=error.total / s,
+        rms=error.rms / s,
+    )
+
+
+def error_arrays(error: VibrationError) -> list[FloatArray]:
+    """The arrays of an error that must be finite (the sums follow from them)."""
+    return [error.additive_terms, error.multiplicative_coefficients, error.total, error.rms]
+
+
+def bound_factors(unit: str) -> dict[str, float]:
+    """deg/s → ``unit`` factors of each bounded coefficient: ``s**(-p)`` for rate power p."""
+    s = units.scale(unit)
+    return {name: s ** (-units.COEFFICIENT_RATE_POWER[name]) for name in BOUNDED}

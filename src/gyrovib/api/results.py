@@ -1,0 +1,178 @@
+"""The immutable results of the four commands.
+
+Frozen dataclasses whose numpy arrays are read-only (``flags.writeable`` is
+False, also inside the nested :class:`~gyrovib.core.analysis.VibrationError`,
+:class:`~gyrovib.core.synthesis.CoefficientBounds` and
+:class:`~gyrovib.core.synthesis.AllocationConstants`) and whose mappings are
+read-only views. ``repr`` is one short line (kind, method, unit, shape), not
+the arrays.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gyrovib.core.analysis import VibrationError
+from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
+from gyrovib.core.transmissibility import FloatArray
+
+
+def _freeze(value: Any) -> Any:
+    """Make the arrays in ``value`` (and in nested dataclasses) read-only; return it.
+
+    Mappings come back as read-only views of a copy.
+    """
+    if isinstance(value, np.ndarray):
+        value.flags.writeable = False
+        return value
+    if isinstance(value, Mapping):
+        return MappingProxyType(dict(value))
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        for f in dataclasses.fields(value):
+            _freeze(getattr(value, f.name))
+    return value
+
+
+class _Frozen:
+    """Read-only arrays and mappings after construction; a one-line repr."""
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+            object.__setattr__(self, f.name, _freeze(getattr(self, f.name)))
+
+    def _shape(self) -> tuple[int, ...]:
+        raise NotImplementedError
+
+    def __repr__(self) -> str:
+        method = getattr(self, "method", "exact+paper")
+        unit = getattr(self, "unit", "")
+        return (f"{type(self).__name__}(method={method!r}, unit={unit!r}, "
+                f"shape={self._shape()!r})")
+
+
+@dataclass(frozen=True, repr=False)
+class AnalysisResult(_Frozen):
+    """The direct problem for every chosen sensor × profile.
+
+    Arrays of :attr:`error` have shape (sensors, profiles) and are in
+    :attr:`unit`; ``rates`` is Ω_K per profile, shape (profiles, 3).
+    ``warnings`` maps ``(sensor index, profile index)`` to messages.
+    """
+
+    method: str
+    unit: str
+    sensors: tuple[str, ...]
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    error: VibrationError
+    warnings: Mapping[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
+    #: ``numeric`` only: standard error of ``error.total`` (0 where exact), else None.
+    stderr: FloatArray | None = None
+    #: ``numeric`` only: evaluations of eq. (2) per sensor × profile, and the seed.
+    samples: int | None = None
+    seed: int | None = None
+
+    def _shape(self) -> tuple[int, ...]:
+        return (len(self.sensors), len(self.profiles))
+
+
+@dataclass(frozen=True, repr=False)
+class SweepResult(_Frozen):
+    """Δ_V and Δ_V(RMS) over a range of Ω_K3, by the exact and the paper's method.
+
+    ``rates`` (R,): the Ω_K3 values in :attr:`unit`; Ω_K1, Ω_K2 stay the
+    profile's. ``exact`` and ``paper`` hold arrays of shape (sensors,
+    profiles, rates) in :attr:`unit`; ``paper``'s are NaN for the profiles in
+    :attr:`paper_refused` (profile id → why the paper's formulas do not apply).
+    """
+
+    unit: str
+    sensors: tuple[str, ...]
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    exact: VibrationError
+    paper: VibrationError
+    paper_refused: Mapping[str, str] = field(default_factory=dict)
+
+    def _shape(self) -> tuple[int, ...]:
+        return (len(self.sensors), len(self.profiles), len(self.rates))
+
+
+@dataclass(frozen=True, repr=False)
+class BoundsResult(_Frozen):
+    """Allowable coefficients of eq. (23), (25) for every chosen profile.
+
+    ``bounds`` arrays have shape (profiles,), each in its coefficient's unit
+    built on :attr:`unit`; +inf means unconstrained. ``rates`` is Ω_K per
+    profile in :attr:`unit`, shape (profiles, 3); ``budget`` Δ* in :attr:`unit`.
+    The profile alone is taken: the sensor's own response is 1.
+    """
+
+    method: str
+    unit: str
+    budget: float
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    bounds: CoefficientBounds
+    allocation: AllocationConstants
+
+    def _shape(self) -> tuple[int, ...]:
+        return (len(self.profiles),)
+
+
+@dataclass(frozen=True)
+class Limit:
+    """What stops a failing sensor: the worst coefficient (or ``"rms"``) and where."""
+
+    name: str
+    profile: int
+    ratio: float
+
+
+@dataclass(frozen=True, repr=False)
+class SelectionResult(_Frozen):
+    """Every chosen sensor checked against the budget under every chosen profile.
+
+    Arrays are indexed (sensor, profile[, coefficient of :data:`BOUNDED`]) and
+    are in :attr:`unit`. ``values`` are the sensors' |coefficients| (k1 taken
+    as 1); ``bounds`` each sensor's own bounds (its response ν_sensor included);
+    ``profile_bounds`` those of the profiles alone. ``margin`` is Δ*/Δ_V(RMS)
+    (+inf when Δ_V(RMS) = 0). ``passed`` is the verdict under
+    :attr:`criterion`; ``ranking`` orders the sensors by worst margin, best
+    first; ``limits`` names, per failing sensor, the largest value/bound ratio
+    (or Δ_V(RMS)/Δ*) among the criteria checked.
+    """
+
+    method: str
+    unit: str
+    budget: float
+    criterion: str
+    require: str
+    sensors: tuple[str, ...]
+    profiles: tuple[str, ...]
+    rates: FloatArray
+    profile_bounds: CoefficientBounds
+    values: FloatArray
+    bounds: FloatArray
+    check_pass: NDArray[np.bool_]
+    rms: FloatArray
+    margin: FloatArray
+    bounds_pass: NDArray[np.bool_]
+    rms_pass: NDArray[np.bool_]
+    passed: NDArray[np.bool_]
+    sensor_pass: NDArray[np.bool_]
+    worst_margin: FloatArray
+    ranking: tuple[int, ...]
+    limits: Mapping[int, Limit]
+    requirement_met: bool
+    allocation: AllocationConstants
+
+    def _shape(self) -> tuple[int, ...]:
+        return (len(self.sensors), len(self.profiles))
