@@ -1,12 +1,13 @@
-"""Shared fixtures: a small valid catalogue, a catalogue writer and CLI runners."""
+"""Shared fixtures: a small valid catalogue, a catalogue writer and the one CLI runner."""
 
 from __future__ import annotations
 
 import textwrap
+from collections.abc import Mapping
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
+from click.testing import CliRunner, Result
 
 VALID = """\
 gyrovib: 1
@@ -45,6 +46,25 @@ profiles:
 """
 
 
+def invoke(*args: object, input: str | bytes | None = None,
+           env: Mapping[str, str | None] | None = None, crash_ok: bool = False) -> Result:
+    """Run the gyrovib CLI in-process with ``args``; click's Result (stdout, stderr apart).
+
+    Unless ``crash_ok``, an exception escaping the command (anything but the
+    exit) or a traceback on either stream fails the test: every outcome a user
+    can cause is an exit status and a message.
+    """
+    from gyrovib.cli.main import cli
+
+    result = CliRunner().invoke(cli, [str(a) for a in args], input=input, env=env,
+                                catch_exceptions=True)
+    if not crash_ok:
+        assert result.exception is None or isinstance(result.exception, SystemExit), (
+            f"unexpected exception {result.exception!r}\n{result.stderr}")
+        assert "Traceback" not in result.stdout and "Traceback" not in result.stderr
+    return result
+
+
 @pytest.fixture
 def runner() -> CliRunner:
     return CliRunner()  # click >= 8.2 keeps stdout and stderr apart
@@ -76,10 +96,5 @@ def write(tmp_path: Path):
 
 @pytest.fixture
 def run():
-    """Invoke the gyrovib CLI in-process; returns click's Result."""
-    from gyrovib.cli.main import cli
-
-    def _run(*args: str):
-        return CliRunner().invoke(cli, [str(a) for a in args], catch_exceptions=True)
-
-    return _run
+    """:func:`invoke`, as a fixture."""
+    return invoke

@@ -5,13 +5,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from gyrovib.catalog import loader
-from gyrovib.cli.main import cli
-from tests.conftest import VALID
+from tests.conftest import VALID, invoke
 
 SEEDS = [VALID] + [p.read_text(encoding="utf-8") for p in loader.bundled_paths()]
 
@@ -68,8 +66,7 @@ def fuzz_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def test_mutated_catalogue_never_crashes(fuzz_dir: Path, data: bytes, command: str) -> None:
     path = fuzz_dir / "mutant.yaml"
     path.write_bytes(data)
-    result = CliRunner().invoke(cli, [command, str(path), *(["--format", "json"]
-                                                             if command == "analyze" else [])])
+    result = invoke(command, path, *(["--format", "json"] if command == "analyze" else []))
     assert result.exception is None or isinstance(result.exception, SystemExit), (
         repr(result.exception), data[:2000])
     assert result.exit_code in (0, 2), (result.exit_code, result.stderr, data[:2000])

@@ -6,11 +6,9 @@ from pathlib import Path
 
 import pytest
 import yaml
-from click.testing import CliRunner
 
 from gyrovib import api
 from gyrovib.cli.common import resolve_color
-from gyrovib.cli.main import cli
 from gyrovib.errors import Problem
 from gyrovib.render.github import (
     annotation,
@@ -19,6 +17,7 @@ from gyrovib.render.github import (
     escape_property,
     problems_to_github,
 )
+from tests.conftest import invoke
 
 ROOT = Path(__file__).parent.parent
 
@@ -60,7 +59,7 @@ def test_problems_to_github() -> None:
 def test_validate_format_github(tmp_path: Path) -> None:
     path = tmp_path / "bad.yaml"
     path.write_text("gyrovib: 1\nsensors:\n  - id: a\n    coefficients:\n      k_2: 1\n")
-    result = CliRunner().invoke(cli, ["validate", "--format", "github", str(path)])
+    result = invoke("validate", "--format", "github", str(path))
     assert result.exit_code == 2
     assert result.stdout == (
         f"::error file={escape_property(str(path))},line=5,col=7,title=gyrovib::"
@@ -70,7 +69,7 @@ def test_validate_format_github(tmp_path: Path) -> None:
 
 
 def test_validate_format_github_valid(valid_file: Path) -> None:
-    result = CliRunner().invoke(cli, ["validate", "--format", "github", str(valid_file)])
+    result = invoke("validate", "--format", "github", str(valid_file))
     assert result.exit_code == 0
     assert result.stdout == ""
 
@@ -78,7 +77,7 @@ def test_validate_format_github_valid(valid_file: Path) -> None:
 def test_validate_format_text_has_no_annotations(tmp_path: Path) -> None:
     path = tmp_path / "bad.yaml"
     path.write_text("gyrovib: 3\n")
-    result = CliRunner().invoke(cli, ["validate", str(path)])
+    result = invoke("validate", str(path))
     assert result.exit_code == 2
     assert result.stdout == ""
 
@@ -112,24 +111,23 @@ ESC = "\x1b["
 def test_color_option_reaches_table(valid_file: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv("NO_COLOR", raising=False)
     monkeypatch.delenv("FORCE_COLOR", raising=False)
-    runner = CliRunner()
-    plain = runner.invoke(cli, ["analyze", str(valid_file)])
+    plain = invoke("analyze", str(valid_file))
     assert plain.exit_code == 0 and ESC not in plain.stdout
-    colored = runner.invoke(cli, ["--color", "always", "analyze", str(valid_file)])
+    colored = invoke("--color", "always", "analyze", str(valid_file))
     assert colored.exit_code == 0 and ESC in colored.stdout
     monkeypatch.setenv("FORCE_COLOR", "1")
-    forced = runner.invoke(cli, ["analyze", str(valid_file)])
+    forced = invoke("analyze", str(valid_file))
     assert ESC in forced.stdout
-    never = runner.invoke(cli, ["--color", "never", "analyze", str(valid_file)])
+    never = invoke("--color", "never", "analyze", str(valid_file))
     assert ESC not in never.stdout
     monkeypatch.setenv("NO_COLOR", "1")
-    off = runner.invoke(cli, ["analyze", str(valid_file)])
+    off = invoke("analyze", str(valid_file))
     assert ESC not in off.stdout
 
 
 def test_color_never_in_json(valid_file: Path) -> None:
-    result = CliRunner().invoke(cli, ["--color", "always", "analyze", str(valid_file),
-                                      "--format", "json"])
+    result = invoke("--color", "always", "analyze", str(valid_file),
+                                      "--format", "json")
     assert result.exit_code == 0 and ESC not in result.stdout
 
 
@@ -147,7 +145,7 @@ def test_pre_commit_hook() -> None:
 
 
 def test_help_documents_exit_codes() -> None:
-    result = CliRunner().invoke(cli, ["--help"])
+    result = invoke("--help")
     assert result.exit_code == 0
     assert "3 an internal error" in result.stdout
     assert "--color" in result.stdout
@@ -167,8 +165,8 @@ def test_select_github_annotations_point_at_the_failing_sensor(write):
           - id: tone
             harmonic: [{frequency: 50, amplitude: [0, 0, 1]}]
     """)
-    result = CliRunner().invoke(cli, ["select", str(path), "--budget", "0.01", "--format",
-                                      "github", "--require", "all"])
+    result = invoke("select", str(path), "--budget", "0.01", "--format",
+                                      "github", "--require", "all")
     assert result.exit_code == 1
     lines = result.stdout.splitlines()
     # line 6 of the dedented file holds "  - id: bad" (the file starts with a blank line)
@@ -180,7 +178,7 @@ def test_select_github_annotations_point_at_the_failing_sensor(write):
 
 def test_select_github_reports_bad_input_as_annotation(write):
     path = write("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k_2: 1}\n")
-    result = CliRunner().invoke(cli, ["select", str(path), "--budget", "0.01", "--format",
-                                      "github"])
+    result = invoke("select", str(path), "--budget", "0.01", "--format",
+                                      "github")
     assert result.exit_code == 2
     assert f"::error file={path},line=4,col=20" in result.stdout

@@ -8,23 +8,19 @@ import time
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner, Result
+from click.testing import Result
 
 from gyrovib.catalog import loader
-from gyrovib.cli.main import cli
+from tests.conftest import invoke
 
 HEADER = "gyrovib: 1\n"
 
 
-def run(runner: CliRunner, args: list[str], **kwargs: object) -> Result:
+def run(args: list[str]) -> Result:
+    """:func:`tests.conftest.invoke` (no escaped exception, no traceback), within 5 s."""
     started = time.perf_counter()
-    result = runner.invoke(cli, args, catch_exceptions=True, **kwargs)  # type: ignore[arg-type]
+    result = invoke(*args)
     elapsed = time.perf_counter() - started
-    assert result.exception is None or isinstance(result.exception, SystemExit), (
-        f"unexpected exception {result.exception!r}\n{result.stderr}"
-    )
-    assert "Traceback" not in result.stderr
-    assert "Traceback" not in result.stdout
     assert elapsed < 5, f"took {elapsed:.1f} s"
     return result
 
@@ -32,13 +28,13 @@ def run(runner: CliRunner, args: list[str], **kwargs: object) -> Result:
 ANY = -1
 
 
-def bad(runner: CliRunner, path: Path, line: int | None, column: int | None,
+def bad(path: Path, line: int | None, column: int | None,
         *needles: str) -> str:
     """Validate ``path``, expect exit 2 and a located problem; return stderr.
 
     ``line`` None: the problem names the file only; ANY: some line and column.
     """
-    result = run(runner, ["validate", str(path)])
+    result = run(["validate", str(path)])
     assert result.exit_code == 2, result.stderr
     lines = result.stderr.strip().splitlines()
     assert lines, "no message"
@@ -176,14 +172,14 @@ CASES: list[tuple[str, str | bytes, int | None, int | None, tuple[str, ...]]] = 
 
 @pytest.mark.parametrize(("text", "line", "column", "needles"),
                          [c[1:] for c in CASES], ids=[c[0] for c in CASES])
-def test_bad_catalogue(runner: CliRunner, tmp_path: Path, text: str | bytes, line: int | None,
+def test_bad_catalogue(tmp_path: Path, text: str | bytes, line: int | None,
                        column: int | None, needles: tuple[str, ...]) -> None:
-    bad(runner, write(tmp_path, text), line, column, *needles)
+    bad(write(tmp_path, text), line, column, *needles)
 
 
-def test_every_problem_is_one_line(runner: CliRunner, tmp_path: Path) -> None:
+def test_every_problem_is_one_line(tmp_path: Path) -> None:
     path = write(tmp_path, SENSOR + "      k2: .nan\n      k_3: 1\n      k4: abc\n")
-    result = run(runner, ["validate", str(path)])
+    result = run(["validate", str(path)])
     assert result.exit_code == 2
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 3
@@ -191,9 +187,9 @@ def test_every_problem_is_one_line(runner: CliRunner, tmp_path: Path) -> None:
     assert [x.split(":")[1] for x in lines] == ["5", "6", "7"]
 
 
-def test_many_problems_are_capped(runner: CliRunner, tmp_path: Path) -> None:
+def test_many_problems_are_capped(tmp_path: Path) -> None:
     items = "".join(f"  - id: 'bad id {i}'\n" for i in range(300))
-    result = run(runner, ["validate", str(write(tmp_path, HEADER + "profiles:\n" + items))])
+    result = run(["validate", str(write(tmp_path, HEADER + "profiles:\n" + items))])
     assert result.exit_code == 2
     lines = result.stderr.strip().splitlines()
     assert len(lines) == loader.MAX_PROBLEMS + 1
@@ -207,15 +203,15 @@ def test_many_problems_are_capped(runner: CliRunner, tmp_path: Path) -> None:
     "!!python/name:os.system",
     '!!python/module:os',
 ])
-def test_code_execution_tags_run_nothing(runner: CliRunner, tmp_path: Path, tag: str) -> None:
+def test_code_execution_tags_run_nothing(tmp_path: Path, tag: str) -> None:
     marker = tmp_path / "PWNED"
     path = write(tmp_path, HEADER + "sensors: " + tag.format(marker=marker) + "\n")
-    result = run(runner, ["validate", str(path)])
+    result = run(["validate", str(path)])
     assert result.exit_code == 2
     assert "not allowed" in result.stderr
     assert not marker.exists()
     # the same through analyze, where the catalogue is used, not only validated
-    result = run(runner, ["analyze", str(path)])
+    result = run(["analyze", str(path)])
     assert result.exit_code == 2
     assert not marker.exists()
 
@@ -230,26 +226,26 @@ def _bomb(levels: int, width: int = 9) -> str:
     return "\n".join(lines) + "\n"
 
 
-def test_billion_laughs_refused_fast(runner: CliRunner, tmp_path: Path) -> None:
+def test_billion_laughs_refused_fast(tmp_path: Path) -> None:
     started = time.perf_counter()
-    stderr = bad(runner, write(tmp_path, _bomb(9)), ANY, None, "alias bomb")
+    stderr = bad(write(tmp_path, _bomb(9)), ANY, None, "alias bomb")
     assert time.perf_counter() - started < 2
     assert stderr.count("\n") == 1
 
 
-def test_bomb_under_a_known_key_refused(runner: CliRunner, tmp_path: Path) -> None:
+def test_bomb_under_a_known_key_refused(tmp_path: Path) -> None:
     text = _bomb(8).replace("l7: &l7", "sensors: &l7")
-    bad(runner, write(tmp_path, text), ANY, None, "alias bomb")
+    bad(write(tmp_path, text), ANY, None, "alias bomb")
 
 
-def test_small_alias_use_allowed(runner: CliRunner, tmp_path: Path) -> None:
+def test_small_alias_use_allowed(tmp_path: Path) -> None:
     text = HEADER + "profiles:\n  - id: a\n    mount: &m [[20, 1], [200, 0.3]]\n" \
         "  - id: b\n    mount: *m\n"
-    result = run(runner, ["validate", str(write(tmp_path, text))])
+    result = run(["validate", str(write(tmp_path, text))])
     assert result.exit_code == 0, result.stderr
 
 
-def test_merge_keys_allowed(runner: CliRunner, tmp_path: Path) -> None:
+def test_merge_keys_allowed(tmp_path: Path) -> None:
     text = HEADER + (
         "sensors:\n"
         "  - &base\n    id: a\n    coefficients: &c {k2: 1.0e-7, A1: 1.0e-4}\n"
@@ -257,7 +253,7 @@ def test_merge_keys_allowed(runner: CliRunner, tmp_path: Path) -> None:
         "  - id: c\n    coefficients:\n      <<: *c\n      k3: 1.0e-9\n"
     )
     path = write(tmp_path, text)
-    result = run(runner, ["validate", str(path)])
+    result = run(["validate", str(path)])
     assert result.exit_code == 0, result.stderr
     assert "3 sensor(s)" in result.stderr
     source = loader.read_catalog(path)
@@ -267,50 +263,50 @@ def test_merge_keys_allowed(runner: CliRunner, tmp_path: Path) -> None:
     assert source.model.sensors[2].coefficients.k2 == 1.0e-7
 
 
-def test_merge_key_error_located_in_merged_mapping(runner: CliRunner, tmp_path: Path) -> None:
+def test_merge_key_error_located_in_merged_mapping(tmp_path: Path) -> None:
     text = HEADER + ("sensors:\n  - &base\n    id: a\n    coefficients: {k2: 1.0e-7}\n"
                      "  - <<: *base\n    id: b c\n")
-    bad(runner, write(tmp_path, text), 7, 9, "'b c'")
+    bad(write(tmp_path, text), 7, 9, "'b c'")
 
 
-def test_duplicate_ids_across_files(runner: CliRunner, tmp_path: Path, valid_text: str) -> None:
+def test_duplicate_ids_across_files(tmp_path: Path, valid_text: str) -> None:
     one = write(tmp_path, valid_text, "one.yaml")
     two = write(tmp_path, HEADER + "sensors:\n  - id: fog-a\n    coefficients: {}\n", "two.yaml")
-    result = run(runner, ["validate", str(one), str(two)])
+    result = run(["validate", str(one), str(two)])
     assert result.exit_code == 2
     assert result.stderr.startswith(f"{two}:3:9: duplicate sensor id 'fog-a' (first at {one}:5)")
 
 
-def test_all_files_reported(runner: CliRunner, tmp_path: Path, valid_text: str) -> None:
+def test_all_files_reported(tmp_path: Path, valid_text: str) -> None:
     one = write(tmp_path, valid_text, "one.yaml")
     broken = write(tmp_path, HEADER + "sensors: [\n", "broken.yaml")
     clash = write(tmp_path, HEADER + "profiles:\n  - id: cruise\n", "clash.yaml")
-    result = run(runner, ["validate", str(one), str(broken), str(clash), "missing.yaml"])
+    result = run(["validate", str(one), str(broken), str(clash), "missing.yaml"])
     assert result.exit_code == 2
     lines = result.stderr.strip().splitlines()
     assert [x.split(":")[0] for x in lines] == [str(broken), "missing.yaml", str(clash)]
 
 
-def test_missing_file(runner: CliRunner, tmp_path: Path) -> None:
-    result = run(runner, ["validate", str(tmp_path / "nope.yaml")])
+def test_missing_file(tmp_path: Path) -> None:
+    result = run(["validate", str(tmp_path / "nope.yaml")])
     assert result.exit_code == 2
     assert result.stderr == f"{tmp_path / 'nope.yaml'}: no such file or directory\n"
 
 
-def test_directory(runner: CliRunner, tmp_path: Path) -> None:
-    result = run(runner, ["analyze", str(tmp_path)])
+def test_directory(tmp_path: Path) -> None:
+    result = run(["analyze", str(tmp_path)])
     assert result.exit_code == 2
     assert result.stderr.startswith(f"{tmp_path}: is a directory")
 
 
-def test_file_too_large(runner: CliRunner, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_file_too_large(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(loader, "MAX_FILE_BYTES", 1000)
     path = write(tmp_path, HEADER + "# " + "x" * 2000 + "\n")
-    bad(runner, path, None, None, "larger than")
+    bad(path, None, None, "larger than")
 
 
-def test_validate_needs_a_file(runner: CliRunner) -> None:
-    result = run(runner, ["validate"])
+def test_validate_needs_a_file() -> None:
+    result = run(["validate"])
     assert result.exit_code == 2
     assert "Missing argument" in result.stderr
 
@@ -333,15 +329,15 @@ def test_validate_needs_a_file(runner: CliRunner) -> None:
     (["--rate", "1 furlong"], "unknown rate unit"),
     (["--output", "/nonexistent-dir/x.json"], "does not exist"),
 ])
-def test_bad_option(runner: CliRunner, valid_file: Path, args: list[str], needle: str) -> None:
-    result = run(runner, ["analyze", str(valid_file), *args])
+def test_bad_option(valid_file: Path, args: list[str], needle: str) -> None:
+    result = run(["analyze", str(valid_file), *args])
     assert result.exit_code == 2, result.stderr
     assert needle in result.stderr
     assert result.stdout == ""
 
 
-def test_bad_color_option(runner: CliRunner, valid_file: Path) -> None:
-    result = run(runner, ["--color", "sometimes", "validate", str(valid_file)])
+def test_bad_color_option(valid_file: Path) -> None:
+    result = run(["--color", "sometimes", "validate", str(valid_file)])
     assert result.exit_code == 2
     assert "Invalid value for '--color'" in result.stderr
 
@@ -371,11 +367,11 @@ def test_budget_parsing(text: str, needle: str | None) -> None:
     ("x3: [[20, 1.0e-4], [2000, 1.0e-4]]", "x3: [[20, 1e300], [1e300, 1e300]]"),
 ])
 @pytest.mark.parametrize("fmt", ["json", "csv", "table", "markdown"])
-def test_overflowing_results_refused(runner: CliRunner, tmp_path: Path, valid_text: str,
+def test_overflowing_results_refused(tmp_path: Path, valid_text: str,
                                      edit: tuple[str, str], fmt: str) -> None:
     assert edit[0] in valid_text
     path = write(tmp_path, valid_text.replace(*edit))
-    result = run(runner, ["analyze", str(path), "--format", fmt])
+    result = run(["analyze", str(path), "--format", fmt])
     assert result.exit_code == 2
     assert result.stdout == ""
     lines = result.stderr.strip().splitlines()
@@ -384,54 +380,54 @@ def test_overflowing_results_refused(runner: CliRunner, tmp_path: Path, valid_te
     assert "NaN" not in result.stdout and "Infinity" not in result.stdout
 
 
-def test_overflowing_rate_option(runner: CliRunner, valid_file: Path) -> None:
-    result = run(runner, ["analyze", str(valid_file), "--rate", "1e300", "--format", "json"])
+def test_overflowing_rate_option(valid_file: Path) -> None:
+    result = run(["analyze", str(valid_file), "--rate", "1e300", "--format", "json"])
     assert result.exit_code == 2
     assert "overflows" in result.stderr
     assert result.stdout == ""
 
 
-def test_failed_run_leaves_output_untouched(runner: CliRunner, tmp_path: Path,
+def test_failed_run_leaves_output_untouched(tmp_path: Path,
                                            valid_text: str) -> None:
     out = tmp_path / "out.json"
     out.write_text("previous\n")
     broken = write(tmp_path, valid_text.replace("k2: 2.0e-7", "k2: 2.0e-7\n      k2: 1"))
-    result = run(runner, ["analyze", str(broken), "--format", "json", "--output", str(out)])
+    result = run(["analyze", str(broken), "--format", "json", "--output", str(out)])
     assert result.exit_code == 2
     huge = write(tmp_path, valid_text.replace("amplitude: [0.5, 0.5, 0.8]",
                                               "amplitude: [1e200, 1, 1]"), "huge.yaml")
-    result = run(runner, ["analyze", str(huge), "--format", "json", "--output", str(out)])
+    result = run(["analyze", str(huge), "--format", "json", "--output", str(out)])
     assert result.exit_code == 2
-    result = run(runner, ["analyze", str(huge), "--profile", "nope", "--output", str(out)])
+    result = run(["analyze", str(huge), "--profile", "nope", "--output", str(out)])
     assert result.exit_code == 2
     assert out.read_text() == "previous\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cat.yaml", "huge.yaml", "out.json"]
     # and a successful run does replace it
     good = write(tmp_path, valid_text, "good.yaml")
-    result = run(runner, ["analyze", str(good), "--format", "json", "--output", str(out)])
+    result = run(["analyze", str(good), "--format", "json", "--output", str(out)])
     assert result.exit_code == 0
     assert out.read_text().startswith('{"tool": "gyrovib"')
 
 
-def test_valid_catalogue_passes(runner: CliRunner, valid_file: Path) -> None:
-    result = run(runner, ["validate", str(valid_file)])
+def test_valid_catalogue_passes(valid_file: Path) -> None:
+    result = run(["validate", str(valid_file)])
     assert result.exit_code == 0
     assert result.stderr == "1 file(s) valid: 2 sensor(s), 1 profile(s)\n"
-    result = run(runner, ["analyze", str(valid_file), "--format", "json"])
+    result = run(["analyze", str(valid_file), "--format", "json"])
     assert result.exit_code == 0
 
 
-def test_bundled_catalogues_validate(runner: CliRunner) -> None:
+def test_bundled_catalogues_validate() -> None:
     paths = [str(p) for p in loader.bundled_paths()]
     assert paths
-    result = run(runner, ["validate", *paths])
+    result = run(["validate", *paths])
     assert result.exit_code == 0, result.stderr
 
 
 # ---------------------------------------------------------------- internal errors
 
 
-def test_internal_error_is_exit_3_without_traceback(runner: CliRunner, valid_file: Path,
+def test_internal_error_is_exit_3_without_traceback(valid_file: Path,
                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     from gyrovib import api
 
@@ -440,14 +436,14 @@ def test_internal_error_is_exit_3_without_traceback(runner: CliRunner, valid_fil
 
     monkeypatch.setattr(api, "analyze", boom)
     monkeypatch.delenv("GYROVIB_DEBUG", raising=False)
-    result = run(runner, ["analyze", str(valid_file)])
+    result = run(["analyze", str(valid_file)])
     assert result.exit_code == 3
     assert result.stderr.startswith("gyrovib: internal error: ZeroDivisionError: simulated bug")
     assert "please report" in result.stderr
     assert len(result.stderr.strip().splitlines()) == 1
 
 
-def test_internal_error_debug_shows_it(runner: CliRunner, valid_file: Path,
+def test_internal_error_debug_shows_it(valid_file: Path,
                                        monkeypatch: pytest.MonkeyPatch) -> None:
     from gyrovib import api
 
@@ -456,5 +452,5 @@ def test_internal_error_debug_shows_it(runner: CliRunner, valid_file: Path,
 
     monkeypatch.setattr(api, "analyze", boom)
     monkeypatch.setenv("GYROVIB_DEBUG", "1")
-    result = runner.invoke(cli, ["analyze", str(valid_file)])
+    result = invoke("analyze", valid_file, crash_ok=True)
     assert isinstance(result.exception, ZeroDivisionError)

@@ -14,13 +14,12 @@ import textwrap
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
 from gyrovib import api
-from gyrovib.cli.main import cli
 from gyrovib.core.analysis import COEFFICIENTS
 from gyrovib.core.numeric import conversion, simulate
 from gyrovib.core.statistics import vibration_at_sensor
+from tests.conftest import invoke
 
 # Sensors: "full" has every coefficient of eq. (2); "poly" is the same without
 # the asymmetry A1 (so a tone grid is exact for it); "filtered" adds its own
@@ -203,7 +202,7 @@ def test_unit_conversion_uses_the_same_samples(catalog_path: str) -> None:
 
 
 def _run(*args: str) -> tuple[int, str, str]:
-    result = CliRunner().invoke(cli, list(args))
+    result = invoke(*args)
     return result.exit_code, result.stdout, result.stderr
 
 

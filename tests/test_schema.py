@@ -7,19 +7,17 @@ from pathlib import Path
 
 import jsonschema
 import pytest
-from click.testing import CliRunner
 
 from gyrovib.catalog.jsonschema import DRAFT_07, catalog_schema
 from gyrovib.catalog.loader import _parse, bundled_paths
-from gyrovib.cli.main import cli
-from tests.conftest import VALID
+from tests.conftest import VALID, invoke
 
 REPO_CATALOGS = sorted((Path(__file__).parent.parent / "catalogs").glob("*.yaml"))
 
 
 @pytest.fixture(scope="module")
 def schema() -> dict:
-    result = CliRunner().invoke(cli, ["schema"])
+    result = invoke("schema")
     assert result.exit_code == 0, result.stderr
     return json.loads(result.stdout)
 
@@ -115,6 +113,6 @@ def test_schema_matches_library(schema: dict) -> None:
 
 def test_schema_output_option(tmp_path: Path) -> None:
     out = tmp_path / "gyrovib.schema.json"
-    result = CliRunner().invoke(cli, ["schema", "--output", str(out)])
+    result = invoke("schema", "--output", str(out))
     assert result.exit_code == 0
     assert json.loads(out.read_text())["$schema"] == DRAFT_07

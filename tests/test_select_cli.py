@@ -5,16 +5,15 @@ from __future__ import annotations
 import csv
 import io
 import json
-import math
+import re
 import textwrap
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Any
 
 import pytest
-from click.testing import CliRunner
 
-from gyrovib.cli.main import cli
+from tests.conftest import invoke as run
 
 BUDGET = 0.01  # deg/s
 
@@ -54,10 +53,6 @@ def write(tmp_path: Path, body: str, name: str = "cat.yaml") -> str:
     path = tmp_path / name
     path.write_text("gyrovib: 1\n" + textwrap.dedent(body))
     return str(path)
-
-
-def run(*args: str) -> Any:
-    return CliRunner().invoke(cli, list(args), catch_exceptions=False)
 
 
 def strict_json(text: str) -> Any:
@@ -371,11 +366,21 @@ def test_paper_refuses_a_mixed_profile(tmp_path: Path) -> None:
 
 
 def test_unknown_ids_exit_2(catalog: str) -> None:
-    assert run("bounds", catalog, "--budget", "0.01", "--profile", "nope").exit_code == 2
-    assert run("select", catalog, "--budget", "0.01", "--sensor", "nope").exit_code == 2
+    result = run("bounds", catalog, "--budget", "0.01", "--profile", "nope")
+    assert result.exit_code == 2 and result.stdout == ""
+    assert result.stderr == ("gyrovib: error: unknown profile id 'nope'; the catalogue has: "
+                             "tone, noise\n")
+    result = run("select", catalog, "--budget", "0.01", "--sensor", "nope")
+    assert result.exit_code == 2 and result.stdout == ""
+    assert result.stderr == ("gyrovib: error: unknown sensor id 'nope'; the catalogue has: "
+                             "good, bad, awful\n")
 
 
 def test_help_lists_the_commands() -> None:
-    out = run("--help").stdout
-    assert "bounds" in out and "select" in out
-    assert math.isfinite(1.0)
+    result = run("--help")
+    assert result.exit_code == 0
+    # the Commands section lists each command with the first line of its help
+    commands = result.stdout.split("Commands:")[1]
+    assert re.search(r"^\s+bounds\s+The inverse problem", commands, re.MULTILINE)
+    assert re.search(r"^\s+select\s+Check every sensor against a budget", commands,
+                     re.MULTILINE)

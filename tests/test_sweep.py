@@ -11,10 +11,9 @@ import textwrap
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
 from gyrovib import api
-from gyrovib.cli.main import cli
+from tests.conftest import invoke
 
 A_TONE = 2.0      # x3 amplitude of the tone, deg/s
 SIGMA = 1.5       # x3 RMS of the random profile, deg/s
@@ -61,7 +60,7 @@ def catalog_path(tmp_path_factory: pytest.TempPathFactory) -> str:
 
 
 def _run(*args: str) -> tuple[int, str, str]:
-    result = CliRunner().invoke(cli, list(args))
+    result = invoke(*args)
     return result.exit_code, result.stdout, result.stderr
 
 

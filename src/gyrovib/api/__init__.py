@@ -80,7 +80,53 @@ _WHERE: dict[str, str] = {
     "Allocation": "gyrovib.catalog.records",
 }
 
-__all__ = sorted(_WHERE)
+__all__ = [
+    "ANALYZE_METHODS",
+    "CRITERIA",
+    "DEFAULT_SAMPLES",
+    "DEFAULT_SEED",
+    "MAX_SWEEP_POINTS",
+    "PASS_RTOL",
+    "REQUIREMENTS",
+    "Allocation",
+    "AnalysisResult",
+    "BoundsResult",
+    "Catalog",
+    "Limit",
+    "Prepared",
+    "ProfileEntry",
+    "ProgressCallback",
+    "SelectionResult",
+    "SensorEntry",
+    "SweepResult",
+    "analyze",
+    "bounds",
+    "check_bounds",
+    "check_finite",
+    "coefficient_matrix",
+    "float_guard",
+    "load",
+    "prepare",
+    "profile_generator",
+    "profile_location",
+    "profile_locations",
+    "profile_rate",
+    "profile_vibration",
+    "quiet_float",
+    "rate_range",
+    "resolve_allocation",
+    "resolve_rate",
+    "response_groups",
+    "response_table",
+    "select",
+    "select_entries",
+    "sensor_location",
+    "sensor_locations",
+    "sensor_ranges",
+    "sweep",
+    "to_unit",
+    "vibration_peak",
+]
 
 
 def __getattr__(name: str) -> Any:
@@ -98,51 +144,139 @@ def __dir__() -> list[str]:
     return sorted({*globals(), *_WHERE})
 
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     from gyrovib.api.commands.analyze import (
-        ANALYZE_METHODS,
-        DEFAULT_SAMPLES,
-        DEFAULT_SEED,
-        ProgressCallback,
-        analyze,
-        profile_generator,
+        ANALYZE_METHODS as ANALYZE_METHODS,
     )
-    from gyrovib.api.commands.bounds import bounds, resolve_allocation
-    from gyrovib.api.commands.select import CRITERIA, PASS_RTOL, REQUIREMENTS, select
-    from gyrovib.api.commands.sweep import MAX_SWEEP_POINTS, rate_range, sweep
+    from gyrovib.api.commands.analyze import (
+        DEFAULT_SAMPLES as DEFAULT_SAMPLES,
+    )
+    from gyrovib.api.commands.analyze import (
+        DEFAULT_SEED as DEFAULT_SEED,
+    )
+    from gyrovib.api.commands.analyze import (
+        ProgressCallback as ProgressCallback,
+    )
+    from gyrovib.api.commands.analyze import (
+        analyze as analyze,
+    )
+    from gyrovib.api.commands.analyze import (
+        profile_generator as profile_generator,
+    )
+    from gyrovib.api.commands.bounds import (
+        bounds as bounds,
+    )
+    from gyrovib.api.commands.bounds import (
+        resolve_allocation as resolve_allocation,
+    )
+    from gyrovib.api.commands.select import (
+        CRITERIA as CRITERIA,
+    )
+    from gyrovib.api.commands.select import (
+        PASS_RTOL as PASS_RTOL,
+    )
+    from gyrovib.api.commands.select import (
+        REQUIREMENTS as REQUIREMENTS,
+    )
+    from gyrovib.api.commands.select import (
+        select as select,
+    )
+    from gyrovib.api.commands.sweep import (
+        MAX_SWEEP_POINTS as MAX_SWEEP_POINTS,
+    )
+    from gyrovib.api.commands.sweep import (
+        rate_range as rate_range,
+    )
+    from gyrovib.api.commands.sweep import (
+        sweep as sweep,
+    )
     from gyrovib.api.convert import (
-        coefficient_matrix,
-        profile_rate,
-        resolve_rate,
-        sensor_ranges,
-        to_unit,
+        coefficient_matrix as coefficient_matrix,
+    )
+    from gyrovib.api.convert import (
+        profile_rate as profile_rate,
+    )
+    from gyrovib.api.convert import (
+        resolve_rate as resolve_rate,
+    )
+    from gyrovib.api.convert import (
+        sensor_ranges as sensor_ranges,
+    )
+    from gyrovib.api.convert import (
+        to_unit as to_unit,
     )
     from gyrovib.api.entries import (
-        load,
-        profile_location,
-        profile_locations,
-        select_entries,
-        sensor_location,
-        sensor_locations,
+        load as load,
+    )
+    from gyrovib.api.entries import (
+        profile_location as profile_location,
+    )
+    from gyrovib.api.entries import (
+        profile_locations as profile_locations,
+    )
+    from gyrovib.api.entries import (
+        select_entries as select_entries,
+    )
+    from gyrovib.api.entries import (
+        sensor_location as sensor_location,
+    )
+    from gyrovib.api.entries import (
+        sensor_locations as sensor_locations,
     )
     from gyrovib.api.prepare import (
-        Prepared,
-        check_bounds,
-        check_finite,
-        float_guard,
-        prepare,
-        profile_vibration,
-        quiet_float,
-        response_groups,
-        response_table,
-        vibration_peak,
+        Prepared as Prepared,
+    )
+    from gyrovib.api.prepare import (
+        check_bounds as check_bounds,
+    )
+    from gyrovib.api.prepare import (
+        check_finite as check_finite,
+    )
+    from gyrovib.api.prepare import (
+        float_guard as float_guard,
+    )
+    from gyrovib.api.prepare import (
+        prepare as prepare,
+    )
+    from gyrovib.api.prepare import (
+        profile_vibration as profile_vibration,
+    )
+    from gyrovib.api.prepare import (
+        quiet_float as quiet_float,
+    )
+    from gyrovib.api.prepare import (
+        response_groups as response_groups,
+    )
+    from gyrovib.api.prepare import (
+        response_table as response_table,
+    )
+    from gyrovib.api.prepare import (
+        vibration_peak as vibration_peak,
     )
     from gyrovib.api.results import (
-        AnalysisResult,
-        BoundsResult,
-        Limit,
-        SelectionResult,
-        SweepResult,
+        AnalysisResult as AnalysisResult,
     )
-    from gyrovib.catalog.loader import Catalog, ProfileEntry, SensorEntry
-    from gyrovib.catalog.records import Allocation
+    from gyrovib.api.results import (
+        BoundsResult as BoundsResult,
+    )
+    from gyrovib.api.results import (
+        Limit as Limit,
+    )
+    from gyrovib.api.results import (
+        SelectionResult as SelectionResult,
+    )
+    from gyrovib.api.results import (
+        SweepResult as SweepResult,
+    )
+    from gyrovib.catalog.loader import (
+        Catalog as Catalog,
+    )
+    from gyrovib.catalog.loader import (
+        ProfileEntry as ProfileEntry,
+    )
+    from gyrovib.catalog.loader import (
+        SensorEntry as SensorEntry,
+    )
+    from gyrovib.catalog.records import (
+        Allocation as Allocation,
+    )

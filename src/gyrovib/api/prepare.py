@@ -150,12 +150,12 @@ def profile_problem(profile: ProfileEntry, message: str) -> Problem:
 
 
 def overflow_problem(profile: ProfileEntry, what: str, *, sensor: SensorEntry | None = None,
-                     rate_given: bool = False, more: str = "", plural: bool = False) -> Problem:
+                     rate_given: bool = False, more: str = "") -> Problem:
     """The one wording of an overflow, at the profile's place in its file."""
     subject = (f"sensor {sensor.sensor.id!r} under profile {profile.profile.id!r}"
                if sensor is not None else f"profile {profile.profile.id!r}")
     note = " (with the rate given in place of the profile's)" if rate_given else ""
-    return profile_problem(profile, f"{subject}: {what} overflow{'' if plural else 's'} floating point{note}; "
+    return profile_problem(profile, f"{subject}: {what} overflows floating point{note}; "
                                     f"check {_HINT} for absurd magnitudes{more}")
 
 
@@ -229,8 +229,8 @@ def prepare(
     coefficients = coefficient_matrix(s_entries)
     _check_sensors(coefficients, s_entries)
     rates = np.array([resolve_rate(p, rate) for p in p_entries], dtype=float).reshape(-1, 3)
-    for j in np.nonzero(~np.all(np.isfinite(rates), axis=1))[0]:
-        problems[int(j)] = overflow_problem(p_entries[j], "the carrier rate in deg/s",
+    for j in np.nonzero(~np.all(np.isfinite(rates), axis=1))[0].tolist():
+        problems[j] = overflow_problem(p_entries[j], "the carrier rate in deg/s",
                                             rate_given=rate is not None)
     if by_response:
         layout = response_groups(s_entries) if s_entries and p_entries else []
@@ -263,13 +263,12 @@ def prepare(
                     m = nan_multipliers(np.asarray(w, dtype=float))
                 except FLOAT_FAILURES:
                     problems.setdefault(j, overflow_problem(
-                        p, f"the vibration's statistics ({method} method)", plural=True))
+                        p, f"a statistic of the vibration ({method} method)"))
                     m = nan_multipliers(np.asarray(w, dtype=float))
                 else:
                     if not all(np.all(np.isfinite(getattr(m, f))) for f in _MULTIPLIER_FIELDS):
                         problems.setdefault(j, overflow_problem(
-                            p, "the vibration's statistics (<x3²>, <x3⁴>, <x3·xi>)",
-                            plural=True))
+                            p, "a statistic of the vibration (<x3²>, <x3⁴>, <x3·xi>)"))
                 items.append(m)
             group.multipliers[method] = stack_multipliers(items)
         groups.append(group)
@@ -329,13 +328,13 @@ def check_bounds(stacked: FloatArray, prepared: Prepared) -> None:
     underflowed), and would read as "no coefficient allowed".
     """
     ok = np.isposinf(stacked) | (np.isfinite(stacked) & (stacked >= _TINY))
-    bad = ~ok.reshape(-1, *stacked.shape[-2:]).all(axis=0)  # (profiles, coefficients)
+    bad: NDArray[np.bool_] = ~np.all(ok.reshape(-1, *stacked.shape[-2:]), axis=0)  # (P, 7)
     if not bad.any():
         return
     problems = []
     for j in np.nonzero(bad.any(axis=1))[0].tolist():
         names = [BOUNDED[b] for b in np.nonzero(bad[j])[0].tolist()]
-        what = f"the bound{'s' if len(names) > 1 else ''} on {', '.join(names)}"
-        problems.append(overflow_problem(prepared.profiles[j], what, plural=len(names) > 1,
+        problems.append(overflow_problem(prepared.profiles[j],
+                                         f"the coefficient bound ({', '.join(names)})",
                                          rate_given=prepared.rate_given))
     raise RangeError(problems)
