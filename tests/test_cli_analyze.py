@@ -114,25 +114,6 @@ def test_paper_refuses_mixed_profile_with_its_location(run, catalog):
     assert ok.exit_code == 0, ok.output
 
 
-@pytest.mark.parametrize(
-    ("args", "fragment"),
-    [
-        (["--sensor", "nope"], "unknown sensor id 'nope'"),
-        (["--profile", "nope"], "unknown profile id 'nope'"),
-        (["--unit", "furlong/s"], "unknown rate unit"),
-        (["--rate", "1,2"], "one number"),
-        (["--rate", "x"], "--rate"),
-        (["--method", "guess"], "Invalid value"),
-        (["--format", "xml"], "Invalid value"),
-    ],
-)
-def test_bad_options_exit_2_without_traceback(run, catalog, args, fragment):
-    result = run("analyze", catalog, *args)
-    assert result.exit_code == 2
-    assert fragment in result.output
-    assert "Traceback" not in result.output
-
-
 def test_output_file_written_atomically_and_kept_on_failure(run, catalog, tmp_path):
     out = tmp_path / "result.json"
     assert run("analyze", catalog, "--format", "json", "-o", out).exit_code == 0
@@ -157,12 +138,6 @@ def test_output_to_a_fifo_writes_through_it(run, catalog, tmp_path):
     assert result.exit_code == 0, result.output
     assert stat.S_ISFIFO(os.stat(fifo).st_mode)
     assert json.loads(received[0])["results"]
-
-
-def test_missing_file(run, tmp_path):
-    result = run("analyze", tmp_path / "absent.yaml")
-    assert result.exit_code == 2
-    assert "absent.yaml: no such file" in result.output
 
 
 def test_bundled_catalogues_run_in_every_format(run):

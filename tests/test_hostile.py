@@ -3,6 +3,7 @@ one located line per problem on standard error, and no traceback."""
 
 from __future__ import annotations
 
+import json
 import re
 import time
 from pathlib import Path
@@ -212,7 +213,8 @@ def test_code_execution_tags_run_nothing(tmp_path: Path, tag: str) -> None:
     assert not marker.exists()
     # the same through analyze, where the catalogue is used, not only validated
     result = run(["analyze", str(path)])
-    assert result.exit_code == 2
+    assert result.exit_code == 2 and result.stdout == ""
+    assert "not allowed" in result.stderr
     assert not marker.exists()
 
 
@@ -287,9 +289,10 @@ def test_all_files_reported(tmp_path: Path, valid_text: str) -> None:
     assert [x.split(":")[0] for x in lines] == [str(broken), "missing.yaml", str(clash)]
 
 
-def test_missing_file(tmp_path: Path) -> None:
-    result = run(["validate", str(tmp_path / "nope.yaml")])
-    assert result.exit_code == 2
+@pytest.mark.parametrize("command", ["validate", "analyze"])
+def test_missing_file(tmp_path: Path, command: str) -> None:
+    result = run([command, str(tmp_path / "nope.yaml")])
+    assert result.exit_code == 2 and result.stdout == ""
     assert result.stderr == f"{tmp_path / 'nope.yaml'}: no such file or directory\n"
 
 
@@ -325,7 +328,9 @@ def test_validate_needs_a_file() -> None:
     (["--rate", "abc"], "--rate"),
     (["--rate", "nan"], "--rate"),
     (["--rate", "1e400"], "not a finite rate"),
-    (["--rate", "1,2"], "three"),
+    (["--rate", "1,2"], "give one number (Ω_K3) or three"),
+    (["--rate", "x"], "--rate"),
+    (["--method", "guess"], "Invalid value for '--method'"),
     (["--rate", "1 furlong"], "unknown rate unit"),
     (["--output", "/nonexistent-dir/x.json"], "does not exist"),
 ])
@@ -414,7 +419,10 @@ def test_valid_catalogue_passes(valid_file: Path) -> None:
     assert result.exit_code == 0
     assert result.stderr == "1 file(s) valid: 2 sensor(s), 1 profile(s)\n"
     result = run(["analyze", str(valid_file), "--format", "json"])
-    assert result.exit_code == 0
+    assert result.exit_code == 0 and result.stderr == ""
+    # 2 sensors × 1 profile (conftest.VALID)
+    assert [(r["sensor"], r["profile"]) for r in json.loads(result.stdout)["results"]] == [
+        ("fog-a", "cruise"), ("mems-a", "cruise")]
 
 
 def test_bundled_catalogues_validate() -> None:
@@ -422,6 +430,8 @@ def test_bundled_catalogues_validate() -> None:
     assert paths
     result = run(["validate", *paths])
     assert result.exit_code == 0, result.stderr
+    assert re.fullmatch(rf"{len(paths)} file\(s\) valid: \d+ sensor\(s\), \d+ profile\(s\)\n",
+                        result.stderr), result.stderr
 
 
 # ---------------------------------------------------------------- internal errors

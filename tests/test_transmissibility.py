@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
@@ -58,6 +58,8 @@ def test_zero_endpoint_makes_the_segment_zero():
 positive = st.floats(1e-3, 1e2)
 
 
+# scipy's quad per segment takes up to ~50 ms an example: no per-example deadline
+@settings(max_examples=100, deadline=None)
 @given(
     st.lists(st.tuples(st.floats(1, 3000), positive), min_size=2, max_size=6),
     st.lists(st.tuples(st.floats(1, 3000), st.floats(0.05, 3)), min_size=1, max_size=4),
