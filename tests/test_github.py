@@ -182,3 +182,38 @@ def test_select_github_reports_bad_input_as_annotation(write):
                                       "github")
     assert result.exit_code == 2
     assert f"::error file={path},line=4,col=20" in result.stdout
+
+
+def test_sensor_locations_compose_each_file_once(tmp_path: Path,
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    # 300 sensors in one file: their lines come from one compose of the file, with no
+    # per-sensor lookup (that re-parsed the file each time: quadratic, minutes at 2,000)
+    from gyrovib.catalog.loader import CatalogSource
+
+    body = "".join(f"  - id: s{i}\n    coefficients: {{k2: 1.0e-4}}\n" for i in range(300))
+    path = tmp_path / "many.yaml"
+    path.write_text("gyrovib: 1\nsensors:\n" + body)
+    catalog = api.load([path])
+    composed: list[int] = []
+    real_compose = yaml.compose
+
+    def counting_compose(*args: object, **kwargs: object) -> object:
+        composed.append(1)
+        return real_compose(*args, **kwargs)
+
+    monkeypatch.setattr(yaml, "compose", counting_compose)
+    monkeypatch.setattr(CatalogSource, "locate", lambda *a: pytest.fail("per-sensor lookup"))
+    ids = [f"s{i}" for i in range(300)]
+    # sensor i's id is on line 3 + 2·i (two lines per sensor after the two header lines)
+    assert api.sensor_locations(catalog, ids) == [(str(path), 3 + 2 * i) for i in range(300)]
+    assert len(composed) == 1
+    assert api.sensor_locations(catalog, ["nope"]) == [(None, None)]
+
+
+def test_sensor_locations_of_a_merged_id(tmp_path: Path) -> None:
+    # an id that comes only through a merge key is located by the file's own locator
+    path = tmp_path / "merged.yaml"
+    path.write_text("gyrovib: 1\nsensors:\n  - id: a\n    coefficients: {k2: 1.0e-4}\n"
+                    "  - <<: {id: b}\n    coefficients: {}\n")
+    catalog = api.load([path])
+    assert api.sensor_locations(catalog, ["a", "b"]) == [(str(path), 3), (str(path), 5)]

@@ -1,14 +1,16 @@
 """gyrovib: the instrumental vibration error of angular-rate sensors.
 
-The package is layered; each layer imports only the ones below it:
+The package is layered; each layer imports only the ones below it (the
+import-linter contracts of pyproject.toml enforce it; docs/architecture.md):
 
 ``gyrovib.core``
     Pure numpy engines: vibration statistics, the error of eq. (13)-(16), the
     allowable coefficients of eq. (23)/(25) and brute-force averaging.
 ``gyrovib.catalog``
-    The catalogue file format (pydantic models) and the YAML loader.
+    The catalogue file format and the YAML loader (imports no ``core``).
 ``gyrovib.api``
-    Library entry points joining the two: catalogue in, immutable results out.
+    Library entry points joining the two: catalogue in, immutable results out;
+    one module per command on one preparation pipeline.
 ``gyrovib.render``
     Pure functions from results to text (table, json, csv, markdown, ...).
 ``gyrovib.cli``
