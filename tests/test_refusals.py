@@ -78,3 +78,25 @@ def test_empty_output_name(run):
 def test_sweep_limits(run):
     assert "at most 20000" in run("sweep", "--rate-range", "0:1:20001").output
     assert "finite span" in run("sweep", "--rate-range", "-1e308:1e308:3").output
+
+
+def test_a_method_refusal_is_structured_and_located(write):
+    # core's ModelError gives the reason in the model's words; the library places it at the
+    # profile's id (line 5, column 9) and adds the advice, and keeps which profile it was
+    from gyrovib import api
+    from gyrovib.errors import ModelError
+
+    path = write("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k2: 1}\nprofiles:\n"
+                 "  - id: ok\n    random: {rms: [0, 0, 1]}\n"
+                 "  - id: two\n    harmonic: [{frequency: 10, amplitude: [0, 0, 1]},"
+                 " {frequency: 20, amplitude: [0, 0, 1]}]\n")
+    with pytest.raises(ModelError) as info:
+        api.analyze(api.load([path]), method="paper")
+    error = info.value
+    assert error.profile == 1
+    assert error.reason == ("the paper's formulas cover one harmonic tone or purely random "
+                            "vibration, not 2 tones")
+    (problem,) = error.problems
+    assert (problem.file, problem.line, problem.column) == (str(path), 8, 9)
+    assert problem.message == f"profile 'two': {error.reason}; use --method exact, or choose " \
+                              "other profiles with --profile"

@@ -28,7 +28,7 @@ from gyrovib import units
 from gyrovib.api.convert import coefficient_matrix, resolve_rate
 from gyrovib.api.entries import select_entries
 from gyrovib.catalog.loader import Catalog, ProfileEntry, SensorEntry
-from gyrovib.core.analysis import Multipliers, profile_multipliers
+from gyrovib.core.analysis import Multipliers, profile_multipliers, stack_multipliers
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray, Table, as_table
@@ -39,7 +39,8 @@ R = TypeVar("R")
 
 #: Python's and numpy's ways of saying a number left floating-point range.
 FLOAT_FAILURES = (OverflowError, FloatingPointError, ZeroDivisionError)
-_TINY = float(np.finfo(float).tiny)
+#: The smallest positive normal float: below it a share or a bound has lost its digits.
+TINY = float(np.finfo(float).tiny)
 _MULTIPLIER_FIELDS = ("asymmetry", "m2", "m4", "c31", "c32")
 
 
@@ -131,13 +132,6 @@ def nan_multipliers(omega: FloatArray) -> Multipliers:
     return Multipliers(asymmetry=nan, m2=nan, m4=nan, c31=nan, c32=nan, omega=omega.copy())
 
 
-def stack_multipliers(items: Sequence[Multipliers]) -> Multipliers:
-    """Stack per-profile multipliers along a new leading (profile) axis."""
-    return Multipliers(
-        *(np.stack([getattr(m, f) for m in items]) for f in Multipliers.__dataclass_fields__)
-    )
-
-
 # ----------------------------------------------------------------- messages
 
 
@@ -225,7 +219,7 @@ def prepare(
     """
     s_entries, p_entries = select_entries(catalog, sensors, profiles, need=need)
     problems: dict[int, Problem] = {}
-    refusal = False
+    refusal: tuple[int, str] | None = None  # the first refused profile, and why
     coefficients = coefficient_matrix(s_entries)
     _check_sensors(coefficients, s_entries)
     rates = np.array([resolve_rate(p, rate) for p in p_entries], dtype=float).reshape(-1, 3)
@@ -257,7 +251,7 @@ def prepare(
                     m = profile_multipliers(v, w, method)
                 except ModelError as exc:
                     if not tolerate_refusals:
-                        refusal = True
+                        refusal = refusal or (j, exc.reason)
                         problems.setdefault(j, refusal_problem(p, method, exc.reason))
                     group.refused.setdefault(method, {})[j] = exc.reason
                     m = nan_multipliers(np.asarray(w, dtype=float))
@@ -274,7 +268,9 @@ def prepare(
         groups.append(group)
     if problems:
         ordered = [problems[j] for j in sorted(problems)]
-        raise ModelError(ordered) if refusal else RangeError(ordered)
+        if refusal is not None:
+            raise ModelError(ordered, reason=refusal[1], profile=refusal[0])
+        raise RangeError(ordered)
     return Prepared(s_entries, p_entries, coefficients, rates, tuple(groups),
                     rate_given=rate is not None)
 
@@ -294,7 +290,7 @@ def _check_sensors(coefficients: FloatArray, entries: Sequence[SensorEntry]) -> 
 
 
 def check_finite(arrays: Sequence[FloatArray], prepared: Prepared,
-                 exclude: Sequence[int] = ()) -> None:
+                 exclude: Sequence[int] = (), what: str = "the vibration error") -> None:
     """Refuse results that overflowed (absurd amplitudes, rates or coefficients).
 
     Each array is indexed (sensor, profile, ...); the first sensor × profile
@@ -315,7 +311,7 @@ def check_finite(arrays: Sequence[FloatArray], prepared: Prepared,
     i, j = (int(k) for k in np.argwhere(bad)[0])
     count = int(bad.sum())
     more = f" ({count - 1} more sensor/profile pairs too)" if count > 1 else ""
-    raise RangeError(overflow_problem(p_entries[j], "the vibration error", sensor=s_entries[i],
+    raise RangeError(overflow_problem(p_entries[j], what, sensor=s_entries[i],
                                       rate_given=prepared.rate_given, more=more))
 
 
@@ -327,7 +323,7 @@ def check_bounds(stacked: FloatArray, prepared: Prepared) -> None:
     or NaN can only come from a multiplier that overflowed (or a share that
     underflowed), and would read as "no coefficient allowed".
     """
-    ok = np.isposinf(stacked) | (np.isfinite(stacked) & (stacked >= _TINY))
+    ok = np.isposinf(stacked) | (np.isfinite(stacked) & (stacked >= TINY))
     bad: NDArray[np.bool_] = ~np.all(ok.reshape(-1, *stacked.shape[-2:]), axis=0)  # (P, 7)
     if not bad.any():
         return

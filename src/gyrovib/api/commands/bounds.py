@@ -10,7 +10,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import bound_factors
-from gyrovib.api.prepare import check_bounds, float_guard, prepare
+from gyrovib.api.prepare import TINY, check_bounds, float_guard, prepare
 from gyrovib.api.results import BoundsResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
@@ -26,8 +26,6 @@ from gyrovib.core.synthesis import (
     coefficient_bounds,
 )
 from gyrovib.errors import GyrovibError, OptionError
-
-_TINY = float(np.finfo(float).tiny)
 
 
 def _is_default(allocation: Allocation) -> bool:
@@ -83,7 +81,7 @@ def resolve_allocation(
     except ValueError as exc:
         raise OptionError(f"allocation: {exc}") from None
     shares = np.concatenate([constants.alpha, constants.beta, [constants.k3]])
-    if not np.all(shares >= _TINY):
+    if not np.all(shares >= TINY):
         message = (f"the allocation given by {where} makes a share of the budget underflow "
                    f"floating point (smallest share {float(shares.min()):.3g}); keep r, w "
                    "and v within a few hundred orders of magnitude of each other")

@@ -106,7 +106,7 @@ def select(
         values_deg = np.abs(coeffs[:, [COEFFICIENTS.index(c) for c in BOUNDED]])[:, None, :]
         values_deg = np.broadcast_to(values_deg, (n_s, n_p, n_b))
         values, limits_out = values_deg * factors, limits_deg * factors
-        check_finite([values], prepared)
+        check_finite([values], prepared, what=f"a coefficient in {unit}")
         check_bounds(limits_out, prepared)
         check_pass = _at_most(values_deg, limits_deg)
         bounds_pass = np.all(check_pass, axis=-1)
