@@ -46,7 +46,9 @@ def test_select_without_profiles_is_an_error_not_a_pass(run, write):
     assert result.exit_code == 2
     assert "no sensors" in result.output
     # bounds needs only profiles
-    assert run("bounds", profiles_only, "--budget", "1").exit_code == 0
+    result = run("bounds", profiles_only, "--budget", "1", "--format", "csv")
+    assert result.exit_code == 0, result.stderr
+    assert [row.split(",")[0] for row in result.stdout.splitlines()[1:]] == ["p"]
 
 
 def test_unwritable_output_directory(run, tmp_path, monkeypatch):

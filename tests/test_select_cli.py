@@ -324,7 +324,12 @@ def test_paper_with_catalogue_allocation_is_refused(tmp_path: Path) -> None:
     path = write(tmp_path, "allocation: {r: 2.0}\n" + PROFILES)
     result = run("bounds", path, "--budget", "0.01", "--method", "paper")
     assert result.exit_code == 2 and "allocation" in result.stderr
-    assert run("bounds", path, "--budget", "0.01").exit_code == 0
+    exact = run("bounds", path, "--budget", "0.01", "--format", "json")
+    assert exact.exit_code == 0, exact.stderr
+    # the exact method honours the catalogue's r = 2: c_A = 2/√5, α2 = c_A/‖w‖ = 0.8944272/√3.5
+    # = 0.4780914; tone M2 = a²/2 = 2
+    k2 = strict_json(exact.stdout)["profiles"][0]["bounds"]["k2"]
+    assert k2 == pytest.approx(0.4780914 * BUDGET / 2, rel=1e-6)
 
 
 def test_paper_bounds_from_the_command_line(catalog: str) -> None:
