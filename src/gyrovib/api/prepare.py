@@ -155,10 +155,9 @@ def overflow_problem(profile: ProfileEntry, what: str, *, sensor: SensorEntry | 
 
 def refusal_problem(profile: ProfileEntry, method: str, reason: str) -> Problem:
     """A method's refusal of a profile (:class:`ModelError`), worded for the user."""
-    return profile_problem(
-        profile, f"profile {profile.profile.id!r}: {reason}; use --method exact, or choose "
-                 "other profiles with --profile" if method == "paper"
-        else f"profile {profile.profile.id!r}: {reason}")
+    advice = ("; use --method exact, or choose other profiles with --profile"
+              if method == "paper" else "")
+    return profile_problem(profile, f"profile {profile.profile.id!r}: {reason}{advice}")
 
 
 # ----------------------------------------------------------------- the pipeline
