@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import pickle
 
 import numpy as np
 import pytest
@@ -67,6 +68,17 @@ def test_a_replaced_result_is_frozen_too(results: dict[str, object]) -> None:
     stderr = np.zeros(analysis.error.total.shape)  # type: ignore[attr-defined]
     numeric = dataclasses.replace(analysis, method="numeric", stderr=stderr)  # type: ignore[type-var]
     assert not numeric.stderr.flags.writeable
+
+
+@pytest.mark.parametrize("kind", ["analyze", "bounds", "select", "sweep"])
+def test_results_pickle_and_stay_frozen(results: dict[str, object], kind: str) -> None:
+    # results cross process boundaries (multiprocessing) unchanged, and read-only again
+    original = results[kind]
+    copy = pickle.loads(pickle.dumps(original))
+    assert type(copy) is type(original) and repr(copy) == repr(original)
+    for a, b in zip(_arrays(original), _arrays(copy), strict=True):
+        np.testing.assert_array_equal(a, b)
+        assert not b.flags.writeable
 
 
 def test_repr_is_one_short_line(results: dict[str, object]) -> None:

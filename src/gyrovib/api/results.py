@@ -50,6 +50,11 @@ class _Frozen:
     def _shape(self) -> tuple[int, ...]:
         raise NotImplementedError
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as a fresh construction (read-only views do not pickle themselves)."""
+        values = [getattr(self, f.name) for f in dataclasses.fields(self)]  # type: ignore[arg-type]
+        return (type(self), tuple(dict(v) if isinstance(v, Mapping) else v for v in values))
+
     def __repr__(self) -> str:
         method = getattr(self, "method", "exact+paper")
         unit = getattr(self, "unit", "")
