@@ -66,11 +66,6 @@ def invoke(*args: object, input: str | bytes | None = None,
 
 
 @pytest.fixture
-def runner() -> CliRunner:
-    return CliRunner()  # click >= 8.2 keeps stdout and stderr apart
-
-
-@pytest.fixture
 def valid_text() -> str:
     return VALID
 

@@ -201,40 +201,33 @@ def test_unit_conversion_uses_the_same_samples(catalog_path: str) -> None:
     np.testing.assert_allclose(dph.stderr, dps.stderr * 3600.0, rtol=1e-12)
 
 
-def _run(*args: str) -> tuple[int, str, str]:
-    result = invoke(*args)
-    return result.exit_code, result.stdout, result.stderr
-
-
 def test_same_seed_same_json_different_seed_differs(catalog_path: str) -> None:
     base = ("analyze", catalog_path, "--method", "numeric", "--samples", "20000",
             "--format", "json", "--profile", "rms", "--profile", "tone")
-    code1, out1, _ = _run(*base, "--seed", "7")
-    code2, out2, _ = _run(*base, "--seed", "7")
-    code3, out3, _ = _run(*base, "--seed", "8")
-    assert code1 == code2 == code3 == 0
-    assert out1 == out2
-    assert out1 != out3
-    doc = json.loads(out1)
+    one, two, other = (invoke(*base, "--seed", seed) for seed in ("7", "7", "8"))
+    assert one.exit_code == two.exit_code == other.exit_code == 0
+    assert one.stdout == two.stdout
+    assert one.stdout != other.stdout
+    doc = json.loads(one.stdout)
     assert doc["method"] == "numeric"
     assert doc["samples"] == 20000 and doc["seed"] == 7
     row = doc["results"][0]
     assert {"total", "stderr", "additive_terms", "rms", "warnings"} <= set(row)
     # the default seed is fixed, so a run without --seed is reproducible too
-    assert _run(*base)[1] == _run(*base)[1]
+    assert invoke(*base).stdout == invoke(*base).stdout
 
 
 def test_numeric_csv_and_table_show_stderr(catalog_path: str) -> None:
     base = ("analyze", catalog_path, "--method", "numeric", "--samples", "2000",
             "--profile", "rms")
-    code, out, err = _run(*base, "--format", "csv")
-    assert code == 0 and err == ""  # no progress bar when stderr is not a terminal
-    assert out.splitlines()[0].endswith("total,rms,stderr,warnings")
-    code, out, _ = _run(*base)
-    assert code == 0 and "± stderr" in out
+    result = invoke(*base, "--format", "csv")
+    assert result.exit_code == 0 and result.stderr == ""  # no progress bar off a terminal
+    assert result.stdout.splitlines()[0].endswith("total,rms,stderr,warnings")
+    result = invoke(*base)
+    assert result.exit_code == 0 and "± stderr" in result.stdout
 
 
 def test_too_few_samples_is_a_usage_error(catalog_path: str) -> None:
-    code, out, err = _run("analyze", catalog_path, "--method", "numeric", "--samples", "5")
-    assert code == 2 and out == ""
-    assert "--samples" in err and "x>=32" in err
+    result = invoke("analyze", catalog_path, "--method", "numeric", "--samples", "5")
+    assert result.exit_code == 2 and result.stdout == ""
+    assert "--samples" in result.stderr and "x>=32" in result.stderr

@@ -59,11 +59,6 @@ def catalog_path(tmp_path_factory: pytest.TempPathFactory) -> str:
     return str(path)
 
 
-def _run(*args: str) -> tuple[int, str, str]:
-    result = invoke(*args)
-    return result.exit_code, result.stdout, result.stderr
-
-
 @pytest.mark.parametrize("unit", ["deg/s", "rad/s"])
 def test_sweep_equals_analyze_at_each_rate(catalog_path: str, unit: str) -> None:
     """The reference is `analyze --rate R` at the same R (same closed forms, scalar rate)."""
@@ -88,17 +83,18 @@ def test_sweep_equals_analyze_at_each_rate(catalog_path: str, unit: str) -> None
 
 
 def test_sweep_json_equals_analyze_json(catalog_path: str) -> None:
-    code, out, err = _run("sweep", catalog_path, "--rate-range", "-4:4:5", "--format", "json")
-    assert code == 0
-    doc = json.loads(out)
+    result = invoke("sweep", catalog_path, "--rate-range", "-4:4:5", "--format", "json")
+    assert result.exit_code == 0
+    doc = json.loads(result.stdout)
     assert doc["rates"] == [-4.0, -2.0, 0.0, 2.0, 4.0]
     # the note about the paper's refusals is printed once, on stderr
-    assert err.count("paper's columns are empty") == 1
-    assert "tones" in err and "sine-on-random" in err
+    assert result.stderr.count("paper's columns are empty") == 1
+    assert "tones" in result.stderr and "sine-on-random" in result.stderr
     series = {(s["sensor"], s["profile"]): s for s in doc["series"]}
     assert series[("asym", "tones")]["paper"] is None
-    code, out, _ = _run("analyze", catalog_path, "--rate", "2", "--format", "json")
-    for row in json.loads(out)["results"]:
+    result = invoke("analyze", catalog_path, "--rate", "2", "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    for row in json.loads(result.stdout)["results"]:
         s = series[(row["sensor"], row["profile"])]
         assert s["exact"]["total"][3] == pytest.approx(row["total"], rel=1e-12)
         assert s["exact"]["rms"][3] == pytest.approx(row["rms"], rel=1e-12)
@@ -126,10 +122,10 @@ def test_asymmetry_against_paper_for_random(catalog_path: str) -> None:
 
 
 def test_csv_leaves_refused_paper_cells_empty(catalog_path: str) -> None:
-    code, out, _ = _run("sweep", catalog_path, "--rate-range", "0:1:2", "--format", "csv",
-                        "--sensor", "asym")
-    assert code == 0
-    rows = list(csv.DictReader(io.StringIO(out)))
+    result = invoke("sweep", catalog_path, "--rate-range", "0:1:2", "--format", "csv",
+                    "--sensor", "asym")
+    assert result.exit_code == 0
+    rows = list(csv.DictReader(io.StringIO(result.stdout)))
     assert len(rows) == 4 * 2     # profiles × rates
     for row in rows:
         empty = row["profile"] in ("tones", "sine-on-random")
@@ -138,31 +134,31 @@ def test_csv_leaves_refused_paper_cells_empty(catalog_path: str) -> None:
 
 
 def test_table_and_units(catalog_path: str) -> None:
-    code, out, _ = _run("sweep", catalog_path, "--rate-range", "-7200:7200:3", "--unit", "deg/h",
-                        "--profile", "tone", "--sensor", "asym")
-    assert code == 0
-    assert "Ω_K3 (deg/h)" in out and "-7200" in out
+    result = invoke("sweep", catalog_path, "--rate-range", "-7200:7200:3", "--unit", "deg/h",
+                    "--profile", "tone", "--sensor", "asym")
+    assert result.exit_code == 0
+    assert "Ω_K3 (deg/h)" in result.stdout and "-7200" in result.stdout
 
 
 @pytest.mark.parametrize("text", ["1:2", "a:2:3", "0:1:0", "0:1:x", "0:1:2:3"])
 def test_bad_rate_range_is_a_usage_error(catalog_path: str, text: str) -> None:
-    code, out, err = _run("sweep", catalog_path, f"--rate-range={text}")
-    assert code == 2 and out == "" and "--rate-range" in err
+    result = invoke("sweep", catalog_path, f"--rate-range={text}")
+    assert result.exit_code == 2 and result.stdout == "" and "--rate-range" in result.stderr
 
 
 def test_default_range_parses(catalog_path: str) -> None:
-    code, out, _ = _run("sweep", catalog_path, "--format", "json", "--profile", "tone")
-    assert code == 0
-    rates = json.loads(out)["rates"]
+    result = invoke("sweep", catalog_path, "--format", "json", "--profile", "tone")
+    assert result.exit_code == 0
+    rates = json.loads(result.stdout)["rates"]
     assert len(rates) == 401 and rates[0] == -200.0 and rates[-1] == 200.0 and rates[200] == 0.0
 
 
 def test_plot_writes_a_png(catalog_path: str, tmp_path: pytest.TempPathFactory) -> None:
     pytest.importorskip("matplotlib")
     target = tmp_path / "sweep.png"  # type: ignore[operator]
-    code, out, _ = _run("sweep", catalog_path, "--rate-range", "-5:5:101", "--format", "json",
-                        "--plot", str(target), "--budget", "0.01")
-    assert code == 0 and json.loads(out)["budget"] == 0.01
+    result = invoke("sweep", catalog_path, "--rate-range", "-5:5:101", "--format", "json",
+                    "--plot", str(target), "--budget", "0.01")
+    assert result.exit_code == 0 and json.loads(result.stdout)["budget"] == 0.01
     data = target.read_bytes()
     assert data[:8] == b"\x89PNG\r\n\x1a\n"
     assert len(data) > 20_000  # four profiles × two panels of lines: far above an empty PNG
@@ -174,8 +170,8 @@ def test_missing_matplotlib_is_a_clear_error(catalog_path: str, tmp_path: pytest
     monkeypatch.setitem(sys.modules, "matplotlib", None)
     monkeypatch.setitem(sys.modules, "matplotlib.figure", None)
     target = tmp_path / "x.png"  # type: ignore[operator]
-    code, _, err = _run("sweep", catalog_path, "--rate-range", "0:1:2", "--plot", str(target))
-    assert code == 2
-    assert "pip install 'gyrovib[plot]'" in err
-    assert "Traceback" not in err
+    result = invoke("sweep", catalog_path, "--rate-range", "0:1:2", "--plot", str(target))
+    assert result.exit_code == 2
+    assert "pip install 'gyrovib[plot]'" in result.stderr
+    assert "Traceback" not in result.stderr
     assert not target.exists()
