@@ -17,7 +17,7 @@ import zlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import ParamSpec, TypeVar, cast
+from typing import Any, ParamSpec, TypeVar, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -314,6 +314,12 @@ class AnalysisResult:
     samples: int | None = None
     seed: int | None = None
 
+    def to_frame(self) -> Any:
+        """Tidy pandas DataFrame, columns as the JSON keys (:mod:`gyrovib.frames`)."""
+        from gyrovib.frames import to_frame
+
+        return to_frame(self)
+
 
 def _error_arrays(error: VibrationError) -> list[FloatArray]:
     return [error.additive_terms, error.multiplicative_coefficients, error.total, error.rms]
@@ -543,6 +549,12 @@ class SweepResult:
     paper: VibrationError
     paper_refused: dict[str, str] = field(default_factory=dict)
 
+    def to_frame(self) -> Any:
+        """Tidy pandas DataFrame, columns as the JSON keys (:mod:`gyrovib.frames`)."""
+        from gyrovib.frames import to_frame
+
+        return to_frame(self)
+
 
 #: Most rates in one sweep: several tones cost about 10^4 kernel values per rate.
 MAX_SWEEP_POINTS = 20_000
@@ -708,6 +720,12 @@ class BoundsResult:
     bounds: CoefficientBounds
     allocation: AllocationConstants
 
+    def to_frame(self) -> Any:
+        """Tidy pandas DataFrame, columns as the JSON keys (:mod:`gyrovib.frames`)."""
+        from gyrovib.frames import to_frame
+
+        return to_frame(self)
+
 
 def _check_method_budget(method: str, budget: float) -> None:
     if method not in METHODS:
@@ -813,6 +831,12 @@ class SelectionResult:
     limits: dict[int, Limit]
     requirement_met: bool
     allocation: AllocationConstants
+
+    def to_frame(self) -> Any:
+        """Tidy pandas DataFrame, columns as the JSON keys (:mod:`gyrovib.frames`)."""
+        from gyrovib.frames import to_frame
+
+        return to_frame(self)
 
 
 def _at_most(value: FloatArray, bound: FloatArray | float) -> NDArray[np.bool_]:
