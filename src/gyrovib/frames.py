@@ -66,16 +66,16 @@ def _rate_columns(rates: Any, rows: Any) -> dict[str, Any]:
 
 
 def analysis_frame(result: AnalysisResult) -> Any:
-    """``analyze``: one row per sensor × profile, sensors outermost (the JSON's order)."""
+    """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
     import numpy as np
 
     from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 
     n_s, n_p = len(result.sensors), len(result.profiles)
-    s_idx, p_idx = (a.reshape(-1) for a in np.indices((n_s, n_p)))
+    p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
     err = result.error
-    terms = err.additive_terms.reshape(n_s * n_p, -1)
-    qs = err.multiplicative_coefficients.reshape(n_s * n_p, -1)
+    terms = np.asarray(err.additive_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
+    qs = np.asarray(err.multiplicative_coefficients)[s_idx, p_idx].reshape(n_s * n_p, -1)
     columns: dict[str, Any] = {
         "sensor": [result.sensors[i] for i in s_idx],
         "profile": [result.profiles[j] for j in p_idx],
@@ -86,9 +86,9 @@ def analysis_frame(result: AnalysisResult) -> Any:
     columns.update({f"multiplicative_coefficients.{q}": qs[:, k] for k, q in
                     enumerate(MULTIPLICATIVE_TERMS[:qs.shape[1]])})
     for name in ("additive", "multiplicative", "total", "rms"):
-        columns[name] = np.asarray(getattr(err, name)).reshape(-1)
+        columns[name] = np.asarray(getattr(err, name))[s_idx, p_idx]
     if result.stderr is not None:
-        columns["stderr"] = np.asarray(result.stderr).reshape(-1)
+        columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
     columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
                            for i, j in zip(s_idx, p_idx, strict=True)]
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
@@ -160,11 +160,14 @@ def selection_frame(result: SelectionResult) -> Any:
 
 
 def sweep_frame(result: SweepResult) -> Any:
-    """``sweep``: one row per sensor × profile × rate Ω_K3 (``rate``), exact and paper."""
+    """``sweep``: one row per sensor × profile × rate Ω_K3 (``rate``), exact and paper.
+
+    Rows in the JSON's order: profiles outermost, then sensors, then rates.
+    """
     import numpy as np
 
     n_s, n_p, n_r = len(result.sensors), len(result.profiles), len(result.rates)
-    s_idx, p_idx, r_idx = (a.reshape(-1) for a in np.indices((n_s, n_p, n_r)))
+    p_idx, s_idx, r_idx = (a.reshape(-1) for a in np.indices((n_p, n_s, n_r)))
     columns: dict[str, Any] = {
         "sensor": [result.sensors[i] for i in s_idx],
         "profile": [result.profiles[j] for j in p_idx],
@@ -173,7 +176,7 @@ def sweep_frame(result: SweepResult) -> Any:
     for method in ("exact", "paper"):
         err = getattr(result, method)
         for name in ("total", "rms"):
-            columns[f"{method}.{name}"] = np.asarray(getattr(err, name)).reshape(-1)
+            columns[f"{method}.{name}"] = np.asarray(getattr(err, name))[s_idx, p_idx, r_idx]
     return _frame(columns, {"method": "exact", "unit": result.unit,
                             "methods": ["exact", "paper"],
                             "paper_refused": dict(result.paper_refused)})
