@@ -60,7 +60,7 @@ svg .mr { font-size: 10px; fill: #b00; text-anchor: end; }
 svg .frame { fill: none; stroke: #999; } svg .grid { stroke: #e8e8e8; }
 svg .ref { stroke: #b00; stroke-width: 1.5; stroke-dasharray: 5 3; }
 svg .tone { stroke: #555; stroke-width: 1.2; stroke-dasharray: 2 2; }
-nav ol { columns: 2; font-size: 13px; } .notes { color: var(--muted); font-style: italic; }
+nav ol { columns: 3; font-size: 13px; margin: 4px 0; } .notes { color: var(--muted); font-style: italic; }
 ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-style: none; }
 @page { size: A4; margin: 12mm; }
 @media print {
@@ -217,6 +217,15 @@ def margins_chart(study: TradeStudy, j: int) -> str:
                      Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
 
 
+def worst_margin_chart(study: TradeStudy) -> str:
+    s = study.selection
+    fills = [PASS_FILL if s.sensor_pass[i] else FAIL_FILL for i in range(len(s.sensors))]
+    return bar_chart("Worst margin Δ*/Δ_V(RMS) over the profiles, per sensor",
+                     "margin (log); green: passes under every profile, red: fails somewhere",
+                     s.sensors, [float(v) for v in s.worst_margin], fills,
+                     Marker("margin 1", x=1.0))
+
+
 def breakdown_chart(study: TradeStudy, j: int, squares: np.ndarray, names: Sequence[str]) -> str:
     a = study.analysis
     return share_chart(f"Error by term (eq. 16): {a.profiles[j]}", a.sensors, names,
@@ -332,7 +341,8 @@ def to_html(study: TradeStudy) -> str:
         "<h2>Pass/fail matrix</h2>",
         "<p>Each cell: ✓ pass / ✗ fail under the criterion, the margin Δ*/Δ_V(RMS) (above 1: "
         "the RMS error is within the budget) and the term that dominates Δ_V(RMS)².</p>",
-        _matrix(study, squares, names), _warnings(study),
+        _matrix(study, squares, names),
+        f'<div class="charts">{_figure(worst_margin_chart(study))}</div>', _warnings(study),
         "<h2>Passing sensors, ranked</h2>", _ranking(study),
         "<h2>Failing sensors: what limits them</h2>", _failing(study),
         "<h2>Profiles</h2>",

@@ -231,38 +231,41 @@ def bar_chart(title: str, xlabel: str, names: Sequence[str], values: Sequence[fl
               fills: Sequence[str], reference: Marker | None = None) -> str:
     """Horizontal bars on a log axis (one per name), with an optional vertical reference."""
     row = 18
-    height = TOP + BOTTOM + row * max(len(names), 1)
+    top = TOP + 12  # room for the reference label under the title
+    height = top + BOTTOM + row * max(len(names), 1)
     xs = [*values, *([reference.x] if reference and reference.x is not None else [])]
     xr = extent(xs, True)
     out = _open(title, height)
     if xr is None:
-        out.append(f'<text x="{LEFT + 10}" y="{TOP + 30}" class="lg">no value to plot</text>'
+        out.append(f'<text x="{LEFT + 10}" y="{top + 30}" class="lg">no value to plot</text>'
                    "</svg>")
         return "\n".join(out)
     left = 170
     x = Scale(*xr, left, WIDTH - 40, True)
     bottom = height - BOTTOM
-    out.append(f'<rect x="{left}" y="{TOP}" width="{WIDTH - 40 - left}" '
-               f'height="{bottom - TOP}" class="frame"/>')
+    out.append(f'<rect x="{left}" y="{top}" width="{WIDTH - 40 - left}" '
+               f'height="{bottom - top}" class="frame"/>')
     for t in x.ticks():
         px = x(t)
-        out.append(f'<line x1="{px:.1f}" y1="{TOP}" x2="{px:.1f}" y2="{bottom}" class="grid"/>')
+        out.append(f'<line x1="{px:.1f}" y1="{top}" x2="{px:.1f}" y2="{bottom}" class="grid"/>')
         out.append(f'<text x="{px:.1f}" y="{bottom + 14}" class="tx">{escape(label(t))}</text>')
     for k, (name, value, fill) in enumerate(zip(names, values, fills, strict=True)):
-        y = TOP + row * k
+        y = top + row * k
         text = name if len(name) <= 24 else name[:23] + "…"
         out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">{escape(text)}</text>')
-        if math.isfinite(value) and value > 0:
-            end = min(max(x(value), left), WIDTH - 40)
+        if value > 0:
+            end = min(max(x(value), left), WIDTH - 40) if math.isfinite(value) else WIDTH - 40
             out.append(f'<rect x="{left}" y="{y + 3}" width="{end - left:.1f}" height="{row - 6}" '
                        f'fill="{fill}"/>')
+            if not math.isfinite(value):
+                out.append(f'<text x="{end - 4}" y="{y + 13}" class="ty">∞</text>')
         else:
             out.append(f'<text x="{left + 4}" y="{y + 13}" class="lg">0</text>')
     if reference is not None and reference.x is not None:
         px = x(reference.x)
-        out.append(f'<line x1="{px:.1f}" y1="{TOP - 4}" x2="{px:.1f}" y2="{bottom}" '
+        out.append(f'<line x1="{px:.1f}" y1="{top - 4}" x2="{px:.1f}" y2="{bottom}" '
                    f'class="{reference.style}"/>')
-        out.append(f'<text x="{px + 3:.1f}" y="{TOP - 6}" class="ml">'
+        out.append(f'<text x="{px + 3:.1f}" y="{top - 6}" class="ml">'
                    f'{escape(reference.label)}</text>')
     out.append(f'<text x="{(left + WIDTH - 40) / 2:.0f}" y="{height - 6}" class="xl">'
                f'{escape(xlabel)}</text>')
