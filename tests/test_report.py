@@ -96,8 +96,9 @@ def test_report_of_the_bundled_catalogues(tmp_path, monkeypatch):
     catalog = api.load()
     for entry in catalog.sensors:
         assert f"<b>{entry.sensor.id}</b>" in html
-    for entry in catalog.profiles:
-        assert f'<section class="profile" id="p' in html and entry.profile.id in html
+    for j, entry in enumerate(catalog.profiles):
+        assert f'<section class="profile" id="p{j}"><div class="profile-head"><h3>' \
+               f"{entry.profile.id}" in html
     # per profile: margins, breakdown, sweep and at least a spectrum or "no vibration"
     assert html.count("<svg") >= 4 * len(catalog.profiles)
 

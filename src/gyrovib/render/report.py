@@ -60,7 +60,8 @@ svg .mr { font-size: 10px; fill: #b00; text-anchor: end; }
 svg .frame { fill: none; stroke: #999; } svg .grid { stroke: #e8e8e8; }
 svg .ref { stroke: #b00; stroke-width: 1.5; stroke-dasharray: 5 3; }
 svg .tone { stroke: #555; stroke-width: 1.2; stroke-dasharray: 2 2; }
-nav ol { columns: 3; font-size: 13px; margin: 4px 0; } .notes { color: var(--muted); font-style: italic; }
+nav ol { columns: 3; font-size: 13px; margin: 4px 0; }
+.notes { color: var(--muted); font-style: italic; }
 ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-style: none; }
 @page { size: A4; margin: 12mm; }
 @media print {
