@@ -77,6 +77,7 @@ def test_report_is_self_contained_and_escaped(catalog_file, tmp_path):
     # "awful" is limited by A1 under the tone, and saturates (range 1 < 0.5 + 2.0 + 0).
     assert "A1: |A1| = 0.5 is" in html and "under tone" in html
     assert "exceeds the sensor&#x27;s range" in html
+    assert 'class="num fail warn" title="' in html  # the saturated cell is marked ⚠
     for chart in re.findall(r"<svg.*?</svg>", html, flags=re.S):
         ET.fromstring(chart)  # every chart is well-formed XML
 
@@ -150,3 +151,12 @@ def test_report_html_of_a_study_is_deterministic(catalog_file):
     a = to_html(trade_study(api.load([catalog_file]), budget=0.01, created=when))
     b = to_html(trade_study(api.load([catalog_file]), budget=0.01, created=when))
     assert a == b and "2026-01-02 03:04:05 UTC" in a
+
+
+def test_sensor_forms_are_shown(valid_file, tmp_path):
+    """conftest's mems-a is given by output coefficients (eq. 1), fog-a by coefficients."""
+    study = trade_study(api.load([valid_file]), budget=0.01)
+    assert study.sensor_forms == ("coefficients", "output coefficients")
+    html = to_html(study)
+    assert "<b>mems-a</b><br><span class=\"small\">from output coefficients (eq. 1)" in html
+    assert "<b>fog-a</b></td>" in html

@@ -66,6 +66,9 @@ class TradeStudy:
     spectra: tuple[Spectrum, ...]
     files: tuple[InputFile, ...]
     sensor_names: tuple[str | None, ...]
+    #: How each sensor is given: "coefficients", "output coefficients" or
+    #: "datasheet" (the spec form, whose results are worst-case bounds).
+    sensor_forms: tuple[str, ...]
     version: str
     created: str
 
@@ -102,6 +105,15 @@ def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
         mount = (tuple(float(a) for a, _ in p.mount), tuple(float(b) for _, b in p.mount))
     return Spectrum(profile=p.id, name=p.name, notes=p.notes, psd=tuple(psd), tones=tones,
                     rms=rms, mount=mount)
+
+
+def sensor_form(sensor: object) -> str:
+    """``"datasheet"`` for a sensor given by its specs, else which coefficients it gives."""
+    if getattr(sensor, "specs", None) is not None:
+        return "datasheet"
+    if getattr(sensor, "output_coefficients", None) is not None:
+        return "output coefficients"
+    return "coefficients"
 
 
 def envelope(catalog: Catalog, profiles: Sequence[str], rate: Sequence[float] | None) -> float:
@@ -156,6 +168,7 @@ def trade_study(
         spectra=tuple(spectrum(p, unit) for p in p_entries),
         files=tuple(file_digest(s.name, s.text) for s in catalog.sources),
         sensor_names=tuple(e.sensor.name for e in s_entries),
+        sensor_forms=tuple(sensor_form(e.sensor) for e in s_entries),
         version=__version__,
         created=when.strftime("%Y-%m-%d %H:%M:%S UTC"),
     )

@@ -26,6 +26,8 @@ from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash
 from gyrovib.study import Spectrum, TradeStudy
 
 PASS_FILL, FAIL_FILL = "#2ca02c", "#d62728"
+FORM_TAGS = {"datasheet": "datasheet (spec form): worst case",
+             "output coefficients": "from output coefficients (eq. 1)"}
 SUPERSCRIPT = {1: "", 2: "²", 3: "³", 4: "⁴", 5: "⁵"}
 
 CSS = """
@@ -151,7 +153,10 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
     rows = []
     for i, sensor in enumerate(s.sensors):
         overall = "pass" if s.sensor_pass[i] else "fail"
-        cells = [f"<td><b>{_e(sensor)}</b></td>",
+        form = study.sensor_forms[i]
+        tag = f'<br><span class="small">{_e(FORM_TAGS.get(form, form))}</span>' if (
+            form != "coefficients") else ""
+        cells = [f"<td><b>{_e(sensor)}</b>{tag}</td>",
                  f'<td class="{overall}">{"✓ pass" if s.sensor_pass[i] else "✗ fail"}</td>']
         for j in range(len(s.profiles)):
             ok = bool(s.passed[i, j])
@@ -176,11 +181,12 @@ def _ranking(study: TradeStudy) -> str:
     for rank, i in enumerate(passing, 1):
         j = int(np.argmin(s.margin[i])) if len(s.profiles) else 0
         name = study.sensor_names[i] or ""
-        rows.append([str(rank), s.sensors[i], name, fmt(s.worst_margin[i], 3),
+        rows.append([str(rank), s.sensors[i], name, study.sensor_forms[i],
+                     fmt(s.worst_margin[i], 3),
                      s.profiles[j] if len(s.profiles) else "",
                      f"{fmt(s.rms[i, j])} {s.unit}" if len(s.profiles) else ""])
-    return _table(["rank", "sensor", "name", "worst margin Δ*/Δ_V(RMS)", "under profile",
-                   "Δ_V(RMS) there"], rows)
+    return _table(["rank", "sensor", "name", "given as", "worst margin Δ*/Δ_V(RMS)",
+                   "under profile", "Δ_V(RMS) there"], rows)
 
 
 def _failing(study: TradeStudy) -> str:
