@@ -160,3 +160,26 @@ def test_sensor_forms_are_shown(valid_file, tmp_path):
     html = to_html(study)
     assert "<b>mems-a</b><br><span class=\"small\">from output coefficients (eq. 1)" in html
     assert "<b>fog-a</b></td>" in html
+
+
+def test_rate_range_option(catalog_file, tmp_path, monkeypatch):
+    bad = run("report", catalog_file, "--budget", "0.01", "--rate-range", "1:2",
+              "-o", tmp_path / "r.html")
+    assert bad.exit_code == 2 and "START:STOP:COUNT" in bad.stderr
+    import gyrovib.study
+
+    seen = {}
+    real = gyrovib.study.trade_study
+
+    def spy(*args, **kwargs):
+        seen.update(kwargs)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(gyrovib.study, "trade_study", spy)
+    good = run("report", catalog_file, "--budget", "0.01", "--unit", "deg/h",
+               "--rate-range", "-3deg/s:3deg/s:7", "-o", tmp_path / "r.html")
+    assert good.exit_code == 0
+    # 7 rates from -3 to 3 deg/s, passed on in deg/s (the library's unit)
+    assert list(seen["sweep_rates"]) == [-3.0, -2.0, -1.0, 0.0, 1.0, 2.0, 3.0]
+    # "0.01" is read in --unit: 0.01 deg/h = 0.01/3600 deg/s
+    assert seen["budget"] == pytest.approx(0.01 / 3600, rel=1e-12)
