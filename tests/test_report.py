@@ -11,6 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gyrovib import api
 from gyrovib.cli.main import cli
@@ -183,3 +185,18 @@ def test_rate_range_option(catalog_file, tmp_path, monkeypatch):
     assert list(seen["sweep_rates"]) == [-3.0, -2.0, -1.0, 0.0, 1.0, 2.0, 3.0]
     # "0.01" is read in --unit: 0.01 deg/h = 0.01/3600 deg/s
     assert seen["budget"] == pytest.approx(0.01 / 3600, rel=1e-12)
+
+
+positive = st.floats(min_value=1e-300, max_value=1e300, allow_nan=False, allow_infinity=False)
+
+
+@settings(deadline=None, max_examples=200)
+@given(st.lists(positive, min_size=1, max_size=20), st.booleans())
+def test_every_plotted_value_lies_inside_the_axes(values, log):
+    """extent() pads, never clips; the Scale puts lo at start, hi at stop, ticks inside."""
+    lo, hi = svg.extent(values, log)
+    scale = svg.Scale(lo, hi, 100.0, 500.0, log)
+    for v in values:
+        assert 100.0 - 1e-6 <= scale(v) <= 500.0 + 1e-6
+    assert scale(lo) == pytest.approx(100.0) and scale(hi) == pytest.approx(500.0)
+    assert all(lo * (1 - 1e-9) <= t <= hi * (1 + 1e-9) for t in scale.ticks() if log)

@@ -88,16 +88,16 @@ def extent(values: Sequence[float], log: bool) -> tuple[float, float] | None:
     if not kept:
         return None
     lo, hi = min(kept), max(kept)
-    if log:
-        if hi / lo < 10:
-            mid = math.sqrt(lo * hi)
-            lo, hi = mid / math.sqrt(10), mid * math.sqrt(10)
-        first, last = math.floor(math.log10(lo)), math.ceil(math.log10(hi))
+    if log:  # whole decades, at least one; in log space so that 1e-300..1e300 works
+        a, b = math.log10(lo), math.log10(hi)
+        if b - a < 1:
+            a, b = (a + b) / 2 - 0.5, (a + b) / 2 + 0.5
+        first, last = max(math.floor(a), -307), min(math.ceil(b), 308)
         return 10.0 ** first, 10.0 ** last
     if hi == lo:
         pad = abs(lo) * 0.1 or 1.0
         return lo - pad, hi + pad
-    pad = (hi - lo) * 0.05
+    pad = hi * 0.05 - lo * 0.05
     return lo - pad, hi + pad
 
 
