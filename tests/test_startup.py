@@ -44,7 +44,7 @@ def imported_modules(template: str, args: list[str]) -> list[str]:
 
 @pytest.mark.parametrize("template", [VIA_CLI, VIA_MODULE], ids=["cli.main", "python -m"])
 @pytest.mark.parametrize("args", [["--help"], ["--version"], ["analyze", "--help"],
-                                  ["select", "--help"]])
+                                  ["select", "--help"], ["report", "--help"]])
 def test_help_and_version_import_no_heavy_module(template, args):
     modules = imported_modules(template, args)
     assert "click" in modules  # the probe works

@@ -17,9 +17,33 @@ import-linter contracts of pyproject.toml enforce it; docs/architecture.md):
     The ``gyrovib`` command.
 
 Importing :mod:`gyrovib` itself is cheap: numpy, pydantic and rich are only
-imported by the modules that need them.
+imported by the modules that need them. The notebook API (:mod:`gyrovib.notebook`)
+is reached from here, lazily:
+
+>>> import gyrovib
+>>> result = gyrovib.select(budget="10deg/h")            # doctest: +SKIP
+>>> result.to_frame()                                     # doctest: +SKIP
 """
+
+from typing import Any
 
 from gyrovib._version import __version__
 
-__all__ = ["__version__"]
+_NOTEBOOK = ("load", "analyze", "bounds", "select", "sweep")
+
+__all__ = ["__version__", *_NOTEBOOK]
+
+
+def __getattr__(name: str) -> Any:
+    """``gyrovib.load`` & co.: import :mod:`gyrovib.notebook` on first use."""
+    if name in _NOTEBOOK:
+        from gyrovib import notebook
+
+        value = getattr(notebook, name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'gyrovib' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_NOTEBOOK})

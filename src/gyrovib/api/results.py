@@ -55,6 +55,12 @@ class _Frozen:
         values = [getattr(self, f.name) for f in dataclasses.fields(self)]  # type: ignore[arg-type]
         return (type(self), tuple(dict(v) if isinstance(v, Mapping) else v for v in values))
 
+    def to_frame(self) -> Any:
+        """Tidy pandas DataFrame, columns named as the JSON keys (:mod:`gyrovib.api.frames`)."""
+        from gyrovib.api.frames import to_frame
+
+        return to_frame(self)
+
     def __repr__(self) -> str:
         method = getattr(self, "method", "exact+paper")
         unit = getattr(self, "unit", "")

@@ -113,12 +113,13 @@ def _register() -> None:
     # Each command lives in its own module; they import only click at import time.
     from gyrovib.cli.analyze import analyze
     from gyrovib.cli.bounds import bounds
+    from gyrovib.cli.report import report
     from gyrovib.cli.schema import schema
     from gyrovib.cli.select import select
     from gyrovib.cli.sweep import sweep
     from gyrovib.cli.validate import validate
 
-    for command in (analyze, bounds, select, sweep, validate, schema):
+    for command in (analyze, bounds, select, sweep, report, validate, schema):
         cli.add_command(command)
 
 

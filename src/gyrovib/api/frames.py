@@ -1,0 +1,194 @@
+"""Results as tidy pandas DataFrames (optional extra ``gyrovib[pandas]``).
+
+Each function takes a result of :mod:`gyrovib.api` and returns one row per
+observation, with the columns named as the keys of the command's
+``--format json`` output (docs/output.md); nested keys are flattened with a
+dot (``additive_terms.k2``, ``checks.k3.bound``, ``exact.rms``):
+
+==========================  =================================================
+result                      one row per
+==========================  =================================================
+``AnalysisResult``          sensor × profile (``analyze``)
+``BoundsResult``            profile (``bounds``)
+``SelectionResult``         sensor × profile (``select``)
+``SweepResult``             sensor × profile × rate (``sweep``)
+==========================  =================================================
+
+The JSON ``rate`` list Ω_K is split into ``rate.x1``, ``rate.x2``,
+``rate.x3``. Where the JSON writes ``null`` for an unbounded number (a bound
+or a margin that is +inf), the frame keeps the float: ``inf``; the paper's
+values for a profile the paper's formulas do not cover are ``NaN``. The
+JSON's document-level fields (tool, version, method, unit, budget, ...) are
+in ``frame.attrs``. Term names are taken from the result's term tuples, so a
+new term appears as a new column without changes here.
+
+pandas is imported when a frame is built, never at ``import gyrovib``; when it
+is missing the error names the extra to install.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from gyrovib._version import __version__
+from gyrovib.errors import GyrovibError
+
+if TYPE_CHECKING:
+    from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
+
+MISSING_PANDAS = "DataFrames need pandas, which is not installed: pip install 'gyrovib[pandas]'"
+
+AXES = ("x1", "x2", "x3")
+
+
+class MissingDependency(GyrovibError, ImportError):
+    """An optional dependency is not installed (the message names the extra)."""
+
+
+def _pandas() -> Any:
+    try:
+        import pandas
+    except ImportError:
+        raise MissingDependency(MISSING_PANDAS) from None
+    return pandas
+
+
+def _frame(columns: dict[str, Any], attrs: dict[str, Any]) -> Any:
+    frame = _pandas().DataFrame(columns)
+    frame.attrs.update({"tool": "gyrovib", "version": __version__, **attrs})
+    return frame
+
+
+def _rate_columns(rates: Any, rows: Any) -> dict[str, Any]:
+    """``rate.x1..x3`` of Ω_K per profile (``rates`` (profiles, 3)), taken at ``rows``."""
+    return {f"rate.{axis}": rates[rows, k] for k, axis in enumerate(AXES)}
+
+
+def analysis_frame(result: AnalysisResult) -> Any:
+    """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
+    import numpy as np
+
+    from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+
+    n_s, n_p = len(result.sensors), len(result.profiles)
+    p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
+    err = result.error
+    terms = np.asarray(err.additive_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
+    qs = np.asarray(err.multiplicative_coefficients)[s_idx, p_idx].reshape(n_s * n_p, -1)
+    columns: dict[str, Any] = {
+        "sensor": [result.sensors[i] for i in s_idx],
+        "profile": [result.profiles[j] for j in p_idx],
+        **_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx),
+    }
+    columns.update({f"additive_terms.{t}": terms[:, k] for k, t in
+                    enumerate(ADDITIVE_TERMS[:terms.shape[1]])})
+    columns.update({f"multiplicative_coefficients.{q}": qs[:, k] for k, q in
+                    enumerate(MULTIPLICATIVE_TERMS[:qs.shape[1]])})
+    for name in ("additive", "multiplicative", "total", "rms"):
+        columns[name] = np.asarray(getattr(err, name))[s_idx, p_idx]
+    if result.stderr is not None:
+        columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
+    columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
+                           for i, j in zip(s_idx, p_idx, strict=True)]
+    attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
+    if result.samples is not None:
+        attrs.update(samples=result.samples, seed=result.seed)
+    return _frame(columns, attrs)
+
+
+def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
+    import numpy as np
+
+    from gyrovib.core.synthesis import BOUNDED, PARTS
+
+    out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
+    out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in PARTS})
+    return out
+
+
+def bounds_frame(result: BoundsResult) -> Any:
+    """``bounds``: one row per profile; an unconstrained bound is ``inf``."""
+    import numpy as np
+
+    rows = np.arange(len(result.profiles))
+    columns: dict[str, Any] = {
+        "profile": list(result.profiles),
+        **_rate_columns(np.asarray(result.rates).reshape(-1, 3), rows),
+        **_bounds_columns(result.bounds, rows),
+    }
+    return _frame(columns, {"method": result.method, "unit": result.unit,
+                            "budget": result.budget})
+
+
+def selection_frame(result: SelectionResult) -> Any:
+    """``select``: one row per sensor × profile.
+
+    ``pass``, ``rms``, ``margin`` and ``checks.<coefficient>.value|bound|pass``
+    are the JSON's per-profile cell; ``sensor_pass`` is the sensor's overall
+    ``pass``; ``rate.*`` and ``profile_bounds.*`` are the profile's entry of the
+    JSON's ``profiles`` list (its bounds for ν_sensor = 1).
+    """
+    import numpy as np
+
+    from gyrovib.core.synthesis import BOUNDED
+
+    n_s, n_p = len(result.sensors), len(result.profiles)
+    s_idx, p_idx = (a.reshape(-1) for a in np.indices((n_s, n_p)))
+    columns: dict[str, Any] = {
+        "sensor": [result.sensors[i] for i in s_idx],
+        "profile": [result.profiles[j] for j in p_idx],
+        "sensor_pass": np.asarray(result.sensor_pass, dtype=bool)[s_idx],
+        "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
+        "rms": np.asarray(result.rms).reshape(-1),
+        "margin": np.asarray(result.margin).reshape(-1),
+    }
+    values = np.asarray(result.values).reshape(n_s * n_p, -1)
+    bounds = np.asarray(result.bounds).reshape(n_s * n_p, -1)
+    checks = np.asarray(result.check_pass, dtype=bool).reshape(n_s * n_p, -1)
+    for b, name in enumerate(BOUNDED):
+        columns[f"checks.{name}.value"] = values[:, b]
+        columns[f"checks.{name}.bound"] = bounds[:, b]
+        columns[f"checks.{name}.pass"] = checks[:, b]
+    columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
+    for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
+        columns[f"profile_{key}"] = column
+    return _frame(columns, {"method": result.method, "unit": result.unit,
+                            "budget": result.budget, "criterion": result.criterion,
+                            "require": result.require,
+                            "requirement_met": result.requirement_met})
+
+
+def sweep_frame(result: SweepResult) -> Any:
+    """``sweep``: one row per sensor × profile × rate Ω_K3 (``rate``), exact and paper.
+
+    Rows in the JSON's order: profiles outermost, then sensors, then rates.
+    """
+    import numpy as np
+
+    n_s, n_p, n_r = len(result.sensors), len(result.profiles), len(result.rates)
+    p_idx, s_idx, r_idx = (a.reshape(-1) for a in np.indices((n_p, n_s, n_r)))
+    columns: dict[str, Any] = {
+        "sensor": [result.sensors[i] for i in s_idx],
+        "profile": [result.profiles[j] for j in p_idx],
+        "rate": np.asarray(result.rates)[r_idx],
+    }
+    for method in ("exact", "paper"):
+        err = getattr(result, method)
+        for name in ("total", "rms"):
+            columns[f"{method}.{name}"] = np.asarray(getattr(err, name))[s_idx, p_idx, r_idx]
+    return _frame(columns, {"method": "exact", "unit": result.unit,
+                            "methods": ["exact", "paper"],
+                            "paper_refused": dict(result.paper_refused)})
+
+
+def to_frame(result: Any) -> Any:
+    """The tidy DataFrame of any result of :mod:`gyrovib.api` (dispatch on its type)."""
+    builders: dict[str, Callable[[Any], Any]] = {
+        "AnalysisResult": analysis_frame, "BoundsResult": bounds_frame,
+        "SelectionResult": selection_frame, "SweepResult": sweep_frame,
+    }
+    builder = builders.get(type(result).__name__)
+    if builder is None:
+        raise TypeError(f"no DataFrame form for {type(result).__name__}")
+    return builder(result)

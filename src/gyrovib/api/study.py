@@ -1,0 +1,174 @@
+"""A trade study: everything ``gyrovib report`` shows, gathered in one call.
+
+One selection (:func:`gyrovib.api.select`) together with what explains it:
+the error of every sensor × profile broken down by term
+(:func:`gyrovib.api.analyze`, same method), the error over the rate envelope
+(:func:`gyrovib.api.sweep`), each profile's spectrum in the output unit, and
+the inputs that make the study reproducible (each catalogue file with its
+SHA-256, the gyrovib version, the time). This module sits beside
+:mod:`gyrovib.api` and uses only its public functions.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from gyrovib import api, units
+from gyrovib._version import __version__
+from gyrovib.catalog.loader import Catalog, ProfileEntry
+from gyrovib.catalog.records import Allocation
+from gyrovib.core.transmissibility import FloatArray
+
+#: Points of the default rate sweep (odd: Ω_K3 = 0 is one of them).
+SWEEP_POINTS = 241
+#: The default sweep reaches this multiple of the largest |Ω_K3| + vibration peak.
+ENVELOPE_FACTOR = 1.5
+
+
+@dataclass(frozen=True)
+class InputFile:
+    """A catalogue file as read: its name as given, SHA-256 of its bytes, size."""
+
+    name: str
+    sha256: str
+    size: int
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """A profile's vibration as the catalogue gives it, in the study's unit.
+
+    ``psd``: (axis, frequencies Hz, PSD unit²/Hz) per axis given; ``tones``:
+    (frequency Hz, amplitudes about x1, x2, x3); ``rms``: the random part given
+    as σ per axis instead of a PSD; ``mount``: the isolation mount's ν(f).
+    """
+
+    profile: str
+    name: str | None
+    notes: str | None
+    psd: tuple[tuple[str, tuple[float, ...], tuple[float, ...]], ...]
+    tones: tuple[tuple[float, tuple[float, float, float]], ...]
+    rms: tuple[float, float, float] | None
+    mount: tuple[tuple[float, ...], tuple[float, ...]] | None
+
+
+@dataclass(frozen=True)
+class TradeStudy:
+    """A selection with its explanation and its inputs (see the module docstring)."""
+
+    selection: api.SelectionResult
+    analysis: api.AnalysisResult
+    sweep: api.SweepResult
+    spectra: tuple[Spectrum, ...]
+    files: tuple[InputFile, ...]
+    sensor_names: tuple[str | None, ...]
+    #: How each sensor is given: "coefficients", "output coefficients" or
+    #: "datasheet" (the spec form, whose results are worst-case bounds).
+    sensor_forms: tuple[str, ...]
+    version: str
+    created: str
+
+
+def file_digest(name: str, text: str) -> InputFile:
+    """SHA-256 of the file's bytes on disk (of its text as UTF-8 when it cannot be read)."""
+    try:
+        data = Path(name).read_bytes()
+    except OSError:
+        data = text.encode("utf-8")
+    return InputFile(name=name, sha256=hashlib.sha256(data).hexdigest(), size=len(data))
+
+
+def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
+    """The profile's PSD, tones and mount with rates converted to ``unit``."""
+    p = entry.profile
+    f = units.scale(entry.unit) / units.scale(unit)
+    psd: list[tuple[str, tuple[float, ...], tuple[float, ...]]] = []
+    rms = None
+    if p.random is not None:
+        if p.random.psd is not None:
+            for axis in ("x1", "x2", "x3"):
+                table = getattr(p.random.psd, axis)
+                if table is not None:
+                    psd.append((axis, tuple(float(a) for a, _ in table),
+                                tuple(float(b) * f * f for _, b in table)))
+        elif p.random.rms is not None:
+            a, b, c = (float(v) * f for v in p.random.rms)
+            rms = (a, b, c)
+    tones = tuple((float(t.frequency), (float(t.amplitude[0]) * f, float(t.amplitude[1]) * f,
+                                        float(t.amplitude[2]) * f)) for t in p.harmonic)
+    mount = None
+    if p.mount is not None:
+        mount = (tuple(float(a) for a, _ in p.mount), tuple(float(b) for _, b in p.mount))
+    return Spectrum(profile=p.id, name=p.name, notes=p.notes, psd=tuple(psd), tones=tones,
+                    rms=rms, mount=mount)
+
+
+def sensor_form(sensor: object) -> str:
+    """``"datasheet"`` for a sensor given by its specs, else which coefficients it gives."""
+    if getattr(sensor, "specs", None) is not None:
+        return "datasheet"
+    if getattr(sensor, "output_coefficients", None) is not None:
+        return "output coefficients"
+    return "coefficients"
+
+
+def envelope(catalog: Catalog, profiles: Sequence[str], rate: Sequence[float] | None) -> float:
+    """Half-width of the default sweep in deg/s: ENVELOPE_FACTOR × max(|Ω_K3| + peak).
+
+    The peak is Σ tone amplitudes + 3σ of x3 (the saturation check's); 1 deg/s
+    when every profile is still and without vibration.
+    """
+    _, p_entries = api.select_entries(catalog, (), profiles, need=("profiles",))
+    reach = [abs(float(api.resolve_rate(p, rate)[2]))
+             + api.vibration_peak(api.profile_vibration(p)) for p in p_entries]
+    widest = max(reach, default=0.0)
+    return ENVELOPE_FACTOR * widest if widest > 0 else 1.0
+
+
+def trade_study(
+    catalog: Catalog,
+    *,
+    budget: float,
+    sensors: Sequence[str] = (),
+    profiles: Sequence[str] = (),
+    method: str = "exact",
+    rate: Sequence[float] | None = None,
+    unit: str = "deg/s",
+    criterion: str = "bounds",
+    require: str = "any",
+    allocation: Allocation | Sequence[float] | None = None,
+    sweep_rates: Sequence[float] | FloatArray | None = None,
+    created: _dt.datetime | None = None,
+) -> TradeStudy:
+    """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
+
+    ``sweep_rates`` default: :data:`SWEEP_POINTS` rates over ±:func:`envelope`.
+    ``created`` (default: now, UTC) is stamped on the study.
+    """
+    unit = units.canonical_unit(unit)
+    selection = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
+                           rate=rate, budget=budget, unit=unit, criterion=criterion,
+                           require=require, allocation=allocation)
+    analysis = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
+                           rate=rate, unit=unit)
+    if sweep_rates is None:
+        half = envelope(catalog, profiles, rate)
+        sweep_rates = api.rate_range(-half, half, SWEEP_POINTS)
+    swept = api.sweep(catalog, sweep_rates, sensors=sensors, profiles=profiles, unit=unit)
+    s_entries, p_entries = api.select_entries(catalog, sensors, profiles)
+    when = (created or _dt.datetime.now(_dt.UTC)).astimezone(_dt.UTC)
+    return TradeStudy(
+        selection=selection,
+        analysis=analysis,
+        sweep=swept,
+        spectra=tuple(spectrum(p, unit) for p in p_entries),
+        files=tuple(file_digest(s.name, s.text) for s in catalog.sources),
+        sensor_names=tuple(e.sensor.name for e in s_entries),
+        sensor_forms=tuple(sensor_form(e.sensor) for e in s_entries),
+        version=__version__,
+        created=when.strftime("%Y-%m-%d %H:%M:%S UTC"),
+    )

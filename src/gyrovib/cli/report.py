@@ -1,0 +1,75 @@
+"""`gyrovib report`: a self-contained HTML trade-study report of a selection."""
+
+from __future__ import annotations
+
+import click
+
+from gyrovib.cli.common import load_catalog
+from gyrovib.cli.options import (
+    allocation_option,
+    budget_option,
+    files_argument,
+    method_option,
+    parse_allocation,
+    parse_budget,
+    parse_rate_option,
+    parse_unit,
+    rate_option,
+    selection_options,
+    unit_option,
+)
+
+DEFAULT_OUTPUT = "report.html"
+
+
+@click.command()
+@files_argument
+@selection_options
+@budget_option
+@method_option
+@rate_option
+@unit_option
+@allocation_option
+@click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
+              show_default=True,
+              help="What a pass means: every coefficient within its bound, Δ_V(RMS) ≤ budget "
+                   "(eq. 17), or both.")
+@click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
+              help="The requirement the report states as met or not: at least one (any) or "
+                   "every (all) sensor passes under every chosen profile.")
+@click.option("--rate-range", "rate_range", metavar="START:STOP:COUNT",
+              help="Ω_K3 values of the sweep charts, in --unit. Default: 241 rates over "
+                   "±1.5 × the largest |Ω_K3| + vibration peak of the chosen profiles.")
+@click.option("--output", "-o", default=DEFAULT_OUTPUT, show_default=True, metavar="PATH",
+              help="Write the HTML here (atomically); '-' for standard output.")
+def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
+           budget: str, method: str, rate: str | None, unit: str, allocation: str | None,
+           criterion: str, require: str, rate_range: str | None, output: str) -> None:
+    """Write a trade-study report: one HTML file, charts inline, no network needed.
+
+    It holds the inputs (files with their SHA-256, budget, method, criterion,
+    allocation, version, date), the pass/fail matrix with margins, the passing
+    sensors ranked, what limits each failing one, and per profile charts: the
+    RMS error against the budget, its breakdown by term, the error over the
+    rate envelope and the profile's spectrum. Prints cleanly to PDF. Unlike
+    `select`, the exit status is 0 whether or not the requirement is met.
+    """
+    from gyrovib.api import study as studies
+    from gyrovib.cli.output import write_output
+    from gyrovib.render.report import to_html
+
+    unit = parse_unit(unit)
+    sweep_rates = None
+    if rate_range is not None:
+        from gyrovib import api
+        from gyrovib.cli.sweep import parse_rate_range
+
+        sweep_rates = api.rate_range(*parse_rate_range(rate_range, unit))
+    result = studies.trade_study(
+        load_catalog(files), sensors=sensors, profiles=profiles, method=method,
+        rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit), unit=unit,
+        criterion=criterion, require=require, allocation=parse_allocation(allocation),
+        sweep_rates=sweep_rates)
+    write_output(to_html(result), output)
+    if output not in ("-", ""):
+        click.echo(f"gyrovib: wrote {output}", err=True)

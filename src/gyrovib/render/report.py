@@ -1,0 +1,361 @@
+"""The trade-study report: one self-contained HTML page from a :class:`TradeStudy`.
+
+Everything is inline: the stylesheet (with a print stylesheet, so a browser's
+"Print to PDF" gives clean A4 pages) and the charts, hand-written SVG from
+:mod:`gyrovib.render.svg` (why not matplotlib: see there). There is no
+script and no external reference, so the page opens offline. Every piece of
+catalogue text (ids, names, notes, file names) is HTML-escaped.
+
+The term names come from the core's term tuples (:data:`ADDITIVE_TERMS`,
+:data:`MULTIPLICATIVE_TERMS`) and the bound names from :data:`BOUNDED`, so
+a new term shows up in the tables and charts without a change here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from html import escape
+
+import numpy as np
+
+from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+from gyrovib.render.bounds import shares
+from gyrovib.render.common import fmt
+from gyrovib.render.select import limit_text
+from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
+from gyrovib.api.study import Spectrum, TradeStudy
+
+PASS_FILL, FAIL_FILL = "#2ca02c", "#d62728"
+FORM_TAGS = {"datasheet": "datasheet (spec form): worst case",
+             "output coefficients": "from output coefficients (eq. 1)"}
+SUPERSCRIPT = {1: "", 2: "²", 3: "³", 4: "⁴", 5: "⁵"}
+
+CSS = """
+:root { --ink: #1a1a1a; --muted: #666; --line: #d0d0d0; --pass: #e3f4e1; --fail: #fbe3e1;
+  --warn: #fff4d6; }
+* { box-sizing: border-box; }
+body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif;
+  color: var(--ink); margin: 0 auto; max-width: 1180px; padding: 24px; }
+h1 { font-size: 24px; margin: 0 0 4px; } h2 { font-size: 19px; margin: 28px 0 8px;
+  border-bottom: 2px solid var(--ink); padding-bottom: 3px; }
+h3 { font-size: 16px; margin: 20px 0 6px; }
+p.sub { color: var(--muted); margin: 0 0 12px; }
+.verdict { display: inline-block; padding: 4px 10px; border-radius: 4px; font-weight: 600; }
+.verdict.met { background: var(--pass); } .verdict.not { background: var(--fail); }
+table { border-collapse: collapse; margin: 6px 0 12px; font-size: 13px; }
+th, td { border: 1px solid var(--line); padding: 3px 7px; text-align: left;
+  vertical-align: top; }
+th { background: #f3f3f3; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
+td.pass { background: var(--pass); } td.fail { background: var(--fail); }
+td.warn { outline: 2px solid #e0a800; outline-offset: -2px; }
+.small { font-size: 11px; color: var(--muted); } code, .hash { font-family: ui-monospace,
+  "SFMono-Regular", Menlo, Consolas, monospace; font-size: 12px; }
+.hash { word-break: break-all; }
+.charts { display: grid; grid-template-columns: repeat(auto-fill, minmax(520px, 1fr));
+  gap: 10px 18px; }
+figure { margin: 0; } figcaption { font-size: 12px; color: var(--muted); }
+svg.chart { width: 100%; height: auto; font-family: inherit; background: #fff; }
+svg .ct { font-size: 13px; font-weight: 600; } svg .tx { font-size: 10px; text-anchor: middle; }
+svg .ty { font-size: 10px; text-anchor: end; } svg .xl, svg .yl { font-size: 11px;
+  text-anchor: middle; } svg .lg { font-size: 11px; } svg .ml { font-size: 10px; fill: #b00; }
+svg .mr { font-size: 10px; fill: #b00; text-anchor: end; }
+svg .frame { fill: none; stroke: #999; } svg .grid { stroke: #e8e8e8; }
+svg .ref { stroke: #b00; stroke-width: 1.5; stroke-dasharray: 5 3; }
+svg .tone { stroke: #555; stroke-width: 1.2; stroke-dasharray: 2 2; }
+nav ol { columns: 3; font-size: 13px; margin: 4px 0; }
+.notes { color: var(--muted); font-style: italic; }
+ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-style: none; }
+@page { size: A4; margin: 12mm; }
+@media print {
+  body { max-width: none; padding: 0; font-size: 11px; }
+  nav { display: none; }
+  * { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+  h2 { break-after: avoid; } h3 { break-after: avoid; }
+  figure, table, .profile-head { break-inside: avoid; }
+  .charts { grid-template-columns: 1fr 1fr; }
+  section.profile { break-before: page; }
+}
+"""
+
+
+def _e(text: object) -> str:
+    return escape(str(text), quote=True)
+
+
+def _table(head: Sequence[str], rows: Iterable[Sequence[str]], raw: bool = False) -> str:
+    """A table; cells are escaped unless ``raw`` (then they are HTML already)."""
+    out = ["<table><thead><tr>", *(f"<th>{_e(h)}</th>" for h in head), "</tr></thead><tbody>"]
+    for row in rows:
+        out.append("<tr>" + "".join(c if raw else f"<td>{_e(c)}</td>" for c in row) + "</tr>")
+    out.append("</tbody></table>")
+    return "".join(out)
+
+
+def term_names() -> list[str]:
+    """Labels of the terms of eq. (16): the additive Δ0 terms, then Δ(q)·Ω^q."""
+    powers = [int(q[1:]) if q[1:].isdigit() else k + 1
+              for k, q in enumerate(MULTIPLICATIVE_TERMS)]
+    return [*ADDITIVE_TERMS, *(f"{q}·Ω{SUPERSCRIPT.get(p, f'^{p}')}"
+                               for q, p in zip(MULTIPLICATIVE_TERMS, powers, strict=True))]
+
+
+def term_squares(study: TradeStudy) -> np.ndarray:
+    """Each term's square in eq. (16), shape (sensors, profiles, terms).
+
+    Additive: Δ0². Multiplicative: (Δ(q)·Ω_K3^q)². Their sum is Δ_V(RMS)².
+    """
+    a = study.analysis
+    omega = np.asarray(a.rates)[:, 2]
+    qs = np.asarray(a.error.multiplicative_coefficients)
+    powers = np.arange(1, qs.shape[-1] + 1)
+    multiplicative = qs * omega[None, :, None] ** powers[None, None, :]
+    terms = np.concatenate([np.asarray(a.error.additive_terms), multiplicative], axis=-1)
+    out: np.ndarray = terms * terms
+    return out
+
+
+def _dominant(squares: np.ndarray, names: Sequence[str]) -> str:
+    total = float(np.sum(squares))
+    if not total > 0:
+        return "no error"
+    k = int(np.argmax(squares))
+    return f"{names[k]} {100 * squares[k] / total:.0f} %"
+
+
+# ----------------------------------------------------------------- sections
+
+
+def _inputs(study: TradeStudy) -> str:
+    s = study.selection
+    files = _table(["catalogue file", "SHA-256", "bytes"], (
+        [f"<td><code>{_e(f.name)}</code></td>", f'<td class="hash">{_e(f.sha256)}</td>',
+         f'<td class="num">{f.size}</td>'] for f in study.files), raw=True)
+    share = shares(s.allocation)
+    rows = [
+        ["budget Δ*_V", f"{fmt(s.budget)} {s.unit}"],
+        ["output unit", s.unit],
+        ["method", s.method],
+        ["criterion", s.criterion],
+        ["requirement", f"{s.require}: " + ("at least one sensor" if s.require == "any"
+                                              else "every sensor") + " passes everywhere"],
+        ["allocation (shares of Δ*)", "; ".join(f"{k}: {v}" for k, v in share.items())],
+        ["sensors × profiles", f"{len(s.sensors)} × {len(s.profiles)}"],
+        ["gyrovib version", study.version],
+        ["date", study.created],
+    ]
+    return files + _table(["input", "value"], rows)
+
+
+def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str:
+    s = study.selection
+    warnings = study.analysis.warnings
+    head = ["sensor", "overall", *s.profiles]
+    rows = []
+    for i, sensor in enumerate(s.sensors):
+        overall = "pass" if s.sensor_pass[i] else "fail"
+        form = study.sensor_forms[i]
+        tag = f'<br><span class="small">{_e(FORM_TAGS.get(form, form))}</span>' if (
+            form != "coefficients") else ""
+        cells = [f"<td><b>{_e(sensor)}</b>{tag}</td>",
+                 f'<td class="{overall}">{"✓ pass" if s.sensor_pass[i] else "✗ fail"}</td>']
+        for j in range(len(s.profiles)):
+            ok = bool(s.passed[i, j])
+            notes = warnings.get((i, j), ())
+            klass = ("pass" if ok else "fail") + (" warn" if notes else "")
+            tip = f' title="{_e(" ".join(notes))}"' if notes else ""
+            mark = " ⚠" if notes else ""
+            cells.append(
+                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} {_e(fmt(s.margin[i, j], 3))}'
+                f'{mark}<br><span class="small">{_e(_dominant(squares[i, j], names))}</span></td>'
+            )
+        rows.append(cells)
+    return _table(head, rows, raw=True)
+
+
+def _ranking(study: TradeStudy) -> str:
+    s = study.selection
+    passing = [i for i in s.ranking if s.sensor_pass[i]]
+    if not passing:
+        return "<p>No sensor passes under every profile.</p>"
+    rows = []
+    for rank, i in enumerate(passing, 1):
+        j = int(np.argmin(s.margin[i])) if len(s.profiles) else 0
+        name = study.sensor_names[i] or ""
+        rows.append([str(rank), s.sensors[i], name, study.sensor_forms[i],
+                     fmt(s.worst_margin[i], 3),
+                     s.profiles[j] if len(s.profiles) else "",
+                     f"{fmt(s.rms[i, j])} {s.unit}" if len(s.profiles) else ""])
+    return _table(["rank", "sensor", "name", "given as", "worst margin Δ*/Δ_V(RMS)",
+                   "under profile", "Δ_V(RMS) there"], rows)
+
+
+def _failing(study: TradeStudy) -> str:
+    s = study.selection
+    failing = [i for i in range(len(s.sensors)) if not s.sensor_pass[i]]
+    if not failing:
+        return "<p>Every sensor passes under every profile.</p>"
+    rows = [[s.sensors[i], limit_text(s, i),
+             str(sum(1 for j in range(len(s.profiles)) if not s.passed[i, j]))]
+            for i in failing]
+    return _table(["sensor", "what limits it (largest value/bound ratio)",
+                   "profiles failed"], rows)
+
+
+def _warnings(study: TradeStudy) -> str:
+    a = study.analysis
+    if not a.warnings:
+        return ""
+    items = "".join(f"<li><b>{_e(a.sensors[i])}</b> under <b>{_e(a.profiles[j])}</b>: "
+                    f"{_e(' '.join(messages))}</li>"
+                    for (i, j), messages in sorted(a.warnings.items()))
+    return ("<h3>Warnings</h3><p>Marked ⚠ in the matrix: the results there are outside the "
+            f"static model's validity.</p><ul class=\"warnings\">{items}</ul>")
+
+
+# ----------------------------------------------------------------- charts
+
+
+def margins_chart(study: TradeStudy, j: int) -> str:
+    s = study.selection
+    fills = [PASS_FILL if s.passed[i, j] else FAIL_FILL for i in range(len(s.sensors))]
+    return bar_chart(f"Δ_V(RMS) against the budget: {s.profiles[j]}",
+                     f"Δ_V(RMS) ({s.unit}, log); green: passes the criterion, red: fails",
+                     s.sensors, [float(v) for v in s.rms[:, j]], fills,
+                     Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
+
+
+def worst_margin_chart(study: TradeStudy) -> str:
+    s = study.selection
+    fills = [PASS_FILL if s.sensor_pass[i] else FAIL_FILL for i in range(len(s.sensors))]
+    return bar_chart("Worst margin Δ*/Δ_V(RMS) over the profiles, per sensor",
+                     "margin (log); green: passes under every profile, red: fails somewhere",
+                     s.sensors, [float(v) for v in s.worst_margin], fills,
+                     Marker("margin 1", x=1.0))
+
+
+def breakdown_chart(study: TradeStudy, j: int, squares: np.ndarray, names: Sequence[str]) -> str:
+    a = study.analysis
+    return share_chart(f"Error by term (eq. 16): {a.profiles[j]}", a.sensors, names,
+                       [[float(v) for v in squares[i, j]] for i in range(len(a.sensors))])
+
+
+def sweep_chart(study: TradeStudy, j: int) -> str:
+    sw, s = study.sweep, study.selection
+    method = s.method if s.method in ("exact", "paper") else "exact"
+    err = getattr(sw, method)
+    rates = [float(r) for r in sw.rates]
+    series = [Series(name, rates, [float(v) for v in err.rms[i, j]], color(i), dash(i))
+              for i, name in enumerate(sw.sensors)]
+    omega = float(s.rates[j, 2])
+    note = " (not covered by the paper's formulas)" if (
+        method == "paper" and sw.profiles[j] in sw.paper_refused) else ""
+    return LineChart(
+        f"Δ_V(RMS) over the rate envelope, {method}: {sw.profiles[j]}{note}",
+        f"Ω_K3 ({sw.unit})", f"Δ_V(RMS) ({sw.unit})", series, ylog=True,
+        markers=(Marker(f"Δ* = {fmt(s.budget, 3)}", y=float(s.budget)),
+                 Marker(f"profile Ω_K3 = {fmt(omega, 3)}", x=omega, style="tone")),
+    ).svg()
+
+
+def spectrum_charts(spectrum: Spectrum, unit: str) -> list[str]:
+    charts = []
+    if spectrum.psd or spectrum.tones:
+        series = [Series(f"PSD {axis}", list(f), list(g), color(k), dash(k))
+                  for k, (axis, f, g) in enumerate(spectrum.psd)]
+        markers = [Marker(f"{fmt(freq, 3)} Hz, a3 = {fmt(amp[2], 3)}", x=freq, style="tone",
+                          row=k % 3)
+                   for k, (freq, amp) in enumerate(spectrum.tones)]
+        if not series:  # tones only: their x3 amplitudes on the y axis, as dots
+            nan = float("nan")
+            series = [Series("tone amplitude x3",
+                             [v for t in spectrum.tones for v in (t[0], nan)],
+                             [v for t in spectrum.tones for v in (t[1][2], nan)], color(0))]
+            ylabel = f"amplitude ({unit})"
+        else:
+            ylabel = f"PSD ({unit})²/Hz"
+        charts.append(LineChart(f"Spectrum: {spectrum.profile}", "frequency (Hz)", ylabel,
+                                series, xlog=True, ylog=True, markers=markers).svg())
+    if spectrum.mount is not None:
+        f, nu = spectrum.mount
+        charts.append(LineChart(f"Isolation mount ν(f): {spectrum.profile}", "frequency (Hz)",
+                                "transmissibility ν", [Series("mount", list(f), list(nu))],
+                                xlog=True, ylog=True).svg())
+    return charts
+
+
+def _spectrum_text(spectrum: Spectrum, unit: str) -> str:
+    parts = []
+    if spectrum.tones:
+        parts.append("tones: " + "; ".join(
+            f"{fmt(f, 4)} Hz, amplitude ({', '.join(fmt(a, 3) for a in amp)}) {unit}"
+            for f, amp in spectrum.tones))
+    if spectrum.rms is not None:
+        parts.append(f"random, σ = ({', '.join(fmt(v, 3) for v in spectrum.rms)}) {unit} "
+                     "(given as RMS, no spectrum)")
+    if spectrum.psd:
+        parts.append("random PSD on " + ", ".join(a for a, _, _ in spectrum.psd))
+    if spectrum.mount is not None:
+        parts.append("isolation mount")
+    return "; ".join(parts) or "no vibration"
+
+
+def _figure(svg: str, caption: str = "") -> str:
+    tail = f"<figcaption>{_e(caption)}</figcaption>" if caption else ""
+    return f"<figure>{svg}{tail}</figure>"
+
+
+def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
+                     names: Sequence[str]) -> str:
+    s = study.selection
+    spectrum = study.spectra[j]
+    rate = ", ".join(fmt(v, 4) for v in s.rates[j])
+    title = spectrum.profile + (f" — {spectrum.name}" if spectrum.name else "")
+    notes = f'<p class="notes">{_e(spectrum.notes)}</p>' if spectrum.notes else ""
+    figures = [
+        _figure(margins_chart(study, j)),
+        _figure(breakdown_chart(study, j, squares, names),
+                "Which coefficient dominates: each term's share of Δ_V(RMS)²."),
+        _figure(sweep_chart(study, j), "Ω_K1, Ω_K2 stay the profile's; the dotted line marks "
+                                       "the profile's own Ω_K3."),
+        *(_figure(c) for c in spectrum_charts(spectrum, s.unit)),
+    ]
+    return (f'<section class="profile" id="p{j}"><div class="profile-head">'
+            f"<h3>{_e(title)}</h3>{notes}"
+            f'<p class="sub">Ω_K = ({_e(rate)}) {_e(s.unit)}; '
+            f"{_e(_spectrum_text(spectrum, s.unit))}</p></div>"
+            f"<div class=\"charts\">{''.join(figures)}</div></section>")
+
+
+def to_html(study: TradeStudy) -> str:
+    """The whole report as one HTML document (UTF-8 text)."""
+    s = study.selection
+    names = term_names()
+    squares = term_squares(study)
+    met = s.requirement_met
+    n_pass = int(np.sum(s.sensor_pass))
+    verdict = (f'<span class="verdict {"met" if met else "not"}">Requirement '
+               f'{"met" if met else "NOT met"}</span> {n_pass} of {len(s.sensors)} sensor(s) '
+               f"pass under every profile.")
+    toc = "".join(f'<li><a href="#p{j}">{_e(p)}</a></li>' for j, p in enumerate(s.profiles))
+    title = f"gyrovib trade study: Δ* = {fmt(s.budget)} {s.unit}"
+    body = [
+        f"<header><h1>{_e(title)}</h1>",
+        f'<p class="sub">{len(s.sensors)} sensor(s) × {len(s.profiles)} profile(s), method '
+        f"{_e(s.method)}, criterion {_e(s.criterion)}; gyrovib {_e(study.version)}, "
+        f"{_e(study.created)}</p><p>{verdict}</p></header>",
+        f'<nav><b>Profiles</b><ol>{toc}</ol></nav>',
+        "<h2>Inputs</h2>", _inputs(study),
+        "<h2>Pass/fail matrix</h2>",
+        "<p>Each cell: ✓ pass / ✗ fail under the criterion, the margin Δ*/Δ_V(RMS) (above 1: "
+        "the RMS error is within the budget) and the term that dominates Δ_V(RMS)².</p>",
+        _matrix(study, squares, names),
+        f'<div class="charts">{_figure(worst_margin_chart(study))}</div>', _warnings(study),
+        "<h2>Passing sensors, ranked</h2>", _ranking(study),
+        "<h2>Failing sensors: what limits them</h2>", _failing(study),
+        "<h2>Profiles</h2>",
+        *(_profile_section(study, j, squares, names) for j in range(len(s.profiles))),
+    ]
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            '<meta name="viewport" content="width=device-width, initial-scale=1">'
+            f"<title>{_e(title)}</title><style>{CSS}</style></head><body>\n"
+            + "\n".join(body) + "\n</body></html>\n")

@@ -1,0 +1,308 @@
+"""Small inline-SVG charts for the HTML report, written by hand.
+
+Hand-written rather than matplotlib: the report needs three kinds of chart
+(lines on linear or log axes, horizontal bars on a log axis, 100 % stacked
+bars), which take a few hundred lines of plain string building; in exchange
+``gyrovib report`` works without the optional ``plot`` extra, starts without
+importing matplotlib (about a second), writes text that is the same on every
+machine (no font metrics, no backend), and the charts stay vector graphics that
+scale and print sharply. Every piece of text is escaped.
+
+Coordinates are computed in Python; a chart is a ``<svg>`` element with a
+``viewBox``, so CSS sizes it. Non-finite values and, on log axes, values ≤ 0
+are left out (a line breaks there).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from html import escape
+
+#: Ten distinguishable colours (the "tab10" cycle); more series reuse them dashed.
+PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf")
+DASHES = ("", "6 3", "2 2", "8 3 2 3")
+
+WIDTH, HEIGHT = 720, 280
+LEFT, RIGHT, TOP, BOTTOM = 72, 190, 30, 44
+
+
+def color(k: int) -> str:
+    return PALETTE[k % len(PALETTE)]
+
+
+def dash(k: int) -> str:
+    return DASHES[(k // len(PALETTE)) % len(DASHES)]
+
+
+def label(value: float) -> str:
+    """A tick label: 3 significant figures, powers of ten as 1e-05."""
+    if value == 0:
+        return "0"
+    if abs(value) >= 1e4 or abs(value) < 1e-3:
+        mantissa, exponent = f"{value:.2e}".split("e")
+        mantissa = mantissa.rstrip("0").rstrip(".")
+        return f"{mantissa}e{int(exponent)}"
+    return f"{value:.3g}"
+
+
+@dataclass(frozen=True)
+class Scale:
+    """Data → pixel along one axis, linear or logarithmic."""
+
+    lo: float
+    hi: float
+    start: float
+    stop: float
+    log: bool = False
+
+    def __call__(self, value: float) -> float:
+        if self.log:
+            a, b, v = math.log10(self.lo), math.log10(self.hi), math.log10(value)
+        else:
+            a, b, v = self.lo, self.hi, value
+        t = 0.5 if b == a else (v - a) / (b - a)
+        return self.start + t * (self.stop - self.start)
+
+    def ticks(self) -> list[float]:
+        if self.log:
+            first, last = math.floor(math.log10(self.lo)), math.ceil(math.log10(self.hi))
+            step = max(1, math.ceil((last - first) / 7))
+            return [10.0 ** e for e in range(first, last + 1, step)
+                    if self.lo * (1 - 1e-9) <= 10.0 ** e <= self.hi * (1 + 1e-9)]
+        span = self.hi - self.lo
+        if span <= 0:
+            return [self.lo]
+        raw = span / 6
+        power = 10 ** math.floor(math.log10(raw))
+        step = next(m * power for m in (1, 2, 2.5, 5, 10) if m * power >= raw)
+        first = math.ceil(self.lo / step) * step
+        return [first + k * step for k in range(int((self.hi - first) / step + 1e-9) + 1)]
+
+
+def extent(values: Sequence[float], log: bool) -> tuple[float, float] | None:
+    """The plotted range of ``values``: finite ones (and > 0 on a log axis), padded."""
+    kept = [v for v in values if math.isfinite(v) and (v > 0 or not log)]
+    if not kept:
+        return None
+    lo, hi = min(kept), max(kept)
+    if log:  # whole decades, at least one; in log space so that 1e-300..1e300 works
+        a, b = math.log10(lo), math.log10(hi)
+        if b - a < 1:
+            a, b = (a + b) / 2 - 0.5, (a + b) / 2 + 0.5
+        first, last = max(math.floor(a), -307), min(math.ceil(b), 308)
+        return 10.0 ** first, 10.0 ** last
+    if hi == lo:
+        pad = abs(lo) * 0.1 or 1.0
+        return lo - pad, hi + pad
+    pad = hi * 0.05 - lo * 0.05
+    return lo - pad, hi + pad
+
+
+def _open(title: str, height: int = HEIGHT) -> list[str]:
+    return [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {WIDTH} {height}" '
+            f'class="chart" role="img" aria-label="{escape(title)}">',
+            f'<title>{escape(title)}</title>',
+            f'<text x="{LEFT}" y="18" class="ct">{escape(title)}</text>']
+
+
+def _axes(x: Scale, y: Scale, xlabel: str, ylabel: str) -> list[str]:
+    out = [f'<rect x="{LEFT}" y="{TOP}" width="{WIDTH - LEFT - RIGHT}" '
+           f'height="{HEIGHT - TOP - BOTTOM}" class="frame"/>']
+    for t in x.ticks():
+        px = x(t)
+        out.append(f'<line x1="{px:.1f}" y1="{TOP}" x2="{px:.1f}" y2="{HEIGHT - BOTTOM}" '
+                   'class="grid"/>')
+        out.append(f'<text x="{px:.1f}" y="{HEIGHT - BOTTOM + 14}" class="tx">'
+                   f'{escape(label(t))}</text>')
+    for t in y.ticks():
+        py = y(t)
+        out.append(f'<line x1="{LEFT}" y1="{py:.1f}" x2="{WIDTH - RIGHT}" y2="{py:.1f}" '
+                   'class="grid"/>')
+        out.append(f'<text x="{LEFT - 4}" y="{py + 4:.1f}" class="ty">{escape(label(t))}</text>')
+    out.append(f'<text x="{(LEFT + WIDTH - RIGHT) / 2:.0f}" y="{HEIGHT - 6}" class="xl">'
+               f'{escape(xlabel)}</text>')
+    out.append(f'<text x="14" y="{(TOP + HEIGHT - BOTTOM) / 2:.0f}" class="yl" '
+               f'transform="rotate(-90 14 {(TOP + HEIGHT - BOTTOM) / 2:.0f})">'
+               f'{escape(ylabel)}</text>')
+    return out
+
+
+def _legend(names: Sequence[str], styles: Sequence[tuple[str, str]], top: int = TOP) -> list[str]:
+    out = []
+    for k, (name, (stroke, pattern)) in enumerate(zip(names, styles, strict=True)):
+        y = top + 8 + 15 * k
+        x = WIDTH - RIGHT + 10
+        extra = f' stroke-dasharray="{pattern}"' if pattern else ""
+        out.append(f'<line x1="{x}" y1="{y}" x2="{x + 18}" y2="{y}" stroke="{stroke}" '
+                   f'stroke-width="2.5"{extra}/>')
+        text = name if len(name) <= 26 else name[:25] + "…"
+        out.append(f'<text x="{x + 23}" y="{y + 4}" class="lg">{escape(text)}</text>')
+    return out
+
+
+@dataclass(frozen=True)
+class Series:
+    name: str
+    x: Sequence[float]
+    y: Sequence[float]
+    stroke: str = PALETTE[0]
+    pattern: str = ""
+
+
+@dataclass(frozen=True)
+class Marker:
+    """A vertical (``x``) or horizontal (``y``) reference line with a label."""
+
+    label: str
+    x: float | None = None
+    y: float | None = None
+    style: str = "ref"
+    #: Label line, to stagger the labels of nearby markers.
+    row: int = 0
+
+
+@dataclass(frozen=True)
+class LineChart:
+    title: str
+    xlabel: str
+    ylabel: str
+    series: Sequence[Series]
+    xlog: bool = False
+    ylog: bool = False
+    markers: Sequence[Marker] = field(default_factory=tuple)
+
+    def svg(self) -> str:
+        xs = [v for s in self.series for v in s.x] + [m.x for m in self.markers if m.x is not None]
+        ys = [v for s in self.series for v in s.y] + [m.y for m in self.markers if m.y is not None]
+        xr, yr = extent(xs, self.xlog), extent(ys, self.ylog)
+        out = _open(self.title)
+        if xr is None or yr is None:
+            out.append(f'<text x="{LEFT + 10}" y="{TOP + 30}" class="lg">no value to plot '
+                       f'on {"log" if self.ylog else "linear"} axes</text></svg>')
+            return "\n".join(out)
+        x = Scale(*xr, LEFT, WIDTH - RIGHT, self.xlog)
+        y = Scale(*yr, HEIGHT - BOTTOM, TOP, self.ylog)
+        out += _axes(x, y, self.xlabel, self.ylabel)
+        for s in self.series:
+            for segment in _segments(s, self.xlog, self.ylog):
+                points = " ".join(f"{x(a):.1f},{y(b):.1f}" for a, b in segment)
+                extra = f' stroke-dasharray="{s.pattern}"' if s.pattern else ""
+                if len(segment) == 1:
+                    (a, b), = segment
+                    out.append(f'<circle cx="{x(a):.1f}" cy="{y(b):.1f}" r="2.5" '
+                               f'fill="{s.stroke}"/>')
+                else:
+                    out.append(f'<polyline points="{points}" fill="none" stroke="{s.stroke}" '
+                               f'stroke-width="1.8"{extra}/>')
+        for m in self.markers:
+            if m.x is not None and x.lo <= m.x <= x.hi:
+                px = x(m.x)
+                out.append(f'<line x1="{px:.1f}" y1="{TOP}" x2="{px:.1f}" '
+                           f'y2="{HEIGHT - BOTTOM}" class="{m.style}"/>')
+                out.append(f'<text x="{px + 3:.1f}" y="{TOP + 11 + 11 * m.row}" class="ml">'
+                           f'{escape(m.label)}</text>')
+            if m.y is not None and y.lo <= m.y <= y.hi:
+                py = y(m.y)
+                out.append(f'<line x1="{LEFT}" y1="{py:.1f}" x2="{WIDTH - RIGHT}" '
+                           f'y2="{py:.1f}" class="{m.style}"/>')
+                out.append(f'<text x="{WIDTH - RIGHT - 3}" y="{py - 4:.1f}" class="mr">'
+                           f'{escape(m.label)}</text>')
+        out += _legend([s.name for s in self.series], [(s.stroke, s.pattern) for s in self.series])
+        out.append("</svg>")
+        return "\n".join(out)
+
+
+def _segments(s: Series, xlog: bool, ylog: bool) -> list[list[tuple[float, float]]]:
+    out: list[list[tuple[float, float]]] = [[]]
+    for a, b in zip(s.x, s.y, strict=True):
+        ok = (math.isfinite(a) and math.isfinite(b) and (a > 0 or not xlog)
+              and (b > 0 or not ylog))
+        if ok:
+            out[-1].append((float(a), float(b)))
+        elif out[-1]:
+            out.append([])
+    return [seg for seg in out if seg]
+
+
+def bar_chart(title: str, xlabel: str, names: Sequence[str], values: Sequence[float],
+              fills: Sequence[str], reference: Marker | None = None) -> str:
+    """Horizontal bars on a log axis (one per name), with an optional vertical reference."""
+    row = 18
+    top = TOP + 12  # room for the reference label under the title
+    height = top + BOTTOM + row * max(len(names), 1)
+    xs = [*values, *([reference.x] if reference and reference.x is not None else [])]
+    xr = extent(xs, True)
+    out = _open(title, height)
+    if xr is None:
+        out.append(f'<text x="{LEFT + 10}" y="{top + 30}" class="lg">no value to plot</text>'
+                   "</svg>")
+        return "\n".join(out)
+    left = 170
+    x = Scale(*xr, left, WIDTH - 40, True)
+    bottom = height - BOTTOM
+    out.append(f'<rect x="{left}" y="{top}" width="{WIDTH - 40 - left}" '
+               f'height="{bottom - top}" class="frame"/>')
+    for t in x.ticks():
+        px = x(t)
+        out.append(f'<line x1="{px:.1f}" y1="{top}" x2="{px:.1f}" y2="{bottom}" class="grid"/>')
+        out.append(f'<text x="{px:.1f}" y="{bottom + 14}" class="tx">{escape(label(t))}</text>')
+    for k, (name, value, fill) in enumerate(zip(names, values, fills, strict=True)):
+        y = top + row * k
+        text = name if len(name) <= 24 else name[:23] + "…"
+        out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">{escape(text)}</text>')
+        if value > 0:
+            end = min(max(x(value), left), WIDTH - 40) if math.isfinite(value) else WIDTH - 40
+            out.append(f'<rect x="{left}" y="{y + 3}" width="{end - left:.1f}" height="{row - 6}" '
+                       f'fill="{fill}"/>')
+            if not math.isfinite(value):
+                out.append(f'<text x="{end - 4}" y="{y + 13}" class="ty">∞</text>')
+        else:
+            out.append(f'<text x="{left + 4}" y="{y + 13}" class="lg">0</text>')
+    if reference is not None and reference.x is not None:
+        px = x(reference.x)
+        out.append(f'<line x1="{px:.1f}" y1="{top - 4}" x2="{px:.1f}" y2="{bottom}" '
+                   f'class="{reference.style}"/>')
+        out.append(f'<text x="{px + 3:.1f}" y="{top - 6}" class="ml">'
+                   f'{escape(reference.label)}</text>')
+    out.append(f'<text x="{(left + WIDTH - 40) / 2:.0f}" y="{height - 6}" class="xl">'
+               f'{escape(xlabel)}</text>')
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def share_chart(title: str, names: Sequence[str], parts: Sequence[str],
+                shares: Sequence[Sequence[float]]) -> str:
+    """100 % stacked horizontal bars: row k splits into ``shares[k]`` (summing to 1 or 0)."""
+    row = 18
+    height = TOP + BOTTOM + row * max(len(names), 1)
+    left, right = 170, WIDTH - RIGHT - 10
+    out = _open(title, height)
+    bottom = height - BOTTOM
+    for k, name in enumerate(names):
+        y = TOP + row * k
+        text = name if len(name) <= 24 else name[:23] + "…"
+        out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">{escape(text)}</text>')
+        start = float(left)
+        total = sum(v for v in shares[k] if math.isfinite(v))
+        if total <= 0:
+            out.append(f'<text x="{left + 4}" y="{y + 13}" class="lg">no error</text>')
+            continue
+        for p, value in enumerate(shares[k]):
+            if not math.isfinite(value) or value <= 0:
+                continue
+            w = (right - left) * value / total
+            out.append(f'<rect x="{start:.1f}" y="{y + 3}" width="{w:.1f}" height="{row - 6}" '
+                       f'fill="{color(p)}"><title>{escape(name)}: {escape(parts[p])} '
+                       f'{100 * value / total:.1f} %</title></rect>')
+            start += w
+    for t in (0, 0.25, 0.5, 0.75, 1.0):
+        px = left + t * (right - left)
+        out.append(f'<text x="{px:.1f}" y="{bottom + 14}" class="tx">{100 * t:.0f} %</text>')
+    out += _legend(list(parts), [(color(p), "") for p in range(len(parts))])
+    out.append(f'<text x="{(left + right) / 2:.0f}" y="{height - 6}" class="xl">share of '
+               "Δ_V(RMS)² (eq. 16)</text>")
+    out.append("</svg>")
+    return "\n".join(out)

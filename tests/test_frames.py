@@ -1,0 +1,179 @@
+"""The notebook API: lazy top-level names, and ``to_frame()`` equal to the JSON output.
+
+The reference for every frame is the command's own ``--format json`` (parsed):
+each frame value must equal the JSON value at the key the column is named
+after (``a.b`` = ``row["a"]["b"]``), exactly, since both come from the same
+float64 arrays and JSON writes floats at full precision (repr). JSON writes
+``null`` for a number that is not finite (docs/output.md); the frame keeps the
+float there, so ``null`` must meet a non-finite frame value.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from typing import Any
+
+import pytest
+from click.testing import CliRunner
+
+import gyrovib
+from gyrovib.cli.main import cli
+
+pd = pytest.importorskip("pandas", reason="to_frame needs the pandas extra")
+
+
+def cli_json(*args: str) -> Any:
+    result = CliRunner().invoke(cli, [*args, "--format", "json"], catch_exceptions=False)
+    assert result.exit_code in (0, 1), result.output
+    return json.loads(result.stdout)
+
+
+def same(frame_value: Any, json_value: Any) -> bool:
+    if json_value is None:
+        return isinstance(frame_value, float) and not math.isfinite(frame_value)
+    if isinstance(json_value, list):
+        return list(frame_value) == json_value
+    if isinstance(json_value, bool):
+        return bool(frame_value) is json_value
+    return frame_value == json_value
+
+
+def check_row(frame_row: Any, expected: dict[str, Any]) -> None:
+    for column, value in expected.items():
+        got = frame_row[column]
+        assert same(got, value), f"{column}: frame {got!r} != JSON {value!r}"
+
+
+def flatten(prefix: str, value: Any) -> dict[str, Any]:
+    """JSON object → ``{"a.b": leaf}``; the rate list → ``rate.x1..x3``."""
+    if isinstance(value, dict):
+        out: dict[str, Any] = {}
+        for k, v in value.items():
+            out.update(flatten(f"{prefix}.{k}" if prefix else k, v))
+        return out
+    if prefix.endswith("rate") and isinstance(value, list):
+        return {f"{prefix}.x{k + 1}": v for k, v in enumerate(value)}
+    return {prefix: value}
+
+
+@pytest.mark.parametrize("unit", ["deg/s", "deg/h"])
+def test_analyze_frame_equals_json(unit):
+    document = cli_json("analyze", "--unit", unit)
+    frame = gyrovib.analyze(unit=unit).to_frame()
+    rows = document["results"]
+    assert len(frame) == len(rows) == 9 * 7  # bundled: 9 sensors × 7 profiles
+    for k, row in enumerate(rows):
+        expected = flatten("", row)
+        expected["warnings"] = row["warnings"]
+        check_row(frame.iloc[k], expected)
+    assert set(frame.columns) == set(flatten("", rows[0]))
+    assert frame.attrs["method"] == document["method"] and frame.attrs["unit"] == unit
+
+
+def test_analyze_numeric_frame_has_stderr_samples_and_seed():
+    args = ["--method", "numeric", "--samples", "20000", "--seed", "3", "--sensor", "adxrs645",
+            "--profile", "engine-harmonics"]
+    document = cli_json("analyze", *args)
+    frame = gyrovib.analyze(sensors="adxrs645", profiles="engine-harmonics", method="numeric",
+                            samples=20000, seed=3).to_frame()
+    check_row(frame.iloc[0], flatten("", document["results"][0]))
+    assert (frame.attrs["samples"], frame.attrs["seed"]) == (document["samples"],
+                                                             document["seed"])
+
+
+def test_bounds_frame_equals_json():
+    document = cli_json("bounds", "--budget", "10deg/h", "--unit", "deg/h")
+    frame = gyrovib.bounds(budget="10deg/h", unit="deg/h").to_frame()
+    assert len(frame) == len(document["profiles"]) == 7
+    for k, row in enumerate(document["profiles"]):
+        check_row(frame.iloc[k], flatten("", row))
+    # An unconstrained bound (JSON null) is +inf: k3 of a still profile (Ω_K3 = 0 →
+    # no Δ(1)·Ω term, eq. 25) is the bundled flat-random-hover's.
+    hover = frame.set_index("profile").loc["flat-random-hover"]
+    assert hover["bounds.k3"] == math.inf
+    assert frame.attrs["budget"] == document["budget"]
+
+
+def test_select_frame_equals_json():
+    document = cli_json("select", "--budget", "10deg/h", "--criterion", "both")
+    frame = gyrovib.select(budget="10deg/h", criterion="both").to_frame()
+    profiles = {p["profile"]: p for p in document["profiles"]}
+    k = 0
+    for sensor in document["sensors"]:
+        for cell in sensor["profiles"]:
+            expected = flatten("", {key: v for key, v in cell.items()})
+            expected["sensor"] = sensor["sensor"]
+            expected["sensor_pass"] = sensor["pass"]
+            entry = profiles[cell["profile"]]
+            expected.update(flatten("", {"rate": entry["rate"]}))
+            expected.update(flatten("profile_bounds", entry["bounds"]))
+            expected.update(flatten("profile_parts", entry["parts"]))
+            check_row(frame.iloc[k], expected)
+            k += 1
+    assert k == len(frame) == 63
+    assert frame.attrs["criterion"] == "both" and frame.attrs["require"] == document["require"]
+
+
+def test_sweep_frame_equals_json():
+    document = cli_json("sweep", "--rate-range", "-10:10:5", "--profile", "engine-harmonics",
+                        "--profile", "uav-blade-pass-tone")
+    frame = gyrovib.sweep(rates=(-10, 10), points=5,
+                          profiles=["engine-harmonics", "uav-blade-pass-tone"]).to_frame()
+    rates = document["rates"]
+    k = 0
+    for series in document["series"]:
+        for r, rate in enumerate(rates):
+            expected = {"sensor": series["sensor"], "profile": series["profile"], "rate": rate}
+            for method in ("exact", "paper"):
+                values = series[method]
+                for name in ("total", "rms"):
+                    # paper null: the paper's formulas do not cover engine-harmonics (3 tones)
+                    expected[f"{method}.{name}"] = None if values is None else values[name][r]
+            check_row(frame.iloc[k], expected)
+            k += 1
+    assert k == len(frame) == 9 * 2 * 5
+    assert frame["paper.rms"][frame["profile"] == "engine-harmonics"].isna().all()
+
+
+def test_missing_pandas_names_the_extra(monkeypatch):
+    from gyrovib.api.frames import MissingDependency
+
+    result = gyrovib.bounds(budget=0.01, profiles="flat-random-hover")
+    monkeypatch.setitem(sys.modules, "pandas", None)  # import pandas → ImportError
+    with pytest.raises(MissingDependency, match=r"pip install 'gyrovib\[pandas\]'"):
+        result.to_frame()
+
+
+def test_notebook_units_match_the_library():
+    """A budget "36deg/h" is 36/3600 = 0.01 deg/s for :func:`gyrovib.api.select`."""
+    from gyrovib import api
+
+    a = gyrovib.select(budget="36deg/h", rate=["1deg/s"])
+    b = gyrovib.select(budget=36, unit="deg/h", rate=3600)
+    c = api.select(api.load(), budget=0.01, rate=[1.0], unit="deg/h")
+    assert b.budget == c.budget == 36.0
+    assert a.budget == 0.01
+    assert (b.margin == c.margin).all() and (a.margin == c.margin).all()
+
+
+def test_names_are_documented_and_listed():
+    for name in ("load", "analyze", "bounds", "select", "sweep"):
+        function = getattr(gyrovib, name)
+        assert function.__module__ == "gyrovib.notebook"
+        assert "Returns\n    -------" in (function.__doc__ or ""), name  # numpydoc
+        assert name in dir(gyrovib) and name in gyrovib.__all__
+    with pytest.raises(AttributeError, match="no attribute 'nope'"):
+        _ = gyrovib.nope
+
+
+def test_import_gyrovib_is_light():
+    code = ("import sys, gyrovib, json; "
+            "print(json.dumps(sorted({m.split('.')[0] for m in sys.modules})))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True, timeout=60)
+    loaded = set(json.loads(done.stdout))
+    assert "gyrovib" in loaded  # the probe works
+    assert not loaded & {"numpy", "pandas", "pydantic", "pydantic_core", "rich", "yaml"}
