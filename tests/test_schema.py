@@ -14,7 +14,9 @@ from gyrovib.catalog.loader import _parse, bundled_paths
 from gyrovib.cli.main import cli
 from tests.conftest import VALID
 
-REPO_CATALOGS = sorted((Path(__file__).parent.parent / "catalogs").glob("*.yaml"))
+#: The bundled catalogues, as files of the source tree (one copy: package data).
+REPO_CATALOGS = sorted(
+    (Path(__file__).parent.parent / "src" / "gyrovib" / "catalogs").glob("*.gyrovib.yaml"))
 
 
 @pytest.fixture(scope="module")

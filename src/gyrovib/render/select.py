@@ -174,10 +174,10 @@ def to_markdown(result: SelectionResult) -> str:
     return "\n".join(text)
 
 
-def to_table(result: SelectionResult, width: int | None = None, color: bool = False) -> str:
-    """Rich tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
-    from rich.table import Table
-    from rich.text import Text
+def to_table(result: SelectionResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """Tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
+    from gyrovib.render.common import Table, Text
 
     out: list[Any] = [Text(_heading(result), style="bold")]
     matrix = Table(header_style="bold")
@@ -215,7 +215,7 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
     out.append(Text(_summary(result), style="bold green" if result.requirement_met
                     else "bold red"))
     out.append(Text(_legend(result), style="dim"))
-    return rich_text(out, width=width, color=color)
+    return rich_text(out, width=width, color=color, ascii=ascii)
 
 
 # ------------------------------------------------------------------ JUnit
