@@ -149,13 +149,13 @@ def _read_stdin() -> str:
 
 def _load_with_stdin(files: tuple[str, ...]) -> Any:
     """Like :func:`gyrovib.api.load`, standard input read once for ``-``."""
-    from gyrovib.catalog.loader import merge, parse_catalog, read_catalog
-    from gyrovib.errors import CatalogError, OptionError
+    from gyrovib.catalog.loader import CatalogSource, merge, parse_catalog, read_catalog
+    from gyrovib.errors import CatalogError, OptionError, Problem
 
     if files.count(STDIN) > 1:
         raise OptionError("'-' (standard input) can be given only once")
-    problems = []
-    sources = []
+    problems: list[Problem] = []
+    sources: list[CatalogSource] = []
     for name in files:
         try:
             sources.append(parse_catalog(_read_stdin(), STDIN_NAME) if name == STDIN

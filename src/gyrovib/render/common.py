@@ -63,24 +63,7 @@ def markdown_table(header_row: list[str], rows: Iterable[list[str]]) -> str:
     lines = ["| " + " | ".join(cell(h) for h in header_row) + " |",
              "|" + "|".join("---" for _ in header_row) + "|"]
     lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in rows]
-    text = "\n".join(lines) + "\n"
-    return to_ascii(text) if ascii else text
-
-
-def _ascii_item(item: Table | Text) -> Table | Text:
-    def text(cell: Cell) -> Text:
-        out = Text()
-        for piece, style in (cell.pieces if isinstance(cell, Text) else [(cell, None)]):
-            out.append(to_ascii(piece), style)
-        return out
-
-    if isinstance(item, Text):
-        return text(item)
-    table = Table(title=None if item.title is None else to_ascii(item.title),
-                  header_style=item.header_style)
-    table.columns = [{**c, "header": to_ascii(c["header"])} for c in item.columns]
-    table.rows = [[text(c) for c in row] for row in item.rows]
-    return table
+    return "\n".join(lines) + "\n"
 
 
 #: ANSI SGR codes of the few styles the tables use.
@@ -252,7 +235,26 @@ def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
         style = item.pieces[0][1] if item.pieces else None
         lines.extend(_styled(chunk, style, color)
                      for chunk in textwrap.wrap(item.plain, page) or [""])
-    return "\n".join(lines) + "\n"
+    text = "\n".join(lines) + "\n"
+    return to_ascii(text) if ascii else text
+
+
+def _ascii_item(item: Table | Text) -> Table | Text:
+    def text(cell: Cell) -> Text:
+        out = Text()
+        for piece, style in (cell.pieces if isinstance(cell, Text) else [(cell, None)]):
+            out.append(to_ascii(piece), style)
+        return out
+
+    if isinstance(item, Text):
+        return text(item)
+    table = Table(title=None if item.title is None else to_ascii(item.title),
+                  header_style=item.header_style)
+    table.columns = [{**c, "header": to_ascii(c["header"])} for c in item.columns]
+    table.rows = [[text(c) for c in row] for row in item.rows]
+    return table
+
+
 
 
 #: What each non-ASCII character of the renderers becomes on a stream that
