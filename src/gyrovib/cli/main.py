@@ -81,6 +81,12 @@ def _echo_interrupted(code: int) -> None:
         pass
 
 
+#: Each command lives in its own module, imported only when that command runs
+#: (or ``--help`` lists them all).
+_COMMANDS = {name: f"gyrovib.cli.{name}"
+             for name in ("analyze", "bounds", "select", "sweep", "validate", "schema")}
+
+
 class _Group(click.Group):
     """Catches the one error root and turns it into lines on stderr and exit 2.
 
@@ -90,6 +96,17 @@ class _Group(click.Group):
     """
 
     _argv: list[str] | None = None
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return list(_COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in self.commands and cmd_name in _COMMANDS:
+            import importlib
+
+            module = importlib.import_module(_COMMANDS[cmd_name])
+            self.add_command(getattr(module, cmd_name))
+        return self.commands.get(cmd_name)
 
     def main(self, args: Any = None, *rest: Any, **extra: Any) -> Any:
         self._argv = None if args is None else [str(a) for a in args]
@@ -172,22 +189,6 @@ def cli(ctx: click.Context, color: str) -> None:
     closed early.
     """
     ctx.obj = Settings(color=color)
-
-
-def _register() -> None:
-    # Each command lives in its own module; they import only click at import time.
-    from gyrovib.cli.analyze import analyze
-    from gyrovib.cli.bounds import bounds
-    from gyrovib.cli.schema import schema
-    from gyrovib.cli.select import select
-    from gyrovib.cli.sweep import sweep
-    from gyrovib.cli.validate import validate
-
-    for command in (analyze, bounds, select, sweep, validate, schema):
-        cli.add_command(command)
-
-
-_register()
 
 
 def main(args: list[str] | None = None) -> NoReturn:

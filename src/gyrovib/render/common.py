@@ -141,29 +141,39 @@ class Table:
         def rule(left: str, fill: str, mid: str, right: str) -> str:
             return left + mid.join(fill * (widths[k] + 2) for k in group) + right
 
-        def body(cells: list[Cell], edge: str, style_of: Any) -> list[str]:
-            split = {k: _wrap(cells[k], widths[k], self.columns[k]["wrap"]) for k in group}
-            height = max(len(v) for v in split.values())
-            out = []
-            for n in range(height):
-                parts = []
-                for k in group:
-                    column = self.columns[k]
-                    piece = split[k][n] if n < len(split[k]) else Text("")
-                    pad = widths[k] - len(piece)
-                    justify = column["justify"]
-                    left = pad // 2 if justify == "center" else pad if justify == "right" else 0
-                    parts.append(" " * (left + 1) + piece.render(color, style_of(column))
-                                 + " " * (pad - left + 1))
-                out.append(edge + edge.join(parts) + edge)
-            return out
+        columns = [self.columns[k] for k in group]
+
+        def one_line(cells: list[Cell], edge: str, styles: list[str | None]) -> str:
+            parts = []
+            for k, column, style in zip(group, columns, styles, strict=True):
+                cell = cells[k]
+                if isinstance(cell, str):
+                    pad = widths[k] - len(cell)
+                    text = _styled(cell, style, color) if color else cell
+                else:
+                    pad = widths[k] - len(cell)
+                    text = cell.render(color, style)
+                justify = column["justify"]
+                left = pad // 2 if justify == "center" else pad if justify == "right" else 0
+                parts.append(" " * (left + 1) + text + " " * (pad - left + 1))
+            return edge + edge.join(parts) + edge
+
+        def body(cells: list[Cell], edge: str, styles: list[str | None]) -> list[str]:
+            if all(len(cells[k]) <= widths[k] for k in group):
+                return [one_line(cells, edge, styles)]
+            split = [_wrap(cells[k], widths[k], self.columns[k]["wrap"]) for k in group]
+            height = max(len(v) for v in split)
+            return [one_line({k: v[n] if n < len(v) else "" for k, v in
+                              zip(group, split, strict=True)}, edge, styles)  # type: ignore[arg-type]
+                    for n in range(height)]
 
         lines = [rule("┏", "━", "┳", "┓")]
-        lines += body([Text(c["header"]) for c in self.columns], "┃",
-                      lambda column: self.header_style)
+        lines += body([c["header"] for c in self.columns], "┃",
+                      [self.header_style] * len(group))
         lines.append(rule("┡", "━", "╇", "┩"))
+        styles = [column["style"] for column in columns]
         for row in self.rows:
-            lines += body(row, "│", lambda column: column["style"])
+            lines += body(row, "│", styles)
         lines.append(rule("└", "─", "┴", "┘"))
         return lines
 
