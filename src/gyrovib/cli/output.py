@@ -15,6 +15,7 @@ import os
 import stat
 import sys
 from pathlib import Path
+from typing import TextIO
 
 from gyrovib.errors import OptionError
 
@@ -58,8 +59,7 @@ def write_output(text: str, path: str | None) -> None:
         if stream is None:
             raise WriteFailure("cannot write standard output: it is closed")
         try:
-            stream.write(encodable(text, getattr(stream, "encoding", None)))
-            stream.flush()
+            _write_all(stream, encodable(text, getattr(stream, "encoding", None)))
         except BrokenPipeError:
             raise
         except (OSError, ValueError) as exc:
@@ -68,6 +68,33 @@ def write_output(text: str, path: str | None) -> None:
             raise WriteFailure(f"cannot write standard output: {reason}") from None
         return
     _replace(path, text.encode("utf-8"), "--output: ")
+
+
+def _write_all(stream: TextIO, text: str) -> None:
+    """Write ``text`` and flush, every byte or an exception.
+
+    With ``PYTHONUNBUFFERED=1`` the stream's binary layer is the raw file, and
+    a write to a pipe whose reader left part-way returns a short count that the
+    text layer drops without a word: the output would end silently truncated
+    with exit 0. So the bytes go to the binary layer here, until all are
+    written; the write after a short one raises BrokenPipeError (exit 141).
+    """
+    buffer = getattr(stream, "buffer", None)
+    if buffer is None:  # a stream without a binary layer (io.StringIO, some wrappers)
+        stream.write(text)
+        stream.flush()
+        return
+    stream.flush()
+    data = memoryview(text.encode(stream.encoding or "utf-8"))
+    while data:
+        written = buffer.write(data)
+        if written is None:  # non-blocking and full: wait until writable
+            import select
+
+            select.select([], [buffer], [])
+            continue
+        data = data[written:]
+    buffer.flush()
 
 
 def write_binary(data: bytes, path: str) -> None:

@@ -130,7 +130,10 @@ class Table:
         groups = _column_groups(widths, width)
         lines: list[str] = []
         if self.title:
-            lines.append(_styled(self.title, "bold" if color else None, color))
+            import textwrap
+
+            lines.extend(_styled(part, "bold", color)
+                         for part in textwrap.wrap(self.title, width) or [""])
         for group in groups:
             group_widths = _fit(self.columns, group, widths, width)
             lines.extend(self._render_group(group, group_widths, color))
@@ -161,7 +164,7 @@ class Table:
         def body(cells: list[Cell], edge: str, styles: list[str | None]) -> list[str]:
             if all(len(cells[k]) <= widths[k] for k in group):
                 return [one_line(cells, edge, styles)]
-            split = [_wrap(cells[k], widths[k], self.columns[k]["wrap"]) for k in group]
+            split = [_wrap(cells[k], widths[k]) for k in group]
             height = max(len(v) for v in split)
             return [one_line({k: v[n] if n < len(v) else "" for k, v in
                               zip(group, split, strict=True)}, edge, styles)  # type: ignore[arg-type]
@@ -198,24 +201,26 @@ def _column_groups(widths: list[int], page: int) -> list[list[int]]:
 
 def _fit(columns: list[dict[str, Any]], group: list[int], widths: list[int],
          page: int) -> dict[int, int]:
-    """Column widths of one group, narrowing wrappable columns until it fits ``page``."""
+    """Column widths of one group, narrowed until it fits ``page``: the wrappable
+    columns first, then, as a last resort, any but the key column (folded)."""
     fitted = {k: widths[k] for k in group}
     excess = 1 + sum(w + 3 for w in fitted.values()) - page
-    for k in sorted(group, key=lambda k: -fitted[k]):
-        if excess <= 0:
-            break
-        if columns[k]["wrap"]:
-            floor = max(8, columns[k]["min_width"])
-            cut = min(excess, fitted[k] - floor)
-            if cut > 0:
-                fitted[k] -= cut
-                excess -= cut
+    for last_resort in (False, True):
+        for k in sorted(group, key=lambda k: -fitted[k]):
+            if excess <= 0:
+                return fitted
+            if columns[k]["wrap"] or (last_resort and k != group[0]):
+                cut = min(excess, fitted[k] - max(8, columns[k]["min_width"]))
+                if cut > 0:
+                    fitted[k] -= cut
+                    excess -= cut
     return fitted
 
 
-def _wrap(cell: Cell, width: int, wrap: bool) -> list[Text]:
+def _wrap(cell: Cell, width: int) -> list[Text]:
+    """``cell`` in lines of at most ``width`` characters (at spaces where it can)."""
     text = cell if isinstance(cell, Text) else Text(cell)
-    if len(text) <= width or not wrap:
+    if len(text) <= width:
         return [text]
     import textwrap
 
@@ -273,7 +278,8 @@ _ASCII = str.maketrans({
     "Δ": "Delta", "Ω": "Omega", "σ": "sigma", "µ": "u", "μ": "u", "±": "+/-", "∞": "inf",
     "✓": "v", "✗": "x", "⚠": "!", "²": "^2", "³": "^3", "×": "x", "·": "*", "≤": "<=",
     "≥": ">=", "≈": "~", "—": "--", "–": "-", "…": "...", "→": "->", "’": "'", "‘": "'",
-    "“": '"', "”": '"', "°": "deg", "√": "sqrt", "∫": "int", "π": "pi",
+    "“": '"', "”": '"', "°": "deg", "√": "sqrt", "∫": "int", "π": "pi", "α": "alpha",
+    "β": "beta", "₀": "0", "₁": "1", "₂": "2", "₃": "3", "₄": "4", "₅": "5",
     "┏": "+", "┳": "+", "┓": "+", "┡": "+", "╇": "+", "┩": "+", "└": "+", "┴": "+",
     "┘": "+", "┃": "|", "│": "|", "━": "=", "─": "-",
 })
