@@ -19,8 +19,8 @@ from pathlib import Path
 import pytest
 
 from gyrovib import api
-from gyrovib.render.report import to_html
 from gyrovib.api.study import trade_study
+from gyrovib.render.report import to_html
 
 CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 CHROMIUM = next(filter(None, map(shutil.which, CANDIDATES)), None)

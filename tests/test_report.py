@@ -15,11 +15,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gyrovib import api
+from gyrovib.api.study import envelope, trade_study
 from gyrovib.cli.main import cli
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render import svg
 from gyrovib.render.report import term_names, term_squares, to_html
-from gyrovib.api.study import envelope, trade_study
 
 HOSTILE = '<script>alert("x")</script> & <b>bold</b>'
 

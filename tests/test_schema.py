@@ -12,7 +12,9 @@ from gyrovib.catalog.jsonschema import DRAFT_07, catalog_schema
 from gyrovib.catalog.loader import _parse, bundled_paths
 from tests.conftest import VALID, invoke
 
-REPO_CATALOGS = sorted((Path(__file__).parent.parent / "catalogs").glob("*.yaml"))
+#: The bundled catalogues, as files of the source tree (one copy: package data).
+REPO_CATALOGS = sorted(
+    (Path(__file__).parent.parent / "src" / "gyrovib" / "catalogs").glob("*.gyrovib.yaml"))
 
 
 @pytest.fixture(scope="module")

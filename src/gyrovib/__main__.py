@@ -1,4 +1,4 @@
-from gyrovib.cli.main import main
+from gyrovib.cli import main
 
 if __name__ == "__main__":  # pragma: no cover
     main()

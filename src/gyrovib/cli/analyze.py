@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog, use_color
+from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
+    SAMPLES_MAX,
     files_argument,
     format_option,
     output_option,
@@ -24,8 +25,9 @@ from gyrovib.cli.options import (
               show_default=True,
               help="exact: exact moments; paper: the paper's printed formulas; "
                    "numeric: brute-force average of eq. (2) (total ± stderr).")
-@click.option("--samples", type=click.IntRange(min=32), default=200_000, show_default=True,
-              metavar="N", help="numeric: evaluations of eq. (2) per sensor × profile.")
+@click.option("--samples", type=click.IntRange(min=32, max=SAMPLES_MAX), default=200_000,
+              show_default=True, metavar="N",
+              help=f"numeric: evaluations of eq. (2) per sensor × profile, 32 to {SAMPLES_MAX:,}.")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               metavar="S", help="numeric: random seed; the same seed gives the same numbers.")
 @rate_option
@@ -56,7 +58,8 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
                              rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
                              seed=seed, progress=advance)
     if fmt == "table":
-        write_output(render.to_table(result, color=use_color(output)), output)
+        write_output(render.to_table(result, color=use_color(output), width=page_width(output),
+                                     ascii=plain_ascii(output)), output)
         return
     renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

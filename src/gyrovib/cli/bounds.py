@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog, use_color
+from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
     allocation_option,
     budget_option,
@@ -51,7 +51,8 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, allocation=parse_allocation(allocation))
     if fmt == "table":
-        text = render.to_table(result, color=use_color(output))
+        text = render.to_table(result, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output))
     else:
         text = {"json": render.to_json, "csv": render.to_csv,
                 "markdown": render.to_markdown}[fmt](result)

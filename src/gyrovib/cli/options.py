@@ -15,6 +15,10 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 UNIT_CHOICES = tuple(units.RATE_UNITS)
 
+#: The most samples ``analyze --method numeric`` takes per sensor × profile: 10^8
+#: evaluations of eq. (2) take minutes; more is a typo, not a study.
+SAMPLES_MAX = 100_000_000
+
 
 def files_argument(f: F) -> F:
     return click.argument("files", nargs=-1, metavar="[FILE]...")(f)

@@ -1,26 +1,100 @@
-"""Writing command output: standard output, or a file replaced atomically."""
+"""Writing command output: standard output, or a file replaced atomically.
+
+A path that cannot hold the output (no such directory, a directory, no
+permission to create a file there) is bad usage (:class:`OptionError`, exit 2).
+A failure while writing is the environment's, not a bug: it raises
+:class:`WriteFailure` (exit status 74, one line naming what could not be
+written), except a reader that went away (``| head``), which stays a
+:class:`BrokenPipeError` (exit 141, quiet).
+"""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import stat
 import sys
-import tempfile
 from pathlib import Path
+from typing import TextIO
 
 from gyrovib.errors import OptionError
+
+
+class WriteFailure(Exception):
+    """The output could not be written (closed stream, full disk, I/O error)."""
+
+
+def silence_stdout() -> None:
+    """Point standard output at the null device, so that nothing more is written
+    (nor fails again when Python flushes it on exit)."""
+    with contextlib.suppress(OSError, ValueError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 1)
+        os.close(devnull)
+    with contextlib.suppress(OSError):
+        sys.stdout = open(os.devnull, "w", encoding="utf-8")  # noqa: SIM115
+
+
+def encodable(text: str, encoding: str | None) -> str:
+    """``text``, or its ASCII fallback when ``encoding`` cannot encode it."""
+    try:
+        text.encode(encoding or "utf-8")
+    except UnicodeEncodeError:
+        from gyrovib.render.common import to_ascii
+
+        return to_ascii(text)
+    except LookupError:
+        pass
+    return text
 
 
 def write_output(text: str, path: str | None) -> None:
     """Write ``text`` to ``path`` atomically (temp file + rename), or to stdout.
 
-    A failure leaves an existing file untouched.
+    A failure leaves an existing file untouched. Standard output that cannot
+    encode a character (``PYTHONIOENCODING=ascii``) gets the ASCII fallback.
     """
     if path is None or path == "-":
-        sys.stdout.write(text)
-        sys.stdout.flush()
+        stream = sys.stdout
+        if stream is None:
+            raise WriteFailure("cannot write standard output: it is closed")
+        try:
+            _write_all(stream, encodable(text, getattr(stream, "encoding", None)))
+        except BrokenPipeError:
+            raise
+        except (OSError, ValueError) as exc:
+            silence_stdout()
+            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+            raise WriteFailure(f"cannot write standard output: {reason}") from None
         return
     _replace(path, text.encode("utf-8"), "--output: ")
+
+
+def _write_all(stream: TextIO, text: str) -> None:
+    """Write ``text`` and flush, every byte or an exception.
+
+    With ``PYTHONUNBUFFERED=1`` the stream's binary layer is the raw file, and
+    a write to a pipe whose reader left part-way returns a short count that the
+    text layer drops without a word: the output would end silently truncated
+    with exit 0. So the bytes go to the binary layer here, until all are
+    written; the write after a short one raises BrokenPipeError (exit 141).
+    """
+    buffer = getattr(stream, "buffer", None)
+    if buffer is None:  # a stream without a binary layer (io.StringIO, some wrappers)
+        stream.write(text)
+        stream.flush()
+        return
+    stream.flush()
+    data = memoryview(text.encode(stream.encoding or "utf-8"))
+    while data:
+        written = buffer.write(data)
+        if written is None:  # non-blocking and full: wait until writable
+            import select
+
+            select.select([], [buffer], [])
+            continue
+        data = data[written:]
+    buffer.flush()
 
 
 def write_binary(data: bytes, path: str) -> None:
@@ -31,14 +105,16 @@ def write_binary(data: bytes, path: str) -> None:
 def _replace(path: str, data: bytes, what: str) -> None:
     """Put ``data`` at ``path`` through a temporary file in the same directory.
 
-    An existing file keeps its permissions; a new one gets the umask's. On any
-    failure the temporary file is removed and ``path`` is left as it was. A
-    path that is not a regular file (``/dev/null``, a FIFO, a terminal) is
+    An existing file keeps its permissions; a new one gets the umask's. A
+    symbolic link is written through: its target is replaced, the link stays.
+    On any failure, and on SIGINT or SIGTERM (which the command line turns into
+    exceptions), the temporary file is removed and ``path`` is left as it was.
+    A path that is not a regular file (``/dev/null``, a FIFO, a terminal) is
     written to directly: renaming over it would replace the device.
     """
     if not path:
         raise OptionError(f"{what}give a file name")
-    target = Path(path)
+    target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
     try:
         mode = os.stat(target).st_mode
     except OSError:
@@ -48,18 +124,20 @@ def _replace(path: str, data: bytes, what: str) -> None:
             with open(target, "wb") as handle:
                 handle.write(data)
         except OSError as exc:
-            raise OptionError(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
+            raise WriteFailure(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
         return
     directory = target.parent if str(target.parent) else Path(".")
     if not directory.is_dir():
         raise OptionError(f"{what}directory {str(directory)!r} of {path!r} does not exist")
     if target.is_dir():
         raise OptionError(f"{what}{path!r} is a directory")
+    import tempfile  # not at import time: it costs ~7 ms of start-up
+
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=directory)
     except OSError as exc:
         raise OptionError(f"{what}cannot write in {str(directory)!r}: "
-                          f"{exc.strerror or exc}") from None
+                           f"{exc.strerror or exc}") from None
     try:
         with os.fdopen(fd, "wb") as handle:
             handle.write(data)
@@ -73,7 +151,7 @@ def _replace(path: str, data: bytes, what: str) -> None:
             os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, target)
     except OSError as exc:
-        raise OptionError(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
+        raise WriteFailure(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)

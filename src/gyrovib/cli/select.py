@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import github_errors, load_catalog, use_color
+from gyrovib.cli.common import github_errors, load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
     allocation_option,
     budget_option,
@@ -62,7 +62,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
                         unit=unit, criterion=criterion, require=require,
                         allocation=parse_allocation(allocation))
     if fmt == "table":
-        text = render.to_table(result, color=use_color(output))
+        text = render.to_table(result, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output))
     elif fmt == "github":
         text = render.to_github(result, api.sensor_locations(catalog, result.sensors))
     else:

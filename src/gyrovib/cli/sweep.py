@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog
+from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
     files_argument,
     format_option,
@@ -84,5 +84,10 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
         from gyrovib.render.plot import sweep_png
 
         write_binary(sweep_png(result, budget_value, log=log_scale), plot)
-    renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv}
+    if fmt == "table":
+        write_output(render.to_table(result, budget_value, width=page_width(output),
+                                     color=use_color(output),
+                                     ascii=plain_ascii(output)), output)
+        return
+    renderers = {"json": render.to_json, "csv": render.to_csv}
     write_output(renderers[fmt](result, budget_value), output)

@@ -179,10 +179,10 @@ def to_markdown(result: AnalysisResult) -> str:
     return text
 
 
-def to_table(result: AnalysisResult, width: int | None = None, color: bool = False) -> str:
-    """One rich table per profile, sensors as rows, warnings below."""
-    from rich.table import Table
-    from rich.text import Text
+def to_table(result: AnalysisResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """One table per profile, sensors as rows, warnings below."""
+    from gyrovib.render.common import Table, Text
 
     e = result.error
     extra = getattr(result, "stderr", None)
@@ -221,7 +221,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
         out.append(Text(_numeric_note(result), style="dim"))
     for k, note in enumerate(notes, 1):
         out.append(Text(f"⚠{k} {note}", style="yellow"))
-    return rich_text(out, width=width, color=color)
+    return rich_text(out, width=width, color=color, ascii=ascii)
 
 
 def _numeric_note(result: AnalysisResult) -> str:

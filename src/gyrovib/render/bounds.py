@@ -117,10 +117,10 @@ def to_markdown(result: BoundsResult) -> str:
     return "\n".join(parts)
 
 
-def to_table(result: BoundsResult, width: int | None = None, color: bool = False) -> str:
-    """One rich table per profile, one row per bounded coefficient."""
-    from rich.table import Table
-    from rich.text import Text
+def to_table(result: BoundsResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """One table per profile, one row per bounded coefficient."""
+    from gyrovib.render.common import Table, Text
 
     out: list[Any] = []
     for j in range(len(result.profiles)):
@@ -132,4 +132,4 @@ def to_table(result: BoundsResult, width: int | None = None, color: bool = False
             table.add_row(*row)
         out.append(table)
     out.append(Text(_LEGEND, style="dim"))
-    return rich_text(out, width=width, color=color)
+    return rich_text(out, width=width, color=color, ascii=ascii)

@@ -18,12 +18,12 @@ from html import escape
 
 import numpy as np
 
+from gyrovib.api.study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares
 from gyrovib.render.common import fmt
 from gyrovib.render.select import limit_text
 from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
-from gyrovib.api.study import Spectrum, TradeStudy
 
 PASS_FILL, FAIL_FILL = "#2ca02c", "#d62728"
 FORM_TAGS = {"datasheet": "datasheet (spec form): worst case",

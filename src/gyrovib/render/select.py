@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Sequence
 from typing import Any
 
@@ -174,10 +175,10 @@ def to_markdown(result: SelectionResult) -> str:
     return "\n".join(text)
 
 
-def to_table(result: SelectionResult, width: int | None = None, color: bool = False) -> str:
-    """Rich tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
-    from rich.table import Table
-    from rich.text import Text
+def to_table(result: SelectionResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """Tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
+    from gyrovib.render.common import Table, Text
 
     out: list[Any] = [Text(_heading(result), style="bold")]
     matrix = Table(header_style="bold")
@@ -199,7 +200,7 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
                        title_justify="left", header_style="bold")
         for label, justify in (("rank", "right"), ("sensor", "left"),
                                ("worst margin", "right"), ("under", "left")):
-            ranked.add_column(label, justify=justify, no_wrap=True)  # type: ignore[arg-type]
+            ranked.add_column(label, justify=justify, no_wrap=True)
         for row in passing:
             ranked.add_row(*row)
         out.append(ranked)
@@ -215,7 +216,7 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
     out.append(Text(_summary(result), style="bold green" if result.requirement_met
                     else "bold red"))
     out.append(Text(_legend(result), style="dim"))
-    return rich_text(out, width=width, color=color)
+    return rich_text(out, width=width, color=color, ascii=ascii)
 
 
 # ------------------------------------------------------------------ JUnit
@@ -257,13 +258,18 @@ def to_github(
     """GitHub workflow annotations: one ``::error`` per failing sensor at its catalogue line,
     a ``::notice`` per passing sensor, and a closing summary notice.
 
+    GitHub shows 10 of each level per step: past that the worst are annotated,
+    one notice counts the rest, and those follow as plain log lines.
+
     ``locations[i]`` is the (file, line) of sensor ``i``'s ``id:``.
     """
     from gyrovib.render.github import annotations
 
     items: list[tuple[str | None, int | None, str | None, str, str]] = []
+    rank: list[float] = []  # GitHub shows 10 of each level: the smallest margins first
     for i, sensor in enumerate(result.sensors):
         file, line = locations[i]
+        rank.append(float(result.worst_margin[i]))
         if result.sensor_pass[i]:
             worst = _margin(float(result.worst_margin[i]))
             items.append((file, line, f"{sensor} passes",
@@ -277,4 +283,5 @@ def to_github(
                       f"({_CRITERION[result.criterion]}). Limited by {limit_text(result, i)}. "
                       + " | ".join(reasons), "error"))
     items.append((None, None, "gyrovib select", _summary(result), "notice"))
-    return annotations(items)
+    rank.append(-math.inf)  # the summary is always shown
+    return annotations(items, rank=rank)

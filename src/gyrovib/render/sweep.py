@@ -59,10 +59,10 @@ def to_csv(result: SweepResult, budget: float | None = None) -> str:
 
 
 def to_table(result: SweepResult, budget: float | None = None, width: int | None = None,
-             color: bool = False) -> str:
+             color: bool = False,
+             ascii: bool = False) -> str:
     """One table per profile × sensor: the rates as rows, exact and paper side by side."""
-    from rich.table import Table
-    from rich.text import Text
+    from gyrovib.render.common import Table, Text
 
     out: list[Any] = []
     for i, j in _series(result):
@@ -85,4 +85,4 @@ def to_table(result: SweepResult, budget: float | None = None, width: int | None
     out.append(Text(legend, style="dim"))
     for profile, why in result.paper_refused.items():
         out.append(Text(f"paper: no values for {profile}: {why}", style="dim"))
-    return rich_text(out, width=width, color=color)
+    return rich_text(out, width=width, color=color, ascii=ascii)
