@@ -241,7 +241,8 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
             idx = todo[start:start + CHUNK]
             hg, yg, lg = _solve_grids(fit[idx], a[idx], d[idx], [grids[i] for i in idx])
             mx, cand = true_max(fit[idx], yg, lg)
-            scale = 1.0 / np.maximum(mx, 1e-300)
+            # shrink onto the continuous envelope; never grow (|y1| ≤ a may be what binds)
+            scale = 1.0 / np.maximum(mx, 1.0)
             h[idx] = hg * scale
             y[idx] = yg * scale[:, None]
             line[idx] = lg * scale[:, None]
