@@ -171,16 +171,16 @@ def test_random_feasible_polynomials_never_exceed_the_worst(seed: int, fit: str)
     c = t.sum(axis=1)[0]
     wc = worst_case(t, 0.0, [r], [b], fit)
     worst = wc.nonlinearity[0, 0]
-    w = np.linspace(-r, r, 40001)
+    w = np.linspace(-r, r, 20001)
     # random polynomials, scaled into the envelope: residual from the least-squares line
     # of the dense grid (any line bounds the minimax residual from above)
-    x = rng.normal(size=(400, 5)) / r ** np.arange(1, 6) * rng.uniform(0, 1, (400, 1)) ** 3
-    p = residual(x, np.zeros((400, 2)), w)
+    x = rng.normal(size=(200, 5)) / r ** np.arange(1, 6) * rng.uniform(0, 1, (200, 1)) ** 3
+    p = residual(x, np.zeros((200, 2)), w)
     if fit == "endpoint":
         line = np.column_stack([(p[:, 0] + p[:, -1]) / 2, (p[:, -1] - p[:, 0]) / (2 * r)])
     else:
-        wm = midpoints(r, 40000)
-        line = np.polyfit(wm, residual(x, np.zeros((400, 2)), wm).T, 1)[::-1].T
+        wm = midpoints(r, 20000)
+        line = np.polyfit(wm, residual(x, np.zeros((200, 2)), wm).T, 1)[::-1].T
     dev = np.max(np.abs(p - line[:, :1] - line[:, 1:] * w), axis=1)
     vals = np.abs(x @ c) * b / dev
     assert np.all(vals <= worst * (1 + 1e-6))
@@ -189,7 +189,7 @@ def test_random_feasible_polynomials_never_exceed_the_worst(seed: int, fit: str)
     assert np.max(np.abs(residual(xs, wc.line[0, 0], w))) <= b * (1 + 1e-9)
     assert xs @ c == pytest.approx(worst, rel=1e-12)
     if fit == "least-squares":  # its line is its least-squares line
-        wm = midpoints(r, 40000)
+        wm = midpoints(r, 20000)
         ps = residual(xs, np.zeros(2), wm)
         np.testing.assert_allclose(wc.line[0, 0], np.polyfit(wm, ps, 1)[::-1], rtol=1e-6,
                                    atol=1e-8 * b)
