@@ -228,8 +228,9 @@ def test_vectorised_equals_one_by_one() -> None:
     for i in range(4):
         one = worst_case(t, [0, 1, 2], [rs[i]], [bs[i]], fits[i], meas[i], [asym[i]],
                          [[0, 1e-3, 0, 2e-3][i]])
-        np.testing.assert_allclose(all_.total[i], one.total[0], rtol=1e-12)
-        np.testing.assert_allclose(all_.rms_bound[i], one.rms_bound[0], rtol=1e-12)
+        # each within 1e-7 below the continuous optimum (the grids may differ by seeding)
+        np.testing.assert_allclose(all_.total[i], one.total[0], rtol=2e-7)
+        np.testing.assert_allclose(all_.rms_bound[i], one.rms_bound[0], rtol=2e-7)
 
 
 def test_worst_case_scales_with_b() -> None:
