@@ -194,11 +194,19 @@ def _solve_grids(fit: np.ndarray, a: np.ndarray, d: np.ndarray,
                  grids: list[FloatArray]) -> tuple[FloatArray, FloatArray, FloatArray]:
     """One block-diagonal HiGHS LP: max Σ_k d_kᵀy_k s.t. |r_k(u)| ≤ 1 on grid k.
 
-    Variables per block: y (5), α, β (fixed at 0 unless minimax); |y1| ≤ a by
-    bounds. Returns the grid optimum (K,), y (K, 5), line (K, 2).
+    Solved as its LP dual, which has 5 (7 with the minimax line) equality
+    rows per block instead of two rows per grid point: with ψ̃(u) = (ψ(u), −1,
+    −u) and the line's columns kept only for minimax,
+
+        min Σ_j (λ⁺_j + λ⁻_j) + a·(μ⁺ + μ⁻)
+        s.t. Σ_j (λ⁺_j − λ⁻_j)·ψ̃(u_j) + (μ⁺ − μ⁻)·e1 = (d, 0, 0),  λ, μ ≥ 0
+
+    (μ absent when a = inf). Its optimum equals the primal one and the
+    multipliers of the equality rows are the primal (y, α, β). Returns the
+    grid optimum (K,), y (K, 5), line (K, 2).
     """
     from scipy.optimize import linprog
-    from scipy.sparse import coo_array, vstack
+    from scipy.sparse import coo_array
 
     k = d.shape[0]
     counts = np.array([g.size for g in grids])
@@ -206,24 +214,25 @@ def _solve_grids(fit: np.ndarray, a: np.ndarray, d: np.ndarray,
     blk = np.repeat(np.arange(k), counts)
     m = u.size
     vals = np.concatenate([basis(fit[blk], u), -np.ones((m, 1)), -u[:, None]], axis=1)
-    rows = np.repeat(np.arange(m), 7)
-    cols = (7 * blk[:, None] + np.arange(7)).ravel()
-    a_mat = coo_array((vals.ravel(), (rows, cols)), shape=(m, 7 * k)).tocsr()
-    a_ub = vstack([a_mat, -a_mat]).tocsr()
-    cost = -np.concatenate([d, np.zeros((k, 2))], axis=1).ravel()
-    bounds = np.empty((k, 7, 2))
-    bounds[:, :, 0] = -np.inf
-    bounds[:, :, 1] = np.inf
-    bounds[:, 0, 0] = -a
-    bounds[:, 0, 1] = a
-    free_line = (fit == MINIMAX)[:, None]
-    bounds[:, 5:, 0] = np.where(free_line, -np.inf, 0.0)
-    bounds[:, 5:, 1] = np.where(free_line, np.inf, 0.0)
-    res = linprog(cost, A_ub=a_ub, b_ub=np.ones(2 * m), bounds=bounds.reshape(-1, 2),
-                  method="highs", options=_HIGHS)
-    if res.status != 0:  # pragma: no cover - the envelope is compact
+    keep = np.ones((m, 7), dtype=bool)
+    keep[:, 5:] = (fit[blk] == MINIMAX)[:, None]
+    rows = (7 * blk[:, None] + np.arange(7))[keep]
+    cols = np.broadcast_to(np.arange(m)[:, None], (m, 7))[keep]
+    v = vals[keep]
+    cut = np.isfinite(a)
+    mu = np.flatnonzero(cut)
+    n_mu = mu.size
+    r_all = np.concatenate([rows, rows, 7 * mu, 7 * mu])
+    c_all = np.concatenate([cols, m + cols, 2 * m + np.arange(n_mu), 2 * m + n_mu + np.arange(n_mu)])
+    v_all = np.concatenate([v, -v, np.ones(n_mu), -np.ones(n_mu)])
+    a_eq = coo_array((v_all, (r_all, c_all)), shape=(7 * k, 2 * m + 2 * n_mu)).tocsr()
+    b_eq = np.concatenate([d, np.zeros((k, 2))], axis=1).ravel()
+    cost = np.concatenate([np.ones(2 * m), a[mu], a[mu]])
+    res = linprog(cost, A_eq=a_eq, b_eq=b_eq, bounds=(0, None), method="highs",
+                  options=_HIGHS)
+    if res.status != 0:  # pragma: no cover - the envelope is compact, its dual feasible
         raise ArithmeticError(f"envelope LP failed: {res.message}")
-    x = np.asarray(res.x, dtype=float).reshape(k, 7)
+    x = np.asarray(res.eqlin.marginals, dtype=float).reshape(k, 7)
     y = x[:, :5]
     return np.einsum("ki,ki->k", d, y), y, x[:, 5:]
 
@@ -327,6 +336,16 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     y = np.zeros((k, 5))
     line = np.zeros((k, 2))
     gap = np.zeros(k)
+    # a cut at or above the envelope's own largest |y1| changes nothing: drop it, so
+    # such pairs share their programme with the uncut envelope
+    finite = np.flatnonzero(np.isfinite(a))
+    if finite.size:
+        pairs = np.unique(np.column_stack([fit[finite], measure[finite]]), axis=0)
+        e1 = np.tile([1.0, 0.0, 0.0, 0.0, 0.0], (pairs.shape[0], 1))
+        free, *_ = support(pairs[:, 0], pairs[:, 1], np.full(pairs.shape[0], np.inf), e1)
+        for (f, ms), top in zip(pairs, free, strict=True):
+            sel = (fit == f) & (measure == ms) & (a >= top * (1.0 + 1e-6))
+            a = np.where(sel, np.inf, a)
     rms = measure == 1
     if rms.any():
         h[rms], y[rms] = _support_rms(fit[rms], a[rms], d[rms])
