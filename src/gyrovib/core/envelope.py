@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from gyrovib.core.envelope_lp import FITS, MEASURES, support
+from gyrovib.core.envelope_lp import FITS, MEASURES, support, without_idle_cuts
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 
@@ -110,7 +110,7 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     dd = d.reshape(-1, 5)
     f = np.broadcast_to(fit, shape).reshape(-1)
     ms = np.broadcast_to(measure, shape).reshape(-1)
-    aa = np.broadcast_to(a, shape).reshape(-1)
+    aa = without_idle_cuts(f, ms, np.broadcast_to(a, shape).reshape(-1))
     norm = np.max(np.abs(dd), axis=1)
     first = dd[np.arange(dd.shape[0]), np.argmax(dd != 0, axis=1)]
     sign = np.where(first < 0, -1.0, 1.0)

@@ -314,6 +314,27 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
     return out
 
 
+def without_idle_cuts(fit: np.ndarray, measure: np.ndarray, a: np.ndarray) -> FloatArray:
+    """a with inf wherever the cut |y1| ≤ a is at or above the envelope's own max |y1|.
+
+    Such a cut changes nothing, and without it the pair shares its programme
+    with the uncut envelope. One programme per (fit, measure) present.
+    """
+    fit = np.asarray(fit, dtype=int)
+    measure = np.asarray(measure, dtype=int)
+    a = np.asarray(a, dtype=float)
+    finite = np.flatnonzero(np.isfinite(a))
+    if finite.size == 0:
+        return a
+    pairs = np.unique(np.column_stack([fit[finite], measure[finite]]), axis=0)
+    e1 = np.tile([1.0, 0.0, 0.0, 0.0, 0.0], (pairs.shape[0], 1))
+    free, *_ = support(pairs[:, 0], pairs[:, 1], np.full(pairs.shape[0], np.inf), e1)
+    for (f, ms), top in zip(pairs, free, strict=True):
+        # top is within 1e-7 below the true maximum
+        a = np.where((fit == f) & (measure == ms) & (a >= top * (1.0 + 1e-6)), np.inf, a)
+    return a
+
+
 def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
             d: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """h(d) = max dᵀy over the normalised envelope, for K pairs at once.
@@ -336,16 +357,6 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     y = np.zeros((k, 5))
     line = np.zeros((k, 2))
     gap = np.zeros(k)
-    # a cut at or above the envelope's own largest |y1| changes nothing: drop it, so
-    # such pairs share their programme with the uncut envelope
-    finite = np.flatnonzero(np.isfinite(a))
-    if finite.size:
-        pairs = np.unique(np.column_stack([fit[finite], measure[finite]]), axis=0)
-        e1 = np.tile([1.0, 0.0, 0.0, 0.0, 0.0], (pairs.shape[0], 1))
-        free, *_ = support(pairs[:, 0], pairs[:, 1], np.full(pairs.shape[0], np.inf), e1)
-        for (f, ms), top in zip(pairs, free, strict=True):
-            sel = (fit == f) & (measure == ms) & (a >= top * (1.0 + 1e-6))
-            a = np.where(sel, np.inf, a)
     rms = measure == 1
     if rms.any():
         h[rms], y[rms] = _support_rms(fit[rms], a[rms], d[rms])
