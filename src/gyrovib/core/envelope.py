@@ -26,7 +26,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.envelope_lp import FITS, MEASURES, support, without_idle_cuts
 from gyrovib.core.transmissibility import FloatArray
@@ -82,7 +82,8 @@ def nonlinearity_limit(value: ArrayLike, range_: ArrayLike, of: str) -> FloatArr
     raise ModelError(f"nonlinearity is relative to one of {', '.join(OF)}, not {of!r}")
 
 
-def _codes(name: str, words: str | Sequence[str], allowed: tuple[str, ...], n: int) -> FloatArray:
+def _codes(name: str, words: str | Sequence[str], allowed: tuple[str, ...],
+           n: int) -> NDArray[np.int_]:
     seq = [words] * n if isinstance(words, str) else list(words)
     if len(seq) != n:
         raise ValueError(f"{name} must have one entry per sensor ({n}), not {len(seq)}")
