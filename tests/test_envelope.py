@@ -204,6 +204,24 @@ def test_symmetry_and_vre_term() -> None:
     assert a.total[0, 0] == pytest.approx(a.nonlinearity[0, 0] + 5e-4 * 2.0, rel=1e-14)
 
 
+@pytest.mark.parametrize("fit", ["least-squares", "minimax", "endpoint"])
+def test_mirror_rate_mirrors_the_worst_polynomial(fit: str) -> None:
+    # Without odd moments Δ_V(−Ω) is Δ_V(Ω) of the mirrored sensor p(−ω): k3, k5 and the
+    # line's slope change sign (MODEL.md section 4: Δ(1), Δ(3) odd in Ω, Δ(2) even).
+    t = np.concatenate([profile(0.9), profile(-0.9)])
+    wc = worst_case(t, 0.0, [2.0], [0.01], fit)
+    assert wc.total[0, 0] == pytest.approx(wc.total[0, 1], rel=1e-12)
+    mirror = np.array([1.0, 1.0, -1.0, 1.0, -1.0])
+    np.testing.assert_allclose(wc.coefficients[0, 1], mirror * wc.coefficients[0, 0],
+                               rtol=1e-12)
+    np.testing.assert_allclose(wc.line[0, 1], [1.0, -1.0] * wc.line[0, 0], rtol=1e-12,
+                               atol=1e-15)
+    # and the mirrored polynomial is feasible: its residual is the mirror image
+    w = np.linspace(-2.0, 2.0, 4001)
+    np.testing.assert_allclose(residual(wc.coefficients[0, 1], wc.line[0, 1], w),
+                               residual(wc.coefficients[0, 0], wc.line[0, 0], -w), atol=1e-15)
+
+
 def test_per_term_maxima_and_rms_bound() -> None:
     t = profile(1.2, m3=0.4, m5=1.0)
     wc = worst_case(t, 1.0, [2.5], [0.02], vre=[1e-3])

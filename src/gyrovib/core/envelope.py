@@ -104,8 +104,11 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     """support() over (..., 5) directions, each unique normalised pair solved once.
 
     fit, measure, a broadcast against d[..., 0]. h is positively homogeneous
-    and even (the envelope is symmetric), so d is scaled to ‖d‖∞ = 1 with its
-    first nonzero entry positive before deduplication.
+    and, as the envelope is symmetric (y → −y) and mirror-symmetric (ω → −ω
+    flips the odd coefficients k3, k5 and the line's slope), h(T·d) = h(d)
+    and y*(T·d) = T·y*(d) for T = diag(s_e, s_e, s_o, s_e, s_o), s = ±1. So d
+    is scaled to ‖d‖∞ = 1 with its first nonzero even entry (A1, k2, k4) and
+    its first nonzero odd entry (k3, k5) positive before deduplication.
     """
     shape = d.shape[:-1]
     dd = d.reshape(-1, 5)
@@ -113,18 +116,25 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     ms = np.broadcast_to(measure, shape).reshape(-1)
     aa = without_idle_cuts(f, ms, np.broadcast_to(a, shape).reshape(-1))
     norm = np.max(np.abs(dd), axis=1)
-    first = dd[np.arange(dd.shape[0]), np.argmax(dd != 0, axis=1)]
-    sign = np.where(first < 0, -1.0, 1.0)
+    rows = np.arange(dd.shape[0])
+
+    def first_sign(cols: list[int]) -> FloatArray:
+        part = dd[:, cols]
+        lead = part[rows, np.argmax(part != 0, axis=1)]
+        return np.where(lead < 0, -1.0, 1.0)
+
+    s_e, s_o = first_sign([0, 1, 3]), first_sign([2, 4])
+    t = np.column_stack([s_e, s_e, s_o, s_e, s_o])
     with np.errstate(invalid="ignore", divide="ignore"):
-        canon = np.where(norm[:, None] > 0, dd * (sign / norm)[:, None], 0.0)
+        canon = np.where(norm[:, None] > 0, dd * t / norm[:, None], 0.0)
     key = np.column_stack([f, ms, aa, canon])
     uniq, inv = np.unique(key, axis=0, return_inverse=True)
     inv = inv.reshape(-1)
     h, y, line, gap = support(uniq[:, 0].astype(int), uniq[:, 1].astype(int), uniq[:, 2],
                               uniq[:, 3:])
     hv = (norm * h[inv]).reshape(shape)
-    yv = (sign[:, None] * y[inv]).reshape(*shape, 5)
-    lv = (sign[:, None] * line[inv]).reshape(*shape, 2)
+    yv = (t * y[inv]).reshape(*shape, 5)
+    lv = (np.column_stack([s_e, s_o]) * line[inv]).reshape(*shape, 2)
     return hv, yv, lv, gap[inv].reshape(shape)
 
 
@@ -183,8 +193,10 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
         raise ModelError("a sensor's range must be positive and finite")
     if not (np.all(np.isfinite(b)) and np.all(b >= 0)):
         raise ModelError("a nonlinearity limit must be finite and not negative")
-    if np.any(np.isnan(a_max)) or np.any(a_max < 0) or not np.all(np.isfinite(v)):
-        raise ModelError("asymmetry and VRE specs must be numbers, not negative")
+    if np.any(np.isnan(a_max)) or np.any(a_max < 0):
+        raise ModelError("an asymmetry spec must be a number, not negative")
+    if not np.all(np.isfinite(v)):
+        raise ModelError("a VRE spec must be a finite number")
     if not np.all(np.isfinite(t)) or not np.all(np.isfinite(s)):
         raise ModelError("the vibration multipliers must be finite")
     f = _codes("fit", fit, FITS, n)
