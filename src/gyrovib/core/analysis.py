@@ -191,7 +191,7 @@ def _acceleration(acceleration: ArrayLike | None, shape: tuple[int, ...]) -> Flo
     a = np.asarray(acceleration, dtype=float)
     if a.shape != (6,):
         raise ValueError("acceleration moments must have shape (6,)")
-    out: FloatArray = np.broadcast_to(a, shape + (6,)).copy()
+    out: FloatArray = np.broadcast_to(a, (*shape, 6)).copy()
     return out
 
 
@@ -276,7 +276,7 @@ class VibrationError:
 
     def __post_init__(self) -> None:
         if self.extra_terms is None:  # built without the section 8/10 terms: zeros
-            zeros = np.zeros(np.shape(self.additive_terms)[:-1] + (len(EXTRA_TERMS),))
+            zeros = np.zeros((*np.shape(self.additive_terms)[:-1], len(EXTRA_TERMS)))
             object.__setattr__(self, "extra_terms", zeros)
 
 
@@ -319,7 +319,7 @@ def vibration_error(
         g = np.asarray(g2_sensitivity, dtype=float)
         if g.shape != (c.shape[0], 6):
             raise ValueError("g2_sensitivity must have shape (sensors, 6)")
-        extra[0] = np.sum(g[expand + (slice(None),)] * mu.acceleration[None], axis=-1)
+        extra[0] = np.sum(g[(*expand, slice(None))] * mu.acceleration[None], axis=-1)
     q1 = 3.0 * col("k3") * mu.m2 + 5.0 * col("k5") * mu.m4
     q2 = 6.0 * col("k4") * mu.m2
     if mu.m3 is not None:
