@@ -17,6 +17,8 @@ rate units.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -96,4 +98,47 @@ def effective_vre(sensitivity: ArrayLike, moments: ArrayLike) -> FloatArray:
     den = np.broadcast_to(mean_square(moments)[None], num.shape)
     out: FloatArray = np.zeros(num.shape)
     np.divide(num, den, out=out, where=den > 0)
+    return out
+
+
+@dataclass(frozen=True)
+class LinearVibration:
+    """A linear vibration at the sensor's axes, in g (MODEL.md section 8).
+
+    ``amplitudes`` (K, 3) and ``phases`` (K, 3, degrees) of tones of distinct
+    frequencies; ``sigma`` (3,) Gaussian RMS per axis; ``coherence`` (3,)
+    ρ12, ρ13, ρ23. Build it with :func:`linear_vibration`.
+    """
+
+    amplitudes: FloatArray
+    phases: FloatArray
+    sigma: FloatArray
+    coherence: FloatArray
+
+    def moments(self) -> FloatArray:
+        """The six ⟨a_j·a_k⟩ (g²), :func:`acceleration_moments`."""
+        return acceleration_moments(self.amplitudes, self.phases, self.sigma, self.coherence)
+
+    def covariance(self) -> FloatArray:
+        """(3, 3) covariance of the Gaussian part, ρ_jk·σ_j·σ_k (g²)."""
+        rho = np.eye(3)
+        rho[0, 1] = rho[1, 0] = self.coherence[0]
+        rho[0, 2] = rho[2, 0] = self.coherence[1]
+        rho[1, 2] = rho[2, 1] = self.coherence[2]
+        out: FloatArray = rho * np.outer(self.sigma, self.sigma)
+        return out
+
+
+def linear_vibration(
+    amplitudes: ArrayLike = (),
+    phases: ArrayLike | None = None,
+    sigma: ArrayLike = (0.0, 0.0, 0.0),
+    coherence: ArrayLike = (0.0, 0.0, 0.0),
+) -> LinearVibration:
+    """Check and build a :class:`LinearVibration` (shapes and units as there)."""
+    amp = np.array(amplitudes, dtype=float).reshape(-1, 3)
+    ph = np.zeros(amp.shape) if phases is None else np.array(phases, dtype=float).reshape(-1, 3)
+    out = LinearVibration(amp, ph, np.array(sigma, dtype=float).reshape(3),
+                          np.array(coherence, dtype=float).reshape(3))
+    out.moments()  # validates
     return out
