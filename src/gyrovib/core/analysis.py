@@ -114,12 +114,12 @@ def paper_kind(vibration: Vibration, *, linear: bool = False, locked: bool = Fal
     which the paper's model does not have (MODEL.md sections 8 and 10).
     """
     if linear or locked:
-        what = " and ".join(
-            w for w, on in (("linear vibration", linear), ("phase-locked harmonics", locked)) if on
-        )
+        what = " or ".join(w for w, on in (("linear vibration (MODEL.md section 8)", linear),
+                                           ("phase-locked harmonics (MODEL.md section 10)",
+                                            locked)) if on)
         raise ModelError(
             f"the paper's model covers angular vibration by one harmonic tone or a random "
-            f"process; it has no {what} (MODEL.md sections 8 and 10); the exact method has"
+            f"process, not {what}; the exact method covers it"
         )
     n_tones = vibration.phasors.shape[0]
     if n_tones == 0:
