@@ -277,7 +277,7 @@ def _others_nodes(peak: float, n_max: int, amplitudes: FloatArray, sigma: float)
         swing = peak + float(np.sum(amplitudes))
         need = 1.25 * n_max * (8.0 * peak / sigma + (swing + peak) * peak / sigma**2) + 64
         return int(min(max(need, 64), 1 << 14))
-    return 1 << 12
+    return 1 << 14
 
 
 def locked_rectified_excess(
