@@ -103,7 +103,7 @@ def test_cumulant_combination_equals_a_product_average() -> None:
         assert float(got) == pytest.approx(float(np.sum(weight * y**n)), rel=1e-12)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def fine_x3(orders: tuple[int, ...]) -> np.ndarray:
     idx = [o - 1 for o in orders]
     return x_of(orders, [AMPS[i] for i in idx], [PHASES[i] for i in idx], midpoints(1 << 21))[2]
