@@ -6,7 +6,8 @@ free — shifting t by τ advances order n by n·2πf0τ — so in a group with 
 order of known phase the first unknown order keeps ψ = 0. The remaining
 offsets (D of them, over all groups of a profile) are searched on a coarse
 uniform grid of the D-torus, and the best node of each objective is refined
-by a compass (pattern) search whose step halves down to 1e-7 rad.
+by a compass (pattern) search whose step halves down to 1e-6 rad (|Δ_V| is
+flat to second order at a maximum, so that is ~1e-12 relative).
 
 * analysis (:func:`worst_phase_error`): maximise |Δ_V| per sensor;
 * synthesis (:func:`worst_phase_multipliers`): per term, the largest |moment|
@@ -36,11 +37,11 @@ from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
 
 #: Most nodes of the coarse grid over the free offsets.
-COARSE_NODES = 512
+COARSE_NODES = 256
 #: Fewest nodes per free offset on the coarse grid (when the grid allows).
 MIN_PER_AXIS = 4
 #: Step at which the compass search stops (rad).
-FINE_STEP = 1e-7
+FINE_STEP = 1e-6
 
 
 def free_offsets(groups: Sequence[LockedGroup]) -> list[tuple[int, int]]:
