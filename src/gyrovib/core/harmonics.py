@@ -184,13 +184,18 @@ def trig_roots(orders: ArrayLike, coefficients: ArrayLike, offset: ArrayLike) ->
     ``coefficients``: (N,) complex p_n; ``offset``: (W,). Multiplying by
     z^D (z = e^{jθ}, D = max n) gives a polynomial of degree 2D whose roots on
     the unit circle are the zeros; they are found as companion-matrix
-    eigenvalues (all offsets at once) and polished by Newton steps. Returns
+    eigenvalues (all offsets at once) and polished by Newton steps (``p`` must
+    not be all zero). Returns
     (W, 2D) angles, NaN where a root is off the circle; a root counted twice
     or slightly off is harmless for the piecewise integrals that use it.
     """
     n = np.asarray(orders, dtype=np.int64)
     p = np.asarray(coefficients, dtype=complex)
     c = np.atleast_1d(np.asarray(offset, dtype=float))
+    # orders below 1e-14 of the largest move the zeros by less than that: leave them
+    # out of the polynomial, whose leading coefficient must not be (sub)normal-tiny
+    keep = np.abs(p) > 1e-14 * float(np.max(np.abs(p)))
+    n, p = n[keep], p[keep]
     d = int(np.max(n))
     poly = np.zeros(2 * d + 1, dtype=complex)  # poly[k]: coefficient of z^k
     for nn, pp in zip(n, p, strict=True):

@@ -248,7 +248,9 @@ def coefficient_bounds(
         norm = np.sqrt(float(np.sum(ww**2))
                        + sum(np.where(on, e * e, 0.0) for on, e in zip(present, we, strict=True)))
         scale = constants.c_additive / norm
-        alpha = [ww[p] * scale for p in range(5)]
+        plain = ~(present[0] | present[1] | present[2])
+        # a profile with none of the extra shares keeps the constants themselves, bit for bit
+        alpha = [np.where(plain, constants.alpha[p], ww[p] * scale) for p in range(5)]
         odd = m3 != 0
         k3_share = np.where(odd, b[0] / 3.0, constants.k3)
         k5_share = np.where(odd, b[0] / 3.0, constants.k5_linear)
