@@ -124,7 +124,7 @@ def test_closed_form_equals_brute_force(amps: list, phase: float, sigma: list, r
     a = np.array(amps, dtype=float).reshape(-1, 3)
     ph = np.zeros_like(a)
     ph[:, 1] = phase
-    coherence = (rho, 0.5 * rho, 0.0)  # a valid correlation matrix for |ρ| < 0.9
+    coherence = (rho, 0.3 * rho, 0.0)  # det = 1 − 1.09ρ² > 0: a valid correlation matrix
     lin = linear_vibration(a, ph, sigma, coherence)
     total, moments = linear_average([g], lin)
     closed = g2_term([g], acceleration_moments(a, ph, sigma, coherence))[0]
