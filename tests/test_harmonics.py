@@ -294,3 +294,43 @@ def test_symmetric_profiles_have_no_odd_terms_and_stack() -> None:
 def test_paper_refuses_locked_harmonics() -> None:
     with pytest.raises(ModelError, match="phase-locked harmonics"):
         profile_multipliers(TONE, np.array([0.0]), "paper", locked=[GROUP])
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    orders=st.lists(st.integers(1, 4), min_size=1, max_size=4, unique=True),
+    amps=st.lists(st.floats(0.05, 2.0), min_size=12, max_size=12),
+    phases=st.lists(st.floats(-180, 180), min_size=12, max_size=12),
+    omega=st.floats(-4.0, 4.0),
+)
+def test_closed_form_equals_brute_force_for_any_group(orders: list[int], amps: list[float],
+                                                      phases: list[float],
+                                                      omega: float) -> None:
+    """Section 10's Δ_V = the average of eq. (2) over one period (exact grid, no A1)."""
+    n = len(orders)
+    g = locked_group(orders, np.reshape(amps[: 3 * n], (n, 3)),
+                     np.reshape(phases[: 3 * n], (n, 3)))
+    mu = profile_multipliers(TONE, np.array(omega), locked=[g])
+    closed = vibration_error(POLY, mu).total
+    est = simulate(POLY, TONE, (0.0, 0.0, omega), samples=1 << 15,
+                   rng=np.random.default_rng(0), locked=[g])
+    assert est.scheme == "grid"
+    scale = float(np.max(np.abs(closed))) + 1e-12
+    assert np.all(np.abs(est.total - closed) <= 1e-9 * scale)
+
+
+def test_monte_carlo_with_a_group_a_random_part_and_linear_vibration() -> None:
+    from gyrovib.core.linear import linear_vibration
+
+    noisy = vibration_at_sensor(rms=(0.2, 0.1, 0.4), coherence=(0.3, 0.0))
+    lin = linear_vibration([[1.0, 0.5, 2.0]], [[0, 45, 0]], (0.5, 0.5, 1.0), (0.2, 0.0, 0.1))
+    c = coefficient_rows({"A1": 0.03, "k2": 1e-3, "k3": 2e-3, "k5": -1e-3})
+    g2 = [[4e-4, 4e-4, 4e-4, 1e-4, 0.0, -1e-4]]
+    omega = -0.4
+    mu = profile_multipliers(noisy, np.array(omega), locked=[GROUP], acceleration=lin.moments())
+    closed = vibration_error(c, mu, g2)
+    est = simulate(c, noisy, (0.0, 0.0, omega), samples=400_000, rng=np.random.default_rng(9),
+                   locked=[GROUP], linear=lin, g2_sensitivity=g2)
+    assert est.scheme == "monte-carlo"
+    assert abs(float(est.total[0]) - float(closed.total[0])) < 6 * float(est.stderr[0])
+    assert closed.extra_terms[0, 0] != 0  # the g² term is in the comparison
