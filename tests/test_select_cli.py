@@ -100,9 +100,10 @@ def test_select_json_verdicts(catalog: str) -> None:
     # rms = k2·M2 = 3e-3·2 = 6e-3, margin = 0.01/6e-3 = 1.6667
     assert bad_tone["rms"] == pytest.approx(6e-3, rel=1e-12)
     assert bad_tone["margin"] == pytest.approx(0.01 / 6e-3, rel=1e-12)
-    # k3 under Ω̄ = 0.5: bound finite; a coefficient the sensor does not have: value 0, pass
+    # k3 under Ω̄ = 0.5: bound finite; a coefficient the sensor does not have: value 0, pass.
+    # Its share is β1/2 = 0.2264554 (MODEL.md section 6): (β1/2)·Δ*/(|Ω̄|·3M2), |Ω̄|·3M2 = 3
     assert bad_tone["checks"]["k3"] == {"value": 0.0, "bound": pytest.approx(
-        0.3202563 * BUDGET / 3, rel=1e-6), "pass": True}
+        0.2264554 * BUDGET / 3, rel=1e-6), "pass": True}
 
 
 def test_margin_is_null_when_the_error_is_zero(tmp_path: Path) -> None:

@@ -45,6 +45,20 @@ number of points at which eq. (2) is evaluated per sensor):
 ``none``
     No vibration reaches x1..x3: the error is 0 exactly.
 
+Phase-locked harmonic groups (MODEL.md section 10) are one more phase
+dimension each, ``x_i = Σ_n |p_ni|·sin(n·θ_g + arg p_ni)``: on the grid with
+more than 5·n_max nodes (exact for the polynomial part), in Monte Carlo with
+a uniform θ_g shared by both members of an antithetic pair (only the
+independent tones and the Gaussian part are negated: a locked waveform need
+not be symmetric).
+
+A linear vibration (MODEL.md section 8) adds ``Σ_{j≤k} G_jk·a_j·a_k`` to
+eq. (2); it is independent of the angular vibration, so its average is taken
+on its own: over a product grid of 4 phases per tone (exact for a quadratic)
+and the 3-point Gauss–Hermite rule per axis of the correlated Gaussian part
+(a = L·z with L·Lᵀ the covariance; exact for a quadratic), then added to
+every estimate (it has no statistical error).
+
 The samples are shared by all sensors and drawn in fixed-size blocks, so a
 sensor's estimate does not depend on which other sensors are evaluated with
 it; eq. (2) is evaluated as a (sensors × samples) array in chunks of bounded
@@ -55,13 +69,15 @@ share (gyrovib uses deg/s).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.analysis import COEFFICIENTS, COLUMN, Multipliers
+from gyrovib.core.harmonics import LockedGroup, group_signal, locked_peak
+from gyrovib.core.linear import PAIRS, LinearVibration
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
 
@@ -145,9 +161,12 @@ def _tones(phasors: NDArray[np.complex128], theta: FloatArray) -> FloatArray:
 class _Moments:
     """Running sums of the sample moments behind the term breakdown."""
 
-    def __init__(self, omega3: float) -> None:
+    def __init__(self, omega3: float, odd: bool = False,
+                 acceleration: FloatArray | None = None) -> None:
         self.omega3 = omega3
-        self.sums = np.zeros(5)
+        self.odd = odd
+        self.acceleration = acceleration
+        self.sums = np.zeros(7)
         self.count = 0
 
     def add(self, x: FloatArray) -> None:
@@ -158,6 +177,8 @@ class _Moments:
             np.sum(x3**4),
             np.sum(x3 * x[0]),
             np.sum(x3 * x[1]),
+            np.sum(x3**3),
+            np.sum(x3**5),
         ]
         self.count += x.shape[1]
 
@@ -174,6 +195,9 @@ class _Moments:
             c31=scalar(mean[3]),
             c32=scalar(mean[4]),
             omega=scalar(self.omega3),
+            m3=scalar(mean[5]) if self.odd else None,
+            m5=scalar(mean[6]) if self.odd else None,
+            acceleration=self.acceleration,
         )
 
 
@@ -189,6 +213,56 @@ def _grid_counts(n_tones: int, samples: int) -> int | None:
     return m if m >= MIN_GRID_NODES else None
 
 
+def _signals(phasors: NDArray[np.complex128], groups: Sequence[LockedGroup],
+             theta: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """(independent tones, locked groups) rates, each (3, n), for phases θ (n, K + G)."""
+    k = phasors.shape[0]
+    tones = _tones(phasors, theta[:, :k]) if k else np.zeros((3, theta.shape[0]))
+    locked = np.zeros((3, theta.shape[0]))
+    for g_index, g in enumerate(groups):
+        locked += group_signal(g.orders, g.phasors, theta[:, k + g_index])
+    return tones, locked
+
+
+def linear_average(g2_sensitivity: ArrayLike, linear: LinearVibration) -> tuple[FloatArray,
+                                                                              FloatArray]:
+    """Brute-force ``<Σ_{j≤k} G_jk·a_j·a_k>`` (rate, (sensors,)) and the six ⟨a_j·a_k⟩ (g²).
+
+    Product grid of 4 phases per tone × 3-point Gauss–Hermite nodes per axis of
+    the correlated Gaussian part: exact for these quadratics (module docstring).
+    """
+    g = np.asarray(g2_sensitivity, dtype=float)
+    amp = linear.amplitudes
+    p: NDArray[np.complex128] = (amp * np.exp(1j * np.deg2rad(linear.phases))).astype(complex)
+    keep = np.any(amp > 0, axis=1)
+    p = p[keep]
+    # tones: product grid of 4 phases each
+    if p.shape[0]:
+        axis = 2.0 * math.pi * np.arange(4) / 4
+        mesh = np.meshgrid(*([axis] * p.shape[0]), indexing="ij")
+        theta = np.stack([m.ravel() for m in mesh], axis=1)
+        tones = _tones(p, theta)
+    else:
+        tones = np.zeros((3, 1))
+    # Gaussian: 3-point Gauss–Hermite (probabilists'): nodes 0, ±√3, weights 2/3, 1/6
+    cov = linear.covariance()
+    vals, vecs = np.linalg.eigh(cov)
+    if np.any(vals < -1e-12 * max(1.0, float(np.max(np.abs(vals))))):
+        raise ValueError("the coherences do not form a valid correlation matrix")
+    root = vecs * np.sqrt(np.clip(vals, 0.0, None))
+    nodes = np.array([-math.sqrt(3.0), 0.0, math.sqrt(3.0)])
+    weights = np.array([1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0])
+    z = np.stack([m.ravel() for m in np.meshgrid(nodes, nodes, nodes, indexing="ij")])
+    wz = np.prod(np.stack([m.ravel() for m in np.meshgrid(weights, weights, weights,
+                                                           indexing="ij")]), axis=0)
+    gauss = root @ z  # (3, 27)
+    a = tones[:, :, None] + gauss[:, None, :]  # (3, T, 27)
+    weight = np.broadcast_to(wz[None, :] / tones.shape[1], a.shape[1:])
+    moments = np.array([np.sum(weight * a[j] * a[k]) for j, k in PAIRS])
+    total: FloatArray = g @ moments
+    return total, moments
+
+
 def simulate(
     coefficients: ArrayLike,
     vibration: Vibration,
@@ -197,6 +271,9 @@ def simulate(
     samples: int,
     rng: np.random.Generator,
     progress: Progress | None = None,
+    locked: Sequence[LockedGroup] = (),
+    linear: LinearVibration | None = None,
+    g2_sensitivity: ArrayLike | None = None,
 ) -> NumericEstimate:
     """Brute-force Δ_V of eq. (13) by averaging eq. (2) over the vibration.
 
@@ -204,7 +281,31 @@ def simulate(
     vibration. ``samples``: evaluations of eq. (2) per sensor (at least 16).
     ``rng``: the only source of randomness (grid shifts, phases, normals).
     ``progress`` is called with the number of points evaluated after each block.
+    ``locked``: phase-locked harmonic groups (rate units at the sensor);
+    ``linear`` with ``g2_sensitivity`` (sensors, 6) in rate/g²: the g² term of
+    a linear vibration (MODEL.md section 8).
     """
+    estimate = _angular(coefficients, vibration, rate, samples, rng, progress, list(locked))
+    if linear is None:
+        return estimate
+    n = estimate.total.shape[0]
+    g = np.zeros((n, 6)) if g2_sensitivity is None else np.asarray(g2_sensitivity, dtype=float)
+    if g.shape != (n, 6):
+        raise ValueError("g2_sensitivity must have shape (sensors, 6)")
+    extra, moments = linear_average(g, linear)
+    mu = estimate.multipliers
+    return NumericEstimate(
+        total=estimate.total + extra, stderr=estimate.stderr,
+        multipliers=Multipliers(asymmetry=mu.asymmetry, m2=mu.m2, m4=mu.m4, c31=mu.c31,
+                                c32=mu.c32, omega=mu.omega, m3=mu.m3, m5=mu.m5,
+                                acceleration=moments),
+        scheme=estimate.scheme, points=estimate.points)
+
+
+def _angular(coefficients: ArrayLike, vibration: Vibration, rate: ArrayLike, samples: int,
+             rng: np.random.Generator, progress: Progress | None,
+             groups: list[LockedGroup]) -> NumericEstimate:
+    """The angular part of :func:`simulate`."""
     c = np.asarray(coefficients, dtype=float)
     if c.ndim != 2 or c.shape[1] != len(COEFFICIENTS):
         raise ValueError(f"coefficients must have shape (n, {len(COEFFICIENTS)})")
@@ -215,37 +316,43 @@ def simulate(
     sigma = np.asarray(vibration.sigma, dtype=float)
     random = bool(np.any(sigma > 0))
     rest = conversion(c, omega[:, None])[:, 0]
-    moments = _Moments(float(omega[2]))
+    groups = [g for g in groups if np.any(np.abs(g.phasors) > 0)]
+    moments = _Moments(float(omega[2]), odd=bool(groups))
     n_sensors = c.shape[0]
 
-    if phasors.shape[0] == 0 and not random:
+    if phasors.shape[0] == 0 and not random and not groups:
         moments.add(np.zeros((3, 1)))
         if progress is not None:
             progress(samples)
         zero = np.zeros(n_sensors)
         return NumericEstimate(zero, zero.copy(), moments.multipliers(), "none", 1)
 
-    m = None if random else _grid_counts(phasors.shape[0], samples // REPLICATES)
+    dims = phasors.shape[0] + len(groups)
+    m = None if random else _grid_counts(dims, samples // REPLICATES)
     if m is not None:
-        return _grid(c, phasors, omega, rest, m, rng, moments, progress)
-    return _monte_carlo(c, phasors, sigma, vibration.coherence, omega, rest, samples, rng,
-                        moments, progress)
+        counts = [m] * phasors.shape[0] + [max(m, 5 * g.n_max + 1) for g in groups]
+        if math.prod(counts) <= max(samples // REPLICATES, 1):
+            return _grid(c, phasors, groups, omega, rest, counts, rng, moments, progress)
+    return _monte_carlo(c, phasors, groups, sigma, vibration.coherence, omega, rest, samples,
+                        rng, moments, progress)
 
 
-def _grid(c: FloatArray, phasors: NDArray[np.complex128], omega: FloatArray, rest: FloatArray,
-          m: int, rng: np.random.Generator, moments: _Moments,
-          progress: Progress | None) -> NumericEstimate:
+def _grid(c: FloatArray, phasors: NDArray[np.complex128], groups: list[LockedGroup],
+          omega: FloatArray, rest: FloatArray, counts: list[int], rng: np.random.Generator,
+          moments: _Moments, progress: Progress | None) -> NumericEstimate:
     """Randomly shifted product grids over the tones' phases (see the module docstring)."""
-    n_tones = phasors.shape[0]
-    per_grid = m**n_tones
-    shape = (m,) * n_tones
+    m = np.asarray(counts, dtype=float)
+    per_grid = math.prod(counts)
+    shape = tuple(counts)
     replicate_means = np.zeros((c.shape[0], REPLICATES))
     for r in range(REPLICATES):
-        shift = np.asarray(rng.uniform(0.0, 2.0 * math.pi / m, size=n_tones), dtype=float)
+        shift = np.asarray(rng.uniform(0.0, 2.0 * math.pi / m), dtype=float)
         for start in range(0, per_grid, BLOCK):
             flat = np.arange(start, min(start + BLOCK, per_grid))
-            index = np.stack(np.unravel_index(flat, shape), axis=1)  # (n, K)
-            x = _tones(phasors, 2.0 * math.pi * index / m + shift[None, :])
+            index = np.stack(np.unravel_index(flat, shape), axis=1)  # (n, K + G)
+            tones, locked = _signals(phasors, groups,
+                                     2.0 * math.pi * index / m[None, :] + shift[None, :])
+            x = tones + locked
             moments.add(x)
             w = omega[:, None] + x
             step = _sensor_chunk(w.shape[1])
@@ -257,14 +364,16 @@ def _grid(c: FloatArray, phasors: NDArray[np.complex128], omega: FloatArray, res
     replicate_means /= per_grid
     estimate = replicate_means.mean(axis=1)
     spread = replicate_means.std(axis=1, ddof=1) / math.sqrt(REPLICATES)
-    reach = float(np.sum(np.abs(phasors[:, 2])))
+    reach = float(np.sum(np.abs(phasors[:, 2]))) + sum(
+        locked_peak(g.orders, g.phasors[:, 2]) for g in groups)
     exact = (c[:, COLUMN["k1"]] * c[:, COLUMN["A1"]] == 0) | (abs(omega[2]) >= reach)
     stderr = np.where(exact, 0.0, spread)
     return NumericEstimate(estimate, stderr, moments.multipliers(), "grid",
                            per_grid * REPLICATES)
 
 
-def _monte_carlo(c: FloatArray, phasors: NDArray[np.complex128], sigma: FloatArray,
+def _monte_carlo(c: FloatArray, phasors: NDArray[np.complex128], groups: list[LockedGroup],
+                 sigma: FloatArray,
                  coherence: FloatArray, omega: FloatArray, rest: FloatArray, samples: int,
                  rng: np.random.Generator, moments: _Moments,
                  progress: Progress | None) -> NumericEstimate:
@@ -280,14 +389,16 @@ def _monte_carlo(c: FloatArray, phasors: NDArray[np.complex128], sigma: FloatArr
     for start in range(0, pairs, block_pairs):
         n = min(block_pairs, pairs - start)
         x = np.zeros((3, n))
-        if n_tones:
-            x += _tones(phasors, rng.uniform(0.0, 2.0 * math.pi, size=(n, n_tones)))
+        locked = np.zeros((3, n))
+        if n_tones or groups:
+            theta = rng.uniform(0.0, 2.0 * math.pi, size=(n, n_tones + len(groups)))
+            x, locked = _signals(phasors, groups, theta)
         if np.any(sigma > 0):
             x += _correlate(rng.standard_normal(size=(3, n)), sigma, coherence)
-        moments.add(x)
-        moments.add(-x)
-        w_plus = omega[:, None] + x
-        w_minus = omega[:, None] - x
+        moments.add(locked + x)
+        moments.add(locked - x)
+        w_plus = omega[:, None] + locked + x
+        w_minus = omega[:, None] + locked - x
         step = _sensor_chunk(2 * n)
         for s in range(0, n_sensors, step):
             sl = slice(s, s + step)
