@@ -458,3 +458,72 @@ def test_internal_error_debug_shows_it(runner: CliRunner, valid_file: Path,
     monkeypatch.setenv("GYROVIB_DEBUG", "1")
     result = runner.invoke(cli, ["analyze", str(valid_file)])
     assert isinstance(result.exception, ZeroDivisionError)
+
+
+# ---------------------------------------------------------------- nesting, both parsers
+
+DEEP = [c for c in CASES if c[0].startswith("deep-")] + [
+    # with an anchor the node tree is composed: the pure-Python composer recurses per level
+    ("deep-anchored", HEADER + "x: &a " + "[" * 3000 + "]" * 3000 + "\n", 2, None, ("nested",)),
+    ("deep-anchored-block", HEADER + "y: &b 1\nx:\n"
+     + "".join("  " * i + "- \n" for i in range(1, 80)) + "  " * 80 + "- 1\n", ANY, None,
+     ("nested",)),
+]
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["libyaml", "pure-python"])
+@pytest.mark.parametrize(("text", "line", "column", "needles"), [c[1:] for c in DEEP],
+                         ids=[c[0] for c in DEEP])
+def test_deep_nesting_one_message_for_both_parsers(
+        runner: CliRunner, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool,
+        text: str, line: int | None, column: int | None, needles: tuple[str, ...]) -> None:
+    import yaml
+
+    from gyrovib.catalog import dialect
+
+    if pure:  # PyYAML's own parser, as on a machine without libyaml
+        monkeypatch.setattr(dialect, "Loader", dialect.loader_class(yaml.SafeLoader))
+    stderr = bad(runner, write(tmp_path, text), line, column, *needles)
+    assert f"nested more than {dialect.MAX_DEPTH} levels deep" in stderr
+    assert stderr.count("\n") == 1
+
+
+# ---------------------------------------------------------------- duplicate ids
+
+
+def test_duplicate_ids_reported_next_to_other_errors(runner: CliRunner, tmp_path: Path) -> None:
+    text = HEADER + ("sensors:\n  - id: s\n    coefficients: {k2: abc}\n"
+                     "  - id: s\n    coefficients: {}\n")
+    result = run(runner, ["validate", str(write(tmp_path, text))])
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert [x.split(": ", 1)[1] for x in lines] == [
+        "sensor 's': coefficients.k2: must be a number, not the text 'abc'",
+        "duplicate sensor id 's' (first at " + str(tmp_path / "cat.yaml") + ":3)",
+    ]
+    assert [x.split(":")[1:3] for x in lines] == [["4", "24"], ["5", "9"]]
+
+
+@pytest.mark.parametrize(("name", "text"), [
+    # 3,000 repeats of one id: each located through one index of the file, not a re-parse
+    ("repeats", HEADER + "sensors:\n" + "  - id: s\n    coefficients: {}\n" * 3000),
+    # an 80 KB file of 20,000 aliases of one sensor
+    ("aliases", HEADER + "sensors:\n  - &a {id: s, coefficients: {}}\n" + "  - *a\n" * 20000),
+    # the same, next to an error elsewhere in the file (the raw-data path)
+    ("aliases-and-error", HEADER + "units: {rate: furlong}\nsensors:\n"
+     "  - &a {id: s, coefficients: {}}\n" + "  - *a\n" * 20000),
+])
+def test_many_duplicates_are_linear_and_capped(runner: CliRunner, tmp_path: Path, name: str,
+                                               text: str) -> None:
+    started = time.perf_counter()
+    result = run(runner, ["validate", str(write(tmp_path, text))])
+    assert time.perf_counter() - started < 5
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == loader.MAX_PROBLEMS + 1, lines[-3:]
+    assert re.search(r"\.\.\. and \d+ more problems$", lines[-1])
+    repeats = 2999 if name == "repeats" else 20000
+    hidden = int(lines[-1].split("and ")[1].split()[0])
+    # every problem is counted: the shown ones and the summary add up
+    assert len(lines) - 1 + hidden == repeats + (name == "aliases-and-error")
+    assert sum("duplicate sensor id 's'" in x for x in lines) >= loader.MAX_PROBLEMS - 1

@@ -6,7 +6,7 @@ The package is layered; each layer imports only the ones below it:
     Pure numpy engines: vibration statistics, the error of eq. (13)-(16), the
     allowable coefficients of eq. (23)/(25) and brute-force averaging.
 ``gyrovib.catalog``
-    The catalogue file format (pydantic models) and the YAML loader.
+    The catalogue file format (one spec, plain-Python validation) and the YAML loader.
 ``gyrovib.api``
     Library entry points joining the two: catalogue in, immutable results out.
 ``gyrovib.render``
