@@ -75,7 +75,7 @@ def test_tuples_use_array_items(schema: dict) -> None:
 
 
 def test_defaults_kept_as_values(schema: dict) -> None:
-    assert schema["properties"]["units"]["default"] == {"rate": "deg/s"}
+    assert schema["properties"]["units"]["default"] == {"rate": "deg/s", "acceleration": "g"}
 
 
 def test_valid_catalogue_accepted(validator: jsonschema.Draft7Validator) -> None:

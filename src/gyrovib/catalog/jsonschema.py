@@ -78,6 +78,8 @@ def type_schema(t: Any) -> dict[str, Any]:
         return {"$ref": f"#/definitions/{t.name}"}
     if isinstance(t, s.ListOf):
         out: dict[str, Any] = {"type": "array", "items": type_schema(t.item)}
+        if t.min_length:
+            out["minItems"] = t.min_length
         if t.max_length is not None:
             out["maxItems"] = t.max_length
         return out
@@ -128,6 +130,7 @@ def object_schema(obj: s.Object) -> dict[str, Any]:
                                             for b in branches[i + 1:]]}})
         else:
             rules.append({"oneOf": branches})
+    rules.extend(c.schema for c in obj.checks if c.schema)
     if len(rules) == 1:
         out.update(rules[0])
     elif rules:

@@ -86,6 +86,7 @@ Triple = tuple[float, float, float]
 
 class Units(Record):
     rate: str
+    acceleration: str
 
 
 class Coefficients(Record):
@@ -130,8 +131,66 @@ class OutputCoefficients(Record):
         })
 
 
+class G2Sensitivity(Record):
+    """Acceleration-squared sensitivity G_jk (MODEL.md section 8), rate unit per g²."""
+
+    G11: float
+    G22: float
+    G33: float
+    G12: float
+    G13: float
+    G23: float
+
+
+class Nonlinearity(Record):
+    """A datasheet nonlinearity (MODEL.md section 11)."""
+
+    value: float
+    unit: str
+    fit: str
+    measure: str
+    of: str
+
+
+class Asymmetry(Record):
+    value: float
+    unit: str
+
+
+class Specs(Record):
+    """A sensor given by its datasheet instead of coefficients (MODEL.md section 11)."""
+
+    range: float
+    nonlinearity: Nonlinearity
+    asymmetry: Asymmetry | None
+    vre: float | None
+
+
+class Response(Record):
+    """The mapping form of ``response:`` (only while validating; see :class:`Sensor`)."""
+
+    at: str
+    table: list[Pair]
+
+
 class Sensor(Record):
-    """One angular-rate sensor: its conversion function and, optionally, ν_sensor(f)."""
+    """One angular-rate sensor: its conversion function and, optionally, ν_sensor(f).
+
+    ==================== ================================================================
+    attribute            meaning (values in the file's units)
+    ==================== ================================================================
+    ``coefficients``     eq. (2) coefficients, or None
+    ``output_coefficients`` eq. (1) coefficients, or None
+    ``specs``            :class:`Specs` (datasheet form), or None; exactly one of the three
+    ``response``         ν_sensor(f) table ``[(f Hz, gain), ...]`` or None, whichever
+                         form the file used (a bare table or ``{at, table}``)
+    ``response_at``      ``"output"`` (default: no credit) or ``"input"`` (MODEL.md 9)
+    ``g2_sensitivity``   :class:`G2Sensitivity` as written, or None
+    ``vre``              the ``vre:`` shorthand as written, or None
+    ``g2``               (G11, G22, G33, G12, G13, G23) in the file's rate unit per
+                         units.acceleration², from either form; zeros when neither
+    ==================== ================================================================
+    """
 
     id: str
     name: str | None
@@ -141,7 +200,20 @@ class Sensor(Record):
     range: float | None
     coefficients: Coefficients | None
     output_coefficients: OutputCoefficients | None
+    specs: Specs | None
     response: list[Pair] | None
+    response_at: str
+    g2_sensitivity: G2Sensitivity | None
+    vre: float | None
+
+    @property
+    def g2(self) -> tuple[float, float, float, float, float, float]:
+        """(G11, G22, G33, G12, G13, G23), rate per (units.acceleration)²; 0 if not given."""
+        if self.g2_sensitivity is not None:
+            g = self.g2_sensitivity
+            return (g.G11, g.G22, g.G33, g.G12, g.G13, g.G23)
+        v = 0.0 if self.vre is None else self.vre
+        return (v, v, v, 0.0, 0.0, 0.0)
 
     @property
     def rate_coefficients(self) -> Coefficients:
@@ -170,7 +242,66 @@ class Random(Record):
     coherence: Pair
 
 
+class Order(Record):
+    """One harmonic of a locked group: ``phase`` is a triple (degrees) or ``"worst"``."""
+
+    order: int
+    amplitude: Triple
+    phase: Triple | str
+
+    @property
+    def worst_phase(self) -> bool:
+        """Whether the phases are unknown and the worst case is asked for."""
+        return self.phase == "worst"
+
+
+class Harmonics(Record):
+    """Phase-locked harmonics n·f0 of one source (MODEL.md section 10)."""
+
+    fundamental: float
+    orders: list[Order]
+
+
+class AccelerationTone(Record):
+    frequency: float
+    amplitude: Triple
+    phase: Triple
+
+
+class AccelerationPSD(Record):
+    x1: list[Pair] | None
+    x2: list[Pair] | None
+    x3: list[Pair] | None
+
+
+class AccelerationRandom(Record):
+    psd: AccelerationPSD | None
+    rms: Triple | None
+    coherence: Triple
+
+
+class Acceleration(Record):
+    """Linear vibration at the sensor's axes (MODEL.md section 8), in units.acceleration."""
+
+    harmonic: list[AccelerationTone]
+    random: AccelerationRandom | None
+    mount: list[Pair] | None
+
+
 class Profile(Record):
+    """One vibration environment.
+
+    ================ ===================================================================
+    attribute        meaning (values in the file's units)
+    ================ ===================================================================
+    ``harmonics``    list of :class:`Harmonics` groups (a single group in the file is
+                     a list of one); empty when not given
+    ``acceleration`` :class:`Acceleration` (linear vibration, in units.acceleration:
+                     tone amplitudes and RMS in g or m/s², PSDs in their squares per
+                     Hz; coherences ρ12, ρ13, ρ23), or None
+    ================ ===================================================================
+    """
+
     id: str
     name: str | None
     notes: str | None
@@ -178,6 +309,8 @@ class Profile(Record):
     harmonic: list[Tone]
     random: Random | None
     mount: list[Pair] | None
+    harmonics: list[Harmonics]
+    acceleration: Acceleration | None
 
 
 class Allocation(Record):
@@ -200,18 +333,50 @@ class CatalogFile(Record):
         """The unit of every rate in the file (``units.rate``)."""
         return self.units.rate
 
+    @property
+    def acceleration_unit(self) -> str:
+        """The unit of every acceleration in the file: ``"g"`` or ``"m/s^2"``
+        (``m/s2`` as written is the same unit). Values are not converted here."""
+        return "m/s^2" if self.units.acceleration == "m/s2" else self.units.acceleration
+
 
 
 
 #: Record classes by the name of their mapping in the spec.
 RECORDS: dict[str, type[Record]] = {
-    cls.__name__: cls for cls in (Units, Coefficients, OutputCoefficients, Sensor, Tone, PSD,
-                                  Random, Profile, Allocation, CatalogFile)
+    cls.__name__: cls for cls in (
+        Units, Coefficients, OutputCoefficients, G2Sensitivity, Nonlinearity, Asymmetry,
+        Specs, Response, Sensor, Tone, PSD, Random, Order, Harmonics, AccelerationTone,
+        AccelerationPSD, AccelerationRandom, Acceleration, Profile, Allocation, CatalogFile)
 }
 
-CatalogFile._defaults["units"] = Units()
 
-_VALIDATOR = Validator(builders={name: cls._make for name, cls in RECORDS.items()})
+def _sensor(values: dict[str, Any]) -> Sensor:
+    """One ``response`` attribute whichever form was written, and where it acts."""
+    response = values["response"]
+    if isinstance(response, Response):
+        values["response"], values["response_at"] = response.table, response.at
+    else:
+        values["response_at"] = spec.RESPONSE_AT[0]
+    return Sensor._make(values)
+
+
+def _profile(values: dict[str, Any]) -> Profile:
+    """``harmonics`` as a list of groups, also when one group was written."""
+    groups = values["harmonics"]
+    values["harmonics"] = [] if groups is None else \
+        [groups] if isinstance(groups, Harmonics) else groups
+    return Profile._make(values)
+
+
+_BUILDERS: dict[str, Any] = {name: cls._make for name, cls in RECORDS.items()}
+_BUILDERS.update(Sensor=_sensor, Profile=_profile)
+
+CatalogFile._defaults["units"] = Units()
+Sensor._defaults["response_at"] = spec.RESPONSE_AT[0]
+Profile._defaults["harmonics"] = []
+
+_VALIDATOR = Validator(builders=_BUILDERS)
 
 
 def catalog_file(data: Any) -> CatalogFile:

@@ -23,8 +23,21 @@ from typing import Any
 
 #: Units a rate may be written in (``units.rate``).
 RATE_UNITS = ("deg/s", "deg/h", "rad/s", "rpm")
-#: Units a linear acceleration may be written in (``units.acceleration``).
+#: Units a linear acceleration may be written in (``units.acceleration``);
+#: ``m/s2`` is another spelling of ``m/s^2``.
 ACCELERATION_UNITS = ("g", "m/s^2", "m/s2")
+#: Units of a datasheet nonlinearity: percent of full scale, or an absolute rate.
+NONLINEARITY_UNITS = ("%FS", *RATE_UNITS)
+#: Units of a datasheet scale-factor asymmetry.
+ASYMMETRY_UNITS = ("ppm", "%")
+#: Reference lines of a datasheet nonlinearity (MODEL.md section 11).
+NONLINEARITY_FITS = ("least-squares", "minimax", "endpoint")
+#: How a nonlinearity's residual is measured.
+NONLINEARITY_MEASURES = ("max", "rms")
+#: What a %FS nonlinearity is a percentage of.
+NONLINEARITY_OF = ("range", "span")
+#: Where a sensor's own response acts (MODEL.md section 9).
+RESPONSE_AT = ("output", "input")
 #: Most rows of a breakpoint table.
 MAX_TABLE = 100_000
 #: Most harmonic tones (or harmonic orders) of one profile.
@@ -140,6 +153,7 @@ class ListOf:
     item: Any
     max_length: int | None = None
     unique: str | None = None
+    min_length: int = 0
 
 
 @dataclass(frozen=True)
@@ -187,10 +201,14 @@ class FieldCheck:
 @dataclass(frozen=True)
 class Check:
     """A rule on a whole valid mapping: ``test(values)`` gives a message or None.
-    ``at``: the field the message is placed at (default: the mapping)."""
+    ``at``: the field the message is placed at (default: the mapping); ``raw``:
+    ``test`` sees the mapping as written (no defaults filled in); ``schema``:
+    what JSON Schema can say of it (None: it cannot)."""
 
     test: Callable[[dict[str, Any]], str | None]
     at: str | None = None
+    raw: bool = False
+    schema: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -251,6 +269,20 @@ def _divisible(values: dict[str, Any]) -> str | None:
     return None
 
 
+def _of_with_rate_unit(given: dict[str, Any]) -> str | None:
+    if "of" in given and given.get("unit") in RATE_UNITS:
+        return (f"'of' applies to a nonlinearity in %FS only; {given['value']!r} "
+                f"{given['unit']} is already an absolute rate: remove 'of'")
+    return None
+
+
+def _rms_minimax(values: dict[str, Any]) -> str | None:
+    if values["measure"] == "rms" and values["fit"] == "minimax":
+        return ("an RMS nonlinearity needs a reference line fixed in advance: use fit "
+                "least-squares or endpoint with measure rms (minimax goes with measure max)")
+    return None
+
+
 def _version(value: int) -> str | None:
     if value != 1:
         return f"unsupported format version {value}; this gyrovib reads version 1"
@@ -301,11 +333,14 @@ FORMAT: dict[str, Object] = {
         field_checks=(FieldCheck("gyrovib", _version),),
     ),
     "Units": Object(
-        "'units:' — the rate unit of every rate, PSD and coefficient in the file.",
+        "'units:' — the units of every rate, PSD, coefficient and acceleration in the file.",
         (
             Field("rate", Choice(RATE_UNITS, "rate unit"), "deg/s",
                   description="Unit of every rate, PSD and coefficient in this file: "
                   "deg/s (default), deg/h, rad/s or rpm."),
+            Field("acceleration", Choice(ACCELERATION_UNITS, "acceleration unit"), "g",
+                  description="Unit of every linear acceleration in this file: g (default, "
+                  "9.80665 m/s^2) or m/s^2 (also written m/s2)."),
         ),
     ),
     "Coefficients": Object(
@@ -344,13 +379,94 @@ FORMAT: dict[str, Object] = {
             Field("output_coefficients", Ref("OutputCoefficients"), None, nullable=True,
                   description="Conversion function of eq. (1), in output units. "
                   "Give this or coefficients."),
-            Field("response", Table(), None, nullable=True,
-                  description="The sensor's own transmissibility ν(f): [[f Hz, gain], ...], "
-                  "frequencies increasing (a repeated frequency is a step)."),
+            Field("specs", Ref("Specs"), None, nullable=True,
+                  description="Datasheet specifications instead of coefficients: the worst "
+                  "conversion function they allow is used (MODEL.md section 11)."),
+            Field("response", Either((Table(), Ref("Response"))), None, nullable=True,
+                  description="The sensor's own transmissibility ν(f): a table "
+                  "[[f Hz, gain], ...] (acting at the output), or {at, table}."),
+            Field("g2_sensitivity", Ref("G2Sensitivity"), None, nullable=True,
+                  unit="rate/g^2",
+                  description="Acceleration-squared sensitivity G_jk, rate per g² "
+                  "(MODEL.md section 8); an omitted term is 0."),
+            Field("vre", _ANY, None, nullable=True, unit="rate/g^2",
+                  description="Shorthand for g2_sensitivity with G11 = G22 = G33 = vre "
+                  "(rate per g², signed) and no cross terms."),
         ),
-        groups=(Group(("coefficients", "output_coefficients"),
-                      "give the conversion function once: either 'coefficients' (eq. 2) "
-                      "or 'output_coefficients' (eq. 1)"),),
+        groups=(
+            Group(("coefficients", "output_coefficients", "specs"),
+                  "give the conversion function once: either 'coefficients' (eq. 2), "
+                  "'output_coefficients' (eq. 1) or 'specs' (the datasheet)"),
+            Group(("g2_sensitivity", "vre"),
+                  "give the g² sensitivity once: 'g2_sensitivity' or its shorthand 'vre' "
+                  "(G11 = G22 = G33), not both", optional=True),
+        ),
+    ),
+    "Response": Object(
+        "A sensor's own response with the place where it acts (MODEL.md section 9).",
+        (
+            Field("at", Choice(RESPONSE_AT, "response position"), "output",
+                  description="output (default): after the nonlinearity, no credit against "
+                  "the vibration error; input: it scales the vibration like a mount."),
+            Field("table", Table(), REQUIRED,
+                  description="ν(f): [[f Hz, gain], ...], frequencies increasing."),
+        ),
+    ),
+    "G2Sensitivity": Object(
+        "Acceleration-squared sensitivity (IEEE 528/1431), rate per g², signed.",
+        tuple(Field(name, _ANY, 0.0, unit="rate/g^2", description=text) for name, text in (
+            ("G11", "G11: along x1 squared (a datasheet VRE), rate/g²."),
+            ("G22", "G22: along x2 squared, rate/g²."),
+            ("G33", "G33: along x3 squared, rate/g²."),
+            ("G12", "G12: anisoelastic x1·x2, rate/g²."),
+            ("G13", "G13: anisoelastic x1·x3, rate/g²."),
+            ("G23", "G23: anisoelastic x2·x3, rate/g²."),
+        )),
+    ),
+    "Specs": Object(
+        "A sensor given by its datasheet (MODEL.md section 11).",
+        (
+            Field("range", _POSITIVE, REQUIRED, unit="rate",
+                  description=f"Full-scale range R, {_RATE}; > 0."),
+            Field("nonlinearity", Ref("Nonlinearity"), REQUIRED,
+                  description="The nonlinearity spec: value, unit, fit, measure, of."),
+            Field("asymmetry", Ref("Asymmetry"), None, nullable=True,
+                  description="Scale-factor asymmetry bound: |A1| <= value."),
+            Field("vre", _NON_NEGATIVE, None, nullable=True, unit="rate/g^2",
+                  description="Vibration rectification bound |G_jj| <= vre, rate per g²."),
+        ),
+    ),
+    "Nonlinearity": Object(
+        "A datasheet nonlinearity: the bound on the residual from a reference line.",
+        (
+            Field("value", _POSITIVE, REQUIRED, description="The bound; > 0."),
+            Field("unit", Choice(NONLINEARITY_UNITS, "nonlinearity unit"), REQUIRED,
+                  description="%FS, or a rate unit (deg/s, deg/h, rad/s, rpm; not "
+                  "necessarily the file's) for an absolute bound."),
+            Field("fit", Choice(NONLINEARITY_FITS, "fit"), "least-squares",
+                  description="Reference line: least-squares (default), minimax or endpoint."),
+            Field("measure", Choice(NONLINEARITY_MEASURES, "measure"), "max",
+                  description="max (default): every point within the bound; rms: the RMS "
+                  "residual (not with fit minimax)."),
+            Field("of", Choice(NONLINEARITY_OF, "base"), "range",
+                  description="%FS of the range R (default) or of the span 2R; only with %FS."),
+        ),
+        checks=(
+            Check(_of_with_rate_unit, at="of", raw=True, schema={
+                "if": {"required": ["unit"], "properties": {"unit": {"enum": list(RATE_UNITS)}}},
+                "then": {"not": {"required": ["of"]}}}),
+            Check(_rms_minimax, at="measure", schema={
+                "not": {"required": ["measure", "fit"], "properties": {
+                    "measure": {"const": "rms"}, "fit": {"const": "minimax"}}}}),
+        ),
+    ),
+    "Asymmetry": Object(
+        "A datasheet scale-factor asymmetry.",
+        (
+            Field("value", _NON_NEGATIVE, REQUIRED, description="The bound; >= 0."),
+            Field("unit", Choice(ASYMMETRY_UNITS, "asymmetry unit"), REQUIRED,
+                  description="ppm or %."),
+        ),
     ),
     "Tone": Object(
         "One harmonic tone of eq. (3): per-axis amplitude (rate) and phase (degrees).",
@@ -399,7 +515,80 @@ FORMAT: dict[str, Object] = {
                   description="Gaussian broadband vibration: a PSD or the RMS per axis."),
             Field("mount", Table(), None, nullable=True,
                   description="Isolation-mount transmissibility ν(f): [[f Hz, gain], ...]."),
+            Field("harmonics", Either((Ref("Harmonics"), ListOf(Ref("Harmonics")))), None,
+                  nullable=True,
+                  description="Phase-locked harmonics of one source (MODEL.md section 10): "
+                  "one group, or a list of groups."),
+            Field("acceleration", Ref("Acceleration"), None, nullable=True,
+                  description="Linear vibration at the sensor's axes (MODEL.md section 8)."),
         ),
+    ),
+    "Harmonics": Object(
+        "One group of phase-locked harmonics: orders of one fundamental.",
+        (
+            Field("fundamental", _POSITIVE, REQUIRED, unit="Hz",
+                  description="Fundamental frequency f0 in Hz; > 0."),
+            Field("orders", ListOf(Ref("Order"), MAX_TONES, unique="order", min_length=1),
+                  REQUIRED, description="The harmonics n·f0, each order once."),
+        ),
+    ),
+    "Order": Object(
+        "One harmonic of a locked group.",
+        (
+            Field("order", Integer(minimum=1), REQUIRED,
+                  description="The harmonic number n (frequency n·f0); a positive integer."),
+            Field("amplitude", _NON_NEGATIVE_TRIPLE, REQUIRED, unit="rate",
+                  description=f"Amplitude per axis x1, x2, x3, {_RATE}; >= 0."),
+            Field("phase", Either((_TRIPLE, Choice(("worst",), "phase"))), (0.0, 0.0, 0.0),
+                  unit="deg",
+                  description="Phase per axis in degrees, or the word worst: the worst "
+                  "case over the relative phases."),
+        ),
+    ),
+    "Acceleration": Object(
+        "Linear vibration at the sensor's axes, in the file's acceleration unit.",
+        (
+            Field("harmonic", ListOf(Ref("AccelerationTone"), MAX_TONES), [],
+                  description="Harmonic tones of the acceleration, zero or more."),
+            Field("random", Ref("AccelerationRandom"), None, nullable=True,
+                  description="Gaussian broadband acceleration: a PSD or the RMS per axis."),
+            Field("mount", Table(), None, nullable=True,
+                  description="Mount transmissibility for the linear vibration "
+                  "[[f Hz, gain], ...]; default: the profile's mount."),
+        ),
+    ),
+    "AccelerationTone": Object(
+        "One harmonic tone of the acceleration.",
+        (
+            Field("frequency", _POSITIVE, REQUIRED, unit="Hz",
+                  description="Frequency in Hz; > 0."),
+            Field("amplitude", _NON_NEGATIVE_TRIPLE, REQUIRED, unit="acceleration",
+                  description="Amplitude per axis x1, x2, x3, in units.acceleration; >= 0."),
+            Field("phase", _TRIPLE, (0.0, 0.0, 0.0), unit="deg",
+                  description="Phase per axis, degrees."),
+        ),
+    ),
+    "AccelerationRandom": Object(
+        "The Gaussian broadband part of the acceleration.",
+        (
+            Field("psd", Ref("AccelerationPSD"), None, nullable=True,
+                  description="PSD breakpoints per axis, acceleration²/Hz."),
+            Field("rms", _NON_NEGATIVE_TRIPLE, None, nullable=True, unit="acceleration",
+                  description="RMS per axis, in units.acceleration."),
+            Field("coherence", Fixed(3, _COHERENCE), (0.0, 0.0, 0.0),
+                  description="Coherences ρ12, ρ13, ρ23, each in [-1, 1]; default 0 "
+                  "(independent axes)."),
+        ),
+        groups=(Group(("psd", "rms"),
+                      "give the random acceleration as 'psd' or as 'rms', exactly one of them"),),
+    ),
+    "AccelerationPSD": Object(
+        "Per-axis acceleration PSD breakpoints, (units.acceleration)²/Hz.",
+        tuple(Field(axis, Table(band=True), None, nullable=True, unit="acceleration^2/Hz",
+                    description=f"[[f Hz, S g²/Hz], ...] for axis {axis}; left out means none.")
+              for axis in ("x1", "x2", "x3")),
+        groups=(Group(("x1", "x2", "x3"), "give the PSD of at least one axis (x1, x2 or x3)",
+                      at_least=True),),
     ),
     "Allocation": Object(
         "How the budget is split (eq. 18, 21, 24): ratio r and share weights w, v.",

@@ -126,7 +126,9 @@ class Validator:
 
     def _integer(self, t: s.Integer) -> Check:
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
-            if type(v) is not int:
+            if type(v) is float and v.is_integer():  # 2.0 is 2 (as in JSON Schema)
+                v = int(v)
+            elif type(v) is not int:
                 errors.append(Error("type", loc, v, {"expected": "integer"}))
                 return _BAD
             if t.minimum is not None and v < t.minimum:
@@ -257,6 +259,9 @@ class Validator:
             if t.max_length is not None and len(v) > t.max_length:
                 errors.append(Error("too_many", loc, v, {"n": t.max_length, "have": len(v)}))
                 return _BAD
+            if len(v) < t.min_length:
+                errors.append(Error("too_few", loc, v, {"n": t.min_length, "have": len(v)}))
+                return _BAD
             before = len(errors)
             out = [item(x, (*loc, i), errors) for i, x in enumerate(v)]
             if len(errors) != before:
@@ -278,9 +283,18 @@ class Validator:
     def _either(self, t: s.Either) -> Check:
         options = [(_kind(o), self.compile(o)) for o in t.options]
         expected = " or ".join(k for k, _ in options)
+        words = {w: o for o in t.options if isinstance(o, s.Choice) for w in o.values}
+        lists = [o for o in t.options if isinstance(o, s.Fixed)]
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
             kind = _value_kind(v)
+            if kind == "list" and words and lists:
+                for i, x in enumerate(v):
+                    if type(x) is str and x in words:
+                        errors.append(Error("rule", (*loc, i), x, {"message": (
+                            f"{x!r} stands for the whole list: write the word {x} alone, "
+                            f"or {lists[0].n} numbers")}))
+                        return _BAD
             for option_kind, option in options:
                 if option_kind == kind or (option_kind == "integer" and kind == "number"):
                     return option(v, loc, errors)
@@ -306,6 +320,7 @@ class Validator:
             if f.default is s.REQUIRED:
                 plain[f.name] = None
             elif f.default is s.EXPANDED or isinstance(f.default, list):
+                plain[f.name] = None  # a placeholder keeping the fields' order
                 fresh[f.name] = f.default
             else:
                 plain[f.name] = f.default
@@ -339,7 +354,7 @@ class Validator:
                 if key not in v:
                     errors.append(Error("missing", (*loc, key), None, {}))
             if len(errors) == before:
-                self._rules(obj, out, loc, errors)
+                self._rules(obj, out, v, loc, errors)
             if len(errors) != before:
                 return _BAD
             return build(out)
@@ -347,7 +362,7 @@ class Validator:
         return check
 
     @staticmethod
-    def _rules(obj: s.Object, out: dict[str, Any], loc: tuple[Any, ...],
+    def _rules(obj: s.Object, out: dict[str, Any], raw: dict[str, Any], loc: tuple[Any, ...],
                errors: list[Error]) -> None:
         """The rules that span a whole (otherwise valid) mapping."""
         before = len(errors)
@@ -368,7 +383,7 @@ class Validator:
             if (given == 0) or (given > 1 and not group.at_least):
                 errors.append(Error("rule", loc, None, {"message": group.message}))
         for c in obj.checks:
-            message = c.test(out)
+            message = c.test(raw if c.raw else out)
             if message is not None:
                 at = loc if c.at is None else (*loc, c.at)
                 errors.append(Error("rule", at, out.get(c.at) if c.at else None,
