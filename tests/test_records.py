@@ -18,7 +18,7 @@ import jsonschema
 import pytest
 import yaml
 
-from gyrovib.catalog import messages, records, spec
+from gyrovib.catalog import kinds, messages, records, spec
 from gyrovib.catalog.jsonschema import catalog_schema
 from gyrovib.catalog.loader import _Loader, bundled_paths, parse_catalog
 from gyrovib.catalog.locate import Index
@@ -26,7 +26,7 @@ from gyrovib.catalog.validate import Invalid, Validator
 
 BASE = {
     "gyrovib": 1,
-    "units": {"rate": "deg/h"},
+    "units": {"rate": "deg/h", "acceleration": "m/s^2"},
     "sensors": [
         {"id": "s-1", "name": "S", "vendor": "V", "part": "P", "notes": "N", "range": 100,
          "coefficients": {"k0": 1, "k1": 1.0, "A1": 1e-4, "k2": -2e-7, "k3": 1e-9, "k4": 0.0,
@@ -34,7 +34,13 @@ BASE = {
          "response": [[10, 1.0], [500, 0.7], [500, 0.5]]},
         {"id": "s.2", "output_coefficients": {"unit": "mV", "K1": 25, "K0": 2.0, "A1": 2e-3,
                                               "K2": 1e-4, "K3": 1, "K4": 0, "K5": 0, "M1": 0,
-                                              "M2": 0, "M31": 1, "M32": -1}},
+                                              "M2": 0, "M31": 1, "M32": -1},
+         "g2_sensitivity": {"G11": 1e-4, "G22": 1e-4, "G33": 2e-4, "G12": 0, "G13": -1e-5,
+                            "G23": 0}},
+        {"id": "s3", "specs": {"range": 100, "nonlinearity": {
+            "value": 0.5, "unit": "%FS", "fit": "endpoint", "measure": "rms", "of": "span"},
+            "asymmetry": {"value": 500, "unit": "ppm"}, "vre": 4e-4},
+         "vre": 1e-4, "response": {"at": "input", "table": [[10, 1.0], [500, 0.7]]}},
     ],
     "profiles": [
         {"id": "p", "name": "P", "notes": "n", "rate": [0, 0, 30],
@@ -42,18 +48,27 @@ BASE = {
          "random": {"psd": {"x1": [[20, 1e-4], [2000, 1e-4]], "x3": [[20, 1e-4], [40, 1e-4]]},
                     "coherence": [0.5, -1]},
          "mount": [[20, 1.0], [200, 0.3]]},
-        {"id": "q", "random": {"rms": [0.1, 0.1, 0.2]}},
+        {"id": "q", "random": {"rms": [0.1, 0.1, 0.2]},
+         "harmonics": [{"fundamental": 40, "orders": [
+             {"order": 1, "amplitude": [0.1, 0.1, 0.5], "phase": [0, 0, 0]},
+             {"order": 2, "amplitude": [0, 0, 0.3], "phase": "worst"}]}],
+         "acceleration": {"harmonic": [{"frequency": 120, "amplitude": [0.5, 0.5, 2],
+                                        "phase": [0, 0, 0]}],
+                          "random": {"psd": {"x1": [[20, 0.04], [2000, 0.04]]},
+                                     "coherence": [0, 0.5, 0]},
+                          "mount": [[20, 1.0], [200, 0.3]]}},
     ],
     "allocation": {"r": 2, "w": [1, 1, 1, 0.5, 0.5], "v": [1, 0.5, 0.5]},
 }
 
 VALUES = [None, 0, 1, -1, 0.5, -0.5, 2, 1.5, True, False, "x", "deg/h", "mV", "", [], {},
+          "worst", "%FS", "input", "rms", "minimax", 2.0,
           [1, 2, 3], [1, 2], [0, 0, 0, 0, 0], [[1, 1]], [[1, 1], [0.5, 1]], [[1, -1]],
           [1, [2], 3], {"x": 1}, math.inf, -math.inf, 10**400, 2**60, -(2**60),
           "a b", "a" * 201, "x" * 10_001, [[0, 1]], [[1, 1], [1, 2], [1, 3]]]
 
 #: Messages of the rules a JSON Schema cannot express.
-INEXPRESSIBLE = ("breakpoint frequencies must increase", "appears more than twice",
+INEXPRESSIBLE = ("breakpoint frequencies must increase", "appears more than twice", "given twice",
                  "two different frequencies", "overflows; check the units of K1")
 
 
@@ -185,7 +200,7 @@ def _changed_format():
         if f.name == "range":
             f = dataclasses.replace(f, type=dataclasses.replace(f.type, maximum=1e6))
         fields.append(f)
-    fields.append(spec.Field("mass", spec.Number(minimum=0), None, nullable=True,
+    fields.append(kinds.Field("mass", kinds.Number(minimum=0), None, nullable=True,
                              description="Mass in grams.", unit="g"))
     fmt["Sensor"] = dataclasses.replace(sensor, fields=tuple(fields))
     return fmt

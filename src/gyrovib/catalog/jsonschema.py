@@ -21,6 +21,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from gyrovib.catalog import kinds as k
 from gyrovib.catalog import spec as s
 
 DRAFT_07 = "http://json-schema.org/draft-07/schema#"
@@ -35,7 +36,7 @@ def _plain(value: Any) -> Any:
     return value
 
 
-def _number(t: s.Number) -> dict[str, Any]:
+def _number(t: k.Number) -> dict[str, Any]:
     out: dict[str, Any] = {"type": "number"}
     if t.minimum is None:
         out["minimum"] = -s.FLOAT_MAX
@@ -54,41 +55,42 @@ def _fixed(n: int, items: list[dict[str, Any]]) -> dict[str, Any]:
 
 def type_schema(t: Any) -> dict[str, Any]:
     """The schema of one value type of the spec."""
-    if isinstance(t, s.Number):
+    if isinstance(t, k.Number):
         return _number(t)
-    if isinstance(t, s.Integer):
+    if isinstance(t, k.Integer):
         return {"type": "integer", **({"minimum": t.minimum} if t.minimum is not None else {})}
-    if isinstance(t, s.Version):
+    if isinstance(t, k.Version):
         return {"type": "integer", "const": t.value}
-    if isinstance(t, s.Text):
+    if isinstance(t, k.Text):
         return {"type": "string", "maxLength": t.max_length}
-    if isinstance(t, s.Identifier):
+    if isinstance(t, k.Identifier):
         return {"type": "string", "pattern": t.pattern, "minLength": 1,
                 "maxLength": t.max_length}
-    if isinstance(t, s.Choice):
+    if isinstance(t, k.Choice):
         return {"type": "string", "enum": list(t.values)}
-    if isinstance(t, s.Fixed):
+    if isinstance(t, k.Fixed):
         return _fixed(t.n, [type_schema(t.item)] * t.n)
-    if isinstance(t, s.Table):
-        row = _fixed(2, [_number(s.Number(minimum=0, exclusive_minimum=True)),
-                         _number(s.Number(minimum=0))])
+    if isinstance(t, k.Table):
+        row = _fixed(2, [_number(k.Number(minimum=0, exclusive_minimum=True)),
+                         _number(k.Number(minimum=0))])
         return {"type": "array", "items": row, "minItems": 2 if t.band else 1,
                 "maxItems": t.max_rows}
-    if isinstance(t, s.Ref):
+    if isinstance(t, k.Ref):
         return {"$ref": f"#/definitions/{t.name}"}
-    if isinstance(t, s.ListOf):
+    if isinstance(t, k.ListOf):
         out: dict[str, Any] = {"type": "array", "items": type_schema(t.item)}
         if t.min_length:
             out["minItems"] = t.min_length
         if t.max_length is not None:
             out["maxItems"] = t.max_length
         return out
-    if isinstance(t, s.Either):
+    if isinstance(t, k.Either):
         return {"anyOf": [type_schema(o) for o in t.options]}
     raise TypeError(f"no JSON Schema for {t!r}")  # pragma: no cover - a spec bug
 
 
-def _property(f: s.Field, extra: dict[str, Any] | None) -> dict[str, Any]:
+def _property(f: k.Field, extra: dict[str, Any] | None,
+              fmt: dict[str, k.Object]) -> dict[str, Any]:
     schema = type_schema(f.type)
     if extra:
         schema = {"allOf": [schema, extra]} if "$ref" in schema else {**schema, **extra}
@@ -97,9 +99,9 @@ def _property(f: s.Field, extra: dict[str, Any] | None) -> dict[str, Any]:
     elif "$ref" in schema:
         schema = {"allOf": [schema]}
     schema["description"] = f.description
-    if f.default is s.EXPANDED:
-        schema["default"] = _plain(s.defaults(f.type.name))
-    elif f.default is not s.REQUIRED and f.default is not None:
+    if f.default is k.EXPANDED:
+        schema["default"] = _plain(s.defaults(f.type.name, fmt))
+    elif f.default is not k.REQUIRED and f.default is not None:
         schema["default"] = _plain(f.default)
     return schema
 
@@ -108,16 +110,17 @@ def _given(name: str) -> dict[str, Any]:
     return {"required": [name], "properties": {name: {"not": {"type": "null"}}}}
 
 
-def object_schema(obj: s.Object) -> dict[str, Any]:
+def object_schema(obj: k.Object, fmt: dict[str, k.Object] | None = None) -> dict[str, Any]:
     """The schema of one mapping of the spec."""
     extras = {fc.field: fc.schema for fc in obj.field_checks if fc.schema}
     out: dict[str, Any] = {
         "type": "object",
         "description": obj.description,
-        "properties": {f.name: _property(f, extras.get(f.name)) for f in obj.fields},
+        "properties": {f.name: _property(f, extras.get(f.name), s.FORMAT if fmt is None else fmt)
+                       for f in obj.fields},
         "additionalProperties": False,
     }
-    required = [f.name for f in obj.fields if f.default is s.REQUIRED]
+    required = [f.name for f in obj.fields if f.default is k.REQUIRED]
     if required:
         out["required"] = required
     rules: list[dict[str, Any]] = []
@@ -138,10 +141,10 @@ def object_schema(obj: s.Object) -> dict[str, Any]:
     return out
 
 
-def catalog_schema(fmt: dict[str, s.Object] | None = None) -> dict[str, Any]:
+def catalog_schema(fmt: dict[str, k.Object] | None = None) -> dict[str, Any]:
     """The JSON Schema (draft-07) of one catalogue file, as a dict."""
     fmt = s.FORMAT if fmt is None else fmt
-    root = object_schema(fmt[s.ROOT])
+    root = object_schema(fmt[s.ROOT], fmt)
     root.pop("description")
     schema: dict[str, Any] = {
         "$schema": DRAFT_07,
@@ -149,7 +152,7 @@ def catalog_schema(fmt: dict[str, s.Object] | None = None) -> dict[str, Any]:
         "description": "Angular-rate sensors and vibration profiles for gyrovib "
         "(format version 1). See the README, 'Catalogue files'.",
         **root,
-        "definitions": {name: object_schema(obj) for name, obj in sorted(fmt.items())
+        "definitions": {name: object_schema(obj, fmt) for name, obj in sorted(fmt.items())
                         if name != s.ROOT},
     }
     return schema

@@ -211,6 +211,11 @@ class Entry:
     def unit(self) -> str:
         return self.source.model.rate_unit
 
+    @property
+    def acceleration_unit(self) -> str:
+        """``"g"`` or ``"m/s^2"``: the unit of the file's accelerations (not converted)."""
+        return self.source.model.acceleration_unit
+
 
 @dataclass(frozen=True)
 class SensorEntry(Entry):

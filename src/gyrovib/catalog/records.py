@@ -18,6 +18,7 @@ from typing import Any, ClassVar, TypeVar
 from gyrovib.catalog import spec
 from gyrovib.catalog.spec import MAX_TONES, RATE_UNITS  # noqa: F401  (re-exported)
 from gyrovib.catalog.validate import Invalid, Validator
+from gyrovib.errors import CatalogError
 
 R = TypeVar("R", bound="Record")
 
@@ -220,7 +221,9 @@ class Sensor(Record):
         """The eq. (2) coefficients, whichever form the file used."""
         if self.coefficients is not None:
             return self.coefficients
-        assert self.output_coefficients is not None
+        if self.output_coefficients is None:  # the datasheet form: no single function
+            raise CatalogError(f"sensor {self.id!r} is given by its datasheet ('specs:'), "
+                               "not by coefficients; it has no conversion function to use here")
         return self.output_coefficients.to_coefficients()
 
 

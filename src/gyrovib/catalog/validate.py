@@ -17,6 +17,7 @@ import re
 from collections.abc import Callable
 from typing import Any, NamedTuple
 
+from gyrovib.catalog import kinds as k
 from gyrovib.catalog import spec as s
 
 
@@ -44,15 +45,15 @@ _SEQUENCE = (list, tuple)
 
 def _kind(t: Any) -> str:
     """The YAML kind a type is written as."""
-    if isinstance(t, s.Ref):
+    if isinstance(t, k.Ref):
         return "mapping"
-    if isinstance(t, (s.Fixed, s.Table, s.ListOf)):
+    if isinstance(t, (k.Fixed, k.Table, k.ListOf)):
         return "list"
-    if isinstance(t, (s.Text, s.Identifier, s.Choice)):
+    if isinstance(t, (k.Text, k.Identifier, k.Choice)):
         return "text"
-    if isinstance(t, s.Either):
+    if isinstance(t, k.Either):
         return " or ".join(_kind(o) for o in t.options)
-    return "integer" if isinstance(t, (s.Integer, s.Version)) else "number"
+    return "integer" if isinstance(t, (k.Integer, k.Version)) else "number"
 
 
 def _value_kind(v: Any) -> str:
@@ -70,7 +71,7 @@ def _value_kind(v: Any) -> str:
 class Validator:
     """The compiled format: call it with parsed YAML to get records."""
 
-    def __init__(self, fmt: dict[str, s.Object] | None = None,
+    def __init__(self, fmt: dict[str, k.Object] | None = None,
                  builders: dict[str, Callable[[dict[str, Any]], Any]] | None = None,
                  root: str = s.ROOT) -> None:
         self.format = s.FORMAT if fmt is None else fmt
@@ -93,7 +94,7 @@ class Validator:
         method = getattr(self, "_" + type(t).__name__.lower())
         return method(t)  # type: ignore[no-any-return]
 
-    def _number(self, t: s.Number) -> Check:
+    def _number(self, t: k.Number) -> Check:
         lo, hi, excl = t.minimum, t.maximum, t.exclusive_minimum
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
@@ -124,7 +125,7 @@ class Validator:
 
         return check
 
-    def _integer(self, t: s.Integer) -> Check:
+    def _integer(self, t: k.Integer) -> Check:
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
             if type(v) is float and v.is_integer():  # 2.0 is 2 (as in JSON Schema)
                 v = int(v)
@@ -139,7 +140,7 @@ class Validator:
 
         return check
 
-    def _version(self, t: s.Version) -> Check:
+    def _version(self, t: k.Version) -> Check:
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
             if type(v) is not int:
                 errors.append(Error("version", loc, v, {"expected": t.value}))
@@ -148,7 +149,7 @@ class Validator:
 
         return check
 
-    def _text(self, t: s.Text) -> Check:
+    def _text(self, t: k.Text) -> Check:
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
             if type(v) is not str:
                 errors.append(Error("type", loc, v, {"expected": "text"}))
@@ -160,7 +161,7 @@ class Validator:
 
         return check
 
-    def _identifier(self, t: s.Identifier) -> Check:
+    def _identifier(self, t: k.Identifier) -> Check:
         match = re.compile(t.pattern).fullmatch
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
@@ -178,7 +179,7 @@ class Validator:
 
         return check
 
-    def _choice(self, t: s.Choice) -> Check:
+    def _choice(self, t: k.Choice) -> Check:
         allowed = frozenset(t.values)
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
@@ -189,7 +190,7 @@ class Validator:
 
         return check
 
-    def _fixed(self, t: s.Fixed) -> Check:
+    def _fixed(self, t: k.Fixed) -> Check:
         item = self.compile(t.item)
         n = t.n
 
@@ -207,9 +208,9 @@ class Validator:
 
         return check
 
-    def _table(self, t: s.Table) -> Check:
-        frequency = self.compile(s.Number(minimum=0, exclusive_minimum=True))
-        value = self.compile(s.Number(minimum=0))
+    def _table(self, t: k.Table) -> Check:
+        frequency = self.compile(k.Number(minimum=0, exclusive_minimum=True))
+        value = self.compile(k.Number(minimum=0))
         need = 1
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
@@ -249,7 +250,7 @@ class Validator:
 
         return check
 
-    def _listof(self, t: s.ListOf) -> Check:
+    def _listof(self, t: k.ListOf) -> Check:
         item = self.compile(t.item)
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
@@ -280,11 +281,11 @@ class Validator:
 
         return check
 
-    def _either(self, t: s.Either) -> Check:
+    def _either(self, t: k.Either) -> Check:
         options = [(_kind(o), self.compile(o)) for o in t.options]
         expected = " or ".join(k for k, _ in options)
-        words = {w: o for o in t.options if isinstance(o, s.Choice) for w in o.values}
-        lists = [o for o in t.options if isinstance(o, s.Fixed)]
+        words = {w: o for o in t.options if isinstance(o, k.Choice) for w in o.values}
+        lists = [o for o in t.options if isinstance(o, k.Fixed)]
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
             kind = _value_kind(v)
@@ -303,7 +304,7 @@ class Validator:
 
         return check
 
-    def _ref(self, t: s.Ref) -> Check:
+    def _ref(self, t: k.Ref) -> Check:
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
             return self._objects[t.name](v, loc, errors)
 
@@ -313,13 +314,13 @@ class Validator:
         obj = self.format[name]
         checks: dict[Any, Check] = {}
         nullable = {f.name for f in obj.fields if f.nullable}
-        required = [f.name for f in obj.fields if f.default is s.REQUIRED]
+        required = [f.name for f in obj.fields if f.default is k.REQUIRED]
         plain: dict[str, Any] = {}
         fresh: dict[str, Any] = {}  # defaults built anew for each mapping
         for f in obj.fields:
-            if f.default is s.REQUIRED:
+            if f.default is k.REQUIRED:
                 plain[f.name] = None
-            elif f.default is s.EXPANDED or isinstance(f.default, list):
+            elif f.default is k.EXPANDED or isinstance(f.default, list):
                 plain[f.name] = None  # a placeholder keeping the fields' order
                 fresh[f.name] = f.default
             else:
@@ -336,7 +337,7 @@ class Validator:
             for key, default in fresh.items():
                 if key not in v:
                     out[key] = (self._objects[obj.field(key).type.name]({}, loc, errors)  # type: ignore[union-attr]
-                                if default is s.EXPANDED else list(default))
+                                if default is k.EXPANDED else list(default))
             for key, x in v.items():
                 fn = checks.get(key)
                 if fn is None:
@@ -362,7 +363,7 @@ class Validator:
         return check
 
     @staticmethod
-    def _rules(obj: s.Object, out: dict[str, Any], raw: dict[str, Any], loc: tuple[Any, ...],
+    def _rules(obj: k.Object, out: dict[str, Any], raw: dict[str, Any], loc: tuple[Any, ...],
                errors: list[Error]) -> None:
         """The rules that span a whole (otherwise valid) mapping."""
         before = len(errors)
