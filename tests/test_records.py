@@ -10,7 +10,6 @@ cannot write).
 from __future__ import annotations
 
 import copy
-import dataclasses
 import math
 from pathlib import Path
 
@@ -198,11 +197,11 @@ def _changed_format():
     fields = []
     for f in sensor.fields:
         if f.name == "range":
-            f = dataclasses.replace(f, type=dataclasses.replace(f.type, maximum=1e6))
+            f = f._replace(type=f.type._replace(maximum=1e6))
         fields.append(f)
     fields.append(kinds.Field("mass", kinds.Number(minimum=0), None, nullable=True,
                              description="Mass in grams.", unit="g"))
-    fmt["Sensor"] = dataclasses.replace(sensor, fields=tuple(fields))
+    fmt["Sensor"] = sensor._replace(fields=tuple(fields))
     return fmt
 
 

@@ -1,11 +1,13 @@
 """The vocabulary the catalogue format is written in: value types, fields,
-mappings and rules (see :mod:`gyrovib.catalog.spec` for the format itself)."""
+mappings and rules (see :mod:`gyrovib.catalog.spec` for the format itself).
+
+Each is an immutable named tuple (cheap to define at start-up; change one
+with ``._replace``)."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 #: Most rows of a breakpoint table.
 MAX_TABLE = 100_000
@@ -38,8 +40,7 @@ EXPANDED: Any = _Expanded()
 # ------------------------------------------------------------------ value types
 
 
-@dataclass(frozen=True)
-class Number:
+class Number(NamedTuple):
     """A finite float (an integer is accepted and converted); optional bounds."""
 
     minimum: float | None = None
@@ -49,53 +50,46 @@ class Number:
     hint: str = ""
 
 
-@dataclass(frozen=True)
-class Integer:
+class Integer(NamedTuple):
     """An integer (not a float, not a boolean), optionally ``>= minimum``."""
 
     minimum: int | None = None
 
 
-@dataclass(frozen=True)
-class Version:
+class Version(NamedTuple):
     """The format version: the integer ``value``."""
 
     value: int
 
 
-@dataclass(frozen=True)
-class Text:
+class Text(NamedTuple):
     """Free text, at most ``max_length`` characters."""
 
     max_length: int = MAX_TEXT
 
 
-@dataclass(frozen=True)
-class Identifier:
+class Identifier(NamedTuple):
     """An id: :data:`ID_PATTERN`, 1 to :data:`MAX_ID` characters."""
 
     pattern: str = ID_PATTERN
     max_length: int = MAX_ID
 
 
-@dataclass(frozen=True)
-class Choice:
+class Choice(NamedTuple):
     """One word of ``values``; ``what`` names it in messages ("rate unit")."""
 
     values: tuple[str, ...]
     what: str = ""
 
 
-@dataclass(frozen=True)
-class Fixed:
+class Fixed(NamedTuple):
     """A list of exactly ``n`` values of one type (a triple, a pair...)."""
 
     n: int
     item: Any
 
 
-@dataclass(frozen=True)
-class Table:
+class Table(NamedTuple):
     """Breakpoints ``[[f Hz > 0, value >= 0], ...]``, frequencies increasing
     (a repeated frequency is a step); ``band``: at least two distinct frequencies."""
 
@@ -103,15 +97,13 @@ class Table:
     max_rows: int = MAX_TABLE
 
 
-@dataclass(frozen=True)
-class Ref:
+class Ref(NamedTuple):
     """A mapping described by ``FORMAT[name]``."""
 
     name: str
 
 
-@dataclass(frozen=True)
-class ListOf:
+class ListOf(NamedTuple):
     """A list of ``item``, at most ``max_length`` long; ``unique``: a key of the
     items whose values must differ."""
 
@@ -121,16 +113,16 @@ class ListOf:
     min_length: int = 0
 
 
-@dataclass(frozen=True)
-class Either:
+class Either(NamedTuple):
     """One of several types, chosen by the kind of value written: the first
     option whose YAML kind (mapping, list, text, number) matches is used."""
 
     options: tuple[Any, ...]
 
 
-@dataclass(frozen=True)
-class Field:
+class Field(NamedTuple):
+    """One key of a mapping."""
+
     name: str
     type: Any
     default: Any = None
@@ -141,8 +133,7 @@ class Field:
     unit: str = ""
 
 
-@dataclass(frozen=True)
-class Group:
+class Group(NamedTuple):
     """Among ``fields``, exactly one (or, ``at_least``, one or more) non-null."""
 
     fields: tuple[str, ...]
@@ -152,8 +143,7 @@ class Group:
     optional: bool = False
 
 
-@dataclass(frozen=True)
-class FieldCheck:
+class FieldCheck(NamedTuple):
     """A rule on one valid field: ``test(value)`` gives a message (or
     ``(message, row)`` pointing at a row) when broken, else None; ``schema``:
     what JSON Schema can say of it."""
@@ -163,8 +153,7 @@ class FieldCheck:
     schema: dict[str, Any] | None = None
 
 
-@dataclass(frozen=True)
-class Check:
+class Check(NamedTuple):
     """A rule on a whole valid mapping: ``test(values)`` gives a message or None.
     ``at``: the field the message is placed at (default: the mapping); ``raw``:
     ``test`` sees the mapping as written (no defaults filled in); ``schema``:
@@ -176,8 +165,9 @@ class Check:
     schema: dict[str, Any] | None = None
 
 
-@dataclass(frozen=True)
-class Object:
+class Object(NamedTuple):
+    """A mapping: its fields and the rules across them."""
+
     description: str
     fields: tuple[Field, ...]
     groups: tuple[Group, ...] = ()

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from gyrovib.catalog import messages, records
+from gyrovib.catalog import records
 from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
     MAX_DEPTH,
     MAX_EXPANDED_NODES,
@@ -82,6 +82,8 @@ class CatalogSource:
 
 
 def _error_problems(errors: list[Error], data: Any, index: Index, name: str) -> list[Problem]:
+    from gyrovib.catalog import messages  # only on the error path
+
     problems = []
     for error in errors:
         node, place = index.find(error.loc, want_key=error.kind in ("unknown_key", "bad_key"))
