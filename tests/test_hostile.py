@@ -527,3 +527,19 @@ def test_many_duplicates_are_linear_and_capped(runner: CliRunner, tmp_path: Path
     # every problem is counted: the shown ones and the summary add up
     assert len(lines) - 1 + hidden == repeats + (name == "aliases-and-error")
     assert sum("duplicate sensor id 's'" in x for x in lines) >= loader.MAX_PROBLEMS - 1
+
+
+def test_duplicate_ids_across_files_next_to_other_errors(runner: CliRunner, tmp_path: Path,
+                                                         valid_text: str) -> None:
+    one = write(tmp_path, valid_text, "one.yaml")  # fog-a on line 5, cruise on line 22
+    two = write(tmp_path, HEADER + "units: {rate: furlong}\nsensors:\n  - id: fog-a\n"
+                "    coefficients: {}\n  - id: fog-a\n    coefficients: {}\n"
+                "profiles:\n  - id: cruise\n", "two.yaml")
+    result = run(runner, ["validate", str(one), str(two)])
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert lines[0].startswith(f"{two}:2:15: units.rate: unknown rate unit 'furlong'"), lines
+    assert f"{two}:6:9: duplicate sensor id 'fog-a' (first at {two}:4)" in lines
+    assert f"{two}:4:9: duplicate sensor id 'fog-a' (first at {one}:5)" in lines
+    assert f"{two}:9:9: duplicate profile id 'cruise' (first at {one}:22)" in lines
+    assert len(lines) == 4, lines  # each clash once

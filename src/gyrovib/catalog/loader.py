@@ -14,7 +14,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from types import SimpleNamespace
+from typing import Any, NamedTuple, cast
 
 from gyrovib.catalog import records
 from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
@@ -148,8 +149,32 @@ def parse_catalog(text: str, name: str = "<string>") -> CatalogSource:
         problems = shown[:MAX_PROBLEMS]
         if hidden:
             problems.append(Problem(f"... and {hidden} more problems", name))
-        raise CatalogError(problems) from None
+        raise InvalidCatalog(problems, _ids_only(data, name, text, index)) from None
     return CatalogSource(name=name, text=text, model=model)
+
+
+class InvalidCatalog(CatalogError):
+    """A file that is not valid; ``ids`` still lets its ids clash with other files'."""
+
+    def __init__(self, problems: list[Problem], ids: CatalogSource) -> None:
+        super().__init__(problems)
+        self.ids = ids
+
+
+class _Id(NamedTuple):
+    id: Any
+
+
+def _ids_only(data: dict[str, Any], name: str, text: str, index: Index) -> CatalogSource:
+    """A stand-in source of an invalid file holding only its items' ids (None where an
+    item has none), at their indices, for the duplicate-id check across files."""
+    sections: dict[str, Any] = {}
+    for section, _ in SECTIONS:
+        items = data.get(section)
+        sections[section] = [_Id(x.get(ID_KEY) if isinstance(x, dict) else None)
+                             for x in (items if isinstance(items, list) else ())]
+    model = cast(CatalogFile, SimpleNamespace(**sections, allocation=None))
+    return CatalogSource(name=name, text=text, model=model, index=index)
 
 
 def read_catalog(path: str | Path) -> CatalogSource:
@@ -242,17 +267,26 @@ class Catalog:
         return entry.source.locate((SECTIONS[0][0], entry.index, ID_KEY))
 
 
-def _unique(sources: Sequence[CatalogSource], section: str,
-            problems: list[Problem]) -> list[tuple[CatalogSource, int, Any]]:
+def _unique(sources: Sequence[CatalogSource], section: str, problems: list[Problem],
+            reported_within: frozenset[int] = frozenset()
+            ) -> list[tuple[CatalogSource, int, Any]]:
     """The items of ``section`` ("sensors" or "profiles") of every file, in order,
     keeping the first of each id; a repeated id becomes a problem at its place
-    (each file's index is composed once, whatever the number of repeats)."""
+    (each file's index is composed once, whatever the number of repeats).
+    ``reported_within``: ids of sources whose own repeats are already reported."""
     kept: list[tuple[CatalogSource, int, Any]] = []
     first: dict[str, tuple[CatalogSource, int]] = {}
     kind = dict(SECTIONS)[section]
     for source in sources:
         reported = 0
+        here: set[str] | None = set() if id(source) in reported_within else None
         for i, item in enumerate(getattr(source.model, section)):
+            if not isinstance(item.id, str):
+                continue
+            if here is not None:
+                if item.id in here:  # a repeat within the file: already reported
+                    continue
+                here.add(item.id)
             if item.id in first:
                 reported += 1
                 if reported > MAX_PROBLEMS:  # not shown: counted in the summary only
@@ -269,12 +303,15 @@ def _unique(sources: Sequence[CatalogSource], section: str,
     return kept
 
 
-def merge(sources: Sequence[CatalogSource]) -> Catalog:
+def merge(sources: Sequence[CatalogSource],
+          _reported_within: frozenset[int] = frozenset()) -> Catalog:
     """Merge validated files; an id used twice (in one file or across files) is an error."""
     problems: list[Problem] = []
     (sensor_key, _), (profile_key, _) = SECTIONS
-    sensors = [SensorEntry(s, i, x) for s, i, x in _unique(sources, sensor_key, problems)]
-    profiles = [ProfileEntry(s, i, x) for s, i, x in _unique(sources, profile_key, problems)]
+    sensors = [SensorEntry(s, i, x)
+               for s, i, x in _unique(sources, sensor_key, problems, _reported_within)]
+    profiles = [ProfileEntry(s, i, x)
+                for s, i, x in _unique(sources, profile_key, problems, _reported_within)]
     allocation: Allocation | None = None
     allocation_source: CatalogSource | None = None
     for source in sources:
@@ -297,14 +334,20 @@ def load_catalog(paths: Sequence[str | Path]) -> Catalog:
     """Read every file (collecting the problems of all of them), then merge."""
     problems: list[Problem] = []
     sources: list[CatalogSource] = []
+    everything: list[CatalogSource] = []  # with the ids of the invalid files, in order
     for path in paths:
         try:
             sources.append(read_catalog(path))
+            everything.append(sources[-1])
+        except InvalidCatalog as exc:
+            problems.extend(exc.problems)
+            everything.append(exc.ids)
         except CatalogError as exc:
             problems.extend(exc.problems)
     if problems:
-        try:  # the files that did parse may still clash: report that too
-            merge(sources)
+        try:  # the files may still clash, valid or not: report that too
+            valid = {id(s) for s in sources}
+            merge(everything, frozenset(id(s) for s in everything if id(s) not in valid))
         except CatalogError as exc:
             problems.extend(exc.problems)
         raise CatalogError(problems)
