@@ -159,7 +159,14 @@ class Asymmetry(Record):
 
 
 class Specs(Record):
-    """A sensor given by its datasheet instead of coefficients (MODEL.md section 11)."""
+    """A sensor given by its datasheet instead of coefficients (MODEL.md section 11).
+
+    ``range``: R in the file's rate unit. ``nonlinearity``: :class:`Nonlinearity`,
+    its ``value`` in its own ``unit`` (``"%FS"`` of R or of the span 2R as ``of``
+    says, or an absolute rate in the rate unit named, not necessarily the file's).
+    ``asymmetry``: :class:`Asymmetry` (``value`` in ``unit`` ``"ppm"`` or ``"%"``),
+    or None. ``vre``: the bound on |G_jj|, rate per acceleration unit², or None.
+    """
 
     range: float
     nonlinearity: Nonlinearity
@@ -177,20 +184,24 @@ class Response(Record):
 class Sensor(Record):
     """One angular-rate sensor: its conversion function and, optionally, ν_sensor(f).
 
-    ==================== ================================================================
-    attribute            meaning (values in the file's units)
-    ==================== ================================================================
-    ``coefficients``     eq. (2) coefficients, or None
-    ``output_coefficients`` eq. (1) coefficients, or None
-    ``specs``            :class:`Specs` (datasheet form), or None; exactly one of the three
-    ``response``         ν_sensor(f) table ``[(f Hz, gain), ...]`` or None, whichever
-                         form the file used (a bare table or ``{at, table}``)
-    ``response_at``      ``"output"`` (default: no credit) or ``"input"`` (MODEL.md 9)
-    ``g2_sensitivity``   :class:`G2Sensitivity` as written, or None
-    ``vre``              the ``vre:`` shorthand as written, or None
-    ``g2``               (G11, G22, G33, G12, G13, G23) in the file's rate unit per
-                         units.acceleration², from either form; zeros when neither
-    ==================== ================================================================
+    Values are in the file's own units (rates in ``units.rate``, accelerations
+    in ``units.acceleration``):
+
+    ========================= =============================================================
+    attribute                 meaning
+    ========================= =============================================================
+    ``coefficients``          eq. (2) coefficients, or None
+    ``output_coefficients``   eq. (1) coefficients, or None
+    ``specs``                 :class:`Specs` (the datasheet form), or None; exactly one
+                              of these three is given
+    ``response``              ν_sensor(f) as ``[(f Hz, gain), ...]``, or None, whichever
+                              form the file used (a bare table or ``{at, table}``)
+    ``response_at``           ``"output"`` (default: no credit) or ``"input"`` (MODEL.md 9)
+    ``g2_sensitivity``        :class:`G2Sensitivity` as written, or None
+    ``vre``                   the ``vre:`` shorthand as written (signed), or None
+    ``g2``                    (G11, G22, G33, G12, G13, G23), rate per acceleration unit²,
+                              from either form; zeros when neither is given
+    ========================= =============================================================
     """
 
     id: str
