@@ -85,7 +85,7 @@ CASES: list[tuple[str, str | bytes, int | None, int | None, tuple[str, ...]]] = 
     ("typo-k_2", SENSOR + "      k_2: 1.0e-7\n", 5, 7, ("unknown key 'k_2'", "did you mean 'k2'")),
     ("typo-case", SENSOR + "      K2: 1.0e-7\n", 5, 7, ("did you mean 'k2'",)),
     ("typo-top", HEADER + "sensor: []\n", 2, 1, ("did you mean 'sensors'",)),
-    ("typo-profile", PROFILE + "    harmonics: []\n", 4, 5, ("did you mean 'harmonic'",)),
+    ("typo-profile", PROFILE + "    harmonik: []\n", 4, 5, ("did you mean 'harmonic'",)),
     ("duplicate-key", SENSOR + "      k2: 1.0\n      k2: 2.0\n", 6, 7,
      ("duplicate key 'k2'", "line 5")),
     ("duplicate-top-key", HEADER + "gyrovib: 1\n", 2, 1, ("duplicate key",)),

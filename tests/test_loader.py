@@ -21,9 +21,7 @@ def test_yes_no_and_dates_stay_strings():
     assert src.model.sensors[0].notes == "2024-01-01"
 
 
-@pytest.mark.parametrize(
-    ("text", "token", "fragment"),
-    [
+ERRORS = [
         ("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k_2: 1}\n", "k_2",
          "did you mean 'k2'"),
         ("gyrovib: 1\nunits: {rate: deg/min}\n", "deg/min", "deg/s"),
@@ -41,8 +39,11 @@ def test_yes_no_and_dates_stay_strings():
         ("gyrovib: 1\nprofiles:\n  - id: p\n    rate: [0, 0, 1e400]\n", "1e400", "finite"),
         ("gyrovib: 1\nprofiles:\n  - id: p\n    rate: [0, 0]\n", "[0, 0]", "too few"),
         ("gyrovib: 1\nprofiles:\n  - id: p\n    rate: [0, 0, fast]\n", "fast", "number"),
-    ],
-)
+]
+ERROR_TEXTS = [e[0] for e in ERRORS]
+
+
+@pytest.mark.parametrize(("text", "token", "fragment"), ERRORS)
 def test_errors_name_file_line_and_column(text, token, fragment):
     # the expected place is that of ``token`` (its last occurrence) in the text
     offset = text.rindex(token)
@@ -87,3 +88,19 @@ def test_object_tags_are_refused_and_run_nothing(tmp_path):
     with pytest.raises(CatalogError, match="not allowed"):
         parse_catalog(text, "evil.yaml")
     assert not marker.exists()
+
+
+def test_a_file_is_composed_once_for_any_number_of_locations(monkeypatch):
+    # `select --format github` locates every sensor: one composition, then direct steps
+    from gyrovib.catalog import locate
+
+    calls = []
+    real = locate._compose
+    monkeypatch.setattr(locate, "_compose", lambda text: calls.append(1) or real(text))
+    text = "gyrovib: 1\nsensors:\n" + "".join(
+        f"  - id: s{i}\n    coefficients: {{}}\n" for i in range(500))
+    src = parse_catalog(text, "cat.yaml")
+    assert calls == []  # a valid file is never composed just to be loaded
+    places = [src.locate(("sensors", i, "id")) for i in range(500)]
+    assert places == [(3 + 2 * i, 9) for i in range(500)]  # "  - id: sI" on line 3 + 2i
+    assert calls == [1]

@@ -75,7 +75,7 @@ def test_tuples_use_array_items(schema: dict) -> None:
 
 
 def test_defaults_kept_as_values(schema: dict) -> None:
-    assert schema["properties"]["units"]["default"] == {"rate": "deg/s"}
+    assert schema["properties"]["units"]["default"] == {"rate": "deg/s", "acceleration": "g"}
 
 
 def test_valid_catalogue_accepted(validator: jsonschema.Draft7Validator) -> None:
@@ -87,7 +87,7 @@ def test_shipped_catalogues_accepted(validator: jsonschema.Draft7Validator, path
     assert errors(validator, path.read_text(encoding="utf-8")) == []
 
 
-@pytest.mark.parametrize(("old", "new"), [
+BROKEN = [
     ("gyrovib: 1", "gyrovib: 2"),
     ("gyrovib: 1\n", ""),
     ("k2: 2.0e-7", "k_2: 2.0e-7"),
@@ -102,7 +102,15 @@ def test_shipped_catalogues_accepted(validator: jsonschema.Draft7Validator, path
     ("    output_coefficients:\n", "    coefficients: {}\n    output_coefficients:\n"),
     ("      coherence: [1.0, 1.0]", "      rms: [1, 1, 1]"),
     ("      - [200, 0.3]", "      - [200, 0.3, 1]"),
-])
+    ("    output_coefficients:\n", "    coefficients: null\n    output_coefficients:\n"),
+    ("K1: 25.0", "K1: .inf"),
+    ("k2: 2.0e-7", "k2: -.inf"),
+    ("rate: [0, 0, 30]", "rate: [0, 0, 1e400]"),
+    ("x3: [[20, 1.0e-4], [2000, 1.0e-4]]", "x3: [[20, 1.0e-4]]"),
+]
+
+
+@pytest.mark.parametrize(("old", "new"), [b for b in BROKEN if "null" not in b[1]])
 def test_broken_catalogue_rejected(validator: jsonschema.Draft7Validator, old: str,
                                    new: str) -> None:
     assert old in VALID
@@ -118,3 +126,49 @@ def test_schema_output_option(tmp_path: Path) -> None:
     result = invoke("schema", "--output", str(out))
     assert result.exit_code == 0
     assert json.loads(out.read_text())["$schema"] == DRAFT_07
+
+
+# ---------------------------------------------------------------- validate and the schema agree
+
+
+def _corpus() -> list[tuple[str, str]]:
+    from tests.test_hostile import CASES
+    from tests.test_loader import ERROR_TEXTS
+
+    texts = [(case[0], case[1]) for case in CASES if isinstance(case[1], str)]
+    texts += [(f"loader-{i}", text) for i, text in enumerate(ERROR_TEXTS)]
+    texts += [(f"broken-{old}->{new}", VALID.replace(old, new, 1)) for old, new in BROKEN]
+    texts += [("valid", VALID)] + [(p.name, p.read_text(encoding="utf-8"))
+                                   for p in [*REPO_CATALOGS, *bundled_paths()]]
+    return texts
+
+
+#: What validate checks that a JSON Schema cannot say (NaN: JSON cannot write it, and
+#: every comparison with it is false, so no bound refuses it).
+INEXPRESSIBLE = ("NaN is not a number", "must increase", "more than twice",
+                 "two different frequencies", "check the units of K1", "duplicate sensor id",
+                 "duplicate profile id")
+
+
+@pytest.mark.parametrize(("name", "text"), _corpus(), ids=lambda x: x[:40])
+def test_validate_and_schema_agree_on_the_corpus(validator: jsonschema.Draft7Validator,
+                                                 name: str, text: str) -> None:
+    from gyrovib.catalog.loader import parse_catalog
+    from gyrovib.errors import CatalogError
+
+    try:
+        data = _parse(text, "<test>")
+    except CatalogError:
+        return  # not YAML (or refused by the reader): neither gets to judge it
+    if not isinstance(data, dict) or "gyrovib" not in data:
+        assert not validator.is_valid(data)
+        return
+    try:
+        parse_catalog(text, "<test>")
+        problems: list[str] = []
+    except CatalogError as exc:
+        problems = [p.message for p in exc.problems]
+    if not problems:
+        assert validator.is_valid(data), name
+    elif validator.is_valid(data):
+        assert all(any(m in p for m in INEXPRESSIBLE) for p in problems), problems

@@ -7,7 +7,8 @@ import-linter contracts of pyproject.toml enforce it; docs/architecture.md):
     Pure numpy engines: vibration statistics, the error of eq. (13)-(16), the
     allowable coefficients of eq. (23)/(25) and brute-force averaging.
 ``gyrovib.catalog``
-    The catalogue file format and the YAML loader (imports no ``core``).
+    The catalogue file format (one spec, plain-Python validation) and the YAML
+    loader (imports no ``core``).
 ``gyrovib.api``
     Library entry points joining the two: catalogue in, immutable results out;
     one module per command on one preparation pipeline.
@@ -16,7 +17,7 @@ import-linter contracts of pyproject.toml enforce it; docs/architecture.md):
 ``gyrovib.cli``
     The ``gyrovib`` command.
 
-Importing :mod:`gyrovib` itself is cheap: numpy, pydantic and rich are only
+Importing :mod:`gyrovib` itself is cheap: numpy and rich are only
 imported by the modules that need them. The notebook API (:mod:`gyrovib.notebook`)
 is reached from here, lazily:
 

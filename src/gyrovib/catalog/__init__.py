@@ -1,1 +1,3 @@
-"""The catalogue file format: pydantic models, the YAML loader and the bundled files."""
+"""The catalogue file format (defined once in :mod:`gyrovib.catalog.spec`), its YAML
+dialect, validation into immutable records, located messages, the JSON Schema
+and the bundled files. See docs/architecture.md, "Catalogue"."""

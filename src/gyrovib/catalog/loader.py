@@ -1,379 +1,186 @@
-"""Reading catalogue files: YAML → validated models, with every error located.
+"""Loading catalogues: read a file, parse it, validate it, merge several.
 
-The YAML dialect is the safe subset, resolved the way people write numbers:
-``1e-5`` is a float (plain YAML 1.1 reads it as a string), ``yes``/``no``,
-dates and sexagesimal numbers are *not* special. Only plain mappings,
-sequences and scalars are constructed; any tag that would build an object is
-refused. libyaml's ``CSafeLoader`` is used when PyYAML was built with it.
-
-On the happy path nothing but parsing and validation runs, and neither
-imports pydantic: plain data is built straight from libyaml's node tree, and
-checked and turned into records by :mod:`gyrovib.catalog.records`. Anything
-unusual (tags, anchors, merge keys, duplicate keys) goes through PyYAML's own
-constructor; anything the fast validator does not vouch for goes through the
-pydantic models of :mod:`gyrovib.catalog.schema`. When validation fails, the
-file is composed once more to find the line and column of each offending
-value, so errors read ``FILE:LINE:COL: message``.
+Each file is read and parsed once (:mod:`gyrovib.catalog.dialect`) and
+checked against the format in the same pass that builds its records
+(:mod:`gyrovib.catalog.validate`). When something is wrong, the errors are
+phrased by :mod:`gyrovib.catalog.messages` and placed by the file's
+:class:`~gyrovib.catalog.locate.Index`, composed once per file and reused
+(for every error, every duplicate id and every later ``locate``), so errors
+read ``FILE:LINE:COL: message`` at a cost linear in the file.
 """
 
 from __future__ import annotations
 
-import gc
-import math
-import re
-from collections.abc import Iterable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, cast
-
-import yaml
+from types import SimpleNamespace
+from typing import Any, NamedTuple, cast
 
 from gyrovib.catalog import records
+from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
+    MAX_DEPTH,
+    MAX_EXPANDED_NODES,
+    Loader,
+    _gc_paused,
+    _Unusual,
+)
+from gyrovib.catalog.dialect import parse as _parse
+from gyrovib.catalog.locate import Index
 from gyrovib.catalog.records import Allocation, CatalogFile, Profile, Sensor
+from gyrovib.catalog.spec import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY
+from gyrovib.catalog.validate import Error, Invalid
 from gyrovib.errors import CatalogError, Problem
 
-if TYPE_CHECKING:
-    from pydantic import ValidationError
-
-_BaseLoader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+_Loader = Loader
 
 #: Most problems reported for one file; the rest are summarised.
 MAX_PROBLEMS = 50
-#: Expanded size above which a document with aliases is refused (alias bombs).
-MAX_EXPANDED_NODES = 2_000_000
-#: Deepest nesting of mappings and sequences accepted (a catalogue needs 7);
-#: libyaml's composer recurses in C, so a deeper document could crash it.
-MAX_DEPTH = 64
 #: Largest catalogue file read, in bytes.
 MAX_FILE_BYTES = 16 * 1024 * 1024
 
-_YAML_PREFIX = "tag:yaml.org,2002:"
 
 
-def _tag_name(tag: str) -> str:
-    """A tag as it is written in the file: ``!!python/name:x`` rather than the URI."""
-    return "!!" + tag[len(_YAML_PREFIX):] if tag.startswith(_YAML_PREFIX) else tag
+def _capped(problems: list[Problem]) -> list[Problem]:
+    """At most :data:`MAX_PROBLEMS` problems per file, in file order, then a summary."""
+    by_file: dict[str | None, list[Problem]] = {}  # in order of first appearance
+    for p in problems:
+        by_file.setdefault(p.file, []).append(p)
+    out: list[Problem] = []
+    for name, found in by_file.items():
+        out.extend(found[:MAX_PROBLEMS])
+        if len(found) > MAX_PROBLEMS:
+            out.append(Problem(f"... and {len(found) - MAX_PROBLEMS} more problems", name))
+    return out
 
 
-class _Loader(_BaseLoader):  # type: ignore[misc]
-    """Safe loader with YAML 1.2-style scalars and duplicate-key detection."""
-
-    def construct_mapping(self, node: Any, deep: bool = False) -> Any:
-        if isinstance(node, yaml.MappingNode):
-            seen: dict[Any, Any] = {}
-            for key_node, _ in node.value:
-                if key_node.tag == "tag:yaml.org,2002:merge":
-                    continue
-                key = self.construct_object(key_node, deep=True)
-                try:
-                    hash(key)
-                except TypeError:
-                    raise yaml.constructor.ConstructorError(
-                        None, None, "a mapping key must be a plain value", key_node.start_mark
-                    ) from None
-                if key in seen:
-                    raise yaml.constructor.ConstructorError(
-                        None,
-                        None,
-                        f"duplicate key {key!r} (first at line {seen[key].line + 1})",
-                        key_node.start_mark,
-                    )
-                seen[key] = key_node.start_mark
-        return super().construct_mapping(node, deep=deep)
-
-    def construct_object(self, node: Any, deep: bool = False) -> Any:
-        """Place a scalar that cannot be converted (``!!float abc``, an integer
-        of more digits than Python converts) at its node."""
-        try:
-            return super().construct_object(node, deep=deep)
-        except (ValueError, OverflowError) as exc:
-            if isinstance(exc, yaml.YAMLError):
-                raise
-            text = str(node.value)
-            shown = text[:40] + ("..." if len(text) > 40 else "")
-            why = " (too many digits)" if "digits" in str(exc) else ""
-            kind = node.tag.rsplit(":", 1)[-1]
-            raise yaml.constructor.ConstructorError(
-                None, None, f"{shown!r} is not a valid {kind}{why}", node.start_mark,
-            ) from None
+# ---------------------------------------------------------------- one file
 
 
-def _install_resolvers() -> None:
-    resolvers: dict[Any, list[tuple[str, re.Pattern[str]]]] = {}
-    keep = {"tag:yaml.org,2002:null", "tag:yaml.org,2002:merge"}
-    for first, entries in _BaseLoader.yaml_implicit_resolvers.items():
-        kept = [(tag, rx) for tag, rx in entries if tag in keep]
-        if kept:
-            resolvers[first] = kept
-    _Loader.yaml_implicit_resolvers = resolvers
-    _Loader.add_implicit_resolver(
-        "tag:yaml.org,2002:bool", re.compile(r"^(?:true|True|TRUE|false|False|FALSE)$"),
-        list("tTfF"),
-    )
-    _Loader.add_implicit_resolver(
-        "tag:yaml.org,2002:int", re.compile(r"^[-+]?(?:0|[1-9][0-9]*)$"), list("-+0123456789")
-    )
-    _Loader.add_implicit_resolver(
-        "tag:yaml.org,2002:float",
-        re.compile(
-            r"^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?"
-            r"|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$"
-        ),
-        list("-+0123456789."),
-    )
+@dataclass(frozen=True)
+class CatalogSource:
+    """One validated file: its name as given, its text and its model."""
+
+    name: str
+    text: str
+    model: CatalogFile
+    index: Index = field(default=None, compare=False, repr=False)  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        if self.index is None:
+            object.__setattr__(self, "index", Index(self.text))
+
+    def locate(self, path: Sequence[Any]) -> tuple[int, int] | None:
+        """Line and column of the value at ``path`` (e.g. ``("sensors", 3, "id")``)."""
+        return self.index.place(path)
+
+    def problem(self, message: str, path: Sequence[Any]) -> Problem:
+        """A :class:`Problem` placed at ``path`` in this file."""
+        place = self.locate(path)
+        if place is None:
+            return Problem(message, self.name)
+        return Problem(message, self.name, *place)
 
 
-_install_resolvers()
+def _error_problems(errors: list[Error], data: Any, index: Index, name: str) -> list[Problem]:
+    from gyrovib.catalog import messages  # only on the error path
 
-_STR = "tag:yaml.org,2002:str"
-#: Implicit resolvers of a plain scalar by its first character ("" for empty).
-_PLAIN_RESOLVERS: dict[str, list[tuple[str, re.Pattern[str]]]] = {
-    first: list(entries) for first, entries in _Loader.yaml_implicit_resolvers.items()
-}
-assert None not in _PLAIN_RESOLVERS  # no wildcard resolver: dispatch on the first character
-
-
-def _resolve(self: Any, kind: Any, value: Any, implicit: Any) -> Any:
-    """BaseResolver.resolve without its generality: there are no path resolvers."""
-    if kind is yaml.ScalarNode:
-        if implicit[0]:
-            for tag, regexp in _PLAIN_RESOLVERS.get(value[:1], ()):
-                if regexp.match(value):
-                    return tag
-        return _STR
-    return _BaseLoader.resolve(self, kind, value, implicit)
+    problems = []
+    for error in errors:
+        node, place = index.find(error.loc, want_key=error.kind in ("unknown_key", "bad_key"))
+        text = node.value if error.kind == "finite" and isinstance(node.value, str) else None
+        message = messages.message(error, data, text)
+        problems.append(Problem(message, name, *place) if place else Problem(message, name))
+    return problems
 
 
-_Loader.resolve = _resolve
-
-
-class _Unusual(Exception):
-    """The fast construction cannot build this document; PyYAML's constructor will."""
-
-
-def _float(value: str) -> float:
-    try:
-        return float(value)
-    except ValueError:  # .inf, -.Inf, .nan: as SafeConstructor.construct_yaml_float
-        lowered = value.lower()
-        sign = -1.0 if lowered.startswith("-") else 1.0
-        lowered = lowered.lstrip("+-")
-        if lowered == ".inf":
-            return sign * math.inf
-        if lowered == ".nan":
-            return math.nan
-        raise _Unusual from None
-
-
-_SCALARS: dict[str, Any] = {
-    _STR: None,
-    "tag:yaml.org,2002:int": int,
-    "tag:yaml.org,2002:float": _float,
-    "tag:yaml.org,2002:bool": lambda v: v.lower() == "true",
-    "tag:yaml.org,2002:null": lambda v: None,
-}
-_SEQ, _MAP = "tag:yaml.org,2002:seq", "tag:yaml.org,2002:map"
-
-
-def _build(node: Any) -> Any:
-    """Plain data of a node tree holding only plain scalars, lists and mappings.
-
-    The result equals what the constructor builds; anything else (a tag, a
-    duplicate or non-scalar key) raises :class:`_Unusual`.
-    """
-    tag = node.tag
-    if tag == _MAP:
-        out: dict[Any, Any] = {}
-        for key_node, value_node in node.value:
-            if type(key_node) is not yaml.ScalarNode:
-                raise _Unusual
-            key_tag = key_node.tag
-            if key_tag == _STR:
-                key = key_node.value
-            elif key_tag in _SCALARS:
-                key = _SCALARS[key_tag](key_node.value)
+def _raw_duplicates(data: dict[str, Any], index: Index, name: str) -> list[Problem]:
+    """Repeated ids in a file that is otherwise invalid (read from the raw data);
+    only the first :data:`MAX_PROBLEMS` are placed in the file."""
+    problems: list[Problem] = []
+    for section, kind in SECTIONS:
+        items = data.get(section)
+        if not isinstance(items, list):
+            continue
+        first: dict[str, int] = {}
+        for i, item in enumerate(items):
+            ident = item.get(ID_KEY) if isinstance(item, dict) else None
+            if not isinstance(ident, str):
+                continue
+            if ident in first:
+                place = index.place((section, first[ident], ID_KEY))
+                at = f"{name}:{place[0]}" if place else name
+                message = f"duplicate {kind} id {ident!r} (first at {at})"
+                here = index.place((section, i, ID_KEY)) if len(problems) < MAX_PROBLEMS else None
+                problems.append(Problem(message, name, *here) if here else Problem(message, name))
             else:
-                raise _Unusual
-            if key in out:
-                raise _Unusual
-            out[key] = _build(value_node)
-        return out
-    if tag == _SEQ:
-        return [_build(child) for child in node.value]
-    if tag == _STR:
-        return node.value
-    convert = _SCALARS.get(tag)
-    if convert is None or type(node) is not yaml.ScalarNode:
-        raise _Unusual
-    return convert(node.value)
+                first[ident] = i
+    return problems
 
 
-@contextmanager
-def _gc_paused() -> Iterator[None]:
-    """Pause the cyclic garbage collector while building large acyclic data.
-
-    Building a catalogue allocates hundreds of thousands of containers and no
-    cycle; each full collection would walk all of them again.
-    """
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
-
-_ALLOWED_TAGS = {
-    "tag:yaml.org,2002:map",
-    "tag:yaml.org,2002:seq",
-    "tag:yaml.org,2002:str",
-    "tag:yaml.org,2002:int",
-    "tag:yaml.org,2002:float",
-    "tag:yaml.org,2002:bool",
-    "tag:yaml.org,2002:null",
-    "tag:yaml.org,2002:merge",
-}
-
-
-def _check_nodes(node: Any) -> None:
-    """Refuse object-building tags and alias bombs before anything is constructed."""
-    sizes: dict[int, int] = {}
-    stack: list[tuple[Any, bool]] = [(node, False)]
-    while stack:
-        current, done = stack.pop()
-        key = id(current)
-        if done:
-            children = (
-                [n for pair in current.value for n in pair]
-                if isinstance(current, yaml.MappingNode)
-                else current.value
-            )
-            size = 1 + sum(sizes[id(c)] for c in children)
-            if size > MAX_EXPANDED_NODES:
-                raise yaml.constructor.ConstructorError(
-                    None, None,
-                    "the document expands to too many values through its aliases "
-                    "(an alias bomb?); refusing it",
-                    current.start_mark,
-                )
-            sizes[key] = size
-            continue
-        if key in sizes:
-            continue
-        if current.tag not in _ALLOWED_TAGS:
-            raise yaml.constructor.ConstructorError(
-                None, None,
-                f"the YAML tag {_tag_name(current.tag)!r} is not allowed in a catalogue "
-                "(it could build objects or run code); write plain values",
-                current.start_mark,
-            )
-        if isinstance(current, yaml.ScalarNode):
-            sizes[key] = 1
-            continue
-        sizes[key] = 0  # provisional: guards against recursive aliases
-        stack.append((current, True))
-        children = (
-            [n for pair in current.value for n in pair]
-            if isinstance(current, yaml.MappingNode)
-            else current.value
+def parse_catalog(text: str, name: str = "<string>") -> CatalogSource:
+    """Parse and validate one catalogue given as text."""
+    data = _parse(text, name)
+    if data is None:
+        raise CatalogError(
+            Problem("the file is empty; a catalogue starts with 'gyrovib: 1'", name, 1, 1)
         )
-        for child in children:
-            if sizes.get(id(child)) == 0:  # still being expanded: an ancestor
-                raise yaml.constructor.ConstructorError(
-                    None, None,
-                    "an alias refers to a value that contains it (a recursive structure); "
-                    "refusing it",
-                    current.start_mark,
-                )
-            stack.append((child, False))
-
-
-_TOO_DEEP = f"values are nested more than {MAX_DEPTH} levels deep; a catalogue needs fewer than 10"
-
-
-def _check_depth(text: str) -> None:
-    """Refuse documents nested deeper than :data:`MAX_DEPTH`, before composing them.
-
-    Only events are read (libyaml's parser keeps its own stack), and reading
-    stops at the first level too deep, so a hostile document costs little.
-    """
-    loader = _Loader(text)
+    if not isinstance(data, dict):
+        raise CatalogError(
+            Problem(
+                f"the top level must be a mapping with 'gyrovib: 1', not a {type(data).__name__}",
+                name, 1, 1,
+            )
+        )
+    if VERSION_KEY not in data:
+        raise CatalogError(
+            Problem("missing 'gyrovib: 1' (the format version) at the top level", name, 1, 1)
+        )
     try:
-        depth = 0
-        while loader.check_event():
-            event: Any = loader.get_event()
-            if isinstance(event, yaml.CollectionStartEvent):
-                depth += 1
-                if depth > MAX_DEPTH:
-                    mark: Any = event.start_mark
-                    raise yaml.constructor.ConstructorError(
-                        None, None,
-                        _TOO_DEEP,
-                        mark,
-                    )
-            elif isinstance(event, yaml.CollectionEndEvent):
-                depth -= 1
-    finally:
-        loader.dispose()
-
-
-#: Characters YAML does not allow in a stream (C0/C1 controls other than tab/newlines, ...).
-_NON_PRINTABLE = re.compile(
-    "[^\x09\x0a\x0d\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]"
-)
-
-
-def _check_characters(text: str, name: str) -> None:
-    bad = _NON_PRINTABLE.search(text)
-    if bad is not None:
-        at = bad.start()
-        line = text.count("\n", 0, at) + 1
-        column = at - (text.rfind("\n", 0, at) + 1) + 1
-        raise CatalogError(Problem(
-            f"the character U+{ord(bad.group()):04X} (a control character) is not allowed "
-            "in YAML; remove it", name, line, column))
-
-
-def _parse(text: str, name: str) -> Any:
-    """Parse YAML text to plain Python data, raising located :class:`CatalogError`."""
-    _check_characters(text, name)
-    try:
-        _check_depth(text)
         with _gc_paused():
-            # the node tree is freed before the collector resumes: only the data is new
-            return _construct(_Loader(text), text)
-    except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        message = exc.problem or "invalid YAML"
-        if "nesting depth" in message:
-            # PyYAML >= 6.0.2 has a nesting limit of its own that may answer before ours
-            message = _TOO_DEEP
-        if exc.context and exc.problem_mark is not None:
-            message = f"{message} ({exc.context})"
-        if mark is None:
-            raise CatalogError(Problem(message, name)) from None
-        raise CatalogError(Problem(message, name, mark.line + 1, mark.column + 1)) from None
-    except yaml.YAMLError as exc:
-        raise CatalogError(Problem(f"invalid YAML: {exc}", name)) from None
+            model = records.catalog_file(data)
+    except Invalid as exc:
+        index = Index(text)
+        shown = _error_problems(exc.errors[:MAX_PROBLEMS], data, index, name)
+        shown.extend(_raw_duplicates(data, index, name))
+        hidden = len(exc.errors) - len(exc.errors[:MAX_PROBLEMS])
+        shown.sort(key=lambda p: (p.line is None, p.line or 0, p.column or 0))
+        hidden += len(shown[MAX_PROBLEMS:])
+        problems = shown[:MAX_PROBLEMS]
+        if hidden:
+            problems.append(Problem(f"... and {hidden} more problems", name))
+        raise InvalidCatalog(problems, _ids_only(data, name, text, index)) from None
+    return CatalogSource(name=name, text=text, model=model)
 
 
-def _construct(loader: Any, text: str) -> Any:
-    """Compose and construct the single document of ``text``."""
-    try:
-        node = loader.get_single_node()
-        if node is None:
-            return None
-        if "&" in text or "!" in text:
-            _check_nodes(node)
-        elif "<<" not in text:
-            try:
-                return _build(node)
-            except (_Unusual, RecursionError, ValueError, OverflowError):
-                pass  # PyYAML's constructor builds it, or places the error
-        return loader.construct_document(node)
-    finally:
-        loader.dispose()
+class InvalidCatalog(CatalogError):
+    """A file that is not valid; ``ids`` still lets its ids clash with other files'."""
+
+    def __init__(self, problems: list[Problem], ids: CatalogSource) -> None:
+        super().__init__(problems)
+        self.ids = ids
+
+
+class _Id(NamedTuple):
+    id: Any
+
+
+def _ids_only(data: dict[str, Any], name: str, text: str, index: Index) -> CatalogSource:
+    """A stand-in source of an invalid file holding only its items' ids (None where an
+    item has none), at their indices, for the duplicate-id check across files."""
+    sections: dict[str, Any] = {}
+    for section, _ in SECTIONS:
+        items = data.get(section)
+        sections[section] = [_Id(x.get(ID_KEY) if isinstance(x, dict) else None)
+                             for x in (items if isinstance(items, list) else ())]
+    model = cast(CatalogFile, SimpleNamespace(**sections, allocation=None))
+    return CatalogSource(name=name, text=text, model=model, index=index)
+
+
+def read_catalog(path: str | Path) -> CatalogSource:
+    """Read, parse and validate one catalogue file."""
+    name = str(path)
+    return parse_catalog(_read_text(Path(path), name), name)
 
 
 def _read_text(path: Path, name: str) -> str:
@@ -417,326 +224,7 @@ def _read_text(path: Path, name: str) -> str:
         ) from None
 
 
-# ---------------------------------------------------------------- locating errors
-
-
-def _compose(text: str) -> Any:
-    """The node tree of ``text`` (None when it cannot be composed)."""
-    try:
-        return yaml.compose(text, Loader=_Loader)
-    except (yaml.YAMLError, RecursionError):
-        return None
-
-
-def _find(root: Any, path: Sequence[Any], want_key: bool) -> tuple[Any, tuple[int, int] | None]:
-    """The node at ``path`` under ``root`` and its (line, column), 1-based.
-
-    Where the path leaves the document (a missing key), the deepest node
-    reached is returned. With ``want_key`` the last step gives the key's place.
-    """
-    if root is None:
-        return None, None
-    node = root
-    mark = node.start_mark
-    for i, part in enumerate(path):
-        last = i == len(path) - 1
-        if isinstance(node, yaml.MappingNode):
-            for key_node, value_node in reversed(_flat_pairs(node)):
-                if isinstance(key_node, yaml.ScalarNode) and key_node.value == str(part):
-                    mark = key_node.start_mark if (last and want_key) else value_node.start_mark
-                    node = value_node
-                    break
-            else:
-                break
-        elif isinstance(node, yaml.SequenceNode) and isinstance(part, int):
-            if 0 <= part < len(node.value):
-                node = node.value[part]
-                mark = node.start_mark
-            else:
-                break
-        else:
-            break
-    return node, (mark.line + 1, mark.column + 1)
-
-
-def _flat_pairs(node: Any, depth: int = 0) -> list[tuple[Any, Any]]:
-    """A mapping's key/value node pairs with ``<<`` merges expanded (merged first)."""
-    pairs: list[tuple[Any, Any]] = []
-    own: list[tuple[Any, Any]] = []
-    for key_node, value_node in node.value:
-        if key_node.tag == "tag:yaml.org,2002:merge" and depth < 8:
-            merged = value_node.value if isinstance(value_node, yaml.SequenceNode) else [value_node]
-            for m in merged:
-                if isinstance(m, yaml.MappingNode):
-                    pairs.extend(_flat_pairs(m, depth + 1))
-        else:
-            own.append((key_node, value_node))
-    return pairs + own
-
-
-def _locate(text: str, path: Sequence[Any], want_key: bool) -> tuple[int, int] | None:
-    """Line and column (1-based) of the value at ``path`` in the YAML ``text``."""
-    return _find(_compose(text), path, want_key)[1]
-
-
-def _where(loc: Sequence[Any], data: Any) -> str:
-    """A readable path: ``sensor 'fog-a': coefficients.k2``, ``profiles[2].rate[1]``."""
-    parts: list[str] = []
-    start = 0
-    if (len(loc) >= 2 and loc[0] in ("sensors", "profiles") and isinstance(loc[1], int)
-            and isinstance(data, dict)):
-        items = data.get(loc[0])
-        item = items[loc[1]] if isinstance(items, list) and loc[1] < len(items) else None
-        ident = item.get("id") if isinstance(item, dict) else None
-        if isinstance(ident, str) and re.fullmatch(r"[A-Za-z0-9._-]{1,80}", ident):
-            parts.append(f"{loc[0][:-1]} {ident!r}")
-            start = 2
-    text = ""
-    for part in loc[start:]:
-        if isinstance(part, int):
-            text += f"[{part}]"
-        else:
-            text += ("." if text else "") + str(part)
-    if parts and text:
-        return f"{parts[0]}: {text}"
-    return parts[0] if parts else text
-
-
-def _describe(value: Any) -> str:
-    """A value as the user wrote it, for 'not ...' messages."""
-    if isinstance(value, bool):
-        return f"the boolean {str(value).lower()}"
-    if value is None:
-        return "empty (null)"
-    if isinstance(value, str):
-        shown = value if len(value) <= 40 else value[:37] + "..."
-        return f"the text {shown!r}"
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return "a list"
-    if isinstance(value, int) and abs(value) > 10**20:
-        return "an integer too large for a floating-point number"
-    return repr(value)
-
-
-def _scalar_text(node: Any) -> str | None:
-    return node.value if isinstance(node, yaml.ScalarNode) else None
-
-
-def _friendly(error: Mapping[str, Any], model_fields: Iterable[str] = (), data: Any = None,
-              node: Any = None) -> str:
-    """One pydantic error as a sentence: where, what is wrong, and what to write."""
-    import difflib  # only on the error path: its import is slow
-
-    kind = error["type"]
-    loc = tuple(error["loc"])
-    value = error.get("input")
-    ctx = error.get("ctx") or {}
-    where = _where(loc, data)
-    parent = _where(loc[:-1], data)
-    prefix = f"{parent}: " if parent else ""
-    if kind == "extra_forbidden":
-        key = str(loc[-1])
-        fields = list(model_fields)
-        message = f"{prefix}unknown key {key!r}"
-        close = [f for f in fields if f.lower() == key.lower().replace("-", "_")] or \
-            difflib.get_close_matches(key, fields, n=1, cutoff=0.6)
-        if close:
-            message += f"; did you mean {close[0]!r}?"
-        elif fields:
-            message += f"; allowed here: {', '.join(fields)}"
-        return message
-    if kind == "invalid_key":
-        return f"{prefix}a key must be a name, not {_describe(value)}"
-    if kind == "missing":
-        if loc and isinstance(loc[-1], int):
-            return f"{prefix}too few values (item {loc[-1] + 1} is missing)"
-        return f"{prefix}missing required key {str(loc[-1])!r}" if loc else "missing required key"
-    if loc == ("gyrovib",) and kind != "value_error":
-        return f"gyrovib: the format version must be the number 1, not {_describe(value)}"
-    if kind == "too_long":
-        expected = ctx.get("max_length")
-        have = ctx.get("actual_length")
-        if expected is not None and have is not None and isinstance(value, (list, tuple)):
-            return f"{where}: too many values ({have}; expected at most {expected})"
-        return f"{where}: too many values"
-    if kind == "too_short":
-        expected = ctx.get("min_length")
-        return f"{where}: too few values (at least {expected} needed)" if expected else \
-            f"{where}: too few values"
-    if kind == "finite_number" or (kind == "float_type" and isinstance(value, int)
-                                    and not isinstance(value, bool)):
-        text = (_scalar_text(node) or "").strip().lower()
-        if "nan" in text:
-            what = "NaN is not a number gyrovib accepts"
-        elif "inf" in text:
-            what = "infinities are not accepted"
-        elif text:
-            shown = text if len(text) <= 24 else f"{text[:12]}...({len(text)} characters)"
-            what = f"{shown} overflows a floating-point number (max ~1.8e308)"
-        else:
-            what = "the value overflows or is not finite"
-        return f"{where}: {what}; write a finite number"
-    if kind in {"float_type", "int_type", "float_parsing", "int_parsing"}:
-        return f"{where}: must be a number, not {_describe(value)}"
-    if kind in {"greater_than_equal", "greater_than", "less_than_equal", "less_than"}:
-        bound = ctx.get("ge", ctx.get("gt", ctx.get("le", ctx.get("lt"))))
-        words = {"greater_than_equal": "must not be less than",
-                 "greater_than": "must be greater than",
-                 "less_than_equal": "must not be greater than",
-                 "less_than": "must be less than"}[kind]
-        what = f"{words} {bound}"
-        if kind == "greater_than_equal" and bound == 0:
-            what = "must not be negative"
-        elif kind == "greater_than" and bound == 0:
-            what = "must be positive (greater than 0)"
-        if "coherence" in loc:
-            what += " (a coherence lies in [-1, 1])"
-        return f"{where}: {what}, got {value!r}"
-    if kind == "string_pattern_mismatch" and loc and loc[-1] == "id":
-        return (f"{where}: the id {value!r} may hold only letters, digits, '.', '_' and '-' "
-                "(no spaces or slashes)")
-    if kind == "string_too_short" and loc and loc[-1] == "id":
-        return f"{where}: the id must not be empty"
-    if kind in {"string_type", "str_type"}:
-        return f"{where}: must be text, not {_describe(value)}"
-    if kind == "literal_error":
-        expected = str(ctx.get("expected", "")).replace("'", "")
-        if loc and loc[-1] == "rate" and "units" in loc:
-            known = expected.replace(" or", ",")
-            return f"{where}: unknown rate unit {value!r}; use one of {known}"
-        return f"{where}: {value!r} is not allowed; use one of {expected.replace(' or', ',')}"
-    if kind in {"model_type", "model_attributes_type", "dict_type"}:
-        return f"{where}: must be a mapping of keys to values, not {_describe(value)}"
-    if kind in {"list_type", "tuple_type"}:
-        return f"{where}: must be a list, not {_describe(value)}"
-    msg = str(error["msg"])
-    for lead in ("Value error, ", "Assertion failed, "):
-        if msg.startswith(lead):
-            msg = msg[len(lead):]
-            break
-    else:
-        msg = msg[0].lower() + msg[1:] if msg.startswith("Input ") else msg
-    return f"{where}: {msg}" if where else msg
-
-
-def _fields_at(loc: Sequence[Any]) -> list[str]:
-    """Known keys of the model that holds ``loc`` (for typo suggestions)."""
-    from gyrovib.catalog import schema
-
-    model: Any = schema.CatalogFile
-    for part in loc[:-1]:
-        if isinstance(part, int):
-            continue
-        field = model.model_fields.get(part)
-        if field is None:
-            return []
-        annotation = str(field.annotation)
-        for candidate in (
-            schema.Sensor, schema.Profile, schema.OutputCoefficients, schema.Coefficients,
-            schema.Tone, schema.Random, schema.PSD, schema.Units, schema.Allocation,
-        ):
-            if re.search(rf"\b{candidate.__name__}\b", annotation):
-                model = candidate
-                break
-        else:
-            return []
-    return list(model.model_fields)
-
-
-def _validation_problems(exc: ValidationError, text: str, name: str,
-                         data: Any = None) -> list[Problem]:
-    root = _compose(text)
-    problems = []
-    for error in exc.errors()[:MAX_PROBLEMS]:
-        loc = tuple(error["loc"])
-        index = (error.get("ctx") or {}).get("index")
-        if isinstance(index, int):  # a table check naming the offending row
-            loc = (*loc, index)
-        node, place = _find(root, loc,
-                            want_key=error["type"] in ("extra_forbidden", "invalid_key"))
-        message = _friendly(error, _fields_at(tuple(error["loc"])), data, node)
-        if place is None:
-            problems.append(Problem(message, name))
-        else:
-            problems.append(Problem(message, name, place[0], place[1]))
-    problems.sort(key=lambda p: (p.line or 0, p.column or 0))
-    hidden = exc.error_count() - MAX_PROBLEMS
-    if hidden > 0:
-        problems.append(Problem(f"... and {hidden} more problems", name))
-    return problems
-
-
-# ---------------------------------------------------------------- public API
-
-
-@dataclass(frozen=True)
-class CatalogSource:
-    """One validated file: its name as given, its text and its model."""
-
-    name: str
-    text: str
-    model: CatalogFile
-
-    def locate(self, path: Sequence[Any]) -> tuple[int, int] | None:
-        """Line and column of the value at ``path`` (e.g. ``("sensors", 3, "id")``)."""
-        return _locate(self.text, path, want_key=False)
-
-    def problem(self, message: str, path: Sequence[Any]) -> Problem:
-        """A :class:`Problem` placed at ``path`` in this file."""
-        place = self.locate(path)
-        if place is None:
-            return Problem(message, self.name)
-        return Problem(message, self.name, *place)
-
-
-def parse_catalog(text: str, name: str = "<string>") -> CatalogSource:
-    """Parse and validate one catalogue given as text."""
-    data = _parse(text, name)
-    if data is None:
-        raise CatalogError(
-            Problem("the file is empty; a catalogue starts with 'gyrovib: 1'", name, 1, 1)
-        )
-    if not isinstance(data, dict):
-        raise CatalogError(
-            Problem(
-                f"the top level must be a mapping with 'gyrovib: 1', not a {type(data).__name__}",
-                name, 1, 1,
-            )
-        )
-    if "gyrovib" not in data:
-        raise CatalogError(
-            Problem("missing 'gyrovib: 1' (the format version) at the top level", name, 1, 1)
-        )
-    try:
-        with _gc_paused():
-            model = records.catalog_file(data)
-    except records.Unsure:
-        model = _validate_with_schema(data, text, name)
-    return CatalogSource(name=name, text=text, model=model)
-
-
-def _validate_with_schema(data: Any, text: str, name: str) -> CatalogFile:
-    """Validate with the pydantic models: located problems, or the records after all."""
-    from pydantic import ValidationError
-
-    from gyrovib.catalog import schema
-
-    try:
-        checked = schema.CatalogFile.model_validate(data)
-    except ValidationError as exc:
-        raise CatalogError(_validation_problems(exc, text, name, data)) from None
-    try:  # valid, with something the fast validator leaves to pydantic (a huge int...)
-        return records.catalog_file(checked.model_dump())
-    except records.Unsure:  # pragma: no cover - the models' attributes are the same
-        return cast(CatalogFile, checked)
-
-
-def read_catalog(path: str | Path) -> CatalogSource:
-    """Read, parse and validate one catalogue file."""
-    name = str(path)
-    return parse_catalog(_read_text(Path(path), name), name)
+# ---------------------------------------------------------------- several files
 
 
 @dataclass(frozen=True)
@@ -748,7 +236,12 @@ class Entry:
 
     @property
     def unit(self) -> str:
-        return self.source.model.units.rate
+        return self.source.model.rate_unit
+
+    @property
+    def acceleration_unit(self) -> str:
+        """``"g"`` or ``"m/s^2"``: the unit of the file's accelerations (not converted)."""
+        return self.source.model.acceleration_unit
 
 
 @dataclass(frozen=True)
@@ -771,35 +264,54 @@ class Catalog:
     allocation: Allocation | None
 
     def sensor_line(self, entry: SensorEntry) -> tuple[int, int] | None:
-        return entry.source.locate(("sensors", entry.index, "id"))
+        return entry.source.locate((SECTIONS[0][0], entry.index, ID_KEY))
 
 
-def _unique(sources: Sequence[CatalogSource], section: str,
-            problems: list[Problem]) -> list[tuple[CatalogSource, int, Any]]:
+def _unique(sources: Sequence[CatalogSource], section: str, problems: list[Problem],
+            reported_within: frozenset[int] = frozenset()
+            ) -> list[tuple[CatalogSource, int, Any]]:
     """The items of ``section`` ("sensors" or "profiles") of every file, in order,
-    keeping the first of each id; a repeated id becomes a problem at its place."""
+    keeping the first of each id; a repeated id becomes a problem at its place
+    (each file's index is composed once, whatever the number of repeats).
+    ``reported_within``: ids of sources whose own repeats are already reported."""
     kept: list[tuple[CatalogSource, int, Any]] = []
     first: dict[str, tuple[CatalogSource, int]] = {}
-    kind = section[:-1]
+    kind = dict(SECTIONS)[section]
     for source in sources:
+        reported = 0
+        here: set[str] | None = set() if id(source) in reported_within else None
         for i, item in enumerate(getattr(source.model, section)):
+            if not isinstance(item.id, str):
+                continue
+            if here is not None:
+                if item.id in here:  # a repeat within the file: already reported
+                    continue
+                here.add(item.id)
             if item.id in first:
+                reported += 1
+                if reported > MAX_PROBLEMS:  # not shown: counted in the summary only
+                    problems.append(Problem(f"duplicate {kind} id", source.name))
+                    continue
                 other, index = first[item.id]
-                place = other.locate((section, index, "id"))
+                place = other.locate((section, index, ID_KEY))
                 at = f"{other.name}:{place[0]}" if place else other.name
                 problems.append(source.problem(
-                    f"duplicate {kind} id {item.id!r} (first at {at})", (section, i, "id")))
+                    f"duplicate {kind} id {item.id!r} (first at {at})", (section, i, ID_KEY)))
                 continue
             first[item.id] = (source, i)
             kept.append((source, i, item))
     return kept
 
 
-def merge(sources: Sequence[CatalogSource]) -> Catalog:
+def merge(sources: Sequence[CatalogSource],
+          _reported_within: frozenset[int] = frozenset()) -> Catalog:
     """Merge validated files; an id used twice (in one file or across files) is an error."""
     problems: list[Problem] = []
-    sensors = [SensorEntry(s, i, x) for s, i, x in _unique(sources, "sensors", problems)]
-    profiles = [ProfileEntry(s, i, x) for s, i, x in _unique(sources, "profiles", problems)]
+    (sensor_key, _), (profile_key, _) = SECTIONS
+    sensors = [SensorEntry(s, i, x)
+               for s, i, x in _unique(sources, sensor_key, problems, _reported_within)]
+    profiles = [ProfileEntry(s, i, x)
+                for s, i, x in _unique(sources, profile_key, problems, _reported_within)]
     allocation: Allocation | None = None
     allocation_source: CatalogSource | None = None
     for source in sources:
@@ -809,12 +321,12 @@ def merge(sources: Sequence[CatalogSource]) -> Catalog:
                 problems.append(
                     source.problem(
                         f"a different allocation is already given in {allocation_source.name}",
-                        ("allocation",),
+                        (SHARED_KEY,),
                     )
                 )
             allocation, allocation_source = source.model.allocation, source
     if problems:
-        raise CatalogError(problems)
+        raise CatalogError(_capped(problems))
     return Catalog(tuple(sources), tuple(sensors), tuple(profiles), allocation)
 
 
@@ -822,14 +334,20 @@ def load_catalog(paths: Sequence[str | Path]) -> Catalog:
     """Read every file (collecting the problems of all of them), then merge."""
     problems: list[Problem] = []
     sources: list[CatalogSource] = []
+    everything: list[CatalogSource] = []  # with the ids of the invalid files, in order
     for path in paths:
         try:
             sources.append(read_catalog(path))
+            everything.append(sources[-1])
+        except InvalidCatalog as exc:
+            problems.extend(exc.problems)
+            everything.append(exc.ids)
         except CatalogError as exc:
             problems.extend(exc.problems)
     if problems:
-        try:  # the files that did parse may still clash: report that too
-            merge(sources)
+        try:  # the files may still clash, valid or not: report that too
+            valid = {id(s) for s in sources}
+            merge(everything, frozenset(id(s) for s in everything if id(s) not in valid))
         except CatalogError as exc:
             problems.extend(exc.problems)
         raise CatalogError(problems)
@@ -846,3 +364,20 @@ def bundled_paths() -> list[Path]:
 
         root = files("gyrovib") / "catalogs"
     return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith((".yaml", ".yml")))
+
+
+__all__ = [
+    "Catalog",
+    "CatalogError",
+    "CatalogSource",
+    "Entry",
+    "Profile",
+    "ProfileEntry",
+    "Sensor",
+    "SensorEntry",
+    "bundled_paths",
+    "load_catalog",
+    "merge",
+    "parse_catalog",
+    "read_catalog",
+]

@@ -1,7 +1,7 @@
 """The ``gyrovib`` command.
 
 Each command parses its options, makes one library call and hands the result
-to a renderer. Heavy modules (numpy, pydantic, rich) are imported inside the
+to a renderer. Heavy modules (numpy, yaml, rich) are imported inside the
 commands, so ``gyrovib --help`` stays instant. Every :class:`GyrovibError` is
 caught here, once: one line per problem on standard error, exit status 2.
 

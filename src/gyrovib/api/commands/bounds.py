@@ -53,7 +53,7 @@ def resolve_allocation(
             source = next((s for s in catalog.sources if s.model.allocation is not None), None)
             where = f"the 'allocation:' section of {source.name}" if source else "the catalogue"
     elif isinstance(allocation, Allocation) or hasattr(allocation, "r"):
-        chosen = cast(Allocation, allocation)  # the record, or the pydantic model alike
+        chosen = cast(Allocation, allocation)
     else:
         values = [float(x) for x in allocation]
         if not all(math.isfinite(x) and x > 0 for x in values):

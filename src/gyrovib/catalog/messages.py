@@ -1,0 +1,174 @@
+"""Errors of :mod:`gyrovib.catalog.validate` as sentences: where, what, what to write.
+
+One small function per kind of error; :func:`message` picks it. The place in
+the file (line and column) is added by :mod:`gyrovib.catalog.locate`.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from gyrovib.catalog.spec import ID_KEY, SECTIONS
+from gyrovib.catalog.validate import Error
+
+_SHOWN_ID = re.compile(r"[A-Za-z0-9._-]{1,80}")
+_SECTIONS = dict(SECTIONS)
+
+
+def where(loc: Sequence[Any], data: Any) -> str:
+    """A readable path: ``sensor 'fog-a': coefficients.k2``, ``profiles[2].rate[1]``."""
+    head = ""
+    start = 0
+    if (len(loc) >= 2 and loc[0] in _SECTIONS and isinstance(loc[1], int)
+            and isinstance(data, dict)):
+        items = data.get(loc[0])
+        item = items[loc[1]] if isinstance(items, list) and loc[1] < len(items) else None
+        ident = item.get(ID_KEY) if isinstance(item, dict) else None
+        if isinstance(ident, str) and _SHOWN_ID.fullmatch(ident):
+            head = f"{_SECTIONS[loc[0]]} {ident!r}"
+            start = 2
+    text = ""
+    for part in loc[start:]:
+        text += f"[{part}]" if isinstance(part, int) else ("." if text else "") + str(part)
+    if head and text:
+        return f"{head}: {text}"
+    return head or text
+
+
+def describe(value: Any) -> str:
+    """A value as the user wrote it, for 'not ...' messages."""
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if value is None:
+        return "empty (null)"
+    if isinstance(value, str):
+        shown = value if len(value) <= 40 else value[:37] + "..."
+        return f"the text {shown!r}"
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, (list, tuple)):
+        return "a list"
+    if isinstance(value, int) and abs(value) > 10**20:
+        return "an integer too large for a floating-point number"
+    return repr(value)
+
+
+def _unknown_key(e: Error, prefix: str, at: str, text: str | None) -> str:
+    import difflib  # only on the error path: its import is slow
+
+    key = str(e.loc[-1])
+    fields = list(e.ctx["fields"])
+    message = f"{prefix}unknown key {key!r}"
+    close = [f for f in fields if f.lower() == key.lower().replace("-", "_")] or \
+        difflib.get_close_matches(key, fields, n=1, cutoff=0.6)
+    if close:
+        return message + f"; did you mean {close[0]!r}?"
+    return message + f"; allowed here: {', '.join(fields)}" if fields else message
+
+
+def _bad_key(e: Error, prefix: str, at: str, text: str | None) -> str:
+    return f"{prefix}a key must be a name, not {describe(e.value)}"
+
+
+def _missing(e: Error, prefix: str, at: str, text: str | None) -> str:
+    return f"{prefix}missing required key {str(e.loc[-1])!r}"
+
+
+def _version(e: Error, prefix: str, at: str, text: str | None) -> str:
+    return (f"{at}: the format version must be the number {e.ctx['expected']}, "
+            f"not {describe(e.value)}")
+
+
+def _too_few(e: Error, prefix: str, at: str, text: str | None) -> str:
+    if e.ctx.get("exact"):
+        return f"{at}: too few values ({e.ctx['have']}; expected {e.ctx['n']})"
+    return f"{at}: too few values (at least {e.ctx['n']} needed)"
+
+
+def _too_many(e: Error, prefix: str, at: str, text: str | None) -> str:
+    if e.ctx.get("exact"):
+        return f"{at}: too many values ({e.ctx['have']}; expected {e.ctx['n']})"
+    return f"{at}: too many values ({e.ctx['have']}; expected at most {e.ctx['n']})"
+
+
+def _finite(e: Error, prefix: str, at: str, text: str | None) -> str:
+    written = (text or "").strip().lower()
+    if "nan" in written:
+        what = "NaN is not a number gyrovib accepts"
+    elif "inf" in written:
+        what = "infinities are not accepted"
+    elif written:
+        shown = written if len(written) <= 24 else \
+            f"{written[:12]}...({len(written)} characters)"
+        what = f"{shown} overflows a floating-point number (max ~1.8e308)"
+    else:
+        what = "the value overflows or is not finite"
+    return f"{at}: {what}; write a finite number"
+
+
+def _type(e: Error, prefix: str, at: str, text: str | None) -> str:
+    expected = e.ctx["expected"]
+    if expected == "mapping":
+        return f"{at}: must be a mapping of keys to values, not {describe(e.value)}"
+    if expected in ("number", "integer"):
+        return f"{at}: must be a{'n' if expected == 'integer' else ''} {expected}, " \
+               f"not {describe(e.value)}"
+    return f"{at}: must be {'a ' if expected != 'text' else ''}{expected}, " \
+           f"not {describe(e.value)}"
+
+
+_BOUND_WORDS = {">": "must be greater than", ">=": "must not be less than",
+                "<=": "must not be greater than"}
+
+
+def _bound(e: Error, prefix: str, at: str, text: str | None) -> str:
+    op, bound = e.ctx["op"], e.ctx["bound"]
+    shown = int(bound) if float(bound).is_integer() else bound
+    what = f"{_BOUND_WORDS[op]} {shown}"
+    if bound == 0 and op == ">=":
+        what = "must not be negative"
+    elif bound == 0 and op == ">":
+        what = "must be positive (greater than 0)"
+    return f"{at}: {what}{e.ctx.get('hint', '')}, got {e.value!r}"
+
+
+def _id_pattern(e: Error, prefix: str, at: str, text: str | None) -> str:
+    return (f"{at}: the id {e.value!r} may hold only letters, digits, '.', '_' and '-' "
+            "(no spaces or slashes)")
+
+
+def _id_empty(e: Error, prefix: str, at: str, text: str | None) -> str:
+    return f"{at}: the id must not be empty"
+
+
+def _text_long(e: Error, prefix: str, at: str, text: str | None) -> str:
+    return f"{at}: too long ({len(e.value)} characters; at most {e.ctx['max']})"
+
+
+def _choice(e: Error, prefix: str, at: str, text: str | None) -> str:
+    known = ", ".join(e.ctx["values"])
+    if e.ctx.get("what") and isinstance(e.value, str):
+        return f"{at}: unknown {e.ctx['what']} {e.value!r}; use one of {known}"
+    return f"{at}: {e.value!r} is not allowed; use one of {known}"
+
+
+def _rule(e: Error, prefix: str, at: str, text: str | None) -> str:
+    return f"{at}: {e.ctx['message']}" if at else str(e.ctx["message"])
+
+
+_KINDS: dict[str, Callable[[Error, str, str, str | None], str]] = {
+    "unknown_key": _unknown_key, "bad_key": _bad_key, "missing": _missing,
+    "version": _version, "too_few": _too_few, "too_many": _too_many, "finite": _finite,
+    "type": _type, "bound": _bound, "id_pattern": _id_pattern, "id_empty": _id_empty,
+    "text_long": _text_long, "choice": _choice, "rule": _rule,
+}
+
+
+def message(error: Error, data: Any = None, text: str | None = None) -> str:
+    """One error as a sentence; ``text``: the scalar as written in the file, if known."""
+    parent = where(error.loc[:-1], data)
+    prefix = f"{parent}: " if parent else ""
+    at = where(error.loc, data)
+    return _KINDS[error.kind](error, prefix, at, text)
