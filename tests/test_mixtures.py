@@ -88,7 +88,7 @@ def test_four_tones_alone_equal_nested_quadrature(omega, amps):
 @given(amps=st.lists(amplitude, min_size=2, max_size=64), beyond=st.floats(1.0, 100.0))
 def test_tones_alone_rectify_nothing_beyond_their_reach(amps, beyond):
     # |Ω| ≥ Σa: Ω + x3 never changes sign, so E is exactly 0 (MODEL.md §4)
-    omega = beyond * sum(amps)
+    omega = beyond * math.fsum(amps)
     assert rectified_excess([omega, -omega], amps, 0.0).tolist() == [0.0, 0.0]
 
 
@@ -140,3 +140,23 @@ def test_a_tiny_random_part_changes_almost_nothing(amps, slack):
     mixed = rectified_excess(rates, amps, sigma)
     assert np.all(mixed >= alone * (1 - slack))
     assert np.all(mixed <= (alone + sigma * math.sqrt(2 / math.pi)) * (1 + slack))
+
+
+def test_bessel_functions_equal_scipy():
+    # the engine's own I0, I1 (trapezoid below |z| = 25, Hankel expansion above)
+    # against scipy.special's AMOS/Cephes values; relative 1e-12 away from J0's
+    # zeros (z near the imaginary axis), where only the absolute error is small
+    from scipy import special
+
+    from gyrovib.core.statistics import _i0e_i1e, _log_i0e
+
+    rng = np.random.default_rng(14)
+    z = np.concatenate([rng.uniform(0, 60, 4000) + 1j * rng.uniform(0, 400, 4000),
+                        rng.uniform(0.5, 3, 1000) + 1j * rng.uniform(0, 30, 1000)])
+    # (compared as exp of the difference: the logarithms may differ by 2πi·k)
+    ratio = np.exp(_log_i0e(z) - np.log(special.ive(0, z)))
+    assert ratio == pytest.approx(np.ones(z.size), abs=1e-12)
+    x = np.concatenate([np.linspace(0, 100, 2001), np.geomspace(1e-8, 1e8, 400)])
+    i0, i1 = _i0e_i1e(x)
+    assert i0 == pytest.approx(special.i0e(x), rel=1e-13)
+    assert i1 == pytest.approx(special.i1e(x), rel=1e-13)
