@@ -248,7 +248,10 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
     a = np.asarray(amplitudes, dtype=float).ravel()
     a = np.sort(a[a > 0])[::-1]
     if a.size == 0:
-        return folded_normal_excess(w, sigma)
+        out0: FloatArray = np.zeros_like(w)
+        near = w < _TAIL_SIGMAS * sigma  # beyond, E < e^-800·σ underflows to 0
+        out0[near] = folded_normal_excess(w[near], sigma)
+        return out0
     if sigma <= 0 and a.size == 1:
         return arcsine_excess(w, float(a[0]))
     reach = math.fsum(a.tolist())  # correctly rounded: |Ω| = Σa is "beyond" however summed
