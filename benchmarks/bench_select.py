@@ -6,7 +6,8 @@ of memory at the default size)::
     python benchmarks/bench_select.py                  # 100,000 sensors x 8 profiles
     python benchmarks/bench_select.py --sensors 20000  # smaller
 
-The catalogue is bench_scale.py's (same generator and eight profiles). Three
+The catalogue is bench_scale.py's (same generator and eight profiles), its
+sensors split over files of 25,000 (a catalogue file is at most 16 MiB). Three
 measurements, each in a fresh subprocess with its peak resident memory
 (``ru_maxrss``):
 
@@ -25,6 +26,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import random
 import subprocess
 import sys
 import tempfile
@@ -52,7 +54,7 @@ from gyrovib import api
 from gyrovib.cli.output import write_output
 from gyrovib.render import select as render
 mark("import", t); t = time.perf_counter()
-catalog = api.load([sys.argv[1]])
+catalog = api.load(sys.argv[1:])
 mark("load: YAML + validation", t); t = time.perf_counter()
 result = api.select(catalog, budget=0.01)
 mark("api.select", t); t = time.perf_counter()
@@ -80,6 +82,25 @@ def run_fresh(argv: list[str]) -> tuple[float, float, str]:
     return float(elapsed), float(peak), str(out)
 
 
+HEADER = "gyrovib: 1\nunits:\n  rate: deg/s\n"
+#: Sensors per file: a catalogue file may not exceed 16 MiB (INTERFACE.md).
+PER_FILE = 25_000
+
+
+def write_sensors(work: Path, n: int, seed: int) -> list[Path]:
+    """bench_scale.py's sensors, ``PER_FILE`` to a file."""
+    rng = random.Random(seed + n)
+    paths = []
+    for start in range(0, n, PER_FILE):
+        path = work / f"sensors-{start // PER_FILE:02d}.yaml"
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(HEADER + "sensors:\n")
+            for i in range(start, min(n, start + PER_FILE)):
+                f.write(bench_scale.sensor_yaml(i, rng))
+        paths.append(path)
+    return paths
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sensors", type=int, default=100_000)
@@ -87,12 +108,10 @@ def main() -> None:
     args = parser.parse_args()
 
     work = Path(tempfile.mkdtemp(prefix="gyrovib-select-"))
-    catalogue = work / f"catalogue-{args.sensors}.yaml"
-    bench_scale.write_catalogue(catalogue, args.sensors, args.seed)
     profiles_only = work / "profiles.yaml"
-    profiles_only.write_text("gyrovib: 1\nunits:\n  rate: deg/s\n" + bench_scale.PROFILES,
-                             encoding="utf-8")
-    size_mb = catalogue.stat().st_size / 2**20
+    profiles_only.write_text(HEADER + bench_scale.PROFILES, encoding="utf-8")
+    files = [profiles_only, *write_sensors(work, args.sensors, args.seed)]
+    size_mb = sum(f.stat().st_size for f in files) / 2**20
     gyrovib = [PYTHON, "-m", "gyrovib"]
     subprocess.run([PYTHON, "-m", "compileall", "-q", str(Path(__file__).parents[1] / "src")],
                    check=True, env=CHILD_ENV, stdout=subprocess.DEVNULL)
@@ -100,20 +119,21 @@ def main() -> None:
     print(f"Python {sys.version.split()[0]}, nproc {os.cpu_count()}; catalogue: "
           f"{args.sensors:,} sensors x 8 profiles, {size_mb:.1f} MB of YAML\n")
 
-    t, peak, _ = run_fresh([*gyrovib, "select", str(catalogue), "--budget", "0.01",
+    catalogue = [str(f) for f in files]
+    t, peak, _ = run_fresh([*gyrovib, "select", *catalogue, "--budget", "0.01",
                             "--format", "json", "-o", os.devnull])
     ok = "met" if peak < TARGET_MB else "not met"
     print("| command | time | peak RSS | target | |")
     print("|---|---:|---:|---:|---|")
     print(f"| select --format json, {args.sensors:,} sensors | {t * 1000:.0f} ms | "
           f"{peak:.0f} MB | < {TARGET_MB:.0f} MB | {ok} |")
-    for label, path in (("bounds, whole catalogue", catalogue),
-                        ("bounds, its profiles alone", profiles_only)):
-        t, peak, _ = run_fresh([*gyrovib, "bounds", str(path), "--budget", "0.01",
+    for label, paths in (("bounds, whole catalogue", catalogue),
+                         ("bounds, its profiles alone", [str(profiles_only)])):
+        t, peak, _ = run_fresh([*gyrovib, "bounds", *paths, "--budget", "0.01",
                                 "--format", "json", "-o", os.devnull])
         print(f"| {label} | {t * 1000:.0f} ms | {peak:.0f} MB | | |")
 
-    _, _, out = run_fresh([PYTHON, "-c", PHASES, str(catalogue)])
+    _, _, out = run_fresh([PYTHON, "-c", PHASES, *catalogue])
     print("\n| phase of select --format json | time | RSS after | peak so far |")
     print("|---|---:|---:|---:|")
     for line in out.strip().splitlines():
