@@ -160,3 +160,28 @@ def test_bessel_functions_equal_scipy():
     i0, i1 = _i0e_i1e(x)
     assert i0 == pytest.approx(special.i0e(x), rel=1e-13)
     assert i1 == pytest.approx(special.i1e(x), rel=1e-13)
+
+
+@pytest.mark.parametrize(("amps", "sigma", "route"), [
+    ([2.0, 1.0, 0.5], 0.0, "_few_tones_excess"),
+    ([1.0, 0.8, 0.6, 0.4], 0.0, "_contour_excess"),
+    ([1.0, 0.8], 0.1, "_contour_excess"),
+])
+def test_rates_beyond_reach_are_not_computed(monkeypatch, amps, sigma, route):
+    # a sweep far past the vibration: only the rates below Σa (+ 40σ) reach the
+    # quadrature; the others are 0 without work (E = 0 exactly, or < e^-800)
+    from gyrovib.core import statistics
+
+    seen: list[int] = []
+    original = getattr(statistics, route)
+
+    def spy(w, *args):
+        seen.append(w.size)
+        return original(w, *args)
+
+    monkeypatch.setattr(statistics, route, spy)
+    rates = np.linspace(-500, 500, 2001)  # step 0.5 deg/s: a handful within reach
+    out = rectified_excess(rates, amps, sigma)
+    reach = sum(amps) + 40 * sigma
+    assert seen == [int(np.sum(np.abs(rates) < reach))]
+    assert np.all(out[np.abs(rates) >= reach] == 0.0)
