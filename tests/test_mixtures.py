@@ -96,10 +96,12 @@ def test_tones_alone_rectify_nothing_beyond_their_reach(amps, beyond):
 @given(amps=st.lists(amplitude, min_size=2, max_size=12), sigma=st.floats(0, 1.0),
        omega=st.lists(st.floats(-20, 20), min_size=1, max_size=40))
 def test_a_rate_array_gives_each_rate_alone(amps, sigma, omega):
-    # rates share contours in groups: the value at a rate must not depend on its company
+    # rates share contours in groups: the value at a rate must not depend on its
+    # company beyond the quadrature's tolerance (1e-11 with a random part; the
+    # truncation of the tones' algebraic tail, 1e-9, for tones alone)
     together = rectified_excess(omega, amps, sigma)
     alone = np.array([rectified_excess([w], amps, sigma)[0] for w in omega])
-    assert together == pytest.approx(alone, rel=1e-10, abs=1e-300)
+    assert together == pytest.approx(alone, rel=1e-10 if sigma > 0 else 1e-8, abs=1e-300)
 
 
 def test_sixty_four_tones_on_random_at_zero_rate():
