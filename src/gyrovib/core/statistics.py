@@ -581,7 +581,7 @@ def _contour_excess(w: FloatArray, a: FloatArray, sigma: float) -> FloatArray:
                     "values: the random part is too small against the tones to matter "
                     "yet too large to drop; drop it, or merge the smallest tones"
                 )
-            block *= 2
+            block = min(2 * block, 4096)  # (block, K, 16) trapezoid arrays: ≤ 70 MB
         log_f = np.concatenate(logs)
         nodes = h * np.arange(log_f.size)
         weight = np.exp(log_f.real - first)
