@@ -1,0 +1,37 @@
+"""The CI contract: .ci/run runs exactly the test command README.md gives.
+
+Source of the expectation: the project's rule that the README's Quick start
+and CI agree, so that what a contributor runs is what CI runs.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _quick_start() -> list[str]:
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text.split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    block = re.search(r"```sh\n(.*?)```", section, re.S)
+    assert block, "README's Quick start has no sh block"
+    return [line for line in block.group(1).splitlines() if line.strip()]
+
+
+def test_quick_start_has_exactly_two_commands() -> None:
+    commands = _quick_start()
+    assert len(commands) == 2, commands
+    assert "gyrovib analyze" in commands[0]
+    assert "pytest" in commands[1]
+
+
+def test_ci_runs_the_readme_test_command() -> None:
+    run = (ROOT / ".ci" / "run").read_text(encoding="utf-8").splitlines()
+    assert _quick_start()[1] in run
+
+
+def test_ci_installs_within_the_constraints() -> None:
+    assert "-c constraints.txt" in _quick_start()[1]
+    assert (ROOT / "constraints.txt").is_file()
