@@ -69,7 +69,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
     import numpy as np
 
-    from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+    from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 
     n_s, n_p = len(result.sensors), len(result.profiles)
     p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
@@ -83,6 +83,8 @@ def analysis_frame(result: AnalysisResult) -> Any:
     }
     columns.update({f"additive_terms.{t}": terms[:, k] for k, t in
                     enumerate(ADDITIVE_TERMS[:terms.shape[1]])})
+    extra = np.asarray(err.extra_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
+    columns[f"additive_terms.{EXTRA_TERMS[0]}"] = extra[:, 0]  # Δ0(6), MODEL.md section 8
     columns.update({f"multiplicative_coefficients.{q}": qs[:, k] for k, q in
                     enumerate(MULTIPLICATIVE_TERMS[:qs.shape[1]])})
     for name in ("additive", "multiplicative", "total", "rms"):

@@ -89,9 +89,16 @@ class AnalysisResult(_Frozen):
     #: ``numeric`` only: evaluations of eq. (2) per sensor × profile, and the seed.
     samples: int | None = None
     seed: int | None = None
+    #: Per profile: whether it has a linear vibration (Δ0(6), ``error.extra_terms[..., 0]``).
+    linear: tuple[bool, ...] = ()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))
+
+    @property
+    def has_linear(self) -> bool:
+        """Whether any profile has a linear vibration (the g² term, MODEL.md section 8)."""
+        return any(self.linear)
 
 
 @dataclass(frozen=True, repr=False)
