@@ -105,6 +105,9 @@ def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
     from gyrovib.core.synthesis import BOUNDED, PARTS
 
     out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
+    # the VRE bound (MODEL.md section 8): JSON null, here inf, without linear vibration
+    vre = np.full(len(rows), np.inf) if bounds.vre is None else np.asarray(bounds.vre)[rows]
+    out["bounds.vre"] = vre
     out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in PARTS})
     return out
 
@@ -152,6 +155,10 @@ def selection_frame(result: SelectionResult) -> Any:
         columns[f"checks.{name}.value"] = values[:, b]
         columns[f"checks.{name}.bound"] = bounds[:, b]
         columns[f"checks.{name}.pass"] = checks[:, b]
+    if result.vre_pass is not None:  # the VRE check, MODEL.md section 8
+        columns["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
+        columns["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
+        columns["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
     columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
     for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
         columns[f"profile_{key}"] = column
