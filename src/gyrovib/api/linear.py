@@ -55,9 +55,9 @@ def profile_linear(entry: ProfileEntry) -> LinearVibration | None:
         nu = 1.0 if mount is None else float(loglog_interp(mount, tone.frequency))
         phasor = (np.asarray(tone.amplitude, dtype=float) * to_g * nu
                   * np.exp(1j * np.deg2rad(np.asarray(tone.phase, dtype=float))))
-        f = float(tone.frequency)
-        merged[f] = merged.get(f, np.zeros(3, complex)) + phasor
-    p = np.array([merged[f] for f in sorted(merged)], dtype=complex).reshape(-1, 3)
+        key = float(tone.frequency)
+        merged[key] = merged.get(key, np.zeros(3, complex)) + phasor
+    p = np.array([merged[k] for k in sorted(merged)], dtype=complex).reshape(-1, 3)
     sigma = np.zeros(3)
     coherence = (0.0, 0.0, 0.0)
     random = block.random
@@ -67,8 +67,8 @@ def profile_linear(entry: ProfileEntry) -> LinearVibration | None:
             for k, axis in enumerate(_AXES):
                 table = getattr(random.psd, axis)
                 if table is not None:
-                    f, level = as_table(table)
-                    sigma[k] = math.sqrt(psd_variance((f, level * to_g * to_g), gains))
+                    freq, level = as_table(table)
+                    sigma[k] = math.sqrt(psd_variance((freq, level * to_g * to_g), gains))
         elif random.rms is not None:
             sigma = np.asarray(random.rms, dtype=float) * to_g
     return linear_vibration(np.abs(p), np.rad2deg(np.angle(p)), sigma, coherence)
