@@ -445,3 +445,38 @@ def test_results_without_linear_vibration_are_unchanged(tmp_path: Path) -> None:
                                                *args).stdout
     assert "Δ0 g²" not in run("analyze", *args).stdout
     assert "additive_g2" not in run("analyze", *args, "--format", "csv").stdout
+
+
+def test_tables_show_the_g2_column_with_linear_vibration(tmp_path: Path) -> None:
+    path = write(tmp_path, TONES_AND_RANDOM)
+    markdown = run("analyze", path, "--format", "markdown").stdout
+    assert "Δ0 g²" in markdown
+    header = run("analyze", path, "--format", "csv").stdout.splitlines()[0].split(",")
+    # Δ0(6) follows Δ0(5) (additive_m32); its value is the hand-worked 4.72e-3 deg/s
+    assert header[header.index("additive_m32") + 1] == "additive_g2"
+    row = run("analyze", path, "--format", "csv", "--sensor", "aniso", "--profile",
+              "lin").stdout.splitlines()[1].split(",")
+    assert float(row[header.index("additive_g2")]) == pytest.approx(DELTA6, rel=1e-12)
+
+
+def test_impossible_coherences_are_refused_located(tmp_path: Path) -> None:
+    # ρ12 = ρ13 = 0.9 force ρ23 ≥ 0.81 − √(0.19·0.19) = 0.62, not −0.9: the correlation
+    # matrix [[1, .9, .9], [.9, 1, −.9], [.9, −.9, 1]] maps (1, −1, −1) to
+    # (1 − 1.8, 0.9 − 1 + 0.9, 0.9 + 0.9 − 1) = −0.8·(1, −1, −1): eigenvalue −0.8 < 0
+    text = """
+gyrovib: 1
+sensors:
+  - id: s
+    vre: 1.0e-3
+    coefficients: {k2: 0.0}
+profiles:
+  - id: bad-rho
+    rate: [0, 0, 0]
+    acceleration:
+      random: {rms: [1, 1, 1], coherence: [0.9, 0.9, -0.9]}
+"""
+    path = write(tmp_path, text)
+    result = run("analyze", path)
+    assert result.exit_code == 2
+    # located at the coherence itself (line 11; the file's first line is empty)
+    assert f"{path}:11:" in result.stderr and "correlation matrix" in result.stderr

@@ -303,11 +303,12 @@ def _linear(entries: Sequence[ProfileEntry], problems: dict[int, Problem],
             problems.setdefault(j, overflow_problem(p, "the linear vibration (⟨a_j·a_k⟩ in g²)"))
             v = m = None
         elif v is not None and not _valid_coherence(v):
-            problems.setdefault(j, profile_problem(
-                p, f"profile {p.profile.id!r}: the acceleration coherences ρ12, ρ13, ρ23 = "
+            problems.setdefault(j, p.source.problem(
+                f"profile {p.profile.id!r}: the acceleration coherences ρ12, ρ13, ρ23 = "
                    f"{', '.join(f'{c:g}' for c in v.coherence)} do not form a correlation "
                    "matrix (it must be positive semi-definite: no three axes can be that "
-                   "correlated at once)"))
+                   "correlated at once)",
+                ("profiles", p.index, "acceleration", "random", "coherence")))
             v = m = None
         linear.append(v)
         moments.append(m)
