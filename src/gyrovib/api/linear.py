@@ -81,9 +81,15 @@ def g2_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
     = G·s_rate / a², with s_rate deg/s per rate unit and a g per acceleration
     unit (:func:`gyrovib.units.acceleration`). Zero where a sensor gives none.
     """
-    rows = []
+    known: dict[tuple[str, str], float] = {}
+    factors = []
     for e in entries:
-        a = units.acceleration(e.acceleration_unit)
-        rows.append(np.asarray(e.sensor.g2, dtype=float) * units.scale(e.unit) / (a * a))
-    out: FloatArray = np.array(rows, dtype=float).reshape(len(entries), 6)
+        key = (e.unit, e.acceleration_unit)
+        f = known.get(key)
+        if f is None:
+            a = units.acceleration(e.acceleration_unit)
+            f = known[key] = units.scale(e.unit) / (a * a)
+        factors.append(f)
+    raw = np.array([e.sensor.g2 for e in entries], dtype=float).reshape(len(entries), 6)
+    out: FloatArray = raw * np.array(factors, dtype=float).reshape(-1, 1)
     return out
