@@ -480,3 +480,37 @@ profiles:
     assert result.exit_code == 2
     # located at the coherence itself (line 11; the file's first line is empty)
     assert f"{path}:11:" in result.stderr and "correlation matrix" in result.stderr
+
+
+def test_absurd_linear_magnitudes_are_refused_located(tmp_path: Path) -> None:
+    # (1e200 g)²/2 overflows floating point; 1e300 deg/s/g² × (1e10 g)² too; a budget of
+    # 1e-300 deg/s over Σ⟨a²⟩ ≈ 1e20 g² leaves a VRE bound below the smallest normal float
+    text = """
+gyrovib: 1
+sensors:
+  - id: s
+    vre: 1.0e+300
+    coefficients: {k2: 0.0}
+profiles:
+  - id: big
+    rate: [0, 0, 0]
+    acceleration:
+      harmonic:
+        - {frequency: 10, amplitude: [1.0e+200, 0, 0]}
+  - id: ok
+    rate: [0, 0, 0]
+    acceleration:
+      random: {rms: [1.0e+10, 1, 1]}
+"""
+    path = write(tmp_path, text)
+    cases = [(["analyze", path, "--profile", "big"], f"{path}:8:", "linear vibration"),
+             (["analyze", path, "--profile", "ok"], f"{path}:13:", "vibration error"),
+             (["select", path, "--profile", "ok", "--budget", "1"], f"{path}:13:",
+              "vibration error"),
+             (["bounds", path, "--profile", "ok", "--budget", "1e-300"], f"{path}:13:",
+              "VRE bound")]
+    for args, place, what in cases:
+        result = run(*args)
+        assert result.exit_code == 2, args
+        assert place in result.stderr and what in result.stderr, result.stderr
+        assert "overflows floating point" in result.stderr and "Traceback" not in result.output
