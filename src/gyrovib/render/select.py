@@ -94,11 +94,19 @@ def _heading(result: SelectionResult) -> str:
 
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
-    return ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
+    text = ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
             "(> 1: the RMS error is within the budget; ∞: no error at all). Each sensor's "
             "bounds include its own frequency response. Shares of Δ*: "
             + ", ".join(f"{k} {v}" for k, v in share.items())
             + ". The bounds are sufficient under this allocation, not necessary.")
+    if result.has_linear:  # MODEL.md section 8: α6 joins the additive shares
+        linear = shares(result.allocation, linear=True)
+        text += (" Under a profile with linear vibration the additive shares make room for "
+                 "the g² term: " + ", ".join(f"{k} {linear[k]}" for k in
+                                             ("A1", "k2", "k4", "m31", "m32", "vre"))
+                 + "; the vre check compares each sensor's effective VRE "
+                 "|Δ0(6)|/Σ⟨a_j²⟩ with its bound.")
+    return text
 
 
 # ------------------------------------------------------------------ JSON, CSV
