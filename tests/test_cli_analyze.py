@@ -50,7 +50,9 @@ def test_json_keys_and_values(run, catalog):
     assert set(row) == {"sensor", "profile", "rate", "additive_terms",
                         "multiplicative_coefficients", "additive", "multiplicative", "total",
                         "rms", "warnings"}
-    assert list(row["additive_terms"]) == ["A1", "k2", "k4", "m31", "m32"]
+    # g2 = Δ0(6) of a linear vibration (MODEL.md section 8): 0 here, none in this catalogue
+    assert list(row["additive_terms"]) == ["A1", "k2", "k4", "m31", "m32", "g2"]
+    assert row["additive_terms"]["g2"] == 0.0
     assert list(row["multiplicative_coefficients"]) == ["q1", "q2", "q3"]
     # small under tone: a = 2 < Ω = 5, so no asymmetry; k2·a²/2 = 2e-4;
     # Δ(1) = 3·k3·a²/2 = 6e-6, Δ_VM = 6e-6·5 = 3e-5

@@ -102,8 +102,17 @@ def test_report_of_the_bundled_catalogues(tmp_path, monkeypatch):
     for j, entry in enumerate(catalog.profiles):
         assert f'<section class="profile" id="p{j}"><div class="profile-head"><h3>' \
                f"{entry.profile.id}" in html
-    # per profile: margins, breakdown, sweep and at least a spectrum or "no vibration"
-    assert html.count("<svg") >= 4 * len(catalog.profiles)
+    # per profile: margins, breakdown, sweep, and a chart of its tones or PSD if it has
+    # one (a random part given as RMS, or linear vibration alone, has none to draw);
+    # a profile with linear vibration states its linear RMS
+    sections = html.split('<section class="profile"')[1:]
+    assert len(sections) == len(catalog.profiles)
+    for entry, section in zip(catalog.profiles, sections, strict=True):
+        p = entry.profile
+        drawn = bool(p.harmonic) or (p.random is not None and p.random.psd is not None)
+        assert section.count("<svg") >= (4 if drawn else 3), p.id
+        if p.acceleration is not None:
+            assert "linear vibration, RMS at the sensor" in section, p.id
 
 
 def test_terms_of_eq16_add_up_to_the_rms(catalog_file):

@@ -80,7 +80,10 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert doc["budget"] == 0.01 and doc["criterion"] == "bounds" and doc["require"] == "any"
     assert [p["profile"] for p in doc["profiles"]] == ["tone", "noise"]
     assert set(doc["profiles"][0]) == {"profile", "rate", "bounds", "parts"}
-    assert set(doc["profiles"][0]["bounds"]) == {"A1", "k2", "k3", "k4", "k5", "m31", "m32"}
+    # vre (MODEL.md section 8): null, these profiles have no linear vibration
+    assert set(doc["profiles"][0]["bounds"]) == {"A1", "k2", "k3", "k4", "k5", "m31", "m32",
+                                                 "vre"}
+    assert doc["profiles"][0]["bounds"]["vre"] is None
     assert set(doc["profiles"][0]["parts"]) == {"k4_additive", "k4_multiplicative",
                                                 "k5_linear", "k5_cubic"}
     sensors = {s["sensor"]: s for s in doc["sensors"]}
@@ -264,6 +267,9 @@ def test_budget_with_unit_equals_plain_number(catalog: str) -> None:
     for x, y in ((a, b), (c, b)):
         for p, q in zip(x["profiles"], y["profiles"], strict=True):
             for name, value in q["bounds"].items():
+                if value is None:  # vre without linear vibration
+                    assert p["bounds"][name] is None
+                    continue
                 assert p["bounds"][name] == pytest.approx(value, rel=1e-12)
 
 

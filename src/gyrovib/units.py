@@ -88,3 +88,27 @@ def parse_rate(text: str, default_unit: str) -> float:
     if not math.isfinite(result):
         raise OptionError(f"{text!r} is not a finite rate")
     return result
+
+
+#: Standard gravity, m/s² per g (ISO 80000-3).
+STANDARD_GRAVITY = 9.80665
+#: g per unit of each linear-acceleration unit a catalogue may use (``units.acceleration``).
+ACCELERATION_UNITS: dict[str, float] = {
+    "g": 1.0,
+    "m/s^2": 1.0 / STANDARD_GRAVITY,
+    "m/s2": 1.0 / STANDARD_GRAVITY,
+}
+
+
+def acceleration(unit: str) -> float:
+    """g per ``unit`` of linear acceleration (``"g"``, ``"m/s^2"`` or ``"m/s2"``).
+
+    An acceleration ``a`` in ``unit`` is ``a·acceleration(unit)`` g; a PSD in
+    unit²/Hz takes the square, and a g²-sensitivity (rate per unit²) the
+    inverse square (MODEL.md section 8).
+    """
+    try:
+        return ACCELERATION_UNITS[unit.strip()]
+    except KeyError:
+        known = ", ".join(ACCELERATION_UNITS)
+        raise OptionError(f"unknown acceleration unit {unit!r}; use one of {known}") from None

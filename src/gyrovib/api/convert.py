@@ -78,7 +78,10 @@ def resolve_rate(entry: ProfileEntry, override: Sequence[float] | None) -> Float
 
 
 def to_unit(error: VibrationError, unit: str) -> VibrationError:
-    """Convert an error computed in deg/s to ``unit`` (Δ(q) carries rate^(1−q))."""
+    """Convert an error computed in deg/s to ``unit`` (Δ(q) carries rate^(1−q)).
+
+    The additive terms of ``extra_terms`` (Δ0(6), k3·M3, k5·M5) are rates, like Δ0.
+    """
     s = units.scale(unit)
     q_factor = np.array([1.0, s, s * s])
     return VibrationError(
@@ -88,12 +91,14 @@ def to_unit(error: VibrationError, unit: str) -> VibrationError:
         multiplicative=error.multiplicative / s,
         total=error.total / s,
         rms=error.rms / s,
+        extra_terms=error.extra_terms / s,
     )
 
 
 def error_arrays(error: VibrationError) -> list[FloatArray]:
     """The arrays of an error that must be finite (the sums follow from them)."""
-    return [error.additive_terms, error.multiplicative_coefficients, error.total, error.rms]
+    return [error.additive_terms, error.multiplicative_coefficients, error.total, error.rms,
+            error.extra_terms]
 
 
 def bound_factors(unit: str) -> dict[str, float]:

@@ -69,7 +69,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
     import numpy as np
 
-    from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+    from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 
     n_s, n_p = len(result.sensors), len(result.profiles)
     p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
@@ -83,6 +83,8 @@ def analysis_frame(result: AnalysisResult) -> Any:
     }
     columns.update({f"additive_terms.{t}": terms[:, k] for k, t in
                     enumerate(ADDITIVE_TERMS[:terms.shape[1]])})
+    extra = np.asarray(err.extra_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
+    columns[f"additive_terms.{EXTRA_TERMS[0]}"] = extra[:, 0]  # Δ0(6), MODEL.md section 8
     columns.update({f"multiplicative_coefficients.{q}": qs[:, k] for k, q in
                     enumerate(MULTIPLICATIVE_TERMS[:qs.shape[1]])})
     for name in ("additive", "multiplicative", "total", "rms"):
@@ -103,6 +105,9 @@ def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
     from gyrovib.core.synthesis import BOUNDED, PARTS
 
     out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
+    # the VRE bound (MODEL.md section 8): JSON null, here inf, without linear vibration
+    vre = np.full(len(rows), np.inf) if bounds.vre is None else np.asarray(bounds.vre)[rows]
+    out["bounds.vre"] = vre
     out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in PARTS})
     return out
 
@@ -150,6 +155,10 @@ def selection_frame(result: SelectionResult) -> Any:
         columns[f"checks.{name}.value"] = values[:, b]
         columns[f"checks.{name}.bound"] = bounds[:, b]
         columns[f"checks.{name}.pass"] = checks[:, b]
+    if result.vre_pass is not None:  # the VRE check, MODEL.md section 8
+        columns["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
+        columns["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
+        columns["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
     columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
     for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
         columns[f"profile_{key}"] = column

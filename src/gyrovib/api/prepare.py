@@ -27,8 +27,10 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.convert import coefficient_matrix, resolve_rate
 from gyrovib.api.entries import select_entries
+from gyrovib.api.linear import g2_matrix, profile_linear
 from gyrovib.catalog.loader import Catalog, ProfileEntry, SensorEntry
 from gyrovib.core.analysis import Multipliers, profile_multipliers, stack_multipliers
+from gyrovib.core.linear import LinearVibration
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray, Table, as_table
@@ -185,7 +187,9 @@ class Prepared:
 
     ``coefficients`` (sensors, 11) in deg/s powers; ``rates`` Ω_K per
     profile, shape (profiles, 3); ``rate_given``: a rate override replaced
-    the profiles' own.
+    the profiles' own. ``linear``: each profile's linear vibration in g (None
+    where it has none; MODEL.md section 8); ``g2``: the sensors' G_jk in deg/s
+    per g², shape (sensors, 6).
     """
 
     sensors: tuple[SensorEntry, ...]
@@ -194,6 +198,13 @@ class Prepared:
     rates: FloatArray
     groups: tuple[Group, ...]
     rate_given: bool
+    linear: tuple[LinearVibration | None, ...] = ()
+    g2: FloatArray = field(default_factory=lambda: np.zeros((0, 6)))
+
+    @property
+    def has_linear(self) -> bool:
+        """Whether any chosen profile has a linear vibration."""
+        return any(v is not None for v in self.linear)
 
 
 def prepare(
@@ -225,6 +236,9 @@ def prepare(
     for j in np.nonzero(~np.all(np.isfinite(rates), axis=1))[0].tolist():
         problems[j] = overflow_problem(p_entries[j], "the carrier rate in deg/s",
                                             rate_given=rate is not None)
+    g2 = g2_matrix(s_entries)
+    _check_sensors(g2, s_entries, "g²-sensitivities (g2_sensitivity or vre) in deg/s per g²")
+    linear, accelerations = _linear(p_entries, problems)
     if by_response:
         layout = response_groups(s_entries) if s_entries and p_entries else []
     else:
@@ -247,7 +261,7 @@ def prepare(
                     items.append(nan_multipliers(np.asarray(w, dtype=float)))
                     continue
                 try:
-                    m = profile_multipliers(v, w, method)
+                    m = profile_multipliers(v, w, method, acceleration=accelerations[j])
                 except ModelError as exc:
                     if not tolerate_refusals:
                         refusal = refusal or (j, exc.reason)
@@ -271,16 +285,52 @@ def prepare(
             raise ModelError(ordered, reason=refusal[1], profile=refusal[0])
         raise RangeError(ordered)
     return Prepared(s_entries, p_entries, coefficients, rates, tuple(groups),
-                    rate_given=rate is not None)
+                    rate_given=rate is not None, linear=linear, g2=g2)
 
 
-def _check_sensors(coefficients: FloatArray, entries: Sequence[SensorEntry]) -> None:
-    bad = np.nonzero(~np.all(np.isfinite(coefficients), axis=1))[0]
+def _linear(entries: Sequence[ProfileEntry], problems: dict[int, Problem],
+            ) -> tuple[tuple[LinearVibration | None, ...], list[FloatArray | None]]:
+    """Each profile's linear vibration in g and its six moments ⟨a_j·a_k⟩ (g²), or None."""
+    linear: list[LinearVibration | None] = []
+    moments: list[FloatArray | None] = []
+    for j, p in enumerate(entries):
+        try:
+            v = profile_linear(p)
+            m = None if v is None else v.moments()
+        except (*FLOAT_FAILURES, ValueError):
+            v = m = None
+        if p.profile.acceleration is not None and (m is None or not np.all(np.isfinite(m))):
+            problems.setdefault(j, overflow_problem(p, "the linear vibration (⟨a_j·a_k⟩ in g²)"))
+            v = m = None
+        elif v is not None and not _valid_coherence(v):
+            problems.setdefault(j, p.source.problem(
+                f"profile {p.profile.id!r}: the acceleration coherences ρ12, ρ13, ρ23 = "
+                   f"{', '.join(f'{c:g}' for c in v.coherence)} do not form a correlation "
+                   "matrix (it must be positive semi-definite: no three axes can be that "
+                   "correlated at once)",
+                ("profiles", p.index, "acceleration", "random", "coherence")))
+            v = m = None
+        linear.append(v)
+        moments.append(m)
+    return tuple(linear), moments
+
+
+def _valid_coherence(linear: LinearVibration) -> bool:
+    """Whether ρ12, ρ13, ρ23 form a positive semi-definite correlation matrix."""
+    r12, r13, r23 = (float(c) for c in linear.coherence)
+    rho = np.array([[1.0, r12, r13], [r12, 1.0, r23], [r13, r23, 1.0]])
+    return bool(np.linalg.eigvalsh(rho).min() >= -1e-12)
+
+
+def _check_sensors(values: FloatArray, entries: Sequence[SensorEntry],
+                   what: str = "coefficients") -> None:
+    bad = np.nonzero(~np.all(np.isfinite(values), axis=1))[0]
     if bad.size:
         raise RangeError([
             entries[i].source.problem(
-                f"sensor {entries[i].sensor.id!r}: its coefficients overflow floating point "
-                "in deg/s; check them for absurd magnitudes", ("sensors", entries[i].index, "id"))
+                f"sensor {entries[i].sensor.id!r}: its {what} overflow floating point"
+                f"{' in deg/s' if what == 'coefficients' else ''}; check them for absurd "
+                "magnitudes", ("sensors", entries[i].index, "id"))
             for i in bad.tolist()
         ])
 

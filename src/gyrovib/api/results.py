@@ -89,9 +89,16 @@ class AnalysisResult(_Frozen):
     #: ``numeric`` only: evaluations of eq. (2) per sensor × profile, and the seed.
     samples: int | None = None
     seed: int | None = None
+    #: Per profile: whether it has a linear vibration (Δ0(6), ``error.extra_terms[..., 0]``).
+    linear: tuple[bool, ...] = ()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))
+
+    @property
+    def has_linear(self) -> bool:
+        """Whether any profile has a linear vibration (the g² term, MODEL.md section 8)."""
+        return any(self.linear)
 
 
 @dataclass(frozen=True, repr=False)
@@ -154,7 +161,8 @@ class SelectionResult(_Frozen):
     Arrays are indexed (sensor, profile[, coefficient of :data:`BOUNDED`]) and
     are in :attr:`unit`. ``values`` are the sensors' |coefficients| (k1 taken
     as 1); ``bounds`` each sensor's own bounds (its response ν_sensor included);
-    ``profile_bounds`` those of the profiles alone. ``margin`` is Δ*/Δ_V(RMS)
+    ``profile_bounds`` those of the profiles alone; the ``vre`` check is
+    kept apart (``vre_value``, ``vre_bound``, ``vre_pass``). ``margin`` is Δ*/Δ_V(RMS)
     (+inf when Δ_V(RMS) = 0). ``passed`` is the verdict under
     :attr:`criterion`; ``ranking`` orders the sensors by worst margin, best
     first; ``limits`` names, per failing sensor, the largest value/bound ratio
@@ -184,6 +192,18 @@ class SelectionResult(_Frozen):
     limits: Mapping[int, Limit]
     requirement_met: bool
     allocation: AllocationConstants
+    #: The ``vre`` check (MODEL.md section 8), (sensor, profile), in :attr:`unit` per g²:
+    #: each sensor's effective VRE |Δ0(6)|/Σ⟨a_j²⟩ (0 where the profile has no linear
+    #: vibration), its bound (+inf there) and whether it is within it (part of
+    #: ``bounds_pass``).
+    vre_value: FloatArray | None = None
+    vre_bound: FloatArray | None = None
+    vre_pass: NDArray[np.bool_] | None = None
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))
+
+    @property
+    def has_linear(self) -> bool:
+        """Whether some profile has a linear vibration (so the ``vre`` check can bind)."""
+        return self.profile_bounds.vre is not None

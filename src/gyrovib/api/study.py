@@ -13,12 +13,14 @@ from __future__ import annotations
 
 import datetime as _dt
 import hashlib
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from gyrovib import api, units
 from gyrovib._version import __version__
+from gyrovib.api.linear import profile_linear
 from gyrovib.catalog.loader import Catalog, ProfileEntry
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.transmissibility import FloatArray
@@ -44,7 +46,9 @@ class Spectrum:
 
     ``psd``: (axis, frequencies Hz, PSD unit²/Hz) per axis given; ``tones``:
     (frequency Hz, amplitudes about x1, x2, x3); ``rms``: the random part given
-    as σ per axis instead of a PSD; ``mount``: the isolation mount's ν(f).
+    as σ per axis instead of a PSD; ``mount``: the isolation mount's ν(f);
+    ``linear_rms``: the RMS per axis of the linear vibration at the sensor, in g
+    (through its mount; MODEL.md section 8), or None without one.
     """
 
     profile: str
@@ -54,6 +58,7 @@ class Spectrum:
     tones: tuple[tuple[float, tuple[float, float, float]], ...]
     rms: tuple[float, float, float] | None
     mount: tuple[tuple[float, ...], tuple[float, ...]] | None
+    linear_rms: tuple[float, float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -103,8 +108,13 @@ def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
     mount = None
     if p.mount is not None:
         mount = (tuple(float(a) for a, _ in p.mount), tuple(float(b) for _, b in p.mount))
+    linear = profile_linear(entry)
+    linear_rms = None
+    if linear is not None:
+        x, y, z = (math.sqrt(max(float(v), 0.0)) for v in linear.moments()[:3])
+        linear_rms = (x, y, z)
     return Spectrum(profile=p.id, name=p.name, notes=p.notes, psd=tuple(psd), tones=tones,
-                    rms=rms, mount=mount)
+                    rms=rms, mount=mount, linear_rms=linear_rms)
 
 
 def sensor_form(sensor: object) -> str:

@@ -108,15 +108,17 @@ def method_option(f: F) -> F:
 
 def allocation_option(f: F) -> F:
     return click.option(
-        "--allocation", metavar="r[,w1..w5,v1..v3]",
+        "--allocation", metavar="r[,w1..w5[,w6],v1..v3]",
         help="How the budget is split (eq. 18, 21, 24): r alone, or r and the weights "
-             "w (A1, k2, k4, m31, m32) and v (Ω, Ω², Ω³ terms), comma-separated. Default: "
-             "the catalogue's 'allocation:', else the paper's 1.5,1,1,1,0.5,0.5,1,0.5,0.5.",
+             "w (A1, k2, k4, m31, m32[, g² term of a linear vibration, default 1]) and v "
+             "(Ω, Ω², Ω³ terms), comma-separated. Default: the catalogue's 'allocation:', "
+             "else the paper's 1.5,1,1,1,0.5,0.5,1,0.5,0.5.",
     )(f)
 
 
 def parse_allocation(text: str | None) -> list[float] | None:
-    """``--allocation`` → r alone or the 9 numbers r, w1..w5, v1..v3, positive and finite."""
+    """``--allocation`` → r alone, the 9 numbers r, w1..w5, v1..v3 or the 10 numbers
+    r, w1..w6, v1..v3 (w6: the g² term, MODEL.md section 8), positive and finite."""
     if text is None:
         return None
     pieces = [p.strip() for p in text.split(",")]
@@ -129,9 +131,9 @@ def parse_allocation(text: str | None) -> list[float] | None:
         if not (math.isfinite(value) and value > 0):
             raise OptionError(f"--allocation {text!r}: every value must be positive and finite")
         values.append(value)
-    if len(values) not in (1, 9):
+    if len(values) not in (1, 9, 10):
         raise OptionError(
-            f"--allocation {text!r}: give r alone or 9 numbers r,w1,...,w5,v1,v2,v3 "
-            f"(got {len(values)})"
+            f"--allocation {text!r}: give r alone, 9 numbers r,w1,...,w5,v1,v2,v3 or 10 "
+            f"numbers r,w1,...,w6,v1,v2,v3 (got {len(values)})"
         )
     return values

@@ -9,10 +9,27 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api import AnalysisResult
-from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 _ADDITIVE_LABELS = ("Δ0 A1", "Δ0 k2", "Δ0 k4", "Δ0 m31", "Δ0 m32")
+#: The JSON keys of ``additive_terms``: Δ0(1..5), then Δ0(6) of a linear vibration.
+JSON_TERMS = (*ADDITIVE_TERMS, EXTRA_TERMS[0])
+#: Label of the Δ0(6) column, shown when some profile has a linear vibration.
+_G2_LABEL = "Δ0 g²"
+
+
+def _terms(result: AnalysisResult, i: int, j: int) -> list[float]:
+    """The additive terms of a row as the tables show them: Δ0(1..5), and Δ0(6) if any."""
+    e = result.error
+    out = [float(x) for x in e.additive_terms[i, j]]
+    if result.has_linear:
+        out.append(float(e.extra_terms[i, j, 0]))
+    return out
+
+
+def _labels(result: AnalysisResult) -> tuple[str, ...]:
+    return (*_ADDITIVE_LABELS, _G2_LABEL) if result.has_linear else _ADDITIVE_LABELS
 
 
 def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
@@ -27,7 +44,8 @@ def _to_json_rows(result: AnalysisResult) -> str:
     extra = getattr(result, "stderr", None)
     results: list[dict[str, Any]] = []
     rates = result.rates.tolist()
-    terms = e.additive_terms.tolist()
+    terms = [[[*t, g[0]] for t, g in zip(ts, gs, strict=True)]
+             for ts, gs in zip(e.additive_terms.tolist(), e.extra_terms.tolist(), strict=True)]
     qs = e.multiplicative_coefficients.tolist()
     additive, mult, total, rms = (e.additive.tolist(), e.multiplicative.tolist(),
                                   e.total.tolist(), e.rms.tolist())
@@ -36,7 +54,7 @@ def _to_json_rows(result: AnalysisResult) -> str:
             "sensor": result.sensors[i],
             "profile": result.profiles[j],
             "rate": rates[j],
-            "additive_terms": dict(zip(ADDITIVE_TERMS, terms[i][j], strict=True)),
+            "additive_terms": dict(zip(JSON_TERMS, terms[i][j], strict=True)),
             "multiplicative_coefficients": dict(zip(MULTIPLICATIVE_TERMS, qs[i][j], strict=True)),
             "additive": additive[i][j],
             "multiplicative": mult[i][j],
@@ -71,7 +89,7 @@ def _row_template(with_stderr: bool) -> str:
         return "{" + ", ".join(f"{json.dumps(k)}: {v}" for k, v in pairs) + "}"
 
     fields = [("sensor", "%s"), ("profile", "%s"), ("rate", "%s"),
-              ("additive_terms", obj([(t, "%s") for t in ADDITIVE_TERMS])),
+              ("additive_terms", obj([(t, "%s") for t in JSON_TERMS])),
               ("multiplicative_coefficients", obj([(q, "%s") for q in MULTIPLICATIVE_TERMS])),
               ("additive", "%s"), ("multiplicative", "%s"), ("total", "%s"), ("rms", "%s")]
     if with_stderr:
@@ -91,6 +109,7 @@ def to_json(result: AnalysisResult) -> str:
     e = result.error
     extra = getattr(result, "stderr", None)
     columns = [e.additive_terms[..., t] for t in range(len(ADDITIVE_TERMS))]
+    columns.append(e.extra_terms[..., 0])
     columns += [e.multiplicative_coefficients[..., q] for q in range(len(MULTIPLICATIVE_TERMS))]
     columns += [e.additive, e.multiplicative, e.total, e.rms]
     if not all(np.isfinite(c).all() for c in columns) or not np.isfinite(result.rates).all():
@@ -122,9 +141,9 @@ def to_json(result: AnalysisResult) -> str:
     return f"{head}, \"results\": [{', '.join(blocks)}]}}\n"
 
 
-def _csv_header(with_stderr: bool = False) -> list[str]:
+def _csv_header(with_stderr: bool = False, linear: bool = False) -> list[str]:
     return (["sensor", "profile", "rate_x1", "rate_x2", "rate_x3"]
-            + [f"additive_{t}" for t in ADDITIVE_TERMS]
+            + [f"additive_{t}" for t in (JSON_TERMS if linear else ADDITIVE_TERMS)]
             + [f"multiplicative_{q}" for q in MULTIPLICATIVE_TERMS]
             + ["additive", "multiplicative", "total", "rms"]
             + (["stderr"] if with_stderr else []) + ["warnings"])
@@ -133,7 +152,9 @@ def _csv_header(with_stderr: bool = False) -> list[str]:
 def to_csv(result: AnalysisResult) -> str:
     """One row per sensor × profile, every number at full precision.
 
-    With the numeric method a ``stderr`` column (of ``total``) precedes ``warnings``.
+    With the numeric method a ``stderr`` column (of ``total``) precedes ``warnings``;
+    when some profile has a linear vibration, ``additive_g2`` (Δ0(6)) follows
+    ``additive_m32``.
     """
     e = result.error
     extra = getattr(result, "stderr", None)
@@ -142,21 +163,21 @@ def to_csv(result: AnalysisResult) -> str:
         for i, j in _rows(result):
             yield [
                 result.sensors[i], result.profiles[j], *map(float, result.rates[j]),
-                *map(float, e.additive_terms[i, j]),
+                *_terms(result, i, j),
                 *map(float, e.multiplicative_coefficients[i, j]),
                 float(e.additive[i, j]), float(e.multiplicative[i, j]), float(e.total[i, j]),
                 float(e.rms[i, j]), *([float(extra[i, j])] if extra is not None else []),
                 "; ".join(result.warnings.get((i, j), ())),
             ]
 
-    return csv_text(_csv_header(extra is not None), rows())
+    return csv_text(_csv_header(extra is not None, result.has_linear), rows())
 
 
 def to_markdown(result: AnalysisResult) -> str:
     """A Markdown table (4 significant figures) with warnings as footnotes."""
     e = result.error
     extra = getattr(result, "stderr", None)
-    head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_ADDITIVE_LABELS,
+    head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_labels(result),
             "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []), "Δ_V(RMS)"]
     rows: list[list[str]] = []
     notes: list[str] = []
@@ -167,7 +188,7 @@ def to_markdown(result: AnalysisResult) -> str:
                          for w in result.warnings[(i, j)])
             mark = f" ⚠{len(notes)}"
         rows.append([result.sensors[i] + mark, result.profiles[j], fmt(result.rates[j, 2]),
-                     *(fmt(x) for x in e.additive_terms[i, j]), fmt(e.additive[i, j]),
+                     *(fmt(x) for x in _terms(result, i, j)), fmt(e.additive[i, j]),
                      fmt(e.multiplicative[i, j]), fmt(e.total[i, j]),
                      *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j])])
     text = (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
@@ -195,7 +216,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             title_justify="left", header_style="bold",
         )
         table.add_column("sensor", no_wrap=True)
-        for label in _ADDITIVE_LABELS:
+        for label in _labels(result):
             table.add_column(label, justify="right", no_wrap=True)
         for label in ("Δ_VA", "Δ_VM", "Δ_V"):
             table.add_column(label, justify="right", no_wrap=True, style="bold")
@@ -207,7 +228,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             if (i, j) in result.warnings:
                 notes.extend(f"{sensor} / {profile}: {w}" for w in result.warnings[(i, j)])
                 name.append(f" ⚠{len(notes)}", style="yellow")
-            table.add_row(name, *(fmt(x) for x in e.additive_terms[i, j]),
+            table.add_row(name, *(fmt(x) for x in _terms(result, i, j)),
                           fmt(e.additive[i, j]), fmt(e.multiplicative[i, j]),
                           fmt(e.total[i, j]),
                           *([fmt(extra[i, j], 2)] if extra is not None else []),
@@ -216,6 +237,9 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
     legend = (f"All values in {result.unit}. Δ0 = additive terms of eq. (14)/(15); Δ_VA their "
               "sum; Δ_VM = Δ(1)·Ω + Δ(2)·Ω² + Δ(3)·Ω³; Δ_V = Δ_VA + Δ_VM (eq. 13); "
               "Δ_V(RMS) of eq. (16).")
+    if result.has_linear:
+        legend += (" Δ0 g² = Δ0(6) = Σ G_jk·⟨a_j·a_k⟩, the rectification of the linear "
+                   "vibration by the g²-sensitivity (VRE), MODEL.md section 8.")
     out.append(Text(legend, style="dim"))
     if extra is not None:
         out.append(Text(_numeric_note(result), style="dim"))

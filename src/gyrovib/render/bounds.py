@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from typing import Any
+
+import numpy as np
 
 from gyrovib import units
 from gyrovib.api import BoundsResult
@@ -19,9 +22,18 @@ def coefficient_unit(name: str, unit: str) -> str:
     return f"({unit})^{power}"
 
 
+#: Unit of the VRE bound in an output rate unit (rate per g², MODEL.md section 8).
+def vre_unit(unit: str) -> str:
+    """``deg/s/g^2`` for ``deg/s``: the unit of a VRE (rate per g²)."""
+    return f"{unit}/g^2"
+
+
 def bounds_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
-    """The seven bounds of profile ``j`` for JSON (``null`` = unconstrained)."""
-    return {name: number(getattr(bounds, name)[j]) for name in BOUNDED}
+    """The seven bounds of profile ``j`` for JSON (``null`` = unconstrained), and ``vre``
+    (rate/g², ``null`` without linear vibration)."""
+    out = {name: number(getattr(bounds, name)[j]) for name in BOUNDED}
+    out["vre"] = None if bounds.vre is None else number(bounds.vre[j])
+    return out
 
 
 def parts_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
@@ -48,19 +60,32 @@ def to_json(result: BoundsResult) -> str:
 
 def to_csv(result: BoundsResult) -> str:
     """One row per profile; an unconstrained bound is written ``inf``."""
-    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *PARTS]
+    vre = result.bounds.vre  # a column only when some profile has linear vibration
+    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *PARTS,
+            *(["vre"] if vre is not None else [])]
 
     def rows() -> Iterator[list[Any]]:
         for j, p in enumerate(result.profiles):
             yield [p, *map(float, result.rates[j]),
-                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + PARTS)]
+                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + PARTS),
+                   *([float(vre[j])] if vre is not None else [])]
 
     return csv_text(head, rows())
 
 
-def shares(constants: AllocationConstants) -> dict[str, str]:
-    """The share of Δ* behind each bound, as printed in the tables."""
+def shares(constants: AllocationConstants, linear: bool = False) -> dict[str, str]:
+    """The share of Δ* behind each bound, as printed in the tables.
+
+    ``linear``: for a profile with linear vibration, whose additive shares
+    include α6 for the g² term (MODEL.md section 8), so that α1..α5 shrink.
+    """
     a, b = constants.alpha, constants.beta
+    extra: dict[str, str] = {}
+    if linear:
+        w, w6 = constants.weights, float(constants.extra_weights[0])
+        norm = math.hypot(float(np.linalg.norm(w)), w6)
+        a = w * constants.c_additive / norm
+        extra["vre"] = f"α6 = {w6 * constants.c_additive / norm:.4g}"
     return {
         "A1": f"α1 = {a[0]:.4g}",
         "k2": f"α2 = {a[1]:.4g}",
@@ -69,6 +94,7 @@ def shares(constants: AllocationConstants) -> dict[str, str]:
         "k5": f"β1/√2 = {constants.k5_linear:.4g} | β3 = {b[2]:.4g}",
         "m31": f"α4 = {a[3]:.4g}",
         "m32": f"α5 = {a[4]:.4g}",
+        **extra,
     }
 
 
@@ -87,10 +113,21 @@ def _which(bounds: CoefficientBounds, j: int, name: str) -> str:
     return f"{first[0]} {fmt(first[1])}, {second[0]} {fmt(second[1])}: {binding} binds"
 
 
+def has_vre(bounds: CoefficientBounds, j: int) -> bool:
+    """Whether profile ``j`` has a linear vibration to bound (a finite VRE bound)."""
+    return bounds.vre is not None and bool(np.isfinite(bounds.vre[j]))
+
+
 def _rows(result: BoundsResult, j: int) -> list[list[str]]:
-    share = shares(result.allocation)
-    return [[name, fmt(getattr(result.bounds, name)[j]), coefficient_unit(name, result.unit),
+    linear = has_vre(result.bounds, j)
+    share = shares(result.allocation, linear=linear)
+    rows = [[name, fmt(getattr(result.bounds, name)[j]), coefficient_unit(name, result.unit),
              share[name], _which(result.bounds, j, name)] for name in BOUNDED]
+    if linear:
+        assert result.bounds.vre is not None
+        rows.append(["vre", fmt(result.bounds.vre[j]), vre_unit(result.unit), share["vre"],
+                     "|Δ0(6)|/Σ⟨a_j²⟩"])
+    return rows
 
 
 _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
@@ -105,6 +142,14 @@ _LEGEND = ("A sensor whose every |coefficient| is at most its bound meets the bu
            "(eq. 17) under this allocation: sufficient, not necessary. ∞ = unconstrained "
            "(the coefficient does not act under this profile). k1 = 1; the sensor's own "
            "response is taken as 1 (see `gyrovib select`).")
+_VRE_LEGEND = (" vre bounds the effective vibration rectification |Δ0(6)|/Σ⟨a_j²⟩ of the "
+               "linear vibration, per g² (MODEL.md section 8); for a datasheet VRE v "
+               "(G11 = G22 = G33 = v) it is a bound on |v|.")
+
+
+def _legend(result: BoundsResult) -> str:
+    linear = any(has_vre(result.bounds, j) for j in range(len(result.profiles)))
+    return _LEGEND + (_VRE_LEGEND if linear else "")
 
 
 def to_markdown(result: BoundsResult) -> str:
@@ -113,7 +158,7 @@ def to_markdown(result: BoundsResult) -> str:
              f"budget Δ* = {fmt(result.budget)} {result.unit}\n"]
     for j in range(len(result.profiles)):
         parts.append(f"**{_title(result, j)}**\n\n" + markdown_table(_HEAD, _rows(result, j)))
-    parts.append(_LEGEND + "\n")
+    parts.append(_legend(result) + "\n")
     return "\n".join(parts)
 
 
@@ -131,5 +176,5 @@ def to_table(result: BoundsResult, width: int | None = None, color: bool = False
         for row in _rows(result, j):
             table.add_row(*row)
         out.append(table)
-    out.append(Text(_LEGEND, style="dim"))
+    out.append(Text(_legend(result), style="dim"))
     return rich_text(out, width=width, color=color, ascii=ascii)

@@ -19,7 +19,7 @@ from html import escape
 import numpy as np
 
 from gyrovib.api.study import Spectrum, TradeStudy
-from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares
 from gyrovib.render.common import fmt
 from gyrovib.render.select import limit_text
@@ -91,25 +91,35 @@ def _table(head: Sequence[str], rows: Iterable[Sequence[str]], raw: bool = False
     return "".join(out)
 
 
-def term_names() -> list[str]:
-    """Labels of the terms of eq. (16): the additive Δ0 terms, then Δ(q)·Ω^q."""
+def term_names(linear: bool = False) -> list[str]:
+    """Labels of the terms of eq. (16): the additive Δ0 terms, then Δ(q)·Ω^q.
+
+    ``linear``: Δ0(6), the g² term of a linear vibration (MODEL.md section 8),
+    follows the additive terms.
+    """
     powers = [int(q[1:]) if q[1:].isdigit() else k + 1
               for k, q in enumerate(MULTIPLICATIVE_TERMS)]
-    return [*ADDITIVE_TERMS, *(f"{q}·Ω{SUPERSCRIPT.get(p, f'^{p}')}"
+    additive = [*ADDITIVE_TERMS, EXTRA_TERMS[0]] if linear else list(ADDITIVE_TERMS)
+    return [*additive, *(f"{q}·Ω{SUPERSCRIPT.get(p, f'^{p}')}"
                                for q, p in zip(MULTIPLICATIVE_TERMS, powers, strict=True))]
 
 
 def term_squares(study: TradeStudy) -> np.ndarray:
     """Each term's square in eq. (16), shape (sensors, profiles, terms).
 
-    Additive: Δ0². Multiplicative: (Δ(q)·Ω_K3^q)². Their sum is Δ_V(RMS)².
+    Additive: Δ0² (with Δ0(6)² when some profile has a linear vibration, as
+    :func:`term_names` with ``linear``). Multiplicative: (Δ(q)·Ω_K3^q)². Their
+    sum is Δ_V(RMS)².
     """
     a = study.analysis
     omega = np.asarray(a.rates)[:, 2]
     qs = np.asarray(a.error.multiplicative_coefficients)
     powers = np.arange(1, qs.shape[-1] + 1)
     multiplicative = qs * omega[None, :, None] ** powers[None, None, :]
-    terms = np.concatenate([np.asarray(a.error.additive_terms), multiplicative], axis=-1)
+    additive = np.asarray(a.error.additive_terms)
+    if a.has_linear:
+        additive = np.concatenate([additive, np.asarray(a.error.extra_terms)[..., :1]], axis=-1)
+    terms = np.concatenate([additive, multiplicative], axis=-1)
     out: np.ndarray = terms * terms
     return out
 
@@ -296,6 +306,9 @@ def _spectrum_text(spectrum: Spectrum, unit: str) -> str:
         parts.append("random PSD on " + ", ".join(a for a, _, _ in spectrum.psd))
     if spectrum.mount is not None:
         parts.append("isolation mount")
+    if spectrum.linear_rms is not None:
+        parts.append("linear vibration, RMS at the sensor ("
+                     + ", ".join(fmt(v, 3) for v in spectrum.linear_rms) + ") g")
     return "; ".join(parts) or "no vibration"
 
 
@@ -329,7 +342,7 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
 def to_html(study: TradeStudy) -> str:
     """The whole report as one HTML document (UTF-8 text)."""
     s = study.selection
-    names = term_names()
+    names = term_names(study.analysis.has_linear)
     squares = term_squares(study)
     met = s.requirement_met
     n_pass = int(np.sum(s.sensor_pass))

@@ -8,7 +8,7 @@ from typing import Any
 
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.render.bounds import coefficient_unit, profiles_json, shares
+from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, vre_unit
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 _CRITERION = {
@@ -36,10 +36,25 @@ def failures(result: SelectionResult, i: int, j: int) -> list[str]:
                     f"|{name}| = {fmt(result.values[i, j, b])} exceeds its bound "
                     f"{fmt(result.bounds[i, j, b])}{tail}"
                 )
+        if result.vre_pass is not None and not result.vre_pass[i, j]:
+            reasons.append(_vre_text(result, i, j, "exceeds its bound"))
     if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
         reasons.append(f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} exceeds the budget "
                        f"{fmt(result.budget)} {result.unit}")
     return reasons
+
+
+def _vre(result: SelectionResult, i: int, j: int) -> tuple[float, float]:
+    assert result.vre_value is not None and result.vre_bound is not None
+    return float(result.vre_value[i, j]), float(result.vre_bound[i, j])
+
+
+def _vre_text(result: SelectionResult, i: int, j: int, relation: str) -> str:
+    """The VRE check of sensor ``i`` under profile ``j`` in words (MODEL.md section 8)."""
+    value, bound = _vre(result, i, j)
+    unit = vre_unit(result.unit)
+    return (f"effective VRE |Δ0(6)|/Σ⟨a_j²⟩ = {fmt(value)} {unit} {relation} "
+            f"{fmt(bound)} {unit}")
 
 
 def limit_text(result: SelectionResult, i: int) -> str:
@@ -51,6 +66,8 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "rms":
         return (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} is {ratio}× the budget "
                 f"under {profile}")
+    if limit.name == "vre":
+        return f"vre: {_vre_text(result, i, j, f'is {ratio}× its bound')} under {profile}"
     b = BOUNDED.index(limit.name)
     unit = coefficient_unit(limit.name, result.unit)
     tail = "" if unit == "1" else f" {unit}"
@@ -77,11 +94,19 @@ def _heading(result: SelectionResult) -> str:
 
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
-    return ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
+    text = ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
             "(> 1: the RMS error is within the budget; ∞: no error at all). Each sensor's "
             "bounds include its own frequency response. Shares of Δ*: "
             + ", ".join(f"{k} {v}" for k, v in share.items())
             + ". The bounds are sufficient under this allocation, not necessary.")
+    if result.has_linear:  # MODEL.md section 8: α6 joins the additive shares
+        linear = shares(result.allocation, linear=True)
+        text += (" Under a profile with linear vibration the additive shares make room for "
+                 "the g² term: " + ", ".join(f"{k} {linear[k]}" for k in
+                                             ("A1", "k2", "k4", "m31", "m32", "vre"))
+                 + "; the vre check compares each sensor's effective VRE "
+                 "|Δ0(6)|/Σ⟨a_j²⟩ with its bound.")
+    return text
 
 
 # ------------------------------------------------------------------ JSON, CSV
@@ -104,6 +129,10 @@ def to_json(result: SelectionResult) -> str:
                        "pass": bool(result.check_pass[i, j, b])}
                 for b, name in enumerate(BOUNDED)
             }
+            if result.vre_pass is not None:
+                value, bound = _vre(result, i, j)
+                checks["vre"] = {"value": number(value), "bound": number(bound),
+                                 "pass": bool(result.vre_pass[i, j])}
             cells.append({"profile": profile, "pass": bool(result.passed[i, j]),
                           "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
                           "checks": checks})
@@ -118,6 +147,9 @@ def to_csv(result: SelectionResult) -> str:
     head = ["sensor", "profile", "pass", "sensor_pass", "rms", "margin"]
     for name in BOUNDED:
         head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
+    vre = result.has_linear and result.vre_pass is not None  # only with linear vibration
+    if vre:
+        head += ["value_vre", "bound_vre", "pass_vre"]
 
     def rows() -> Iterator[list[Any]]:
         for i, sensor in enumerate(result.sensors):
@@ -128,6 +160,9 @@ def to_csv(result: SelectionResult) -> str:
                 for b in range(len(BOUNDED)):
                     row += [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
                             bool(result.check_pass[i, j, b])]
+                if vre:
+                    assert result.vre_pass is not None
+                    row += [*_vre(result, i, j), bool(result.vre_pass[i, j])]
                 yield row
 
     return csv_text(head, rows())

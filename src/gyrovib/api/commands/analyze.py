@@ -18,7 +18,8 @@ from gyrovib.api.prepare import (
 )
 from gyrovib.api.results import AnalysisResult
 from gyrovib.catalog.loader import Catalog
-from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
+from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
+from gyrovib.core.linear import LinearVibration
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
@@ -32,7 +33,7 @@ DEFAULT_SEED = 0
 ProgressCallback = Callable[[int, int], None]
 
 _PARTS = ("additive_terms", "multiplicative_coefficients", "additive", "multiplicative",
-          "total", "rms")
+          "total", "rms", "extra_terms")
 
 
 def profile_generator(seed: int, profile_id: str) -> np.random.Generator:
@@ -92,7 +93,7 @@ def analyze(
         n_s, n_p = len(prepared.sensors), len(prepared.profiles)
         coeffs, rates = prepared.coefficients, prepared.rates
         parts = {name: np.zeros((n_s, n_p, *tail)) for name, tail in
-                 zip(_PARTS, ((5,), (3,), (), (), (), ()), strict=True)}
+                 zip(_PARTS, ((5,), (3,), (), (), (), (), (len(EXTRA_TERMS),)), strict=True)}
         stderr = np.zeros((n_s, n_p)) if numeric else None
         tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
         for group in prepared.groups:
@@ -102,11 +103,13 @@ def analyze(
                                                strict=True)):
                     err, stderr[idx, j] = _simulate(coeffs[idx], v, rates[j], samples,
                                                     profile_generator(seed, p.profile.id),
-                                                    tracker)
+                                                    tracker, linear=prepared.linear[j],
+                                                    g2=prepared.g2[idx])
                     for name, array in parts.items():
                         array[idx, j] = getattr(err, name)
             else:
-                err = vibration_error(coeffs[idx], group.multipliers[method])
+                err = vibration_error(coeffs[idx], group.multipliers[method],
+                                      g2_sensitivity=prepared.g2[idx])
                 for name, array in parts.items():
                     array[idx] = getattr(err, name)
         warnings = _saturation(prepared, unit)
@@ -126,6 +129,7 @@ def analyze(
         stderr=stderr_out,
         samples=samples if numeric else None,
         seed=seed if numeric else None,
+        linear=tuple(v is not None for v in prepared.linear),
     )
 
 
@@ -173,15 +177,23 @@ class _Tracker:
 
 
 def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, samples: int,
-              rng: np.random.Generator, tracker: _Tracker) -> tuple[VibrationError, FloatArray]:
-    """Brute force for one profile and one group of sensors (deg/s)."""
+              rng: np.random.Generator, tracker: _Tracker, *,
+              linear: LinearVibration | None = None, g2: FloatArray | None = None,
+              ) -> tuple[VibrationError, FloatArray]:
+    """Brute force for one profile and one group of sensors (deg/s).
+
+    ``linear`` (g) with ``g2`` (deg/s per g²): the profile's linear vibration,
+    whose g² term the brute force averages too (MODEL.md section 8).
+    """
     from gyrovib.core.numeric import simulate
 
     before = tracker.done
     estimate = simulate(coefficients, vibration, rate, samples=samples, rng=rng,
-                        progress=tracker)
+                        progress=tracker, linear=linear,
+                        g2_sensitivity=None if linear is None else g2)
     tracker.finish_block(samples, tracker.done - before)
-    terms = vibration_error(coefficients, estimate.multipliers)
+    terms = vibration_error(coefficients, estimate.multipliers,
+                            g2_sensitivity=None if linear is None else g2)
     error = VibrationError(
         additive_terms=terms.additive_terms,
         multiplicative_coefficients=terms.multiplicative_coefficients,
@@ -189,5 +201,6 @@ def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, 
         multiplicative=terms.multiplicative,
         total=estimate.total,
         rms=terms.rms,
+        extra_terms=terms.extra_terms,
     )
     return error, estimate.stderr

@@ -10,7 +10,14 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import bound_factors
-from gyrovib.api.prepare import TINY, check_bounds, float_guard, prepare
+from gyrovib.api.prepare import (
+    TINY,
+    Prepared,
+    check_bounds,
+    float_guard,
+    overflow_problem,
+    prepare,
+)
 from gyrovib.api.results import BoundsResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
@@ -25,7 +32,8 @@ from gyrovib.core.synthesis import (
     allocation_constants,
     coefficient_bounds,
 )
-from gyrovib.errors import GyrovibError, OptionError
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import GyrovibError, OptionError, RangeError
 
 
 def _is_default(allocation: Allocation) -> bool:
@@ -39,7 +47,9 @@ def resolve_allocation(
     """The shares of the budget for ``method``.
 
     ``allocation`` (an :class:`Allocation`, or 1 number r, or 9 numbers
-    r, w1..w5, v1..v3) wins over the catalogue's ``allocation:`` section; the
+    r, w1..w5, v1..v3, or 10 numbers r, w1..w6, v1..v3 with w6 the weight of
+    the g² term of profiles with linear vibration, MODEL.md section 8) wins
+    over the catalogue's ``allocation:`` section; the
     paper's r = 1.5, w = (1, 1, 1, ½, ½), v = (1, ½, ½) is the default.
     ``exact`` derives the shares (eq. 20, 21, 24); ``paper`` uses the printed
     constants and therefore refuses any other allocation. Shares so unequal
@@ -60,11 +70,14 @@ def resolve_allocation(
             raise OptionError("an allocation's r, w and v must be positive and finite")
         if len(values) == 1:
             chosen = Allocation(r=values[0])
-        elif len(values) == 9:
-            chosen = Allocation(r=values[0], w=tuple(values[1:6]), v=tuple(values[6:9]))
+        elif len(values) in (9, 10):
+            n_w = len(values) - 4
+            chosen = Allocation(r=values[0], w=tuple(values[1:1 + n_w]),
+                                v=tuple(values[1 + n_w:]))
         else:
             raise OptionError(
-                f"an allocation is r alone or 9 numbers r,w1,...,w5,v1,v2,v3; got {len(values)}"
+                "an allocation is r alone, 9 numbers r,w1,...,w5,v1,v2,v3 or 10 numbers "
+                f"r,w1,...,w6,v1,v2,v3 (w6: the g² term); got {len(values)}"
             )
     if chosen is None:
         chosen = Allocation()
@@ -80,7 +93,10 @@ def resolve_allocation(
         constants = allocation_constants(chosen.r, chosen.w, chosen.v)
     except ValueError as exc:
         raise OptionError(f"allocation: {exc}") from None
-    shares = np.concatenate([constants.alpha, constants.beta, [constants.k3]])
+    shares = np.concatenate([constants.alpha, constants.beta, [constants.k3],
+                             constants.extra_weights[:1] * constants.c_additive
+                             / math.hypot(float(np.linalg.norm(constants.weights)),
+                                          float(constants.extra_weights[0]))])
     if not np.all(shares >= TINY):
         message = (f"the allocation given by {where} makes a share of the budget underflow "
                    f"floating point (smallest share {float(shares.min()):.3g}); keep r, w "
@@ -89,6 +105,23 @@ def resolve_allocation(
             raise GyrovibError(source.problem(message, ("allocation",)))
         raise OptionError(message)
     return constants
+
+
+def check_vre_bound(vre: FloatArray | None, prepared: Prepared) -> None:
+    """Refuse a VRE bound (MODEL.md section 8) that left floating-point range.
+
+    Like :func:`~gyrovib.api.prepare.check_bounds`: +inf (no linear
+    vibration) or a positive normal number; anything else comes from an
+    overflowed ⟨a_j²⟩ or an underflowed share.
+    """
+    if vre is None:
+        return
+    v = np.asarray(vre, dtype=float).reshape(-1, len(prepared.profiles))
+    ok = np.isposinf(v) | (np.isfinite(v) & (v >= TINY))
+    bad = np.nonzero(~np.all(ok, axis=0))[0].tolist()
+    if bad:
+        raise RangeError([overflow_problem(prepared.profiles[j], "the VRE bound",
+                                           rate_given=prepared.rate_given) for j in bad])
 
 
 def check_method_budget(method: str, budget: float) -> None:
@@ -114,6 +147,9 @@ def bounds(
     ``budget`` is Δ*_V in deg/s; ``rate`` overrides Ω_K (deg/s) as in
     :func:`~gyrovib.api.analyze`; ``unit`` is the output unit. A bound that
     overflows (is 0 or subnormal where the profile constrains it) is refused.
+    With linear vibration in some profile, ``bounds.vre`` bounds the effective
+    VRE |Δ0(6)|/Σ⟨a_j²⟩ in ``unit`` per g² (+inf for the profiles without;
+    None when no profile has any), MODEL.md section 8.
     """
     check_method_budget(method, budget)
     unit = units.canonical_unit(unit)
@@ -129,6 +165,8 @@ def bounds(
         scaled = raw.scaled(bound_factors(unit))
         check_bounds(raw.stacked(), prepared)
         check_bounds(scaled.stacked(), prepared)
+        check_vre_bound(raw.vre, prepared)
+        check_vre_bound(scaled.vre, prepared)
     return BoundsResult(
         method=method,
         unit=unit,

@@ -10,11 +10,12 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.commands.bounds import bounds, check_method_budget, resolve_allocation
 from gyrovib.api.convert import bound_factors
-from gyrovib.api.prepare import check_bounds, check_finite, float_guard, prepare
+from gyrovib.api.prepare import Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import COEFFICIENTS, vibration_error
+from gyrovib.core.linear import effective_vre
 from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
@@ -40,16 +41,23 @@ def _ratio(value: FloatArray, bound: FloatArray) -> FloatArray:
     return np.where(v == 0, 0.0, np.where(b == 0, np.inf, np.where(np.isinf(b), 0.0, q)))
 
 
+#: Names of the bound checks: the coefficients of :data:`BOUNDED`, then the VRE.
+CHECKS: tuple[str, ...] = (*BOUNDED, "vre")
+
+
 def _limits(criterion: str, failing: NDArray[np.intp], ratios: FloatArray, rms: FloatArray,
             budget: float) -> dict[int, Limit]:
-    """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts."""
+    """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts.
+
+    ``ratios`` is indexed (sensor, profile, check of :data:`CHECKS`).
+    """
     limits: dict[int, Limit] = {}
     for i in failing.tolist():
         candidates: list[Limit] = []
         if criterion in ("bounds", "both"):
             jb = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
             j, b = int(jb[0]), int(jb[1])
-            candidates.append(Limit(BOUNDED[b], j, float(ratios[i, j, b])))
+            candidates.append(Limit(CHECKS[b], j, float(ratios[i, j, b])))
         if criterion in ("rms", "both"):
             jr = int(np.argmax(rms[i]))
             candidates.append(Limit("rms", jr, float(rms[i, jr] / budget)))
@@ -74,7 +82,9 @@ def select(
 
     Each sensor's bounds include its own response ν_sensor(f) (computed once
     per distinct response). ``criterion``: ``bounds`` (every |coefficient| at
-    most its bound), ``rms`` (Δ_V(RMS) ≤ Δ*, eq. 17) or ``both``. A sensor
+    most its bound, and the effective VRE |Δ0(6)|/Σ⟨a_j²⟩ at most the ``vre``
+    bound where a profile has linear vibration, MODEL.md section 8), ``rms``
+    (Δ_V(RMS) ≤ Δ*, eq. 17, with Δ0(6) in it) or ``both``. A sensor
     passes when it passes under every chosen profile; ``require`` ``any``
     (at least one sensor passes) or ``all`` decides :attr:`requirement_met`.
     ``budget`` and ``rate`` are in deg/s; ``unit`` is the output unit.
@@ -94,13 +104,18 @@ def select(
         coeffs = prepared.coefficients
         n_s, n_p, n_b = len(prepared.sensors), len(prepared.profiles), len(BOUNDED)
         limits_deg = np.full((n_s, n_p, n_b), np.inf)
+        vre_bound_deg = np.full((n_s, n_p), np.inf)
         rms = np.zeros((n_s, n_p))
         for group in prepared.groups:
             multipliers = group.multipliers[method]
-            limits_deg[group.index] = coefficient_bounds(multipliers, budget,
-                                                         constants).stacked()[None]
-            rms[group.index] = vibration_error(coeffs[group.index], multipliers).rms
-        check_finite([rms], prepared)
+            cb = coefficient_bounds(multipliers, budget, constants)
+            limits_deg[group.index] = cb.stacked()[None]
+            if cb.vre is not None:
+                vre_bound_deg[group.index] = cb.vre[None]
+            rms[group.index] = vibration_error(coeffs[group.index], multipliers,
+                                               g2_sensitivity=prepared.g2[group.index]).rms
+        vre_deg = _effective_vre(prepared)
+        check_finite([rms, vre_deg], prepared)
         check_bounds(limits_deg, prepared)
         factors = np.array([bound_factors(unit)[c] for c in BOUNDED])
         values_deg = np.abs(coeffs[:, [COEFFICIENTS.index(c) for c in BOUNDED]])[:, None, :]
@@ -109,7 +124,8 @@ def select(
         check_finite([values], prepared, what=f"a coefficient in {unit}")
         check_bounds(limits_out, prepared)
         check_pass = _at_most(values_deg, limits_deg)
-        bounds_pass = np.all(check_pass, axis=-1)
+        vre_pass = _at_most(vre_deg, vre_bound_deg)
+        bounds_pass = np.all(check_pass, axis=-1) & vre_pass
         rms_pass = _at_most(rms, budget)
         passed = {"bounds": bounds_pass, "rms": rms_pass,
                   "both": bounds_pass & rms_pass}[criterion]
@@ -117,8 +133,9 @@ def select(
         margin = np.where(rms > 0, budget / np.where(rms > 0, rms, 1.0), np.inf)
         worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
         ranking = tuple(int(i) for i in sorted(range(n_s), key=lambda i: (-worst[i], i)))
-        limits = _limits(criterion, np.nonzero(~sensor_pass)[0],
-                         _ratio(values_deg, limits_deg), rms, budget)
+        ratios = np.concatenate([_ratio(values_deg, limits_deg),
+                                 _ratio(vre_deg, vre_bound_deg)[..., None]], axis=-1)
+        limits = _limits(criterion, np.nonzero(~sensor_pass)[0], ratios, rms, budget)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
     s = units.scale(unit)
     return SelectionResult(
@@ -145,4 +162,17 @@ def select(
         limits=limits,
         requirement_met=met,
         allocation=constants,
+        vre_value=vre_deg / s,
+        vre_bound=vre_bound_deg / s,
+        vre_pass=vre_pass,
     )
+
+
+def _effective_vre(prepared: Prepared) -> FloatArray:
+    """|Δ0(6)|/Σ⟨a_j²⟩ of every sensor under every profile, deg/s per g² (MODEL.md section 8).
+
+    0 where a profile has no linear vibration.
+    """
+    moments = np.array([np.zeros(6) if v is None else v.moments() for v in prepared.linear],
+                       dtype=float).reshape(len(prepared.profiles), 6)
+    return effective_vre(prepared.g2, moments)

@@ -11,7 +11,7 @@ from gyrovib.api.convert import error_arrays, to_unit
 from gyrovib.api.prepare import check_finite, float_guard, prepare
 from gyrovib.api.results import SweepResult
 from gyrovib.catalog.loader import Catalog
-from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
+from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 
@@ -58,7 +58,8 @@ def sweep(
                            methods=METHODS, tolerate_refusals=True)
         shape = (len(prepared.sensors), len(prepared.profiles), omega.size)
         tails = {"additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
-                 "multiplicative": (), "total": (), "rms": ()}
+                 "multiplicative": (), "total": (), "rms": (),
+                 "extra_terms": (len(EXTRA_TERMS),)}
         results = {m: {name: np.zeros((*shape, *tail)) for name, tail in tails.items()}
                    for m in METHODS}
         refused: dict[int, str] = {}
@@ -66,7 +67,8 @@ def sweep(
             refused.update(group.refused.get("paper", {}))
             for method in METHODS:
                 err = vibration_error(prepared.coefficients[group.index],
-                                      group.multipliers[method])
+                                      group.multipliers[method],
+                                      g2_sensitivity=prepared.g2[group.index])
                 for name, array in results[method].items():
                     array[group.index] = getattr(err, name)
         exact = to_unit(VibrationError(**results["exact"]), unit)
