@@ -49,7 +49,8 @@ def test_json_keys_and_values(run, catalog):
     row = doc["results"][0]
     assert set(row) == {"sensor", "profile", "rate", "additive_terms",
                         "multiplicative_coefficients", "additive", "multiplicative", "total",
-                        "rms", "warnings"}
+                        "rms", "source", "warnings"}  # source: INTERFACE.md, second round
+    assert row["source"] == "coefficients"
     assert list(row["additive_terms"]) == ["A1", "k2", "k4", "m31", "m32"]
     assert list(row["multiplicative_coefficients"]) == ["q1", "q2", "q3"]
     # small under tone: a = 2 < Ω = 5, so no asymmetry; k2·a²/2 = 2e-4;

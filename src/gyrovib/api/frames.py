@@ -89,6 +89,14 @@ def analysis_frame(result: AnalysisResult) -> Any:
         columns[name] = np.asarray(getattr(err, name))[s_idx, p_idx]
     if result.stderr is not None:
         columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
+    columns["source"] = [result.source(int(i)) for i in s_idx]
+    if result.worst_coefficients is not None and result.rms_bound is not None:
+        from gyrovib.api.specs import WORST_COEFFICIENTS
+
+        worst = np.asarray(result.worst_coefficients)[s_idx, p_idx]
+        for k, name in enumerate(WORST_COEFFICIENTS):
+            columns[f"envelope.worst_coefficients.{name}"] = worst[:, k]
+        columns["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
     columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
                            for i, j in zip(s_idx, p_idx, strict=True)]
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}

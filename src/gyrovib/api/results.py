@@ -89,6 +89,17 @@ class AnalysisResult(_Frozen):
     #: ``numeric`` only: evaluations of eq. (2) per sensor × profile, and the seed.
     samples: int | None = None
     seed: int | None = None
+    #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
+    sources: tuple[str, ...] = ()
+    #: Spec-form sensors (MODEL.md section 11): the worst polynomial (A1, k2…k5) in
+    #: :attr:`unit` powers, (sensors, profiles, 5), and the per-term RMS bound
+    #: (sensors, profiles); NaN on coefficient-form rows; None without spec sensors.
+    worst_coefficients: FloatArray | None = None
+    rms_bound: FloatArray | None = None
+
+    def source(self, i: int) -> str:
+        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
+        return self.sources[i] if self.sources else "coefficients"
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))

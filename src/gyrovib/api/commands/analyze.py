@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from gyrovib import units
+from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
 from gyrovib.api.prepare import (
     Prepared,
@@ -82,6 +83,12 @@ def analyze(
     to the sample moments (<x3²>, <x3⁴>, <x3·xi>, <|Ω+x3|>) of the same
     samples, so they are brute-force estimates too, without their own stderr.
     ``progress(done, total)`` is called as samples are evaluated.
+
+    A spec-form sensor (``specs:``) gets the worst case over its datasheet
+    envelope (:mod:`gyrovib.api.specs`): under ``exact`` or ``paper`` that
+    method's multipliers feed the programme; under ``numeric`` the worst
+    polynomial (found with the exact multipliers) is averaged by brute force,
+    and ``rms`` stays the per-term bound.
     """
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
@@ -95,12 +102,15 @@ def analyze(
                  zip(_PARTS, ((5,), (3,), (), (), (), ()), strict=True)}
         stderr = np.zeros((n_s, n_p)) if numeric else None
         tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
+        spec = specs.spec_results(prepared, "exact" if numeric else method)
         for group in prepared.groups:
             idx = group.index
             if stderr is not None:
                 for j, (p, v) in enumerate(zip(prepared.profiles, group.vibrations,
                                                strict=True)):
-                    err, stderr[idx, j] = _simulate(coeffs[idx], v, rates[j], samples,
+                    block = coeffs[idx] if spec is None else specs.numeric_rows(
+                        coeffs, idx, j, spec)
+                    err, stderr[idx, j] = _simulate(block, v, rates[j], samples,
                                                     profile_generator(seed, p.profile.id),
                                                     tracker)
                     for name, array in parts.items():
@@ -109,7 +119,9 @@ def analyze(
                 err = vibration_error(coeffs[idx], group.multipliers[method])
                 for name, array in parts.items():
                     array[idx] = getattr(err, name)
-        warnings = _saturation(prepared, unit)
+        if spec is not None:
+            specs.place_analysis(parts, spec, numeric=numeric)
+        warnings = specs.with_cross_axis(_saturation(prepared, unit), spec)
         error = to_unit(VibrationError(**parts), unit)
         out_scale = units.scale(unit)
         stderr_out = None if stderr is None else stderr / out_scale
@@ -126,6 +138,7 @@ def analyze(
         stderr=stderr_out,
         samples=samples if numeric else None,
         seed=seed if numeric else None,
+        **specs.analysis_fields(len(prepared.sensors), n_p, spec, unit),
     )
 
 
