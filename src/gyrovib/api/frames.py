@@ -158,6 +158,20 @@ def selection_frame(result: SelectionResult) -> Any:
         columns[f"checks.{name}.value"] = values[:, b]
         columns[f"checks.{name}.bound"] = bounds[:, b]
         columns[f"checks.{name}.pass"] = checks[:, b]
+    columns["source"] = [result.source(int(i)) for i in s_idx]
+    if result.total is not None:
+        columns["total"] = np.asarray(result.total).reshape(-1)
+    columns["reason"] = [_reason(result, int(i), int(j)) for i, j in zip(s_idx, p_idx,
+                                                                          strict=True)]
+    if result.nl_value is not None:  # datasheet (spec-form) sensors: NaN on coefficient rows
+        for key, array in (("nonlinearity.value", result.nl_value),
+                           ("nonlinearity.bound", result.nl_bound),
+                           ("nonlinearity.pass", result.nl_pass),
+                           ("vre.value", result.vre_value), ("vre.bound", result.vre_bound),
+                           ("vre.pass", result.vre_pass)):
+            columns[f"checks.{key}"] = np.asarray(array).reshape(-1)
+        columns["checks.nonlinearity.unit"] = ["%FS" if result.source(int(i)) == "specs"
+                                               else None for i in s_idx]
     columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
     for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
         columns[f"profile_{key}"] = column
@@ -165,6 +179,12 @@ def selection_frame(result: SelectionResult) -> Any:
                             "budget": result.budget, "criterion": result.criterion,
                             "require": result.require,
                             "requirement_met": result.requirement_met})
+
+
+def _reason(result: SelectionResult, i: int, j: int) -> str | None:
+    from gyrovib.render.select import reason
+
+    return reason(result, i, j)
 
 
 def sweep_frame(result: SweepResult) -> Any:

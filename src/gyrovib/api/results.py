@@ -195,6 +195,24 @@ class SelectionResult(_Frozen):
     limits: Mapping[int, Limit]
     requirement_met: bool
     allocation: AllocationConstants
+    #: |Δ_V| per sensor × profile (for a spec-form sensor the worst case), in :attr:`unit`.
+    total: FloatArray | None = None
+    #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
+    sources: tuple[str, ...] = ()
+    #: Spec-form sensors against their spec bounds (MODEL.md section 11), (sensors,
+    #: profiles), NaN (pass True) on coefficient rows: the nonlinearity and its
+    #: allowable value in %FS (the sensor's own range or span), the VRE spec and the
+    #: allowable VRE in :attr:`unit` per g² (a VRE value NaN: no VRE spec, taken as 0).
+    nl_value: FloatArray | None = None
+    nl_bound: FloatArray | None = None
+    nl_pass: NDArray[np.bool_] | None = None
+    vre_value: FloatArray | None = None
+    vre_bound: FloatArray | None = None
+    vre_pass: NDArray[np.bool_] | None = None
+
+    def source(self, i: int) -> str:
+        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
+        return self.sources[i] if self.sources else "coefficients"
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))

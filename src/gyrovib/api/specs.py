@@ -370,3 +370,92 @@ def analysis_fields(n_s: int, n_p: int, spec: SpecResults | None,
     bound = np.full((n_s, n_p), np.nan)
     bound[spec.index] = spec.error.rms / units.scale(unit)
     return {"sources": tuple(sources), "worst_coefficients": worst_x, "rms_bound": bound}
+
+
+# ----------------------------------------------------------------- select
+
+
+@dataclass(frozen=True)
+class SpecChecks:
+    """A spec sensor's datasheet against its own spec bounds, (M, P), deg/s and g.
+
+    ``nl_value``: its nonlinearity in %FS (of its own range or span);
+    ``nl_bound``: the allowable NL in the same %FS for Δ* (inf where the
+    profile does not excite the envelope); ``vre_value``: its VRE spec in
+    deg/s/g² (NaN: none given, taken as 0); ``vre_bound``: the allowable VRE
+    (inf without linear vibration). Passes use ``rtol``.
+    """
+
+    nl_value: FloatArray
+    nl_bound: FloatArray
+    nl_pass: NDArray[np.bool_]
+    vre_value: FloatArray
+    vre_bound: FloatArray
+    vre_pass: NDArray[np.bool_]
+
+
+def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: float,
+                weights: tuple[float, float] = (1.0, 1.0), rtol: float = 1e-9) -> SpecChecks:
+    """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (MODEL.md section 11).
+
+    NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds` for
+    the sensor's own range, fit, measure and ``of``, under its own response
+    (one programme per distinct datasheet definition and group).
+    """
+    from gyrovib.core.envelope import spec_bounds
+
+    figs = spec.figures
+    m_count, n_p = spec.index.size, len(prepared.profiles)
+    nl_bound = np.full((m_count, n_p), np.inf)
+    vre_bound = np.full((m_count, n_p), np.inf)
+    position = {int(i): k for k, i in enumerate(spec.index.tolist())}
+    for group in prepared.groups:
+        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
+        if not rows or not n_p:
+            continue
+        m = multipliers_of(group, prepared, method)
+        t = terms_of(m)
+        s = mean_square_acceleration(m)
+        keys: dict[tuple[float, str, str, str], list[int]] = {}
+        for k in rows:
+            keys.setdefault((float(figs.range[k]), figs.fit[k], figs.measure[k], figs.of[k]),
+                            []).append(k)
+        for (r, fit, measure, of), members in keys.items():
+            sb = spec_bounds(budget, t, s, r, fit, measure, of, weights)
+            nl_bound[members] = sb.nonlinearity[None]
+            vre_bound[members] = sb.vre[None]
+    nl_value = np.broadcast_to(figs.percent[:, None], (m_count, n_p)).copy()
+    vre_value = np.where(figs.has_vre, figs.vre, np.nan)[:, None] * np.ones((1, n_p))
+    nl_pass = nl_value <= nl_bound * (1.0 + rtol)
+    vre_pass = np.nan_to_num(vre_value) <= vre_bound * (1.0 + rtol)
+    return SpecChecks(nl_value, nl_bound, nl_pass, vre_value, vre_bound, vre_pass)
+
+
+def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecChecks | None,
+                     total: FloatArray, unit: str) -> dict[str, object]:
+    """The spec-form fields of a :class:`~gyrovib.api.SelectionResult`.
+
+    ``total`` (|Δ_V|, the worst case for spec sensors) always; ``sources`` and
+    the datasheet checks (NaN on coefficient rows) only with spec sensors.
+    """
+    s = units.scale(unit)
+    out: dict[str, object] = {"total": total / s}
+    if spec is None or checks is None:
+        return out
+    sources = ["coefficients"] * n_s
+    for i in spec.index.tolist():
+        sources[i] = "specs"
+
+    def full(values: FloatArray, fill: float = np.nan) -> FloatArray:
+        array = np.full((n_s, n_p), fill)
+        array[spec.index] = values
+        return array
+
+    out.update(
+        sources=tuple(sources),
+        nl_value=full(checks.nl_value), nl_bound=full(checks.nl_bound),
+        nl_pass=full(checks.nl_pass, True).astype(bool),
+        vre_value=full(checks.vre_value / s), vre_bound=full(checks.vre_bound / s),
+        vre_pass=full(checks.vre_pass, True).astype(bool),
+    )
+    return out

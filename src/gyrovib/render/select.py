@@ -14,6 +14,7 @@ from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, 
 _CRITERION = {
     "bounds": "every |coefficient| within its bound (eq. 23, 25)",
     "rms": "Δ_V(RMS) ≤ Δ* (eq. 17)",
+    "worst": "|Δ_V| ≤ Δ* (a datasheet sensor: its worst case over the envelope)",
     "both": "every |coefficient| within its bound and Δ_V(RMS) ≤ Δ*",
 }
 
@@ -27,7 +28,10 @@ def failures(result: SelectionResult, i: int, j: int) -> list[str]:
     Only the criteria that count (``--criterion``) are listed.
     """
     reasons: list[str] = []
-    if result.criterion in ("bounds", "both"):
+    spec = result.source(i) == "specs"
+    if result.criterion in ("bounds", "both") and spec:
+        reasons.extend(_spec_failures(result, i, j))
+    elif result.criterion in ("bounds", "both"):
         for b, name in enumerate(BOUNDED):
             if not result.check_pass[i, j, b]:
                 unit = coefficient_unit(name, result.unit)
@@ -39,7 +43,33 @@ def failures(result: SelectionResult, i: int, j: int) -> list[str]:
     if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
         reasons.append(f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} exceeds the budget "
                        f"{fmt(result.budget)} {result.unit}")
+    if result.criterion == "worst" and not result.passed[i, j] and result.total is not None:
+        what = "worst |Δ_V| over the datasheet envelope" if spec else "|Δ_V|"
+        reasons.append(f"{what} = {fmt(result.total[i, j])} {result.unit} exceeds the budget "
+                       f"{fmt(result.budget)} {result.unit}")
     return reasons
+
+
+def _spec_failures(result: SelectionResult, i: int, j: int) -> list[str]:
+    """A datasheet sensor's figures above their spec bounds (MODEL.md section 11)."""
+    out: list[str] = []
+    assert result.nl_pass is not None and result.nl_value is not None
+    assert result.nl_bound is not None and result.vre_pass is not None
+    assert result.vre_value is not None and result.vre_bound is not None
+    if not result.nl_pass[i, j]:
+        out.append(f"datasheet nonlinearity {fmt(result.nl_value[i, j])} %FS exceeds the "
+                   f"allowable {fmt(result.nl_bound[i, j])} %FS")
+    if not result.vre_pass[i, j]:
+        out.append(f"datasheet VRE {fmt(result.vre_value[i, j])} {result.unit}/g² exceeds the "
+                   f"allowable {fmt(result.vre_bound[i, j])} {result.unit}/g²")
+    return out
+
+
+def reason(result: SelectionResult, i: int, j: int) -> str | None:
+    """Why sensor ``i`` fails under profile ``j``, one line; None where it passes."""
+    if result.passed[i, j]:
+        return None
+    return "; ".join(failures(result, i, j)) or None
 
 
 def limit_text(result: SelectionResult, i: int) -> str:
@@ -51,11 +81,32 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "rms":
         return (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} is {ratio}× the budget "
                 f"under {profile}")
+    if limit.name in ("nonlinearity", "vre", "worst"):
+        return _spec_limit_text(result, i, limit.name, j, ratio)
     b = BOUNDED.index(limit.name)
     unit = coefficient_unit(limit.name, result.unit)
     tail = "" if unit == "1" else f" {unit}"
     return (f"{limit.name}: |{limit.name}| = {fmt(result.values[i, j, b])} is {ratio}× its "
             f"bound {fmt(result.bounds[i, j, b])}{tail} under {profile}")
+
+
+def _spec_limit_text(result: SelectionResult, i: int, name: str, j: int, ratio: str) -> str:
+    """The limiting datasheet figure (or worst case) of failing sensor ``i``."""
+    profile = result.profiles[j]
+    if name == "nonlinearity":
+        assert result.nl_value is not None and result.nl_bound is not None
+        return (f"nonlinearity: the datasheet's {fmt(result.nl_value[i, j])} %FS is {ratio}× "
+                f"the allowable {fmt(result.nl_bound[i, j])} %FS under {profile}")
+    if name == "vre":
+        assert result.vre_value is not None and result.vre_bound is not None
+        return (f"VRE: the datasheet's {fmt(result.vre_value[i, j])} {result.unit}/g² is "
+                f"{ratio}× the allowable {fmt(result.vre_bound[i, j])} {result.unit}/g² "
+                f"under {profile}")
+    assert result.total is not None
+    what = ("worst |Δ_V| over the datasheet envelope" if result.source(i) == "specs"
+            else "|Δ_V|")
+    return (f"{what} = {fmt(result.total[i, j])} {result.unit} is {ratio}× the budget "
+            f"under {profile}")
 
 
 def _margin(value: float) -> str:
@@ -77,8 +128,13 @@ def _heading(result: SelectionResult) -> str:
 
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
-    return ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
-            "(> 1: the RMS error is within the budget; ∞: no error at all). Each sensor's "
+    judged = "Δ*/|Δ_V|" if result.criterion == "worst" else "Δ*/Δ_V(RMS)"
+    spec = (" A datasheet (spec-form) sensor's margin is Δ*/its worst |Δ_V| over the "
+            "envelope; under bounds its nonlinearity and VRE are checked against the "
+            "allowable figures for its own range and NL definition."
+            if "specs" in result.sources else "")
+    return (f"Cells: ✓ pass / ✗ fail under the criterion, with the margin {judged} "
+            "(> 1: the error is within the budget; ∞: no error at all)." + spec + " Each sensor's "
             "bounds include its own frequency response. Shares of Δ*: "
             + ", ".join(f"{k} {v}" for k, v in share.items())
             + ". The bounds are sufficient under this allocation, not necessary.")
@@ -98,26 +154,60 @@ def to_json(result: SelectionResult) -> str:
     for i, sensor in enumerate(result.sensors):
         cells = []
         for j, profile in enumerate(result.profiles):
-            checks = {
+            spec = result.source(i) == "specs"
+            checks = _spec_checks(result, i, j) if spec else {
                 name: {"value": number(result.values[i, j, b]),
                        "bound": number(result.bounds[i, j, b]),
                        "pass": bool(result.check_pass[i, j, b])}
                 for b, name in enumerate(BOUNDED)
             }
-            cells.append({"profile": profile, "pass": bool(result.passed[i, j]),
-                          "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
-                          "checks": checks})
-        sensors.append({"sensor": sensor, "pass": bool(result.sensor_pass[i]),
-                        "profiles": cells})
+            cell = {"profile": profile, "pass": bool(result.passed[i, j]),
+                    "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
+                    "checks": checks}
+            if result.total is not None:
+                cell["total"] = number(result.total[i, j])
+            cell["reason"] = reason(result, i, j)
+            cells.append(cell)
+        sensors.append({"sensor": sensor, "source": result.source(i),
+                        "pass": bool(result.sensor_pass[i]), "profiles": cells})
     document["sensors"] = sensors
     return dumps(document)
 
 
+def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
+    """A datasheet sensor's checks: nonlinearity (%FS) and VRE against their spec bounds."""
+    assert result.nl_value is not None and result.nl_bound is not None
+    assert result.nl_pass is not None and result.vre_value is not None
+    assert result.vre_bound is not None and result.vre_pass is not None
+    vre = float(result.vre_value[i, j])
+    return {
+        "nonlinearity": {"value": number(result.nl_value[i, j]), "unit": "%FS",
+                         "bound": number(result.nl_bound[i, j]),
+                         "pass": bool(result.nl_pass[i, j])},
+        "vre": {"value": None if math.isnan(vre) else vre,
+                "bound": number(result.vre_bound[i, j]), "pass": bool(result.vre_pass[i, j])},
+    }
+
+
+def _get(array: Any, i: int, j: int) -> Any:
+    assert array is not None
+    return array[i, j]
+
+
 def to_csv(result: SelectionResult) -> str:
-    """One row per sensor × profile; an unconstrained bound or margin is ``inf``."""
+    """One row per sensor × profile; an unconstrained bound or margin is ``inf``.
+
+    With datasheet (spec-form) sensors the rows gain ``source``, ``total`` and
+    their checks (``value_nonlinearity``… in %FS, ``value_vre``… per g²; empty on
+    coefficient rows, whose coefficient columns are empty on spec rows).
+    """
     head = ["sensor", "profile", "pass", "sensor_pass", "rms", "margin"]
     for name in BOUNDED:
         head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
+    with_specs = "specs" in result.sources
+    if with_specs:
+        head += ["source", "total", "value_nonlinearity", "bound_nonlinearity",
+                 "pass_nonlinearity", "value_vre", "bound_vre", "pass_vre"]
 
     def rows() -> Iterator[list[Any]]:
         for i, sensor in enumerate(result.sensors):
@@ -125,9 +215,23 @@ def to_csv(result: SelectionResult) -> str:
                 row: list[Any] = [sensor, profile, bool(result.passed[i, j]),
                                   bool(result.sensor_pass[i]), float(result.rms[i, j]),
                                   float(result.margin[i, j])]
+                spec = result.source(i) == "specs"
                 for b in range(len(BOUNDED)):
-                    row += [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
-                            bool(result.check_pass[i, j, b])]
+                    row += (["", "", ""] if spec else
+                            [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
+                             bool(result.check_pass[i, j, b])])
+                if with_specs:
+                    row += [result.source(i), float(_get(result.total, i, j))]
+                    if spec:
+                        vre = float(_get(result.vre_value, i, j))
+                        row += [float(_get(result.nl_value, i, j)),
+                                float(_get(result.nl_bound, i, j)),
+                                bool(_get(result.nl_pass, i, j)),
+                                "" if math.isnan(vre) else vre,
+                                float(_get(result.vre_bound, i, j)),
+                                bool(_get(result.vre_pass, i, j))]
+                    else:
+                        row += [""] * 6
                 yield row
 
     return csv_text(head, rows())
