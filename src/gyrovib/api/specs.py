@@ -30,6 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -320,7 +321,7 @@ def place(parts: dict[str, FloatArray], spec: SpecResults) -> None:
 
 def numeric_rows(coefficients: FloatArray, index: NDArray[np.intp], profile: int,
                  spec: SpecResults) -> FloatArray:
-    """A group's coefficient rows for brute force under one profile: spec rows → worst polynomial."""
+    """A group's coefficient rows for brute force under one profile (specs: worst polynomial)."""
     out = np.array(coefficients[index], dtype=float)
     where = {int(i): k for k, i in enumerate(spec.index.tolist())}
     for r, i in enumerate(index.tolist()):
@@ -358,7 +359,7 @@ def with_cross_axis(warnings: dict[tuple[int, int], tuple[str, ...]],
 
 
 def analysis_fields(n_s: int, n_p: int, spec: SpecResults | None,
-                    unit: str) -> dict[str, object]:
+                    unit: str) -> dict[str, Any]:
     """The spec-form fields of an :class:`~gyrovib.api.AnalysisResult` (empty without specs)."""
     if spec is None:
         return {}
@@ -432,21 +433,21 @@ def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: floa
 
 
 def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecChecks | None,
-                     total: FloatArray, unit: str) -> dict[str, object]:
+                     total: FloatArray, unit: str) -> dict[str, Any]:
     """The spec-form fields of a :class:`~gyrovib.api.SelectionResult`.
 
     ``total`` (|Δ_V|, the worst case for spec sensors) always; ``sources`` and
     the datasheet checks (NaN on coefficient rows) only with spec sensors.
     """
     s = units.scale(unit)
-    out: dict[str, object] = {"total": total / s}
+    out: dict[str, Any] = {"total": total / s}
     if spec is None or checks is None:
         return out
     sources = ["coefficients"] * n_s
     for i in spec.index.tolist():
         sources[i] = "specs"
 
-    def full(values: FloatArray, fill: float = np.nan) -> FloatArray:
+    def full(values: NDArray[Any], fill: float = np.nan) -> FloatArray:
         array = np.full((n_s, n_p), fill)
         array[spec.index] = values
         return array
