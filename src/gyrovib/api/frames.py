@@ -125,6 +125,18 @@ def bounds_frame(result: BoundsResult) -> Any:
         **_rate_columns(np.asarray(result.rates).reshape(-1, 3), rows),
         **_bounds_columns(result.bounds, rows),
     }
+    sb = result.spec_bounds
+    if sb is not None:  # bounds --range: the allowable datasheet figures
+        n = len(result.profiles)
+        columns.update({
+            "spec_bounds.nonlinearity.value": np.asarray(sb.nonlinearity)[rows],
+            "spec_bounds.nonlinearity.unit": ["%FS"] * n,
+            "spec_bounds.nonlinearity.fit": [sb.fit] * n,
+            "spec_bounds.nonlinearity.measure": [sb.measure] * n,
+            "spec_bounds.nonlinearity.of": [sb.of] * n,
+            "spec_bounds.nonlinearity.range": [sb.range] * n,
+            "spec_bounds.vre": np.asarray(sb.vre)[rows],
+        })
     return _frame(columns, {"method": result.method, "unit": result.unit,
                             "budget": result.budget})
 

@@ -14,7 +14,7 @@ import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,6 +22,9 @@ from numpy.typing import NDArray
 from gyrovib.core.analysis import VibrationError
 from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 from gyrovib.core.transmissibility import FloatArray
+
+if TYPE_CHECKING:
+    from gyrovib.api.specs import DatasheetBounds
 
 
 def _freeze(value: Any) -> Any:
@@ -144,6 +147,8 @@ class BoundsResult(_Frozen):
     rates: FloatArray
     bounds: CoefficientBounds
     allocation: AllocationConstants
+    #: ``--range``: the allowable datasheet figures (:class:`gyrovib.api.specs.DatasheetBounds`).
+    spec_bounds: DatasheetBounds | None = None
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.profiles),)

@@ -460,3 +460,53 @@ def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecC
         vre_pass=full(checks.vre_pass, True).astype(bool),
     )
     return out
+
+
+# ----------------------------------------------------------------- bounds
+
+
+@dataclass(frozen=True)
+class DatasheetBounds:
+    """Allowable datasheet figures for a part of range R, per profile (``bounds --range``).
+
+    ``nonlinearity``: NL_max in %FS of R (``of`` range) or of 2R (span), inf
+    where the profile does not excite the envelope; ``vre``: VRE_max in the
+    output unit per g² (inf without linear vibration); ``range`` R in the
+    output unit; ``fit``, ``measure``, ``of``: the definition the NL is read
+    with; ``weights``: the NL:VRE split; ``w1``: W(1), the worst case for a
+    limit b = 1 (rate per rate); ``share_nl``, ``share_vre``: the fractions
+    of Δ* (MODEL.md section 11: NL_max·W(1) = share_nl·Δ*).
+    """
+
+    range: float
+    fit: str
+    measure: str
+    of: str
+    weights: tuple[float, float]
+    nonlinearity: FloatArray
+    vre: FloatArray
+    w1: FloatArray
+    share_nl: FloatArray
+    share_vre: FloatArray
+
+
+def datasheet_bounds(m: Multipliers | None, n_profiles: int, budget: float, range_: float,
+                     unit: str, fit: str = "least-squares", measure: str = "max",
+                     of: str = "range",
+                     weights: tuple[float, float] = (1.0, 1.0)) -> DatasheetBounds:
+    """NL_max and VRE_max of :func:`gyrovib.core.envelope.spec_bounds`, in output units.
+
+    ``budget`` and ``range_`` in deg/s; ``m`` the profiles' multipliers (the
+    profile alone, ν_sensor = 1), None when there are no profiles.
+    """
+    from gyrovib.core.envelope import spec_bounds
+
+    s = units.scale(unit)
+    if m is None or n_profiles == 0:
+        empty = np.zeros(0)
+        return DatasheetBounds(range_ / s, fit, measure, of, weights, empty, empty, empty,
+                               empty, empty)
+    sb = spec_bounds(budget, terms_of(m), mean_square_acceleration(m), range_, fit, measure,
+                     of, weights)
+    return DatasheetBounds(range_ / s, fit, measure, of, weights, sb.nonlinearity,
+                           sb.vre / s, sb.w1, sb.share_nl, sb.share_vre)

@@ -108,12 +108,22 @@ def bounds(
     budget: float,
     unit: str = "deg/s",
     allocation: Allocation | Sequence[float] | None = None,
+    range_: float | None = None,
+    nl_fit: str = "least-squares",
+    nl_measure: str = "max",
+    nl_of: str = "range",
+    spec_weights: tuple[float, float] = (1.0, 1.0),
 ) -> BoundsResult:
     """The inverse problem: allowable coefficients per profile, eq. (23), (25).
 
     ``budget`` is Δ*_V in deg/s; ``rate`` overrides Ω_K (deg/s) as in
     :func:`~gyrovib.api.analyze`; ``unit`` is the output unit. A bound that
     overflows (is 0 or subnormal where the profile constrains it) is refused.
+
+    ``range_`` R (deg/s) adds the datasheet bounds (MODEL.md section 11): the
+    allowable nonlinearity in %FS of R (or of the span 2R, ``nl_of``) read as
+    ``nl_fit``/``nl_measure``, and the allowable VRE, from the split
+    ``spec_weights`` (NL:VRE) of Δ* (:attr:`BoundsResult.spec_bounds`).
     """
     check_method_budget(method, budget)
     unit = units.canonical_unit(unit)
@@ -129,6 +139,13 @@ def bounds(
         scaled = raw.scaled(bound_factors(unit))
         check_bounds(raw.stacked(), prepared)
         check_bounds(scaled.stacked(), prepared)
+        datasheet = None
+        if range_ is not None:
+            from gyrovib.api.specs import datasheet_bounds
+
+            multipliers = prepared.groups[0].multipliers[method] if prepared.groups else None
+            datasheet = datasheet_bounds(multipliers, len(prepared.profiles), budget, range_,
+                                         unit, nl_fit, nl_measure, nl_of, spec_weights)
     return BoundsResult(
         method=method,
         unit=unit,
@@ -137,4 +154,5 @@ def bounds(
         rates=prepared.rates / units.scale(unit),
         bounds=scaled,
         allocation=constants,
+        spec_bounds=datasheet,
     )
