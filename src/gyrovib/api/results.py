@@ -125,6 +125,21 @@ class SweepResult(_Frozen):
     exact: VibrationError
     paper: VibrationError
     paper_refused: Mapping[str, str] = field(default_factory=dict)
+    #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
+    sources: tuple[str, ...] = ()
+    #: Spec-form sensors: the exact method's worst polynomial (A1, k2…k5) at each
+    #: rate, (sensors, profiles, rates, 5) in :attr:`unit` powers (NaN on
+    #: coefficient rows), with the datasheet envelope per sensor (``nl_limit``,
+    #: the residual limit b in :attr:`unit`, NaN on coefficient rows; ``nl_fit``;
+    #: ``nl_range`` R in :attr:`unit`); None without spec sensors.
+    worst_coefficients: FloatArray | None = None
+    nl_limit: FloatArray | None = None
+    nl_range: FloatArray | None = None
+    nl_fit: tuple[str, ...] = ()
+
+    def source(self, i: int) -> str:
+        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
+        return self.sources[i] if self.sources else "coefficients"
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles), len(self.rates))

@@ -158,7 +158,8 @@ def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
     """Worst |Δ_V| of every sensor of ``figs`` under the multipliers ``m`` (any shape).
 
     One call to :func:`gyrovib.core.envelope.worst_case` over all profiles
-    (× rates), flattened; the result has shape (N,) + m.omega.shape.
+    (× rates), flattened; the result has shape (N,) + m.omega.shape. A
+    profile (× rate) whose multipliers are NaN (a method's refusal) gets NaN.
     """
     from gyrovib.core.envelope import worst_case
 
@@ -166,13 +167,23 @@ def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
     t = terms_of(m).reshape(-1, 8, 5)
     s = mean_square_acceleration(m).reshape(-1)
     n = figs.range.size
-    wc = worst_case(t, s, figs.range, figs.limit, figs.fit, figs.measure,
+    ok = np.all(np.isfinite(t), axis=(1, 2)) & np.isfinite(s)
+    k_all = t.shape[0]
+    wc = worst_case(t[ok], s[ok], figs.range, figs.limit, figs.fit, figs.measure,
                     asymmetry=figs.asymmetry, vre=figs.vre)
-    x = wc.coefficients                                              # (N, K, 5)
+
+    def spread(a: FloatArray) -> FloatArray:
+        out = np.full((n, k_all, *a.shape[2:]), np.nan)
+        out[:, ok] = a
+        return out
+
+    x = spread(wc.coefficients)                                      # (N, K, 5)
+    total_, nonlin_, g2_, bound_ = (spread(wc.total), spread(wc.nonlinearity),
+                                    spread(wc.g2), spread(wc.rms_bound))
     per = np.einsum("ktj,nkj->nkt", t, x)                            # (N, K, 8)
     zero = np.zeros(per.shape[:2])
     additive_terms = np.stack([per[..., 0], per[..., 1], per[..., 3], zero, zero], axis=-1)
-    extra = np.stack([wc.g2, per[..., 2], per[..., 4]], axis=-1)
+    extra = np.stack([g2_, per[..., 2], per[..., 4]], axis=-1)
     flat_m2 = np.broadcast_to(m.m2, shape).reshape(-1)[None]
     flat_m4 = np.broadcast_to(m.m4, shape).reshape(-1)[None]
     flat_m3 = (np.zeros_like(flat_m2) if m.m3 is None
@@ -188,13 +199,13 @@ def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
         multiplicative_coefficients=q.reshape(*full, 3),
         additive=additive.reshape(full),
         multiplicative=mult.reshape(full),
-        total=wc.total.reshape(full),
-        rms=wc.rms_bound.reshape(full),
+        total=total_.reshape(full),
+        rms=bound_.reshape(full),
         extra_terms=extra.reshape(*full, 3),
     )
     return SpecWorst(error=error, coefficients=x.reshape(*full, 5),
-                     rms_bound=wc.rms_bound.reshape(full),
-                     nonlinearity=wc.nonlinearity.reshape(full), g2=wc.g2.reshape(full))
+                     rms_bound=bound_.reshape(full),
+                     nonlinearity=nonlin_.reshape(full), g2=g2_.reshape(full))
 
 
 def coefficient_rows(worst_x: FloatArray) -> FloatArray:
@@ -510,3 +521,66 @@ def datasheet_bounds(m: Multipliers | None, n_profiles: int, budget: float, rang
                      of, weights)
     return DatasheetBounds(range_ / s, fit, measure, of, weights, sb.nonlinearity,
                            sb.vre / s, sb.w1, sb.share_nl, sb.share_vre)
+
+
+# ----------------------------------------------------------------- sweep
+
+
+def sweep_fields(n_s: int, spec: SpecResults, unit: str) -> dict[str, Any]:
+    """The spec-form fields of a :class:`~gyrovib.api.SweepResult` (exact method)."""
+    sources = ["coefficients"] * n_s
+    fit = [""] * n_s
+    for k, i in enumerate(spec.index.tolist()):
+        sources[i] = "specs"
+        fit[i] = spec.figures.fit[k]
+    s = units.scale(unit)
+    shape = spec.coefficients.shape[1:]
+    worst_x = np.full((n_s, *shape), np.nan)
+    worst_x[spec.index] = coefficients_in(spec.coefficients, unit)
+    limit = np.full(n_s, np.nan)
+    limit[spec.index] = spec.figures.limit / s
+    rng = np.full(n_s, np.nan)
+    rng[spec.index] = spec.figures.range / s
+    return {"sources": tuple(sources), "worst_coefficients": worst_x, "nl_limit": limit,
+            "nl_range": rng, "nl_fit": tuple(fit)}
+
+
+def worst_residual(result: Any, i: int, j: int, r: int,
+                   points: int = 401) -> tuple[FloatArray, FloatArray, float]:
+    """The worst polynomial's residual from its reference line over [−R, R] (plot units).
+
+    For spec sensor ``i`` of a sweep result at profile ``j`` and rate index
+    ``r``: (ω, r(ω), b). The line is the polynomial's own least-squares or
+    endpoint line, or for minimax the line of least peak deviation on the grid
+    (:func:`gyrovib.core.envelope.residual` with the line recomputed here, in
+    the result's unit).
+    """
+    from gyrovib.core.envelope import residual
+
+    x = np.asarray(result.worst_coefficients[i, j, r], dtype=float)
+    big_r = float(result.nl_range[i])
+    w = np.linspace(-big_r, big_r, points)
+    p = residual(x, np.zeros(2), w)
+    fit = result.nl_fit[i]
+    if fit == "endpoint":
+        slope = (p[-1] - p[0]) / (2 * big_r)
+        line = 0.5 * (p[-1] + p[0]) + slope * w
+    elif fit == "minimax":
+        line = _minimax_line(w, p)
+    else:
+        slope, intercept = np.polyfit(w, p, 1)
+        line = intercept + slope * w
+    return w, p - line, float(result.nl_limit[i])
+
+
+def _minimax_line(w: FloatArray, p: FloatArray) -> FloatArray:
+    """The line of least max deviation from p on the grid w (a 3-variable LP)."""
+    from scipy.optimize import linprog
+
+    n = w.size
+    a = np.concatenate([np.column_stack([-np.ones(n), -w, -np.ones(n)]),
+                        np.column_stack([np.ones(n), w, -np.ones(n)])])
+    b = np.concatenate([-p, p])
+    res = linprog([0.0, 0.0, 1.0], A_ub=a, b_ub=b, bounds=[(None, None)] * 3, method="highs")
+    out: FloatArray = res.x[0] + res.x[1] * w
+    return out
