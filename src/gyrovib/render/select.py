@@ -7,6 +7,7 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from gyrovib.api import SelectionResult
+from gyrovib.api.reasons import failures, reason
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.bounds import coefficient_unit, profiles_json, shares
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
@@ -21,55 +22,8 @@ _CRITERION = {
 
 # ------------------------------------------------------------------ reasons
 
-
-def failures(result: SelectionResult, i: int, j: int) -> list[str]:
-    """Why sensor ``i`` fails under profile ``j`` (empty when it passes there).
-
-    Only the criteria that count (``--criterion``) are listed.
-    """
-    reasons: list[str] = []
-    spec = result.source(i) == "specs"
-    if result.criterion in ("bounds", "both") and spec:
-        reasons.extend(_spec_failures(result, i, j))
-    elif result.criterion in ("bounds", "both"):
-        for b, name in enumerate(BOUNDED):
-            if not result.check_pass[i, j, b]:
-                unit = coefficient_unit(name, result.unit)
-                tail = "" if unit == "1" else f" {unit}"
-                reasons.append(
-                    f"|{name}| = {fmt(result.values[i, j, b])} exceeds its bound "
-                    f"{fmt(result.bounds[i, j, b])}{tail}"
-                )
-    if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
-        reasons.append(f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} exceeds the budget "
-                       f"{fmt(result.budget)} {result.unit}")
-    if result.criterion == "worst" and not result.passed[i, j] and result.total is not None:
-        what = "worst |Δ_V| over the datasheet envelope" if spec else "|Δ_V|"
-        reasons.append(f"{what} = {fmt(result.total[i, j])} {result.unit} exceeds the budget "
-                       f"{fmt(result.budget)} {result.unit}")
-    return reasons
-
-
-def _spec_failures(result: SelectionResult, i: int, j: int) -> list[str]:
-    """A datasheet sensor's figures above their spec bounds (MODEL.md section 11)."""
-    out: list[str] = []
-    assert result.nl_pass is not None and result.nl_value is not None
-    assert result.nl_bound is not None and result.vre_pass is not None
-    assert result.vre_value is not None and result.vre_bound is not None
-    if not result.nl_pass[i, j]:
-        out.append(f"datasheet nonlinearity {fmt(result.nl_value[i, j])} %FS exceeds the "
-                   f"allowable {fmt(result.nl_bound[i, j])} %FS")
-    if not result.vre_pass[i, j]:
-        out.append(f"datasheet VRE {fmt(result.vre_value[i, j])} {result.unit}/g² exceeds the "
-                   f"allowable {fmt(result.vre_bound[i, j])} {result.unit}/g²")
-    return out
-
-
-def reason(result: SelectionResult, i: int, j: int) -> str | None:
-    """Why sensor ``i`` fails under profile ``j``, one line; None where it passes."""
-    if result.passed[i, j]:
-        return None
-    return "; ".join(failures(result, i, j)) or None
+__all__ = ["failures", "limit_text", "reason", "to_csv", "to_github", "to_json", "to_junit",
+           "to_markdown", "to_table"]
 
 
 def limit_text(result: SelectionResult, i: int) -> str:
@@ -96,17 +50,27 @@ def _spec_limit_text(result: SelectionResult, i: int, name: str, j: int, ratio: 
     if name == "nonlinearity":
         assert result.nl_value is not None and result.nl_bound is not None
         return (f"nonlinearity: the datasheet's {fmt(result.nl_value[i, j])} %FS is {ratio}× "
-                f"the allowable {fmt(result.nl_bound[i, j])} %FS under {profile}")
+                f"the allowable {fmt(result.nl_bound[i, j])} %FS under {profile}"
+                + _worst_note(result, i))
     if name == "vre":
         assert result.vre_value is not None and result.vre_bound is not None
         return (f"VRE: the datasheet's {fmt(result.vre_value[i, j])} {result.unit}/g² is "
                 f"{ratio}× the allowable {fmt(result.vre_bound[i, j])} {result.unit}/g² "
-                f"under {profile}")
+                f"under {profile}" + _worst_note(result, i))
     assert result.total is not None
     what = ("worst |Δ_V| over the datasheet envelope" if result.source(i) == "specs"
             else "|Δ_V|")
     return (f"{what} = {fmt(result.total[i, j])} {result.unit} is {ratio}× the budget "
             f"under {profile}")
+
+
+def _worst_note(result: SelectionResult, i: int) -> str:
+    """``; worst |Δ_V| … (margin …)``: the datasheet's worst case, by which it is ranked."""
+    if result.total is None or not len(result.profiles):
+        return ""
+    j = int(result.margin[i].argmin())
+    return (f"; worst |Δ_V| over the envelope {fmt(result.total[i, j])} {result.unit} under "
+            f"{result.profiles[j]} (margin {_margin(result.worst_margin[i])})")
 
 
 def _margin(value: float) -> str:
@@ -255,8 +219,10 @@ def _passing(result: SelectionResult) -> list[list[str]]:
 
 
 def _failing(result: SelectionResult) -> list[list[str]]:
+    """Failing sensors and what limits each; with datasheet sensors, ranked by worst margin."""
+    order = result.ranking if "specs" in result.sources else range(len(result.sensors))
     return [[result.sensors[i], limit_text(result, i)]
-            for i in range(len(result.sensors)) if not result.sensor_pass[i]]
+            for i in order if not result.sensor_pass[i]]
 
 
 def to_markdown(result: SelectionResult) -> str:
