@@ -180,3 +180,15 @@ def test_import_gyrovib_is_light():
     loaded = set(json.loads(done.stdout))
     assert "gyrovib" in loaded  # the probe works
     assert not loaded & {"numpy", "pandas", "pydantic", "pydantic_core", "rich", "yaml"}
+
+
+def test_bounds_range_frame_equals_json():
+    args = ["--budget", "10deg/h", "--unit", "deg/h", "--range", "360000", "--nl-fit",
+            "minimax"]
+    document = cli_json("bounds", *args)
+    frame = gyrovib.bounds(budget="10deg/h", unit="deg/h", range_=360000,
+                           nl_fit="minimax").to_frame()
+    for k, row in enumerate(document["profiles"]):
+        assert "spec_bounds" in row
+        check_row(frame.iloc[k], flatten("", row))
+    assert set(frame.columns) == set(flatten("", document["profiles"][0]))
