@@ -347,3 +347,25 @@ def test_sweep_gives_the_worst_case_at_each_rate(tmp_path: Path) -> None:
     _, r, b = specs.worst_residual(swept, 0, 0, 0)
     # the worst polynomial is feasible: its residual stays within ±b (and touches it)
     assert np.max(np.abs(r)) <= b * (1 + 1e-6) and np.max(np.abs(r)) > 0.99 * b
+
+
+def test_a_tight_asymmetry_cut_with_the_minimax_line_is_solved(tmp_path: Path) -> None:
+    # Found by 1,000 random datasheets: at HiGHS's tight tolerances this block stalled
+    # (status 15); the solver's defaults solve it and the refinement keeps it feasible.
+    from gyrovib.catalog.loader import bundled_paths
+
+    sensors = tmp_path / "tight.yaml"
+    sensors.write_text("gyrovib: 1\nsensors:\n  - id: tight\n    specs: {range: 500, "
+                       "nonlinearity: {value: 0.618, unit: '%FS', fit: minimax}, "
+                       "asymmetry: {value: 100, unit: ppm}}\n")
+    profiles = next(p for p in bundled_paths() if "profiles" in Path(p).name)
+    chosen = ["uav-blade-pass-tone"]
+    result = gyrovib.analyze([sensors, profiles], profiles=chosen)
+    prepared = prepare(load([sensors, profiles]), profiles=chosen)
+    m = prepared.groups[0].multipliers["exact"]
+    t = term_functionals(m.asymmetry, m.m2, 0.0, m.m4, 0.0, m.omega)
+    # b = 0.618 % of 500 = 3.09 deg/s; |A1| ≤ 100 ppm = 1e-4
+    expected = worst_case(t, np.zeros(1), [500.0], [3.09], "minimax", asymmetry=[1e-4])
+    assert expected.gap.max() <= 1e-6
+    np.testing.assert_allclose(result.error.total, expected.total, rtol=1e-12)
+    assert abs(result.worst_coefficients[0, 0, 0]) <= 1e-4 * (1 + 1e-9)
