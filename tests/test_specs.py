@@ -369,3 +369,34 @@ def test_a_tight_asymmetry_cut_with_the_minimax_line_is_solved(tmp_path: Path) -
     assert expected.gap.max() <= 1e-6
     np.testing.assert_allclose(result.error.total, expected.total, rtol=1e-12)
     assert abs(result.worst_coefficients[0, 0, 0]) <= 1e-4 * (1 + 1e-9)
+
+
+def test_vre_spec_adds_v_times_the_mean_square_acceleration(tmp_path: Path) -> None:
+    # The linear-vibration multipliers (⟨a_j a_k⟩ in g², MODEL.md section 8) are built
+    # here by hand: Σ_j⟨a_j²⟩ = 1 + 4 + 9 = 14 g².
+    from dataclasses import replace
+
+    path = write(tmp_path, SPEC.rstrip("\n") + "\n      vre: 0.0004\n")
+    prepared = prepare(load([path]))
+    m = prepared.groups[0].multipliers["exact"]
+    moments = np.broadcast_to(np.array([1.0, 4.0, 9.0, 0.5, 0.0, 0.0]), (*m.omega.shape, 6))
+    with_a = replace(m, acceleration=np.array(moments))
+    figs = specs.figures(prepared.sensors)
+    plain, shaken = specs.worst(figs, m), specs.worst(figs, with_a)
+    # worst |Δ_V| = max cᵀx + |v|·S: the envelope part unchanged, plus 0.0004·14 deg/s
+    np.testing.assert_allclose(shaken.nonlinearity, plain.nonlinearity, rtol=1e-12)
+    np.testing.assert_allclose(shaken.error.total, plain.error.total + 0.0004 * 14, rtol=1e-12)
+    np.testing.assert_allclose(shaken.error.extra_terms[..., 0], 0.0004 * 14, rtol=1e-12)
+
+
+def test_vre_in_a_metres_per_second_squared_file_is_converted_to_g(tmp_path: Path) -> None:
+    g = 9.80665  # m/s² per g: 1 deg/s per (m/s²)² = g² deg/s per g²
+    path = tmp_path / "ms2.yaml"
+    path.write_text("gyrovib: 1\nunits: {rate: deg/h, acceleration: m/s^2}\nsensors:\n"
+                    "  - id: s\n    specs:\n      range: 360000\n      nonlinearity: "
+                    f"{{value: 0.5, unit: '%FS'}}\n      vre: {1.44 / g**2!r}\n" + PROFILES)
+    figs = specs.figures(prepare(load([path])).sensors)
+    # 1.44 deg/h per g² = 4e-4 deg/s per g²; R = 360000 deg/h = 100 deg/s; b = 0.5 deg/s
+    np.testing.assert_allclose(figs.vre, [4e-4], rtol=1e-12)
+    np.testing.assert_allclose(figs.range, [100.0], rtol=1e-12)
+    np.testing.assert_allclose(figs.limit, [0.5], rtol=1e-12)
