@@ -400,3 +400,19 @@ def test_vre_in_a_metres_per_second_squared_file_is_converted_to_g(tmp_path: Pat
     np.testing.assert_allclose(figs.vre, [4e-4], rtol=1e-12)
     np.testing.assert_allclose(figs.range, [100.0], rtol=1e-12)
     np.testing.assert_allclose(figs.limit, [0.5], rtol=1e-12)
+
+
+def test_sweep_plot_draws_the_worst_polynomials_in_a_second_png(tmp_path: Path) -> None:
+    pytest.importorskip("matplotlib")
+    path = write(tmp_path, SPEC + "  - id: plain\n    coefficients: {k2: 1.0e-4}\n")
+    out = tmp_path / "sweep.png"
+    done = run("sweep", str(path), "--rate-range=-10:10:5", "--plot", str(out),
+               "--format", "json")
+    assert done.exit_code == 0, done.output
+    envelope = tmp_path / "sweep-envelope.png"
+    assert out.read_bytes()[:8] == envelope.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # without a datasheet sensor there is no second plot
+    plain = write(tmp_path, "  - id: plain\n    coefficients: {k2: 1.0e-4}\n", name="p.yaml")
+    other = tmp_path / "plain.png"
+    assert run("sweep", str(plain), "--rate-range=-10:10:5", "--plot", str(other)).exit_code == 0
+    assert other.exists() and not (tmp_path / "plain-envelope.png").exists()

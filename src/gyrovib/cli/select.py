@@ -51,7 +51,9 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its own frequency response; its |coefficients|
-    are checked against them and its RMS error against the budget (eq. 17).
+    are checked against them and its RMS error against the budget (eq. 17). A
+    datasheet (spec-form) sensor is checked by its nonlinearity and VRE against
+    the allowable figures for its range, and its margin is that of its worst case.
     Exit status 1 when the --require condition is not met.
     """
     from gyrovib import api
