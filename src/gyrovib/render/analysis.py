@@ -194,6 +194,8 @@ def to_markdown(result: AnalysisResult) -> str:
                      *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j])])
     text = (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
             + markdown_table(head, rows))
+    if "specs" in result.sources:
+        text += "\n" + _SPECS_NOTE + "\n"
     if extra is not None:
         text += "\n" + _numeric_note(result) + "\n"
     if notes:
@@ -239,11 +241,19 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
               "sum; Δ_VM = Δ(1)·Ω + Δ(2)·Ω² + Δ(3)·Ω³; Δ_V = Δ_VA + Δ_VM (eq. 13); "
               "Δ_V(RMS) of eq. (16).")
     out.append(Text(legend, style="dim"))
+    if "specs" in result.sources:
+        out.append(Text(_SPECS_NOTE, style="dim"))
     if extra is not None:
         out.append(Text(_numeric_note(result), style="dim"))
     for k, note in enumerate(notes, 1):
         out.append(Text(f"⚠{k} {note}", style="yellow"))
     return rich_text(out, width=width, color=color, ascii=ascii)
+
+
+_SPECS_NOTE = ("Datasheet (spec-form) sensors: Δ_V is the worst |Δ_V| over every conversion "
+               "function their datasheet permits, the terms those of the polynomial attaining "
+               "it (m31 = m32 = 0), Δ_V(RMS) the RMS of the per-term maxima "
+               "(docs/datasheets.md).")
 
 
 def _numeric_note(result: AnalysisResult) -> str:
