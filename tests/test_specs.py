@@ -126,7 +126,7 @@ def _feasible(rng: np.random.Generator, count: int) -> np.ndarray:
     """Random (A1, k2…k5) scaled into the least-squares max envelope of b = NL% of R.
 
     Feasibility by brute force: the residual from the continuous least-squares
-    line (intercept ½A1·R/4 + k2·R²/3 + k4·R⁴/5, slope 3k3·R²/5 + 3k5·R⁴/7: the
+    line (intercept A1·R/4 + k2·R²/3 + k4·R⁴/5, slope 3k3·R²/5 + 3k5·R⁴/7: the
     means and slopes of ½|ω|, ω²…ω⁵ over uniform ω ∈ [−R, R]) sampled at 200,001
     points, scaled to max |r| = 0.999·b (the sampling misses at most ~1e-9 of
     the peak).
