@@ -49,7 +49,8 @@ def test_json_keys_and_values(run, catalog):
     row = doc["results"][0]
     assert set(row) == {"sensor", "profile", "rate", "additive_terms",
                         "multiplicative_coefficients", "additive", "multiplicative", "total",
-                        "rms", "warnings"}
+                        "rms", "source", "warnings"}  # source: INTERFACE.md, second round
+    assert row["source"] == "coefficients"
     # g2 = Δ0(6) of a linear vibration (MODEL.md section 8): 0 here, none in this catalogue
     assert list(row["additive_terms"]) == ["A1", "k2", "k4", "m31", "m32", "g2"]
     assert row["additive_terms"]["g2"] == 0.0

@@ -92,8 +92,12 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert sensors["bad"]["pass"] is False
     assert sensors["awful"]["pass"] is False
     bad_tone, bad_noise = sensors["bad"]["profiles"]
-    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks"}
+    # total (|Δ_V|) and reason: INTERFACE.md, second round
+    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks", "total", "reason"}
+    assert sensors["bad"]["source"] == "coefficients"
     assert bad_tone["pass"] is False and bad_noise["pass"] is True
+    assert bad_tone["reason"].startswith("|k2| = 0.003 exceeds its bound")
+    assert bad_noise["reason"] is None
     k2 = bad_tone["checks"]["k2"]
     assert k2["value"] == 3.0e-3 and k2["pass"] is False
     # eq. (23): |k2| ≤ α2·Δ*/M2, α2 = c_A/‖w‖ = 0.83205/√3.5 = 0.4447496;

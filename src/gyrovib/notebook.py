@@ -142,7 +142,9 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
 def bounds(catalog: CatalogLike = None, *, budget: float | str,
            profiles: str | Sequence[str] = (), method: str = "exact",
            rate: float | str | Sequence[float | str] | None = None, unit: str = "deg/s",
-           allocation: Sequence[float] | None = None) -> BoundsResult:
+           allocation: Sequence[float] | None = None, range_: float | str | None = None,
+           nl_fit: str = "least-squares", nl_measure: str = "max", nl_of: str = "range",
+           spec_weights: tuple[float, float] = (1.0, 1.0)) -> BoundsResult:
     """Allowable coefficients per profile for a budget, eq. (23) and (25).
 
     Parameters
@@ -161,6 +163,12 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
         Output unit.
     allocation : sequence of float, optional
         r alone, or r, w1..w5, v1..v3 (eq. 18, 21, 24).
+    range_ : number or str, optional
+        R of a datasheet part (in ``unit``, or with a unit): adds ``spec_bounds``,
+        the allowable nonlinearity in %FS (read as ``nl_fit``, ``nl_measure``,
+        of R or of the span 2R as ``nl_of``) and VRE (MODEL.md section 11).
+    spec_weights : (float, float)
+        Split of Δ* between the nonlinearity envelope and the VRE term.
 
     Returns
     -------
@@ -171,14 +179,17 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
 
     return api.bounds(_catalog(catalog), profiles=_ids(profiles), method=method,
                       rate=_rates(rate, unit), budget=_rate(budget, unit), unit=unit,
-                      allocation=allocation)
+                      allocation=allocation,
+                      range_=None if range_ is None else _rate(range_, unit), nl_fit=nl_fit,
+                      nl_measure=nl_measure, nl_of=nl_of, spec_weights=spec_weights)
 
 
 def select(catalog: CatalogLike = None, *, budget: float | str,
            sensors: str | Sequence[str] = (), profiles: str | Sequence[str] = (),
            method: str = "exact", rate: float | str | Sequence[float | str] | None = None,
            unit: str = "deg/s", criterion: str = "bounds", require: str = "any",
-           allocation: Sequence[float] | None = None) -> SelectionResult:
+           allocation: Sequence[float] | None = None,
+           spec_weights: tuple[float, float] = (1.0, 1.0)) -> SelectionResult:
     """Which sensors meet the budget: bound checks and eq. (17), ranked by margin.
 
     Parameters
@@ -195,12 +206,15 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
         Override Ω_K as in :func:`analyze`.
     unit : str
         Output unit.
-    criterion : {'bounds', 'rms', 'both'}
-        What a pass means.
+    criterion : {'bounds', 'rms', 'worst', 'both'}
+        What a pass means (``worst``: |Δ_V| ≤ Δ*, for a datasheet sensor over its
+        envelope).
     require : {'any', 'all'}
         Decides ``requirement_met``.
     allocation : sequence of float, optional
         As in :func:`bounds`.
+    spec_weights : (float, float)
+        As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
 
     Returns
     -------
@@ -218,7 +232,8 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
 
     return api.select(_catalog(catalog), sensors=_ids(sensors), profiles=_ids(profiles),
                       method=method, rate=_rates(rate, unit), budget=_rate(budget, unit),
-                      unit=unit, criterion=criterion, require=require, allocation=allocation)
+                      unit=unit, criterion=criterion, require=require, allocation=allocation,
+                      spec_weights=spec_weights)
 
 
 def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-200, 200),

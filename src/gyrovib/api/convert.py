@@ -20,6 +20,7 @@ from gyrovib.errors import OptionError
 
 _RATE_POWERS = np.array([units.COEFFICIENT_RATE_POWER[c] for c in COEFFICIENTS], dtype=float)
 _GET_COEFFICIENTS = operator.attrgetter(*COEFFICIENTS)
+_SPEC_ROW = tuple(1.0 if c == "k1" else 0.0 for c in COEFFICIENTS)
 
 
 def unit_scales(entries: Sequence[SensorEntry] | Sequence[ProfileEntry]) -> FloatArray:
@@ -36,9 +37,15 @@ def unit_scales(entries: Sequence[SensorEntry] | Sequence[ProfileEntry]) -> Floa
 
 
 def coefficient_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
-    """Eq. (2) coefficients of every sensor in deg/s powers, shape (sensors, 11)."""
+    """Eq. (2) coefficients of every sensor in deg/s powers, shape (sensors, 11).
+
+    A spec-form sensor (``specs:``) has no single conversion function: its row
+    is k1 = 1 and zeros, a placeholder the commands replace by the worst case
+    over its envelope (:mod:`gyrovib.api.specs`).
+    """
     raw = np.array(
-        [_GET_COEFFICIENTS(e.sensor.rate_coefficients) for e in entries], dtype=float
+        [_SPEC_ROW if e.sensor.specs is not None else _GET_COEFFICIENTS(e.sensor.rate_coefficients)
+         for e in entries], dtype=float
     ).reshape(len(entries), len(COEFFICIENTS))
     scales = unit_scales(entries)
     if np.all(scales == 1.0):
@@ -48,9 +55,11 @@ def coefficient_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
 
 
 def sensor_ranges(entries: Sequence[SensorEntry]) -> FloatArray:
-    """Full-scale range of each sensor in deg/s (inf where not given)."""
+    """Full-scale range of each sensor in deg/s (inf where not given; a spec's own range)."""
     ranges = np.array(
-        [np.inf if e.sensor.range is None else e.sensor.range for e in entries], dtype=float
+        [e.sensor.range if e.sensor.range is not None
+         else e.sensor.specs.range if e.sensor.specs is not None else np.inf
+         for e in entries], dtype=float
     )
     out: FloatArray = ranges * unit_scales(entries)
     return out

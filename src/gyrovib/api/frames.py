@@ -91,6 +91,14 @@ def analysis_frame(result: AnalysisResult) -> Any:
         columns[name] = np.asarray(getattr(err, name))[s_idx, p_idx]
     if result.stderr is not None:
         columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
+    columns["source"] = [result.source(int(i)) for i in s_idx]
+    if result.worst_coefficients is not None and result.rms_bound is not None:
+        from gyrovib.api.specs import WORST_COEFFICIENTS
+
+        worst = np.asarray(result.worst_coefficients)[s_idx, p_idx]
+        for k, name in enumerate(WORST_COEFFICIENTS):
+            columns[f"envelope.worst_coefficients.{name}"] = worst[:, k]
+        columns["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
     columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
                            for i, j in zip(s_idx, p_idx, strict=True)]
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
@@ -122,6 +130,18 @@ def bounds_frame(result: BoundsResult) -> Any:
         **_rate_columns(np.asarray(result.rates).reshape(-1, 3), rows),
         **_bounds_columns(result.bounds, rows),
     }
+    sb = result.spec_bounds
+    if sb is not None:  # bounds --range: the allowable datasheet figures
+        n = len(result.profiles)
+        columns.update({
+            "spec_bounds.nonlinearity.value": np.asarray(sb.nonlinearity)[rows],
+            "spec_bounds.nonlinearity.unit": ["%FS"] * n,
+            "spec_bounds.nonlinearity.fit": [sb.fit] * n,
+            "spec_bounds.nonlinearity.measure": [sb.measure] * n,
+            "spec_bounds.nonlinearity.of": [sb.of] * n,
+            "spec_bounds.nonlinearity.range": [sb.range] * n,
+            "spec_bounds.vre": np.asarray(sb.vre)[rows],
+        })
     return _frame(columns, {"method": result.method, "unit": result.unit,
                             "budget": result.budget})
 
@@ -159,6 +179,18 @@ def selection_frame(result: SelectionResult) -> Any:
         columns["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
         columns["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
         columns["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
+    columns["source"] = [result.source(int(i)) for i in s_idx]
+    if result.total is not None:
+        columns["total"] = np.asarray(result.total).reshape(-1)
+    columns["reason"] = [_reason(result, int(i), int(j)) for i, j in zip(s_idx, p_idx,
+                                                                          strict=True)]
+    if result.nl_value is not None:  # datasheet (spec-form) sensors: NaN on coefficient rows
+        for key, array in (("nonlinearity.value", result.nl_value),
+                           ("nonlinearity.bound", result.nl_bound),
+                           ("nonlinearity.pass", result.nl_pass)):
+            columns[f"checks.{key}"] = np.asarray(array).reshape(-1)
+        columns["checks.nonlinearity.unit"] = ["%FS" if result.source(int(i)) == "specs"
+                                               else None for i in s_idx]
     columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
     for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
         columns[f"profile_{key}"] = column
@@ -166,6 +198,12 @@ def selection_frame(result: SelectionResult) -> Any:
                             "budget": result.budget, "criterion": result.criterion,
                             "require": result.require,
                             "requirement_met": result.requirement_met})
+
+
+def _reason(result: SelectionResult, i: int, j: int) -> str | None:
+    from gyrovib.api.reasons import reason
+
+    return reason(result, i, j)
 
 
 def sweep_frame(result: SweepResult) -> Any:

@@ -14,7 +14,7 @@ import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,6 +22,9 @@ from numpy.typing import NDArray
 from gyrovib.core.analysis import VibrationError
 from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 from gyrovib.core.transmissibility import FloatArray
+
+if TYPE_CHECKING:
+    from gyrovib.api.specs import DatasheetBounds
 
 
 def _freeze(value: Any) -> Any:
@@ -91,6 +94,17 @@ class AnalysisResult(_Frozen):
     seed: int | None = None
     #: Per profile: whether it has a linear vibration (Δ0(6), ``error.extra_terms[..., 0]``).
     linear: tuple[bool, ...] = ()
+    #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
+    sources: tuple[str, ...] = ()
+    #: Spec-form sensors (MODEL.md section 11): the worst polynomial (A1, k2…k5) in
+    #: :attr:`unit` powers, (sensors, profiles, 5), and the per-term RMS bound
+    #: (sensors, profiles); NaN on coefficient-form rows; None without spec sensors.
+    worst_coefficients: FloatArray | None = None
+    rms_bound: FloatArray | None = None
+
+    def source(self, i: int) -> str:
+        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
+        return self.sources[i] if self.sources else "coefficients"
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))
@@ -118,6 +132,21 @@ class SweepResult(_Frozen):
     exact: VibrationError
     paper: VibrationError
     paper_refused: Mapping[str, str] = field(default_factory=dict)
+    #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
+    sources: tuple[str, ...] = ()
+    #: Spec-form sensors: the exact method's worst polynomial (A1, k2…k5) at each
+    #: rate, (sensors, profiles, rates, 5) in :attr:`unit` powers (NaN on
+    #: coefficient rows), with the datasheet envelope per sensor (``nl_limit``,
+    #: the residual limit b in :attr:`unit`, NaN on coefficient rows; ``nl_fit``;
+    #: ``nl_range`` R in :attr:`unit`); None without spec sensors.
+    worst_coefficients: FloatArray | None = None
+    nl_limit: FloatArray | None = None
+    nl_range: FloatArray | None = None
+    nl_fit: tuple[str, ...] = ()
+
+    def source(self, i: int) -> str:
+        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
+        return self.sources[i] if self.sources else "coefficients"
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles), len(self.rates))
@@ -140,6 +169,8 @@ class BoundsResult(_Frozen):
     rates: FloatArray
     bounds: CoefficientBounds
     allocation: AllocationConstants
+    #: ``--range``: the allowable datasheet figures (:class:`gyrovib.api.specs.DatasheetBounds`).
+    spec_bounds: DatasheetBounds | None = None
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.profiles),)
@@ -192,13 +223,28 @@ class SelectionResult(_Frozen):
     limits: Mapping[int, Limit]
     requirement_met: bool
     allocation: AllocationConstants
-    #: The ``vre`` check (MODEL.md section 8), (sensor, profile), in :attr:`unit` per g²:
-    #: each sensor's effective VRE |Δ0(6)|/Σ⟨a_j²⟩ (0 where the profile has no linear
-    #: vibration), its bound (+inf there) and whether it is within it (part of
-    #: ``bounds_pass``).
+    #: The ``vre`` check, (sensor, profile), in :attr:`unit` per g². A coefficient
+    #: sensor (MODEL.md section 8): its effective VRE |Δ0(6)|/Σ⟨a_j²⟩ (0 where the
+    #: profile has no linear vibration), its bound (+inf there) and whether it is
+    #: within it (part of ``bounds_pass``). A spec-form sensor (section 11): its
+    #: datasheet VRE (NaN: no VRE spec, taken as 0) against the allowable VRE.
     vre_value: FloatArray | None = None
     vre_bound: FloatArray | None = None
     vre_pass: NDArray[np.bool_] | None = None
+    #: |Δ_V| per sensor × profile (for a spec-form sensor the worst case), in :attr:`unit`.
+    total: FloatArray | None = None
+    #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
+    sources: tuple[str, ...] = ()
+    #: Spec-form sensors against their spec bounds (MODEL.md section 11), (sensors,
+    #: profiles), NaN (pass True) on coefficient rows: the nonlinearity and its
+    #: allowable value in %FS (the sensor's own range or span).
+    nl_value: FloatArray | None = None
+    nl_bound: FloatArray | None = None
+    nl_pass: NDArray[np.bool_] | None = None
+
+    def source(self, i: int) -> str:
+        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
+        return self.sources[i] if self.sources else "coefficients"
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))

@@ -19,6 +19,12 @@ from gyrovib.cli.options import (
     rate_option,
     unit_option,
 )
+from gyrovib.cli.spec_options import (
+    parse_range,
+    parse_spec_weights,
+    range_options,
+    spec_weights_option,
+)
 
 
 @click.command()
@@ -30,17 +36,22 @@ from gyrovib.cli.options import (
 @rate_option
 @unit_option
 @allocation_option
+@range_options
+@spec_weights_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
 def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, method: str,
-           rate: str | None, unit: str, allocation: str | None, fmt: str,
+           rate: str | None, unit: str, allocation: str | None, range_: str | None,
+           nl_fit: str, nl_measure: str, nl_of: str, spec_weights: str | None, fmt: str,
            output: str | None) -> None:
     """The inverse problem: the largest coefficients that keep the error within budget.
 
     For each profile, bounds on |A1|, |k2|…|k5|, |m31|, |m32| from the paper's
     split of the budget (eq. 18-25). A sensor within every bound meets the
     budget (eq. 17). The sensor's own frequency response is taken as 1 here;
-    `gyrovib select` includes it.
+    `gyrovib select` includes it. With --range R, also the allowable datasheet
+    figures: the nonlinearity in %FS of R (as --nl-fit / --nl-measure read it) and
+    the VRE.
     """
     from gyrovib import api
     from gyrovib.cli.output import write_output
@@ -49,7 +60,9 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
     unit = parse_unit(unit)
     result = api.bounds(load_catalog(files), profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
-                        unit=unit, allocation=parse_allocation(allocation))
+                        unit=unit, allocation=parse_allocation(allocation),
+                        range_=parse_range(range_, unit), nl_fit=nl_fit, nl_measure=nl_measure,
+                        nl_of=nl_of, spec_weights=parse_spec_weights(spec_weights))
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))

@@ -20,6 +20,7 @@ from gyrovib.cli.options import (
     selection_options,
     unit_option,
 )
+from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 
 
 @click.command()
@@ -30,10 +31,13 @@ from gyrovib.cli.options import (
 @rate_option
 @unit_option
 @allocation_option
-@click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
-              show_default=True,
+@click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
+              default="bounds", show_default=True,
               help="What a pass means: every coefficient within its bound (the paper's "
-                   "synthesis), Δ_V(RMS) ≤ budget (eq. 17), or both.")
+                   "synthesis; a datasheet sensor: its NL and VRE within their spec "
+                   "bounds), Δ_V(RMS) ≤ budget (eq. 17), |Δ_V| ≤ budget (worst: for a "
+                   "datasheet sensor over its envelope), or bounds and rms.")
+@spec_weights_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
@@ -42,12 +46,14 @@ from gyrovib.cli.options import (
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            profiles: tuple[str, ...], budget: str, method: str, rate: str | None, unit: str,
-           allocation: str | None, criterion: str, require: str, fmt: str,
-           output: str | None) -> None:
+           allocation: str | None, criterion: str, spec_weights: str | None, require: str,
+           fmt: str, output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its own frequency response; its |coefficients|
-    are checked against them and its RMS error against the budget (eq. 17).
+    are checked against them and its RMS error against the budget (eq. 17). A
+    datasheet (spec-form) sensor is checked by its nonlinearity and VRE against
+    the allowable figures for its range, and its margin is that of its worst case.
     Exit status 1 when the --require condition is not met.
     """
     from gyrovib import api
@@ -60,7 +66,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     result = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, criterion=criterion, require=require,
-                        allocation=parse_allocation(allocation))
+                        allocation=parse_allocation(allocation),
+                        spec_weights=parse_spec_weights(spec_weights))
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))

@@ -40,6 +40,12 @@ def parse_rate_range(text: str, unit: str) -> tuple[float, float, int]:
     return start, stop, count
 
 
+def envelope_path(plot: str) -> str:
+    """``out.png`` → ``out-envelope.png``: where the envelope plot goes."""
+    stem, dot, ext = plot.rpartition(".")
+    return f"{stem}-envelope.{ext}" if dot and stem else f"{plot}-envelope.png"
+
+
 @click.command()
 @files_argument
 @selection_options
@@ -50,7 +56,8 @@ def parse_rate_range(text: str, unit: str) -> tuple[float, float, int]:
               help="Δ*_V, drawn as a band on the plot (number in --unit, or e.g. 36deg/h).")
 @click.option("--plot", "plot", metavar="FILE.png",
               help="Also draw Δ_V and Δ_V(RMS) against Ω_K3 into this PNG (needs "
-                   "matplotlib: pip install 'gyrovib[plot]').")
+                   "matplotlib: pip install 'gyrovib[plot]'); with datasheet sensors, "
+                   "their worst polynomials against the NL envelope into FILE-envelope.png.")
 @click.option("--log", "log_scale", is_flag=True,
               help="Plot on logarithmic (Δ_V(RMS)) and symmetric-log (Δ_V) axes.")
 @unit_option
@@ -81,9 +88,12 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
     if plot is not None:
         if plot == "-":
             raise OptionError("--plot writes a PNG file: give a file name, not '-'")
-        from gyrovib.render.plot import sweep_png
+        from gyrovib.render.plot import envelope_png, sweep_png
 
         write_binary(sweep_png(result, budget_value, log=log_scale), plot)
+        envelope = envelope_png(result)
+        if envelope is not None:  # datasheet sensors: their worst polynomials, a second PNG
+            write_binary(envelope, envelope_path(plot))
     if fmt == "table":
         write_output(render.to_table(result, budget_value, width=page_width(output),
                                      color=use_color(output),

@@ -232,6 +232,11 @@ def _solve_grids(fit: np.ndarray, a: np.ndarray, d: np.ndarray,
     cost = np.concatenate([np.ones(2 * m), a[mu], a[mu]])
     res = linprog(cost, A_eq=a_eq, b_eq=b_eq, bounds=(0, None), method="highs",
                   options=_HIGHS)
+    if res.status != 0:
+        # HiGHS can stall at the tight tolerances on a badly scaled block (a tight
+        # asymmetry cut with the minimax line); its defaults solve it, and the
+        # refinement checks feasibility on the continuous range either way.
+        res = linprog(cost, A_eq=a_eq, b_eq=b_eq, bounds=(0, None), method="highs")
     if res.status != 0:  # pragma: no cover - the envelope is compact, its dual feasible
         raise ArithmeticError(f"envelope LP failed: {res.message}")
     x = np.asarray(res.eqlin.marginals, dtype=float).reshape(k, 7)

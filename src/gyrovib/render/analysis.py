@@ -63,11 +63,29 @@ def _to_json_rows(result: AnalysisResult) -> str:
         }
         if extra is not None:
             row["stderr"] = number(extra[i, j])
+        row.update(_source_fields(result, i, j))
         row["warnings"] = list(result.warnings.get((i, j), ()))
         results.append(row)
     document = _head(result)
     document["results"] = results
     return dumps(document)
+
+
+_COEFFICIENT_SOURCE = json.dumps("coefficients")
+
+
+def _source_fields(result: AnalysisResult, i: int, j: int) -> dict[str, Any]:
+    """``source``, and for a spec-form sensor its ``envelope`` (MODEL.md section 11)."""
+    source = result.source(i)
+    out: dict[str, Any] = {"source": source}
+    if source == "specs" and result.worst_coefficients is not None:
+        from gyrovib.api.specs import WORST_COEFFICIENTS
+
+        assert result.rms_bound is not None
+        x = result.worst_coefficients[i, j].tolist()
+        out["envelope"] = {"worst_coefficients": dict(zip(WORST_COEFFICIENTS, x, strict=True)),
+                           "rms_bound": float(result.rms_bound[i, j])}
+    return out
 
 
 def _head(result: AnalysisResult) -> dict[str, Any]:
@@ -94,6 +112,7 @@ def _row_template(with_stderr: bool) -> str:
               ("additive", "%s"), ("multiplicative", "%s"), ("total", "%s"), ("rms", "%s")]
     if with_stderr:
         fields.append(("stderr", "%s"))
+    fields.append(("source", "%s"))
     fields.append(("warnings", "%s"))
     return obj(fields).replace("%s", "\0").replace("%", "%%").replace("\0", "%s")
 
@@ -114,6 +133,8 @@ def to_json(result: AnalysisResult) -> str:
     columns += [e.additive, e.multiplicative, e.total, e.rms]
     if not all(np.isfinite(c).all() for c in columns) or not np.isfinite(result.rates).all():
         return _to_json_rows(result)  # json refuses NaN/infinity; let it say so
+    if "specs" in result.sources:
+        return _to_json_rows(result)  # spec rows carry their envelope: one dict per row
     template = _row_template(extra is not None)
     n_s = len(result.sensors)
     sensors = [json.dumps(s) for s in result.sensors]
@@ -135,7 +156,8 @@ def to_json(result: AnalysisResult) -> str:
                 encoded.append(["null" if v is None else float.__repr__(v)
                                 for v in map(number, extra[start:stop, j].tolist())])
             rows = zip(sensors[start:stop], [profile_text] * count, [rate_text] * count,
-                       *encoded, warnings[start:stop], strict=True)
+                       *encoded, [_COEFFICIENT_SOURCE] * count, warnings[start:stop],
+                       strict=True)
             blocks.append(", ".join([template % row for row in rows]))
     head = json.dumps(_head(result))[:-1]
     return f"{head}, \"results\": [{', '.join(blocks)}]}}\n"
@@ -193,6 +215,8 @@ def to_markdown(result: AnalysisResult) -> str:
                      *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j])])
     text = (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
             + markdown_table(head, rows))
+    if "specs" in result.sources:
+        text += "\n" + _SPECS_NOTE + "\n"
     if extra is not None:
         text += "\n" + _numeric_note(result) + "\n"
     if notes:
@@ -241,11 +265,19 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
         legend += (" Δ0 g² = Δ0(6) = Σ G_jk·⟨a_j·a_k⟩, the rectification of the linear "
                    "vibration by the g²-sensitivity (VRE), MODEL.md section 8.")
     out.append(Text(legend, style="dim"))
+    if "specs" in result.sources:
+        out.append(Text(_SPECS_NOTE, style="dim"))
     if extra is not None:
         out.append(Text(_numeric_note(result), style="dim"))
     for k, note in enumerate(notes, 1):
         out.append(Text(f"⚠{k} {note}", style="yellow"))
     return rich_text(out, width=width, color=color, ascii=ascii)
+
+
+_SPECS_NOTE = ("Datasheet (spec-form) sensors: Δ_V is the worst |Δ_V| over every conversion "
+               "function their datasheet permits, the terms those of the polynomial attaining "
+               "it (m31 = m32 = 0), Δ_V(RMS) the RMS of the per-term maxima "
+               "(docs/datasheets.md).")
 
 
 def _numeric_note(result: AnalysisResult) -> str:

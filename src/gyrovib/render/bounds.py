@@ -55,22 +55,60 @@ def to_json(result: BoundsResult) -> str:
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.bounds)
+    if result.spec_bounds is not None:
+        for j, entry in enumerate(document["profiles"]):
+            entry["spec_bounds"] = spec_bounds_dict(result, j)
     return dumps(document)
 
 
+def spec_bounds_dict(result: BoundsResult, j: int) -> dict[str, Any]:
+    """``spec_bounds`` of profile ``j`` (``bounds --range``): allowable NL (%FS) and VRE."""
+    sb = result.spec_bounds
+    assert sb is not None
+    return {"nonlinearity": {"value": number(sb.nonlinearity[j]), "unit": "%FS", "fit": sb.fit,
+                             "measure": sb.measure, "of": sb.of, "range": sb.range},
+            "vre": number(sb.vre[j])}
+
+
 def to_csv(result: BoundsResult) -> str:
-    """One row per profile; an unconstrained bound is written ``inf``."""
+    """One row per profile; an unconstrained bound is written ``inf``.
+
+    With linear vibration in some profile the rows end with ``vre``; with
+    ``--range`` then with ``spec_nonlinearity`` (%FS) and ``spec_vre``.
+    """
     vre = result.bounds.vre  # a column only when some profile has linear vibration
     head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *PARTS,
             *(["vre"] if vre is not None else [])]
+    sb = result.spec_bounds
+    if sb is not None:
+        head += ["spec_nonlinearity", "spec_vre"]
 
     def rows() -> Iterator[list[Any]]:
         for j, p in enumerate(result.profiles):
             yield [p, *map(float, result.rates[j]),
                    *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + PARTS),
-                   *([float(vre[j])] if vre is not None else [])]
+                   *([float(vre[j])] if vre is not None else []),
+                   *([] if sb is None else [float(sb.nonlinearity[j]), float(sb.vre[j])])]
 
     return csv_text(head, rows())
+
+
+def _spec_rows(result: BoundsResult, j: int) -> list[list[str]]:
+    sb = result.spec_bounds
+    assert sb is not None
+    total = sb.weights[0] * (sb.share_nl[j] > 0) + sb.weights[1] * (sb.share_vre[j] > 0)
+    return [["nonlinearity", fmt(sb.nonlinearity[j]), f"%FS of {'2R' if sb.of == 'span' else 'R'}",
+             f"{fmt(sb.share_nl[j], 3)}" if total else "0",
+             f"{sb.fit}, {sb.measure}; R = {fmt(sb.range)} {result.unit}"],
+            ["VRE", fmt(sb.vre[j]), f"{result.unit}/g²", fmt(sb.share_vre[j], 3),
+             "|G_jj| of the datasheet"]]
+
+
+_SPEC_HEAD = ["datasheet figure", "allowable", "unit", "share of Δ*", "read as"]
+
+_SPEC_LEGEND = ("Datasheet bounds (MODEL.md section 11): a part of range R whose nonlinearity "
+                "(so read) and VRE are within these meets the budget whatever its polynomial "
+                "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). ∞ = the profile does not excite it.")
 
 
 def shares(constants: AllocationConstants, linear: bool = False) -> dict[str, str]:
@@ -158,7 +196,11 @@ def to_markdown(result: BoundsResult) -> str:
              f"budget Δ* = {fmt(result.budget)} {result.unit}\n"]
     for j in range(len(result.profiles)):
         parts.append(f"**{_title(result, j)}**\n\n" + markdown_table(_HEAD, _rows(result, j)))
+        if result.spec_bounds is not None:
+            parts.append(markdown_table(_SPEC_HEAD, _spec_rows(result, j)))
     parts.append(_legend(result) + "\n")
+    if result.spec_bounds is not None:
+        parts.append(_SPEC_LEGEND + "\n")
     return "\n".join(parts)
 
 
@@ -176,5 +218,15 @@ def to_table(result: BoundsResult, width: int | None = None, color: bool = False
         for row in _rows(result, j):
             table.add_row(*row)
         out.append(table)
+        if result.spec_bounds is not None:
+            spec = Table(header_style="bold")
+            for k, label in enumerate(_SPEC_HEAD):
+                spec.add_column(label, justify="right" if k == 1 else "left", no_wrap=True,
+                                style="bold" if k == 1 else None)
+            for row in _spec_rows(result, j):
+                spec.add_row(*row)
+            out.append(spec)
     out.append(Text(_legend(result), style="dim"))
+    if result.spec_bounds is not None:
+        out.append(Text(_SPEC_LEGEND, style="dim"))
     return rich_text(out, width=width, color=color, ascii=ascii)

@@ -87,3 +87,50 @@ def _linthresh(result: SweepResult, j: int) -> float:
     values = np.abs(result.exact.total[:, j])
     positive = values[values > 0]
     return float(positive.min()) if positive.size else 1.0
+
+
+def envelope_png(result: SweepResult, *, dpi: int = 100) -> bytes | None:
+    """The worst-case polynomials of the spec-form sensors against their NL envelope.
+
+    One panel per spec-form sensor × profile: the residual r(ω) of the
+    polynomial attaining the worst |Δ_V| (at the swept rate where it is
+    largest) from its reference line, over the sensor's range [−R, R], with the
+    band ±b the datasheet allows (MODEL.md section 11). None when the sweep has
+    no spec-form sensor.
+    """
+    import numpy as np
+
+    from gyrovib.api.specs import worst_residual
+
+    spec = [i for i in range(len(result.sensors)) if result.source(i) == "specs"]
+    if not spec or result.worst_coefficients is None or not len(result.profiles):
+        return None
+    figure_class = _figure_class()
+    n_rows, n_cols = len(spec), len(result.profiles)
+    fig = figure_class(figsize=(3.6 * n_cols + 0.6, 1.0 + 2.6 * n_rows), dpi=dpi,
+                       layout="constrained")
+    axes = fig.subplots(n_rows, n_cols, squeeze=False)
+    for row, i in enumerate(spec):
+        for j, profile in enumerate(result.profiles):
+            ax = axes[row, j]
+            totals = np.abs(result.exact.total[i, j])
+            if not np.any(np.isfinite(totals)):
+                ax.set_axis_off()
+                continue
+            r = int(np.nanargmax(totals))
+            w, resid, b = worst_residual(result, i, j, r)
+            ax.axhspan(-b, b, color="tab:green", alpha=0.12, lw=0, label="±b (datasheet NL)")
+            ax.plot(w, resid, color="C3", lw=1.4, label="worst polynomial's residual")
+            ax.axhline(0.0, color="0.5", lw=0.6)
+            ax.grid(True, alpha=0.3)
+            ax.set_title(f"{result.sensors[i]} / {profile}\nΩ_K3 = {result.rates[r]:.4g}: "
+                         f"|Δ_V| = {totals[r]:.3g} {result.unit}", fontsize=9, loc="left")
+            ax.set_xlabel(f"ω ({result.unit})")
+            ax.set_ylabel(f"r(ω) ({result.unit})")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8,
+                   frameon=False)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=dpi)
+    return buffer.getvalue()

@@ -7,6 +7,7 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from gyrovib.api import SelectionResult
+from gyrovib.api.reasons import failures, reason
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, vre_unit
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
@@ -14,34 +15,15 @@ from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, 
 _CRITERION = {
     "bounds": "every |coefficient| within its bound (eq. 23, 25)",
     "rms": "Δ_V(RMS) ≤ Δ* (eq. 17)",
+    "worst": "|Δ_V| ≤ Δ* (a datasheet sensor: its worst case over the envelope)",
     "both": "every |coefficient| within its bound and Δ_V(RMS) ≤ Δ*",
 }
 
 
 # ------------------------------------------------------------------ reasons
 
-
-def failures(result: SelectionResult, i: int, j: int) -> list[str]:
-    """Why sensor ``i`` fails under profile ``j`` (empty when it passes there).
-
-    Only the criteria that count (``--criterion``) are listed.
-    """
-    reasons: list[str] = []
-    if result.criterion in ("bounds", "both"):
-        for b, name in enumerate(BOUNDED):
-            if not result.check_pass[i, j, b]:
-                unit = coefficient_unit(name, result.unit)
-                tail = "" if unit == "1" else f" {unit}"
-                reasons.append(
-                    f"|{name}| = {fmt(result.values[i, j, b])} exceeds its bound "
-                    f"{fmt(result.bounds[i, j, b])}{tail}"
-                )
-        if result.vre_pass is not None and not result.vre_pass[i, j]:
-            reasons.append(_vre_text(result, i, j, "exceeds its bound"))
-    if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
-        reasons.append(f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} exceeds the budget "
-                       f"{fmt(result.budget)} {result.unit}")
-    return reasons
+__all__ = ["failures", "limit_text", "reason", "to_csv", "to_github", "to_json", "to_junit",
+           "to_markdown", "to_table"]
 
 
 def _vre(result: SelectionResult, i: int, j: int) -> tuple[float, float]:
@@ -66,13 +48,44 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "rms":
         return (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} is {ratio}× the budget "
                 f"under {profile}")
-    if limit.name == "vre":
+    if limit.name == "vre" and result.source(i) != "specs":
         return f"vre: {_vre_text(result, i, j, f'is {ratio}× its bound')} under {profile}"
+    if limit.name in ("nonlinearity", "vre", "worst"):
+        return _spec_limit_text(result, i, limit.name, j, ratio)
     b = BOUNDED.index(limit.name)
     unit = coefficient_unit(limit.name, result.unit)
     tail = "" if unit == "1" else f" {unit}"
     return (f"{limit.name}: |{limit.name}| = {fmt(result.values[i, j, b])} is {ratio}× its "
             f"bound {fmt(result.bounds[i, j, b])}{tail} under {profile}")
+
+
+def _spec_limit_text(result: SelectionResult, i: int, name: str, j: int, ratio: str) -> str:
+    """The limiting datasheet figure (or worst case) of failing sensor ``i``."""
+    profile = result.profiles[j]
+    if name == "nonlinearity":
+        assert result.nl_value is not None and result.nl_bound is not None
+        return (f"nonlinearity: the datasheet's {fmt(result.nl_value[i, j])} %FS is {ratio}× "
+                f"the allowable {fmt(result.nl_bound[i, j])} %FS under {profile}"
+                + _worst_note(result, i))
+    if name == "vre":
+        assert result.vre_value is not None and result.vre_bound is not None
+        return (f"VRE: the datasheet's {fmt(result.vre_value[i, j])} {result.unit}/g² is "
+                f"{ratio}× the allowable {fmt(result.vre_bound[i, j])} {result.unit}/g² "
+                f"under {profile}" + _worst_note(result, i))
+    assert result.total is not None
+    what = ("worst |Δ_V| over the datasheet envelope" if result.source(i) == "specs"
+            else "|Δ_V|")
+    return (f"{what} = {fmt(result.total[i, j])} {result.unit} is {ratio}× the budget "
+            f"under {profile}")
+
+
+def _worst_note(result: SelectionResult, i: int) -> str:
+    """``; worst |Δ_V| … (margin …)``: the datasheet's worst case, by which it is ranked."""
+    if result.total is None or not len(result.profiles):
+        return ""
+    j = int(result.margin[i].argmin())
+    return (f"; worst |Δ_V| over the envelope {fmt(result.total[i, j])} {result.unit} under "
+            f"{result.profiles[j]} (margin {_margin(result.worst_margin[i])})")
 
 
 def _margin(value: float) -> str:
@@ -94,8 +107,13 @@ def _heading(result: SelectionResult) -> str:
 
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
-    text = ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
-            "(> 1: the RMS error is within the budget; ∞: no error at all). Each sensor's "
+    judged = "Δ*/|Δ_V|" if result.criterion == "worst" else "Δ*/Δ_V(RMS)"
+    spec = (" A datasheet (spec-form) sensor's margin is Δ*/its worst |Δ_V| over the "
+            "envelope; under bounds its nonlinearity and VRE are checked against the "
+            "allowable figures for its own range and NL definition."
+            if "specs" in result.sources else "")
+    text = (f"Cells: ✓ pass / ✗ fail under the criterion, with the margin {judged} "
+            "(> 1: the error is within the budget; ∞: no error at all)." + spec + " Each sensor's "
             "bounds include its own frequency response. Shares of Δ*: "
             + ", ".join(f"{k} {v}" for k, v in share.items())
             + ". The bounds are sufficient under this allocation, not necessary.")
@@ -123,32 +141,66 @@ def to_json(result: SelectionResult) -> str:
     for i, sensor in enumerate(result.sensors):
         cells = []
         for j, profile in enumerate(result.profiles):
-            checks = {
+            spec = result.source(i) == "specs"
+            checks = _spec_checks(result, i, j) if spec else {
                 name: {"value": number(result.values[i, j, b]),
                        "bound": number(result.bounds[i, j, b]),
                        "pass": bool(result.check_pass[i, j, b])}
                 for b, name in enumerate(BOUNDED)
             }
-            if result.vre_pass is not None:
+            if result.vre_pass is not None and not spec:
                 value, bound = _vre(result, i, j)
                 checks["vre"] = {"value": number(value), "bound": number(bound),
                                  "pass": bool(result.vre_pass[i, j])}
-            cells.append({"profile": profile, "pass": bool(result.passed[i, j]),
-                          "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
-                          "checks": checks})
-        sensors.append({"sensor": sensor, "pass": bool(result.sensor_pass[i]),
-                        "profiles": cells})
+            cell = {"profile": profile, "pass": bool(result.passed[i, j]),
+                    "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
+                    "checks": checks}
+            if result.total is not None:
+                cell["total"] = number(result.total[i, j])
+            cell["reason"] = reason(result, i, j)
+            cells.append(cell)
+        sensors.append({"sensor": sensor, "source": result.source(i),
+                        "pass": bool(result.sensor_pass[i]), "profiles": cells})
     document["sensors"] = sensors
     return dumps(document)
 
 
+def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
+    """A datasheet sensor's checks: nonlinearity (%FS) and VRE against their spec bounds."""
+    assert result.nl_value is not None and result.nl_bound is not None
+    assert result.nl_pass is not None and result.vre_value is not None
+    assert result.vre_bound is not None and result.vre_pass is not None
+    vre = float(result.vre_value[i, j])
+    return {
+        "nonlinearity": {"value": number(result.nl_value[i, j]), "unit": "%FS",
+                         "bound": number(result.nl_bound[i, j]),
+                         "pass": bool(result.nl_pass[i, j])},
+        "vre": {"value": None if math.isnan(vre) else vre,
+                "bound": number(result.vre_bound[i, j]), "pass": bool(result.vre_pass[i, j])},
+    }
+
+
+def _get(array: Any, i: int, j: int) -> Any:
+    assert array is not None
+    return array[i, j]
+
+
 def to_csv(result: SelectionResult) -> str:
-    """One row per sensor × profile; an unconstrained bound or margin is ``inf``."""
+    """One row per sensor × profile; an unconstrained bound or margin is ``inf``.
+
+    With datasheet (spec-form) sensors the rows gain ``source``, ``total`` and
+    their checks (``value_nonlinearity``… in %FS, ``value_vre``… per g²; empty on
+    coefficient rows, whose coefficient columns are empty on spec rows).
+    """
     head = ["sensor", "profile", "pass", "sensor_pass", "rms", "margin"]
     for name in BOUNDED:
         head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
-    vre = result.has_linear and result.vre_pass is not None  # only with linear vibration
-    if vre:
+    with_specs = "specs" in result.sources
+    vre = result.has_linear and result.vre_pass is not None  # the VRE check can bind
+    if with_specs:
+        head += ["source", "total", "value_nonlinearity", "bound_nonlinearity",
+                 "pass_nonlinearity"]
+    if with_specs or vre:
         head += ["value_vre", "bound_vre", "pass_vre"]
 
     def rows() -> Iterator[list[Any]]:
@@ -157,12 +209,25 @@ def to_csv(result: SelectionResult) -> str:
                 row: list[Any] = [sensor, profile, bool(result.passed[i, j]),
                                   bool(result.sensor_pass[i]), float(result.rms[i, j]),
                                   float(result.margin[i, j])]
+                spec = result.source(i) == "specs"
                 for b in range(len(BOUNDED)):
-                    row += [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
-                            bool(result.check_pass[i, j, b])]
-                if vre:
-                    assert result.vre_pass is not None
-                    row += [*_vre(result, i, j), bool(result.vre_pass[i, j])]
+                    row += (["", "", ""] if spec else
+                            [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
+                             bool(result.check_pass[i, j, b])])
+                if with_specs:
+                    row += [result.source(i), float(_get(result.total, i, j))]
+                    row += ([float(_get(result.nl_value, i, j)),
+                             float(_get(result.nl_bound, i, j)),
+                             bool(_get(result.nl_pass, i, j))] if spec else [""] * 3)
+                if spec:
+                    value = float(_get(result.vre_value, i, j))
+                    row += ["" if math.isnan(value) else value,
+                            float(_get(result.vre_bound, i, j)),
+                            bool(_get(result.vre_pass, i, j))]
+                elif vre:
+                    row += [*_vre(result, i, j), bool(_get(result.vre_pass, i, j))]
+                elif with_specs:
+                    row += [""] * 3
                 yield row
 
     return csv_text(head, rows())
@@ -186,8 +251,10 @@ def _passing(result: SelectionResult) -> list[list[str]]:
 
 
 def _failing(result: SelectionResult) -> list[list[str]]:
+    """Failing sensors and what limits each; with datasheet sensors, ranked by worst margin."""
+    order = result.ranking if "specs" in result.sources else range(len(result.sensors))
     return [[result.sensors[i], limit_text(result, i)]
-            for i in range(len(result.sensors)) if not result.sensor_pass[i]]
+            for i in order if not result.sensor_pass[i]]
 
 
 def to_markdown(result: SelectionResult) -> str:

@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from gyrovib import units
+from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
 from gyrovib.api.prepare import (
     Prepared,
@@ -83,6 +84,12 @@ def analyze(
     to the sample moments (<x3²>, <x3⁴>, <x3·xi>, <|Ω+x3|>) of the same
     samples, so they are brute-force estimates too, without their own stderr.
     ``progress(done, total)`` is called as samples are evaluated.
+
+    A spec-form sensor (``specs:``) gets the worst case over its datasheet
+    envelope (:mod:`gyrovib.api.specs`): under ``exact`` or ``paper`` that
+    method's multipliers feed the programme; under ``numeric`` the worst
+    polynomial (found with the exact multipliers) is averaged by brute force,
+    and ``rms`` stays the per-term bound.
     """
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
@@ -96,12 +103,15 @@ def analyze(
                  zip(_PARTS, ((5,), (3,), (), (), (), (), (len(EXTRA_TERMS),)), strict=True)}
         stderr = np.zeros((n_s, n_p)) if numeric else None
         tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
+        spec = specs.spec_results(prepared, "exact" if numeric else method)
         for group in prepared.groups:
             idx = group.index
             if stderr is not None:
                 for j, (p, v) in enumerate(zip(prepared.profiles, group.vibrations,
                                                strict=True)):
-                    err, stderr[idx, j] = _simulate(coeffs[idx], v, rates[j], samples,
+                    block = coeffs[idx] if spec is None else specs.numeric_rows(
+                        coeffs, idx, j, spec)
+                    err, stderr[idx, j] = _simulate(block, v, rates[j], samples,
                                                     profile_generator(seed, p.profile.id),
                                                     tracker, linear=prepared.linear[j],
                                                     g2=prepared.g2[idx])
@@ -112,7 +122,9 @@ def analyze(
                                       g2_sensitivity=prepared.g2[idx])
                 for name, array in parts.items():
                     array[idx] = getattr(err, name)
-        warnings = _saturation(prepared, unit)
+        if spec is not None:
+            specs.place_analysis(parts, spec, numeric=numeric)
+        warnings = specs.with_cross_axis(_saturation(prepared, unit), spec)
         error = to_unit(VibrationError(**parts), unit)
         out_scale = units.scale(unit)
         stderr_out = None if stderr is None else stderr / out_scale
@@ -130,6 +142,7 @@ def analyze(
         samples=samples if numeric else None,
         seed=seed if numeric else None,
         linear=tuple(v is not None for v in prepared.linear),
+        **specs.analysis_fields(len(prepared.sensors), n_p, spec, unit),
     )
 
 

@@ -141,6 +141,11 @@ def bounds(
     budget: float,
     unit: str = "deg/s",
     allocation: Allocation | Sequence[float] | None = None,
+    range_: float | None = None,
+    nl_fit: str = "least-squares",
+    nl_measure: str = "max",
+    nl_of: str = "range",
+    spec_weights: tuple[float, float] = (1.0, 1.0),
 ) -> BoundsResult:
     """The inverse problem: allowable coefficients per profile, eq. (23), (25).
 
@@ -150,6 +155,11 @@ def bounds(
     With linear vibration in some profile, ``bounds.vre`` bounds the effective
     VRE |Δ0(6)|/Σ⟨a_j²⟩ in ``unit`` per g² (+inf for the profiles without;
     None when no profile has any), MODEL.md section 8.
+
+    ``range_`` R (deg/s) adds the datasheet bounds (MODEL.md section 11): the
+    allowable nonlinearity in %FS of R (or of the span 2R, ``nl_of``) read as
+    ``nl_fit``/``nl_measure``, and the allowable VRE, from the split
+    ``spec_weights`` (NL:VRE) of Δ* (:attr:`BoundsResult.spec_bounds`).
     """
     check_method_budget(method, budget)
     unit = units.canonical_unit(unit)
@@ -167,6 +177,13 @@ def bounds(
         check_bounds(scaled.stacked(), prepared)
         check_vre_bound(raw.vre, prepared)
         check_vre_bound(scaled.vre, prepared)
+        datasheet = None
+        if range_ is not None:
+            from gyrovib.api.specs import datasheet_bounds
+
+            multipliers = prepared.groups[0].multipliers[method] if prepared.groups else None
+            datasheet = datasheet_bounds(multipliers, len(prepared.profiles), budget, range_,
+                                         unit, nl_fit, nl_measure, nl_of, spec_weights)
     return BoundsResult(
         method=method,
         unit=unit,
@@ -175,4 +192,5 @@ def bounds(
         rates=prepared.rates / units.scale(unit),
         bounds=scaled,
         allocation=constants,
+        spec_bounds=datasheet,
     )

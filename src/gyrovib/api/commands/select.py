@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api import specs
 from gyrovib.api.commands.bounds import bounds, check_method_budget, resolve_allocation
 from gyrovib.api.convert import bound_factors
 from gyrovib.api.prepare import Prepared, check_bounds, check_finite, float_guard, prepare
@@ -20,7 +21,7 @@ from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 
-CRITERIA = ("bounds", "rms", "both")
+CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")
 #: Relative slack of every ≤ comparison: a value at its bound, up to rounding
 #: (e.g. a bound printed in deg/h and read back), passes.
@@ -46,21 +47,33 @@ CHECKS: tuple[str, ...] = (*BOUNDED, "vre")
 
 
 def _limits(criterion: str, failing: NDArray[np.intp], ratios: FloatArray, rms: FloatArray,
-            budget: float) -> dict[int, Limit]:
+            budget: float, total: FloatArray | None = None,
+            spec_ratios: dict[int, dict[str, FloatArray]] | None = None) -> dict[int, Limit]:
     """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts.
 
     ``ratios`` is indexed (sensor, profile, check of :data:`CHECKS`).
+    ``spec_ratios`` (spec-form sensors): their datasheet figures' ratios to
+    their spec bounds (``nonlinearity``, ``vre``), replacing the coefficient
+    ratios; ``total``: |Δ_V| for the ``worst`` criterion.
     """
     limits: dict[int, Limit] = {}
+    own = spec_ratios or {}
     for i in failing.tolist():
         candidates: list[Limit] = []
-        if criterion in ("bounds", "both"):
+        if criterion in ("bounds", "both") and i in own:
+            for name, ratio in own[i].items():
+                jr = int(np.argmax(ratio))
+                candidates.append(Limit(name, jr, float(ratio[jr])))
+        elif criterion in ("bounds", "both"):
             jb = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
             j, b = int(jb[0]), int(jb[1])
             candidates.append(Limit(CHECKS[b], j, float(ratios[i, j, b])))
         if criterion in ("rms", "both"):
             jr = int(np.argmax(rms[i]))
             candidates.append(Limit("rms", jr, float(rms[i, jr] / budget)))
+        if criterion == "worst" and total is not None:
+            jw = int(np.argmax(total[i]))
+            candidates.append(Limit("worst", jw, float(total[i, jw] / budget)))
         limits[int(i)] = max(candidates, key=lambda c: c.ratio)
     return limits
 
@@ -77,6 +90,7 @@ def select(
     criterion: str = "bounds",
     require: str = "any",
     allocation: Allocation | Sequence[float] | None = None,
+    spec_weights: tuple[float, float] = (1.0, 1.0),
 ) -> SelectionResult:
     """Which sensors meet the budget: the bound checks and eq. (17), per profile.
 
@@ -88,6 +102,13 @@ def select(
     passes when it passes under every chosen profile; ``require`` ``any``
     (at least one sensor passes) or ``all`` decides :attr:`requirement_met`.
     ``budget`` and ``rate`` are in deg/s; ``unit`` is the output unit.
+
+    ``worst``: the direct test |Δ_V| ≤ Δ*. A spec-form sensor (MODEL.md
+    section 11) is judged by its datasheet: under ``bounds`` its nonlinearity
+    (%FS) and VRE against the spec bounds of its own range, fit and measure
+    (Δ* split ``spec_weights`` = NL:VRE), under ``rms`` its per-term RMS
+    bound, under ``worst`` its worst |Δ_V| over the envelope; its margin is
+    always Δ*/worst |Δ_V| (and every sensor's is Δ*/|Δ_V| under ``worst``).
     """
     check_method_budget(method, budget)
     if criterion not in CRITERIA:
@@ -106,16 +127,25 @@ def select(
         limits_deg = np.full((n_s, n_p, n_b), np.inf)
         vre_bound_deg = np.full((n_s, n_p), np.inf)
         rms = np.zeros((n_s, n_p))
+        total = np.zeros((n_s, n_p))
         for group in prepared.groups:
             multipliers = group.multipliers[method]
             cb = coefficient_bounds(multipliers, budget, constants)
             limits_deg[group.index] = cb.stacked()[None]
             if cb.vre is not None:
                 vre_bound_deg[group.index] = cb.vre[None]
-            rms[group.index] = vibration_error(coeffs[group.index], multipliers,
-                                               g2_sensitivity=prepared.g2[group.index]).rms
+            err = vibration_error(coeffs[group.index], multipliers,
+                                  g2_sensitivity=prepared.g2[group.index])
+            rms[group.index] = err.rms
+            total[group.index] = np.abs(err.total)
         vre_deg = _effective_vre(prepared)
-        check_finite([rms, vre_deg], prepared)
+        spec = specs.spec_results(prepared, method)
+        own = None
+        if spec is not None:
+            rms[spec.index] = spec.error.rms
+            total[spec.index] = spec.error.total
+            own = specs.spec_checks(prepared, spec, method, budget, spec_weights, PASS_RTOL)
+        check_finite([rms, total, vre_deg], prepared)
         check_bounds(limits_deg, prepared)
         factors = np.array([bound_factors(unit)[c] for c in BOUNDED])
         values_deg = np.abs(coeffs[:, [COEFFICIENTS.index(c) for c in BOUNDED]])[:, None, :]
@@ -126,16 +156,29 @@ def select(
         check_pass = _at_most(values_deg, limits_deg)
         vre_pass = _at_most(vre_deg, vre_bound_deg)
         bounds_pass = np.all(check_pass, axis=-1) & vre_pass
+        if spec is not None and own is not None:
+            bounds_pass[spec.index] = own.nl_pass & own.vre_pass
         rms_pass = _at_most(rms, budget)
-        passed = {"bounds": bounds_pass, "rms": rms_pass,
+        worst_pass = _at_most(total, budget)
+        passed = {"bounds": bounds_pass, "rms": rms_pass, "worst": worst_pass,
                   "both": bounds_pass & rms_pass}[criterion]
         sensor_pass = np.all(passed, axis=1)
-        margin = np.where(rms > 0, budget / np.where(rms > 0, rms, 1.0), np.inf)
+        judged = rms.copy() if criterion != "worst" else total.copy()
+        if spec is not None:
+            judged[spec.index] = total[spec.index]
+        margin = np.where(judged > 0, budget / np.where(judged > 0, judged, 1.0), np.inf)
         worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
         ranking = tuple(int(i) for i in sorted(range(n_s), key=lambda i: (-worst[i], i)))
         ratios = np.concatenate([_ratio(values_deg, limits_deg),
                                  _ratio(vre_deg, vre_bound_deg)[..., None]], axis=-1)
-        limits = _limits(criterion, np.nonzero(~sensor_pass)[0], ratios, rms, budget)
+        spec_ratios = None
+        if spec is not None and own is not None:
+            spec_ratios = {
+                int(i): {"nonlinearity": _ratio(own.nl_value[k], own.nl_bound[k]),
+                         "vre": _ratio(np.nan_to_num(own.vre_value[k]), own.vre_bound[k])}
+                for k, i in enumerate(spec.index.tolist())}
+        limits = _limits(criterion, np.nonzero(~sensor_pass)[0], ratios, rms, budget, total,
+                         spec_ratios)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
     s = units.scale(unit)
     return SelectionResult(
@@ -162,9 +205,8 @@ def select(
         limits=limits,
         requirement_met=met,
         allocation=constants,
-        vre_value=vre_deg / s,
-        vre_bound=vre_bound_deg / s,
-        vre_pass=vre_pass,
+        **specs.selection_fields(n_s, n_p, spec, own, total, unit,
+                                 (vre_deg, vre_bound_deg, vre_pass)),
     )
 
 

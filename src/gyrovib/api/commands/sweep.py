@@ -7,6 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from gyrovib import units
+from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, to_unit
 from gyrovib.api.prepare import check_finite, float_guard, prepare
 from gyrovib.api.results import SweepResult
@@ -48,6 +49,9 @@ def sweep(
     rate equals :func:`~gyrovib.api.analyze` with that ``rate``. Profiles the
     paper's formulas do not cover get NaN paper values and an entry in
     :attr:`SweepResult.paper_refused`; anything that overflows is refused.
+    A spec-form sensor gives its worst case over the envelope at each rate (by
+    either method's multipliers), and :attr:`SweepResult.worst_coefficients`
+    the exact method's worst polynomial at each rate.
     """
     unit = units.canonical_unit(unit)
     omega = np.asarray(rates, dtype=float).reshape(-1)
@@ -71,6 +75,13 @@ def sweep(
                                       g2_sensitivity=prepared.g2[group.index])
                 for name, array in results[method].items():
                     array[group.index] = getattr(err, name)
+        worst_x = None
+        for method in METHODS:
+            spec = specs.spec_results(prepared, method, omega=omega)
+            if spec is not None:
+                specs.place(results[method], spec)
+                if method == "exact":
+                    worst_x = specs.sweep_fields(len(prepared.sensors), spec, unit)
         exact = to_unit(VibrationError(**results["exact"]), unit)
         paper = to_unit(VibrationError(**results["paper"]), unit)
         check_finite(error_arrays(exact), prepared)
@@ -83,4 +94,5 @@ def sweep(
         exact=exact,
         paper=paper,
         paper_refused={prepared.profiles[j].profile.id: refused[j] for j in sorted(refused)},
+        **(worst_x or {}),
     )

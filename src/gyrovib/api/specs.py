@@ -1,0 +1,595 @@
+"""Spec-form (datasheet) sensors: their worst case over the envelope (MODEL.md section 11).
+
+A sensor written with ``specs:`` (range, nonlinearity, optional asymmetry and
+VRE) has no single conversion function. The commands route it here: its
+datasheet figures are converted to deg/s (the nonlinearity limit b from %FS
+of the range or span, or from an absolute rate in any rate unit; the
+asymmetry from ppm or %, A1 = 1e-6 per ppm; the VRE from rate per the file's
+acceleration unit² to deg/s per g²), and the profile multipliers of each
+sensor group feed :func:`gyrovib.core.envelope.worst_case`.
+
+What a spec-form sensor reports (JSON ``"source": "specs"``):
+
+* ``total``: the worst |Δ_V(Ω_K3)| over every conversion function the datasheet
+  permits (the worst polynomial's cᵀx plus |v|·Σ⟨a_j²⟩ where the profile has
+  a linear vibration);
+* ``rms``: the per-term RMS upper bound √(Σ per-term maxima²);
+* ``additive_terms`` / ``multiplicative_coefficients``: those of the worst
+  polynomial (A1, k2…k5) that attains ``total``; m31 = m32 = 0 (datasheets do
+  not give them: a warning says so where the profile has cross-axis vibration);
+* ``envelope``: ``worst_coefficients`` (A1, k2…k5 in the output unit's powers)
+  and ``rms_bound``.
+
+Either method's multipliers may feed the programme: ``paper`` gives the worst
+case under the paper's multipliers (the same envelope, the printed
+statistics). The numeric method averages eq. (2) of the worst polynomial
+(found with the exact multipliers) by brute force.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gyrovib import units
+from gyrovib.api.prepare import Group, Prepared
+from gyrovib.catalog.loader import SensorEntry
+from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
+from gyrovib.core.transmissibility import FloatArray
+
+#: m/s² per g (the standard gravity the catalogue's ``g`` means).
+STANDARD_GRAVITY = 9.80665
+#: Order of the worst polynomial's coefficients (core.envelope.COEFFICIENTS).
+WORST_COEFFICIENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5")
+#: Rate powers of (A1, k2…k5): a coefficient in U is q[deg/s]·s**(-p).
+_POWERS = np.array([0.0, -1.0, -2.0, -3.0, -4.0])
+#: The words the nonlinearity's ``of`` may take when the value is %FS.
+PERCENT_FS = "%FS"
+
+
+def is_spec(entry: SensorEntry) -> bool:
+    """Whether the sensor is given by its datasheet (``specs:``)."""
+    return entry.sensor.specs is not None
+
+
+def spec_index(entries: Sequence[SensorEntry]) -> NDArray[np.intp]:
+    """Indices of the spec-form sensors among ``entries``."""
+    return np.array([i for i, e in enumerate(entries) if is_spec(e)], dtype=np.intp)
+
+
+@dataclass(frozen=True)
+class SpecFigures:
+    """The datasheet figures of N spec-form sensors, in deg/s (and g).
+
+    ``range`` R and ``limit`` b (deg/s); ``value``, ``unit`` the nonlinearity
+    as written; ``percent`` the nonlinearity in %FS of the sensor's own
+    ``of`` (range or span; for an absolute-rate figure: of the range);
+    ``fit``, ``measure``, ``of``: the definition; ``asymmetry`` max |A1|
+    (inf: no spec); ``vre`` |v| in deg/s per g² (0: no spec); ``has_vre``.
+    """
+
+    range: FloatArray
+    limit: FloatArray
+    percent: FloatArray
+    fit: tuple[str, ...]
+    measure: tuple[str, ...]
+    of: tuple[str, ...]
+    asymmetry: FloatArray
+    vre: FloatArray
+    has_vre: NDArray[np.bool_]
+
+
+def figures(entries: Sequence[SensorEntry]) -> SpecFigures:
+    """Convert every spec-form entry's datasheet to deg/s (see :class:`SpecFigures`)."""
+    rng, lim, pct, asym, vre, has = [], [], [], [], [], []
+    fits, measures, ofs = [], [], []
+    for e in entries:
+        spec = e.sensor.specs
+        assert spec is not None
+        s = units.scale(e.unit)
+        r = spec.range * s
+        nl = spec.nonlinearity
+        if nl.unit == PERCENT_FS:
+            of = nl.of
+            b = nl.value / 100.0 * r * (2.0 if of == "span" else 1.0)
+            percent = nl.value
+        else:
+            of = "range"
+            b = nl.value * units.scale(nl.unit)
+            percent = 100.0 * b / r
+        a = np.inf
+        if spec.asymmetry is not None:
+            a = spec.asymmetry.value * (1e-6 if spec.asymmetry.unit == "ppm" else 1e-2)
+        g = 1.0 if e.acceleration_unit == "g" else STANDARD_GRAVITY**2
+        rng.append(r)
+        lim.append(b)
+        pct.append(percent)
+        fits.append(nl.fit)
+        measures.append(nl.measure)
+        ofs.append(of)
+        asym.append(abs(a))
+        vre.append(0.0 if spec.vre is None else abs(spec.vre) * s * g)
+        has.append(spec.vre is not None)
+    return SpecFigures(np.array(rng, dtype=float), np.array(lim, dtype=float),
+                       np.array(pct, dtype=float), tuple(fits), tuple(measures), tuple(ofs),
+                       np.array(asym, dtype=float), np.array(vre, dtype=float),
+                       np.array(has, dtype=bool))
+
+
+def mean_square_acceleration(m: Multipliers) -> FloatArray:
+    """S = Σ_j ⟨a_j²⟩ (g²) at each profile (× rate); 0 without a linear vibration."""
+    if m.acceleration is None:
+        return np.zeros(m.omega.shape)
+    from gyrovib.core.linear import mean_square
+
+    return np.asarray(mean_square(m.acceleration), dtype=float)
+
+
+def terms_of(m: Multipliers) -> FloatArray:
+    """The eight term functionals (shape + (8, 5)) of :func:`core.envelope.term_functionals`."""
+    from gyrovib.core.envelope import term_functionals
+
+    zero = np.zeros(m.omega.shape)
+    return term_functionals(m.asymmetry, m.m2, zero if m.m3 is None else m.m3, m.m4,
+                            zero if m.m5 is None else m.m5, m.omega)
+
+
+@dataclass(frozen=True)
+class SpecWorst:
+    """The worst case of N spec sensors over one group's profiles (× rates), in deg/s.
+
+    ``error``: the :class:`VibrationError` of the worst polynomial (total =
+    worst |Δ_V|, rms = the per-term RMS bound); ``coefficients`` x* (..., 5)
+    in deg/s powers; ``rms_bound``; ``nonlinearity`` (cᵀx*) and ``g2`` (|v|·S).
+    """
+
+    error: VibrationError
+    coefficients: FloatArray
+    rms_bound: FloatArray
+    nonlinearity: FloatArray
+    g2: FloatArray
+
+
+def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
+    """Worst |Δ_V| of every sensor of ``figs`` under the multipliers ``m`` (any shape).
+
+    One call to :func:`gyrovib.core.envelope.worst_case` over all profiles
+    (× rates), flattened; the result has shape (N,) + m.omega.shape. A
+    profile (× rate) whose multipliers are NaN (a method's refusal) gets NaN.
+    """
+    from gyrovib.core.envelope import worst_case
+
+    shape = m.omega.shape
+    t = terms_of(m).reshape(-1, 8, 5)
+    s = mean_square_acceleration(m).reshape(-1)
+    n = figs.range.size
+    ok = np.all(np.isfinite(t), axis=(1, 2)) & np.isfinite(s)
+    k_all = t.shape[0]
+    wc = worst_case(t[ok], s[ok], figs.range, figs.limit, figs.fit, figs.measure,
+                    asymmetry=figs.asymmetry, vre=figs.vre)
+
+    def spread(a: FloatArray) -> FloatArray:
+        out = np.full((n, k_all, *a.shape[2:]), np.nan)
+        out[:, ok] = a
+        return out
+
+    x = spread(wc.coefficients)                                      # (N, K, 5)
+    total_, nonlin_, g2_, bound_ = (spread(wc.total), spread(wc.nonlinearity),
+                                    spread(wc.g2), spread(wc.rms_bound))
+    per = np.einsum("ktj,nkj->nkt", t, x)                            # (N, K, 8)
+    zero = np.zeros(per.shape[:2])
+    additive_terms = np.stack([per[..., 0], per[..., 1], per[..., 3], zero, zero], axis=-1)
+    extra = np.stack([g2_, per[..., 2], per[..., 4]], axis=-1)
+    flat_m2 = np.broadcast_to(m.m2, shape).reshape(-1)[None]
+    flat_m4 = np.broadcast_to(m.m4, shape).reshape(-1)[None]
+    flat_m3 = (np.zeros_like(flat_m2) if m.m3 is None
+               else np.broadcast_to(m.m3, shape).reshape(-1)[None])
+    k3, k4, k5 = x[..., 2], x[..., 3], x[..., 4]
+    q = np.stack([3 * k3 * flat_m2 + 4 * k4 * flat_m3 + 5 * k5 * flat_m4,
+                  6 * k4 * flat_m2 + 10 * k5 * flat_m3, 10 * k5 * flat_m2], axis=-1)
+    mult = per[..., 5:].sum(axis=-1)
+    additive = additive_terms.sum(axis=-1) + extra.sum(axis=-1)
+    full = (n, *shape)
+    error = VibrationError(
+        additive_terms=additive_terms.reshape(*full, 5),
+        multiplicative_coefficients=q.reshape(*full, 3),
+        additive=additive.reshape(full),
+        multiplicative=mult.reshape(full),
+        total=total_.reshape(full),
+        rms=bound_.reshape(full),
+        extra_terms=extra.reshape(*full, 3),
+    )
+    return SpecWorst(error=error, coefficients=x.reshape(*full, 5),
+                     rms_bound=bound_.reshape(full),
+                     nonlinearity=nonlin_.reshape(full), g2=g2_.reshape(full))
+
+
+def coefficient_rows(worst_x: FloatArray) -> FloatArray:
+    """The worst polynomials (..., 5) as eq. (2) coefficient rows (..., 11), k1 = 1."""
+    x = np.asarray(worst_x, dtype=float)
+    out = np.zeros((*x.shape[:-1], len(COLUMN)))
+    out[..., COLUMN["k1"]] = 1.0
+    for k, name in enumerate(WORST_COEFFICIENTS):
+        out[..., COLUMN[name]] = x[..., k]
+    return out
+
+
+def coefficients_in(worst_x: FloatArray, unit: str) -> FloatArray:
+    """(A1, k2…k5) from deg/s powers to ``unit`` powers."""
+    s = units.scale(unit)
+    out: FloatArray = np.asarray(worst_x, dtype=float) * s ** (-_POWERS)
+    return out
+
+
+def cross_axis_warning(m: Multipliers) -> NDArray[np.bool_]:
+    """Where the profile (× rate) has cross-axis vibration correlated with x3 (C31, C32 ≠ 0).
+
+    There a spec-form sensor's m31 = m32 = 0 is an assumption worth stating.
+    """
+    out: NDArray[np.bool_] = (np.asarray(m.c31) != 0) | (np.asarray(m.c32) != 0)
+    return out
+
+
+CROSS_AXIS_NOTE = ("spec-form sensor: the datasheet gives no multiplicative cross-axis "
+                   "coefficients, so m31 = m32 = 0 is taken although this profile has "
+                   "cross-axis vibration correlated with x3")
+
+
+# ----------------------------------------------------------------- the commands' hooks
+
+
+def multipliers_of(group: Group, prepared: Prepared, method: str,
+                   omega: FloatArray | None = None) -> Multipliers:
+    """The group's multipliers for ``method``: prepared ones, or computed from its vibrations."""
+    found = group.multipliers.get(method)
+    if found is not None:
+        return found
+    from gyrovib.core.analysis import profile_multipliers, stack_multipliers
+
+    items = [profile_multipliers(v, prepared.rates[j, 2] if omega is None else omega, method)
+             for j, v in enumerate(group.vibrations)]
+    return stack_multipliers(items)
+
+
+@dataclass(frozen=True)
+class SpecResults:
+    """The spec-form rows of a command: which sensors, and their worst case (deg/s).
+
+    ``index``: the spec sensors among the prepared ones (M,); ``error``: their
+    :class:`VibrationError` (M, P[, R]); ``coefficients``: the worst polynomials
+    (M, P[, R], 5) in deg/s powers; ``nonlinearity``, ``g2``: the two parts of
+    ``error.total``; ``cross_axis``: (P[, R]) where m31 = m32 = 0 is assumed
+    against cross-axis vibration; ``figures``: the converted datasheets.
+    """
+
+    index: NDArray[np.intp]
+    figures: SpecFigures
+    error: VibrationError
+    coefficients: FloatArray
+    nonlinearity: FloatArray
+    g2: FloatArray
+    cross_axis: NDArray[np.bool_]
+
+
+def spec_results(prepared: Prepared, method: str,
+                 omega: FloatArray | None = None) -> SpecResults | None:
+    """The worst case of every spec-form sensor of ``prepared`` (None when there are none).
+
+    Each sensor group (one response ν_sensor) is one call of the envelope
+    programme over all its spec sensors × profiles (× rates ``omega``).
+    """
+    index = spec_index(prepared.sensors)
+    if index.size == 0:
+        return None
+    figs = figures([prepared.sensors[i] for i in index.tolist()])
+    position = {int(i): k for k, i in enumerate(index.tolist())}
+    n_p = len(prepared.profiles)
+    tail = () if omega is None else (np.asarray(omega).size,)
+    shape = (index.size, n_p, *tail)
+    parts = {name: np.zeros((*shape, *t)) for name, t in
+             (("additive_terms", (5,)), ("multiplicative_coefficients", (3,)),
+              ("additive", ()), ("multiplicative", ()), ("total", ()), ("rms", ()),
+              ("extra_terms", (3,)))}
+    coefficients = np.zeros((*shape, 5))
+    nonlinearity = np.zeros(shape)
+    g2 = np.zeros(shape)
+    cross = np.zeros((n_p, *tail), dtype=bool)
+    for group in prepared.groups:
+        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
+        if not rows or not n_p:
+            continue
+        m = multipliers_of(group, prepared, method, omega)
+        sub = _subset(figs, rows)
+        result = worst(sub, m)
+        for name, array in parts.items():
+            array[rows] = getattr(result.error, name)
+        coefficients[rows] = result.coefficients
+        nonlinearity[rows] = result.nonlinearity
+        g2[rows] = result.g2
+        cross |= cross_axis_warning(m)
+    return SpecResults(index=index, figures=figs, error=VibrationError(**parts),
+                       coefficients=coefficients, nonlinearity=nonlinearity, g2=g2,
+                       cross_axis=cross)
+
+
+def _subset(figs: SpecFigures, rows: Sequence[int]) -> SpecFigures:
+    r = list(rows)
+    return SpecFigures(figs.range[r], figs.limit[r], figs.percent[r],
+                       tuple(figs.fit[k] for k in r), tuple(figs.measure[k] for k in r),
+                       tuple(figs.of[k] for k in r), figs.asymmetry[r], figs.vre[r],
+                       figs.has_vre[r])
+
+
+def place(parts: dict[str, FloatArray], spec: SpecResults) -> None:
+    """Write the spec rows' worst-case error into a command's (sensors, ...) arrays."""
+    for name, array in parts.items():
+        array[spec.index] = getattr(spec.error, name)
+
+
+def numeric_rows(coefficients: FloatArray, index: NDArray[np.intp], profile: int,
+                 spec: SpecResults) -> FloatArray:
+    """A group's coefficient rows for brute force under one profile (specs: worst polynomial)."""
+    out = np.array(coefficients[index], dtype=float)
+    where = {int(i): k for k, i in enumerate(spec.index.tolist())}
+    for r, i in enumerate(index.tolist()):
+        k = where.get(int(i))
+        if k is not None:
+            out[r] = coefficient_rows(spec.coefficients[k, profile])
+    return out
+
+
+def place_analysis(parts: dict[str, FloatArray], spec: SpecResults, *, numeric: bool) -> None:
+    """Spec rows of ``analyze``: the worst case (closed forms) or its brute force (numeric).
+
+    Under brute force ``total`` is the simulated Δ_V of the worst polynomial
+    plus the g² part |v|·S (the averaging of eq. (2) covers the rate terms
+    only); ``rms`` is the per-term bound.
+    """
+    if numeric:
+        parts["total"][spec.index] = parts["total"][spec.index] + spec.g2
+        parts["rms"][spec.index] = spec.error.rms
+        return
+    for name, array in parts.items():
+        array[spec.index] = getattr(spec.error, name)
+
+
+def with_cross_axis(warnings: dict[tuple[int, int], tuple[str, ...]],
+                    spec: SpecResults | None) -> dict[tuple[int, int], tuple[str, ...]]:
+    """``warnings`` plus the m31 = m32 = 0 note for spec sensors under cross-axis profiles."""
+    if spec is None:
+        return warnings
+    cross = spec.cross_axis.reshape(spec.cross_axis.shape[0], -1).any(axis=1)
+    for i in spec.index.tolist():
+        for j in np.nonzero(cross)[0].tolist():
+            warnings[(int(i), int(j))] = (*warnings.get((int(i), int(j)), ()), CROSS_AXIS_NOTE)
+    return warnings
+
+
+def analysis_fields(n_s: int, n_p: int, spec: SpecResults | None,
+                    unit: str) -> dict[str, Any]:
+    """The spec-form fields of an :class:`~gyrovib.api.AnalysisResult` (empty without specs)."""
+    if spec is None:
+        return {}
+    sources = ["coefficients"] * n_s
+    for i in spec.index.tolist():
+        sources[i] = "specs"
+    worst_x = np.full((n_s, n_p, 5), np.nan)
+    worst_x[spec.index] = coefficients_in(spec.coefficients, unit)
+    bound = np.full((n_s, n_p), np.nan)
+    bound[spec.index] = spec.error.rms / units.scale(unit)
+    return {"sources": tuple(sources), "worst_coefficients": worst_x, "rms_bound": bound}
+
+
+# ----------------------------------------------------------------- select
+
+
+@dataclass(frozen=True)
+class SpecChecks:
+    """A spec sensor's datasheet against its own spec bounds, (M, P), deg/s and g.
+
+    ``nl_value``: its nonlinearity in %FS (of its own range or span);
+    ``nl_bound``: the allowable NL in the same %FS for Δ* (inf where the
+    profile does not excite the envelope); ``vre_value``: its VRE spec in
+    deg/s/g² (NaN: none given, taken as 0); ``vre_bound``: the allowable VRE
+    (inf without linear vibration). Passes use ``rtol``.
+    """
+
+    nl_value: FloatArray
+    nl_bound: FloatArray
+    nl_pass: NDArray[np.bool_]
+    vre_value: FloatArray
+    vre_bound: FloatArray
+    vre_pass: NDArray[np.bool_]
+
+
+def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: float,
+                weights: tuple[float, float] = (1.0, 1.0), rtol: float = 1e-9) -> SpecChecks:
+    """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (MODEL.md section 11).
+
+    NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds` for
+    the sensor's own range, fit, measure and ``of``, under its own response
+    (one programme per distinct datasheet definition and group).
+    """
+    from gyrovib.core.envelope import spec_bounds
+
+    figs = spec.figures
+    m_count, n_p = spec.index.size, len(prepared.profiles)
+    nl_bound = np.full((m_count, n_p), np.inf)
+    vre_bound = np.full((m_count, n_p), np.inf)
+    position = {int(i): k for k, i in enumerate(spec.index.tolist())}
+    for group in prepared.groups:
+        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
+        if not rows or not n_p:
+            continue
+        m = multipliers_of(group, prepared, method)
+        t = terms_of(m)
+        s = mean_square_acceleration(m)
+        keys: dict[tuple[float, str, str, str], list[int]] = {}
+        for k in rows:
+            keys.setdefault((float(figs.range[k]), figs.fit[k], figs.measure[k], figs.of[k]),
+                            []).append(k)
+        for (r, fit, measure, of), members in keys.items():
+            sb = spec_bounds(budget, t, s, r, fit, measure, of, weights)
+            nl_bound[members] = sb.nonlinearity[None]
+            vre_bound[members] = sb.vre[None]
+    nl_value = np.broadcast_to(figs.percent[:, None], (m_count, n_p)).copy()
+    vre_value = np.where(figs.has_vre, figs.vre, np.nan)[:, None] * np.ones((1, n_p))
+    nl_pass = nl_value <= nl_bound * (1.0 + rtol)
+    vre_pass = np.nan_to_num(vre_value) <= vre_bound * (1.0 + rtol)
+    return SpecChecks(nl_value, nl_bound, nl_pass, vre_value, vre_bound, vre_pass)
+
+
+def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecChecks | None,
+                     total: FloatArray, unit: str,
+                     vre: tuple[FloatArray, FloatArray, NDArray[np.bool_]]) -> dict[str, Any]:
+    """The spec-form fields of a :class:`~gyrovib.api.SelectionResult`.
+
+    ``total`` (|Δ_V|, the worst case for spec sensors) always; ``vre`` the
+    coefficient sensors' VRE check (effective VRE and its bound in deg/s per g²,
+    pass; MODEL.md section 8), whose spec-form rows are replaced by the datasheet
+    VRE against its allowable value (section 11); ``sources`` and the
+    nonlinearity check (NaN on coefficient rows) only with spec sensors.
+    """
+    s = units.scale(unit)
+    vre_value, vre_bound = np.array(vre[0], dtype=float), np.array(vre[1], dtype=float)
+    vre_pass = np.array(vre[2], dtype=bool)
+    out: dict[str, Any] = {"total": total / s}
+    if spec is None or checks is None:
+        out.update(vre_value=vre_value / s, vre_bound=vre_bound / s, vre_pass=vre_pass)
+        return out
+    sources = ["coefficients"] * n_s
+    for i in spec.index.tolist():
+        sources[i] = "specs"
+
+    def full(values: NDArray[Any], fill: float = np.nan) -> FloatArray:
+        array = np.full((n_s, n_p), fill)
+        array[spec.index] = values
+        return array
+
+    vre_value[spec.index] = checks.vre_value
+    vre_bound[spec.index] = checks.vre_bound
+    vre_pass[spec.index] = checks.vre_pass
+    out.update(
+        sources=tuple(sources),
+        nl_value=full(checks.nl_value), nl_bound=full(checks.nl_bound),
+        nl_pass=full(checks.nl_pass, True).astype(bool),
+        vre_value=vre_value / s, vre_bound=vre_bound / s, vre_pass=vre_pass,
+    )
+    return out
+
+
+# ----------------------------------------------------------------- bounds
+
+
+@dataclass(frozen=True)
+class DatasheetBounds:
+    """Allowable datasheet figures for a part of range R, per profile (``bounds --range``).
+
+    ``nonlinearity``: NL_max in %FS of R (``of`` range) or of 2R (span), inf
+    where the profile does not excite the envelope; ``vre``: VRE_max in the
+    output unit per g² (inf without linear vibration); ``range`` R in the
+    output unit; ``fit``, ``measure``, ``of``: the definition the NL is read
+    with; ``weights``: the NL:VRE split; ``w1``: W(1), the worst case for a
+    limit b = 1 (rate per rate); ``share_nl``, ``share_vre``: the fractions
+    of Δ* (MODEL.md section 11: NL_max·W(1) = share_nl·Δ*).
+    """
+
+    range: float
+    fit: str
+    measure: str
+    of: str
+    weights: tuple[float, float]
+    nonlinearity: FloatArray
+    vre: FloatArray
+    w1: FloatArray
+    share_nl: FloatArray
+    share_vre: FloatArray
+
+
+def datasheet_bounds(m: Multipliers | None, n_profiles: int, budget: float, range_: float,
+                     unit: str, fit: str = "least-squares", measure: str = "max",
+                     of: str = "range",
+                     weights: tuple[float, float] = (1.0, 1.0)) -> DatasheetBounds:
+    """NL_max and VRE_max of :func:`gyrovib.core.envelope.spec_bounds`, in output units.
+
+    ``budget`` and ``range_`` in deg/s; ``m`` the profiles' multipliers (the
+    profile alone, ν_sensor = 1), None when there are no profiles.
+    """
+    from gyrovib.core.envelope import spec_bounds
+
+    s = units.scale(unit)
+    if m is None or n_profiles == 0:
+        empty = np.zeros(0)
+        return DatasheetBounds(range_ / s, fit, measure, of, weights, empty, empty, empty,
+                               empty, empty)
+    sb = spec_bounds(budget, terms_of(m), mean_square_acceleration(m), range_, fit, measure,
+                     of, weights)
+    return DatasheetBounds(range_ / s, fit, measure, of, weights, sb.nonlinearity,
+                           sb.vre / s, sb.w1, sb.share_nl, sb.share_vre)
+
+
+# ----------------------------------------------------------------- sweep
+
+
+def sweep_fields(n_s: int, spec: SpecResults, unit: str) -> dict[str, Any]:
+    """The spec-form fields of a :class:`~gyrovib.api.SweepResult` (exact method)."""
+    sources = ["coefficients"] * n_s
+    fit = [""] * n_s
+    for k, i in enumerate(spec.index.tolist()):
+        sources[i] = "specs"
+        fit[i] = spec.figures.fit[k]
+    s = units.scale(unit)
+    shape = spec.coefficients.shape[1:]
+    worst_x = np.full((n_s, *shape), np.nan)
+    worst_x[spec.index] = coefficients_in(spec.coefficients, unit)
+    limit = np.full(n_s, np.nan)
+    limit[spec.index] = spec.figures.limit / s
+    rng = np.full(n_s, np.nan)
+    rng[spec.index] = spec.figures.range / s
+    return {"sources": tuple(sources), "worst_coefficients": worst_x, "nl_limit": limit,
+            "nl_range": rng, "nl_fit": tuple(fit)}
+
+
+def worst_residual(result: Any, i: int, j: int, r: int,
+                   points: int = 401) -> tuple[FloatArray, FloatArray, float]:
+    """The worst polynomial's residual from its reference line over [−R, R] (plot units).
+
+    For spec sensor ``i`` of a sweep result at profile ``j`` and rate index
+    ``r``: (ω, r(ω), b). The line is the polynomial's own least-squares or
+    endpoint line, or for minimax the line of least peak deviation on the grid
+    (:func:`gyrovib.core.envelope.residual` with the line recomputed here, in
+    the result's unit).
+    """
+    from gyrovib.core.envelope import residual
+
+    x = np.asarray(result.worst_coefficients[i, j, r], dtype=float)
+    big_r = float(result.nl_range[i])
+    w = np.linspace(-big_r, big_r, points)
+    p = residual(x, np.zeros(2), w)
+    fit = result.nl_fit[i]
+    if fit == "endpoint":
+        slope = (p[-1] - p[0]) / (2 * big_r)
+        line = 0.5 * (p[-1] + p[0]) + slope * w
+    elif fit == "minimax":
+        line = _minimax_line(w, p)
+    else:
+        slope, intercept = np.polyfit(w, p, 1)
+        line = intercept + slope * w
+    return w, p - line, float(result.nl_limit[i])
+
+
+def _minimax_line(w: FloatArray, p: FloatArray) -> FloatArray:
+    """The line of least max deviation from p on the grid w (a 3-variable LP)."""
+    from scipy.optimize import linprog
+
+    n = w.size
+    a = np.concatenate([np.column_stack([-np.ones(n), -w, -np.ones(n)]),
+                        np.column_stack([np.ones(n), w, -np.ones(n)])])
+    b = np.concatenate([-p, p])
+    res = linprog([0.0, 0.0, 1.0], A_ub=a, b_ub=b, bounds=[(None, None)] * 3, method="highs")
+    out: FloatArray = res.x[0] + res.x[1] * w
+    return out
