@@ -48,8 +48,9 @@ def clean_env(**extra: str) -> dict[str, str]:
 def _interrupt(args: list[str], sig: int, after: float, cwd: Path) -> tuple[int, str]:
     """Start gyrovib, wait ``after`` seconds once Python runs, send ``sig``."""
     # as the console script: its one import (gyrovib.cli, two tiny modules) done, then main()
-    code = ("import sys; from gyrovib.cli import main; sys.stderr.write('ready\\n'); "
-            f"sys.stderr.flush(); sys.argv = ['gyrovib', *{args!r}]; main()")
+    # (argv is set before 'ready', so a signal sent at once lands in main() or its imports)
+    code = (f"import sys; from gyrovib.cli import main; sys.argv = ['gyrovib', *{args!r}]; "
+            "sys.stderr.write('ready\\n'); sys.stderr.flush(); main()")
     process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True, cwd=cwd, env=clean_env())
     assert process.stderr is not None
