@@ -154,14 +154,15 @@ def test_criterion(catalog: str, criterion: str, verdicts: dict[str, bool]) -> N
     assert doc["criterion"] == criterion
 
 
-def test_sensor_response_gets_credit(tmp_path: Path) -> None:
-    # a sensor whose response is 0.1 at the 100 Hz tone sees a3 = 0.2: M2 = 0.02,
-    # so its k2 bound is α2·Δ*/0.02 = 100× the profile-alone bound 0.0022237.
+def test_input_response_gets_credit(tmp_path: Path) -> None:
+    # a sensor whose response acts at its input (INTERFACE.md second round, `at: input`)
+    # and is 0.1 at the 100 Hz tone sees a3 = 0.2: M2 = 0.02, so its k2 bound is
+    # α2·Δ*/0.02 = 100× the profile-alone bound 0.0022237.
     body = PROFILES + """
 sensors:
   - id: damped
     coefficients: {k2: 3.0e-3}
-    response: [[1, 0.1], [1000, 0.1]]
+    response: {at: input, table: [[1, 0.1], [1000, 0.1]]}
 """
     doc = strict_json(run("select", write(tmp_path, body), "--budget", "0.01",
                           "--profile", "tone", "--format", "json").stdout)
@@ -170,6 +171,25 @@ sensors:
     assert alone == pytest.approx(0.4447496 * BUDGET / 2, rel=1e-6)
     assert own == pytest.approx(100 * alone, rel=1e-9)
     assert doc["sensors"][0]["pass"] is True       # 3e-3 < 0.22237
+
+
+@pytest.mark.parametrize("response", ["[[1, 0.1], [1000, 0.1]]",
+                                      "{at: output, table: [[1, 0.1], [1000, 0.1]]}"])
+def test_output_response_earns_no_credit(tmp_path: Path, response: str) -> None:
+    # an output filter acts after the error is rectified (MODEL.md section 9): the
+    # sensor's bounds are the profile's own, 0.0022237 < 3e-3, so it fails.
+    body = PROFILES + f"""
+sensors:
+  - id: filtered
+    coefficients: {{k2: 3.0e-3}}
+    response: {response}
+"""
+    doc = strict_json(run("select", write(tmp_path, body), "--budget", "0.01",
+                          "--profile", "tone", "--format", "json").stdout)
+    alone = doc["profiles"][0]["bounds"]["k2"]
+    own = doc["sensors"][0]["profiles"][0]["checks"]["k2"]["bound"]
+    assert own == alone
+    assert doc["sensors"][0]["pass"] is False
 
 
 def test_table_output(catalog: str) -> None:
