@@ -148,14 +148,17 @@ def test_missing_pandas_names_the_extra(monkeypatch):
 
 
 def test_notebook_units_match_the_library():
-    """A budget "36deg/h" is 36/3600 = 0.01 deg/s for :func:`gyrovib.api.select`."""
+    """A budget "36deg/h" is 36/3600 = 0.01 deg/s for :func:`gyrovib.api.select`; without
+    ``unit`` the output follows the budget's unit (INTERFACE.md, ``--unit`` default)."""
     from gyrovib import api
 
     a = gyrovib.select(budget="36deg/h", rate=["1deg/s"])
     b = gyrovib.select(budget=36, unit="deg/h", rate=3600)
     c = api.select(api.load(), budget=0.01, rate=[1.0], unit="deg/h")
-    assert b.budget == c.budget == 36.0
-    assert a.budget == 0.01
+    d = gyrovib.select(budget="36deg/h", unit="deg/s", rate=["1deg/s"])
+    assert a.unit == b.unit == "deg/h"
+    assert a.budget == b.budget == c.budget == 36.0
+    assert d.budget == 0.01
     assert (b.margin == c.margin).all() and (a.margin == c.margin).all()
 
 

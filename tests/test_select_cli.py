@@ -89,7 +89,8 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert sensors["bad"]["pass"] is False
     assert sensors["awful"]["pass"] is False
     bad_tone, bad_noise = sensors["bad"]["profiles"]
-    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks"}
+    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks", "saturated", "reason"}
+    assert bad_tone["saturated"] is False and "exceeds its bound" in bad_tone["reason"]
     assert bad_tone["pass"] is False and bad_noise["pass"] is True
     k2 = bad_tone["checks"]["k2"]
     assert k2["value"] == 3.0e-3 and k2["pass"] is False
@@ -277,7 +278,8 @@ def test_output_file(catalog: str, tmp_path: Path) -> None:
 
 
 def test_budget_with_unit_equals_plain_number(catalog: str) -> None:
-    a = strict_json(run("bounds", catalog, "--budget", "36deg/h", "--format", "json").stdout)
+    a = strict_json(run("bounds", catalog, "--budget", "36deg/h", "--unit", "deg/s",
+                        "--format", "json").stdout)
     b = strict_json(run("bounds", catalog, "--budget", "0.01", "--format", "json").stdout)
     c = strict_json(run("bounds", catalog, "--budget", "0.01 deg/s", "--format", "json").stdout)
     assert a["budget"] == pytest.approx(0.01, rel=1e-15)
@@ -285,6 +287,17 @@ def test_budget_with_unit_equals_plain_number(catalog: str) -> None:
         for p, q in zip(x["profiles"], y["profiles"], strict=True):
             for name, value in q["bounds"].items():
                 assert p["bounds"][name] == pytest.approx(value, rel=1e-12)
+
+
+@pytest.mark.parametrize("command", ["bounds", "select"])
+def test_output_follows_the_budget_unit(catalog: str, command: str) -> None:
+    # INTERFACE.md: --unit defaults to the unit --budget carries; 36deg/h stays 36 deg/h,
+    # and the bounds equal those of an explicit --unit deg/h
+    got = strict_json(run(command, catalog, "--budget", "36deg/h", "--format", "json").stdout)
+    explicit = strict_json(run(command, catalog, "--budget", "36", "--unit", "deg/h",
+                               "--format", "json").stdout)
+    assert got["unit"] == "deg/h" and got["budget"] == pytest.approx(36.0, rel=1e-15)
+    assert got["profiles"] == explicit["profiles"]
 
 
 def test_bounds_unit_invariance(catalog: str) -> None:

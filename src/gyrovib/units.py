@@ -70,6 +70,20 @@ def factor(unit: str, power: int) -> float:
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)?\s*$")
 
 
+def quantity_unit(text: str) -> str | None:
+    """The canonical unit a quantity such as ``"36deg/h"`` carries, or None for a bare number.
+
+    Text that is not a quantity gives None (:func:`parse_rate` reports it).
+    """
+    match = _QUANTITY.match(text)
+    if match is None or not match.group(2):
+        return None
+    try:
+        return canonical_unit(match.group(2))
+    except OptionError:
+        return None
+
+
 def parse_rate(text: str, default_unit: str) -> float:
     """Parse ``"0.01"``, ``"36deg/h"`` or ``"0.01 deg/s"`` into deg/s.
 

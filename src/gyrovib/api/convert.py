@@ -88,6 +88,7 @@ def to_unit(error: VibrationError, unit: str) -> VibrationError:
         multiplicative=error.multiplicative / s,
         total=error.total / s,
         rms=error.rms / s,
+        extra_terms=error.extra_terms / s,
     )
 
 

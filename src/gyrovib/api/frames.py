@@ -69,7 +69,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
     import numpy as np
 
-    from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+    from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 
     n_s, n_p = len(result.sensors), len(result.profiles)
     p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
@@ -83,12 +83,21 @@ def analysis_frame(result: AnalysisResult) -> Any:
     }
     columns.update({f"additive_terms.{t}": terms[:, k] for k, t in
                     enumerate(ADDITIVE_TERMS[:terms.shape[1]])})
+    extra = np.asarray(err.extra_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
+    columns.update({f"additive_terms.{t}": extra[:, EXTRA_TERMS.index(t)]
+                    for t in ("k3", "k5")})  # the odd-moment terms (MODEL.md section 10)
     columns.update({f"multiplicative_coefficients.{q}": qs[:, k] for k, q in
                     enumerate(MULTIPLICATIVE_TERMS[:qs.shape[1]])})
     for name in ("additive", "multiplicative", "total", "rms"):
         columns[name] = np.asarray(getattr(err, name))[s_idx, p_idx]
     if result.stderr is not None:
         columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
+    columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx]
+    if result.worst_phases:
+        columns["worst_phases"] = [
+            None if (int(i), int(j)) not in result.worst_phases
+            else [dict(g) for g in result.worst_phases[(int(i), int(j))]]
+            for i, j in zip(s_idx, p_idx, strict=True)]
     columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
                            for i, j in zip(s_idx, p_idx, strict=True)]
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
@@ -100,10 +109,11 @@ def analysis_frame(result: AnalysisResult) -> Any:
 def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
     import numpy as np
 
-    from gyrovib.core.synthesis import BOUNDED, PARTS
+    from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 
     out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
-    out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in PARTS})
+    present = PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
+    out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in present})
     return out
 
 
@@ -142,6 +152,8 @@ def selection_frame(result: SelectionResult) -> Any:
         "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
         "rms": np.asarray(result.rms).reshape(-1),
         "margin": np.asarray(result.margin).reshape(-1),
+        "saturated": np.asarray(result.saturated, dtype=bool).reshape(-1),
+        "reason": [_reason(result, int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
     }
     values = np.asarray(result.values).reshape(n_s * n_p, -1)
     bounds = np.asarray(result.bounds).reshape(n_s * n_p, -1)
@@ -157,6 +169,12 @@ def selection_frame(result: SelectionResult) -> Any:
                             "budget": result.budget, "criterion": result.criterion,
                             "require": result.require,
                             "requirement_met": result.requirement_met})
+
+
+def _reason(result: SelectionResult, i: int, j: int) -> str | None:
+    from gyrovib.render.select import reason
+
+    return reason(result, i, j)
 
 
 def sweep_frame(result: SweepResult) -> Any:

@@ -89,6 +89,22 @@ class AnalysisResult(_Frozen):
     #: ``numeric`` only: evaluations of eq. (2) per sensor × profile, and the seed.
     samples: int | None = None
     seed: int | None = None
+    #: (sensors, profiles): the saturation reach exceeds the sensor's range (MODEL.md 9).
+    saturated: NDArray[np.bool_] | None = None
+    #: κ of the saturation reach.
+    peak_factor: float = 3.0
+    #: per profile: whether it has phase-locked harmonic groups (MODEL.md 10).
+    locked: tuple[bool, ...] = ()
+    #: (sensor, profile) → per locked group, {order: phase found (deg)} of the
+    #: orders written ``phase: worst``; only for such profiles.
+    worst_phases: Mapping[tuple[int, int], tuple[dict[str, float], ...]] = field(
+        default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.saturated is None:
+            object.__setattr__(self, "saturated",
+                               np.zeros((len(self.sensors), len(self.profiles)), dtype=bool))
+        super().__post_init__()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))
@@ -184,6 +200,18 @@ class SelectionResult(_Frozen):
     limits: Mapping[int, Limit]
     requirement_met: bool
     allocation: AllocationConstants
+    #: (sensors, profiles): saturates there (MODEL.md section 9), which fails it.
+    saturated: NDArray[np.bool_] | None = None
+    #: (sensor, profile) → why it fails there beyond the criterion (one line).
+    reasons: Mapping[tuple[int, int], str] = field(default_factory=dict)
+    #: κ of the saturation reach.
+    peak_factor: float = 3.0
+
+    def __post_init__(self) -> None:
+        if self.saturated is None:
+            object.__setattr__(self, "saturated",
+                               np.zeros((len(self.sensors), len(self.profiles)), dtype=bool))
+        super().__post_init__()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))

@@ -143,18 +143,20 @@ def trade_study(
     allocation: Allocation | Sequence[float] | None = None,
     sweep_rates: Sequence[float] | FloatArray | None = None,
     created: _dt.datetime | None = None,
+    peak_factor: float = 3.0,
 ) -> TradeStudy:
     """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
 
     ``sweep_rates`` default: :data:`SWEEP_POINTS` rates over ±:func:`envelope`.
-    ``created`` (default: now, UTC) is stamped on the study.
+    ``created`` (default: now, UTC) is stamped on the study. ``peak_factor``:
+    κ of the saturation check (MODEL.md section 9) of the selection and analysis.
     """
     unit = units.canonical_unit(unit)
     selection = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, budget=budget, unit=unit, criterion=criterion,
-                           require=require, allocation=allocation)
+                           require=require, allocation=allocation, peak_factor=peak_factor)
     analysis = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
-                           rate=rate, unit=unit)
+                           rate=rate, unit=unit, peak_factor=peak_factor)
     if sweep_rates is None:
         half = envelope(catalog, profiles, rate)
         sweep_rates = api.rate_range(-half, half, SWEEP_POINTS)

@@ -8,6 +8,7 @@ from gyrovib.cli.common import github_errors, load_catalog, page_width, plain_as
 from gyrovib.cli.options import (
     allocation_option,
     budget_option,
+    budget_unit_option,
     files_argument,
     format_option,
     method_option,
@@ -15,10 +16,10 @@ from gyrovib.cli.options import (
     parse_allocation,
     parse_budget,
     parse_rate_option,
-    parse_unit,
+    peak_factor_option,
     rate_option,
+    resolve_unit,
     selection_options,
-    unit_option,
 )
 
 
@@ -28,12 +29,15 @@ from gyrovib.cli.options import (
 @budget_option
 @method_option
 @rate_option
-@unit_option
+@budget_unit_option
 @allocation_option
+@peak_factor_option
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
               show_default=True,
-              help="What a pass means: every coefficient within its bound (the paper's "
-                   "synthesis), Δ_V(RMS) ≤ budget (eq. 17), or both.")
+              help="What a pass means: bounds: every coefficient within its bound (the "
+                   "paper's synthesis) -- sufficient, not necessary: a sensor outside a bound "
+                   "may still meet the budget; rms: Δ_V(RMS) ≤ budget (eq. 17), the direct "
+                   "test; both. A saturating sensor fails whatever the criterion.")
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
@@ -41,8 +45,9 @@ from gyrovib.cli.options import (
 @output_option
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
-           profiles: tuple[str, ...], budget: str, method: str, rate: str | None, unit: str,
-           allocation: str | None, criterion: str, require: str, fmt: str,
+           profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
+           unit: str | None,
+           allocation: str | None, peak_factor: float, criterion: str, require: str, fmt: str,
            output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
@@ -55,12 +60,12 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     from gyrovib.render import select as render
 
     github_errors(fmt == "github")
-    unit = parse_unit(unit)
+    unit = resolve_unit(unit, budget)
     catalog = load_catalog(files)
     result = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, criterion=criterion, require=require,
-                        allocation=parse_allocation(allocation))
+                        allocation=parse_allocation(allocation), peak_factor=peak_factor)
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))

@@ -9,10 +9,32 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api import AnalysisResult
-from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 _ADDITIVE_LABELS = ("Δ0 A1", "Δ0 k2", "Δ0 k4", "Δ0 m31", "Δ0 m32")
+#: The odd-moment terms of locked harmonics (MODEL.md section 10), k3·M3 and k5·M5:
+#: always in JSON/CSV (0 where x3 is symmetric), in tables only where a profile has them.
+ODD_TERMS: tuple[str, ...] = ("k3", "k5")
+_ODD_INDEX = [EXTRA_TERMS.index(t) for t in ODD_TERMS]
+_ODD_LABELS = ("Δ0 k3", "Δ0 k5")
+#: The mark of a saturating sensor in tables (MODEL.md section 9).
+SATURATED_MARK = "SAT"
+
+
+def _odd(result: AnalysisResult, i: int, j: int) -> list[float]:
+    return [float(result.error.extra_terms[i, j, k]) for k in _ODD_INDEX]
+
+
+def _saturated(result: AnalysisResult, i: int, j: int) -> bool:
+    sat = result.saturated
+    return bool(sat is not None and sat[i, j])
+
+
+def _saturation_note(result: AnalysisResult) -> str:
+    return (f"{SATURATED_MARK}: saturated, |Ω_K3| + Σ tone amplitudes + locked peaks + "
+            f"{result.peak_factor:g}σ at the nonlinear element exceeds the sensor's range "
+            "(MODEL.md section 9): the error shown does not hold.")
 
 
 def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
@@ -36,7 +58,8 @@ def _to_json_rows(result: AnalysisResult) -> str:
             "sensor": result.sensors[i],
             "profile": result.profiles[j],
             "rate": rates[j],
-            "additive_terms": dict(zip(ADDITIVE_TERMS, terms[i][j], strict=True)),
+            "additive_terms": {**dict(zip(ADDITIVE_TERMS, terms[i][j], strict=True)),
+                               **dict(zip(ODD_TERMS, _odd(result, i, j), strict=True))},
             "multiplicative_coefficients": dict(zip(MULTIPLICATIVE_TERMS, qs[i][j], strict=True)),
             "additive": additive[i][j],
             "multiplicative": mult[i][j],
@@ -45,6 +68,9 @@ def _to_json_rows(result: AnalysisResult) -> str:
         }
         if extra is not None:
             row["stderr"] = number(extra[i, j])
+        row["saturated"] = _saturated(result, i, j)
+        if (i, j) in result.worst_phases:
+            row["worst_phases"] = [dict(g) for g in result.worst_phases[(i, j)]]
         row["warnings"] = list(result.warnings.get((i, j), ()))
         results.append(row)
     document = _head(result)
@@ -71,11 +97,12 @@ def _row_template(with_stderr: bool) -> str:
         return "{" + ", ".join(f"{json.dumps(k)}: {v}" for k, v in pairs) + "}"
 
     fields = [("sensor", "%s"), ("profile", "%s"), ("rate", "%s"),
-              ("additive_terms", obj([(t, "%s") for t in ADDITIVE_TERMS])),
+              ("additive_terms", obj([(t, "%s") for t in ADDITIVE_TERMS + ODD_TERMS])),
               ("multiplicative_coefficients", obj([(q, "%s") for q in MULTIPLICATIVE_TERMS])),
               ("additive", "%s"), ("multiplicative", "%s"), ("total", "%s"), ("rms", "%s")]
     if with_stderr:
         fields.append(("stderr", "%s"))
+    fields.append(("saturated", "%s"))
     fields.append(("warnings", "%s"))
     return obj(fields).replace("%s", "\0").replace("%", "%%").replace("\0", "%s")
 
@@ -91,10 +118,13 @@ def to_json(result: AnalysisResult) -> str:
     e = result.error
     extra = getattr(result, "stderr", None)
     columns = [e.additive_terms[..., t] for t in range(len(ADDITIVE_TERMS))]
+    columns += [e.extra_terms[..., k] for k in _ODD_INDEX]
     columns += [e.multiplicative_coefficients[..., q] for q in range(len(MULTIPLICATIVE_TERMS))]
     columns += [e.additive, e.multiplicative, e.total, e.rms]
     if not all(np.isfinite(c).all() for c in columns) or not np.isfinite(result.rates).all():
         return _to_json_rows(result)  # json refuses NaN/infinity; let it say so
+    if result.worst_phases:
+        return _to_json_rows(result)  # a key of some rows only: the reference form
     template = _row_template(extra is not None)
     n_s = len(result.sensors)
     sensors = [json.dumps(s) for s in result.sensors]
@@ -115,6 +145,9 @@ def to_json(result: AnalysisResult) -> str:
             if extra is not None:
                 encoded.append(["null" if v is None else float.__repr__(v)
                                 for v in map(number, extra[start:stop, j].tolist())])
+            sat = result.saturated
+            encoded.append(["false"] * count if sat is None else
+                           ["true" if v else "false" for v in sat[start:stop, j].tolist()])
             rows = zip(sensors[start:stop], [profile_text] * count, [rate_text] * count,
                        *encoded, warnings[start:stop], strict=True)
             blocks.append(", ".join([template % row for row in rows]))
@@ -124,10 +157,10 @@ def to_json(result: AnalysisResult) -> str:
 
 def _csv_header(with_stderr: bool = False) -> list[str]:
     return (["sensor", "profile", "rate_x1", "rate_x2", "rate_x3"]
-            + [f"additive_{t}" for t in ADDITIVE_TERMS]
+            + [f"additive_{t}" for t in ADDITIVE_TERMS + ODD_TERMS]
             + [f"multiplicative_{q}" for q in MULTIPLICATIVE_TERMS]
             + ["additive", "multiplicative", "total", "rms"]
-            + (["stderr"] if with_stderr else []) + ["warnings"])
+            + (["stderr"] if with_stderr else []) + ["saturated", "warnings"])
 
 
 def to_csv(result: AnalysisResult) -> str:
@@ -142,10 +175,11 @@ def to_csv(result: AnalysisResult) -> str:
         for i, j in _rows(result):
             yield [
                 result.sensors[i], result.profiles[j], *map(float, result.rates[j]),
-                *map(float, e.additive_terms[i, j]),
+                *map(float, e.additive_terms[i, j]), *_odd(result, i, j),
                 *map(float, e.multiplicative_coefficients[i, j]),
                 float(e.additive[i, j]), float(e.multiplicative[i, j]), float(e.total[i, j]),
                 float(e.rms[i, j]), *([float(extra[i, j])] if extra is not None else []),
+                "true" if _saturated(result, i, j) else "false",
                 "; ".join(result.warnings.get((i, j), ())),
             ]
 
@@ -156,8 +190,11 @@ def to_markdown(result: AnalysisResult) -> str:
     """A Markdown table (4 significant figures) with warnings as footnotes."""
     e = result.error
     extra = getattr(result, "stderr", None)
+    odd = any(result.locked)
     head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_ADDITIVE_LABELS,
-            "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []), "Δ_V(RMS)"]
+            *(_ODD_LABELS if odd else ()),
+            "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []), "Δ_V(RMS)",
+            "saturated"]
     rows: list[list[str]] = []
     notes: list[str] = []
     for i, j in _rows(result):
@@ -167,9 +204,12 @@ def to_markdown(result: AnalysisResult) -> str:
                          for w in result.warnings[(i, j)])
             mark = f" ⚠{len(notes)}"
         rows.append([result.sensors[i] + mark, result.profiles[j], fmt(result.rates[j, 2]),
-                     *(fmt(x) for x in e.additive_terms[i, j]), fmt(e.additive[i, j]),
+                     *(fmt(x) for x in e.additive_terms[i, j]),
+                     *((fmt(x) for x in _odd(result, i, j)) if odd else ()),
+                     fmt(e.additive[i, j]),
                      fmt(e.multiplicative[i, j]), fmt(e.total[i, j]),
-                     *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j])])
+                     *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j]),
+                     "yes" if _saturated(result, i, j) else "no"])
     text = (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
             + markdown_table(head, rows))
     if extra is not None:
@@ -188,6 +228,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
     extra = getattr(result, "stderr", None)
     out: list[Any] = []
     notes: list[str] = []
+    any_saturated = False
     for j, profile in enumerate(result.profiles):
         omega = result.rates[j, 2]
         table = Table(
@@ -195,7 +236,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             title_justify="left", header_style="bold",
         )
         table.add_column("sensor", no_wrap=True)
-        for label in _ADDITIVE_LABELS:
+        odd = bool(result.locked[j]) if result.locked else False
+        for label in _ADDITIVE_LABELS + (_ODD_LABELS if odd else ()):
             table.add_column(label, justify="right", no_wrap=True)
         for label in ("Δ_VA", "Δ_VM", "Δ_V"):
             table.add_column(label, justify="right", no_wrap=True, style="bold")
@@ -207,7 +249,16 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             if (i, j) in result.warnings:
                 notes.extend(f"{sensor} / {profile}: {w}" for w in result.warnings[(i, j)])
                 name.append(f" ⚠{len(notes)}", style="yellow")
+            if _saturated(result, i, j):
+                name.append(f" {SATURATED_MARK}", style="bold red")
+                any_saturated = True
+            if (i, j) in result.worst_phases:
+                phases = "; ".join(", ".join(f"order {n} at {v:.4g}°" for n, v in g.items())
+                                   for g in result.worst_phases[(i, j)] if g)
+                notes.append(f"{sensor} / {profile}: worst phases {phases}")
+                name.append(f" ⚠{len(notes)}", style="yellow")
             table.add_row(name, *(fmt(x) for x in e.additive_terms[i, j]),
+                          *((fmt(x) for x in _odd(result, i, j)) if odd else ()),
                           fmt(e.additive[i, j]), fmt(e.multiplicative[i, j]),
                           fmt(e.total[i, j]),
                           *([fmt(extra[i, j], 2)] if extra is not None else []),
@@ -217,6 +268,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
               "sum; Δ_VM = Δ(1)·Ω + Δ(2)·Ω² + Δ(3)·Ω³; Δ_V = Δ_VA + Δ_VM (eq. 13); "
               "Δ_V(RMS) of eq. (16).")
     out.append(Text(legend, style="dim"))
+    if any_saturated:
+        out.append(Text(_saturation_note(result), style="red"))
     if extra is not None:
         out.append(Text(_numeric_note(result), style="dim"))
     for k, note in enumerate(notes, 1):

@@ -7,7 +7,13 @@ from typing import Any
 
 from gyrovib import units
 from gyrovib.api import BoundsResult
-from gyrovib.core.synthesis import BOUNDED, PARTS, AllocationConstants, CoefficientBounds
+from gyrovib.core.synthesis import (
+    BOUNDED,
+    ODD_PARTS,
+    PARTS,
+    AllocationConstants,
+    CoefficientBounds,
+)
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 
@@ -24,9 +30,15 @@ def bounds_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
     return {name: number(getattr(bounds, name)[j]) for name in BOUNDED}
 
 
+def part_names(bounds: CoefficientBounds) -> tuple[str, ...]:
+    """The candidates the bounds carry: the k4/k5 ones, and those of locked harmonics
+    (:data:`~gyrovib.core.synthesis.ODD_PARTS`, MODEL.md section 10) where they exist."""
+    return PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
+
+
 def parts_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
-    """The k4/k5 candidates of profile ``j`` for JSON."""
-    return {name: number(getattr(bounds, name)[j]) for name in PARTS}
+    """The candidates of profile ``j`` for JSON."""
+    return {name: number(getattr(bounds, name)[j]) for name in part_names(bounds)}
 
 
 def profiles_json(profiles: tuple[str, ...], rates: Any, bounds: CoefficientBounds) -> list[Any]:
@@ -48,12 +60,13 @@ def to_json(result: BoundsResult) -> str:
 
 def to_csv(result: BoundsResult) -> str:
     """One row per profile; an unconstrained bound is written ``inf``."""
-    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *PARTS]
+    parts = part_names(result.bounds)
+    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *parts]
 
     def rows() -> Iterator[list[Any]]:
         for j, p in enumerate(result.profiles):
             yield [p, *map(float, result.rates[j]),
-                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + PARTS)]
+                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + parts)]
 
     return csv_text(head, rows())
 
@@ -61,12 +74,18 @@ def to_csv(result: BoundsResult) -> str:
 def shares(constants: AllocationConstants) -> dict[str, str]:
     """The share of Δ* behind each bound, as printed in the tables."""
     a, b = constants.alpha, constants.beta
+    # the exact method splits β1 equally between k3 and the linear k5 (they add
+    # linearly in Δ(1), MODEL.md section 6); the paper prints its own 0.35
+    half = abs(constants.k3 - float(b[0]) / 2.0) <= 1e-12 * float(b[0])
+    k3 = f"β1/2 = {constants.k3:.4g}" if half else f"{constants.k3:.4g} (paper)"
+    k5 = (f"β1/2 = {constants.k5_linear:.4g}" if half
+          else f"{constants.k5_linear:.4g} (paper)")
     return {
         "A1": f"α1 = {a[0]:.4g}",
         "k2": f"α2 = {a[1]:.4g}",
-        "k3": f"β1/√2 = {constants.k3:.4g}",
+        "k3": k3,
         "k4": f"α3 = {a[2]:.4g} | β2 = {b[1]:.4g}",
-        "k5": f"β1/√2 = {constants.k5_linear:.4g} | β3 = {b[2]:.4g}",
+        "k5": f"{k5} | β3 = {b[2]:.4g}",
         "m31": f"α4 = {a[3]:.4g}",
         "m32": f"α5 = {a[4]:.4g}",
     }

@@ -8,11 +8,12 @@ from typing import Any
 
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
+from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import coefficient_unit, profiles_json, shares
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 _CRITERION = {
-    "bounds": "every |coefficient| within its bound (eq. 23, 25)",
+    "bounds": "every |coefficient| within its bound (eq. 23, 25; sufficient, not necessary)",
     "rms": "Δ_V(RMS) ≤ Δ* (eq. 17)",
     "both": "every |coefficient| within its bound and Δ_V(RMS) ≤ Δ*",
 }
@@ -27,6 +28,8 @@ def failures(result: SelectionResult, i: int, j: int) -> list[str]:
     Only the criteria that count (``--criterion``) are listed.
     """
     reasons: list[str] = []
+    if (i, j) in result.reasons:
+        reasons.append(result.reasons[(i, j)])
     if result.criterion in ("bounds", "both"):
         for b, name in enumerate(BOUNDED):
             if not result.check_pass[i, j, b]:
@@ -48,6 +51,8 @@ def limit_text(result: SelectionResult, i: int) -> str:
     j = limit.profile
     profile = result.profiles[j]
     ratio = fmt(limit.ratio, 3)
+    if limit.name == "saturated":
+        return f"its range under {profile}: {result.reasons[(i, j)]}"
     if limit.name == "rms":
         return (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} is {ratio}× the budget "
                 f"under {profile}")
@@ -75,16 +80,39 @@ def _heading(result: SelectionResult) -> str:
             f"criterion {result.criterion}: {_CRITERION[result.criterion]}")
 
 
+#: What the bounds criterion can and cannot say (the help of --criterion says it too).
+BOUNDS_NOTE = ("The bounds are sufficient, not necessary: a sensor within every bound meets "
+               "the budget under this allocation, one outside a bound may still meet it; "
+               "--criterion rms (Δ_V(RMS) ≤ Δ*, eq. 17) is the direct test.")
+
+
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
-    return ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
+    text = ("Cells: ✓ pass / ✗ fail under the criterion, with the margin Δ*/Δ_V(RMS) "
             "(> 1: the RMS error is within the budget; ∞: no error at all). Each sensor's "
-            "bounds include its own frequency response. Shares of Δ*: "
-            + ", ".join(f"{k} {v}" for k, v in share.items())
-            + ". The bounds are sufficient under this allocation, not necessary.")
+            "bounds include its own frequency response where it acts at the input "
+            "(`at: input`); an output filter earns no credit. Shares of Δ*: "
+            + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE)
+    if result.saturated is not None and result.saturated.any():
+        text += (f" {SATURATED_MARK}: the sensor saturates (|Ω_K3| + Σ tone amplitudes + "
+                 f"locked peaks + {result.peak_factor:g}σ3 at its nonlinear element exceeds "
+                 "its range, MODEL.md section 9) and fails whatever the criterion.")
+    return text
 
 
 # ------------------------------------------------------------------ JSON, CSV
+
+
+def _sat(result: SelectionResult, i: int, j: int) -> bool:
+    return bool(result.saturated is not None and result.saturated[i, j])
+
+
+def reason(result: SelectionResult, i: int, j: int) -> str | None:
+    """Why sensor ``i`` fails under profile ``j``, one line; None where it passes."""
+    if result.passed[i, j]:
+        return None
+    why = failures(result, i, j)
+    return "; ".join(why) if why else "fails the criterion"
 
 
 def to_json(result: SelectionResult) -> str:
@@ -106,7 +134,8 @@ def to_json(result: SelectionResult) -> str:
             }
             cells.append({"profile": profile, "pass": bool(result.passed[i, j]),
                           "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
-                          "checks": checks})
+                          "checks": checks, "saturated": _sat(result, i, j),
+                          "reason": reason(result, i, j)})
         sensors.append({"sensor": sensor, "pass": bool(result.sensor_pass[i]),
                         "profiles": cells})
     document["sensors"] = sensors
@@ -118,6 +147,7 @@ def to_csv(result: SelectionResult) -> str:
     head = ["sensor", "profile", "pass", "sensor_pass", "rms", "margin"]
     for name in BOUNDED:
         head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
+    head += ["saturated", "reason"]
 
     def rows() -> Iterator[list[Any]]:
         for i, sensor in enumerate(result.sensors):
@@ -128,6 +158,7 @@ def to_csv(result: SelectionResult) -> str:
                 for b in range(len(BOUNDED)):
                     row += [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
                             bool(result.check_pass[i, j, b])]
+                row += [_sat(result, i, j), reason(result, i, j) or ""]
                 yield row
 
     return csv_text(head, rows())
@@ -138,7 +169,8 @@ def to_csv(result: SelectionResult) -> str:
 
 def _cell(result: SelectionResult, i: int, j: int) -> str:
     mark = "✓" if result.passed[i, j] else "✗"
-    return f"{mark} {_margin(result.margin[i, j])}"
+    sat = f" {SATURATED_MARK}" if _sat(result, i, j) else ""
+    return f"{mark}{sat} {_margin(result.margin[i, j])}"
 
 
 def _passing(result: SelectionResult) -> list[list[str]]:

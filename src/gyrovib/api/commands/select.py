@@ -9,12 +9,14 @@ from numpy.typing import NDArray
 
 from gyrovib import units
 from gyrovib.api.commands.bounds import bounds, check_method_budget, resolve_allocation
-from gyrovib.api.convert import bound_factors
-from gyrovib.api.prepare import check_bounds, check_finite, float_guard, prepare
+from gyrovib.api.convert import bound_factors, sensor_ranges
+from gyrovib.api.prepare import Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import COEFFICIENTS, vibration_error
+from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
+from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
@@ -41,10 +43,20 @@ def _ratio(value: FloatArray, bound: FloatArray) -> FloatArray:
 
 
 def _limits(criterion: str, failing: NDArray[np.intp], ratios: FloatArray, rms: FloatArray,
-            budget: float) -> dict[int, Limit]:
-    """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts."""
+            budget: float, saturated: NDArray[np.bool_] | None = None,
+            over: FloatArray | None = None) -> dict[int, Limit]:
+    """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts.
+
+    Saturation comes first: a sensor that saturates somewhere is limited by
+    its range (``"saturated"``, ratio reach/range, the worst profile).
+    """
     limits: dict[int, Limit] = {}
     for i in failing.tolist():
+        if saturated is not None and over is not None and saturated[i].any():
+            js = np.flatnonzero(saturated[i])
+            j = int(js[np.argmax(over[i, js])])
+            limits[int(i)] = Limit("saturated", j, float(over[i, j]))
+            continue
         candidates: list[Limit] = []
         if criterion in ("bounds", "both"):
             jb = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
@@ -69,6 +81,7 @@ def select(
     criterion: str = "bounds",
     require: str = "any",
     allocation: Allocation | Sequence[float] | None = None,
+    peak_factor: float = DEFAULT_PEAK_FACTOR,
 ) -> SelectionResult:
     """Which sensors meet the budget: the bound checks and eq. (17), per profile.
 
@@ -78,6 +91,11 @@ def select(
     passes when it passes under every chosen profile; ``require`` ``any``
     (at least one sensor passes) or ``all`` decides :attr:`requirement_met`.
     ``budget`` and ``rate`` are in deg/s; ``unit`` is the output unit.
+
+    A sensor that saturates under a profile (MODEL.md section 9: |Ω_K3| +
+    Σ tone amplitudes + locked peaks + κσ3 at its nonlinear element above its
+    range, κ = ``peak_factor``) fails there whatever the criterion: the
+    static model behind both tests does not hold (:attr:`SelectionResult.reasons`).
     """
     check_method_budget(method, budget)
     if criterion not in CRITERIA:
@@ -90,16 +108,20 @@ def select(
                    unit=unit, allocation=allocation)
     with float_guard():
         prepared = prepare(catalog, sensors=sensors, profiles=profiles, rate=rate,
-                           methods=(method,))
+                           methods=(method,), peak_factor=peak_factor)
         coeffs = prepared.coefficients
         n_s, n_p, n_b = len(prepared.sensors), len(prepared.profiles), len(BOUNDED)
         limits_deg = np.full((n_s, n_p, n_b), np.inf)
         rms = np.zeros((n_s, n_p))
+        reach = np.zeros((n_s, n_p))
         for group in prepared.groups:
             multipliers = group.multipliers[method]
             limits_deg[group.index] = coefficient_bounds(multipliers, budget,
                                                          constants).stacked()[None]
             rms[group.index] = vibration_error(coeffs[group.index], multipliers).rms
+            reach[group.index] = group.reach(prepared.rates[:, 2])[None]
+        ranges = sensor_ranges(prepared.sensors)
+        saturated = saturated_at(reach, ranges)
         check_finite([rms], prepared)
         check_bounds(limits_deg, prepared)
         factors = np.array([bound_factors(unit)[c] for c in BOUNDED])
@@ -112,13 +134,15 @@ def select(
         bounds_pass = np.all(check_pass, axis=-1)
         rms_pass = _at_most(rms, budget)
         passed = {"bounds": bounds_pass, "rms": rms_pass,
-                  "both": bounds_pass & rms_pass}[criterion]
+                  "both": bounds_pass & rms_pass}[criterion] & ~saturated
         sensor_pass = np.all(passed, axis=1)
         margin = np.where(rms > 0, budget / np.where(rms > 0, rms, 1.0), np.inf)
         worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
         ranking = tuple(int(i) for i in sorted(range(n_s), key=lambda i: (-worst[i], i)))
         limits = _limits(criterion, np.nonzero(~sensor_pass)[0],
-                         _ratio(values_deg, limits_deg), rms, budget)
+                         _ratio(values_deg, limits_deg), rms, budget, saturated,
+                         reach / ranges[:, None])
+        reasons = _reasons(prepared, saturated, reach, ranges, peak_factor, unit)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
     s = units.scale(unit)
     return SelectionResult(
@@ -145,4 +169,17 @@ def select(
         limits=limits,
         requirement_met=met,
         allocation=constants,
+        saturated=saturated,
+        reasons=reasons,
+        peak_factor=peak_factor,
     )
+
+
+def _reasons(prepared: Prepared, saturated: NDArray[np.bool_], reach: FloatArray,
+             ranges: FloatArray, peak_factor: float, unit: str) -> dict[tuple[int, int], str]:
+    """Per saturating (sensor, profile): why it fails, one line in ``unit``."""
+    s = units.scale(unit)
+    return {
+        (i, j): (f"saturated: |Ω_K3| + Σ tone amplitudes + locked peaks + {peak_factor:g}σ3 = "
+                 f"{reach[i, j] / s:.6g} {unit} exceeds the range {ranges[i] / s:.6g} {unit}")
+        for i, j in (tuple(int(v) for v in ij) for ij in np.argwhere(saturated))}
