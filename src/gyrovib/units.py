@@ -70,6 +70,16 @@ def factor(unit: str, power: int) -> float:
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)?\s*$")
 
 
+def coefficient_factor(name: str, source: str, target: str) -> float:
+    """Factor taking coefficient ``name`` (or its bound) from rate unit ``source`` to ``target``.
+
+    A coefficient of rate power p (:data:`COEFFICIENT_RATE_POWER`) in unit U is
+    c[deg/s]·scale(U)^(−p), so c[target] = c[source]·(scale(target)/scale(source))^(−p).
+    """
+    power = COEFFICIENT_RATE_POWER[name.split("_")[0]]
+    return float((scale(target) / scale(source)) ** (-power))
+
+
 def quantity_unit(text: str) -> str | None:
     """The canonical unit a quantity such as ``"36deg/h"`` carries, or None for a bare number.
 

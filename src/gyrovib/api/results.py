@@ -149,6 +149,9 @@ class BoundsResult(_Frozen):
     rates: FloatArray
     bounds: CoefficientBounds
     allocation: AllocationConstants
+    #: the rate unit tables write coefficient bounds in (the catalogue's own, so that
+    #: k5 reads 6.7e-06 (deg/s)^-4 rather than 6e-23 (deg/h)^-4); None: :attr:`unit`.
+    coefficient_unit: str | None = None
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.profiles),)
@@ -206,6 +209,8 @@ class SelectionResult(_Frozen):
     reasons: Mapping[tuple[int, int], str] = field(default_factory=dict)
     #: κ of the saturation reach.
     peak_factor: float = 3.0
+    #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
+    coefficient_unit: str | None = None
 
     def __post_init__(self) -> None:
         if self.saturated is None:

@@ -91,7 +91,7 @@ def shares(constants: AllocationConstants) -> dict[str, str]:
     }
 
 
-def _which(bounds: CoefficientBounds, j: int, name: str) -> str:
+def _which(bounds: Any, j: int, name: str) -> str:
     """For k4/k5: the two candidates, the smaller one (the bound) marked."""
     if name == "k4":
         first, second = ("additive", bounds.k4_additive[j]), ("multiplicative",
@@ -106,10 +106,38 @@ def _which(bounds: CoefficientBounds, j: int, name: str) -> str:
     return f"{first[0]} {fmt(first[1])}, {second[0]} {fmt(second[1])}: {binding} binds"
 
 
+def table_unit(result: Any) -> str:
+    """The rate unit of coefficients in tables: the catalogue's own (JSON keeps :attr:`unit`)."""
+    unit: str = getattr(result, "coefficient_unit", None) or result.unit
+    return unit
+
+
+def in_table_unit(result: Any, name: str, value: float) -> float:
+    """A coefficient (bound) of ``result`` (in its :attr:`unit`) in :func:`table_unit`."""
+    target = table_unit(result)
+    if target == result.unit:
+        return float(value)
+    return float(value) * units.coefficient_factor(name, result.unit, target)
+
+
 def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     share = shares(result.allocation)
-    return [[name, fmt(getattr(result.bounds, name)[j]), coefficient_unit(name, result.unit),
-             share[name], _which(result.bounds, j, name)] for name in BOUNDED]
+    unit = table_unit(result)
+    converted = _Converted(result)
+    return [[name, fmt(in_table_unit(result, name, getattr(result.bounds, name)[j])),
+             coefficient_unit(name, unit), share[name], _which(converted, j, name)]
+            for name in BOUNDED]
+
+
+class _Converted:
+    """The k4/k5 candidates of a result in its table unit (for :func:`_which`)."""
+
+    def __init__(self, result: BoundsResult) -> None:
+        self._result = result
+
+    def __getattr__(self, name: str) -> Any:
+        values = getattr(self._result.bounds, name)
+        return [in_table_unit(self._result, name, v) for v in values]
 
 
 _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
@@ -118,6 +146,15 @@ _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
 def _title(result: BoundsResult, j: int) -> str:
     return (f"{result.profiles[j]}  (Ω_K3 = {fmt(result.rates[j, 2])} {result.unit}, "
             f"Δ* = {fmt(result.budget)} {result.unit}, method {result.method})")
+
+
+def unit_note(result: Any) -> str:
+    """Where tables write coefficients in another unit than the rates, say so."""
+    unit = table_unit(result)
+    if unit == result.unit:
+        return ""
+    return (f" Coefficients and their bounds are written in the catalogue's rate unit, "
+            f"{unit}, to stay readable; --format json gives them in {result.unit}.")
 
 
 _LEGEND = ("A sensor whose every |coefficient| is at most its bound meets the budget "
@@ -132,7 +169,7 @@ def to_markdown(result: BoundsResult) -> str:
              f"budget Δ* = {fmt(result.budget)} {result.unit}\n"]
     for j in range(len(result.profiles)):
         parts.append(f"**{_title(result, j)}**\n\n" + markdown_table(_HEAD, _rows(result, j)))
-    parts.append(_LEGEND + "\n")
+    parts.append(_LEGEND + unit_note(result) + "\n")
     return "\n".join(parts)
 
 
@@ -150,5 +187,5 @@ def to_table(result: BoundsResult, width: int | None = None, color: bool = False
         for row in _rows(result, j):
             table.add_row(*row)
         out.append(table)
-    out.append(Text(_LEGEND, style="dim"))
+    out.append(Text(_LEGEND + unit_note(result), style="dim"))
     return rich_text(out, width=width, color=color, ascii=ascii)

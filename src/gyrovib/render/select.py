@@ -9,8 +9,24 @@ from typing import Any
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.analysis import SATURATED_MARK
-from gyrovib.render.bounds import coefficient_unit, profiles_json, shares
-from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.bounds import (
+    coefficient_unit,
+    in_table_unit,
+    profiles_json,
+    shares,
+    table_unit,
+    unit_note,
+)
+from gyrovib.render.common import (
+    csv_text,
+    dumps,
+    fmt,
+    fmt_budget,
+    header,
+    markdown_table,
+    number,
+    rich_text,
+)
 
 _CRITERION = {
     "bounds": "every |coefficient| within its bound (eq. 23, 25; sufficient, not necessary)",
@@ -33,15 +49,16 @@ def failures(result: SelectionResult, i: int, j: int) -> list[str]:
     if result.criterion in ("bounds", "both"):
         for b, name in enumerate(BOUNDED):
             if not result.check_pass[i, j, b]:
-                unit = coefficient_unit(name, result.unit)
+                unit = coefficient_unit(name, table_unit(result))
                 tail = "" if unit == "1" else f" {unit}"
                 reasons.append(
-                    f"|{name}| = {fmt(result.values[i, j, b])} exceeds its bound "
-                    f"{fmt(result.bounds[i, j, b])}{tail}"
+                    f"|{name}| = {fmt(in_table_unit(result, name, result.values[i, j, b]))} "
+                    f"exceeds its bound "
+                    f"{fmt(in_table_unit(result, name, result.bounds[i, j, b]))}{tail}"
                 )
     if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
-        reasons.append(f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} exceeds the budget "
-                       f"{fmt(result.budget)} {result.unit}")
+        reasons.append(f"Δ_V(RMS) = {fmt_budget(result.rms[i, j], result.budget)} "
+                       f"{result.unit} exceeds the budget {fmt(result.budget)} {result.unit}")
     return reasons
 
 
@@ -54,13 +71,15 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "saturated":
         return f"its range under {profile}: {result.reasons[(i, j)]}"
     if limit.name == "rms":
-        return (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} is {ratio}× the budget "
-                f"under {profile}")
+        return (f"Δ_V(RMS) = {fmt_budget(result.rms[i, j], result.budget)} {result.unit} is "
+                f"{ratio}× the budget under {profile}")
     b = BOUNDED.index(limit.name)
-    unit = coefficient_unit(limit.name, result.unit)
+    name = limit.name
+    unit = coefficient_unit(name, table_unit(result))
     tail = "" if unit == "1" else f" {unit}"
-    return (f"{limit.name}: |{limit.name}| = {fmt(result.values[i, j, b])} is {ratio}× its "
-            f"bound {fmt(result.bounds[i, j, b])}{tail} under {profile}")
+    return (f"{name}: |{name}| = {fmt(in_table_unit(result, name, result.values[i, j, b]))} "
+            f"is {ratio}× its bound {fmt(in_table_unit(result, name, result.bounds[i, j, b]))}"
+            f"{tail} under {profile}")
 
 
 def _margin(value: float) -> str:
@@ -92,7 +111,8 @@ def _legend(result: SelectionResult) -> str:
             "(> 1: the RMS error is within the budget; ∞: no error at all). Each sensor's "
             "bounds include its own frequency response where it acts at the input "
             "(`at: input`); an output filter earns no credit. Shares of Δ*: "
-            + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE)
+            + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE
+            + unit_note(result))
     if result.saturated is not None and result.saturated.any():
         text += (f" {SATURATED_MARK}: the sensor saturates (|Ω_K3| + Σ tone amplitudes + "
                  f"locked peaks + {result.peak_factor:g}σ3 at its nonlinear element exceeds "

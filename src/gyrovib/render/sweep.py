@@ -6,7 +6,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from gyrovib.api import SweepResult
-from gyrovib.render.common import csv_text, dumps, fmt, header, number, rich_text
+from gyrovib.render.common import csv_text, dumps, fmt, fmt_budget, header, number, rich_text
 
 METHODS = ("exact", "paper")
 
@@ -74,9 +74,10 @@ def to_table(result: SweepResult, budget: float | None = None, width: int | None
             table.add_column(label, justify="right", no_wrap=True)
         for r, rate in enumerate(result.rates):
             e, p = result.exact, result.paper
-            table.add_row(fmt(rate), fmt(e.total[i, j, r]),
-                          "" if refused else fmt(p.total[i, j, r]), fmt(e.rms[i, j, r]),
-                          "" if refused else fmt(p.rms[i, j, r]))
+            table.add_row(fmt(rate), fmt_budget(e.total[i, j, r], budget),
+                          "" if refused else fmt_budget(p.total[i, j, r], budget),
+                          fmt_budget(e.rms[i, j, r], budget),
+                          "" if refused else fmt_budget(p.rms[i, j, r], budget))
         out.append(table)
     legend = (f"All values in {result.unit}. Δ_V of eq. (13), Δ_V(RMS) of eq. (16), at each "
               "Ω_K3 with Ω_K1, Ω_K2 of the profile.")

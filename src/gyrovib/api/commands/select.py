@@ -8,7 +8,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.commands.bounds import bounds, check_method_budget, resolve_allocation
+from gyrovib.api.commands.bounds import (
+    bounds,
+    catalog_unit,
+    check_method_budget,
+    resolve_allocation,
+)
 from gyrovib.api.convert import bound_factors, sensor_ranges
 from gyrovib.api.prepare import Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.results import Limit, SelectionResult
@@ -172,6 +177,8 @@ def select(
         saturated=saturated,
         reasons=reasons,
         peak_factor=peak_factor,
+        coefficient_unit=catalog_unit([e.unit for e in prepared.sensors])
+        or alone.coefficient_unit,
     )
 
 
