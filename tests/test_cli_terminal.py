@@ -267,8 +267,11 @@ def test_ascii_stream_gets_an_ascii_table() -> None:
     assert rows and len({len(line) for line in rows}) == 1  # laid out after transliteration
     marks = gyrovib("select", "--budget", "0.001", env=clean_env(PYTHONIOENCODING="ascii"))
     assert marks.returncode == 0 and marks.stdout.isascii()
-    assert re.search(r"\| +x 1\.82 +\|", marks.stdout)  # ✗ of a failing cell
-    assert re.search(r"\| +v 21\.9 +\|", marks.stdout)  # ✓ of a passing one
+    # adis16460 under uav-blade-pass-tone and engine-harmonics (bundled; its bandwidth
+    # is an output filter, `at: output`, so it earns no credit: margins 1.11 and 4.15)
+    assert re.search(r"\| +x 1\.11 +\|", marks.stdout)  # ✗ of a failing cell
+    assert re.search(r"\| +v 4\.15 +\|", marks.stdout)  # ✓ of a passing one
+    assert re.search(r"\| +x SAT ", marks.stdout)  # adis16460 saturates (manoeuvre-saturation)
     csv = gyrovib("analyze", "--format", "markdown", env=clean_env(PYTHONIOENCODING="ascii"))
     assert csv.returncode == 0 and csv.stdout.isascii() and "Delta_V" in csv.stdout
 

@@ -64,7 +64,7 @@ def test_analyze_frame_equals_json(unit):
     document = cli_json("analyze", "--unit", unit)
     frame = gyrovib.analyze(unit=unit).to_frame()
     rows = document["results"]
-    assert len(frame) == len(rows) == 9 * 7  # bundled: 9 sensors × 7 profiles
+    assert len(frame) == len(rows) == 9 * 8  # bundled: 9 sensors × 8 profiles
     for k, row in enumerate(rows):
         expected = flatten("", row)
         expected["warnings"] = row["warnings"]
@@ -87,7 +87,7 @@ def test_analyze_numeric_frame_has_stderr_samples_and_seed():
 def test_bounds_frame_equals_json():
     document = cli_json("bounds", "--budget", "10deg/h", "--unit", "deg/h")
     frame = gyrovib.bounds(budget="10deg/h", unit="deg/h").to_frame()
-    assert len(frame) == len(document["profiles"]) == 7
+    assert len(frame) == len(document["profiles"]) == 8
     for k, row in enumerate(document["profiles"]):
         check_row(frame.iloc[k], flatten("", row))
     # An unconstrained bound (JSON null) is +inf: k3 of a still profile (Ω_K3 = 0 →
@@ -113,7 +113,7 @@ def test_select_frame_equals_json():
             expected.update(flatten("profile_parts", entry["parts"]))
             check_row(frame.iloc[k], expected)
             k += 1
-    assert k == len(frame) == 63
+    assert k == len(frame) == 72  # 9 sensors × 8 profiles
     assert frame.attrs["criterion"] == "both" and frame.attrs["require"] == document["require"]
 
 

@@ -172,7 +172,7 @@ def selection_frame(result: SelectionResult) -> Any:
 
 
 def _reason(result: SelectionResult, i: int, j: int) -> str | None:
-    from gyrovib.render.select import reason
+    from gyrovib.api.commands.select import reason
 
     return reason(result, i, j)
 

@@ -129,10 +129,9 @@ def _sat(result: SelectionResult, i: int, j: int) -> bool:
 
 def reason(result: SelectionResult, i: int, j: int) -> str | None:
     """Why sensor ``i`` fails under profile ``j``, one line; None where it passes."""
-    if result.passed[i, j]:
-        return None
-    why = failures(result, i, j)
-    return "; ".join(why) if why else "fails the criterion"
+    from gyrovib.api.commands.select import reason as text
+
+    return text(result, i, j)
 
 
 def to_json(result: SelectionResult) -> str:

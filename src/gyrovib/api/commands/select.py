@@ -182,6 +182,27 @@ def select(
     )
 
 
+def reason(result: SelectionResult, i: int, j: int) -> str | None:
+    """Why sensor ``i`` fails under profile ``j``, one line in :attr:`~SelectionResult.unit`
+    (the JSON's and the frame's ``reason``); None where it passes.
+
+    Saturation first, then the criteria that count (``criterion``).
+    """
+    if result.passed[i, j]:
+        return None
+    why: list[str] = []
+    if (i, j) in result.reasons:
+        why.append(result.reasons[(i, j)])
+    if result.criterion in ("bounds", "both"):
+        why.extend(f"|{name}| = {result.values[i, j, b]:.6g} exceeds its bound "
+                   f"{result.bounds[i, j, b]:.6g}"
+                   for b, name in enumerate(BOUNDED) if not result.check_pass[i, j, b])
+    if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
+        why.append(f"Δ_V(RMS) = {result.rms[i, j]:.6g} {result.unit} exceeds the budget "
+                   f"{result.budget:.6g} {result.unit}")
+    return "; ".join(why) if why else "fails the criterion"
+
+
 def _reasons(prepared: Prepared, saturated: NDArray[np.bool_], reach: FloatArray,
              ranges: FloatArray, peak_factor: float, unit: str) -> dict[tuple[int, int], str]:
     """Per saturating (sensor, profile): why it fails, one line in ``unit``."""
