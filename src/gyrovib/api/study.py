@@ -119,12 +119,15 @@ def sensor_form(sensor: object) -> str:
 def envelope(catalog: Catalog, profiles: Sequence[str], rate: Sequence[float] | None) -> float:
     """Half-width of the default sweep in deg/s: ENVELOPE_FACTOR × max(|Ω_K3| + peak).
 
-    The peak is Σ tone amplitudes + 3σ of x3 (the saturation check's); 1 deg/s
-    when every profile is still and without vibration.
+    The peak is Σ tone amplitudes + the locked groups' peaks + 3σ of x3 (the
+    saturation check's, κ = 3); 1 deg/s when every profile is still and
+    without vibration.
     """
+    from gyrovib.api.prepare import profile_locked, vibration_swing
+
     _, p_entries = api.select_entries(catalog, (), profiles, need=("profiles",))
     reach = [abs(float(api.resolve_rate(p, rate)[2]))
-             + api.vibration_peak(api.profile_vibration(p)) for p in p_entries]
+             + vibration_swing(api.profile_vibration(p), profile_locked(p)) for p in p_entries]
     widest = max(reach, default=0.0)
     return ENVELOPE_FACTOR * widest if widest > 0 else 1.0
 
