@@ -112,8 +112,8 @@ __all__ = [
     "profile_generator",
     "profile_location",
     "profile_locations",
-    "profile_rate",
     "profile_locked",
+    "profile_rate",
     "profile_vibration",
     "quiet_float",
     "rate_range",
@@ -243,6 +243,9 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
         prepare as prepare,
     )
     from gyrovib.api.prepare import (
+        profile_locked as profile_locked,
+    )
+    from gyrovib.api.prepare import (
         profile_vibration as profile_vibration,
     )
     from gyrovib.api.prepare import (
@@ -256,9 +259,6 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     )
     from gyrovib.api.prepare import (
         vibration_peak as vibration_peak,
-    )
-    from gyrovib.api.prepare import (
-        profile_locked as profile_locked,
     )
     from gyrovib.api.prepare import (
         vibration_swing as vibration_swing,
