@@ -147,3 +147,20 @@ def test_input_response_keeps_a_part_out_of_saturation(tmp_path: Path) -> None:
     _, doc = select_doc(path)
     assert {s["sensor"]: s["pass"] for s in doc["sensors"]} == {
         "output": False, "output-marked": False, "input": True}
+
+
+def test_sweep_flags_the_rates_that_saturate(tmp_path: Path) -> None:
+    # R = 20 against |Ω_K3| + 5 + 3·2 = |Ω_K3| + 11: saturated where |Ω_K3| > 9
+    # (equal does not saturate); with κ = 1, |Ω_K3| + 7 > 20 only past 13
+    profile = PROFILE.replace("rate: [0, 0, 10]", "rate: [0, 0, 0]")
+    path = catalog(tmp_path, {"r20": 20.0}, profile=profile)
+    result = run("sweep", path, "--rate-range=-10:10:5", "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    (series,) = json.loads(result.stdout)["series"]
+    assert series["saturated"] == [True, False, False, False, True]  # -10, -5, 0, 5, 10
+    edge = json.loads(run("sweep", path, "--rate-range=9:9:1", "--format", "json").stdout)
+    assert edge["series"][0]["saturated"] == [False]
+    loose = json.loads(run("sweep", path, "--rate-range=-10:10:5", "--peak-factor", "1",
+                           "--format", "json").stdout)
+    assert loose["series"][0]["saturated"] == [False] * 5
+    assert "SAT" in run("sweep", path, "--rate-range=-10:10:5").stdout

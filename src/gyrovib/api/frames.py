@@ -195,6 +195,7 @@ def sweep_frame(result: SweepResult) -> Any:
         err = getattr(result, method)
         for name in ("total", "rms"):
             columns[f"{method}.{name}"] = np.asarray(getattr(err, name))[s_idx, p_idx, r_idx]
+    columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx, r_idx]
     return _frame(columns, {"method": "exact", "unit": result.unit,
                             "methods": ["exact", "paper"],
                             "paper_refused": dict(result.paper_refused)})

@@ -127,6 +127,16 @@ class SweepResult(_Frozen):
     exact: VibrationError
     paper: VibrationError
     paper_refused: Mapping[str, str] = field(default_factory=dict)
+    #: (sensors, profiles, rates): the sensor saturates at that Ω_K3 (MODEL.md section 9).
+    saturated: NDArray[np.bool_] | None = None
+    #: κ of the saturation reach.
+    peak_factor: float = 3.0
+
+    def __post_init__(self) -> None:
+        if self.saturated is None:
+            object.__setattr__(self, "saturated", np.zeros(
+                (len(self.sensors), len(self.profiles), len(self.rates)), dtype=bool))
+        super().__post_init__()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles), len(self.rates))

@@ -11,6 +11,7 @@ from gyrovib.cli.options import (
     format_option,
     output_option,
     parse_budget,
+    peak_factor_option,
     resolve_unit,
     selection_options,
 )
@@ -56,11 +57,12 @@ def parse_rate_range(text: str, unit: str) -> tuple[float, float, int]:
 @click.option("--log", "log_scale", is_flag=True,
               help="Plot on logarithmic (Δ_V(RMS)) and symmetric-log (Δ_V) axes.")
 @budget_unit_option
+@peak_factor_option
 @format_option("table", "json", "csv")
 @output_option
 def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
           rate_range: str, budget: str | None, plot: str | None, log_scale: bool,
-          unit: str | None,
+          unit: str | None, peak_factor: float,
           fmt: str, output: str | None) -> None:
     """Δ_V and Δ_V(RMS) over a range of Ω_K3, exact and paper side by side.
 
@@ -77,7 +79,7 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
     start, stop, count = parse_rate_range(rate_range, unit)
     budget_value = parse_budget(budget, unit) / units.scale(unit) if budget is not None else None
     result = api.sweep(load_catalog(files), api.rate_range(start, stop, count), sensors=sensors,
-                       profiles=profiles, unit=unit)
+                       profiles=profiles, unit=unit, peak_factor=peak_factor)
     if result.paper_refused:
         listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
         click.echo(f"gyrovib: note: the paper's columns are empty for {listed}", err=True)
