@@ -59,10 +59,15 @@ def rows(path: str, *args: str) -> list[Any]:
     return out
 
 
-def test_m3_of_orders_one_and_two_reaches_the_k3_term(tmp_path: Path) -> None:
-    row = rows(write(tmp_path, profiles(0.5)))[0]
-    # additive_terms.k3 = k3·M3 = 1e-5·(−3)
-    assert row["additive_terms"]["k3"] == pytest.approx(-3.0e-5, rel=1e-12)
+@pytest.mark.parametrize(("phi1", "phi2"), [(0, 90), (30, 90), (10, 200), (45, 0)])
+def test_m3_of_orders_one_and_two_reaches_the_k3_term(tmp_path: Path, phi1: float,
+                                                      phi2: float) -> None:
+    # additive_terms.k3 = k3·M3 with M3 = −¾·a1²·a2·sin(φ2 − 2φ1) on x3 (a1 = 2, a2 = 1)
+    group = GROUP.replace("phase: [30, 0, 0]", f"phase: [30, 0, {phi1}]").replace(
+        "phase: [0, 45, 90]", f"phase: [0, 45, {phi2}]")
+    row = rows(write(tmp_path, profiles(0.5, group=group)))[0]
+    m3 = -0.75 * 4.0 * 1.0 * math.sin(math.radians(phi2 - 2 * phi1))
+    assert row["additive_terms"]["k3"] == pytest.approx(1e-5 * m3, rel=1e-12, abs=1e-20)
 
 
 @pytest.mark.parametrize("rate", [0.5, 5.0])  # inside and outside the peak (< 3 deg/s)

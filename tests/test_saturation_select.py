@@ -14,6 +14,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import gyrovib
 from tests.conftest import invoke as run
@@ -164,3 +166,32 @@ def test_sweep_flags_the_rates_that_saturate(tmp_path: Path) -> None:
                            "--format", "json").stdout)
     assert loose["series"][0]["saturated"] == [False] * 5
     assert "SAT" in run("sweep", path, "--rate-range=-10:10:5").stdout
+
+
+@settings(deadline=None, max_examples=30, derandomize=True)
+@given(rate=st.floats(0, 50), amplitude=st.floats(0, 50), sigma=st.floats(0, 10),
+       margin=st.floats(-0.5, 0.5).filter(lambda m: abs(m) > 1e-6),
+       unit=st.sampled_from(["deg/h", "rad/s", "rpm"]))
+def test_saturation_does_not_depend_on_the_file_unit(rate: float, amplitude: float,
+                                                     sigma: float, margin: float,
+                                                     unit: str) -> None:
+    # the same catalogue written in deg/s and in another rate unit: the same verdict,
+    # reach = |Ω| + a + 3σ against R = reach·(1 + margin) (saturated iff margin < 0)
+    from gyrovib import units
+    from gyrovib.api import analyze
+    from gyrovib.catalog.loader import merge, parse_catalog
+
+    reach = rate + amplitude + 3.0 * sigma
+    r = max(reach * (1.0 + margin), 1e-3)
+
+    def text(u: str) -> str:
+        k = 1.0 / units.scale(u)  # deg/s → u
+        return (f"gyrovib: 1\nunits: {{rate: {u}}}\n"
+                f"profiles:\n  - id: p\n    rate: [0, 0, {rate * k!r}]\n"
+                f"    harmonic:\n      - {{frequency: 50, amplitude: [0, 0, {amplitude * k!r}]}}\n"
+                f"    random:\n      rms: [0, 0, {sigma * k!r}]\n"
+                f"sensors:\n  - id: s\n    range: {r * k!r}\n    coefficients: {{k2: 1.0e-6}}\n")
+
+    verdicts = [bool(analyze(merge([parse_catalog(text(u))])).saturated[0, 0])
+                for u in ("deg/s", unit)]
+    assert verdicts[0] == verdicts[1] == (reach > r * (1 + 1e-9) and margin < 0)
