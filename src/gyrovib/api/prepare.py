@@ -228,7 +228,7 @@ def refusal_problem(profile: ProfileEntry, method: str, reason: str) -> Problem:
 
 @dataclass(frozen=True)
 class Group:
-    """Sensors sharing one response ν_sensor(f), and every profile as they see it.
+    """Sensors sharing one input-side response ν_sensor(f), and every profile as they see it.
 
     ``multipliers[method]`` is stacked over the profiles (shape profiles, or
     profiles × rates); ``refused[method]`` maps a profile index to the reason

@@ -51,8 +51,10 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
-    Each sensor's bounds include its own frequency response; its |coefficients|
-    are checked against them and its RMS error against the budget (eq. 17).
+    Each sensor's bounds include its frequency response where it acts at its
+    input (`response: {at: input, ...}`; an output filter earns no credit);
+    its |coefficients| are checked against them and its RMS error against the
+    budget (eq. 17). A sensor that saturates under a profile fails there.
     Exit status 1 when the --require condition is not met.
     """
     from gyrovib import api

@@ -90,7 +90,8 @@ def select(
 ) -> SelectionResult:
     """Which sensors meet the budget: the bound checks and eq. (17), per profile.
 
-    Each sensor's bounds include its own response ν_sensor(f) (computed once
+    Each sensor's bounds include its input-side response ν_sensor(f), the one
+    written ``at: input`` (an output filter earns no credit; computed once
     per distinct response). ``criterion``: ``bounds`` (every |coefficient| at
     most its bound), ``rms`` (Δ_V(RMS) ≤ Δ*, eq. 17) or ``both``. A sensor
     passes when it passes under every chosen profile; ``require`` ``any``
