@@ -49,11 +49,14 @@ def test_json_keys_and_values(run, catalog):
     row = doc["results"][0]
     assert set(row) == {"sensor", "profile", "rate", "additive_terms",
                         "multiplicative_coefficients", "additive", "multiplicative", "total",
-                        "rms", "source", "warnings"}  # source: INTERFACE.md, second round
+                        "rms", "source", "saturated", "warnings"}  # INTERFACE.md, second round
     assert row["source"] == "coefficients"
-    # g2 = Δ0(6) of a linear vibration (MODEL.md section 8): 0 here, none in this catalogue
-    assert list(row["additive_terms"]) == ["A1", "k2", "k4", "m31", "m32", "g2"]
+    # g2 = Δ0(6) of a linear vibration (MODEL.md section 8), then k3·M3 and k5·M5 of
+    # locked harmonics (section 10): always present, 0 here (neither in this catalogue)
+    assert list(row["additive_terms"]) == ["A1", "k2", "k4", "m31", "m32", "g2", "k3", "k5"]
     assert row["additive_terms"]["g2"] == 0.0
+    assert row["additive_terms"]["k3"] == row["additive_terms"]["k5"] == 0.0
+    assert row["saturated"] is False
     assert list(row["multiplicative_coefficients"]) == ["q1", "q2", "q3"]
     # small under tone: a = 2 < Ω = 5, so no asymmetry; k2·a²/2 = 2e-4;
     # Δ(1) = 3·k3·a²/2 = 6e-6, Δ_VM = 6e-6·5 = 3e-5

@@ -65,7 +65,7 @@ def test_analyze_frame_equals_json(unit):
     document = cli_json("analyze", "--unit", unit)
     frame = gyrovib.analyze(unit=unit).to_frame()
     rows = document["results"]
-    assert len(frame) == len(rows) == 9 * 13  # bundled: 9 sensors × 13 profiles
+    assert len(frame) == len(rows) == 9 * 14  # bundled: 9 sensors × 14 profiles
     for k, row in enumerate(rows):
         expected = flatten("", row)
         expected["warnings"] = row["warnings"]
@@ -89,7 +89,7 @@ def test_analyze_numeric_frame_has_stderr_samples_and_seed():
 def test_bounds_frame_equals_json():
     document = cli_json("bounds", "--budget", "10deg/h", "--unit", "deg/h")
     frame = gyrovib.bounds(budget="10deg/h", unit="deg/h").to_frame()
-    assert len(frame) == len(document["profiles"]) == 13
+    assert len(frame) == len(document["profiles"]) == 14
     for k, row in enumerate(document["profiles"]):
         check_row(frame.iloc[k], flatten("", row))
     # An unconstrained bound (JSON null) is +inf: k3 of a still profile (Ω_K3 = 0 →
@@ -116,7 +116,7 @@ def test_select_frame_equals_json():
             expected.update(flatten("profile_parts", entry["parts"]))
             check_row(frame.iloc[k], expected)
             k += 1
-    assert k == len(frame) == 9 * 13
+    assert k == len(frame) == 9 * 14  # 9 sensors × 14 profiles
     assert frame.attrs["criterion"] == "both" and frame.attrs["require"] == document["require"]
 
 
@@ -151,14 +151,17 @@ def test_missing_pandas_names_the_extra(monkeypatch):
 
 
 def test_notebook_units_match_the_library():
-    """A budget "36deg/h" is 36/3600 = 0.01 deg/s for :func:`gyrovib.api.select`."""
+    """A budget "36deg/h" is 36/3600 = 0.01 deg/s for :func:`gyrovib.api.select`; without
+    ``unit`` the output follows the budget's unit (INTERFACE.md, ``--unit`` default)."""
     from gyrovib import api
 
     a = gyrovib.select(budget="36deg/h", rate=["1deg/s"])
     b = gyrovib.select(budget=36, unit="deg/h", rate=3600)
     c = api.select(api.load(), budget=0.01, rate=[1.0], unit="deg/h")
-    assert b.budget == c.budget == 36.0
-    assert a.budget == 0.01
+    d = gyrovib.select(budget="36deg/h", unit="deg/s", rate=["1deg/s"])
+    assert a.unit == b.unit == "deg/h"
+    assert a.budget == b.budget == c.budget == 36.0
+    assert d.budget == 0.01
     assert (b.margin == c.margin).all() and (a.margin == c.margin).all()
 
 

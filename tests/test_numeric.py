@@ -222,7 +222,7 @@ def test_numeric_csv_and_table_show_stderr(catalog_path: str) -> None:
             "--profile", "rms")
     result = invoke(*base, "--format", "csv")
     assert result.exit_code == 0 and result.stderr == ""  # no progress bar off a terminal
-    assert result.stdout.splitlines()[0].endswith("total,rms,stderr,warnings")
+    assert result.stdout.splitlines()[0].endswith("total,rms,stderr,saturated,warnings")
     result = invoke(*base)
     assert result.exit_code == 0 and "± stderr" in result.stdout
 

@@ -83,7 +83,7 @@ def test_installed_wheel_finds_its_catalogues(dists: tuple[Path, Path, Path],
                           capture_output=True, text=True, timeout=120, check=False, env=env,
                           cwd=tmp_path)
     assert done.returncode == 0, done.stderr
-    assert len(done.stdout.splitlines()) == 1 + 9 * 13  # header + 9 sensors × 13 profiles
+    assert len(done.stdout.splitlines()) == 1 + 9 * 14  # header + 9 sensors × 14 profiles
 
 
 @pytest.mark.slow

@@ -76,8 +76,9 @@ def test_report_is_self_contained_and_escaped(catalog_file, tmp_path):
     # The file's SHA-256, computed here from its bytes.
     assert hashlib.sha256(catalog_file.read_bytes()).hexdigest() in html
     assert "Requirement NOT met" in html and "@media print" in html
-    # "awful" is limited by A1 under the tone, and saturates (range 1 < 0.5 + 2.0 + 0).
-    assert "A1: |A1| = 0.5 is" in html and "under tone" in html
+    # "awful" saturates (range 1 < 0.5 + 2.0 under the tone, and under the noise): that
+    # limits it first (MODEL.md section 9: a saturating sensor fails whatever the criterion).
+    assert re.search(r"its range under (tone|noise): saturated:", html)
     assert "exceeds the sensor&#x27;s range" in html
     assert 'class="num fail warn" title="' in html  # the saturated cell is marked ⚠
     for chart in re.findall(r"<svg.*?</svg>", html, flags=re.S):

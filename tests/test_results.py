@@ -83,12 +83,12 @@ def test_results_pickle_and_stay_frozen(results: dict[str, object], kind: str) -
 
 def test_repr_is_one_short_line(results: dict[str, object]) -> None:
     # kind, method, unit and shape (sensors, profiles[, rates]) of the bundled catalogues
-    assert repr(results["analyze"]) == "AnalysisResult(method='exact', unit='deg/s', shape=(9, 13))"
-    assert repr(results["bounds"]) == "BoundsResult(method='exact', unit='deg/s', shape=(13,))"
+    assert repr(results["analyze"]) == "AnalysisResult(method='exact', unit='deg/s', shape=(9, 14))"
+    assert repr(results["bounds"]) == "BoundsResult(method='exact', unit='deg/s', shape=(14,))"
     assert repr(results["select"]) == ("SelectionResult(method='exact', unit='deg/s', "
-                                       "shape=(9, 13))")
+                                       "shape=(9, 14))")
     assert repr(results["sweep"]) == ("SweepResult(method='exact+paper', unit='deg/s', "
-                                      "shape=(9, 13, 3))")
+                                      "shape=(9, 14, 3))")
 
 
 def test_public_names_still_import_from_the_package() -> None:

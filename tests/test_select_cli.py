@@ -92,9 +92,11 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert sensors["bad"]["pass"] is False
     assert sensors["awful"]["pass"] is False
     bad_tone, bad_noise = sensors["bad"]["profiles"]
-    # total (|Δ_V|) and reason: INTERFACE.md, second round
-    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks", "total", "reason"}
+    # total (|Δ_V|), saturated and reason: INTERFACE.md, second round
+    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks", "total", "saturated",
+                             "reason"}
     assert sensors["bad"]["source"] == "coefficients"
+    assert bad_tone["saturated"] is False and "exceeds its bound" in bad_tone["reason"]
     assert bad_tone["pass"] is False and bad_noise["pass"] is True
     assert bad_tone["reason"].startswith("|k2| = 0.003 exceeds its bound")
     assert bad_noise["reason"] is None
@@ -161,14 +163,15 @@ def test_criterion(catalog: str, criterion: str, verdicts: dict[str, bool]) -> N
     assert doc["criterion"] == criterion
 
 
-def test_sensor_response_gets_credit(tmp_path: Path) -> None:
-    # a sensor whose response is 0.1 at the 100 Hz tone sees a3 = 0.2: M2 = 0.02,
-    # so its k2 bound is α2·Δ*/0.02 = 100× the profile-alone bound 0.0022237.
+def test_input_response_gets_credit(tmp_path: Path) -> None:
+    # a sensor whose response acts at its input (INTERFACE.md second round, `at: input`)
+    # and is 0.1 at the 100 Hz tone sees a3 = 0.2: M2 = 0.02, so its k2 bound is
+    # α2·Δ*/0.02 = 100× the profile-alone bound 0.0022237.
     body = PROFILES + """
 sensors:
   - id: damped
     coefficients: {k2: 3.0e-3}
-    response: [[1, 0.1], [1000, 0.1]]
+    response: {at: input, table: [[1, 0.1], [1000, 0.1]]}
 """
     doc = strict_json(run("select", write(tmp_path, body), "--budget", "0.01",
                           "--profile", "tone", "--format", "json").stdout)
@@ -177,6 +180,25 @@ sensors:
     assert alone == pytest.approx(0.4447496 * BUDGET / 2, rel=1e-6)
     assert own == pytest.approx(100 * alone, rel=1e-9)
     assert doc["sensors"][0]["pass"] is True       # 3e-3 < 0.22237
+
+
+@pytest.mark.parametrize("response", ["[[1, 0.1], [1000, 0.1]]",
+                                      "{at: output, table: [[1, 0.1], [1000, 0.1]]}"])
+def test_output_response_earns_no_credit(tmp_path: Path, response: str) -> None:
+    # an output filter acts after the error is rectified (MODEL.md section 9): the
+    # sensor's bounds are the profile's own, 0.0022237 < 3e-3, so it fails.
+    body = PROFILES + f"""
+sensors:
+  - id: filtered
+    coefficients: {{k2: 3.0e-3}}
+    response: {response}
+"""
+    doc = strict_json(run("select", write(tmp_path, body), "--budget", "0.01",
+                          "--profile", "tone", "--format", "json").stdout)
+    alone = doc["profiles"][0]["bounds"]["k2"]
+    own = doc["sensors"][0]["profiles"][0]["checks"]["k2"]["bound"]
+    assert own == alone
+    assert doc["sensors"][0]["pass"] is False
 
 
 def test_table_output(catalog: str) -> None:
@@ -264,7 +286,8 @@ def test_output_file(catalog: str, tmp_path: Path) -> None:
 
 
 def test_budget_with_unit_equals_plain_number(catalog: str) -> None:
-    a = strict_json(run("bounds", catalog, "--budget", "36deg/h", "--format", "json").stdout)
+    a = strict_json(run("bounds", catalog, "--budget", "36deg/h", "--unit", "deg/s",
+                        "--format", "json").stdout)
     b = strict_json(run("bounds", catalog, "--budget", "0.01", "--format", "json").stdout)
     c = strict_json(run("bounds", catalog, "--budget", "0.01 deg/s", "--format", "json").stdout)
     assert a["budget"] == pytest.approx(0.01, rel=1e-15)
@@ -275,6 +298,17 @@ def test_budget_with_unit_equals_plain_number(catalog: str) -> None:
                     assert p["bounds"][name] is None
                     continue
                 assert p["bounds"][name] == pytest.approx(value, rel=1e-12)
+
+
+@pytest.mark.parametrize("command", ["bounds", "select"])
+def test_output_follows_the_budget_unit(catalog: str, command: str) -> None:
+    # INTERFACE.md: --unit defaults to the unit --budget carries; 36deg/h stays 36 deg/h,
+    # and the bounds equal those of an explicit --unit deg/h
+    got = strict_json(run(command, catalog, "--budget", "36deg/h", "--format", "json").stdout)
+    explicit = strict_json(run(command, catalog, "--budget", "36", "--unit", "deg/h",
+                               "--format", "json").stdout)
+    assert got["unit"] == "deg/h" and got["budget"] == pytest.approx(36.0, rel=1e-15)
+    assert got["profiles"] == explicit["profiles"]
 
 
 def test_bounds_unit_invariance(catalog: str) -> None:

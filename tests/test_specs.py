@@ -11,6 +11,7 @@ sweep additions.
 from __future__ import annotations
 
 import json
+from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
@@ -290,13 +291,19 @@ def test_select_on_the_bundled_catalogues_ranks_the_public_parts() -> None:
     assert margins == sorted(margins, reverse=True)
     # each failing public part names the datasheet figure that limits it
     table = run("select", "--budget", "10deg/h").stdout
+    # (or, first of all, its range: adis16460, ±100 deg/s on its datasheet, saturates
+    # under manoeuvre-saturation, 96 deg/s + 3σ3 > 100 deg/s, MODEL.md section 9)
     for i, sensor in enumerate(result.sensors):
         if sensor in public and not result.sensor_pass[i]:
-            assert result.limits[i].name in ("nonlinearity", "vre")
+            limit = result.limits[i].name
+            assert limit in ("nonlinearity", "vre") or (
+                limit == "saturated" and result.saturated[i].any())
+    assert result.limits[result.sensors.index("adis16460")].name == "saturated"
     assert "nonlinearity: the datasheet's" in table
     rows = [line for line in table.splitlines() if "the datasheet's" in line]
     listed = [s for line in rows for s in public if f" {s} " in line]
-    assert listed == [s for s in order if not result.sensor_pass[result.sensors.index(s)]]
+    assert listed == [s for s in order if not result.sensor_pass[result.sensors.index(s)]
+                      and result.limits[result.sensors.index(s)].name != "saturated"]
 
 
 # ----------------------------------------------------------------- bounds
@@ -307,8 +314,9 @@ def test_select_on_the_bundled_catalogues_ranks_the_public_parts() -> None:
 def test_bounds_range_gives_nl_max_with_nl_max_times_w1_the_share(
         tmp_path: Path, fit: str, measure: str) -> None:
     path = write(tmp_path, "  - id: unused\n    coefficients: {}\n")
+    # --unit deg/s: R and the output in deg/s (without it the budget's deg/h would be used)
     done = run("bounds", str(path), "--budget", "36deg/h", "--range", "300",
-               "--nl-fit", fit, "--nl-measure", measure, "--format", "json")
+               "--nl-fit", fit, "--nl-measure", measure, "--format", "json", "--unit", "deg/s")
     assert done.exit_code == 0, done.output
     budget = 0.01  # 36 deg/h in deg/s
     for entry in json.loads(done.stdout)["profiles"]:
@@ -323,6 +331,27 @@ def test_bounds_range_gives_nl_max_with_nl_max_times_w1_the_share(
         w1 = gyrovib.analyze(part, profiles=entry["profile"]).error.total[0, 0]
         # NL_max·W(1) = w_NL·Δ* with w_NL = 1 (no VRE part): NL_max in rate = %FS/100·R
         assert nl["value"] / 100 * 300 * w1 == pytest.approx(budget, rel=1e-9)
+
+
+def test_bounds_range_is_in_the_budgets_unit_when_unit_follows_it(tmp_path: Path) -> None:
+    # --unit defaults to the budget's unit (INTERFACE.md, second round), and R is in the
+    # output unit: 300 deg/s written as 300·3600 = 1.08e6 deg/h gives the same %FS bound
+    # (a fraction of R does not depend on the unit R is written in), and the VRE in
+    # (deg/h)/g² is 3600 × that in (deg/s)/g² (cruise-isolated has a linear vibration).
+    catalogs = [str(files("gyrovib") / "catalogs" / name)
+                for name in ("sensors.gyrovib.yaml", "profiles.gyrovib.yaml")]
+    common = ["bounds", *catalogs, "--profile", "cruise-isolated", "--budget", "36deg/h",
+              "--format", "json"]
+    in_h = run(*common, "--range", "1.08e6")
+    in_s = run(*common, "--range", "300", "--unit", "deg/s")
+    assert in_h.exit_code == in_s.exit_code == 0, in_h.output + in_s.output
+    doc_h, doc_s = json.loads(in_h.stdout), json.loads(in_s.stdout)
+    assert (doc_h["unit"], doc_s["unit"]) == ("deg/h", "deg/s")
+    sb_h, sb_s = doc_h["profiles"][0]["spec_bounds"], doc_s["profiles"][0]["spec_bounds"]
+    assert sb_h["nonlinearity"]["range"] == pytest.approx(1.08e6, rel=1e-12)
+    assert sb_h["nonlinearity"]["value"] == pytest.approx(sb_s["nonlinearity"]["value"],
+                                                          rel=1e-9)
+    assert sb_h["vre"] == pytest.approx(3600 * sb_s["vre"], rel=1e-9)
 
 
 def test_bounds_range_spec_weights_and_span(tmp_path: Path) -> None:
@@ -427,3 +456,21 @@ def test_sweep_plot_draws_the_worst_polynomials_in_a_second_png(tmp_path: Path) 
     other = tmp_path / "plain.png"
     assert run("sweep", str(plain), "--rate-range=-10:10:5", "--plot", str(other)).exit_code == 0
     assert other.exists() and not (tmp_path / "plain-envelope.png").exists()
+
+
+def test_select_worst_in_the_budgets_unit() -> None:
+    # --unit follows the budget's unit (INTERFACE.md, second round) under --criterion worst
+    # too: the same verdicts and margins (ratios), |Δ_V| 3600× larger in deg/h than deg/s
+    in_h = json.loads(run("select", "--budget", "36deg/h", "--criterion", "worst",
+                          "--format", "json").stdout)
+    in_s = json.loads(run("select", "--budget", "36deg/h", "--criterion", "worst",
+                          "--unit", "deg/s", "--format", "json").stdout)
+    assert (in_h["unit"], in_s["unit"], in_h["budget"], in_s["budget"]) == (
+        "deg/h", "deg/s", 36.0, pytest.approx(0.01, rel=1e-12))
+    for a, b in zip(in_h["sensors"], in_s["sensors"], strict=True):
+        assert (a["sensor"], a["pass"]) == (b["sensor"], b["pass"])
+        for ca, cb in zip(a["profiles"], b["profiles"], strict=True):
+            assert (ca["pass"], ca["saturated"]) == (cb["pass"], cb["saturated"])
+            assert ca["total"] == pytest.approx(3600 * cb["total"], rel=1e-9, abs=1e-300)
+            if cb["margin"] is not None:
+                assert ca["margin"] == pytest.approx(cb["margin"], rel=1e-9)

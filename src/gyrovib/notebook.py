@@ -92,6 +92,13 @@ def _rates(value: float | str | Sequence[float | str] | None, unit: str) -> list
     return [_rate(v, unit) for v in value]
 
 
+def _budget_unit(unit: str | None, budget: float | str) -> str:
+    """``unit`` as given, else the unit a budget string carries, else deg/s (as ``--unit``)."""
+    if unit is not None:
+        return unit
+    return (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/s"
+
+
 def _ids(value: str | Sequence[str]) -> tuple[str, ...]:
     return (value,) if isinstance(value, str) else tuple(value)
 
@@ -99,7 +106,8 @@ def _ids(value: str | Sequence[str]) -> tuple[str, ...]:
 def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
             profiles: str | Sequence[str] = (), method: str = "exact",
             rate: float | str | Sequence[float | str] | None = None, unit: str = "deg/s",
-            samples: int | None = None, seed: int = 0) -> AnalysisResult:
+            samples: int | None = None, seed: int = 0,
+            peak_factor: float = 3.0) -> AnalysisResult:
     """The vibration error of every sensor under every profile, eq. (13)-(16).
 
     Parameters
@@ -117,6 +125,8 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
         Unit of every output rate: deg/s, deg/h, rad/s or rpm.
     samples, seed : int
         ``method='numeric'`` only: evaluations per sensor × profile, seed.
+    peak_factor : float
+        κ of the saturation check (MODEL.md section 9), default 3.
 
     Returns
     -------
@@ -132,7 +142,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
     """
     from gyrovib import api
 
-    extra: dict[str, Any] = {"seed": seed}
+    extra: dict[str, Any] = {"seed": seed, "peak_factor": peak_factor}
     if samples is not None:
         extra["samples"] = samples
     return api.analyze(_catalog(catalog), sensors=_ids(sensors), profiles=_ids(profiles),
@@ -141,7 +151,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
 
 def bounds(catalog: CatalogLike = None, *, budget: float | str,
            profiles: str | Sequence[str] = (), method: str = "exact",
-           rate: float | str | Sequence[float | str] | None = None, unit: str = "deg/s",
+           rate: float | str | Sequence[float | str] | None = None, unit: str | None = None,
            allocation: Sequence[float] | None = None, range_: float | str | None = None,
            nl_fit: str = "least-squares", nl_measure: str = "max", nl_of: str = "range",
            spec_weights: tuple[float, float] = (1.0, 1.0)) -> BoundsResult:
@@ -159,8 +169,8 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
         Derived shares, or the paper's printed constants.
     rate : number, str or sequence, optional
         Override Ω_K as in :func:`analyze`.
-    unit : str
-        Output unit.
+    unit : str, optional
+        Output unit; default the unit a budget string carries, else deg/s.
     allocation : sequence of float, optional
         r alone, or r, w1..w5, v1..v3 (eq. 18, 21, 24).
     range_ : number or str, optional
@@ -177,6 +187,7 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
     """
     from gyrovib import api
 
+    unit = _budget_unit(unit, budget)
     return api.bounds(_catalog(catalog), profiles=_ids(profiles), method=method,
                       rate=_rates(rate, unit), budget=_rate(budget, unit), unit=unit,
                       allocation=allocation,
@@ -187,9 +198,10 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
 def select(catalog: CatalogLike = None, *, budget: float | str,
            sensors: str | Sequence[str] = (), profiles: str | Sequence[str] = (),
            method: str = "exact", rate: float | str | Sequence[float | str] | None = None,
-           unit: str = "deg/s", criterion: str = "bounds", require: str = "any",
+           unit: str | None = None, criterion: str = "bounds", require: str = "any",
            allocation: Sequence[float] | None = None,
-           spec_weights: tuple[float, float] = (1.0, 1.0)) -> SelectionResult:
+           spec_weights: tuple[float, float] = (1.0, 1.0),
+           peak_factor: float = 3.0) -> SelectionResult:
     """Which sensors meet the budget: bound checks and eq. (17), ranked by margin.
 
     Parameters
@@ -204,17 +216,20 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
         As in :func:`bounds`.
     rate : number, str or sequence, optional
         Override Ω_K as in :func:`analyze`.
-    unit : str
-        Output unit.
+    unit : str, optional
+        Output unit; default the unit a budget string carries, else deg/s.
     criterion : {'bounds', 'rms', 'worst', 'both'}
-        What a pass means (``worst``: |Δ_V| ≤ Δ*, for a datasheet sensor over its
-        envelope).
+        What a pass means (bounds: sufficient, not necessary; rms: the direct
+        test; ``worst``: |Δ_V| ≤ Δ*, for a datasheet sensor over its envelope).
+        A saturating sensor fails whatever the criterion.
     require : {'any', 'all'}
         Decides ``requirement_met``.
     allocation : sequence of float, optional
         As in :func:`bounds`.
     spec_weights : (float, float)
         As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
+    peak_factor : float
+        κ of the saturation check (MODEL.md section 9), default 3.
 
     Returns
     -------
@@ -230,10 +245,11 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     """
     from gyrovib import api
 
+    unit = _budget_unit(unit, budget)
     return api.select(_catalog(catalog), sensors=_ids(sensors), profiles=_ids(profiles),
                       method=method, rate=_rates(rate, unit), budget=_rate(budget, unit),
                       unit=unit, criterion=criterion, require=require, allocation=allocation,
-                      spec_weights=spec_weights)
+                      spec_weights=spec_weights, peak_factor=peak_factor)
 
 
 def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-200, 200),

@@ -70,6 +70,30 @@ def factor(unit: str, power: int) -> float:
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)?\s*$")
 
 
+def coefficient_factor(name: str, source: str, target: str) -> float:
+    """Factor taking coefficient ``name`` (or its bound) from rate unit ``source`` to ``target``.
+
+    A coefficient of rate power p (:data:`COEFFICIENT_RATE_POWER`) in unit U is
+    c[deg/s]·scale(U)^(−p), so c[target] = c[source]·(scale(target)/scale(source))^(−p).
+    """
+    power = COEFFICIENT_RATE_POWER[name.split("_")[0]]
+    return float((scale(target) / scale(source)) ** (-power))
+
+
+def quantity_unit(text: str) -> str | None:
+    """The canonical unit a quantity such as ``"36deg/h"`` carries, or None for a bare number.
+
+    Text that is not a quantity gives None (:func:`parse_rate` reports it).
+    """
+    match = _QUANTITY.match(text)
+    if match is None or not match.group(2):
+        return None
+    try:
+        return canonical_unit(match.group(2))
+    except OptionError:
+        return None
+
+
 def parse_rate(text: str, default_unit: str) -> float:
     """Parse ``"0.01"``, ``"36deg/h"`` or ``"0.01 deg/s"`` into deg/s.
 

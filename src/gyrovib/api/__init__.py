@@ -52,6 +52,8 @@ _WHERE: dict[str, str] = {
     "response_table": "prepare",
     "response_groups": "prepare",
     "vibration_peak": "prepare",
+    "vibration_swing": "prepare",
+    "profile_locked": "prepare",
     # results
     "AnalysisResult": "results",
     "SweepResult": "results",
@@ -111,6 +113,7 @@ __all__ = [
     "profile_generator",
     "profile_location",
     "profile_locations",
+    "profile_locked",
     "profile_rate",
     "profile_vibration",
     "quiet_float",
@@ -127,6 +130,7 @@ __all__ = [
     "sweep",
     "to_unit",
     "vibration_peak",
+    "vibration_swing",
 ]
 
 
@@ -240,6 +244,9 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
         prepare as prepare,
     )
     from gyrovib.api.prepare import (
+        profile_locked as profile_locked,
+    )
+    from gyrovib.api.prepare import (
         profile_vibration as profile_vibration,
     )
     from gyrovib.api.prepare import (
@@ -253,6 +260,9 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     )
     from gyrovib.api.prepare import (
         vibration_peak as vibration_peak,
+    )
+    from gyrovib.api.prepare import (
+        vibration_swing as vibration_swing,
     )
     from gyrovib.api.results import (
         AnalysisResult as AnalysisResult,

@@ -69,7 +69,8 @@ def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
     import numpy as np
 
-    from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
+    from gyrovib.api.results import JSON_TERMS
+    from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
 
     n_s, n_p = len(result.sensors), len(result.profiles)
     p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
@@ -81,10 +82,9 @@ def analysis_frame(result: AnalysisResult) -> Any:
         "profile": [result.profiles[j] for j in p_idx],
         **_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx),
     }
-    columns.update({f"additive_terms.{t}": terms[:, k] for k, t in
-                    enumerate(ADDITIVE_TERMS[:terms.shape[1]])})
     extra = np.asarray(err.extra_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
-    columns[f"additive_terms.{EXTRA_TERMS[0]}"] = extra[:, 0]  # Δ0(6), MODEL.md section 8
+    values = np.concatenate([terms, extra], axis=1)
+    columns.update({f"additive_terms.{t}": values[:, k] for k, t in enumerate(JSON_TERMS)})
     columns.update({f"multiplicative_coefficients.{q}": qs[:, k] for k, q in
                     enumerate(MULTIPLICATIVE_TERMS[:qs.shape[1]])})
     for name in ("additive", "multiplicative", "total", "rms"):
@@ -99,6 +99,12 @@ def analysis_frame(result: AnalysisResult) -> Any:
         for k, name in enumerate(WORST_COEFFICIENTS):
             columns[f"envelope.worst_coefficients.{name}"] = worst[:, k]
         columns["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
+    columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx]
+    if result.worst_phases:
+        columns["worst_phases"] = [
+            None if (int(i), int(j)) not in result.worst_phases
+            else [dict(g) for g in result.worst_phases[(int(i), int(j))]]
+            for i, j in zip(s_idx, p_idx, strict=True)]
     columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
                            for i, j in zip(s_idx, p_idx, strict=True)]
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
@@ -110,13 +116,14 @@ def analysis_frame(result: AnalysisResult) -> Any:
 def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
     import numpy as np
 
-    from gyrovib.core.synthesis import BOUNDED, PARTS
+    from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 
     out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
     # the VRE bound (MODEL.md section 8): JSON null, here inf, without linear vibration
     vre = np.full(len(rows), np.inf) if bounds.vre is None else np.asarray(bounds.vre)[rows]
     out["bounds.vre"] = vre
-    out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in PARTS})
+    present = PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
+    out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in present})
     return out
 
 
@@ -167,6 +174,8 @@ def selection_frame(result: SelectionResult) -> Any:
         "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
         "rms": np.asarray(result.rms).reshape(-1),
         "margin": np.asarray(result.margin).reshape(-1),
+        "saturated": np.asarray(result.saturated, dtype=bool).reshape(-1),
+        "reason": [_reason(result, int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
     }
     values = np.asarray(result.values).reshape(n_s * n_p, -1)
     bounds = np.asarray(result.bounds).reshape(n_s * n_p, -1)
@@ -224,6 +233,7 @@ def sweep_frame(result: SweepResult) -> Any:
         err = getattr(result, method)
         for name in ("total", "rms"):
             columns[f"{method}.{name}"] = np.asarray(getattr(err, name))[s_idx, p_idx, r_idx]
+    columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx, r_idx]
     return _frame(columns, {"method": "exact", "unit": result.unit,
                             "methods": ["exact", "paper"],
                             "paper_refused": dict(result.paper_refused)})

@@ -30,11 +30,13 @@ from gyrovib.api.entries import select_entries
 from gyrovib.api.linear import g2_matrix, profile_linear
 from gyrovib.catalog.loader import Catalog, ProfileEntry, SensorEntry
 from gyrovib.core.analysis import Multipliers, profile_multipliers, stack_multipliers
+from gyrovib.core.harmonics import LockedGroup, locked_group
 from gyrovib.core.linear import LinearVibration
+from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR, group_peak, saturation_reach
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.core.transmissibility import FloatArray, Table, as_table
-from gyrovib.errors import ModelError, Problem, RangeError
+from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp
+from gyrovib.errors import ModelError, OptionError, Problem, RangeError
 
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -72,20 +74,38 @@ def quiet_float(function: Callable[P, R]) -> Callable[P, R]:
 # ----------------------------------------------------------------- vibrations
 
 
+def input_response(entry: SensorEntry) -> tuple[tuple[float, float], ...] | None:
+    """The sensor's response where it acts before the nonlinearity, or None.
+
+    Only ``response: {at: input, ...}`` shapes the vibration the nonlinear
+    element sees (MODEL.md section 9); a bare table or ``at: output`` is an
+    output filter, applied after the error is rectified: it earns no credit.
+    """
+    s = entry.sensor
+    if s.response is None or s.response_at != "input":
+        return None
+    return tuple((float(f), float(g)) for f, g in s.response)
+
+
 def response_table(entry: SensorEntry) -> Table | None:
-    """The sensor's own transmissibility ν_sensor(f), or None for ν ≡ 1."""
-    return None if entry.sensor.response is None else as_table(entry.sensor.response)
+    """The sensor's transmissibility ν_sensor(f) before its nonlinearity, or None for ν ≡ 1.
+
+    An output-side response (the default) gives None: it does not reduce the error.
+    """
+    table = input_response(entry)
+    return None if table is None else as_table(table)
 
 
 def response_groups(entries: Sequence[SensorEntry]) -> list[tuple[Table | None, NDArray[np.intp]]]:
-    """Sensors grouped by identical response tables: ``(table, indices)`` pairs.
+    """Sensors grouped by identical input-side responses: ``(table, indices)`` pairs.
 
-    Profile statistics depend on the sensor only through ν_sensor(f), so they
-    are computed once per group, not once per sensor.
+    Profile statistics depend on the sensor only through the ν_sensor(f) that
+    acts before its nonlinearity (:func:`input_response`), so they are
+    computed once per group, not once per sensor.
     """
     groups: dict[tuple[tuple[float, float], ...] | None, list[int]] = {}
     for i, e in enumerate(entries):
-        key = None if e.sensor.response is None else tuple(e.sensor.response)
+        key = input_response(e)
         groups.setdefault(key, []).append(i)
     return [
         (None if key is None else as_table(key), np.array(idx, dtype=np.intp))
@@ -123,9 +143,52 @@ def profile_vibration(entry: ProfileEntry, response: Table | None = None) -> Vib
     return vibration_at_sensor(tones, psd=psd, rms=rms, coherence=coherence, gains=gains)
 
 
+def profile_locked(entry: ProfileEntry, response: Table | None = None) -> tuple[LockedGroup, ...]:
+    """The profile's phase-locked harmonic groups at the sensor, in deg/s (MODEL.md section 10).
+
+    Each order n of a group is scaled by the mount's and the (input-side)
+    response's ν(n·f0), as an independent tone at that frequency would be;
+    an order with ``phase: worst`` gets phase 0 and is marked for the search.
+    """
+    p = entry.profile
+    s = units.scale(entry.unit)
+    tables: list[Table] = []
+    if p.mount is not None:
+        tables.append(as_table(p.mount))
+    if response is not None:
+        tables.append(response)
+    out = []
+    for h in p.harmonics:
+        orders = [o.order for o in h.orders]
+        freqs = np.asarray(orders, dtype=float) * float(h.fundamental)
+        gains = np.ones(len(orders))
+        for table in tables:
+            gains = gains * np.asarray(loglog_interp(table, freqs), dtype=float)
+        out.append(locked_group(
+            orders, np.array([o.amplitude for o in h.orders], dtype=float) * s,
+            np.array([(0.0, 0.0, 0.0) if o.worst_phase else o.phase for o in h.orders],
+                     dtype=float),
+            worst=[o.worst_phase for o in h.orders], fundamental=float(h.fundamental),
+            gains=gains))
+    return tuple(out)
+
+
+def vibration_swing(vibration: Vibration, locked: Sequence[LockedGroup] = (),
+                    peak_factor: float = DEFAULT_PEAK_FACTOR) -> float:
+    """How far the vibration drives x3 from Ω_K3 (MODEL.md section 9), in its rate unit.
+
+    Σ tone amplitudes + Σ true peaks of the locked groups + κ·σ3; the
+    saturation reach is |Ω_K3| plus this.
+    """
+    peaks = [group_peak(g) for g in locked]
+    return float(saturation_reach(0.0, vibration.tone_amplitudes, vibration.sigma[2],
+                                  locked_peaks=np.asarray(peaks, dtype=float),
+                                  kappa=peak_factor))
+
+
 def vibration_peak(vibration: Vibration) -> float:
-    """Peak of x3 for the saturation check: Σ tone amplitudes + 3σ."""
-    return float(np.sum(vibration.tone_amplitudes) + 3.0 * vibration.sigma[2])
+    """Peak of x3 for the saturation check: Σ tone amplitudes + 3σ (κ = 3, no locked groups)."""
+    return vibration_swing(vibration)
 
 
 def nan_multipliers(omega: FloatArray) -> Multipliers:
@@ -167,11 +230,14 @@ def refusal_problem(profile: ProfileEntry, method: str, reason: str) -> Problem:
 
 @dataclass(frozen=True)
 class Group:
-    """Sensors sharing one response ν_sensor(f), and every profile as they see it.
+    """Sensors sharing one input-side response ν_sensor(f), and every profile as they see it.
 
     ``multipliers[method]`` is stacked over the profiles (shape profiles, or
     profiles × rates); ``refused[method]`` maps a profile index to the reason
     the method gave (only when refusals are tolerated, as by ``sweep``).
+    ``locked[j]``: profile j's phase-locked groups as these sensors see them;
+    ``swing[j]``: how far profile j drives x3 from Ω_K3 (:func:`vibration_swing`,
+    deg/s, with the pipeline's peak factor κ).
     """
 
     response: Table | None
@@ -179,6 +245,13 @@ class Group:
     vibrations: tuple[Vibration, ...]
     multipliers: dict[str, Multipliers] = field(default_factory=dict)
     refused: dict[str, dict[int, str]] = field(default_factory=dict)
+    locked: tuple[tuple[LockedGroup, ...], ...] = ()
+    swing: FloatArray = field(default_factory=lambda: np.zeros(0))
+
+    def reach(self, rates: FloatArray) -> FloatArray:
+        """|Ω_K3| + swing per profile (deg/s), for Ω_K3 ``rates`` (profiles,)."""
+        out: FloatArray = np.abs(np.asarray(rates, dtype=float)) + self.swing
+        return out
 
 
 @dataclass(frozen=True)
@@ -218,6 +291,8 @@ def prepare(
     methods: Sequence[str] = ("exact",),
     by_response: bool = True,
     tolerate_refusals: bool = False,
+    peak_factor: float = DEFAULT_PEAK_FACTOR,
+    phase_search: bool = True,
 ) -> Prepared:
     """Run the pipeline; call it under :func:`float_guard`.
 
@@ -226,7 +301,14 @@ def prepare(
     whose multipliers are needed (none for brute force). ``by_response``
     False: one group, the profiles alone (ν_sensor ≡ 1). Every profile that
     overflows or that a method refuses is reported, one problem each.
+    ``peak_factor``: κ of the saturation reach (:attr:`Group.swing`).
+    Profiles with ``phase: worst`` orders get, with ``phase_search``, the
+    largest multiplier of each term over the unknown phases (a bound for
+    synthesis, :func:`~gyrovib.core.phases.worst_phase_multipliers`); without,
+    those orders' nominal phase 0 (the caller searches itself).
     """
+    if not (np.isfinite(peak_factor) and peak_factor >= 0):
+        raise OptionError(f"--peak-factor {peak_factor:g}: give a finite number ≥ 0")
     s_entries, p_entries = select_entries(catalog, sensors, profiles, need=need)
     problems: dict[int, Problem] = {}
     refusal: tuple[int, str] | None = None  # the first refused profile, and why
@@ -246,13 +328,23 @@ def prepare(
     groups: list[Group] = []
     for response, index in layout:
         vibrations: list[Vibration | None] = []
+        locked: list[tuple[LockedGroup, ...]] = []
+        swing = np.zeros(len(p_entries))
         for j, p in enumerate(p_entries):
             try:
-                vibrations.append(profile_vibration(p, response))
+                vibration = profile_vibration(p, response)
+                groups_j = profile_locked(p, response)
+                swing[j] = vibration_swing(vibration, groups_j, peak_factor)
             except FLOAT_FAILURES:
                 problems.setdefault(j, overflow_problem(p, "the vibration"))
                 vibrations.append(None)
-        group = Group(response, index, tuple(v for v in vibrations if v is not None))
+                locked.append(())
+                swing[j] = np.nan
+            else:
+                vibrations.append(vibration)
+                locked.append(groups_j)
+        group = Group(response, index, tuple(v for v in vibrations if v is not None),
+                      locked=tuple(locked), swing=swing)
         for method in methods:
             items: list[Multipliers] = []
             for j, (p, v) in enumerate(zip(p_entries, vibrations, strict=True)):
@@ -261,7 +353,7 @@ def prepare(
                     items.append(nan_multipliers(np.asarray(w, dtype=float)))
                     continue
                 try:
-                    m = profile_multipliers(v, w, method, acceleration=accelerations[j])
+                    m = _multipliers(v, w, method, locked[j], phase_search, accelerations[j])
                 except ModelError as exc:
                     if not tolerate_refusals:
                         refusal = refusal or (j, exc.reason)
@@ -320,6 +412,18 @@ def _valid_coherence(linear: LinearVibration) -> bool:
     r12, r13, r23 = (float(c) for c in linear.coherence)
     rho = np.array([[1.0, r12, r13], [r12, 1.0, r23], [r13, r23, 1.0]])
     return bool(np.linalg.eigvalsh(rho).min() >= -1e-12)
+
+
+def _multipliers(vibration: Vibration, omega: FloatArray | float, method: str,
+                 locked: Sequence[LockedGroup], phase_search: bool,
+                 acceleration: FloatArray | None = None) -> Multipliers:
+    """One profile's multipliers: with locked groups (section 10), and the worst phases."""
+    if locked and method == "exact" and phase_search and any(g.worst.any() for g in locked):
+        from gyrovib.core.phases import worst_phase_multipliers
+
+        return worst_phase_multipliers(vibration, locked, omega, acceleration=acceleration)
+    return profile_multipliers(vibration, omega, method, locked=locked,
+                               acceleration=acceleration)
 
 
 def _check_sensors(values: FloatArray, entries: Sequence[SensorEntry],

@@ -8,10 +8,19 @@ significant figures, as in the tables.
 from __future__ import annotations
 
 import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
 
 from gyrovib import units
 from gyrovib.api.results import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
+from gyrovib.core.transmissibility import FloatArray
+
+#: Tables write 0 for a value below this fraction of the budget (rounding residue;
+#: as :data:`gyrovib.render.common.NEGLIGIBLE`).
+NEGLIGIBLE = 1e-12
 
 
 def fmt(value: float | None, digits: int = 4) -> str:
@@ -36,28 +45,67 @@ def coefficient_unit(name: str, unit: str) -> str:
     return f"({unit})^{power}"
 
 
-def failures(result: SelectionResult, i: int, j: int) -> list[str]:
+def table_unit(result: Any) -> str:
+    """The rate unit of coefficients in tables: the catalogue's own (JSON keeps :attr:`unit`)."""
+    unit: str = getattr(result, "coefficient_unit", None) or result.unit
+    return unit
+
+
+def in_table_unit(result: Any, name: str, value: float) -> float:
+    """A coefficient (bound) of ``result`` (in its :attr:`unit`) in :func:`table_unit`."""
+    target = table_unit(result)
+    if target == result.unit:
+        return float(value)
+    return float(value) * units.coefficient_factor(name, result.unit, target)
+
+
+def saturation_reason(reach: float, range_: float, peak_factor: float, unit: str) -> str:
+    """Why a saturating sensor fails (MODEL.md section 9); ``reach``, ``range_`` in ``unit``."""
+    return (f"saturated: |Ω_K3| + Σ tone amplitudes + locked peaks + {peak_factor:g}σ3 = "
+            f"{reach:.6g} {unit} exceeds the range {range_:.6g} {unit}")
+
+
+def saturation_reasons(saturated: NDArray[np.bool_], reach: FloatArray, ranges: FloatArray,
+                       peak_factor: float, unit: str) -> dict[tuple[int, int], str]:
+    """Per saturating (sensor, profile): :func:`saturation_reason`; ``reach`` (sensors,
+    profiles) and ``ranges`` (sensors,) in deg/s, written in ``unit``."""
+    s = units.scale(unit)
+    return {(i, j): saturation_reason(float(reach[i, j]) / s, float(ranges[i]) / s,
+                                      peak_factor, unit)
+            for i, j in (tuple(int(v) for v in ij) for ij in np.argwhere(saturated))}
+
+
+def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) -> list[str]:
     """Why sensor ``i`` fails under profile ``j`` (empty when it passes there).
 
-    Only the criteria that count (``--criterion``) are listed.
+    Saturation first (it fails a sensor whatever the criterion), then only the
+    criteria that count (``--criterion``). ``table``: as the tables write it,
+    coefficients in the catalogue's unit (:func:`table_unit`) and a negligible
+    Δ_V(RMS) as 0; otherwise in :attr:`~SelectionResult.unit` (JSON, frames).
     """
     reasons: list[str] = []
+    if (i, j) in result.reasons:
+        reasons.append(result.reasons[(i, j)])
     spec = result.source(i) == "specs"
     if result.criterion in ("bounds", "both") and spec:
         reasons.extend(_spec_failures(result, i, j))
     elif result.criterion in ("bounds", "both"):
+        rate_unit = table_unit(result) if table else result.unit
         for b, name in enumerate(BOUNDED):
             if not result.check_pass[i, j, b]:
-                unit = coefficient_unit(name, result.unit)
+                unit = coefficient_unit(name, rate_unit)
                 tail = "" if unit == "1" else f" {unit}"
-                reasons.append(
-                    f"|{name}| = {fmt(result.values[i, j, b])} exceeds its bound "
-                    f"{fmt(result.bounds[i, j, b])}{tail}"
-                )
+                value, bound = result.values[i, j, b], result.bounds[i, j, b]
+                if table:
+                    value, bound = (in_table_unit(result, name, value),
+                                    in_table_unit(result, name, bound))
+                reasons.append(f"|{name}| = {fmt(value)} exceeds its bound {fmt(bound)}{tail}")
         if result.vre_pass is not None and not result.vre_pass[i, j]:
             reasons.append(_vre_failure(result, i, j))
     if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
-        reasons.append(f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} exceeds the budget "
+        value = float(result.rms[i, j])
+        rms = "0" if table and abs(value) < NEGLIGIBLE * result.budget else fmt(value)
+        reasons.append(f"Δ_V(RMS) = {rms} {result.unit} exceeds the budget "
                        f"{fmt(result.budget)} {result.unit}")
     if result.criterion == "worst" and not result.passed[i, j] and result.total is not None:
         what = "worst |Δ_V| over the datasheet envelope" if spec else "|Δ_V|"
@@ -90,7 +138,8 @@ def _spec_failures(result: SelectionResult, i: int, j: int) -> list[str]:
 
 
 def reason(result: SelectionResult, i: int, j: int) -> str | None:
-    """Why sensor ``i`` fails under profile ``j``, one line; None where it passes."""
+    """Why sensor ``i`` fails under profile ``j``, one line in :attr:`~SelectionResult.unit`
+    (the JSON's and the frame's ``reason``); None where it passes."""
     if result.passed[i, j]:
         return None
     return "; ".join(failures(result, i, j)) or None

@@ -19,12 +19,16 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.core.analysis import VibrationError
+from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, VibrationError
 from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 from gyrovib.core.transmissibility import FloatArray
 
 if TYPE_CHECKING:
     from gyrovib.api.specs import DatasheetBounds
+
+#: The keys of ``additive_terms`` in JSON, CSV, tables and frames, in this order:
+#: Δ0(1..5) (eq. 14/15), g2 = Δ0(6) (MODEL.md section 8), k3 and k5 (section 10).
+JSON_TERMS: tuple[str, ...] = (*ADDITIVE_TERMS, *EXTRA_TERMS)
 
 
 def _freeze(value: Any) -> Any:
@@ -101,10 +105,26 @@ class AnalysisResult(_Frozen):
     #: (sensors, profiles); NaN on coefficient-form rows; None without spec sensors.
     worst_coefficients: FloatArray | None = None
     rms_bound: FloatArray | None = None
+    #: (sensors, profiles): the saturation reach exceeds the sensor's range (MODEL.md 9).
+    saturated: NDArray[np.bool_] | None = None
+    #: κ of the saturation reach.
+    peak_factor: float = 3.0
+    #: per profile: whether it has phase-locked harmonic groups (MODEL.md 10).
+    locked: tuple[bool, ...] = ()
+    #: (sensor, profile) → per locked group, {order: phase found (deg)} of the
+    #: orders written ``phase: worst``; only for such profiles.
+    worst_phases: Mapping[tuple[int, int], tuple[dict[str, float], ...]] = field(
+        default_factory=dict)
 
     def source(self, i: int) -> str:
         """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
         return self.sources[i] if self.sources else "coefficients"
+
+    def __post_init__(self) -> None:
+        if self.saturated is None:
+            object.__setattr__(self, "saturated",
+                               np.zeros((len(self.sensors), len(self.profiles)), dtype=bool))
+        super().__post_init__()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))
@@ -143,10 +163,20 @@ class SweepResult(_Frozen):
     nl_limit: FloatArray | None = None
     nl_range: FloatArray | None = None
     nl_fit: tuple[str, ...] = ()
+    #: (sensors, profiles, rates): the sensor saturates at that Ω_K3 (MODEL.md section 9).
+    saturated: NDArray[np.bool_] | None = None
+    #: κ of the saturation reach.
+    peak_factor: float = 3.0
 
     def source(self, i: int) -> str:
         """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
         return self.sources[i] if self.sources else "coefficients"
+
+    def __post_init__(self) -> None:
+        if self.saturated is None:
+            object.__setattr__(self, "saturated", np.zeros(
+                (len(self.sensors), len(self.profiles), len(self.rates)), dtype=bool))
+        super().__post_init__()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles), len(self.rates))
@@ -171,6 +201,9 @@ class BoundsResult(_Frozen):
     allocation: AllocationConstants
     #: ``--range``: the allowable datasheet figures (:class:`gyrovib.api.specs.DatasheetBounds`).
     spec_bounds: DatasheetBounds | None = None
+    #: the rate unit tables write coefficient bounds in (the catalogue's own, so that
+    #: k5 reads 6.7e-06 (deg/s)^-4 rather than 6e-23 (deg/h)^-4); None: :attr:`unit`.
+    coefficient_unit: str | None = None
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.profiles),)
@@ -241,10 +274,24 @@ class SelectionResult(_Frozen):
     nl_value: FloatArray | None = None
     nl_bound: FloatArray | None = None
     nl_pass: NDArray[np.bool_] | None = None
+    #: (sensors, profiles): saturates there (MODEL.md section 9), which fails it.
+    saturated: NDArray[np.bool_] | None = None
+    #: (sensor, profile) → why it fails there beyond the criterion (one line).
+    reasons: Mapping[tuple[int, int], str] = field(default_factory=dict)
+    #: κ of the saturation reach.
+    peak_factor: float = 3.0
+    #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
+    coefficient_unit: str | None = None
 
     def source(self, i: int) -> str:
         """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
         return self.sources[i] if self.sources else "coefficients"
+
+    def __post_init__(self) -> None:
+        if self.saturated is None:
+            object.__setattr__(self, "saturated",
+                               np.zeros((len(self.sensors), len(self.profiles)), dtype=bool))
+        super().__post_init__()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles))

@@ -129,12 +129,15 @@ def sensor_form(sensor: object) -> str:
 def envelope(catalog: Catalog, profiles: Sequence[str], rate: Sequence[float] | None) -> float:
     """Half-width of the default sweep in deg/s: ENVELOPE_FACTOR × max(|Ω_K3| + peak).
 
-    The peak is Σ tone amplitudes + 3σ of x3 (the saturation check's); 1 deg/s
-    when every profile is still and without vibration.
+    The peak is Σ tone amplitudes + the locked groups' peaks + 3σ of x3 (the
+    saturation check's, κ = 3); 1 deg/s when every profile is still and
+    without vibration.
     """
+    from gyrovib.api.prepare import profile_locked, vibration_swing
+
     _, p_entries = api.select_entries(catalog, (), profiles, need=("profiles",))
     reach = [abs(float(api.resolve_rate(p, rate)[2]))
-             + api.vibration_peak(api.profile_vibration(p)) for p in p_entries]
+             + vibration_swing(api.profile_vibration(p), profile_locked(p)) for p in p_entries]
     widest = max(reach, default=0.0)
     return ENVELOPE_FACTOR * widest if widest > 0 else 1.0
 
@@ -153,18 +156,20 @@ def trade_study(
     allocation: Allocation | Sequence[float] | None = None,
     sweep_rates: Sequence[float] | FloatArray | None = None,
     created: _dt.datetime | None = None,
+    peak_factor: float = 3.0,
 ) -> TradeStudy:
     """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
 
     ``sweep_rates`` default: :data:`SWEEP_POINTS` rates over ±:func:`envelope`.
-    ``created`` (default: now, UTC) is stamped on the study.
+    ``created`` (default: now, UTC) is stamped on the study. ``peak_factor``:
+    κ of the saturation check (MODEL.md section 9) of the selection and analysis.
     """
     unit = units.canonical_unit(unit)
     selection = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, budget=budget, unit=unit, criterion=criterion,
-                           require=require, allocation=allocation)
+                           require=require, allocation=allocation, peak_factor=peak_factor)
     analysis = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
-                           rate=rate, unit=unit)
+                           rate=rate, unit=unit, peak_factor=peak_factor)
     if sweep_rates is None:
         half = envelope(catalog, profiles, rate)
         sweep_rates = api.rate_range(-half, half, SWEEP_POINTS)

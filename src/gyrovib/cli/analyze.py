@@ -12,6 +12,7 @@ from gyrovib.cli.options import (
     output_option,
     parse_rate_option,
     parse_unit,
+    peak_factor_option,
     rate_option,
     selection_options,
     unit_option,
@@ -32,10 +33,12 @@ from gyrovib.cli.options import (
               metavar="S", help="numeric: random seed; the same seed gives the same numbers.")
 @rate_option
 @unit_option
+@peak_factor_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
-            method: str, samples: int, seed: int, rate: str | None, unit: str, fmt: str,
+            method: str, samples: int, seed: int, rate: str | None, unit: str,
+            peak_factor: float, fmt: str,
             output: str | None) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 
@@ -45,6 +48,9 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     With --method numeric the total Δ_V is the average of eq. (2) itself over
     the vibration minus eq. (2) at rest, with its standard error; the term
     breakdown uses the sample moments of the same samples.
+
+    A sensor driven past its range (|Ω_K3| + Σ tone amplitudes + locked
+    peaks + κσ3 > range, κ = --peak-factor) is marked saturated.
     """
     from gyrovib import api
     from gyrovib.cli.output import write_output
@@ -56,7 +62,7 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     with progress_bar("brute force", enabled=method == "numeric") as advance:
         result = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
                              rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
-                             seed=seed, progress=advance)
+                             seed=seed, progress=advance, peak_factor=peak_factor)
     if fmt == "table":
         write_output(render.to_table(result, color=use_color(output), width=page_width(output),
                                      ascii=plain_ascii(output)), output)

@@ -8,6 +8,7 @@ from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
     allocation_option,
     budget_option,
+    budget_unit_option,
     files_argument,
     format_option,
     method_option,
@@ -15,9 +16,8 @@ from gyrovib.cli.options import (
     parse_allocation,
     parse_budget,
     parse_rate_option,
-    parse_unit,
     rate_option,
-    unit_option,
+    resolve_unit,
 )
 from gyrovib.cli.spec_options import (
     parse_range,
@@ -34,14 +34,14 @@ from gyrovib.cli.spec_options import (
 @budget_option
 @method_option
 @rate_option
-@unit_option
+@budget_unit_option
 @allocation_option
 @range_options
 @spec_weights_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
 def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, method: str,
-           rate: str | None, unit: str, allocation: str | None, range_: str | None,
+           rate: str | None, unit: str | None, allocation: str | None, range_: str | None,
            nl_fit: str, nl_measure: str, nl_of: str, spec_weights: str | None, fmt: str,
            output: str | None) -> None:
     """The inverse problem: the largest coefficients that keep the error within budget.
@@ -57,7 +57,7 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
     from gyrovib.cli.output import write_output
     from gyrovib.render import bounds as render
 
-    unit = parse_unit(unit)
+    unit = resolve_unit(unit, budget)
     result = api.bounds(load_catalog(files), profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, allocation=parse_allocation(allocation),

@@ -39,6 +39,33 @@ def unit_option(f: F) -> F:
     )(f)
 
 
+def budget_unit_option(f: F) -> F:
+    """``--unit`` of the commands with a budget: it defaults to the budget's own unit."""
+    return click.option(
+        "--unit", default=None, metavar="UNIT",
+        help=f"Rate unit of every output value: {', '.join(UNIT_CHOICES)}. Default: the "
+             "unit --budget is written in (36deg/h: deg/h), else deg/s; a bare --budget "
+             "and --rate are read in it.",
+    )(f)
+
+
+def resolve_unit(unit: str | None, budget: str) -> str:
+    """``--unit`` as given, else the unit ``--budget`` carries, else deg/s (INTERFACE.md)."""
+    if unit is not None:
+        return parse_unit(unit)
+    return units.quantity_unit(budget) or "deg/s"
+
+
+def peak_factor_option(f: F) -> F:
+    return click.option(
+        "--peak-factor", "peak_factor", type=click.FloatRange(min=0.0), default=3.0,
+        show_default=True, metavar="K",
+        help="κ of the saturation check (MODEL.md section 9): a sensor saturates when "
+             "|Ω_K3| + Σ tone amplitudes + locked-harmonic peaks + κ·σ3, at its nonlinear "
+             "element, exceeds its range.",
+    )(f)
+
+
 def rate_option(f: F) -> F:
     return click.option(
         "--rate", metavar="R",

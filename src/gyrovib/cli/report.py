@@ -8,15 +8,16 @@ from gyrovib.cli.common import load_catalog
 from gyrovib.cli.options import (
     allocation_option,
     budget_option,
+    budget_unit_option,
     files_argument,
     method_option,
     parse_allocation,
     parse_budget,
     parse_rate_option,
-    parse_unit,
+    peak_factor_option,
     rate_option,
+    resolve_unit,
     selection_options,
-    unit_option,
 )
 
 DEFAULT_OUTPUT = "report.html"
@@ -28,8 +29,9 @@ DEFAULT_OUTPUT = "report.html"
 @budget_option
 @method_option
 @rate_option
-@unit_option
+@budget_unit_option
 @allocation_option
+@peak_factor_option
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
               show_default=True,
               help="What a pass means: every coefficient within its bound, Δ_V(RMS) ≤ budget "
@@ -43,8 +45,9 @@ DEFAULT_OUTPUT = "report.html"
 @click.option("--output", "-o", default=DEFAULT_OUTPUT, show_default=True, metavar="PATH",
               help="Write the HTML here (atomically); '-' for standard output.")
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
-           budget: str, method: str, rate: str | None, unit: str, allocation: str | None,
-           criterion: str, require: str, rate_range: str | None, output: str) -> None:
+           budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
+           peak_factor: float, criterion: str, require: str, rate_range: str | None,
+           output: str) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -58,7 +61,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     from gyrovib.cli.output import write_output
     from gyrovib.render.report import to_html
 
-    unit = parse_unit(unit)
+    unit = resolve_unit(unit, budget)
     sweep_rates = None
     if rate_range is not None:
         from gyrovib import api
@@ -69,7 +72,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
         load_catalog(files), sensors=sensors, profiles=profiles, method=method,
         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit), unit=unit,
         criterion=criterion, require=require, allocation=parse_allocation(allocation),
-        sweep_rates=sweep_rates)
+        sweep_rates=sweep_rates, peak_factor=peak_factor)
     write_output(to_html(result), output)
     if output not in ("-", ""):
         click.echo(f"gyrovib: wrote {output}", err=True)

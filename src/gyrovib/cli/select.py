@@ -8,6 +8,7 @@ from gyrovib.cli.common import github_errors, load_catalog, page_width, plain_as
 from gyrovib.cli.options import (
     allocation_option,
     budget_option,
+    budget_unit_option,
     files_argument,
     format_option,
     method_option,
@@ -15,10 +16,10 @@ from gyrovib.cli.options import (
     parse_allocation,
     parse_budget,
     parse_rate_option,
-    parse_unit,
+    peak_factor_option,
     rate_option,
+    resolve_unit,
     selection_options,
-    unit_option,
 )
 from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 
@@ -29,14 +30,17 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @budget_option
 @method_option
 @rate_option
-@unit_option
+@budget_unit_option
 @allocation_option
+@peak_factor_option
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
               default="bounds", show_default=True,
-              help="What a pass means: every coefficient within its bound (the paper's "
-                   "synthesis; a datasheet sensor: its NL and VRE within their spec "
-                   "bounds), Δ_V(RMS) ≤ budget (eq. 17), |Δ_V| ≤ budget (worst: for a "
-                   "datasheet sensor over its envelope), or bounds and rms.")
+              help="What a pass means: bounds: every coefficient within its bound (the "
+                   "paper's synthesis; a datasheet sensor: its NL and VRE within their spec "
+                   "bounds) -- sufficient, not necessary: a sensor outside a bound may still "
+                   "meet the budget; rms: Δ_V(RMS) ≤ budget (eq. 17), the direct test; "
+                   "worst: |Δ_V| ≤ budget (a datasheet sensor over its envelope); both: "
+                   "bounds and rms. A saturating sensor fails whatever the criterion.")
 @spec_weights_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
@@ -45,15 +49,18 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @output_option
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
-           profiles: tuple[str, ...], budget: str, method: str, rate: str | None, unit: str,
-           allocation: str | None, criterion: str, spec_weights: str | None, require: str,
-           fmt: str, output: str | None) -> None:
+           profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
+           unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
+           spec_weights: str | None, require: str, fmt: str, output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
-    Each sensor's bounds include its own frequency response; its |coefficients|
-    are checked against them and its RMS error against the budget (eq. 17). A
-    datasheet (spec-form) sensor is checked by its nonlinearity and VRE against
-    the allowable figures for its range, and its margin is that of its worst case.
+    Each sensor's bounds include its frequency response where it acts at its
+    input (`response: {at: input, ...}`; an output filter earns no credit);
+    its |coefficients| are checked against them and its RMS error against the
+    budget (eq. 17). A datasheet (spec-form) sensor is checked by its
+    nonlinearity and VRE against the allowable figures for its range, and its
+    margin is that of its worst case. A sensor that saturates under a profile
+    fails there.
     Exit status 1 when the --require condition is not met.
     """
     from gyrovib import api
@@ -61,13 +68,13 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     from gyrovib.render import select as render
 
     github_errors(fmt == "github")
-    unit = parse_unit(unit)
+    unit = resolve_unit(unit, budget)
     catalog = load_catalog(files)
     result = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, criterion=criterion, require=require,
                         allocation=parse_allocation(allocation),
-                        spec_weights=parse_spec_weights(spec_weights))
+                        spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor)
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))

@@ -6,13 +6,14 @@ import click
 
 from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
+    budget_unit_option,
     files_argument,
     format_option,
     output_option,
     parse_budget,
-    parse_unit,
+    peak_factor_option,
+    resolve_unit,
     selection_options,
-    unit_option,
 )
 from gyrovib.errors import OptionError
 
@@ -51,7 +52,9 @@ def envelope_path(plot: str) -> str:
 @selection_options
 @click.option("--rate-range", "rate_range", default=DEFAULT_RANGE, show_default=True,
               metavar="START:STOP:COUNT",
-              help="Ω_K3 values: COUNT evenly spaced from START to STOP inclusive, in --unit.")
+              help="Ω_K3 values: COUNT evenly spaced from START to STOP inclusive, each in "
+                   "--unit unless it carries its own unit, which is converted "
+                   "(-1deg/s:1deg/s:101 with --unit deg/h runs from -3600 to 3600 deg/h).")
 @click.option("--budget", metavar="B",
               help="Δ*_V, drawn as a band on the plot (number in --unit, or e.g. 36deg/h).")
 @click.option("--plot", "plot", metavar="FILE.png",
@@ -60,11 +63,13 @@ def envelope_path(plot: str) -> str:
                    "their worst polynomials against the NL envelope into FILE-envelope.png.")
 @click.option("--log", "log_scale", is_flag=True,
               help="Plot on logarithmic (Δ_V(RMS)) and symmetric-log (Δ_V) axes.")
-@unit_option
+@budget_unit_option
+@peak_factor_option
 @format_option("table", "json", "csv")
 @output_option
 def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
-          rate_range: str, budget: str | None, plot: str | None, log_scale: bool, unit: str,
+          rate_range: str, budget: str | None, plot: str | None, log_scale: bool,
+          unit: str | None, peak_factor: float,
           fmt: str, output: str | None) -> None:
     """Δ_V and Δ_V(RMS) over a range of Ω_K3, exact and paper side by side.
 
@@ -77,11 +82,11 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
     from gyrovib.cli.output import write_binary, write_output
     from gyrovib.render import sweep as render
 
-    unit = parse_unit(unit)
+    unit = resolve_unit(unit, budget or "")
     start, stop, count = parse_rate_range(rate_range, unit)
     budget_value = parse_budget(budget, unit) / units.scale(unit) if budget is not None else None
     result = api.sweep(load_catalog(files), api.rate_range(start, stop, count), sensors=sensors,
-                       profiles=profiles, unit=unit)
+                       profiles=profiles, unit=unit, peak_factor=peak_factor)
     if result.paper_refused:
         listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
         click.echo(f"gyrovib: note: the paper's columns are empty for {listed}", err=True)

@@ -9,27 +9,53 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api import AnalysisResult
-from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
+from gyrovib.api.results import JSON_TERMS as _JSON_TERMS
+from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 _ADDITIVE_LABELS = ("Δ0 A1", "Δ0 k2", "Δ0 k4", "Δ0 m31", "Δ0 m32")
-#: The JSON keys of ``additive_terms``: Δ0(1..5), then Δ0(6) of a linear vibration.
-JSON_TERMS = (*ADDITIVE_TERMS, EXTRA_TERMS[0])
-#: Label of the Δ0(6) column, shown when some profile has a linear vibration.
-_G2_LABEL = "Δ0 g²"
+#: The JSON keys of ``additive_terms`` (Δ0(1..5), g2 = Δ0(6), k3, k5): one order for
+#: JSON, CSV, tables and frames.
+JSON_TERMS = _JSON_TERMS
+#: The odd-moment terms of locked harmonics (MODEL.md section 10), k3·M3 and k5·M5:
+#: always in JSON (0 where x3 is symmetric), in tables only where a profile has them.
+ODD_TERMS: tuple[str, ...] = ("k3", "k5")
+_LABELS = dict(zip(JSON_TERMS, (*_ADDITIVE_LABELS, "Δ0 g²", "Δ0 k3", "Δ0 k5"), strict=True))
+#: The mark of a saturating sensor in tables (MODEL.md section 9).
+SATURATED_MARK = "SAT"
 
 
-def _terms(result: AnalysisResult, i: int, j: int) -> list[float]:
-    """The additive terms of a row as the tables show them: Δ0(1..5), and Δ0(6) if any."""
+def _shown(linear: bool, odd: bool) -> tuple[int, ...]:
+    """Indices into :data:`JSON_TERMS` of the terms shown: Δ0(6) with a linear
+    vibration, k3/k5 with locked harmonics."""
+    return tuple(k for k, t in enumerate(JSON_TERMS)
+                 if t in ADDITIVE_TERMS or (t == "g2" and linear) or (t in ODD_TERMS and odd))
+
+
+def _all_terms(result: AnalysisResult, i: int, j: int) -> list[float]:
     e = result.error
-    out = [float(x) for x in e.additive_terms[i, j]]
-    if result.has_linear:
-        out.append(float(e.extra_terms[i, j, 0]))
-    return out
+    return [*map(float, e.additive_terms[i, j]), *map(float, e.extra_terms[i, j])]
 
 
-def _labels(result: AnalysisResult) -> tuple[str, ...]:
-    return (*_ADDITIVE_LABELS, _G2_LABEL) if result.has_linear else _ADDITIVE_LABELS
+def _terms(result: AnalysisResult, i: int, j: int, odd: bool) -> list[float]:
+    """The additive terms of a row as tables and CSV show them."""
+    values = _all_terms(result, i, j)
+    return [values[k] for k in _shown(result.has_linear, odd)]
+
+
+def _labels(result: AnalysisResult, odd: bool) -> tuple[str, ...]:
+    return tuple(_LABELS[JSON_TERMS[k]] for k in _shown(result.has_linear, odd))
+
+
+def _saturated(result: AnalysisResult, i: int, j: int) -> bool:
+    sat = result.saturated
+    return bool(sat is not None and sat[i, j])
+
+
+def _saturation_note(result: AnalysisResult) -> str:
+    return (f"{SATURATED_MARK}: saturated, |Ω_K3| + Σ tone amplitudes + locked peaks + "
+            f"{result.peak_factor:g}σ at the nonlinear element exceeds the sensor's range "
+            "(MODEL.md section 9): the error shown does not hold.")
 
 
 def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
@@ -44,7 +70,7 @@ def _to_json_rows(result: AnalysisResult) -> str:
     extra = getattr(result, "stderr", None)
     results: list[dict[str, Any]] = []
     rates = result.rates.tolist()
-    terms = [[[*t, g[0]] for t, g in zip(ts, gs, strict=True)]
+    terms = [[[*t, *g] for t, g in zip(ts, gs, strict=True)]
              for ts, gs in zip(e.additive_terms.tolist(), e.extra_terms.tolist(), strict=True)]
     qs = e.multiplicative_coefficients.tolist()
     additive, mult, total, rms = (e.additive.tolist(), e.multiplicative.tolist(),
@@ -64,6 +90,9 @@ def _to_json_rows(result: AnalysisResult) -> str:
         if extra is not None:
             row["stderr"] = number(extra[i, j])
         row.update(_source_fields(result, i, j))
+        row["saturated"] = _saturated(result, i, j)
+        if (i, j) in result.worst_phases:
+            row["worst_phases"] = [dict(g) for g in result.worst_phases[(i, j)]]
         row["warnings"] = list(result.warnings.get((i, j), ()))
         results.append(row)
     document = _head(result)
@@ -113,6 +142,7 @@ def _row_template(with_stderr: bool) -> str:
     if with_stderr:
         fields.append(("stderr", "%s"))
     fields.append(("source", "%s"))
+    fields.append(("saturated", "%s"))
     fields.append(("warnings", "%s"))
     return obj(fields).replace("%s", "\0").replace("%", "%%").replace("\0", "%s")
 
@@ -128,13 +158,15 @@ def to_json(result: AnalysisResult) -> str:
     e = result.error
     extra = getattr(result, "stderr", None)
     columns = [e.additive_terms[..., t] for t in range(len(ADDITIVE_TERMS))]
-    columns.append(e.extra_terms[..., 0])
+    columns += [e.extra_terms[..., k] for k in range(len(JSON_TERMS) - len(ADDITIVE_TERMS))]
     columns += [e.multiplicative_coefficients[..., q] for q in range(len(MULTIPLICATIVE_TERMS))]
     columns += [e.additive, e.multiplicative, e.total, e.rms]
     if not all(np.isfinite(c).all() for c in columns) or not np.isfinite(result.rates).all():
         return _to_json_rows(result)  # json refuses NaN/infinity; let it say so
     if "specs" in result.sources:
         return _to_json_rows(result)  # spec rows carry their envelope: one dict per row
+    if result.worst_phases:
+        return _to_json_rows(result)  # a key of some rows only: the reference form
     template = _row_template(extra is not None)
     n_s = len(result.sensors)
     sensors = [json.dumps(s) for s in result.sensors]
@@ -155,8 +187,12 @@ def to_json(result: AnalysisResult) -> str:
             if extra is not None:
                 encoded.append(["null" if v is None else float.__repr__(v)
                                 for v in map(number, extra[start:stop, j].tolist())])
+            sat = result.saturated
+            encoded.append([_COEFFICIENT_SOURCE] * count)
+            encoded.append(["false"] * count if sat is None else
+                           ["true" if v else "false" for v in sat[start:stop, j].tolist()])
             rows = zip(sensors[start:stop], [profile_text] * count, [rate_text] * count,
-                       *encoded, [_COEFFICIENT_SOURCE] * count, warnings[start:stop],
+                       *encoded, warnings[start:stop],
                        strict=True)
             blocks.append(", ".join([template % row for row in rows]))
     head = json.dumps(_head(result))[:-1]
@@ -165,10 +201,10 @@ def to_json(result: AnalysisResult) -> str:
 
 def _csv_header(with_stderr: bool = False, linear: bool = False) -> list[str]:
     return (["sensor", "profile", "rate_x1", "rate_x2", "rate_x3"]
-            + [f"additive_{t}" for t in (JSON_TERMS if linear else ADDITIVE_TERMS)]
+            + [f"additive_{JSON_TERMS[k]}" for k in _shown(linear, True)]
             + [f"multiplicative_{q}" for q in MULTIPLICATIVE_TERMS]
             + ["additive", "multiplicative", "total", "rms"]
-            + (["stderr"] if with_stderr else []) + ["warnings"])
+            + (["stderr"] if with_stderr else []) + ["saturated", "warnings"])
 
 
 def to_csv(result: AnalysisResult) -> str:
@@ -185,10 +221,11 @@ def to_csv(result: AnalysisResult) -> str:
         for i, j in _rows(result):
             yield [
                 result.sensors[i], result.profiles[j], *map(float, result.rates[j]),
-                *_terms(result, i, j),
+                *_terms(result, i, j, True),
                 *map(float, e.multiplicative_coefficients[i, j]),
                 float(e.additive[i, j]), float(e.multiplicative[i, j]), float(e.total[i, j]),
                 float(e.rms[i, j]), *([float(extra[i, j])] if extra is not None else []),
+                "true" if _saturated(result, i, j) else "false",
                 "; ".join(result.warnings.get((i, j), ())),
             ]
 
@@ -199,8 +236,10 @@ def to_markdown(result: AnalysisResult) -> str:
     """A Markdown table (4 significant figures) with warnings as footnotes."""
     e = result.error
     extra = getattr(result, "stderr", None)
-    head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_labels(result),
-            "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []), "Δ_V(RMS)"]
+    odd = any(result.locked)
+    head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_labels(result, odd),
+            "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []), "Δ_V(RMS)",
+            "saturated"]
     rows: list[list[str]] = []
     notes: list[str] = []
     for i, j in _rows(result):
@@ -210,9 +249,10 @@ def to_markdown(result: AnalysisResult) -> str:
                          for w in result.warnings[(i, j)])
             mark = f" ⚠{len(notes)}"
         rows.append([result.sensors[i] + mark, result.profiles[j], fmt(result.rates[j, 2]),
-                     *(fmt(x) for x in _terms(result, i, j)), fmt(e.additive[i, j]),
+                     *(fmt(x) for x in _terms(result, i, j, odd)), fmt(e.additive[i, j]),
                      fmt(e.multiplicative[i, j]), fmt(e.total[i, j]),
-                     *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j])])
+                     *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j]),
+                     "yes" if _saturated(result, i, j) else "no"])
     text = (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
             + markdown_table(head, rows))
     if "specs" in result.sources:
@@ -233,6 +273,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
     extra = getattr(result, "stderr", None)
     out: list[Any] = []
     notes: list[str] = []
+    any_saturated = False
     for j, profile in enumerate(result.profiles):
         omega = result.rates[j, 2]
         table = Table(
@@ -240,7 +281,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             title_justify="left", header_style="bold",
         )
         table.add_column("sensor", no_wrap=True)
-        for label in _labels(result):
+        odd = bool(result.locked[j]) if result.locked else False
+        for label in _labels(result, odd):
             table.add_column(label, justify="right", no_wrap=True)
         for label in ("Δ_VA", "Δ_VM", "Δ_V"):
             table.add_column(label, justify="right", no_wrap=True, style="bold")
@@ -252,7 +294,15 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             if (i, j) in result.warnings:
                 notes.extend(f"{sensor} / {profile}: {w}" for w in result.warnings[(i, j)])
                 name.append(f" ⚠{len(notes)}", style="yellow")
-            table.add_row(name, *(fmt(x) for x in _terms(result, i, j)),
+            if _saturated(result, i, j):
+                name.append(f" {SATURATED_MARK}", style="bold red")
+                any_saturated = True
+            if (i, j) in result.worst_phases:
+                phases = "; ".join(", ".join(f"order {n} at {v:.4g}°" for n, v in g.items())
+                                   for g in result.worst_phases[(i, j)] if g)
+                notes.append(f"{sensor} / {profile}: worst phases {phases}")
+                name.append(f" ⚠{len(notes)}", style="yellow")
+            table.add_row(name, *(fmt(x) for x in _terms(result, i, j, odd)),
                           fmt(e.additive[i, j]), fmt(e.multiplicative[i, j]),
                           fmt(e.total[i, j]),
                           *([fmt(extra[i, j], 2)] if extra is not None else []),
@@ -267,6 +317,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
     out.append(Text(legend, style="dim"))
     if "specs" in result.sources:
         out.append(Text(_SPECS_NOTE, style="dim"))
+    if any_saturated:
+        out.append(Text(_saturation_note(result), style="red"))
     if extra is not None:
         out.append(Text(_numeric_note(result), style="dim"))
     for k, note in enumerate(notes, 1):

@@ -10,7 +10,14 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api import BoundsResult
-from gyrovib.core.synthesis import BOUNDED, PARTS, AllocationConstants, CoefficientBounds
+from gyrovib.api.reasons import in_table_unit, table_unit
+from gyrovib.core.synthesis import (
+    BOUNDED,
+    ODD_PARTS,
+    PARTS,
+    AllocationConstants,
+    CoefficientBounds,
+)
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 
@@ -36,9 +43,15 @@ def bounds_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
     return out
 
 
+def part_names(bounds: CoefficientBounds) -> tuple[str, ...]:
+    """The candidates the bounds carry: the k4/k5 ones, and those of locked harmonics
+    (:data:`~gyrovib.core.synthesis.ODD_PARTS`, MODEL.md section 10) where they exist."""
+    return PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
+
+
 def parts_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
-    """The k4/k5 candidates of profile ``j`` for JSON."""
-    return {name: number(getattr(bounds, name)[j]) for name in PARTS}
+    """The candidates of profile ``j`` for JSON."""
+    return {name: number(getattr(bounds, name)[j]) for name in part_names(bounds)}
 
 
 def profiles_json(profiles: tuple[str, ...], rates: Any, bounds: CoefficientBounds) -> list[Any]:
@@ -76,8 +89,9 @@ def to_csv(result: BoundsResult) -> str:
     With linear vibration in some profile the rows end with ``vre``; with
     ``--range`` then with ``spec_nonlinearity`` (%FS) and ``spec_vre``.
     """
+    parts = part_names(result.bounds)
     vre = result.bounds.vre  # a column only when some profile has linear vibration
-    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *PARTS,
+    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *parts,
             *(["vre"] if vre is not None else [])]
     sb = result.spec_bounds
     if sb is not None:
@@ -86,7 +100,7 @@ def to_csv(result: BoundsResult) -> str:
     def rows() -> Iterator[list[Any]]:
         for j, p in enumerate(result.profiles):
             yield [p, *map(float, result.rates[j]),
-                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + PARTS),
+                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + parts),
                    *([float(vre[j])] if vre is not None else []),
                    *([] if sb is None else [float(sb.nonlinearity[j]), float(sb.vre[j])])]
 
@@ -124,19 +138,25 @@ def shares(constants: AllocationConstants, linear: bool = False) -> dict[str, st
         norm = math.hypot(float(np.linalg.norm(w)), w6)
         a = w * constants.c_additive / norm
         extra["vre"] = f"α6 = {w6 * constants.c_additive / norm:.4g}"
+    # the exact method splits β1 equally between k3 and the linear k5 (they add
+    # linearly in Δ(1), MODEL.md section 6); the paper prints its own 0.35
+    half = abs(constants.k3 - float(b[0]) / 2.0) <= 1e-12 * float(b[0])
+    k3 = f"β1/2 = {constants.k3:.4g}" if half else f"{constants.k3:.4g} (paper)"
+    k5 = (f"β1/2 = {constants.k5_linear:.4g}" if half
+          else f"{constants.k5_linear:.4g} (paper)")
     return {
         "A1": f"α1 = {a[0]:.4g}",
         "k2": f"α2 = {a[1]:.4g}",
-        "k3": f"β1/√2 = {constants.k3:.4g}",
+        "k3": k3,
         "k4": f"α3 = {a[2]:.4g} | β2 = {b[1]:.4g}",
-        "k5": f"β1/√2 = {constants.k5_linear:.4g} | β3 = {b[2]:.4g}",
+        "k5": f"{k5} | β3 = {b[2]:.4g}",
         "m31": f"α4 = {a[3]:.4g}",
         "m32": f"α5 = {a[4]:.4g}",
         **extra,
     }
 
 
-def _which(bounds: CoefficientBounds, j: int, name: str) -> str:
+def _which(bounds: Any, j: int, name: str) -> str:
     """For k4/k5: the two candidates, the smaller one (the bound) marked."""
     if name == "k4":
         first, second = ("additive", bounds.k4_additive[j]), ("multiplicative",
@@ -159,13 +179,27 @@ def has_vre(bounds: CoefficientBounds, j: int) -> bool:
 def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     linear = has_vre(result.bounds, j)
     share = shares(result.allocation, linear=linear)
-    rows = [[name, fmt(getattr(result.bounds, name)[j]), coefficient_unit(name, result.unit),
-             share[name], _which(result.bounds, j, name)] for name in BOUNDED]
+    unit = table_unit(result)
+    converted = _Converted(result)
+    rows = [[name, fmt(in_table_unit(result, name, getattr(result.bounds, name)[j])),
+             coefficient_unit(name, unit), share[name], _which(converted, j, name)]
+            for name in BOUNDED]
     if linear:
         assert result.bounds.vre is not None
         rows.append(["vre", fmt(result.bounds.vre[j]), vre_unit(result.unit), share["vre"],
                      "|Δ0(6)|/Σ⟨a_j²⟩"])
     return rows
+
+
+class _Converted:
+    """The k4/k5 candidates of a result in its table unit (for :func:`_which`)."""
+
+    def __init__(self, result: BoundsResult) -> None:
+        self._result = result
+
+    def __getattr__(self, name: str) -> Any:
+        values = getattr(self._result.bounds, name)
+        return [in_table_unit(self._result, name, v) for v in values]
 
 
 _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
@@ -174,6 +208,15 @@ _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
 def _title(result: BoundsResult, j: int) -> str:
     return (f"{result.profiles[j]}  (Ω_K3 = {fmt(result.rates[j, 2])} {result.unit}, "
             f"Δ* = {fmt(result.budget)} {result.unit}, method {result.method})")
+
+
+def unit_note(result: Any) -> str:
+    """Where tables write coefficients in another unit than the rates, say so."""
+    unit = table_unit(result)
+    if unit == result.unit:
+        return ""
+    return (f" Coefficients and their bounds are written in the catalogue's rate unit, "
+            f"{unit}, to stay readable; --format json gives them in {result.unit}.")
 
 
 _LEGEND = ("A sensor whose every |coefficient| is at most its bound meets the budget "
@@ -198,7 +241,7 @@ def to_markdown(result: BoundsResult) -> str:
         parts.append(f"**{_title(result, j)}**\n\n" + markdown_table(_HEAD, _rows(result, j)))
         if result.spec_bounds is not None:
             parts.append(markdown_table(_SPEC_HEAD, _spec_rows(result, j)))
-    parts.append(_legend(result) + "\n")
+    parts.append(_legend(result) + unit_note(result) + "\n")
     if result.spec_bounds is not None:
         parts.append(_SPEC_LEGEND + "\n")
     return "\n".join(parts)
@@ -226,7 +269,7 @@ def to_table(result: BoundsResult, width: int | None = None, color: bool = False
             for row in _spec_rows(result, j):
                 spec.add_row(*row)
             out.append(spec)
-    out.append(Text(_legend(result), style="dim"))
+    out.append(Text(_legend(result) + unit_note(result), style="dim"))
     if result.spec_bounds is not None:
         out.append(Text(_SPEC_LEGEND, style="dim"))
     return rich_text(out, width=width, color=color, ascii=ascii)

@@ -40,6 +40,18 @@ def fmt(value: float | None, digits: int = 4) -> str:
     return f"{v:.{digits}g}"
 
 
+#: Table values smaller than this fraction of the budget print as 0 (rounding residue).
+NEGLIGIBLE = 1e-12
+
+
+def fmt_budget(value: float | None, budget: float | None, digits: int = 4) -> str:
+    """:func:`fmt`, but ``0`` for |value| below :data:`NEGLIGIBLE` × the budget (tables only)."""
+    if (value is not None and budget is not None and budget > 0 and math.isfinite(value)
+            and abs(value) < NEGLIGIBLE * budget):
+        return "0"
+    return fmt(value, digits)
+
+
 def csv_text(header_row: Iterable[str], rows: Iterable[Iterable[Any]]) -> str:
     """CSV with a header row, numbers written with full precision."""
     import csv

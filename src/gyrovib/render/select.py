@@ -7,13 +7,24 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from gyrovib.api import SelectionResult
-from gyrovib.api.reasons import failures, reason
+from gyrovib.api.reasons import failures as _failures
+from gyrovib.api.reasons import in_table_unit, reason, table_unit
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, vre_unit
-from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.analysis import SATURATED_MARK
+from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, unit_note, vre_unit
+from gyrovib.render.common import (
+    csv_text,
+    dumps,
+    fmt,
+    fmt_budget,
+    header,
+    markdown_table,
+    number,
+    rich_text,
+)
 
 _CRITERION = {
-    "bounds": "every |coefficient| within its bound (eq. 23, 25)",
+    "bounds": "every |coefficient| within its bound (eq. 23, 25; sufficient, not necessary)",
     "rms": "Δ_V(RMS) ≤ Δ* (eq. 17)",
     "worst": "|Δ_V| ≤ Δ* (a datasheet sensor: its worst case over the envelope)",
     "both": "every |coefficient| within its bound and Δ_V(RMS) ≤ Δ*",
@@ -21,6 +32,12 @@ _CRITERION = {
 
 
 # ------------------------------------------------------------------ reasons
+
+
+def failures(result: SelectionResult, i: int, j: int) -> list[str]:
+    """Why sensor ``i`` fails under profile ``j``, as the tables write it
+    (:func:`gyrovib.api.reasons.failures` with coefficients in the catalogue's unit)."""
+    return _failures(result, i, j, table=True)
 
 __all__ = ["failures", "limit_text", "reason", "to_csv", "to_github", "to_json", "to_junit",
            "to_markdown", "to_table"]
@@ -45,18 +62,22 @@ def limit_text(result: SelectionResult, i: int) -> str:
     j = limit.profile
     profile = result.profiles[j]
     ratio = fmt(limit.ratio, 3)
+    if limit.name == "saturated":
+        return f"its range under {profile}: {result.reasons[(i, j)]}"
     if limit.name == "rms":
-        return (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit} is {ratio}× the budget "
-                f"under {profile}")
+        return (f"Δ_V(RMS) = {fmt_budget(result.rms[i, j], result.budget)} {result.unit} is "
+                f"{ratio}× the budget under {profile}")
     if limit.name == "vre" and result.source(i) != "specs":
         return f"vre: {_vre_text(result, i, j, f'is {ratio}× its bound')} under {profile}"
     if limit.name in ("nonlinearity", "vre", "worst"):
         return _spec_limit_text(result, i, limit.name, j, ratio)
     b = BOUNDED.index(limit.name)
-    unit = coefficient_unit(limit.name, result.unit)
+    name = limit.name
+    unit = coefficient_unit(name, table_unit(result))
     tail = "" if unit == "1" else f" {unit}"
-    return (f"{limit.name}: |{limit.name}| = {fmt(result.values[i, j, b])} is {ratio}× its "
-            f"bound {fmt(result.bounds[i, j, b])}{tail} under {profile}")
+    return (f"{name}: |{name}| = {fmt(in_table_unit(result, name, result.values[i, j, b]))} "
+            f"is {ratio}× its bound {fmt(in_table_unit(result, name, result.bounds[i, j, b]))}"
+            f"{tail} under {profile}")
 
 
 def _spec_limit_text(result: SelectionResult, i: int, name: str, j: int, ratio: str) -> str:
@@ -105,6 +126,12 @@ def _heading(result: SelectionResult) -> str:
             f"criterion {result.criterion}: {_CRITERION[result.criterion]}")
 
 
+#: What the bounds criterion can and cannot say (the help of --criterion says it too).
+BOUNDS_NOTE = ("The bounds are sufficient, not necessary: a sensor within every bound meets "
+               "the budget under this allocation, one outside a bound may still meet it; "
+               "--criterion rms (Δ_V(RMS) ≤ Δ*, eq. 17) is the direct test.")
+
+
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
     judged = "Δ*/|Δ_V|" if result.criterion == "worst" else "Δ*/Δ_V(RMS)"
@@ -114,9 +141,10 @@ def _legend(result: SelectionResult) -> str:
             if "specs" in result.sources else "")
     text = (f"Cells: ✓ pass / ✗ fail under the criterion, with the margin {judged} "
             "(> 1: the error is within the budget; ∞: no error at all)." + spec + " Each sensor's "
-            "bounds include its own frequency response. Shares of Δ*: "
-            + ", ".join(f"{k} {v}" for k, v in share.items())
-            + ". The bounds are sufficient under this allocation, not necessary.")
+            "bounds include its own frequency response where it acts at the input "
+            "(`at: input`); an output filter earns no credit. Shares of Δ*: "
+            + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE
+            + unit_note(result))
     if result.has_linear:  # MODEL.md section 8: α6 joins the additive shares
         linear = shares(result.allocation, linear=True)
         text += (" Under a profile with linear vibration the additive shares make room for "
@@ -124,10 +152,18 @@ def _legend(result: SelectionResult) -> str:
                                              ("A1", "k2", "k4", "m31", "m32", "vre"))
                  + "; the vre check compares each sensor's effective VRE "
                  "|Δ0(6)|/Σ⟨a_j²⟩ with its bound.")
+    if result.saturated is not None and result.saturated.any():
+        text += (f" {SATURATED_MARK}: the sensor saturates (|Ω_K3| + Σ tone amplitudes + "
+                 f"locked peaks + {result.peak_factor:g}σ3 at its nonlinear element exceeds "
+                 "its range, MODEL.md section 9) and fails whatever the criterion.")
     return text
 
 
 # ------------------------------------------------------------------ JSON, CSV
+
+
+def _sat(result: SelectionResult, i: int, j: int) -> bool:
+    return bool(result.saturated is not None and result.saturated[i, j])
 
 
 def to_json(result: SelectionResult) -> str:
@@ -157,6 +193,7 @@ def to_json(result: SelectionResult) -> str:
                     "checks": checks}
             if result.total is not None:
                 cell["total"] = number(result.total[i, j])
+            cell["saturated"] = _sat(result, i, j)
             cell["reason"] = reason(result, i, j)
             cells.append(cell)
         sensors.append({"sensor": sensor, "source": result.source(i),
@@ -202,6 +239,7 @@ def to_csv(result: SelectionResult) -> str:
                  "pass_nonlinearity"]
     if with_specs or vre:
         head += ["value_vre", "bound_vre", "pass_vre"]
+    head += ["saturated", "reason"]
 
     def rows() -> Iterator[list[Any]]:
         for i, sensor in enumerate(result.sensors):
@@ -228,6 +266,7 @@ def to_csv(result: SelectionResult) -> str:
                     row += [*_vre(result, i, j), bool(_get(result.vre_pass, i, j))]
                 elif with_specs:
                     row += [""] * 3
+                row += [_sat(result, i, j), reason(result, i, j) or ""]
                 yield row
 
     return csv_text(head, rows())
@@ -238,7 +277,8 @@ def to_csv(result: SelectionResult) -> str:
 
 def _cell(result: SelectionResult, i: int, j: int) -> str:
     mark = "✓" if result.passed[i, j] else "✗"
-    return f"{mark} {_margin(result.margin[i, j])}"
+    sat = f" {SATURATED_MARK}" if _sat(result, i, j) else ""
+    return f"{mark}{sat} {_margin(result.margin[i, j])}"
 
 
 def _passing(result: SelectionResult) -> list[list[str]]:

@@ -6,9 +6,18 @@ from collections.abc import Iterator
 from typing import Any
 
 from gyrovib.api import SweepResult
-from gyrovib.render.common import csv_text, dumps, fmt, header, number, rich_text
+from gyrovib.render.common import csv_text, dumps, fmt, fmt_budget, header, number, rich_text
 
 METHODS = ("exact", "paper")
+
+
+def _saturated(result: SweepResult) -> Any:
+    import numpy as np
+
+    sat = result.saturated
+    if sat is None:
+        return np.zeros((len(result.sensors), len(result.profiles), len(result.rates)), bool)
+    return sat
 
 
 def _series(result: SweepResult) -> Iterator[tuple[int, int]]:
@@ -35,6 +44,7 @@ def to_json(result: SweepResult, budget: float | None = None) -> str:
             else:
                 row[method] = {"total": [number(x) for x in err.total[i, j]],
                                "rms": [number(x) for x in err.rms[i, j]]}
+        row["saturated"] = [bool(v) for v in _saturated(result)[i, j]]
         series.append(row)
     document["series"] = series
     return dumps(document)
@@ -51,10 +61,10 @@ def to_csv(result: SweepResult, budget: float | None = None) -> str:
                          [float(result.paper.total[i, j, r]), float(result.paper.rms[i, j, r])])
                 yield [result.sensors[i], result.profiles[j], float(rate),
                        float(result.exact.total[i, j, r]), float(result.exact.rms[i, j, r]),
-                       *paper]
+                       *paper, bool(_saturated(result)[i, j, r])]
 
     head = ["sensor", "profile", "rate_x3", "exact_total", "exact_rms", "paper_total",
-            "paper_rms"]
+            "paper_rms", "saturated"]
     return csv_text(head, rows())
 
 
@@ -65,6 +75,7 @@ def to_table(result: SweepResult, budget: float | None = None, width: int | None
     from gyrovib.render.common import Table, Text
 
     out: list[Any] = []
+    any_saturated = False
     for i, j in _series(result):
         refused = result.profiles[j] in result.paper_refused
         table = Table(title=f"{result.sensors[i]} / {result.profiles[j]}", title_justify="left",
@@ -74,15 +85,23 @@ def to_table(result: SweepResult, budget: float | None = None, width: int | None
             table.add_column(label, justify="right", no_wrap=True)
         for r, rate in enumerate(result.rates):
             e, p = result.exact, result.paper
-            table.add_row(fmt(rate), fmt(e.total[i, j, r]),
-                          "" if refused else fmt(p.total[i, j, r]), fmt(e.rms[i, j, r]),
-                          "" if refused else fmt(p.rms[i, j, r]))
+            sat = " SAT" if _saturated(result)[i, j, r] else ""
+            if sat:
+                any_saturated = True
+            table.add_row(fmt(rate) + sat, fmt_budget(e.total[i, j, r], budget),
+                          "" if refused else fmt_budget(p.total[i, j, r], budget),
+                          fmt_budget(e.rms[i, j, r], budget),
+                          "" if refused else fmt_budget(p.rms[i, j, r], budget))
         out.append(table)
     legend = (f"All values in {result.unit}. Δ_V of eq. (13), Δ_V(RMS) of eq. (16), at each "
               "Ω_K3 with Ω_K1, Ω_K2 of the profile.")
     if budget is not None:
         legend += f" Budget Δ*_V = {fmt(budget)} {result.unit}."
     out.append(Text(legend, style="dim"))
+    if any_saturated:
+        out.append(Text(f"SAT: the sensor saturates at that rate (|Ω_K3| + Σ tone amplitudes + "
+                        f"locked peaks + {result.peak_factor:g}σ3 exceeds its range, MODEL.md "
+                        "section 9): the values there do not hold.", style="red"))
     for profile, why in result.paper_refused.items():
         out.append(Text(f"paper: no values for {profile}: {why}", style="dim"))
     return rich_text(out, width=width, color=color, ascii=ascii)

@@ -6,24 +6,28 @@ import zlib
 from collections.abc import Callable, Sequence
 
 import numpy as np
+from numpy.typing import NDArray
 
 from gyrovib import units
 from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
 from gyrovib.api.prepare import (
+    Group,
     Prepared,
     check_finite,
     float_guard,
     prepare,
-    vibration_peak,
+    profile_problem,
 )
 from gyrovib.api.results import AnalysisResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
+from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.linear import LinearVibration
+from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
-from gyrovib.errors import OptionError
+from gyrovib.errors import ModelError, OptionError
 
 #: Every method of :func:`analyze`: the closed forms, and brute force.
 ANALYZE_METHODS: tuple[str, ...] = (*METHODS, "numeric")
@@ -35,6 +39,7 @@ ProgressCallback = Callable[[int, int], None]
 
 _PARTS = ("additive_terms", "multiplicative_coefficients", "additive", "multiplicative",
           "total", "rms", "extra_terms")
+_TAILS = ((5,), (3,), (), (), (), (), (len(EXTRA_TERMS),))
 
 
 def profile_generator(seed: int, profile_id: str) -> np.random.Generator:
@@ -70,6 +75,7 @@ def analyze(
     samples: int = DEFAULT_SAMPLES,
     seed: int = DEFAULT_SEED,
     progress: ProgressCallback | None = None,
+    peak_factor: float = DEFAULT_PEAK_FACTOR,
 ) -> AnalysisResult:
     """Eq. (13)-(16) for every chosen sensor under every chosen profile.
 
@@ -90,20 +96,36 @@ def analyze(
     method's multipliers feed the programme; under ``numeric`` the worst
     polynomial (found with the exact multipliers) is averaged by brute force,
     and ``rms`` stays the per-term bound.
+
+    Phase-locked harmonics (MODEL.md section 10) add the terms k3·M3 and k5·M5
+    (``error.extra_terms``); a profile with ``phase: worst`` orders is
+    evaluated at the phases that maximise |Δ_V| for each sensor
+    (:attr:`AnalysisResult.worst_phases`; a spec-form sensor's worst case there
+    takes each multiplier at its largest over the phases, and reports none).
+    :attr:`AnalysisResult.saturated`
+    flags where |Ω_K3| + Σ tone amplitudes + Σ locked peaks + κσ3 at the
+    nonlinear element exceeds the sensor's range (κ = ``peak_factor``,
+    MODEL.md section 9).
     """
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
     numeric = method == "numeric"
     with float_guard():
         prepared = prepare(catalog, sensors=sensors, profiles=profiles, rate=rate,
-                           methods=() if numeric else (method,))
+                           methods=() if numeric else (method,), peak_factor=peak_factor,
+                           phase_search=False)
+        if numeric:
+            _refuse_unknown_phases(prepared)
         n_s, n_p = len(prepared.sensors), len(prepared.profiles)
         coeffs, rates = prepared.coefficients, prepared.rates
         parts = {name: np.zeros((n_s, n_p, *tail)) for name, tail in
-                 zip(_PARTS, ((5,), (3,), (), (), (), (), (len(EXTRA_TERMS),)), strict=True)}
+                 zip(_PARTS, _TAILS, strict=True)}
         stderr = np.zeros((n_s, n_p)) if numeric else None
         tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
-        spec = specs.spec_results(prepared, "exact" if numeric else method)
+        spec = specs.spec_results(_spec_prepared(prepared, catalog, sensors, profiles, rate,
+                                                 method, peak_factor),
+                                  "exact" if numeric else method)
+        worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
         for group in prepared.groups:
             idx = group.index
             if stderr is not None:
@@ -113,7 +135,8 @@ def analyze(
                         coeffs, idx, j, spec)
                     err, stderr[idx, j] = _simulate(block, v, rates[j], samples,
                                                     profile_generator(seed, p.profile.id),
-                                                    tracker, linear=prepared.linear[j],
+                                                    tracker, group.locked[j],
+                                                    linear=prepared.linear[j],
                                                     g2=prepared.g2[idx])
                     for name, array in parts.items():
                         array[idx, j] = getattr(err, name)
@@ -122,14 +145,20 @@ def analyze(
                                       g2_sensitivity=prepared.g2[idx])
                 for name, array in parts.items():
                     array[idx] = getattr(err, name)
+                if method == "exact":
+                    worst.update(_worst_phases(prepared, group, parts))
         if spec is not None:
             specs.place_analysis(parts, spec, numeric=numeric)
+            # a spec-form row is the worst case over its envelope, not a polynomial's phases
+            worst = {k: v for k, v in worst.items() if k[0] not in set(spec.index.tolist())}
         warnings = specs.with_cross_axis(_saturation(prepared, unit), spec)
+        saturated = _saturated(prepared)
         error = to_unit(VibrationError(**parts), unit)
         out_scale = units.scale(unit)
         stderr_out = None if stderr is None else stderr / out_scale
         check_finite([*error_arrays(error), *([] if stderr_out is None else [stderr_out])],
                      prepared)
+        locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
     return AnalysisResult(
         method=method,
         unit=unit,
@@ -143,18 +172,98 @@ def analyze(
         seed=seed if numeric else None,
         linear=tuple(v is not None for v in prepared.linear),
         **specs.analysis_fields(len(prepared.sensors), n_p, spec, unit),
+        saturated=saturated,
+        peak_factor=peak_factor,
+        locked=locked,
+        worst_phases=worst,
     )
 
 
+def _refuse_unknown_phases(prepared: Prepared) -> None:
+    """Brute force averages one waveform: it needs every phase of a locked group."""
+    problems = [
+        profile_problem(p, f"profile {p.profile.id!r}: the numeric method averages one "
+                           "waveform and needs the phases of every order; 'phase: worst' "
+                           "is searched by --method exact (its worst_phases give phases "
+                           "to write in)")
+        for j, p in enumerate(prepared.profiles)
+        if any(g.worst.any() for group in prepared.groups for g in group.locked[j])]
+    if problems:
+        raise ModelError(problems, reason="phase: worst with the numeric method")
+
+
+def _spec_prepared(prepared: Prepared, catalog: Catalog, sensors: Sequence[str],
+                   profiles: Sequence[str], rate: Sequence[float] | None, method: str,
+                   peak_factor: float) -> Prepared:
+    """The preparation behind spec-form sensors' worst case (MODEL.md sections 10, 11).
+
+    With ``phase: worst`` orders, their worst case takes each multiplier at its
+    largest over the unknown phases (which bounds every phase's share), as
+    ``bounds`` and ``select`` do; otherwise ``prepared`` itself.
+    """
+    worst = any(g.worst.any() for group in prepared.groups for gs in group.locked
+                for g in gs)
+    if method != "exact" or not worst or not len(specs.spec_index(prepared.sensors)):
+        return prepared
+    return prepare(catalog, sensors=sensors, profiles=profiles, rate=rate, methods=("exact",),
+                   peak_factor=peak_factor, phase_search=True)
+
+
+def _worst_phases(prepared: Prepared, group: Group,
+                  parts: dict[str, FloatArray]) -> dict[tuple[int, int],
+                                                        tuple[dict[str, float], ...]]:
+    """Profiles with ``phase: worst`` orders: the phases maximising |Δ_V| per sensor.
+
+    Overwrites those profiles' columns of ``parts`` (deg/s) with the error at
+    the phases found; returns, per (sensor, profile), per locked group, the
+    phase (degrees, common to the axes) of each order written ``worst``.
+    """
+    from gyrovib.core.phases import worst_phase_error
+
+    out: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
+    coeffs, rates, idx = prepared.coefficients, prepared.rates, group.index
+    for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
+        if not any(g.worst.any() for g in locked):
+            continue
+        linear = prepared.linear[j] if prepared.linear else None
+        found = worst_phase_error(coeffs[idx], v, locked, float(rates[j, 2]),
+                                  acceleration=None if linear is None else linear.moments(),
+                                  g2_sensitivity=None if linear is None else prepared.g2[idx])
+        for name, array in parts.items():
+            array[idx, j] = getattr(found.error, name)
+        for k, sensor in enumerate(idx.tolist()):
+            per_group: list[dict[str, float]] = [{} for _ in locked]
+            for gi, g in enumerate(locked):
+                for oi in np.flatnonzero(g.worst).tolist():
+                    per_group[gi][str(int(g.orders[oi]))] = 0.0
+            for (gi, oi), psi in zip(found.free, found.offsets[k], strict=True):
+                phase = float(np.rad2deg(psi)) % 360.0
+                per_group[gi][str(int(locked[gi].orders[oi]))] = phase
+            out[(sensor, j)] = tuple(per_group)
+    return out
+
+
+def _saturated(prepared: Prepared) -> NDArray[np.bool_]:
+    """(sensors, profiles): the reach at the nonlinear element exceeds the range (section 9)."""
+    from gyrovib.core.saturation import saturated
+
+    out = np.zeros((len(prepared.sensors), len(prepared.profiles)), dtype=bool)
+    ranges = sensor_ranges(prepared.sensors)
+    for group in prepared.groups:
+        reach = group.reach(prepared.rates[:, 2])
+        out[group.index] = saturated(reach, ranges[group.index])
+    return out
+
+
 def _saturation(prepared: Prepared, unit: str) -> dict[tuple[int, int], tuple[str, ...]]:
-    """Warnings where |Ω_K3| + the vibration's peak exceeds a sensor's range."""
+    """Warnings where the saturation reach (|Ω_K3| + the vibration's peak) exceeds a range."""
     out_scale = units.scale(unit)
     ranges = sensor_ranges(prepared.sensors)
     rates = prepared.rates
     warnings: dict[tuple[int, int], tuple[str, ...]] = {}
     for group in prepared.groups:
         idx = group.index
-        reach = np.abs(rates[:, 2]) + np.array([vibration_peak(v) for v in group.vibrations])
+        reach = group.reach(rates[:, 2])
         over_s, over_p = np.nonzero(reach[None, :] > ranges[idx][:, None])
         messages: dict[tuple[int, float], tuple[str, ...]] = {}  # one text per value pair
         for sensor, j in zip(idx[over_s].tolist(), over_p.tolist(), strict=True):
@@ -190,11 +299,13 @@ class _Tracker:
 
 
 def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, samples: int,
-              rng: np.random.Generator, tracker: _Tracker, *,
+              rng: np.random.Generator, tracker: _Tracker,
+              locked: Sequence[LockedGroup] = (), *,
               linear: LinearVibration | None = None, g2: FloatArray | None = None,
               ) -> tuple[VibrationError, FloatArray]:
     """Brute force for one profile and one group of sensors (deg/s).
 
+    ``locked``: the profile's phase-locked groups (MODEL.md section 10).
     ``linear`` (g) with ``g2`` (deg/s per g²): the profile's linear vibration,
     whose g² term the brute force averages too (MODEL.md section 8).
     """
@@ -202,7 +313,7 @@ def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, 
 
     before = tracker.done
     estimate = simulate(coefficients, vibration, rate, samples=samples, rng=rng,
-                        progress=tracker, linear=linear,
+                        progress=tracker, locked=locked, linear=linear,
                         g2_sensitivity=None if linear is None else g2)
     tracker.finish_block(samples, tracker.done - before)
     terms = vibration_error(coefficients, estimate.multipliers,

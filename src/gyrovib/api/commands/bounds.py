@@ -193,4 +193,11 @@ def bounds(
         bounds=scaled,
         allocation=constants,
         spec_bounds=datasheet,
+        coefficient_unit=catalog_unit([p.unit for p in prepared.profiles]),
     )
+
+
+def catalog_unit(file_units: Sequence[str]) -> str | None:
+    """The rate unit the entries' files share (canonical), or None when they differ."""
+    found = {units.canonical_unit(u) for u in file_units}
+    return found.pop() if len(found) == 1 else None

@@ -9,14 +9,22 @@ from numpy.typing import NDArray
 
 from gyrovib import units
 from gyrovib.api import specs
-from gyrovib.api.commands.bounds import bounds, check_method_budget, resolve_allocation
-from gyrovib.api.convert import bound_factors
+from gyrovib.api.commands.bounds import (
+    bounds,
+    catalog_unit,
+    check_method_budget,
+    resolve_allocation,
+)
+from gyrovib.api.convert import bound_factors, sensor_ranges
 from gyrovib.api.prepare import Prepared, check_bounds, check_finite, float_guard, prepare
+from gyrovib.api.reasons import saturation_reasons
 from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import COEFFICIENTS, vibration_error
 from gyrovib.core.linear import effective_vre
+from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
+from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
@@ -48,17 +56,26 @@ CHECKS: tuple[str, ...] = (*BOUNDED, "vre")
 
 def _limits(criterion: str, failing: NDArray[np.intp], ratios: FloatArray, rms: FloatArray,
             budget: float, total: FloatArray | None = None,
-            spec_ratios: dict[int, dict[str, FloatArray]] | None = None) -> dict[int, Limit]:
+            spec_ratios: dict[int, dict[str, FloatArray]] | None = None,
+            saturated: NDArray[np.bool_] | None = None,
+            over: FloatArray | None = None) -> dict[int, Limit]:
     """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts.
 
     ``ratios`` is indexed (sensor, profile, check of :data:`CHECKS`).
     ``spec_ratios`` (spec-form sensors): their datasheet figures' ratios to
     their spec bounds (``nonlinearity``, ``vre``), replacing the coefficient
-    ratios; ``total``: |Δ_V| for the ``worst`` criterion.
+    ratios; ``total``: |Δ_V| for the ``worst`` criterion. Saturation comes
+    first: a sensor that saturates somewhere is limited by its range
+    (``"saturated"``, ratio reach/range ``over``, the worst profile).
     """
     limits: dict[int, Limit] = {}
     own = spec_ratios or {}
     for i in failing.tolist():
+        if saturated is not None and over is not None and saturated[i].any():
+            js = np.flatnonzero(saturated[i])
+            j = int(js[np.argmax(over[i, js])])
+            limits[int(i)] = Limit("saturated", j, float(over[i, j]))
+            continue
         candidates: list[Limit] = []
         if criterion in ("bounds", "both") and i in own:
             for name, ratio in own[i].items():
@@ -91,10 +108,12 @@ def select(
     require: str = "any",
     allocation: Allocation | Sequence[float] | None = None,
     spec_weights: tuple[float, float] = (1.0, 1.0),
+    peak_factor: float = DEFAULT_PEAK_FACTOR,
 ) -> SelectionResult:
     """Which sensors meet the budget: the bound checks and eq. (17), per profile.
 
-    Each sensor's bounds include its own response ν_sensor(f) (computed once
+    Each sensor's bounds include its input-side response ν_sensor(f), the one
+    written ``at: input`` (an output filter earns no credit; computed once
     per distinct response). ``criterion``: ``bounds`` (every |coefficient| at
     most its bound, and the effective VRE |Δ0(6)|/Σ⟨a_j²⟩ at most the ``vre``
     bound where a profile has linear vibration, MODEL.md section 8), ``rms``
@@ -109,6 +128,11 @@ def select(
     (Δ* split ``spec_weights`` = NL:VRE), under ``rms`` its per-term RMS
     bound, under ``worst`` its worst |Δ_V| over the envelope; its margin is
     always Δ*/worst |Δ_V| (and every sensor's is Δ*/|Δ_V| under ``worst``).
+
+    A sensor that saturates under a profile (MODEL.md section 9: |Ω_K3| +
+    Σ tone amplitudes + locked peaks + κσ3 at its nonlinear element above its
+    range, κ = ``peak_factor``) fails there whatever the criterion: the
+    static model behind both tests does not hold (:attr:`SelectionResult.reasons`).
     """
     check_method_budget(method, budget)
     if criterion not in CRITERIA:
@@ -121,13 +145,14 @@ def select(
                    unit=unit, allocation=allocation)
     with float_guard():
         prepared = prepare(catalog, sensors=sensors, profiles=profiles, rate=rate,
-                           methods=(method,))
+                           methods=(method,), peak_factor=peak_factor)
         coeffs = prepared.coefficients
         n_s, n_p, n_b = len(prepared.sensors), len(prepared.profiles), len(BOUNDED)
         limits_deg = np.full((n_s, n_p, n_b), np.inf)
         vre_bound_deg = np.full((n_s, n_p), np.inf)
         rms = np.zeros((n_s, n_p))
         total = np.zeros((n_s, n_p))
+        reach = np.zeros((n_s, n_p))
         for group in prepared.groups:
             multipliers = group.multipliers[method]
             cb = coefficient_bounds(multipliers, budget, constants)
@@ -138,6 +163,10 @@ def select(
                                   g2_sensitivity=prepared.g2[group.index])
             rms[group.index] = err.rms
             total[group.index] = np.abs(err.total)
+            reach[group.index] = group.reach(prepared.rates[:, 2])[None]
+        # a spec-form sensor saturates against its datasheet range (specs.range)
+        ranges = sensor_ranges(prepared.sensors)
+        saturated = saturated_at(reach, ranges)
         vre_deg = _effective_vre(prepared)
         spec = specs.spec_results(prepared, method)
         own = None
@@ -160,8 +189,9 @@ def select(
             bounds_pass[spec.index] = own.nl_pass & own.vre_pass
         rms_pass = _at_most(rms, budget)
         worst_pass = _at_most(total, budget)
+        # saturation fails a sensor whatever the criterion (MODEL.md section 9)
         passed = {"bounds": bounds_pass, "rms": rms_pass, "worst": worst_pass,
-                  "both": bounds_pass & rms_pass}[criterion]
+                  "both": bounds_pass & rms_pass}[criterion] & ~saturated
         sensor_pass = np.all(passed, axis=1)
         judged = rms.copy() if criterion != "worst" else total.copy()
         if spec is not None:
@@ -178,7 +208,8 @@ def select(
                          "vre": _ratio(np.nan_to_num(own.vre_value[k]), own.vre_bound[k])}
                 for k, i in enumerate(spec.index.tolist())}
         limits = _limits(criterion, np.nonzero(~sensor_pass)[0], ratios, rms, budget, total,
-                         spec_ratios)
+                         spec_ratios, saturated, reach / ranges[:, None])
+        reasons = saturation_reasons(saturated, reach, ranges, peak_factor, unit)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
     s = units.scale(unit)
     return SelectionResult(
@@ -207,6 +238,11 @@ def select(
         allocation=constants,
         **specs.selection_fields(n_s, n_p, spec, own, total, unit,
                                  (vre_deg, vre_bound_deg, vre_pass)),
+        saturated=saturated,
+        reasons=reasons,
+        peak_factor=peak_factor,
+        coefficient_unit=catalog_unit([e.unit for e in prepared.sensors])
+        or alone.coefficient_unit,
     )
 
 

@@ -8,11 +8,13 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api import specs
-from gyrovib.api.convert import error_arrays, to_unit
+from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
 from gyrovib.api.prepare import check_finite, float_guard, prepare
 from gyrovib.api.results import SweepResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
+from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
+from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 
@@ -41,6 +43,7 @@ def sweep(
     sensors: Sequence[str] = (),
     profiles: Sequence[str] = (),
     unit: str = "deg/s",
+    peak_factor: float = DEFAULT_PEAK_FACTOR,
 ) -> SweepResult:
     """Eq. (13) and (16) at every Ω_K3 of ``rates`` (deg/s), exact and paper.
 
@@ -52,6 +55,9 @@ def sweep(
     A spec-form sensor gives its worst case over the envelope at each rate (by
     either method's multipliers), and :attr:`SweepResult.worst_coefficients`
     the exact method's worst polynomial at each rate.
+    :attr:`SweepResult.saturated` flags the rates where a sensor saturates
+    (|Ω_K3| + the vibration's swing at its nonlinear element, κ =
+    ``peak_factor``, above its range; MODEL.md section 9).
     """
     unit = units.canonical_unit(unit)
     omega = np.asarray(rates, dtype=float).reshape(-1)
@@ -59,7 +65,7 @@ def sweep(
         raise OptionError("the swept rates must be finite, and at least one")
     with float_guard():
         prepared = prepare(catalog, sensors=sensors, profiles=profiles, omega=omega,
-                           methods=METHODS, tolerate_refusals=True)
+                           methods=METHODS, tolerate_refusals=True, peak_factor=peak_factor)
         shape = (len(prepared.sensors), len(prepared.profiles), omega.size)
         tails = {"additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
                  "multiplicative": (), "total": (), "rms": (),
@@ -67,7 +73,11 @@ def sweep(
         results = {m: {name: np.zeros((*shape, *tail)) for name, tail in tails.items()}
                    for m in METHODS}
         refused: dict[int, str] = {}
+        saturated = np.zeros(shape, dtype=bool)
+        ranges = sensor_ranges(prepared.sensors)
         for group in prepared.groups:
+            reach = np.abs(omega)[None, :] + group.swing[:, None]  # (profiles, rates)
+            saturated[group.index] = saturated_at(reach, ranges[group.index])
             refused.update(group.refused.get("paper", {}))
             for method in METHODS:
                 err = vibration_error(prepared.coefficients[group.index],
@@ -95,4 +105,6 @@ def sweep(
         paper=paper,
         paper_refused={prepared.profiles[j].profile.id: refused[j] for j in sorted(refused)},
         **(worst_x or {}),
+        saturated=saturated,
+        peak_factor=peak_factor,
     )
