@@ -206,7 +206,7 @@ def prepare(
     omega: FloatArray | None = None,
     methods: Sequence[str] = ("exact",),
     by_response: bool = True,
-    tolerate_refusals: bool = False,
+    tolerate_refusals: bool | Sequence[str] = False,
 ) -> Prepared:
     """Run the pipeline; call it under :func:`float_guard`.
 
@@ -215,8 +215,12 @@ def prepare(
     whose multipliers are needed (none for brute force). ``by_response``
     False: one group, the profiles alone (ν_sensor ≡ 1). Every profile that
     overflows or that a method refuses is reported, one problem each.
+    ``tolerate_refusals``: the methods (True: every method) whose refusal of a
+    profile is kept in :attr:`Group.refused` with NaN multipliers instead.
     """
     s_entries, p_entries = select_entries(catalog, sensors, profiles, need=need)
+    tolerated = (set(methods if tolerate_refusals else ()) if isinstance(tolerate_refusals, bool)
+                 else set(tolerate_refusals))
     problems: dict[int, Problem] = {}
     refusal: tuple[int, str] | None = None  # the first refused profile, and why
     coefficients = coefficient_matrix(s_entries)
@@ -249,7 +253,7 @@ def prepare(
                 try:
                     m = profile_multipliers(v, w, method)
                 except ModelError as exc:
-                    if not tolerate_refusals:
+                    if method not in tolerated:
                         refusal = refusal or (j, exc.reason)
                         problems.setdefault(j, refusal_problem(p, method, exc.reason))
                     group.refused.setdefault(method, {})[j] = exc.reason

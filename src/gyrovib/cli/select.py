@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import click
 
 from gyrovib.cli.common import github_errors, load_catalog, page_width, plain_ascii, use_color
@@ -61,13 +63,16 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, criterion=criterion, require=require,
                         allocation=parse_allocation(allocation))
+    text: str | Iterator[str]
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
     elif fmt == "github":
         text = render.to_github(result, api.sensor_locations(catalog, result.sensors))
+    elif fmt == "json":
+        text = render.to_json_chunks(result)  # streamed: never the whole document at once
     else:
-        text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
+        text = {"csv": render.to_csv, "markdown": render.to_markdown,
                 "junit": render.to_junit}[fmt](result)
     write_output(text, output)
     if not result.requirement_met:

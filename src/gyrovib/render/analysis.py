@@ -81,12 +81,17 @@ def _row_template(with_stderr: bool) -> str:
 
 
 def to_json(result: AnalysisResult) -> str:
-    """``analyze --format json`` (docs/output.md).
+    """``analyze --format json`` (docs/output.md): :func:`to_json_chunks` joined."""
+    return "".join(to_json_chunks(result))
+
+
+def to_json_chunks(result: AnalysisResult) -> Iterator[str]:
+    """``analyze --format json`` (docs/output.md) as consecutive pieces of text.
 
     The same text as ``json.dumps`` of the document, written without a dict per
     row: each numeric column is encoded once (``float.__repr__`` is what the
     json encoder writes) and the rows are filled into a template, a block of
-    sensors at a time.
+    sensors at a time, each block a piece.
     """
     e = result.error
     extra = getattr(result, "stderr", None)
@@ -94,14 +99,17 @@ def to_json(result: AnalysisResult) -> str:
     columns += [e.multiplicative_coefficients[..., q] for q in range(len(MULTIPLICATIVE_TERMS))]
     columns += [e.additive, e.multiplicative, e.total, e.rms]
     if not all(np.isfinite(c).all() for c in columns) or not np.isfinite(result.rates).all():
-        return _to_json_rows(result)  # json refuses NaN/infinity; let it say so
+        yield _to_json_rows(result)  # json refuses NaN/infinity; let it say so
+        return
     template = _row_template(extra is not None)
     n_s = len(result.sensors)
     sensors = [json.dumps(s) for s in result.sensors]
     by_profile: dict[int, list[tuple[int, tuple[str, ...]]]] = {}
     for (i, j), messages in result.warnings.items():
         by_profile.setdefault(j, []).append((i, messages))
-    blocks: list[str] = []
+    head = json.dumps(_head(result))[:-1]
+    yield f"{head}, \"results\": ["
+    first = True
     for j, profile in enumerate(result.profiles):
         profile_text = json.dumps(profile)
         rate_text = json.dumps(result.rates[j].tolist())
@@ -117,9 +125,10 @@ def to_json(result: AnalysisResult) -> str:
                                 for v in map(number, extra[start:stop, j].tolist())])
             rows = zip(sensors[start:stop], [profile_text] * count, [rate_text] * count,
                        *encoded, warnings[start:stop], strict=True)
-            blocks.append(", ".join([template % row for row in rows]))
-    head = json.dumps(_head(result))[:-1]
-    return f"{head}, \"results\": [{', '.join(blocks)}]}}\n"
+            block = ", ".join([template % row for row in rows])
+            yield block if first else ", " + block
+            first = False
+    yield "]}\n"
 
 
 def _csv_header(with_stderr: bool = False) -> list[str]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -87,30 +88,74 @@ def _legend(result: SelectionResult) -> str:
 # ------------------------------------------------------------------ JSON, CSV
 
 
-def to_json(result: SelectionResult) -> str:
-    """``select --format json`` (docs/output.md) (sensors in catalogue order)."""
+#: Sensors per block of the streamed JSON: bounds the Python objects alive at once.
+_BLOCK = 1024
+
+
+def _finite(values: list[float]) -> list[float | None]:
+    """:func:`number` over a list: non-finite values become ``None`` (``null``)."""
+    return [v if v - v == 0.0 else None for v in values]
+
+
+def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict[str, Any]]:
+    """The JSON entries of sensors ``start``..``stop`` (docs/output.md), one dict each.
+
+    The one definition of a sensor's entry: the whole document and the streamed
+    one are both made of these.
+    """
+    values = result.values[start:stop].tolist()
+    bounds = result.bounds[start:stop].tolist()
+    check_pass = result.check_pass[start:stop].tolist()
+    passed = result.passed[start:stop].tolist()
+    rms = result.rms[start:stop].tolist()
+    margin = result.margin[start:stop].tolist()
+    sensor_pass = result.sensor_pass[start:stop].tolist()
+    entries = []
+    for k, sensor in enumerate(result.sensors[start:stop]):
+        cells = []
+        for j, profile in enumerate(result.profiles):
+            value, bound, ok = _finite(values[k][j]), _finite(bounds[k][j]), check_pass[k][j]
+            checks = {
+                name: {"value": value[b], "bound": bound[b], "pass": bool(ok[b])}
+                for b, name in enumerate(BOUNDED)
+            }
+            cells.append({"profile": profile, "pass": bool(passed[k][j]),
+                          "rms": number(rms[k][j]), "margin": number(margin[k][j]),
+                          "checks": checks})
+        entries.append({"sensor": sensor, "pass": bool(sensor_pass[k]), "profiles": cells})
+    return entries
+
+
+def to_json_chunks(result: SelectionResult) -> Iterator[str]:
+    """``select --format json`` as consecutive pieces of text: the document's other
+    fields, then the sensors a block at a time, then its end.
+
+    ``"".join(to_json_chunks(result))`` is the whole document; only one block of
+    sensor entries exists as Python objects at a time.
+    """
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
     document["criterion"] = result.criterion
     document["require"] = result.require
-    sensors = []
-    for i, sensor in enumerate(result.sensors):
-        cells = []
-        for j, profile in enumerate(result.profiles):
-            checks = {
-                name: {"value": number(result.values[i, j, b]),
-                       "bound": number(result.bounds[i, j, b]),
-                       "pass": bool(result.check_pass[i, j, b])}
-                for b, name in enumerate(BOUNDED)
-            }
-            cells.append({"profile": profile, "pass": bool(result.passed[i, j]),
-                          "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
-                          "checks": checks})
-        sensors.append({"sensor": sensor, "pass": bool(result.sensor_pass[i]),
-                        "profiles": cells})
-    document["sensors"] = sensors
-    return dumps(document)
+    document["sensors"] = _SLOT
+    before, after = dumps(document).split(json.dumps(_SLOT), 1)
+    yield before + "["
+    n = len(result.sensors)
+    for start in range(0, n, _BLOCK):
+        text = json.dumps(_sensor_entries(result, start, min(start + _BLOCK, n)),
+                          allow_nan=False)[1:-1]
+        yield text if start == 0 else ", " + text
+    yield "]" + after
+
+
+#: Where the sensors go in the document's text (a string json writes as one token).
+_SLOT = "\0sensors\0"
+
+
+def to_json(result: SelectionResult) -> str:
+    """``select --format json`` (docs/output.md) (sensors in catalogue order)."""
+    return "".join(to_json_chunks(result))
 
 
 def to_csv(result: SelectionResult) -> str:

@@ -47,7 +47,9 @@ def sweep(
     multipliers are computed for the whole rate array at once. A value at a
     rate equals :func:`~gyrovib.api.analyze` with that ``rate``. Profiles the
     paper's formulas do not cover get NaN paper values and an entry in
-    :attr:`SweepResult.paper_refused`; anything that overflows is refused.
+    :attr:`SweepResult.paper_refused`; a profile the exact method refuses, and
+    anything that overflows, is refused (:class:`~gyrovib.errors.ModelError`,
+    :class:`~gyrovib.errors.RangeError`, at the profile's place in its file).
     """
     unit = units.canonical_unit(unit)
     omega = np.asarray(rates, dtype=float).reshape(-1)
@@ -55,7 +57,7 @@ def sweep(
         raise OptionError("the swept rates must be finite, and at least one")
     with float_guard():
         prepared = prepare(catalog, sensors=sensors, profiles=profiles, omega=omega,
-                           methods=METHODS, tolerate_refusals=True)
+                           methods=METHODS, tolerate_refusals=("paper",))
         shape = (len(prepared.sensors), len(prepared.profiles), omega.size)
         tails = {"additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
                  "multiplicative": (), "total": (), "rms": ()}
