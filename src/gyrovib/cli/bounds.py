@@ -40,14 +40,16 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
     For each profile, bounds on |A1|, |k2|…|k5|, |m31|, |m32| from the paper's
     split of the budget (eq. 18-25). A sensor within every bound meets the
     budget (eq. 17). The sensor's own frequency response is taken as 1 here;
-    `gyrovib select` includes it.
+    `gyrovib select` includes it. Sensors in the files are skipped, not
+    validated: `gyrovib validate` checks them.
     """
     from gyrovib import api
     from gyrovib.cli.output import write_output
     from gyrovib.render import bounds as render
 
     unit = parse_unit(unit)
-    result = api.bounds(load_catalog(files), profiles=profiles, method=method,
+    catalog = load_catalog(files, sensors=False)  # bounds uses no sensor: not even loaded
+    result = api.bounds(catalog, profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, allocation=parse_allocation(allocation))
     if fmt == "table":
