@@ -91,40 +91,13 @@ def _legend(result: SelectionResult) -> str:
 
 #: Sensors per block of the streamed JSON: bounds the Python objects alive at once.
 _BLOCK = 1024
+#: Where the sensors go in the document's text (a string json writes as one token).
+_SLOT = "\0sensors\0"
 
 
-def _finite(values: list[float]) -> list[float | None]:
-    """:func:`number` over a list: non-finite values become ``None`` (``null``)."""
-    return [v if v - v == 0.0 else None for v in values]
-
-
-def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict[str, Any]]:
-    """The JSON entries of sensors ``start``..``stop`` (docs/output.md), one dict each.
-
-    The one definition of a sensor's entry: the whole document and the streamed
-    one are both made of these.
-    """
-    values = result.values[start:stop].tolist()
-    bounds = result.bounds[start:stop].tolist()
-    check_pass = result.check_pass[start:stop].tolist()
-    passed = result.passed[start:stop].tolist()
-    rms = result.rms[start:stop].tolist()
-    margin = result.margin[start:stop].tolist()
-    sensor_pass = result.sensor_pass[start:stop].tolist()
-    entries = []
-    for k, sensor in enumerate(result.sensors[start:stop]):
-        cells = []
-        for j, profile in enumerate(result.profiles):
-            value, bound, ok = _finite(values[k][j]), _finite(bounds[k][j]), check_pass[k][j]
-            checks = {
-                name: {"value": value[b], "bound": bound[b], "pass": bool(ok[b])}
-                for b, name in enumerate(BOUNDED)
-            }
-            cells.append({"profile": profile, "pass": bool(passed[k][j]),
-                          "rms": number(rms[k][j]), "margin": number(margin[k][j]),
-                          "checks": checks})
-        entries.append({"sensor": sensor, "pass": bool(sensor_pass[k]), "profiles": cells})
-    return entries
+def to_json(result: SelectionResult) -> str:
+    """``select --format json`` (docs/output.md) (sensors in catalogue order)."""
+    return "".join(to_json_chunks(result))
 
 
 def to_json_chunks(result: SelectionResult) -> Iterator[str]:
@@ -132,7 +105,7 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     fields, then the sensors a block at a time, then its end.
 
     ``"".join(to_json_chunks(result))`` is the whole document; only one block of
-    sensor entries exists as Python objects at a time.
+    sensor entries (:func:`_sensor_entries`) exists as Python objects at a time.
     """
     document = header(result.method, result.unit)
     document["budget"] = result.budget
@@ -145,7 +118,7 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     n = len(result.sensors)
     for start in range(0, n, _BLOCK):
         # a block is ~10^4 acyclic dicts: the cyclic collector would walk them
-        # again and again as they are made (twice the time); paused per block only
+        # again and again as they are made; paused while one block is built
         collecting = gc.isenabled()
         gc.disable()
         try:
@@ -158,13 +131,25 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     yield "]" + after
 
 
-#: Where the sensors go in the document's text (a string json writes as one token).
-_SLOT = "\0sensors\0"
-
-
-def to_json(result: SelectionResult) -> str:
-    """``select --format json`` (docs/output.md) (sensors in catalogue order)."""
-    return "".join(to_json_chunks(result))
+def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict[str, Any]]:
+    """The JSON entries of sensors ``start``..``stop`` (docs/output.md), one dict each:
+    the one definition of a sensor's entry, whole document or streamed."""
+    sensors = []
+    for i, sensor in enumerate(result.sensors[start:stop], start):
+        cells = []
+        for j, profile in enumerate(result.profiles):
+            checks = {
+                name: {"value": number(result.values[i, j, b]),
+                       "bound": number(result.bounds[i, j, b]),
+                       "pass": bool(result.check_pass[i, j, b])}
+                for b, name in enumerate(BOUNDED)
+            }
+            cells.append({"profile": profile, "pass": bool(result.passed[i, j]),
+                          "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
+                          "checks": checks})
+        sensors.append({"sensor": sensor, "pass": bool(result.sensor_pass[i]),
+                        "profiles": cells})
+    return sensors
 
 
 def to_csv(result: SelectionResult) -> str:
