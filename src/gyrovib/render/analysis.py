@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from typing import Any
 
@@ -67,6 +66,8 @@ _BLOCK = 4096
 
 def _row_template(with_stderr: bool) -> str:
     """The text of one result row with ``%s`` for every value, keys as json writes them."""
+    import json
+
     def obj(pairs: list[tuple[str, str]]) -> str:
         return "{" + ", ".join(f"{json.dumps(k)}: {v}" for k, v in pairs) + "}"
 
@@ -93,6 +94,8 @@ def to_json_chunks(result: AnalysisResult) -> Iterator[str]:
     json encoder writes) and the rows are filled into a template, a block of
     sensors at a time, each block a piece.
     """
+    import json  # here, not at import time: the default table does without it
+
     e = result.error
     extra = getattr(result, "stderr", None)
     columns = [e.additive_terms[..., t] for t in range(len(ADDITIVE_TERMS))]

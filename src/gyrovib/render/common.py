@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Iterable, Sequence
 from typing import Any
@@ -23,6 +22,8 @@ def header(method: str, unit: str) -> dict[str, Any]:
 
 def dumps(document: Any) -> str:
     """Serialise a JSON document; NaN/Infinity are never written."""
+    import json  # not at import time: the tables do without it
+
     return json.dumps(document, allow_nan=False) + "\n"
 
 

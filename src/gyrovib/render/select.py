@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import gc
-import json
 import math
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -107,6 +106,8 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     ``"".join(to_json_chunks(result))`` is the whole document; only one block of
     sensor entries (:func:`_sensor_entries`) exists as Python objects at a time.
     """
+    import json
+
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
