@@ -61,6 +61,5 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         write_output(render.to_table(result, color=use_color(output), width=page_width(output),
                                      ascii=plain_ascii(output)), output)
         return
-    renderers = {"json": render.to_json_chunks, "csv": render.to_csv,
-                 "markdown": render.to_markdown}
+    renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

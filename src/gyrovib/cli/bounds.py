@@ -37,11 +37,13 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
            output: str | None) -> None:
     """The inverse problem: the largest coefficients that keep the error within budget.
 
+    Only the profiles of the files are read: their sensors are skipped, not
+    validated (`gyrovib validate` checks them).
+
     For each profile, bounds on |A1|, |k2|…|k5|, |m31|, |m32| from the paper's
     split of the budget (eq. 18-25). A sensor within every bound meets the
     budget (eq. 17). The sensor's own frequency response is taken as 1 here;
-    `gyrovib select` includes it. Sensors in the files are skipped, not
-    validated: `gyrovib validate` checks them.
+    `gyrovib select` includes it.
     """
     from gyrovib import api
     from gyrovib.cli.output import write_output

@@ -56,6 +56,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     from gyrovib.cli.output import write_output
     from gyrovib.render import select as render
 
+    text: str | Iterator[str]  # the JSON document is streamed
     github_errors(fmt == "github")
     unit = parse_unit(unit)
     catalog = load_catalog(files)
@@ -63,7 +64,6 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, criterion=criterion, require=require,
                         allocation=parse_allocation(allocation))
-    text: str | Iterator[str]
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))

@@ -82,17 +82,12 @@ def _row_template(with_stderr: bool) -> str:
 
 
 def to_json(result: AnalysisResult) -> str:
-    """``analyze --format json`` (docs/output.md): :func:`to_json_chunks` joined."""
-    return "".join(to_json_chunks(result))
-
-
-def to_json_chunks(result: AnalysisResult) -> Iterator[str]:
-    """``analyze --format json`` (docs/output.md) as consecutive pieces of text.
+    """``analyze --format json`` (docs/output.md).
 
     The same text as ``json.dumps`` of the document, written without a dict per
     row: each numeric column is encoded once (``float.__repr__`` is what the
     json encoder writes) and the rows are filled into a template, a block of
-    sensors at a time, each block a piece.
+    sensors at a time.
     """
     import json  # here, not at import time: the default table does without it
 
@@ -102,17 +97,14 @@ def to_json_chunks(result: AnalysisResult) -> Iterator[str]:
     columns += [e.multiplicative_coefficients[..., q] for q in range(len(MULTIPLICATIVE_TERMS))]
     columns += [e.additive, e.multiplicative, e.total, e.rms]
     if not all(np.isfinite(c).all() for c in columns) or not np.isfinite(result.rates).all():
-        yield _to_json_rows(result)  # json refuses NaN/infinity; let it say so
-        return
+        return _to_json_rows(result)  # json refuses NaN/infinity; let it say so
     template = _row_template(extra is not None)
     n_s = len(result.sensors)
     sensors = [json.dumps(s) for s in result.sensors]
     by_profile: dict[int, list[tuple[int, tuple[str, ...]]]] = {}
     for (i, j), messages in result.warnings.items():
         by_profile.setdefault(j, []).append((i, messages))
-    head = json.dumps(_head(result))[:-1]
-    yield f"{head}, \"results\": ["
-    first = True
+    blocks: list[str] = []
     for j, profile in enumerate(result.profiles):
         profile_text = json.dumps(profile)
         rate_text = json.dumps(result.rates[j].tolist())
@@ -128,10 +120,9 @@ def to_json_chunks(result: AnalysisResult) -> Iterator[str]:
                                 for v in map(number, extra[start:stop, j].tolist())])
             rows = zip(sensors[start:stop], [profile_text] * count, [rate_text] * count,
                        *encoded, warnings[start:stop], strict=True)
-            block = ", ".join([template % row for row in rows])
-            yield block if first else ", " + block
-            first = False
-    yield "]}\n"
+            blocks.append(", ".join([template % row for row in rows]))
+    head = json.dumps(_head(result))[:-1]
+    return f"{head}, \"results\": [{', '.join(blocks)}]}}\n"
 
 
 def _csv_header(with_stderr: bool = False) -> list[str]:

@@ -47,15 +47,15 @@ def sweep(
     multipliers are computed for the whole rate array at once. A value at a
     rate equals :func:`~gyrovib.api.analyze` with that ``rate``. Profiles the
     paper's formulas do not cover get NaN paper values and an entry in
-    :attr:`SweepResult.paper_refused`; a profile the exact method refuses, and
-    anything that overflows, is refused (:class:`~gyrovib.errors.ModelError`,
-    :class:`~gyrovib.errors.RangeError`, at the profile's place in its file).
+    :attr:`SweepResult.paper_refused`; anything that overflows is refused.
     """
     unit = units.canonical_unit(unit)
     omega = np.asarray(rates, dtype=float).reshape(-1)
     if omega.size == 0 or not np.all(np.isfinite(omega)):
         raise OptionError("the swept rates must be finite, and at least one")
     with float_guard():
+        # only the paper's refusals leave empty cells; the exact method's is a
+        # ModelError at the profile's place in its file, as in analyze
         prepared = prepare(catalog, sensors=sensors, profiles=profiles, omega=omega,
                            methods=METHODS, tolerate_refusals=("paper",))
         shape = (len(prepared.sensors), len(prepared.profiles), omega.size)
