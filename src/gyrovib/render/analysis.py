@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
 from typing import Any
 
@@ -66,8 +67,6 @@ _BLOCK = 4096
 
 def _row_template(with_stderr: bool) -> str:
     """The text of one result row with ``%s`` for every value, keys as json writes them."""
-    import json
-
     def obj(pairs: list[tuple[str, str]]) -> str:
         return "{" + ", ".join(f"{json.dumps(k)}: {v}" for k, v in pairs) + "}"
 
@@ -89,8 +88,6 @@ def to_json(result: AnalysisResult) -> str:
     json encoder writes) and the rows are filled into a template, a block of
     sensors at a time.
     """
-    import json  # here, not at import time: the default table does without it
-
     e = result.error
     extra = getattr(result, "stderr", None)
     columns = [e.additive_terms[..., t] for t in range(len(ADDITIVE_TERMS))]
