@@ -5,6 +5,7 @@ of memory at the default size)::
 
     python benchmarks/bench_select.py                  # 100,000 sensors x 8 profiles
     python benchmarks/bench_select.py --sensors 20000  # smaller
+    python benchmarks/bench_select.py --before DIR     # also DIR/src, in the same run
 
 The catalogue is bench_scale.py's (same generator and eight profiles), its
 sensors split over files of 25,000 (a catalogue file is at most 16 MiB). Three
@@ -58,16 +59,21 @@ catalog = api.load(sys.argv[1:])
 mark("load: YAML + validation", t); t = time.perf_counter()
 result = api.select(catalog, budget=0.01)
 mark("api.select", t); t = time.perf_counter()
-text = render.to_json(result)
-mark(f"render.select.to_json ({len(text) / 2**20:.0f} MB of text)", t); t = time.perf_counter()
-write_output(text, os.devnull)
-mark("write", t)
+if hasattr(render, "to_json_chunks"):  # streamed: rendered while written
+    write_output(render.to_json_chunks(result), os.devnull)
+    mark("render.select.to_json_chunks + write, streamed", t)
+else:
+    text = render.to_json(result)
+    mark(f"render.select.to_json ({len(text) / 2**20:.0f} MB of text)", t)
+    t = time.perf_counter()
+    write_output(text, os.devnull)
+    mark("write", t)
 for name, seconds, now, top in marks:
     print(f"{name}\\t{seconds:.2f}\\t{now:.0f}\\t{top:.0f}")
 """
 
 
-def run_fresh(argv: list[str]) -> tuple[float, float, str]:
+def run_fresh(argv: list[str], env: dict[str, str] | None = None) -> tuple[float, float, str]:
     """Wall time (s), peak RSS (MB) and stdout of ``argv`` (exit 0 or 1), run from a
     fresh intermediate process so that its RUSAGE_CHILDREN sees this child only."""
     code = ("import json, subprocess, time, resource, os;"
@@ -77,7 +83,8 @@ def run_fresh(argv: list[str]) -> tuple[float, float, str]:
             "assert p.returncode in (0, 1), p.stderr.decode();"
             "print(json.dumps([e, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024,"
             " p.stdout.decode()]))")
-    proc = subprocess.run([PYTHON, "-c", code], capture_output=True, env=CHILD_ENV, check=True)
+    proc = subprocess.run([PYTHON, "-c", code], capture_output=True, env=env or CHILD_ENV,
+                          check=True)
     elapsed, peak, out = json.loads(proc.stdout)
     return float(elapsed), float(peak), str(out)
 
@@ -105,6 +112,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sensors", type=int, default=100_000)
     parser.add_argument("--seed", type=int, default=6)
+    parser.add_argument("--before", metavar="DIR",
+                        help="also run the gyrovib in DIR/src, in the same run")
     args = parser.parse_args()
 
     work = Path(tempfile.mkdtemp(prefix="gyrovib-select-"))
@@ -120,25 +129,34 @@ def main() -> None:
           f"{args.sensors:,} sensors x 8 profiles, {size_mb:.1f} MB of YAML\n")
 
     catalogue = [str(f) for f in files]
-    t, peak, _ = run_fresh([*gyrovib, "select", *catalogue, "--budget", "0.01",
-                            "--format", "json", "-o", os.devnull])
-    ok = "met" if peak < TARGET_MB else "not met"
-    print("| command | time | peak RSS | target | |")
-    print("|---|---:|---:|---:|---|")
-    print(f"| select --format json, {args.sensors:,} sensors | {t * 1000:.0f} ms | "
-          f"{peak:.0f} MB | < {TARGET_MB:.0f} MB | {ok} |")
-    for label, paths in (("bounds, whole catalogue", catalogue),
-                         ("bounds, its profiles alone", [str(profiles_only)])):
-        t, peak, _ = run_fresh([*gyrovib, "bounds", *paths, "--budget", "0.01",
-                                "--format", "json", "-o", os.devnull])
-        print(f"| {label} | {t * 1000:.0f} ms | {peak:.0f} MB | | |")
+    versions: dict[str, dict[str, str]] = {"after": CHILD_ENV}
+    if args.before:
+        src = str(Path(args.before).resolve() / "src")
+        subprocess.run([PYTHON, "-m", "compileall", "-q", src], check=True,
+                       env=CHILD_ENV, stdout=subprocess.DEVNULL)
+        versions = {"before": {**CHILD_ENV, "PYTHONPATH": src}, **versions}
+    print("| command | version | time | peak RSS | target | |")
+    print("|---|---|---:|---:|---:|---|")
+    phases: dict[str, str] = {}
+    for version, env in versions.items():
+        t, peak, _ = run_fresh([*gyrovib, "select", *catalogue, "--budget", "0.01",
+                                "--format", "json", "-o", os.devnull], env)
+        ok = "met" if peak < TARGET_MB else "not met"
+        print(f"| select --format json, {args.sensors:,} sensors | {version} | "
+              f"{t * 1000:.0f} ms | {peak:.0f} MB | < {TARGET_MB:.0f} MB | {ok} |")
+        for label, paths in (("bounds, whole catalogue", catalogue),
+                             ("bounds, its profiles alone", [str(profiles_only)])):
+            t, peak, _ = run_fresh([*gyrovib, "bounds", *paths, "--budget", "0.01",
+                                    "--format", "json", "-o", os.devnull], env)
+            print(f"| {label} | {version} | {t * 1000:.0f} ms | {peak:.0f} MB | | |")
+        phases[version] = run_fresh([PYTHON, "-c", PHASES, *catalogue], env)[2]
 
-    _, _, out = run_fresh([PYTHON, "-c", PHASES, *catalogue])
-    print("\n| phase of select --format json | time | RSS after | peak so far |")
-    print("|---|---:|---:|---:|")
-    for line in out.strip().splitlines():
-        name, seconds, now, top = line.split("\t")
-        print(f"| {name} | {float(seconds) * 1000:.0f} ms | {now} MB | {top} MB |")
+    for version, out in phases.items():
+        print(f"\n| phase of select --format json ({version}) | time | RSS after | peak so far |")
+        print("|---|---:|---:|---:|")
+        for line in out.strip().splitlines():
+            name, seconds, now, top = line.split("\t")
+            print(f"| {name} | {float(seconds) * 1000:.0f} ms | {now} MB | {top} MB |")
     print(f"\n(files in {work})")
 
 

@@ -24,9 +24,15 @@ from gyrovib.errors import OptionError
 Location = tuple[str | None, int | None]
 
 
-def load(paths: Sequence[str | Path] = ()) -> Catalog:
-    """Load and merge catalogue files; no paths means the bundled catalogues."""
-    return load_catalog(list(paths) if paths else bundled_paths())
+def load(paths: Sequence[str | Path] = (), *, sensors: bool = True) -> Catalog:
+    """Load and merge catalogue files; no paths means the bundled catalogues.
+
+    ``sensors=False``: the profiles only. The ``sensors:`` sections are read
+    past by the YAML parser, neither built nor validated (``bounds`` uses no
+    sensor; ``validate`` checks them).
+    """
+    return load_catalog(list(paths) if paths else bundled_paths(),
+                        skip=() if sensors else ("sensors",))
 
 
 def select_entries(

@@ -290,7 +290,7 @@ def prepare(
     omega: FloatArray | None = None,
     methods: Sequence[str] = ("exact",),
     by_response: bool = True,
-    tolerate_refusals: bool = False,
+    tolerate_refusals: bool | Sequence[str] = False,
     peak_factor: float = DEFAULT_PEAK_FACTOR,
     phase_search: bool = True,
 ) -> Prepared:
@@ -306,10 +306,14 @@ def prepare(
     largest multiplier of each term over the unknown phases (a bound for
     synthesis, :func:`~gyrovib.core.phases.worst_phase_multipliers`); without,
     those orders' nominal phase 0 (the caller searches itself).
+    ``tolerate_refusals``: the methods (True: every method) whose refusal of a
+    profile is kept in :attr:`Group.refused` with NaN multipliers instead.
     """
     if not (np.isfinite(peak_factor) and peak_factor >= 0):
         raise OptionError(f"--peak-factor {peak_factor:g}: give a finite number ≥ 0")
     s_entries, p_entries = select_entries(catalog, sensors, profiles, need=need)
+    tolerated = (set(methods if tolerate_refusals else ()) if isinstance(tolerate_refusals, bool)
+                 else set(tolerate_refusals))
     problems: dict[int, Problem] = {}
     refusal: tuple[int, str] | None = None  # the first refused profile, and why
     coefficients = coefficient_matrix(s_entries)
@@ -355,7 +359,7 @@ def prepare(
                 try:
                     m = _multipliers(v, w, method, locked[j], phase_search, accelerations[j])
                 except ModelError as exc:
-                    if not tolerate_refusals:
+                    if method not in tolerated:
                         refusal = refusal or (j, exc.reason)
                         problems.setdefault(j, refusal_problem(p, method, exc.reason))
                     group.refused.setdefault(method, {})[j] = exc.reason

@@ -205,14 +205,32 @@ def _scalar(event: Any) -> Any:
     return value
 
 
-def _stream(loader: Any) -> Any:
+def _skip_value(get: Any) -> None:
+    """Read past the events of one value (a scalar, an alias or a whole collection)
+    without building it; nesting deeper than :data:`MAX_DEPTH` is still refused."""
+    depth = 0
+    while True:
+        event = get()
+        kind = type(event)
+        if kind is yaml.MappingStartEvent or kind is yaml.SequenceStartEvent:
+            depth += 1
+            if depth >= MAX_DEPTH:
+                raise _too_deep(event.start_mark)
+        elif kind is yaml.MappingEndEvent or kind is yaml.SequenceEndEvent:
+            depth -= 1
+        if depth == 0:
+            return
+
+
+def _stream(loader: Any, skip: frozenset[str] = frozenset()) -> Any:
     """Plain data of the single document of ``loader``, built from its events.
 
     No node tree is held: memory is that of the data only, whatever the size
     of the file. Anything unusual (a tag, an anchor or alias, a merge key, a
     duplicate or non-scalar key, a second document) raises :class:`_Unusual`
     and the node tree path takes over; nesting deeper than :data:`MAX_DEPTH`
-    is refused at its place.
+    is refused at its place. The values of the top-level keys in ``skip`` are
+    read past, neither built nor checked, and the keys left out.
     """
     get = loader.get_event
     get()  # StreamStartEvent
@@ -252,6 +270,9 @@ def _stream(loader: Any) -> Any:
                 if key is _NO_KEY:
                     if type(value) in (dict, list) or value in top[0]:
                         raise _Unusual
+                    if skip and len(stack) == 1 and value in skip:
+                        _skip_value(get)
+                        continue
                     top[2] = value
                 else:
                     top[0][key] = value
@@ -363,13 +384,19 @@ def check_characters(text: str, name: str) -> None:
             "in YAML; remove it", name, line, column))
 
 
-def parse(text: str, name: str) -> Any:
-    """Parse YAML text to plain Python data, raising located :class:`CatalogError`."""
+def parse(text: str, name: str, skip: frozenset[str] = frozenset()) -> Any:
+    """Parse YAML text to plain Python data, raising located :class:`CatalogError`.
+
+    ``skip``: top-level keys whose values are not wanted (``"sensors"`` for a
+    command that uses profiles only): left out of the data, and on the usual
+    path never built, only read past by the parser (which still refuses what
+    is not YAML).
+    """
     check_characters(text, name)
     try:
         with _gc_paused():
             # any node tree is freed before the collector resumes: only the data is new
-            return _construct(text)
+            return _construct(text, skip)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         message = exc.problem or "invalid YAML"
@@ -385,13 +412,14 @@ def parse(text: str, name: str) -> Any:
         raise CatalogError(Problem(f"invalid YAML: {exc}", name)) from None
 
 
-def _construct(text: str) -> Any:
+def _construct(text: str, skip: frozenset[str] = frozenset()) -> Any:
     """The single document of ``text`` as plain data: streamed from the parser's
-    events when it is plain, else composed and checked (tags, aliases, merges)."""
+    events when it is plain, else composed and checked (tags, aliases, merges);
+    the top-level keys in ``skip`` left out."""
     if "&" not in text and "!" not in text and "<<" not in text:
         loader = Loader(text)
         try:
-            return _stream(loader)
+            return _stream(loader, skip)
         except (_Unusual, ValueError, OverflowError):
             pass  # PyYAML's composer and constructor build it, or place the error
         finally:
@@ -402,6 +430,10 @@ def _construct(text: str) -> Any:
         if node is None:
             return None
         _check_nodes(node)
-        return loader.construct_document(node)
+        data = loader.construct_document(node)
     finally:
         loader.dispose()
+    if skip and isinstance(data, dict):
+        for key in skip:
+            data.pop(key, None)
+    return data

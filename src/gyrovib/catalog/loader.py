@@ -11,7 +11,7 @@ read ``FILE:LINE:COL: message`` at a cost linear in the file.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import SimpleNamespace
@@ -118,9 +118,15 @@ def _raw_duplicates(data: dict[str, Any], index: Index, name: str) -> list[Probl
     return problems
 
 
-def parse_catalog(text: str, name: str = "<string>") -> CatalogSource:
-    """Parse and validate one catalogue given as text."""
-    data = _parse(text, name)
+def parse_catalog(text: str, name: str = "<string>",
+                  skip: Collection[str] = ()) -> CatalogSource:
+    """Parse and validate one catalogue given as text.
+
+    ``skip``: top-level sections (``"sensors"``, ``"profiles"``) not wanted:
+    read past by the parser, neither built nor validated, and empty in the
+    model.
+    """
+    data = _parse(text, name, frozenset(skip))
     if data is None:
         raise CatalogError(
             Problem("the file is empty; a catalogue starts with 'gyrovib: 1'", name, 1, 1)
@@ -177,10 +183,10 @@ def _ids_only(data: dict[str, Any], name: str, text: str, index: Index) -> Catal
     return CatalogSource(name=name, text=text, model=model, index=index)
 
 
-def read_catalog(path: str | Path) -> CatalogSource:
-    """Read, parse and validate one catalogue file."""
+def read_catalog(path: str | Path, skip: Collection[str] = ()) -> CatalogSource:
+    """Read, parse and validate one catalogue file (``skip``: as :func:`parse_catalog`)."""
     name = str(path)
-    return parse_catalog(_read_text(Path(path), name), name)
+    return parse_catalog(_read_text(Path(path), name), name, skip)
 
 
 def _read_text(path: Path, name: str) -> str:
@@ -330,14 +336,17 @@ def merge(sources: Sequence[CatalogSource],
     return Catalog(tuple(sources), tuple(sensors), tuple(profiles), allocation)
 
 
-def load_catalog(paths: Sequence[str | Path]) -> Catalog:
-    """Read every file (collecting the problems of all of them), then merge."""
+def load_catalog(paths: Sequence[str | Path], skip: Collection[str] = ()) -> Catalog:
+    """Read every file (collecting the problems of all of them), then merge.
+
+    ``skip``: sections not loaded nor validated (:func:`parse_catalog`).
+    """
     problems: list[Problem] = []
     sources: list[CatalogSource] = []
     everything: list[CatalogSource] = []  # with the ids of the invalid files, in order
     for path in paths:
         try:
-            sources.append(read_catalog(path))
+            sources.append(read_catalog(path, skip))
             everything.append(sources[-1])
         except InvalidCatalog as exc:
             problems.extend(exc.problems)

@@ -46,6 +46,9 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
            output: str | None) -> None:
     """The inverse problem: the largest coefficients that keep the error within budget.
 
+    Only the profiles of the files are read: their sensors are skipped, not
+    validated (`gyrovib validate` checks them).
+
     For each profile, bounds on |A1|, |k2|…|k5|, |m31|, |m32| from the paper's
     split of the budget (eq. 18-25). A sensor within every bound meets the
     budget (eq. 17). The sensor's own frequency response is taken as 1 here;
@@ -58,7 +61,8 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
     from gyrovib.render import bounds as render
 
     unit = resolve_unit(unit, budget)
-    result = api.bounds(load_catalog(files), profiles=profiles, method=method,
+    catalog = load_catalog(files, sensors=False)  # bounds uses no sensor: not even loaded
+    result = api.bounds(catalog, profiles=profiles, method=method,
                         rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
                         unit=unit, allocation=parse_allocation(allocation),
                         range_=parse_range(range_, unit), nl_fit=nl_fit, nl_measure=nl_measure,

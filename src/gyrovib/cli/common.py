@@ -112,16 +112,17 @@ STDIN = "-"
 STDIN_NAME = "<stdin>"
 
 
-def load_catalog(files: tuple[str, ...]) -> Any:
+def load_catalog(files: tuple[str, ...], sensors: bool = True) -> Any:
     """The merged catalogue of ``files``, or the bundled catalogues when none are given.
 
     ``-`` stands for standard input, named ``<stdin>`` in messages.
+    ``sensors=False``: profiles only, sensors neither loaded nor validated.
     """
     from gyrovib.api import load
 
     if STDIN not in files:
-        return load(files)
-    return _load_with_stdin(files)
+        return load(files, sensors=sensors)
+    return _load_with_stdin(files, sensors)
 
 
 def _read_stdin() -> str:
@@ -147,7 +148,7 @@ def _read_stdin() -> str:
                                    "catalogue as UTF-8", STDIN_NAME, line, 1)) from None
 
 
-def _load_with_stdin(files: tuple[str, ...]) -> Any:
+def _load_with_stdin(files: tuple[str, ...], sensors: bool = True) -> Any:
     """Like :func:`gyrovib.api.load`, standard input read once for ``-``."""
     from gyrovib.catalog.loader import CatalogSource, merge, parse_catalog, read_catalog
     from gyrovib.errors import CatalogError, OptionError, Problem
@@ -158,8 +159,9 @@ def _load_with_stdin(files: tuple[str, ...]) -> Any:
     sources: list[CatalogSource] = []
     for name in files:
         try:
-            sources.append(parse_catalog(_read_stdin(), STDIN_NAME) if name == STDIN
-                           else read_catalog(name))
+            skip = () if sensors else ("sensors",)
+            sources.append(parse_catalog(_read_stdin(), STDIN_NAME, skip) if name == STDIN
+                           else read_catalog(name, skip))
         except CatalogError as exc:
             problems.extend(exc.problems)
     if problems:

@@ -14,8 +14,9 @@ import contextlib
 import os
 import stat
 import sys
+from collections.abc import Iterable, Iterator
 from pathlib import Path
-from typing import TextIO
+from typing import BinaryIO, TextIO
 
 from gyrovib.errors import OptionError
 
@@ -48,26 +49,42 @@ def encodable(text: str, encoding: str | None) -> str:
     return text
 
 
-def write_output(text: str, path: str | None) -> None:
+#: What a command writes: one text, or its pieces in order (a streaming renderer's
+#: chunks), which are written as they come and never joined in memory.
+Output = str | Iterable[str]
+
+
+def _chunks(text: Output) -> Iterator[str]:
+    if isinstance(text, str):
+        yield text
+    else:
+        yield from text
+
+
+def write_output(text: Output, path: str | None) -> None:
     """Write ``text`` to ``path`` atomically (temp file + rename), or to stdout.
 
-    A failure leaves an existing file untouched. Standard output that cannot
-    encode a character (``PYTHONIOENCODING=ascii``) gets the ASCII fallback.
+    ``text`` is a string or an iterable of strings written one after the
+    other, so that a long document need not be held whole. A failure leaves an
+    existing file untouched. Standard output that cannot encode a character
+    (``PYTHONIOENCODING=ascii``) gets the ASCII fallback, chunk by chunk.
     """
     if path is None or path == "-":
         stream = sys.stdout
         if stream is None:
             raise WriteFailure("cannot write standard output: it is closed")
-        try:
-            _write_all(stream, encodable(text, getattr(stream, "encoding", None)))
-        except BrokenPipeError:
-            raise
-        except (OSError, ValueError) as exc:
-            silence_stdout()
-            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-            raise WriteFailure(f"cannot write standard output: {reason}") from None
+        encoding = getattr(stream, "encoding", None)
+        for chunk in _chunks(text):  # a renderer's own error is not a write failure
+            try:
+                _write_all(stream, encodable(chunk, encoding))
+            except BrokenPipeError:
+                raise
+            except (OSError, ValueError) as exc:
+                silence_stdout()
+                reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+                raise WriteFailure(f"cannot write standard output: {reason}") from None
         return
-    _replace(path, text.encode("utf-8"), "--output: ")
+    _replace(path, (chunk.encode("utf-8") for chunk in _chunks(text)), "--output: ")
 
 
 def _write_all(stream: TextIO, text: str) -> None:
@@ -102,8 +119,9 @@ def write_binary(data: bytes, path: str) -> None:
     _replace(path, data, "")
 
 
-def _replace(path: str, data: bytes, what: str) -> None:
-    """Put ``data`` at ``path`` through a temporary file in the same directory.
+def _replace(path: str, data: bytes | Iterable[bytes], what: str) -> None:
+    """Put ``data`` (bytes, or pieces of it in order) at ``path`` through a
+    temporary file in the same directory.
 
     An existing file keeps its permissions; a new one gets the umask's. A
     symbolic link is written through: its target is replaced, the link stays.
@@ -122,7 +140,7 @@ def _replace(path: str, data: bytes, what: str) -> None:
     if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
         try:
             with open(target, "wb") as handle:
-                handle.write(data)
+                _write_pieces(handle, data)
         except OSError as exc:
             raise WriteFailure(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
         return
@@ -140,7 +158,7 @@ def _replace(path: str, data: bytes, what: str) -> None:
                            f"{exc.strerror or exc}") from None
     try:
         with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
+            _write_pieces(handle, data)
             handle.flush()
             os.fsync(handle.fileno())
         if target.exists():
@@ -155,3 +173,11 @@ def _replace(path: str, data: bytes, what: str) -> None:
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def _write_pieces(handle: BinaryIO, data: bytes | Iterable[bytes]) -> None:
+    if isinstance(data, bytes):
+        handle.write(data)
+        return
+    for piece in data:
+        handle.write(piece)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import click
 
 from gyrovib.cli.common import github_errors, load_catalog, page_width, plain_ascii, use_color
@@ -67,6 +69,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     from gyrovib.cli.output import write_output
     from gyrovib.render import select as render
 
+    text: str | Iterator[str]  # the JSON document is streamed
     github_errors(fmt == "github")
     unit = resolve_unit(unit, budget)
     catalog = load_catalog(files)
@@ -80,8 +83,10 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
                                ascii=plain_ascii(output))
     elif fmt == "github":
         text = render.to_github(result, api.sensor_locations(catalog, result.sensors))
+    elif fmt == "json":
+        text = render.to_json_chunks(result)  # streamed: never the whole document at once
     else:
-        text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
+        text = {"csv": render.to_csv, "markdown": render.to_markdown,
                 "junit": render.to_junit}[fmt](result)
     write_output(text, output)
     if not result.requirement_met:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import math
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -166,15 +167,55 @@ def _sat(result: SelectionResult, i: int, j: int) -> bool:
     return bool(result.saturated is not None and result.saturated[i, j])
 
 
+#: Sensors per block of the streamed JSON: bounds the Python objects alive at once.
+_BLOCK = 1024
+#: Where the sensors go in the document's text (a string json writes as one token).
+_SLOT = "\0sensors\0"
+
+
 def to_json(result: SelectionResult) -> str:
     """``select --format json`` (docs/output.md) (sensors in catalogue order)."""
+    return "".join(to_json_chunks(result))
+
+
+def to_json_chunks(result: SelectionResult) -> Iterator[str]:
+    """``select --format json`` as consecutive pieces of text: the document's other
+    fields, then the sensors a block at a time, then its end.
+
+    ``"".join(to_json_chunks(result))`` is the whole document; only one block of
+    sensor entries (:func:`_sensor_entries`) exists as Python objects at a time.
+    """
+    import json
+
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
     document["criterion"] = result.criterion
     document["require"] = result.require
+    document["sensors"] = _SLOT
+    before, after = dumps(document).split(json.dumps(_SLOT), 1)
+    yield before + "["
+    n = len(result.sensors)
+    for start in range(0, n, _BLOCK):
+        # a block is ~10^4 acyclic dicts: the cyclic collector would walk them
+        # again and again as they are made; paused while one block is built
+        collecting = gc.isenabled()
+        gc.disable()
+        try:
+            text = json.dumps(_sensor_entries(result, start, min(start + _BLOCK, n)),
+                              allow_nan=False)[1:-1]
+        finally:
+            if collecting:
+                gc.enable()
+        yield text if start == 0 else ", " + text
+    yield "]" + after
+
+
+def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict[str, Any]]:
+    """The JSON entries of sensors ``start``..``stop`` (docs/output.md), one dict each:
+    the one definition of a sensor's entry, whole document or streamed."""
     sensors = []
-    for i, sensor in enumerate(result.sensors):
+    for i, sensor in enumerate(result.sensors[start:stop], start):
         cells = []
         for j, profile in enumerate(result.profiles):
             spec = result.source(i) == "specs"
@@ -198,8 +239,7 @@ def to_json(result: SelectionResult) -> str:
             cells.append(cell)
         sensors.append({"sensor": sensor, "source": result.source(i),
                         "pass": bool(result.sensor_pass[i]), "profiles": cells})
-    document["sensors"] = sensors
-    return dumps(document)
+    return sensors
 
 
 def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:

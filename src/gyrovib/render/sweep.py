@@ -6,7 +6,18 @@ from collections.abc import Iterator
 from typing import Any
 
 from gyrovib.api import SweepResult
-from gyrovib.render.common import csv_text, dumps, fmt, fmt_budget, header, number, rich_text
+from gyrovib.render.common import (
+    csv_cell,
+    csv_head,
+    csv_lines,
+    dumps,
+    float_cells,
+    fmt,
+    fmt_budget,
+    header,
+    number,
+    rich_text,
+)
 
 METHODS = ("exact", "paper")
 
@@ -51,21 +62,29 @@ def to_json(result: SweepResult, budget: float | None = None) -> str:
 
 
 def to_csv(result: SweepResult, budget: float | None = None) -> str:
-    """Long format: one row per sensor × profile × rate; empty paper cells where it refuses."""
+    """Long format: one row per sensor × profile × rate; empty paper cells where it refuses.
 
-    def rows() -> Iterator[list[Any]]:
-        for i, j in _series(result):
-            refused = result.profiles[j] in result.paper_refused
-            for r, rate in enumerate(result.rates.tolist()):
-                paper = ([None, None] if refused else
-                         [float(result.paper.total[i, j, r]), float(result.paper.rms[i, j, r])])
-                yield [result.sensors[i], result.profiles[j], float(rate),
-                       float(result.exact.total[i, j, r]), float(result.exact.rms[i, j, r]),
-                       *paper, bool(_saturated(result)[i, j, r])]
-
+    Written column by column (each number ``repr`` of its float, as
+    :func:`~gyrovib.render.common.csv_text` writes it), one series at a time.
+    """
     head = ["sensor", "profile", "rate_x3", "exact_total", "exact_rms", "paper_total",
             "paper_rms", "saturated"]
-    return csv_text(head, rows())
+    rates = float_cells(result.rates)
+    n = len(rates)
+    empty = [""] * n
+    saturated = _saturated(result)
+    parts = [csv_head(head)]
+    for i, j in _series(result):
+        refused = result.profiles[j] in result.paper_refused
+        e, p = result.exact, result.paper
+        parts.append(csv_lines([
+            [csv_cell(result.sensors[i])] * n, [csv_cell(result.profiles[j])] * n, rates,
+            float_cells(e.total[i, j]), float_cells(e.rms[i, j]),
+            empty if refused else float_cells(p.total[i, j]),
+            empty if refused else float_cells(p.rms[i, j]),
+            ["True" if s else "False" for s in saturated[i, j].tolist()],
+        ]))
+    return "".join(parts)
 
 
 def to_table(result: SweepResult, budget: float | None = None, width: int | None = None,

@@ -64,8 +64,10 @@ def sweep(
     if omega.size == 0 or not np.all(np.isfinite(omega)):
         raise OptionError("the swept rates must be finite, and at least one")
     with float_guard():
+        # only the paper's refusals leave empty cells; the exact method's is a
+        # ModelError at the profile's place in its file, as in analyze
         prepared = prepare(catalog, sensors=sensors, profiles=profiles, omega=omega,
-                           methods=METHODS, tolerate_refusals=True, peak_factor=peak_factor)
+                           methods=METHODS, tolerate_refusals=("paper",), peak_factor=peak_factor)
         shape = (len(prepared.sensors), len(prepared.profiles), omega.size)
         tails = {"additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
                  "multiplicative": (), "total": (), "rms": (),
