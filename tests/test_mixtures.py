@@ -1,7 +1,7 @@
 """E(Ω) for mixtures of many tones, with and without a Gaussian part (MODEL.md §4).
 
 gyrovib computes these by one contour integral of the moment generating
-function (core/statistics.py: _contour_excess). Every expected value here comes
+function (core/mixtures.py: _contour_excess). Every expected value here comes
 from tests/reference.py by another route: QUADPACK's Fourier integral of
 MODEL.md's real-axis formula, the brute-force phase average of the
 folded-normal excess, or nested adaptive quadrature over the phases.
@@ -118,9 +118,9 @@ def test_a_contour_too_long_is_refused_with_advice(monkeypatch):
     # the cap on Bessel values is a resource limit: past it the model says
     # what to change instead of running out of memory or time (the real cap,
     # 2^23, is not reached by 64 tones; lowered here to reach it)
-    from gyrovib.core import statistics
+    from gyrovib.core import mixtures
 
-    monkeypatch.setattr(statistics, "_MAX_CONTOUR_VALUES", 1000)
+    monkeypatch.setattr(mixtures, "_MAX_CONTOUR_VALUES", 1000)
     with pytest.raises(ModelError, match="drop it, or merge the smallest tones"):
         rectified_excess([0.1], [1.0, 0.7, 0.5, 0.3], 1e-6)
 
@@ -150,7 +150,7 @@ def test_bessel_functions_equal_scipy():
     # zeros (z near the imaginary axis), where only the absolute error is small
     from scipy import special
 
-    from gyrovib.core.statistics import _i0e_i1e, _log_i0e
+    from gyrovib.core.mixtures import _i0e_i1e, _log_i0e
 
     rng = np.random.default_rng(14)
     z = np.concatenate([rng.uniform(0, 60, 4000) + 1j * rng.uniform(0, 400, 4000),

@@ -190,9 +190,9 @@ def test_a_sweep_refused_by_the_exact_method_is_an_error_at_the_profile(
     # four tones on a random part of RMS 1e-6 need a contour longer than the cap on
     # Bessel values (test_mixtures.py lowers the cap the same way to reach it): the
     # exact method refuses; before, sweep turned that into NaN and a "paper" note
-    from gyrovib.core import statistics
+    from gyrovib.core import mixtures
 
-    monkeypatch.setattr(statistics, "_MAX_CONTOUR_VALUES", 1000)
+    monkeypatch.setattr(mixtures, "_MAX_CONTOUR_VALUES", 1000)
     catalog = merge([parse_catalog(SWEEP, "sweep.yaml")])
     with pytest.raises(ModelError) as caught:
         api.sweep(catalog, api.rate_range(-1.0, 1.0, 5))
