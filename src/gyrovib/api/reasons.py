@@ -7,7 +7,6 @@ significant figures, as in the tables.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -17,24 +16,8 @@ from gyrovib import units
 from gyrovib.api.results import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
-
-#: Tables write 0 for a value below this fraction of the budget (rounding residue;
-#: as :data:`gyrovib.render.common.NEGLIGIBLE`).
-NEGLIGIBLE = 1e-12
-
-
-def fmt(value: float | None, digits: int = 4) -> str:
-    """A number for a sentence: ``digits`` significant figures, '∞' for unbounded."""
-    if value is None:
-        return "∞"
-    v = float(value)
-    if math.isinf(v):
-        return "∞" if v > 0 else "-∞"
-    if math.isnan(v):
-        return "nan"
-    if v == 0:
-        return "0"
-    return f"{v:.{digits}g}"
+from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
+from gyrovib.formatting import fmt as fmt
 
 
 def coefficient_unit(name: str, unit: str) -> str:

@@ -6,18 +6,11 @@ import click
 
 from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
-    allocation_option,
-    budget_option,
-    budget_unit_option,
+    budget_arguments,
+    budget_options,
     files_argument,
     format_option,
-    method_option,
     output_option,
-    parse_allocation,
-    parse_budget,
-    parse_rate_option,
-    rate_option,
-    resolve_unit,
 )
 from gyrovib.cli.spec_options import (
     parse_range,
@@ -31,11 +24,7 @@ from gyrovib.cli.spec_options import (
 @files_argument
 @click.option("--profile", "profiles", multiple=True, metavar="ID",
               help="Only this profile (repeatable).")
-@budget_option
-@method_option
-@rate_option
-@budget_unit_option
-@allocation_option
+@budget_options
 @range_options
 @spec_weights_option
 @format_option("table", "json", "csv", "markdown")
@@ -60,13 +49,12 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
     from gyrovib.cli.output import write_output
     from gyrovib.render import bounds as render
 
-    unit = resolve_unit(unit, budget)
     catalog = load_catalog(files, sensors=False)  # bounds uses no sensor: not even loaded
-    result = api.bounds(catalog, profiles=profiles, method=method,
-                        rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
-                        unit=unit, allocation=parse_allocation(allocation),
-                        range_=parse_range(range_, unit), nl_fit=nl_fit, nl_measure=nl_measure,
-                        nl_of=nl_of, spec_weights=parse_spec_weights(spec_weights))
+    split = budget_arguments(budget, unit, rate, allocation)
+    result = api.bounds(catalog, profiles=profiles, method=method, **split,
+                        range_=parse_range(range_, split["unit"]), nl_fit=nl_fit,
+                        nl_measure=nl_measure, nl_of=nl_of,
+                        spec_weights=parse_spec_weights(spec_weights))
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))

@@ -164,3 +164,22 @@ def parse_allocation(text: str | None) -> list[float] | None:
             f"numbers r,w1,...,w6,v1,v2,v3 (got {len(values)})"
         )
     return values
+
+
+def budget_options(f: F) -> F:
+    """``--budget``, ``--method``, ``--rate``, ``--unit`` (from the budget) and
+    ``--allocation``, in that order: the options of a budget split (select, bounds,
+    report); :func:`budget_arguments` turns them into the library's arguments."""
+    for option in (allocation_option, budget_unit_option, rate_option, method_option,
+                   budget_option):
+        f = option(f)
+    return f
+
+
+def budget_arguments(budget: str, unit: str | None, rate: str | None,
+                     allocation: str | None) -> dict[str, Any]:
+    """The values of :func:`budget_options` as the library takes them: ``unit`` (given,
+    else the budget's), ``rate`` and ``budget`` in that unit, and ``allocation``."""
+    unit = resolve_unit(unit, budget)
+    return {"unit": unit, "rate": parse_rate_option(rate, unit),
+            "budget": parse_budget(budget, unit), "allocation": parse_allocation(allocation)}

@@ -6,17 +6,10 @@ import click
 
 from gyrovib.cli.common import load_catalog
 from gyrovib.cli.options import (
-    allocation_option,
-    budget_option,
-    budget_unit_option,
+    budget_arguments,
+    budget_options,
     files_argument,
-    method_option,
-    parse_allocation,
-    parse_budget,
-    parse_rate_option,
     peak_factor_option,
-    rate_option,
-    resolve_unit,
     selection_options,
 )
 
@@ -26,11 +19,7 @@ DEFAULT_OUTPUT = "report.html"
 @click.command()
 @files_argument
 @selection_options
-@budget_option
-@method_option
-@rate_option
-@budget_unit_option
-@allocation_option
+@budget_options
 @peak_factor_option
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
               show_default=True,
@@ -61,18 +50,16 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     from gyrovib.cli.output import write_output
     from gyrovib.render.report import to_html
 
-    unit = resolve_unit(unit, budget)
+    split = budget_arguments(budget, unit, rate, allocation)
     sweep_rates = None
     if rate_range is not None:
         from gyrovib import api
         from gyrovib.cli.sweep import parse_rate_range
 
-        sweep_rates = api.rate_range(*parse_rate_range(rate_range, unit))
+        sweep_rates = api.rate_range(*parse_rate_range(rate_range, split["unit"]))
     result = studies.trade_study(
-        load_catalog(files), sensors=sensors, profiles=profiles, method=method,
-        rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit), unit=unit,
-        criterion=criterion, require=require, allocation=parse_allocation(allocation),
-        sweep_rates=sweep_rates, peak_factor=peak_factor)
+        load_catalog(files), sensors=sensors, profiles=profiles, method=method, **split,
+        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
     write_output(to_html(result), output)
     if output not in ("-", ""):
         click.echo(f"gyrovib: wrote {output}", err=True)

@@ -8,19 +8,12 @@ import click
 
 from gyrovib.cli.common import github_errors, load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
-    allocation_option,
-    budget_option,
-    budget_unit_option,
+    budget_arguments,
+    budget_options,
     files_argument,
     format_option,
-    method_option,
     output_option,
-    parse_allocation,
-    parse_budget,
-    parse_rate_option,
     peak_factor_option,
-    rate_option,
-    resolve_unit,
     selection_options,
 )
 from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
@@ -29,11 +22,7 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @click.command()
 @files_argument
 @selection_options
-@budget_option
-@method_option
-@rate_option
-@budget_unit_option
-@allocation_option
+@budget_options
 @peak_factor_option
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
               default="bounds", show_default=True,
@@ -71,12 +60,10 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
 
     text: str | Iterator[str]  # the JSON document is streamed
     github_errors(fmt == "github")
-    unit = resolve_unit(unit, budget)
     catalog = load_catalog(files)
-    result = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
-                        rate=parse_rate_option(rate, unit), budget=parse_budget(budget, unit),
-                        unit=unit, criterion=criterion, require=require,
-                        allocation=parse_allocation(allocation),
+    split = budget_arguments(budget, unit, rate, allocation)
+    result = api.select(catalog, sensors=sensors, profiles=profiles, method=method, **split,
+                        criterion=criterion, require=require,
                         spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor)
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),

@@ -8,8 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib import units
 from gyrovib.api import BoundsResult
+from gyrovib.api.reasons import coefficient_unit as coefficient_unit
 from gyrovib.api.reasons import in_table_unit, table_unit
 from gyrovib.core.synthesis import (
     BOUNDED,
@@ -19,14 +19,6 @@ from gyrovib.core.synthesis import (
     CoefficientBounds,
 )
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
-
-
-def coefficient_unit(name: str, unit: str) -> str:
-    """The unit of a coefficient's bound: ``1`` for A1, ``(deg/s)^-2`` for k3, …"""
-    power = units.COEFFICIENT_RATE_POWER[name.split("_")[0]]
-    if power == 0:
-        return "1"
-    return f"({unit})^{power}"
 
 
 #: Unit of the VRE bound in an output rate unit (rate per g², MODEL.md section 8).

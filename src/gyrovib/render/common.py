@@ -7,6 +7,8 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 from gyrovib._version import __version__
+from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
+from gyrovib.formatting import fmt as fmt
 
 
 def number(value: float) -> float | None:
@@ -25,24 +27,6 @@ def dumps(document: Any) -> str:
     import json  # not at import time: the tables do without it
 
     return json.dumps(document, allow_nan=False) + "\n"
-
-
-def fmt(value: float | None, digits: int = 4) -> str:
-    """A number for a human table: ``digits`` significant figures, '∞' for unbounded."""
-    if value is None:
-        return "∞"
-    v = float(value)
-    if math.isinf(v):
-        return "∞" if v > 0 else "-∞"
-    if math.isnan(v):
-        return "nan"
-    if v == 0:
-        return "0"
-    return f"{v:.{digits}g}"
-
-
-#: Table values smaller than this fraction of the budget print as 0 (rounding residue).
-NEGLIGIBLE = 1e-12
 
 
 def fmt_budget(value: float | None, budget: float | None, digits: int = 4) -> str:

@@ -1,0 +1,24 @@
+"""Numbers written for people: the one definition shared by the library's sentences
+(:mod:`gyrovib.api.reasons`) and the renderers' tables (:mod:`gyrovib.render.common`)."""
+
+from __future__ import annotations
+
+import math
+
+#: Tables write 0 for a value below this fraction of the budget (rounding residue).
+NEGLIGIBLE = 1e-12
+
+
+def fmt(value: float | None, digits: int = 4) -> str:
+    """A number for a table or a sentence: ``digits`` significant figures, '∞' for
+    unbounded."""
+    if value is None:
+        return "∞"
+    v = float(value)
+    if math.isinf(v):
+        return "∞" if v > 0 else "-∞"
+    if math.isnan(v):
+        return "nan"
+    if v == 0:
+        return "0"
+    return f"{v:.{digits}g}"
