@@ -75,8 +75,32 @@ class _Frozen:
                 f"shape={self._shape()!r})")
 
 
+class _SensorsByProfiles(_Frozen):
+    """A result per sensor × profile (× rate): how each sensor is given, where it saturates.
+
+    Its dataclasses declare the fields; ``saturated`` left ``None`` is all False.
+    """
+
+    sensors: tuple[str, ...]
+    profiles: tuple[str, ...]
+    sources: tuple[str, ...]
+    saturated: NDArray[np.bool_] | None
+
+    def source(self, i: int) -> str:
+        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
+        return self.sources[i] if self.sources else "coefficients"
+
+    def __post_init__(self) -> None:
+        if self.saturated is None:
+            object.__setattr__(self, "saturated", np.zeros(self._shape(), dtype=bool))
+        super().__post_init__()
+
+    def _shape(self) -> tuple[int, ...]:
+        return (len(self.sensors), len(self.profiles))
+
+
 @dataclass(frozen=True, repr=False)
-class AnalysisResult(_Frozen):
+class AnalysisResult(_SensorsByProfiles):
     """The direct problem for every chosen sensor × profile.
 
     Arrays of :attr:`error` have shape (sensors, profiles) and are in
@@ -116,19 +140,6 @@ class AnalysisResult(_Frozen):
     worst_phases: Mapping[tuple[int, int], tuple[dict[str, float], ...]] = field(
         default_factory=dict)
 
-    def source(self, i: int) -> str:
-        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
-        return self.sources[i] if self.sources else "coefficients"
-
-    def __post_init__(self) -> None:
-        if self.saturated is None:
-            object.__setattr__(self, "saturated",
-                               np.zeros((len(self.sensors), len(self.profiles)), dtype=bool))
-        super().__post_init__()
-
-    def _shape(self) -> tuple[int, ...]:
-        return (len(self.sensors), len(self.profiles))
-
     @property
     def has_linear(self) -> bool:
         """Whether any profile has a linear vibration (the g² term, MODEL.md section 8)."""
@@ -136,7 +147,7 @@ class AnalysisResult(_Frozen):
 
 
 @dataclass(frozen=True, repr=False)
-class SweepResult(_Frozen):
+class SweepResult(_SensorsByProfiles):
     """Δ_V and Δ_V(RMS) over a range of Ω_K3, by the exact and the paper's method.
 
     ``rates`` (R,): the Ω_K3 values in :attr:`unit`; Ω_K1, Ω_K2 stay the
@@ -167,16 +178,6 @@ class SweepResult(_Frozen):
     saturated: NDArray[np.bool_] | None = None
     #: κ of the saturation reach.
     peak_factor: float = 3.0
-
-    def source(self, i: int) -> str:
-        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
-        return self.sources[i] if self.sources else "coefficients"
-
-    def __post_init__(self) -> None:
-        if self.saturated is None:
-            object.__setattr__(self, "saturated", np.zeros(
-                (len(self.sensors), len(self.profiles), len(self.rates)), dtype=bool))
-        super().__post_init__()
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles), len(self.rates))
@@ -219,7 +220,7 @@ class Limit:
 
 
 @dataclass(frozen=True, repr=False)
-class SelectionResult(_Frozen):
+class SelectionResult(_SensorsByProfiles):
     """Every chosen sensor checked against the budget under every chosen profile.
 
     Arrays are indexed (sensor, profile[, coefficient of :data:`BOUNDED`]) and
@@ -282,19 +283,6 @@ class SelectionResult(_Frozen):
     peak_factor: float = 3.0
     #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
     coefficient_unit: str | None = None
-
-    def source(self, i: int) -> str:
-        """``"specs"`` or ``"coefficients"``: how sensor ``i`` is given."""
-        return self.sources[i] if self.sources else "coefficients"
-
-    def __post_init__(self) -> None:
-        if self.saturated is None:
-            object.__setattr__(self, "saturated",
-                               np.zeros((len(self.sensors), len(self.profiles)), dtype=bool))
-        super().__post_init__()
-
-    def _shape(self) -> tuple[int, ...]:
-        return (len(self.sensors), len(self.profiles))
 
     @property
     def has_linear(self) -> bool:
