@@ -282,6 +282,42 @@ def test_bounds_gives_the_vre_bound_by_hand(tmp_path: Path) -> None:
                                                                   rel=1e-12)
 
 
+def test_a_catalogue_allocation_of_six_weights_sets_the_vre_share(tmp_path: Path) -> None:
+    # α_p = w_p·c_A/‖w‖ (eq. 21; MODEL.md section 8 adds w6 for the g² term):
+    # r = 1.5 -> c_A = 1.5/√3.25; w = (1, 1, 1, 0.5, 0.5, 2) -> ‖w‖ = √(3.5 + 4) = √7.5,
+    # α6 = 2·c_A/√7.5 = 0.607625; vre = α6·Δ*/Σ⟨a_j²⟩ with Σ⟨a_j²⟩ = 12.25 g² (above)
+    c_a = 1.5 / math.sqrt(3.25)
+    alpha6 = 2 * c_a / math.sqrt(7.5)
+    six = TONES_AND_RANDOM + "allocation: {r: 1.5, w: [1, 1, 1, 0.5, 0.5, 2], v: [1, 0.5, 0.5]}\n"
+    five = TONES_AND_RANDOM + "allocation: {r: 1.5, w: [1, 1, 1, 0.5, 0.5], v: [1, 0.5, 0.5]}\n"
+    doc6 = cli_json("bounds", write(tmp_path, six, "six.yaml"), "--budget", "0.01")
+    doc5 = cli_json("bounds", write(tmp_path, five, "five.yaml"), "--budget", "0.01")
+    by6 = {p["profile"]: p["bounds"] for p in doc6["profiles"]}
+    by5 = {p["profile"]: p["bounds"] for p in doc5["profiles"]}
+    assert by6["lin"]["vre"] == pytest.approx(alpha6 * 0.01 / 12.25, rel=1e-12)
+    # five weights: w6 = 1 appended, α6 = c_A/√4.5 (test_bounds_gives_the_vre_bound_by_hand)
+    assert by5["lin"]["vre"] == pytest.approx(c_a / math.sqrt(4.5) * 0.01 / 12.25, rel=1e-12)
+    # the file's six weights are the --allocation's ten numbers r, w1..w6, v1..v3
+    flag = cli_json("bounds", write(tmp_path, TONES_AND_RANDOM), "--budget", "0.01",
+                    "--allocation", "1.5,1,1,1,0.5,0.5,2,1,0.5,0.5")
+    assert flag["profiles"][0]["bounds"]["vre"] == pytest.approx(by6["lin"]["vre"], rel=1e-15)
+    # w6 acts only where there is a linear vibration: the angular-only profile keeps
+    # α_p = w_p·c_A/‖w1..w5‖ and so every bound of the five-weight file
+    assert by6["angular-only"] == by5["angular-only"]
+    # a seventh weight is refused by the loader and by the JSON Schema alike
+    from gyrovib.catalog.jsonschema import catalog_schema
+    from gyrovib.catalog.loader import _parse
+
+    jsonschema = pytest.importorskip("jsonschema")
+    seven = six.replace("0.5, 2]", "0.5, 2, 1]")
+    result = run("validate", write(tmp_path, seven, "seven.yaml"))
+    assert result.exit_code == 2
+    assert "too many values (7; expected 5 or 6)" in result.output
+    validator = jsonschema.Draft7Validator(catalog_schema())
+    assert validator.is_valid(_parse(six, "six.yaml"))
+    assert not validator.is_valid(_parse(seven, "seven.yaml"))
+
+
 def test_bounds_table_shows_vre_only_with_linear_vibration(tmp_path: Path) -> None:
     path = write(tmp_path, TONES_AND_RANDOM)
     text = run("bounds", path, "--budget", "0.01", "--format", "markdown").stdout

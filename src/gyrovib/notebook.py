@@ -172,7 +172,8 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
     unit : str, optional
         Output unit; default the unit a budget string carries, else deg/s.
     allocation : sequence of float, optional
-        r alone, or r, w1..w5, v1..v3 (eq. 18, 21, 24).
+        r alone, or r, w1..w5, v1..v3, or r, w1..w6, v1..v3 with w6 the weight of
+        the g² term (eq. 18, 21, 24; MODEL.md section 8).
     range_ : number or str, optional
         R of a datasheet part (in ``unit``, or with a unit): adds ``spec_bounds``,
         the allowable nonlinearity in %FS (read as ``nl_fit``, ``nl_measure``,

@@ -49,7 +49,8 @@ def _number(t: k.Number) -> dict[str, Any]:
 
 
 def _fixed(n: int, items: list[dict[str, Any]]) -> dict[str, Any]:
-    return {"type": "array", "items": items, "minItems": n, "maxItems": n,
+    """``n`` to ``len(items)`` values, the i-th of ``items[i]``."""
+    return {"type": "array", "items": items, "minItems": n, "maxItems": len(items),
             "additionalItems": False}
 
 
@@ -69,7 +70,7 @@ def type_schema(t: Any) -> dict[str, Any]:
     if isinstance(t, k.Choice):
         return {"type": "string", "enum": list(t.values)}
     if isinstance(t, k.Fixed):
-        return _fixed(t.n, [type_schema(t.item)] * t.n)
+        return _fixed(t.n, [type_schema(t.item)] * (t.most or t.n))
     if isinstance(t, k.Table):
         row = _fixed(2, [_number(k.Number(minimum=0, exclusive_minimum=True)),
                          _number(k.Number(minimum=0))])

@@ -83,10 +83,12 @@ class Choice(NamedTuple):
 
 
 class Fixed(NamedTuple):
-    """A list of exactly ``n`` values of one type (a triple, a pair...)."""
+    """A list of exactly ``n`` values of one type (a triple, a pair...), or of ``n`` to
+    ``most`` values when ``most`` is given."""
 
     n: int
     item: Any
+    most: int | None = None
 
 
 class Table(NamedTuple):

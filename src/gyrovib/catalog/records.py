@@ -331,7 +331,8 @@ class Allocation(Record):
     """How the budget is split (eq. 18, 21, 24): ratio r and share weights w, v."""
 
     r: float
-    w: tuple[float, float, float, float, float]
+    #: w1..w5, or w1..w6 with w6 the weight of the g² term (MODEL.md section 8).
+    w: tuple[float, ...]
     v: Triple
 
 

@@ -433,8 +433,10 @@ FORMAT: dict[str, Object] = {
         "How the budget is split (eq. 18, 21, 24): ratio r and share weights w, v.",
         (
             Field("r", _WEIGHT, 1.5, description="Ratio r of eq. (18); > 0."),
-            Field("w", Fixed(5, _WEIGHT), (1.0, 1.0, 1.0, 0.5, 0.5),
-                  description="Share weights w of the five additive terms; each > 0."),
+            Field("w", Fixed(5, _WEIGHT, most=6), (1.0, 1.0, 1.0, 0.5, 0.5),
+                  description="Share weights w of the five additive terms (A1, k2, k4, "
+                  "m31, m32), and optionally a sixth, w6, of the g² term of a profile with "
+                  "linear vibration (MODEL.md section 8; default 1); each > 0."),
             Field("v", Fixed(3, _WEIGHT), (1.0, 0.5, 0.5),
                   description="Share weights v of the three multiplicative terms; each > 0."),
         ),

@@ -192,15 +192,19 @@ class Validator:
 
     def _fixed(self, t: k.Fixed) -> Check:
         item = self.compile(t.item)
-        n = t.n
+        n, most = t.n, t.n if t.most is None else t.most
+        expected: int | str = n  # how many, for the message
+        if most > n:
+            expected = f"{n} or {most}" if most == n + 1 else f"{n} to {most}"
 
         def check(v: Any, loc: tuple[Any, ...], errors: list[Error]) -> Any:
             if type(v) not in _SEQUENCE:
                 errors.append(Error("type", loc, v, {"expected": "list"}))
                 return _BAD
-            if len(v) != n:
+            if not n <= len(v) <= most:
                 kind = "too_few" if len(v) < n else "too_many"
-                errors.append(Error(kind, loc, v, {"n": n, "have": len(v), "exact": True}))
+                errors.append(Error(kind, loc, v, {"n": expected, "have": len(v),
+                                                   "exact": True}))
                 return _BAD
             before = len(errors)
             out = tuple([item(x, (*loc, i), errors) for i, x in enumerate(v)])
