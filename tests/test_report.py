@@ -126,6 +126,26 @@ def test_terms_of_eq16_add_up_to_the_rms(catalog_file):
     assert term_names() == [*ADDITIVE_TERMS, "q1·Ω", "q2·Ω²", "q3·Ω³"]
 
 
+def test_breakdown_of_locked_harmonics_and_linear_vibration_adds_up_to_the_rms():
+    """The bundled catalogues have a linear vibration and phase-locked harmonics
+    (rotor-harmonics): the breakdown gains g2 = Δ0(6) (MODEL.md section 8) and k3·M3,
+    k5·M5 (section 10), and eq. (16)'s squares again sum to Δ_V(RMS)² for every sensor
+    given by coefficients (a datasheet sensor's RMS is its envelope's worst case)."""
+    study = trade_study(api.load(), budget=10 / 3600)
+    a = study.analysis
+    assert a.has_linear and any(a.locked)
+    names = term_names(a.has_linear, any(a.locked))
+    assert names == [*ADDITIVE_TERMS, "g2", "k3", "k5", "q1·Ω", "q2·Ω²", "q3·Ω³"]
+    squares = term_squares(study)
+    coefficients = [i for i in range(len(a.sensors)) if a.source(i) == "coefficients"]
+    np.testing.assert_allclose(squares[coefficients].sum(axis=-1),
+                               a.error.rms[coefficients] ** 2, rtol=1e-12, atol=0)
+    # without the odd terms the locked profile's RMS would not be reached
+    j = a.locked.index(True)
+    odd = squares[coefficients, j, 6:8].sum(axis=-1)
+    assert np.all(odd > 1e-14 * a.error.rms[coefficients, j] ** 2)
+
+
 def test_study_matches_select_and_sweeps_the_envelope(catalog_file):
     catalog = api.load([catalog_file])
     study = trade_study(catalog, budget=0.01, method="exact")

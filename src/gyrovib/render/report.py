@@ -64,11 +64,14 @@ svg .ref { stroke: #b00; stroke-width: 1.5; stroke-dasharray: 5 3; }
 svg .tone { stroke: #555; stroke-width: 1.2; stroke-dasharray: 2 2; }
 nav ol { columns: 3; font-size: 13px; margin: 4px 0; }
 .notes { color: var(--muted); font-style: italic; }
+.scroll { overflow-x: auto; }
+table.matrix { font-size: 12px; } table.matrix th, table.matrix td { padding: 2px 4px; }
 ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-style: none; }
 @page { size: A4; margin: 12mm; }
 @media print {
   body { max-width: none; padding: 0; font-size: 11px; }
   nav { display: none; }
+  .scroll { overflow: visible; }
   * { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
   h2 { break-after: avoid; } h3 { break-after: avoid; }
   figure, table, .profile-head { break-inside: avoid; }
@@ -91,15 +94,17 @@ def _table(head: Sequence[str], rows: Iterable[Sequence[str]], raw: bool = False
     return "".join(out)
 
 
-def term_names(linear: bool = False) -> list[str]:
+def term_names(linear: bool = False, locked: bool = False) -> list[str]:
     """Labels of the terms of eq. (16): the additive Δ0 terms, then Δ(q)·Ω^q.
 
     ``linear``: Δ0(6), the g² term of a linear vibration (MODEL.md section 8),
-    follows the additive terms.
+    follows the additive terms; ``locked``: then k3·M3 and k5·M5, the odd-moment
+    terms of phase-locked harmonics (MODEL.md section 10).
     """
     powers = [int(q[1:]) if q[1:].isdigit() else k + 1
               for k, q in enumerate(MULTIPLICATIVE_TERMS)]
-    additive = [*ADDITIVE_TERMS, EXTRA_TERMS[0]] if linear else list(ADDITIVE_TERMS)
+    additive = [*ADDITIVE_TERMS, *(t for t in EXTRA_TERMS
+                                   if (t == "g2" and linear) or (t != "g2" and locked))]
     return [*additive, *(f"{q}·Ω{SUPERSCRIPT.get(p, f'^{p}')}"
                                for q, p in zip(MULTIPLICATIVE_TERMS, powers, strict=True))]
 
@@ -107,9 +112,10 @@ def term_names(linear: bool = False) -> list[str]:
 def term_squares(study: TradeStudy) -> np.ndarray:
     """Each term's square in eq. (16), shape (sensors, profiles, terms).
 
-    Additive: Δ0² (with Δ0(6)² when some profile has a linear vibration, as
-    :func:`term_names` with ``linear``). Multiplicative: (Δ(q)·Ω_K3^q)². Their
-    sum is Δ_V(RMS)².
+    Additive: Δ0² (with Δ0(6)² when some profile has a linear vibration, and
+    (k3·M3)², (k5·M5)² when some profile has phase-locked harmonics, as
+    :func:`term_names` with ``linear`` and ``locked``). Multiplicative:
+    (Δ(q)·Ω_K3^q)². Their sum is Δ_V(RMS)².
     """
     a = study.analysis
     omega = np.asarray(a.rates)[:, 2]
@@ -117,8 +123,11 @@ def term_squares(study: TradeStudy) -> np.ndarray:
     powers = np.arange(1, qs.shape[-1] + 1)
     multiplicative = qs * omega[None, :, None] ** powers[None, None, :]
     additive = np.asarray(a.error.additive_terms)
-    if a.has_linear:
-        additive = np.concatenate([additive, np.asarray(a.error.extra_terms)[..., :1]], axis=-1)
+    extra = [k for k, t in enumerate(EXTRA_TERMS)
+             if (t == "g2" and a.has_linear) or (t != "g2" and any(a.locked))]
+    if extra:
+        additive = np.concatenate([additive, np.asarray(a.error.extra_terms)[..., extra]],
+                                  axis=-1)
     terms = np.concatenate([additive, multiplicative], axis=-1)
     out: np.ndarray = terms * terms
     return out
@@ -149,6 +158,9 @@ def _inputs(study: TradeStudy) -> str:
         ["requirement", f"{s.require}: " + ("at least one sensor" if s.require == "any"
                                               else "every sensor") + " passes everywhere"],
         ["allocation (shares of Δ*)", "; ".join(f"{k}: {v}" for k, v in share.items())],
+        *([["… under a linear vibration (g² term, MODEL.md section 8)",
+            "; ".join(f"{k}: {v}" for k, v in shares(s.allocation, linear=True).items())]]
+          if s.has_linear else []),
         ["sensors × profiles", f"{len(s.sensors)} × {len(s.profiles)}"],
         ["gyrovib version", study.version],
         ["date", study.created],
@@ -174,12 +186,17 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
             klass = ("pass" if ok else "fail") + (" warn" if notes else "")
             tip = f' title="{_e(" ".join(notes))}"' if notes else ""
             mark = " ⚠" if notes else ""
+            saturates = ('<br><span class="small"><b>saturates</b></span>'
+                         if s.saturated is not None and s.saturated[i, j] else "")
             cells.append(
                 f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} {_e(fmt(s.margin[i, j], 3))}'
-                f'{mark}<br><span class="small">{_e(_dominant(squares[i, j], names))}</span></td>'
+                f'{mark}<br><span class="small">{_e(_dominant(squares[i, j], names))}</span>'
+                f'{saturates}</td>'
             )
         rows.append(cells)
-    return _table(head, rows, raw=True)
+    # many profiles: a compact table that scrolls rather than widening the page
+    table = _table(head, rows, raw=True).replace("<table>", '<table class="matrix">', 1)
+    return f'<div class="scroll">{table}</div>'
 
 
 def _ranking(study: TradeStudy) -> str:
@@ -342,7 +359,7 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
 def to_html(study: TradeStudy) -> str:
     """The whole report as one HTML document (UTF-8 text)."""
     s = study.selection
-    names = term_names(study.analysis.has_linear)
+    names = term_names(study.analysis.has_linear, any(study.analysis.locked))
     squares = term_squares(study)
     met = s.requirement_met
     n_pass = int(np.sum(s.sensor_pass))
