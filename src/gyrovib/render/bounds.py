@@ -244,23 +244,22 @@ def to_table(result: BoundsResult, width: int | None = None, color: bool = False
     """One table per profile, one row per bounded coefficient."""
     from gyrovib.render.common import Table, Text
 
+    def table(head: list[str], rows: list[list[str]], **title: Any) -> Any:
+        """A table whose second column, the bound, is bold and right-aligned."""
+        out = Table(header_style="bold", **title)
+        for k, label in enumerate(head):
+            out.add_column(label, justify="right" if k == 1 else "left", no_wrap=True,
+                           style="bold" if k == 1 else None)
+        for row in rows:
+            out.add_row(*row)
+        return out
+
     out: list[Any] = []
     for j in range(len(result.profiles)):
-        table = Table(title=_title(result, j), title_justify="left", header_style="bold")
-        for k, label in enumerate(_HEAD):
-            table.add_column(label, justify="right" if k == 1 else "left", no_wrap=True,
-                             style="bold" if k == 1 else None)
-        for row in _rows(result, j):
-            table.add_row(*row)
-        out.append(table)
+        out.append(table(_HEAD, _rows(result, j), title=_title(result, j),
+                         title_justify="left"))
         if result.spec_bounds is not None:
-            spec = Table(header_style="bold")
-            for k, label in enumerate(_SPEC_HEAD):
-                spec.add_column(label, justify="right" if k == 1 else "left", no_wrap=True,
-                                style="bold" if k == 1 else None)
-            for row in _spec_rows(result, j):
-                spec.add_row(*row)
-            out.append(spec)
+            out.append(table(_SPEC_HEAD, _spec_rows(result, j)))
     out.append(Text(_legend(result) + unit_note(result), style="dim"))
     if result.spec_bounds is not None:
         out.append(Text(_SPEC_LEGEND, style="dim"))
