@@ -230,3 +230,16 @@ def test_every_plotted_value_lies_inside_the_axes(values, log):
         assert 100.0 - 1e-6 <= scale(v) <= 500.0 + 1e-6
     assert scale(lo) == pytest.approx(100.0) and scale(hi) == pytest.approx(500.0)
     assert all(lo * (1 - 1e-9) <= t <= hi * (1 + 1e-9) for t in scale.ticks() if log)
+
+
+def test_bundled_catalogues_are_named_by_package_path_with_their_hash() -> None:
+    # the inputs table names a bundled file gyrovib/catalogs/NAME, not where it is
+    # installed; its hash is still that of the file's bytes (hashlib, independently)
+    from gyrovib.catalog.loader import bundled_paths
+
+    study = trade_study(api.load(), budget=10 / 3600)
+    shown = {f.name: f.sha256 for f in study.files}
+    for path in bundled_paths():
+        key = f"gyrovib/catalogs/{path.name} (bundled)"
+        assert shown[key] == hashlib.sha256(path.read_bytes()).hexdigest()
+    assert not any(str(p.parent) in name for p in bundled_paths() for name in shown)

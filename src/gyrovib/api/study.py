@@ -84,7 +84,19 @@ def file_digest(name: str, text: str) -> InputFile:
         data = Path(name).read_bytes()
     except OSError:
         data = text.encode("utf-8")
-    return InputFile(name=name, sha256=hashlib.sha256(data).hexdigest(), size=len(data))
+    return InputFile(name=_shown_name(name), sha256=hashlib.sha256(data).hexdigest(),
+                     size=len(data))
+
+
+def _shown_name(name: str) -> str:
+    """A bundled catalogue as ``gyrovib/catalogs/NAME (bundled)``, not the install path."""
+    from gyrovib.catalog.loader import bundled_paths
+
+    path = Path(name)
+    for bundled in bundled_paths():
+        if path.name == bundled.name and path.resolve() == bundled.resolve():
+            return f"gyrovib/catalogs/{bundled.name} (bundled)"
+    return name
 
 
 def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:

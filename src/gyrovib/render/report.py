@@ -235,8 +235,9 @@ def _warnings(study: TradeStudy) -> str:
     items = "".join(f"<li><b>{_e(a.sensors[i])}</b> under <b>{_e(a.profiles[j])}</b>: "
                     f"{_e(' '.join(messages))}</li>"
                     for (i, j), messages in sorted(a.warnings.items()))
-    return ("<h3>Warnings</h3><p>Marked ⚠ in the matrix: the results there are outside the "
-            f"static model's validity.</p><ul class=\"warnings\">{items}</ul>")
+    return ("<h3>Warnings</h3><p>Marked ⚠ in the matrix: a note below applies to that cell "
+            "(the sensor saturates, so the static model does not hold there, or an "
+            f"assumption was made for a datasheet sensor).</p><ul class=\"warnings\">{items}</ul>")
 
 
 # ----------------------------------------------------------------- charts
