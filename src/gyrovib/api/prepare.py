@@ -113,15 +113,18 @@ def response_groups(entries: Sequence[SensorEntry]) -> list[tuple[Table | None, 
     ]
 
 
+def _gain_tables(entry: ProfileEntry, response: Table | None) -> list[Table]:
+    """The ν(f) tables between the vibration and the nonlinear element: the profile's
+    mount, then the sensor's response where it acts at the input (MODEL.md section 9)."""
+    tables = [] if entry.profile.mount is None else [as_table(entry.profile.mount)]
+    return tables if response is None else [*tables, response]
+
+
 def profile_vibration(entry: ProfileEntry, response: Table | None = None) -> Vibration:
     """The vibration of a profile reaching a sensor of the given response, in deg/s."""
     p = entry.profile
     s = units.scale(entry.unit)
-    gains: list[Table] = []
-    if p.mount is not None:
-        gains.append(as_table(p.mount))
-    if response is not None:
-        gains.append(response)
+    gains = _gain_tables(entry, response)
     tones = [(t.frequency, np.asarray(t.amplitude) * s, t.phase) for t in p.harmonic]
     psd: list[Table | None] | None = None
     rms = None
@@ -152,11 +155,7 @@ def profile_locked(entry: ProfileEntry, response: Table | None = None) -> tuple[
     """
     p = entry.profile
     s = units.scale(entry.unit)
-    tables: list[Table] = []
-    if p.mount is not None:
-        tables.append(as_table(p.mount))
-    if response is not None:
-        tables.append(response)
+    tables = _gain_tables(entry, response)
     out = []
     for h in p.harmonics:
         orders = [o.order for o in h.orders]
