@@ -35,3 +35,22 @@ def test_ci_runs_the_readme_test_command() -> None:
 def test_ci_installs_within_the_constraints() -> None:
     assert "-c constraints.txt" in _quick_start()[1]
     assert (ROOT / "constraints.txt").is_file()
+
+
+def test_readme_example_table_is_what_gyrovib_prints() -> None:
+    # the README's console example: every table line it shows is printed, verbatim,
+    # by the command it shows (the bundled catalogues, current code)
+    import shlex
+
+    from tests.conftest import invoke
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    block = re.search(r"```console\n\$ (gyrovib analyze [^\n]*)\n(.*?)```", text, re.S)
+    assert block, "README has no analyze console example"
+    args = shlex.split(block.group(1))[1:]
+    result = invoke(*args, env={"COLUMNS": "160", "NO_COLOR": "1"})
+    assert result.exit_code == 0, result.stderr
+    shown = [line for line in block.group(2).splitlines() if line[:1] in "┏┃┡│└"]
+    assert len(shown) >= 5
+    for line in shown:
+        assert line in result.stdout.splitlines(), line
