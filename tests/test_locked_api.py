@@ -208,3 +208,60 @@ def test_k3_and_k5_at_their_bounds_stay_within_budget(tmp_path: Path) -> None:
         cell = json.loads(result.stdout)["sensors"][0]["profiles"][0]
         assert cell["pass"] is True
         assert cell["rms"] <= budget * (1 + 1e-12)
+
+
+def test_select_worst_maximises_the_error_over_unknown_phases(tmp_path: Path) -> None:
+    """``select --criterion worst`` tests the worst |Δ_V| over ``phase: worst`` orders.
+
+    INTERFACE.md (second round): ``worst`` is the direct test |Δ_V| ≤ Δ*;
+    MODEL.md section 10: under unknown phases the analysis maximises |Δ_V|.
+    By hand (section 10): k3 = 1e-6, orders 1, 2 on x3 with a1 = 0.5, a2 = 0.3,
+    Ω = −20 deg/s: M2 = (0.25 + 0.09)/2 = 0.17, |M3| ≤ ¾·0.25·0.3 = 0.05625, so
+    Δ_V = k3·M3 + 3·k3·M2·Ω = k3·M3 − 1.02e-5, worst at M3 = −0.05625:
+    |Δ_V| = 1.025625e-5 (the other sign gives 1.014375e-5, which would pass).
+    """
+    path = write(tmp_path, """
+        profiles:
+          - id: rotor
+            rate: [0, 0, -20]
+            harmonics:
+              fundamental: 40
+              orders:
+                - {order: 1, amplitude: [0, 0, 0.5], phase: [0, 0, 0]}
+                - {order: 2, amplitude: [0, 0, 0.3], phase: worst}
+        """, """
+        sensors:
+          - id: s
+            range: 100
+            coefficients: {k3: 1.0e-6}
+        """)
+    result = run("select", path, "--budget", "1.02e-5", "--criterion", "worst",
+                 "--format", "json")
+    entry = json.loads(result.stdout)["sensors"][0]["profiles"][0]
+    assert entry["total"] == pytest.approx(1.025625e-5, rel=1e-6)
+    assert entry["pass"] is False
+    assert result.exit_code == 1
+    analysed = json.loads(run("analyze", path, "--format", "json").stdout)["results"][0]
+    assert entry["total"] == pytest.approx(abs(analysed["total"]), rel=1e-9)
+
+
+def test_bounds_table_prints_the_shares_of_section_10(tmp_path: Path) -> None:
+    """The table's share column follows MODEL.md section 10 where M3, M5 ≠ 0.
+
+    Orders 1, 2 with φ2 = 90° give M3 ≠ 0 and M5 ≠ 0, so k3 and k5 gain
+    additive shares (w = 1 each): with w = (1, 1, 1, ½, ½, 1, 1), c_A = 0.832
+    (MODEL.md section 6), α = c_A/‖w‖ = 0.8321/√5.5 = 0.3548 (0.4447 without);
+    Δ(1) is split three ways, β1/3 = 0.4529/3 = 0.151, and Δ(2) two ways,
+    β2/2 = 0.2265/2 = 0.1132.
+    """
+    path = write(tmp_path, profiles(5.0))
+    doc = json.loads(run("bounds", path, "--budget", "0.01", "--format", "json").stdout)
+    parts = doc["profiles"][0]["parts"]
+    assert parts["k3_additive"] is not None and parts["k5_additive"] is not None
+    text = run("bounds", path, "--budget", "0.01", env={"COLUMNS": "250"}).stdout
+    c_a = 1.5 / math.sqrt(1 + 1.5**2)
+    alpha = c_a / math.sqrt(5.5)
+    assert f"α1 = {alpha:.4g}" in text
+    assert f"α = {alpha:.4g} | β1/3 = 0.151" in text
+    assert "β2/2 = 0.1132" in text
+    assert "β1/2" not in text

@@ -117,19 +117,41 @@ _SPEC_LEGEND = ("Datasheet bounds (MODEL.md section 11): a part of range R whose
                 "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). ∞ = the profile does not excite it.")
 
 
-def shares(constants: AllocationConstants, linear: bool = False) -> dict[str, str]:
+def shares(constants: AllocationConstants, linear: bool = False, m3: bool = False,
+           m5: bool = False) -> dict[str, str]:
     """The share of Δ* behind each bound, as printed in the tables.
 
     ``linear``: for a profile with linear vibration, whose additive shares
     include α6 for the g² term (MODEL.md section 8), so that α1..α5 shrink.
+    ``m3`` / ``m5``: a profile whose phase-locked harmonics give M3 ≠ 0 /
+    M5 ≠ 0 (MODEL.md section 10): k3 / k5 gain additive shares, and with M3 ≠ 0
+    Δ(1) is split between k3, k4, k5 (β1/3 each) and Δ(2) between k4, k5 (β2/2).
     """
     a, b = constants.alpha, constants.beta
     extra: dict[str, str] = {}
+    w, we = constants.weights, constants.extra_weights
+    present = [linear, m3, m5]
+    norm = math.sqrt(float(np.sum(w**2)) + sum(float(e) ** 2 for on, e in
+                                                zip(present, we, strict=True) if on))
+    scale = constants.c_additive / norm
+    if any(present):
+        a = w * scale
     if linear:
-        w, w6 = constants.weights, float(constants.extra_weights[0])
-        norm = math.hypot(float(np.linalg.norm(w)), w6)
-        a = w * constants.c_additive / norm
-        extra["vre"] = f"α6 = {w6 * constants.c_additive / norm:.4g}"
+        extra["vre"] = f"α6 = {float(we[0]) * scale:.4g}"
+    if m3:
+        third, half2 = float(b[0]) / 3.0, float(b[1]) / 2.0
+        k3_add = f"α = {float(we[1]) * scale:.4g} | "
+        k5_add = f"α = {float(we[2]) * scale:.4g} | " if m5 else ""
+        return {
+            "A1": f"α1 = {a[0]:.4g}",
+            "k2": f"α2 = {a[1]:.4g}",
+            "k3": f"{k3_add}β1/3 = {third:.4g}",
+            "k4": f"α3 = {a[2]:.4g} | β1/3 = {third:.4g} | β2/2 = {half2:.4g}",
+            "k5": f"{k5_add}β1/3 = {third:.4g} | β2/2 = {half2:.4g} | β3 = {b[2]:.4g}",
+            "m31": f"α4 = {a[3]:.4g}",
+            "m32": f"α5 = {a[4]:.4g}",
+            **extra,
+        }
     # the exact method splits β1 equally between k3 and the linear k5 (they add
     # linearly in Δ(1), MODEL.md section 6); the paper prints its own 0.35
     half = abs(constants.k3 - float(b[0]) / 2.0) <= 1e-12 * float(b[0])
@@ -141,7 +163,7 @@ def shares(constants: AllocationConstants, linear: bool = False) -> dict[str, st
         "k2": f"α2 = {a[1]:.4g}",
         "k3": k3,
         "k4": f"α3 = {a[2]:.4g} | β2 = {b[1]:.4g}",
-        "k5": f"{k5} | β3 = {b[2]:.4g}",
+        "k5": (f"α = {float(we[2]) * scale:.4g} | " if m5 else "") + f"{k5} | β3 = {b[2]:.4g}",
         "m31": f"α4 = {a[3]:.4g}",
         "m32": f"α5 = {a[4]:.4g}",
         **extra,
@@ -170,7 +192,9 @@ def has_vre(bounds: CoefficientBounds, j: int) -> bool:
 
 def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     linear = has_vre(result.bounds, j)
-    share = shares(result.allocation, linear=linear)
+    odd = [getattr(result.bounds, name) for name in ("k3_additive", "k5_additive")]
+    m3, m5 = (part is not None and bool(np.isfinite(part[j])) for part in odd)
+    share = shares(result.allocation, linear=linear, m3=m3, m5=m5)
     unit = table_unit(result)
     converted = _Converted(result)
     rows = [[name, fmt(in_table_unit(result, name, getattr(result.bounds, name)[j])),

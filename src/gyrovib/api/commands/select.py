@@ -16,7 +16,7 @@ from gyrovib.api.commands.bounds import (
     resolve_allocation,
 )
 from gyrovib.api.convert import bound_factors, sensor_ranges
-from gyrovib.api.prepare import Prepared, check_bounds, check_finite, float_guard, prepare
+from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.reasons import saturation_reasons
 from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.catalog.loader import Catalog
@@ -163,6 +163,8 @@ def select(
                                   g2_sensitivity=prepared.g2[group.index])
             rms[group.index] = err.rms
             total[group.index] = np.abs(err.total)
+            if method == "exact":
+                _worst_phase_totals(prepared, group, total)
             reach[group.index] = group.reach(prepared.rates[:, 2])[None]
         # a spec-form sensor saturates against its datasheet range (specs.range)
         ranges = sensor_ranges(prepared.sensors)
@@ -254,3 +256,25 @@ def _effective_vre(prepared: Prepared) -> FloatArray:
     moments = np.array([np.zeros(6) if v is None else v.moments() for v in prepared.linear],
                        dtype=float).reshape(len(prepared.profiles), 6)
     return effective_vre(prepared.g2, moments)
+
+
+def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray) -> None:
+    """|Δ_V| maximised over the phases of ``phase: worst`` orders (MODEL.md section 10).
+
+    The synthesis multipliers take each moment at its largest magnitude, which
+    fixes their signs; the direct test |Δ_V| ≤ Δ* needs, as ``analyze`` does,
+    the maximum of |Δ_V| over the free phases per sensor. Overwrites those
+    profiles' columns of ``total`` (deg/s).
+    """
+    from gyrovib.core.phases import worst_phase_error
+
+    idx = group.index
+    for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
+        if not any(g.worst.any() for g in locked):
+            continue
+        linear = prepared.linear[j] if prepared.linear else None
+        found = worst_phase_error(prepared.coefficients[idx], v, locked,
+                                  float(prepared.rates[j, 2]),
+                                  acceleration=None if linear is None else linear.moments(),
+                                  g2_sensitivity=None if linear is None else prepared.g2[idx])
+        total[idx, j] = np.abs(found.error.total)
