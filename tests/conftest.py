@@ -46,6 +46,39 @@ profiles:
 """
 
 
+# One tone a3 = 2 deg/s (a1 = 1, a2 = ½) at 100 Hz, Ω̄ = 0.5 deg/s, and Gaussian
+# σ = (0.5, 0.5, 1) deg/s at Ω̄ = 2 deg/s: the two angular profiles shared by the
+# selection tests (test_select_cli.py, test_specs.py).
+TONE_AND_NOISE = """
+profiles:
+  - id: tone
+    rate: [0, 0, 0.5]
+    harmonic:
+      - frequency: 100
+        amplitude: [1.0, 0.5, 2.0]
+  - id: noise
+    rate: [0, 0, 2.0]
+    random:
+      rms: [0.5, 0.5, 1.0]
+"""
+
+# The linear profile 'lin' (one list item, indented to sit under ``profiles:``), shared
+# by test_linear_api.py and test_specs_linear.py. Tones A = (1, 2, 3) g at 100 Hz with
+# phases (0, 90, 0)°, random σ = (1, 2, 0.5) g, ρ = (0.5, −0.2, 0): Σ⟨a_j²⟩ = 1.5 + 6 +
+# 4.75 = 12.25 g² (worked in test_linear_api.py, MODEL.md section 8).
+LINEAR_PROFILE = """\
+  - id: lin
+    rate: [0, 0, 10]
+    random: {rms: [0.5, 0.5, 1.0]}
+    acceleration:
+      harmonic:
+        - {frequency: 100, amplitude: [1.0, 2.0, 3.0], phase: [0, 90, 0]}
+      random:
+        rms: [1.0, 2.0, 0.5]
+        coherence: [0.5, -0.2, 0.0]
+"""
+
+
 def invoke(*args: object, input: str | bytes | None = None,
            env: Mapping[str, str | None] | None = None, crash_ok: bool = False) -> Result:
     """Run the gyrovib CLI in-process with ``args``; click's Result (stdout, stderr apart).

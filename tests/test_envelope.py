@@ -315,6 +315,10 @@ def test_rms_with_minimax_is_refused() -> None:
 @pytest.mark.parametrize(("of", "measure"), [("range", "max"), ("span", "rms"),
                                              ("rate", "max")])
 def test_nl_max_times_w1_is_the_share(of: str, measure: str) -> None:
+    # S = Σ⟨a_j²⟩ = 0 (no linear vibration) and 9 g². MODEL.md section 11 splits Δ*
+    # between envelope and g² term in the ratio (1, 1) over the parts the profile
+    # excites: profile 0 gives the envelope all of Δ* (share 1, VRE_max = +inf),
+    # profile 1 half each (share ½, VRE_max = ½·Δ*/S = ½·0.01/9).
     t = np.concatenate([profile(0.3), profile(1.0, m3=0.5)])
     s = np.array([0.0, 9.0])
     r, budget = 300.0, 0.01
@@ -332,7 +336,8 @@ def test_nl_max_times_w1_is_the_share(of: str, measure: str) -> None:
 
 
 def test_nonlinearity_limit() -> None:
-    # 0.1 %FS of 300 deg/s = 0.3 deg/s; of the span 600 deg/s: 0.6 deg/s
+    # 0.1 %FS of 300 deg/s = 0.3 deg/s; of the span 600 deg/s: 0.6 deg/s;
+    # an absolute rate is the limit itself, 0.25 deg/s (MODEL.md section 11, b)
     assert nonlinearity_limit(0.1, 300.0, "range") == pytest.approx(0.3)
     assert nonlinearity_limit(0.1, 300.0, "span") == pytest.approx(0.6)
     assert nonlinearity_limit(0.25, 300.0, "rate") == pytest.approx(0.25)

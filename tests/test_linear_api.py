@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 
 from gyrovib.api import analyze, bounds, load, select, sweep
 from gyrovib.cli.main import cli
+from tests.conftest import LINEAR_PROFILE
 
 G0 = 9.80665  # m/s² per g (the standard gravity of units.acceleration)
 
@@ -34,7 +35,8 @@ G0 = 9.80665  # m/s² per g (the standard gravity of units.acceleration)
 # G = (4e-4, 4e-4, 4e-4, 1e-4, −2e-4, 3e-4) deg/s/g²:
 #   Δ0(6) = 4e-4·12.25 + 1e-4·1 − 2e-4·1.4 = 4.9e-3 + 1e-4 − 2.8e-4 = 4.72e-3 deg/s
 #   Σ⟨a_j²⟩ = 12.25 g²; effective VRE = 4.72e-3/12.25 = 3.853e-4 deg/s/g²
-TONES_AND_RANDOM = """
+TONES_AND_RANDOM = (
+    """
 gyrovib: 1
 units: {rate: deg/s}
 sensors:
@@ -44,19 +46,14 @@ sensors:
   - id: no-g2
     coefficients: {k2: 1.0e-4}
 profiles:
-  - id: lin
-    rate: [0, 0, 10]
-    random: {rms: [0.5, 0.5, 1.0]}
-    acceleration:
-      harmonic:
-        - {frequency: 100, amplitude: [1.0, 2.0, 3.0], phase: [0, 90, 0]}
-      random:
-        rms: [1.0, 2.0, 0.5]
-        coherence: [0.5, -0.2, 0.0]
+"""
+    + LINEAR_PROFILE
+    + """\
   - id: angular-only
     rate: [0, 0, 10]
     random: {rms: [0.5, 0.5, 1.0]}
 """
+)
 DELTA6 = 4.72e-3
 
 # A flat PSD S = 0.01 g²/Hz over 10–1000 Hz on x3 behind the acceleration's own mount,
@@ -343,16 +340,7 @@ sensors:
     vre: -4.0e-4
     coefficients: {k2: 0.0}
 profiles:
-  - id: lin
-    rate: [0, 0, 10]
-    random: {rms: [0.5, 0.5, 1.0]}
-    acceleration:
-      harmonic:
-        - {frequency: 100, amplitude: [1.0, 2.0, 3.0], phase: [0, 90, 0]}
-      random:
-        rms: [1.0, 2.0, 0.5]
-        coherence: [0.5, -0.2, 0.0]
-"""
+""" + LINEAR_PROFILE
     path = write(tmp_path, text)
     bound = (1.5 / math.sqrt(3.25)) / math.sqrt(4.5) * 0.01 / 12.25
     doc = cli_json("select", path, "--budget", "0.01")

@@ -110,6 +110,7 @@ def test_worst_phase_is_searched_and_reported(tmp_path: Path) -> None:
         coefficients: {k3: 1.0e-5}
     """)
     row = rows(path)[0]
+    # a1 = 2, a2 = 1 (GROUP): max |M3| = ¾·4·1 = 3 (deg/s)³ -> |k3·M3| = 1e-5·3 = 3e-5 deg/s
     assert abs(row["additive_terms"]["k3"]) == pytest.approx(3.0e-5, rel=1e-9)
     (found,) = row["worst_phases"]
     assert set(found) == {"2"}

@@ -13,24 +13,14 @@ from typing import Any
 
 import pytest
 
+from tests.conftest import TONE_AND_NOISE
 from tests.conftest import invoke as run
 
 BUDGET = 0.01  # deg/s
 
 # One tone a3 = 2 deg/s (a1 = 1, a2 = ½) at 100 Hz, Ω̄ = 0.5 deg/s, and Gaussian
-# σ = (0.5, 0.5, 1) deg/s at Ω̄ = 2 deg/s (the profiles of test_synthesis.py).
-PROFILES = """
-profiles:
-  - id: tone
-    rate: [0, 0, 0.5]
-    harmonic:
-      - frequency: 100
-        amplitude: [1.0, 0.5, 2.0]
-  - id: noise
-    rate: [0, 0, 2.0]
-    random:
-      rms: [0.5, 0.5, 1.0]
-"""
+# σ = (0.5, 0.5, 1) deg/s at Ω̄ = 2 deg/s (conftest.TONE_AND_NOISE).
+PROFILES = TONE_AND_NOISE
 # k2 bounds (exact, Δ* = 0.01): α2·Δ*/M2 with α2 = 0.4447496 —
 #   tone: M2 = a²/2 = 2 → 0.0022237;  noise: M2 = σ² = 1 → 0.0044475.
 # good: k2 = 1e-4 is far inside both; its only term k2·M2 ≤ 2e-4 deg/s ≪ Δ*.

@@ -25,22 +25,12 @@ from gyrovib.api import specs
 from gyrovib.api.entries import load
 from gyrovib.api.prepare import prepare
 from gyrovib.core.envelope import term_functionals, worst_case
+from tests.conftest import TONE_AND_NOISE
 from tests.conftest import invoke as run
 
 # One tone a3 = 2 deg/s (a1 = 1, a2 = ½) at 100 Hz, Ω̄ = 0.5 deg/s, and Gaussian
-# σ = (0.5, 0.5, 1) deg/s at Ω̄ = 2 deg/s (the profiles of test_select_cli.py).
-PROFILES = """
-profiles:
-  - id: tone
-    rate: [0, 0, 0.5]
-    harmonic:
-      - frequency: 100
-        amplitude: [1.0, 0.5, 2.0]
-  - id: noise
-    rate: [0, 0, 2.0]
-    random:
-      rms: [0.5, 0.5, 1.0]
-"""
+# σ = (0.5, 0.5, 1) deg/s at Ω̄ = 2 deg/s (conftest.TONE_AND_NOISE).
+PROFILES = TONE_AND_NOISE
 
 R = 100.0  # deg/s
 NL = 0.5  # %FS of R -> b = 0.5 deg/s

@@ -19,6 +19,7 @@ import yaml
 
 import gyrovib
 from gyrovib.catalog.loader import bundled_paths
+from tests.conftest import LINEAR_PROFILE
 from tests.conftest import invoke as run
 
 # Flat PSDs of the bundled profiles (their comments in profiles.gyrovib.yaml):
@@ -104,16 +105,7 @@ sensors:
       nonlinearity: {value: 0.001, unit: "%FS", fit: least-squares, measure: max}
       vre: 0.0004
 profiles:
-  - id: lin
-    rate: [0, 0, 10]
-    random: {rms: [0.5, 0.5, 1.0]}
-    acceleration:
-      harmonic:
-        - {frequency: 100, amplitude: [1.0, 2.0, 3.0], phase: [0, 90, 0]}
-      random:
-        rms: [1.0, 2.0, 0.5]
-        coherence: [0.5, -0.2, 0.0]
-"""
+""" + LINEAR_PROFILE
 
 
 def test_select_mixes_the_coefficient_vre_check_and_the_datasheet_checks(

@@ -32,6 +32,9 @@ from gyrovib.core.synthesis import (
 )
 
 BUDGET = 0.01
+# MODEL.md section 6, eq. (20) with r = 1.5: c_A = r/√(1+r²) = 1.5/√3.25 = 0.8320503,
+# c_M = 1/√3.25 = 0.5547002; eq. (24): β_q = v_q·c_M/‖v‖ with v = (1, ½, ½), ‖v‖ = √1.5:
+# β1 = 0.5547002/1.2247449 = 0.4529108, β2 = β3 = 0.2264554 (as in test_synthesis.py).
 C_A = 0.8320503
 BETA = (0.4529108, 0.2264554, 0.2264554)
 
