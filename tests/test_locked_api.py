@@ -266,3 +266,29 @@ def test_bounds_table_prints_the_shares_of_section_10(tmp_path: Path) -> None:
     assert f"α = {alpha:.4g} | β1/3 = 0.151" in text
     assert "β2/2 = 0.1132" in text
     assert "β1/2" not in text
+
+
+def test_bounds_table_names_the_binding_section_10_part(tmp_path: Path) -> None:
+    # MODEL.md section 10: each bound is the least of its parts; the table's
+    # candidates line must list the section-10 parts and name the least, as the JSON
+    # parts give it (orders 1 and 2 with φ2 − 2φ1 = 90°: M3 ≠ 0, so k3 has two parts)
+    path = tmp_path / "rotor.yaml"
+    path.write_text(
+        "gyrovib: 1\nprofiles:\n  - id: rotor\n    rate: [0, 0, 20]\n    harmonics:\n"
+        "      fundamental: 40\n      orders:\n"
+        "        - {order: 1, amplitude: [0.1, 0.1, 2.0], phase: [0, 0, 0]}\n"
+        "        - {order: 2, amplitude: [0.0, 0.0, 1.0], phase: [0, 0, 90]}\n")
+    doc = json.loads(run("bounds", path, "--budget", "0.01", "--format", "json").stdout)
+    parts = doc["profiles"][0]["parts"]
+    table = run("bounds", path, "--budget", "0.01", env={"COLUMNS": "160"}).stdout
+    for name, labels in (("k3", ("additive", "linear")),
+                         ("k4", ("additive", "multiplicative", "linear")),
+                         ("k5", ("additive", "linear", "quadratic", "cubic"))):
+        keys = {"additive": f"{name}_additive", "linear": f"{name}_linear",
+                "multiplicative": f"{name}_multiplicative", "quadratic": f"{name}_quadratic",
+                "cubic": f"{name}_cubic"}
+        least = min(labels, key=lambda label: parts[keys[label]])
+        line = next(row for row in table.splitlines()
+                    if row.startswith(f"│ {name} ") and "binds" in row)
+        assert all(f"{label} " in line for label in labels), line
+        assert f"{least} binds" in line, line

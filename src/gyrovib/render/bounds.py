@@ -170,19 +170,36 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
     }
 
 
+#: The parts whose least is each coefficient's bound (MODEL.md sections 6 and 10):
+#: label and attribute of :class:`~gyrovib.core.synthesis.CoefficientBounds`. The
+#: section-10 parts exist only with odd moments (None, or not finite, otherwise).
+_CANDIDATES = {
+    "k3": (("additive", "k3_additive"), ("linear", "k3_linear")),
+    "k4": (("additive", "k4_additive"), ("multiplicative", "k4_multiplicative"),
+           ("linear", "k4_linear")),
+    "k5": (("additive", "k5_additive"), ("linear", "k5_linear"),
+           ("quadratic", "k5_quadratic"), ("cubic", "k5_cubic")),
+}
+_ALWAYS = {"k4_additive", "k4_multiplicative", "k5_linear", "k5_cubic"}
+
+
 def _which(bounds: Any, j: int, name: str) -> str:
-    """For k4/k5: the two candidates, the smaller one (the bound) marked."""
-    if name == "k4":
-        first, second = ("additive", bounds.k4_additive[j]), ("multiplicative",
-                                                              bounds.k4_multiplicative[j])
-    elif name == "k5":
-        first, second = ("linear", bounds.k5_linear[j]), ("cubic", bounds.k5_cubic[j])
-    else:
+    """For k3/k4/k5: the parts the bound is the least of, the smallest (binding) named."""
+    parts = []
+    for label, attr in _CANDIDATES.get(name, ()):
+        values = getattr(bounds, attr, None)
+        if values is None:
+            continue
+        value = float(values[j])
+        if attr in _ALWAYS or np.isfinite(value):
+            parts.append((label, value))
+    if len(parts) < 2:
         return ""
-    if first[1] == second[1] == float("inf"):
-        return f"{first[0]} ∞, {second[0]} ∞: unconstrained"
-    binding = first[0] if first[1] <= second[1] else second[0]
-    return f"{first[0]} {fmt(first[1])}, {second[0]} {fmt(second[1])}: {binding} binds"
+    if all(value == float("inf") for _, value in parts):
+        return ", ".join(f"{label} ∞" for label, _ in parts) + ": unconstrained"
+    binding = min(parts, key=lambda part: part[1])[0]
+    return (", ".join(f"{label} {fmt(value)}" for label, value in parts)
+            + f": {binding} binds")
 
 
 def has_vre(bounds: CoefficientBounds, j: int) -> bool:
@@ -208,13 +225,15 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
 
 
 class _Converted:
-    """The k4/k5 candidates of a result in its table unit (for :func:`_which`)."""
+    """The k3/k4/k5 candidates of a result in its table unit (for :func:`_which`)."""
 
     def __init__(self, result: BoundsResult) -> None:
         self._result = result
 
     def __getattr__(self, name: str) -> Any:
         values = getattr(self._result.bounds, name)
+        if values is None:  # a section-10 part of a document without odd moments
+            return None
         return [in_table_unit(self._result, name, v) for v in values]
 
 
