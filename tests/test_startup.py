@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-HEAVY = ("numpy", "pydantic", "pydantic_core", "rich", "yaml", "scipy")
+HEAVY = ("numpy", "pydantic", "pydantic_core", "rich", "yaml", "scipy", "highspy")
 
 #: Runs the command in a fresh interpreter, then prints the imported modules.
 VIA_CLI = """

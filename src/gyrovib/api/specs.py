@@ -39,6 +39,7 @@ from gyrovib import units
 from gyrovib.api.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
+from gyrovib.core.envelope_lp import minimax_line
 from gyrovib.core.transmissibility import FloatArray
 
 #: m/s² per g (the standard gravity the catalogue's ``g`` means).
@@ -575,21 +576,8 @@ def worst_residual(result: Any, i: int, j: int, r: int,
         slope = (p[-1] - p[0]) / (2 * big_r)
         line = 0.5 * (p[-1] + p[0]) + slope * w
     elif fit == "minimax":
-        line = _minimax_line(w, p)
+        line = minimax_line(w, p)
     else:
         slope, intercept = np.polyfit(w, p, 1)
         line = intercept + slope * w
     return w, p - line, float(result.nl_limit[i])
-
-
-def _minimax_line(w: FloatArray, p: FloatArray) -> FloatArray:
-    """The line of least max deviation from p on the grid w (a 3-variable LP)."""
-    from scipy.optimize import linprog
-
-    n = w.size
-    a = np.concatenate([np.column_stack([-np.ones(n), -w, -np.ones(n)]),
-                        np.column_stack([np.ones(n), w, -np.ones(n)])])
-    b = np.concatenate([-p, p])
-    res = linprog([0.0, 0.0, 1.0], A_ub=a, b_ub=b, bounds=[(None, None)] * 3, method="highs")
-    out: FloatArray = res.x[0] + res.x[1] * w
-    return out

@@ -54,9 +54,6 @@ _CLUSTER = np.array([-3e-3, -1e-4, 1e-4, 3e-3])
 #: Pairs solved from the coarse grid alone before the others are seeded.
 SEEDS = 16
 
-_HIGHS = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10,
-          "presolve": False}
-
 
 def basis(fit: np.ndarray, u: np.ndarray) -> FloatArray:
     """ψ(u) of the module docstring, shape (..., 5); fit: FITS index, broadcast with u."""
@@ -206,8 +203,7 @@ def _solve_grids(fit: np.ndarray, a: np.ndarray, d: np.ndarray,
     multipliers of the equality rows are the primal (y, α, β). Returns the
     grid optimum (K,), y (K, 5), line (K, 2).
     """
-    from scipy.optimize import linprog
-    from scipy.sparse import coo_array
+    from gyrovib.core import highs
 
     k = d.shape[0]
     counts = np.array([g.size for g in grids])
@@ -217,29 +213,30 @@ def _solve_grids(fit: np.ndarray, a: np.ndarray, d: np.ndarray,
     vals = np.concatenate([basis(fit[blk], u), -np.ones((m, 1)), -u[:, None]], axis=1)
     keep = np.ones((m, 7), dtype=bool)
     keep[:, 5:] = (fit[blk] == MINIMAX)[:, None]
+    # column j (λ⁺_j, then λ⁻_j) holds ψ̃(u_j) in the 5 or 7 rows of its block;
+    # boolean indexing walks (m, 7) row-major, so the entries come column by column
     rows = (7 * blk[:, None] + np.arange(7))[keep]
-    cols = np.broadcast_to(np.arange(m)[:, None], (m, 7))[keep]
     v = vals[keep]
-    cut = np.isfinite(a)
-    mu = np.flatnonzero(cut)
+    per_col = keep.sum(axis=1)
+    mu = np.flatnonzero(np.isfinite(a))
     n_mu = mu.size
-    r_all = np.concatenate([rows, rows, 7 * mu, 7 * mu])
-    c_mu = 2 * m + np.arange(n_mu)
-    c_all = np.concatenate([cols, m + cols, c_mu, c_mu + n_mu])
-    v_all = np.concatenate([v, -v, np.ones(n_mu), -np.ones(n_mu)])
-    a_eq = coo_array((v_all, (r_all, c_all)), shape=(7 * k, 2 * m + 2 * n_mu)).tocsr()
+    sizes = np.concatenate([per_col, per_col, np.ones(2 * n_mu, dtype=int)])
+    start = np.concatenate([[0], np.cumsum(sizes)])
+    index = np.concatenate([rows, rows, 7 * mu, 7 * mu])
+    value = np.concatenate([v, -v, np.ones(n_mu), -np.ones(n_mu)])
     b_eq = np.concatenate([d, np.zeros((k, 2))], axis=1).ravel()
     cost = np.concatenate([np.ones(2 * m), a[mu], a[mu]])
-    res = linprog(cost, A_eq=a_eq, b_eq=b_eq, bounds=(0, None), method="highs",
-                  options=_HIGHS)
-    if res.status != 0:
+    n = cost.size
+    args = (cost, start, index, value, b_eq, b_eq, np.zeros(n), np.full(n, np.inf))
+    res = highs.solve(*args, options=highs.TIGHT)
+    if not res.ok:
         # HiGHS can stall at the tight tolerances on a badly scaled block (a tight
         # asymmetry cut with the minimax line); its defaults solve it, and the
         # refinement checks feasibility on the continuous range either way.
-        res = linprog(cost, A_eq=a_eq, b_eq=b_eq, bounds=(0, None), method="highs")
-    if res.status != 0:  # pragma: no cover - the envelope is compact, its dual feasible
-        raise ArithmeticError(f"envelope LP failed: {res.message}")
-    x = np.asarray(res.eqlin.marginals, dtype=float).reshape(k, 7)
+        res = highs.solve(*args)
+    if not res.ok:  # pragma: no cover - the envelope is compact, its dual feasible
+        raise ArithmeticError(f"envelope LP failed: {res.status}")
+    x = res.row_dual.reshape(k, 7)
     y = x[:, :5]
     return np.einsum("ki,ki->k", d, y), y, x[:, 5:]
 
@@ -373,3 +370,26 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     line[:, 0] += np.einsum("ki,ki->k", y, OFFSET[fit])
     line[:, 1] += np.einsum("ki,ki->k", y, SLOPE[fit])
     return h, y, line, gap
+
+
+def minimax_line(w: np.ndarray, p: np.ndarray) -> FloatArray:
+    """The line c0 + c1·w of least max deviation from p on the grid w, evaluated on w.
+
+    A 3-variable LP (c0, c1, t): min t s.t. p ≤ c0 + c1·w + t and
+    c0 + c1·w − t ≤ p at every point.
+    """
+    from gyrovib.core import highs
+
+    w = np.asarray(w, dtype=float)
+    p = np.asarray(p, dtype=float)
+    n = w.size
+    start = np.array([0, 2 * n, 4 * n, 6 * n])
+    index = np.tile(np.arange(2 * n), 3)
+    value = np.concatenate([np.ones(2 * n), w, w, np.ones(n), -np.ones(n)])
+    lower = np.concatenate([p, np.full(n, -np.inf)])
+    upper = np.concatenate([np.full(n, np.inf), p])
+    res = highs.solve(np.array([0.0, 0.0, 1.0]), start, index, value, lower, upper,
+                      np.full(3, -np.inf), np.full(3, np.inf))
+    if not res.ok:  # pragma: no cover - always feasible and bounded below by 0
+        raise ArithmeticError(f"minimax line LP failed: {res.status}")
+    return np.asarray(res.x[0] + res.x[1] * w, dtype=float)
