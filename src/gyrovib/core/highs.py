@@ -71,7 +71,7 @@ def solve(cost: np.ndarray, start: np.ndarray, index: np.ndarray, value: np.ndar
     # The base class: highspy.Highs's constructor registers Python callbacks
     # and prints HiGHS's banner to the C stdout before any option can silence
     # it, which would corrupt a JSON document written to stdout.
-    h = highspy._Highs()
+    h = highspy._Highs()  # type: ignore[attr-defined]
     h.setOptionValue("output_flag", False)
     h.setOptionValue("threads", 1)
     for key, val in (options or {}).items():
