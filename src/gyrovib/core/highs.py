@@ -28,7 +28,7 @@ TIGHT: dict[str, float | str] = {"primal_feasibility_tolerance": 1e-10,
 
 @dataclass(frozen=True)
 class Solution:
-    """What a solve returns: ``ok`` (optimal), the primal ``x``, the row duals and HiGHS's status text.
+    """A solve: ``ok`` (optimal), the primal ``x``, the row duals, HiGHS's status text.
 
     ``row_dual`` is the sensitivity of the (minimised) objective to each row's
     bound, the same sign convention as scipy's ``res.eqlin.marginals``.
