@@ -99,6 +99,20 @@ def _check_fit_measure(fit: np.ndarray, measure: np.ndarray) -> None:
                          "minimax (independent) linearity is defined by the peak deviation")
 
 
+def _unique_rows(key: np.ndarray) -> tuple[FloatArray, np.ndarray]:
+    """The distinct rows of key (sorted) and the index of each row among them.
+
+    np.unique(key, axis=0, return_inverse=True) without importing numpy.ma.
+    """
+    order = np.lexsort(key.T[::-1])
+    s = key[order]
+    first = np.ones(s.shape[0], dtype=bool)
+    first[1:] = np.any(s[1:] != s[:-1], axis=1)
+    inv = np.empty(s.shape[0], dtype=int)
+    inv[order] = np.cumsum(first) - 1
+    return s[first], inv
+
+
 def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
            d: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """support() over (..., 5) directions, each unique normalised pair solved once.
@@ -128,8 +142,7 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     with np.errstate(invalid="ignore", divide="ignore"):
         canon = np.where(norm[:, None] > 0, dd * t / norm[:, None], 0.0)
     key = np.column_stack([f, ms, aa, canon])
-    uniq, inv = np.unique(key, axis=0, return_inverse=True)
-    inv = inv.reshape(-1)
+    uniq, inv = _unique_rows(key)
     h, y, line, gap = support(uniq[:, 0].astype(int), uniq[:, 1].astype(int), uniq[:, 2],
                               uniq[:, 3:])
     hv = (norm * h[inv]).reshape(shape)

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from gyrovib.core import highs
 from gyrovib.core.transmissibility import FloatArray
 
 FITS: tuple[str, ...] = ("least-squares", "minimax", "endpoint")
@@ -106,8 +107,10 @@ def _support_rms(fit: np.ndarray, a: np.ndarray, d: np.ndarray) -> tuple[FloatAr
     k = d.shape[0]
     h = np.zeros(k)
     y = np.zeros((k, 5))
-    for f in np.unique(fit):
+    for f in range(len(FITS)):
         sel = fit == f
+        if not sel.any():
+            continue
         g = gram(int(f))
         gi = np.linalg.inv(g)
         dd = d[sel]
@@ -182,15 +185,42 @@ def true_max(fit: np.ndarray, y: np.ndarray, line: np.ndarray) -> tuple[FloatArr
     return np.max(r, axis=1), u
 
 
+def union(grid: np.ndarray, points: np.ndarray) -> FloatArray:
+    """The sorted distinct values of both (np.unique without numpy.ma, which it imports)."""
+    c = np.sort(np.concatenate([grid, points]))
+    keep = np.ones(c.size, dtype=bool)
+    keep[1:] = c[1:] != c[:-1]
+    return c[keep]
+
+
 def _initial_grid(n: int = 8) -> FloatArray:
     """2n + 1 points on [−1, 1], clustered towards ±1 and 0 (Chebyshev on each half)."""
     t = 0.5 * (1.0 - np.cos(np.pi * np.arange(n + 1) / n))
-    return np.unique(np.concatenate([-t, t]))
+    return union(-t, t)
 
 
-def _solve_grids(fit: np.ndarray, a: np.ndarray, d: np.ndarray,
-                 grids: list[FloatArray]) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """One block-diagonal HiGHS LP: max Σ_k d_kᵀy_k s.t. |r_k(u)| ≤ 1 on grid k.
+def _grid_columns(fit: np.ndarray, blk: np.ndarray,
+                  u: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The dual's columns λ⁺_j (all j), then λ⁻_j, for points u of blocks blk.
+
+    Column j holds ψ̃(u_j) in the rows of its block (5, or 7 with the minimax
+    line); returns the entries per column, their rows and their values.
+    Boolean indexing walks the (m, 7) table row-major, so the entries come
+    column by column.
+    """
+    m = u.size
+    vals = np.concatenate([basis(fit[blk], u), -np.ones((m, 1)), -u[:, None]], axis=1)
+    keep = np.ones((m, 7), dtype=bool)
+    keep[:, 5:] = (fit[blk] == MINIMAX)[:, None]
+    rows = (7 * blk[:, None] + np.arange(7))[keep]
+    v = vals[keep]
+    per_col = keep.sum(axis=1)
+    return (np.concatenate([per_col, per_col]), np.concatenate([rows, rows]),
+            np.concatenate([v, -v]))
+
+
+class _GridLP:
+    """One block-diagonal LP: max Σ_k d_kᵀy_k s.t. |r_k(u)| ≤ 1 on grid k.
 
     Solved as its LP dual, which has 5 (7 with the minimax line) equality
     rows per block instead of two rows per grid point: with ψ̃(u) = (ψ(u), −1,
@@ -200,81 +230,117 @@ def _solve_grids(fit: np.ndarray, a: np.ndarray, d: np.ndarray,
         s.t. Σ_j (λ⁺_j − λ⁻_j)·ψ̃(u_j) + (μ⁺ − μ⁻)·e1 = (d, 0, 0),  λ, μ ≥ 0
 
     (μ absent when a = inf). Its optimum equals the primal one and the
-    multipliers of the equality rows are the primal (y, α, β). Returns the
-    grid optimum (K,), y (K, 5), line (K, 2).
+    multipliers of the equality rows are the primal (y, α, β). A refinement
+    round adds grid points, i.e. columns of the dual: HiGHS re-solves from
+    the last optimal basis, which stays feasible.
     """
-    from gyrovib.core import highs
 
-    k = d.shape[0]
-    counts = np.array([g.size for g in grids])
-    u = np.concatenate(grids)
-    blk = np.repeat(np.arange(k), counts)
-    m = u.size
-    vals = np.concatenate([basis(fit[blk], u), -np.ones((m, 1)), -u[:, None]], axis=1)
-    keep = np.ones((m, 7), dtype=bool)
-    keep[:, 5:] = (fit[blk] == MINIMAX)[:, None]
-    # column j (λ⁺_j, then λ⁻_j) holds ψ̃(u_j) in the 5 or 7 rows of its block;
-    # boolean indexing walks (m, 7) row-major, so the entries come column by column
-    rows = (7 * blk[:, None] + np.arange(7))[keep]
-    v = vals[keep]
-    per_col = keep.sum(axis=1)
-    mu = np.flatnonzero(np.isfinite(a))
-    n_mu = mu.size
-    sizes = np.concatenate([per_col, per_col, np.ones(2 * n_mu, dtype=int)])
-    start = np.concatenate([[0], np.cumsum(sizes)])
-    index = np.concatenate([rows, rows, 7 * mu, 7 * mu])
-    value = np.concatenate([v, -v, np.ones(n_mu), -np.ones(n_mu)])
-    b_eq = np.concatenate([d, np.zeros((k, 2))], axis=1).ravel()
-    cost = np.concatenate([np.ones(2 * m), a[mu], a[mu]])
-    n = cost.size
-    args = (cost, start, index, value, b_eq, b_eq, np.zeros(n), np.full(n, np.inf))
-    res = highs.solve(*args, options=highs.TIGHT)
-    if not res.ok:
-        # HiGHS can stall at the tight tolerances on a badly scaled block (a tight
-        # asymmetry cut with the minimax line); its defaults solve it, and the
-        # refinement checks feasibility on the continuous range either way.
-        res = highs.solve(*args)
-    if not res.ok:  # pragma: no cover - the envelope is compact, its dual feasible
-        raise ArithmeticError(f"envelope LP failed: {res.status}")
-    x = res.row_dual.reshape(k, 7)
-    y = x[:, :5]
-    return np.einsum("ki,ki->k", d, y), y, x[:, 5:]
+    def __init__(self, fit: np.ndarray, a: np.ndarray, d: np.ndarray,
+                 grids: list[FloatArray]) -> None:
+        self.fit, self.a, self.d = fit, a, d
+        self.grids = list(grids)
+        self.model: highs.Model | None = None
+
+    def _build(self, options: dict[str, float | str] | None) -> highs.Model:
+        k = self.d.shape[0]
+        counts = np.array([g.size for g in self.grids])
+        u = np.concatenate(self.grids)
+        sizes, index, value = _grid_columns(self.fit, np.repeat(np.arange(k), counts), u)
+        mu = np.flatnonzero(np.isfinite(self.a))
+        n_mu = mu.size
+        sizes = np.concatenate([sizes, np.ones(2 * n_mu, dtype=int)])
+        start = np.concatenate([[0], np.cumsum(sizes)])
+        index = np.concatenate([index, 7 * mu, 7 * mu])
+        value = np.concatenate([value, np.ones(n_mu), -np.ones(n_mu)])
+        b_eq = np.concatenate([self.d, np.zeros((k, 2))], axis=1).ravel()
+        cost = np.concatenate([np.ones(2 * u.size), self.a[mu], self.a[mu]])
+        n = cost.size
+        return highs.Model(cost, start, index, value, b_eq, b_eq, np.zeros(n),
+                           np.full(n, np.inf), options)
+
+    def add(self, points: dict[int, FloatArray]) -> None:
+        """Add grid points to blocks: {block: new points (not yet on its grid)}."""
+        for j, p in points.items():
+            self.grids[j] = union(self.grids[j], p)
+        if self.model is None:
+            return
+        blk = np.concatenate([np.full(p.size, j) for j, p in points.items()])
+        u = np.concatenate(list(points.values()))
+        sizes, index, value = _grid_columns(self.fit, blk, u)
+        n = sizes.size
+        self.model.add_columns(np.ones(n), np.concatenate([[0], np.cumsum(sizes)]), index,
+                               value, np.zeros(n), np.full(n, np.inf))
+
+    def solve(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The grid optimum (K,), y (K, 5) and line (K, 2) of every block."""
+        if self.model is None:
+            self.model = self._build(highs.TIGHT)
+        res = self.model.run()
+        if not res.ok:
+            # HiGHS can stall at the tight tolerances on a badly scaled block (a tight
+            # asymmetry cut with the minimax line); its defaults solve it, and the
+            # refinement checks feasibility on the continuous range either way. The
+            # next round starts again from a fresh model at the tight tolerances.
+            self.model = None
+            res = self._build(None).run()
+        if not res.ok:  # pragma: no cover - the envelope is compact, its dual feasible
+            raise ArithmeticError(f"envelope LP failed: {res.status}")
+        x = res.row_dual.reshape(-1, 7)
+        y = x[:, :5]
+        return np.einsum("ki,ki->k", self.d, y), y, x[:, 5:]
+
+
+def _new_points(grid: np.ndarray, points: np.ndarray) -> FloatArray:
+    """The distinct values of points that are not on the (sorted) grid."""
+    p = union(points, np.empty(0))
+    pos = np.minimum(np.searchsorted(grid, p), grid.size - 1)
+    out: FloatArray = p[grid[pos] != p]
+    return out
 
 
 def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArray],
             todo: np.ndarray, out: tuple[FloatArray, ...]) -> list[FloatArray]:
     """Grid LP, continuous check, add the residual's violating extrema; repeat.
 
-    Fills ``out`` = (h, y, line, gap) at ``todo`` with the feasible scaled
-    solution; returns each block's final extrema (|r| ≥ 0.99), for seeding.
+    Blocks go CHUNK at a time into one :class:`_GridLP`, re-solved from its
+    last basis after each round adds points. Fills ``out`` = (h, y, line,
+    gap) at ``todo`` with the feasible scaled solution; returns each block's
+    final extrema (|r| ≥ 0.99), for seeding.
     """
     h, y, line, gap = out
     extrema: list[FloatArray] = [np.empty(0)] * d.shape[0]
-    for _ in range(MAX_ROUNDS):
-        if todo.size == 0:
-            break
-        still = []
-        for start in range(0, todo.size, CHUNK):
-            idx = todo[start:start + CHUNK]
-            hg, yg, lg = _solve_grids(fit[idx], a[idx], d[idx], [grids[i] for i in idx])
-            mx, cand = true_max(fit[idx], yg, lg)
+    for start in range(0, todo.size, CHUNK):
+        idx = todo[start:start + CHUNK]
+        lp = _GridLP(fit[idx], a[idx], d[idx], [grids[i] for i in idx])
+        live = np.arange(idx.size)
+        for _ in range(MAX_ROUNDS):
+            hg, yg, lg = (v[live] for v in lp.solve())
+            sel = idx[live]
+            mx, cand = true_max(fit[sel], yg, lg)
             # shrink onto the continuous envelope; never grow (|y1| ≤ a may be what binds)
             scale = 1.0 / np.maximum(mx, 1.0)
-            h[idx] = hg * scale
-            y[idx] = yg * scale[:, None]
-            line[idx] = lg * scale[:, None]
-            gap[idx] = 1.0 - scale
-            r = np.abs(residual_normalised(fit[idx], yg, lg, np.nan_to_num(cand)))
+            h[sel] = hg * scale
+            y[sel] = yg * scale[:, None]
+            line[sel] = lg * scale[:, None]
+            gap[sel] = 1.0 - scale
+            r = np.abs(residual_normalised(fit[sel], yg, lg, np.nan_to_num(cand)))
             ok = ~np.isnan(cand)
-            for j, i in enumerate(idx):
+            adds: dict[int, FloatArray] = {}
+            for j, i in enumerate(sel):
                 extrema[i] = cand[j][ok[j] & (r[j] >= 0.99 * mx[j])]
                 if mx[j] > 1.0 + TOLERANCE:
                     new = cand[j][ok[j] & (r[j] > 1.0)]
                     near = (new[:, None] + _CLUSTER[None, :]).ravel()
                     near = near[np.abs(near) <= 1.0]
-                    grids[i] = np.unique(np.concatenate([grids[i], new, near]))
-                    still.append(i)
-        todo = np.asarray(still, dtype=int)
+                    pts = _new_points(lp.grids[live[j]], np.concatenate([new, near]))
+                    if pts.size:
+                        adds[int(live[j])] = pts
+            if not adds:
+                break
+            lp.add(adds)
+            live = np.fromiter(adds, dtype=int)
+        for j, i in enumerate(idx):
+            grids[i] = lp.grids[j]
     return extrema
 
 
@@ -296,7 +362,9 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
     cut = np.where(np.isfinite(a), cut, 1.0)
     base = _initial_grid()
     grids = [base for _ in range(k)]
-    order = live[np.random.default_rng(0).permutation(live.size)]  # fixed, not global
+    # a fixed spread-out order (golden-ratio scrambling), so the seeds are not
+    # all neighbours in the caller's order
+    order = live[np.argsort((np.arange(live.size) * 0.6180339887498949) % 1.0, kind="stable")]
     solved = np.empty(0, dtype=int)
     extrema: list[FloatArray] = [np.empty(0)] * k
     size = SEEDS
@@ -310,7 +378,7 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
             near = solved[np.argmax(sim, axis=1)]
             for i, n in zip(wave, near, strict=True):
                 if fit[n] == fit[i]:
-                    grids[i] = np.unique(np.concatenate([base, extrema[n]]))
+                    grids[i] = union(base, extrema[n])
         found = _refine(fit, a, d, grids, wave, out)
         for i in wave:
             extrema[i] = found[i]
@@ -330,7 +398,7 @@ def without_idle_cuts(fit: np.ndarray, measure: np.ndarray, a: np.ndarray) -> Fl
     finite = np.flatnonzero(np.isfinite(a))
     if finite.size == 0:
         return a
-    pairs = np.unique(np.column_stack([fit[finite], measure[finite]]), axis=0)
+    pairs = np.array(sorted(set(zip(fit[finite].tolist(), measure[finite].tolist(), strict=True))))
     e1 = np.tile([1.0, 0.0, 0.0, 0.0, 0.0], (pairs.shape[0], 1))
     free, *_ = support(pairs[:, 0], pairs[:, 1], np.full(pairs.shape[0], np.inf), e1)
     for (f, ms), top in zip(pairs, free, strict=True):
@@ -378,8 +446,6 @@ def minimax_line(w: np.ndarray, p: np.ndarray) -> FloatArray:
     A 3-variable LP (c0, c1, t): min t s.t. p ≤ c0 + c1·w + t and
     c0 + c1·w − t ≤ p at every point.
     """
-    from gyrovib.core import highs
-
     w = np.asarray(w, dtype=float)
     p = np.asarray(p, dtype=float)
     n = w.size
