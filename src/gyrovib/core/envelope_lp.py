@@ -1,47 +1,37 @@
-"""The normalised datasheet envelope and its support function (MODEL.md section 11).
+"""The datasheet envelope's support function (MODEL.md section 11).
 
-On the normalised range u = ω/R ∈ [−1, 1] and with the coefficients in units
-of the nonlinearity limit b,
-
-    y = (A1·R, k2·R², k3·R³, k4·R⁴, k5·R⁵) / b                (dimensionless)
-    p(u) = ½·y1·|u| + y2·u² + y3·u³ + y4·u⁴ + y5·u⁵
-
-and the residual from the reference line is r(u) = Σ y_i·ψ_i(u) − α − β·u with
-ψ_i = φ_i − o_i − s_i·u (φ = (½|u|, u², u³, u⁴, u⁵)):
-
-* least-squares: o, s are the least-squares line of each φ_i over uniform u
-  (mean ½|u| = 1/4, mean u² = 1/3, mean u⁴ = 1/5; slope of u³ = (2/5)/(2/3) =
-  3/5, of u⁵ = (2/7)/(2/3) = 3/7), α = β = 0;
-* endpoint: the chord through u = ±1 (o = φ(1) for even φ, s = φ(1) for odd),
-  α = β = 0;
-* minimax: o = s = 0 and (α, β) are free variables.
-
-The envelope E is {y : |r(u)| ≤ 1 on [−1, 1]} (measure max) or
-{y : mean r² ≤ 1} (measure rms), intersected with |y1| ≤ a when an asymmetry
-spec |A1| ≤ a_max gives a = a_max·R/b. E is compact and symmetric, so its
-support function h(d) = max_{y∈E} dᵀy is the worst of any linear functional
-of the coefficients; :func:`support` evaluates it for many (envelope,
-direction) pairs at once.
+The normalised envelope E and its coordinates are defined in
+:mod:`gyrovib.core.envelope_basis`. E is compact and symmetric, so its support
+function h(d) = max_{y∈E} dᵀy is the worst of any linear functional of the
+coefficients; :func:`support` evaluates it for many (envelope, direction)
+pairs at once: in closed form for the rms measure, and for the max measure
+(a semi-infinite LP) by HiGHS on grids refined until a feasible solution and
+an upper bound agree.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import itertools
+
 import numpy as np
 
-from gyrovib.core import highs
+from gyrovib.core import envelope_kkt, highs
+from gyrovib.core.envelope_basis import (
+    FITS,
+    MEASURES,
+    MINIMAX,
+    OFFSET,
+    SLOPE,
+    basis,
+    gram,
+    residual_normalised,
+    true_max,
+)
 from gyrovib.core.transmissibility import FloatArray
 
-FITS: tuple[str, ...] = ("least-squares", "minimax", "endpoint")
-MEASURES: tuple[str, ...] = ("max", "rms")
-
-#: o_i and s_i of the module docstring, rows in the order of FITS.
-OFFSET = np.array([[0.25, 1.0 / 3.0, 0.0, 0.2, 0.0],
-                   [0.0, 0.0, 0.0, 0.0, 0.0],
-                   [0.5, 1.0, 0.0, 1.0, 0.0]])
-SLOPE = np.array([[0.0, 0.0, 0.6, 0.0, 3.0 / 7.0],
-                  [0.0, 0.0, 0.0, 0.0, 0.0],
-                  [0.0, 0.0, 1.0, 0.0, 1.0]])
-MINIMAX = 1
+__all__ = ["FITS", "MEASURES", "basis", "gram", "minimax_line", "residual_normalised", "support",
+           "true_max", "without_idle_cuts"]
 
 #: The grid optimum and the feasible scaled solution agree to this (relative).
 TOLERANCE = 1e-7
@@ -54,44 +44,6 @@ CHUNK = 48
 _CLUSTER = np.array([-3e-3, -1e-4, 1e-4, 3e-3])
 #: Pairs solved from the coarse grid alone before the others are seeded.
 SEEDS = 16
-
-
-def basis(fit: np.ndarray, u: np.ndarray) -> FloatArray:
-    """ψ(u) of the module docstring, shape (..., 5); fit: FITS index, broadcast with u."""
-    u = np.asarray(u, dtype=float)
-    a = np.abs(u)
-    phi = np.stack([0.5 * a, u * u, u**3, u**4, u**5], axis=-1)
-    return np.asarray(phi - OFFSET[fit] - SLOPE[fit] * u[..., None], dtype=float)
-
-
-def residual_normalised(fit: np.ndarray, y: np.ndarray, line: np.ndarray,
-                        u: np.ndarray) -> FloatArray:
-    """r(u) for blocks (K,) of y (K, 5) and line (K, 2) = (α, β) at u (K, m)."""
-    psi = basis(np.asarray(fit)[:, None], u)
-    r = np.einsum("kmi,ki->km", psi, y) - line[:, :1] - line[:, 1:] * u
-    return np.asarray(r, dtype=float)
-
-
-def gram(fit: int) -> FloatArray:
-    """Mean of ψ_i·ψ_j over uniform u ∈ [−1, 1], in closed form (5 × 5).
-
-    Every ψ_i is a combination of f = (1, u, u², u³, u⁴, u⁵, |u|); the means
-    of their products are ½∫u^(a+b) = 1/(a+b+1) for even a+b (0 for odd),
-    ½∫|u|·u^a = 1/(a+2) for even a (0 for odd) and mean u² = 1/3.
-    """
-    h = np.zeros((7, 7))
-    for i in range(6):
-        for j in range(6):
-            h[i, j] = 1.0 / (i + j + 1) if (i + j) % 2 == 0 else 0.0
-        h[i, 6] = h[6, i] = 1.0 / (i + 2) if i % 2 == 0 else 0.0
-    h[6, 6] = 1.0 / 3.0
-    p = np.zeros((5, 7))
-    p[0, 6] = 0.5
-    for i in range(1, 5):
-        p[i, i + 1] = 1.0
-    p[:, 0] -= OFFSET[fit]
-    p[:, 1] -= SLOPE[fit]
-    return np.asarray(p @ h @ p.T, dtype=float)
 
 
 def _support_rms(fit: np.ndarray, a: np.ndarray, d: np.ndarray) -> tuple[FloatArray, FloatArray]:
@@ -138,51 +90,6 @@ def _support_rms(fit: np.ndarray, a: np.ndarray, d: np.ndarray) -> tuple[FloatAr
         h[sel] = val
         y[sel] = yy
     return h, y
-
-
-def _side_roots(q: np.ndarray) -> FloatArray:
-    """Real parts of the roots of the quartics q (K, 5), ascending powers; NaN pads.
-
-    Batched companion-matrix eigenvalues, grouped by effective degree. Complex
-    roots contribute their real part too: extra candidate points are harmless.
-    """
-    k = q.shape[0]
-    out = np.full((k, 4), np.nan)
-    scale = np.max(np.abs(q), axis=1)
-    big = np.abs(q) > 1e-13 * scale[:, None]
-    deg = np.where(big.any(axis=1), 4 - np.argmax(big[:, ::-1], axis=1), 0)
-    for n in range(1, 5):
-        sel = np.flatnonzero(deg == n)
-        if sel.size == 0:
-            continue
-        mon = q[sel, :n] / q[sel, n:n + 1]
-        comp = np.zeros((sel.size, n, n))
-        comp[:, np.arange(1, n), np.arange(n - 1)] = 1.0
-        comp[:, :, n - 1] = -mon
-        out[sel, :n] = np.linalg.eigvals(comp).real
-    return out
-
-
-def true_max(fit: np.ndarray, y: np.ndarray, line: np.ndarray) -> tuple[FloatArray, FloatArray]:
-    """max |r(u)| over [−1, 1] of each block, from every critical point.
-
-    On each side of the kink r is a quintic; its extrema lie at u = −1, 0, 1
-    and the real roots of r' on (−1, 0) and (0, 1). Returns the maxima (K,)
-    and the candidate points (K, 11) (NaN where a side has fewer roots).
-    """
-    lin = -np.einsum("ki,ki->k", y, SLOPE[fit]) - line[:, 1]
-    cands = [np.tile([-1.0, 0.0, 1.0], (y.shape[0], 1))]
-    for side in (-1.0, 1.0):
-        c1 = 0.5 * y[:, 0] * side + lin
-        dq = np.column_stack([c1, 2 * y[:, 1], 3 * y[:, 2], 4 * y[:, 3], 5 * y[:, 4]])
-        roots = _side_roots(dq)
-        lo, hi = (-1.0, 0.0) if side < 0 else (0.0, 1.0)
-        roots = np.where((roots >= lo) & (roots <= hi), roots, np.nan)
-        cands.append(roots)
-    u = np.concatenate(cands, axis=1)
-    r = residual_normalised(fit, y, line, np.nan_to_num(u))
-    r = np.where(np.isnan(u), 0.0, np.abs(r))
-    return np.max(r, axis=1), u
 
 
 def union(grid: np.ndarray, points: np.ndarray) -> FloatArray:
@@ -240,14 +147,28 @@ class _GridLP:
         self.fit, self.a, self.d = fit, a, d
         self.grids = list(grids)
         self.model: highs.Model | None = None
+        # per column of the dual: its block, grid point and sign (+1: λ⁺, −1: λ⁻, 0: μ)
+        self.col_blk = np.empty(0, dtype=int)
+        self.col_u = np.empty(0)
+        self.col_s = np.empty(0)
+
+    def _layout(self, blk: np.ndarray, u: np.ndarray, n_mu: int, reset: bool = False) -> None:
+        parts = [] if reset else [(self.col_blk, self.col_u, self.col_s)]
+        parts += [(blk, u, np.ones(u.size)), (blk, u, -np.ones(u.size)),
+                  (np.full(n_mu, -1), np.zeros(n_mu), np.zeros(n_mu))]
+        self.col_blk = np.concatenate([q[0] for q in parts])
+        self.col_u = np.concatenate([q[1] for q in parts])
+        self.col_s = np.concatenate([q[2] for q in parts])
 
     def _build(self, options: dict[str, float | str] | None) -> highs.Model:
         k = self.d.shape[0]
         counts = np.array([g.size for g in self.grids])
         u = np.concatenate(self.grids)
-        sizes, index, value = _grid_columns(self.fit, np.repeat(np.arange(k), counts), u)
+        blk = np.repeat(np.arange(k), counts)
+        sizes, index, value = _grid_columns(self.fit, blk, u)
         mu = np.flatnonzero(np.isfinite(self.a))
         n_mu = mu.size
+        self._layout(blk, u, 2 * n_mu, reset=True)
         sizes = np.concatenate([sizes, np.ones(2 * n_mu, dtype=int)])
         start = np.concatenate([[0], np.cumsum(sizes)])
         index = np.concatenate([index, 7 * mu, 7 * mu])
@@ -267,12 +188,13 @@ class _GridLP:
         blk = np.concatenate([np.full(p.size, j) for j, p in points.items()])
         u = np.concatenate(list(points.values()))
         sizes, index, value = _grid_columns(self.fit, blk, u)
+        self._layout(blk, u, 0)
         n = sizes.size
         self.model.add_columns(np.ones(n), np.concatenate([[0], np.cumsum(sizes)]), index,
                                value, np.zeros(n), np.full(n, np.inf))
 
-    def solve(self) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """The grid optimum (K,), y (K, 5) and line (K, 2) of every block."""
+    def solve(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """The grid optimum (K,), y (K, 5), line (K, 2) of every block, and the dual's x."""
         if self.model is None:
             self.model = self._build(highs.TIGHT)
         res = self.model.run()
@@ -287,7 +209,49 @@ class _GridLP:
             raise ArithmeticError(f"envelope LP failed: {res.status}")
         x = res.row_dual.reshape(-1, 7)
         y = x[:, :5]
-        return np.einsum("ki,ki->k", self.d, y), y, x[:, 5:]
+        return np.einsum("ki,ki->k", self.d, y), y, x[:, 5:], res.x
+
+    def contacts(self, x: np.ndarray,
+                 blocks: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
+        """The grid optimum's contact points of ``blocks``: u, sign, λ (B, P) and a mask.
+
+        A point's weight is its basic column's value in the dual (x); two
+        neighbours on the grid with the same sign straddle one extremum and
+        become one point, at their λ-weighted mean, with the sum of their λ.
+        """
+        n_blocks = len(self.grids)
+        row = np.full(n_blocks, -1)
+        row[blocks] = np.arange(blocks.size)
+        cols = np.flatnonzero((self.col_s != 0) & (x > 0))
+        cols = cols[row[self.col_blk[cols]] >= 0]
+        total = np.bincount(self.col_blk[cols], weights=x[cols], minlength=n_blocks)
+        cols = cols[x[cols] > 1e-10 * total[self.col_blk[cols]]]
+        cols = cols[np.lexsort((self.col_u[cols], self.col_blk[cols]))]
+        cb, cu, cs, cx = self.col_blk[cols], self.col_u[cols], self.col_s[cols], x[cols]
+        first = np.ones(cols.size, dtype=bool)
+        first[1:] = cb[1:] != cb[:-1]
+        at = np.empty(cols.size, dtype=int)
+        edges = np.append(np.flatnonzero(first), cols.size)
+        for lo, hi in itertools.pairwise(edges):
+            at[lo:hi] = np.searchsorted(self.grids[cb[lo]], cu[lo:hi])
+        merge = ~first
+        merge[1:] &= (cs[1:] == cs[:-1]) & (at[1:] - at[:-1] == 1)
+        gid = np.cumsum(~merge) - 1
+        lam = np.bincount(gid, weights=cx)
+        u = np.bincount(gid, weights=cx * cu) / np.where(lam > 0, lam, 1.0)
+        heads = np.flatnonzero(~merge)
+        gb, gs = cb[heads], cs[heads]
+        gfirst = np.ones(heads.size, dtype=bool)
+        gfirst[1:] = gb[1:] != gb[:-1]
+        start_of = np.maximum.accumulate(np.where(gfirst, np.arange(heads.size), 0))
+        slot = np.arange(heads.size) - start_of
+        p = int(slot.max()) + 1 if slot.size else 1
+        shape = (blocks.size, p)
+        ou, os_, ol = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+        act = np.zeros(shape, dtype=bool)
+        r = row[gb]
+        ou[r, slot], os_[r, slot], ol[r, slot], act[r, slot] = u, gs, lam, True
+        return ou, os_, ol, act
 
 
 def _new_points(grid: np.ndarray, points: np.ndarray) -> FloatArray:
@@ -296,6 +260,18 @@ def _new_points(grid: np.ndarray, points: np.ndarray) -> FloatArray:
     pos = np.minimum(np.searchsorted(grid, p), grid.size - 1)
     out: FloatArray = p[grid[pos] != p]
     return out
+
+
+def _polish(lp: _GridLP, x: np.ndarray, live: np.ndarray, fit: np.ndarray, a: np.ndarray,
+            d: np.ndarray, y0: np.ndarray, line0: np.ndarray) -> envelope_kkt.Polished:
+    """Newton's polish of the grid optimum of blocks ``live`` (see envelope_kkt).
+
+    Blocks with an asymmetry cut are left to the exchange (``ok`` False): the
+    optimality conditions polished there have no term for the cut.
+    """
+    u, sg, lam, act = lp.contacts(x, live)
+    pol = envelope_kkt.polish(fit, d, y0, line0, u, sg, lam, act, TOLERANCE)
+    return dataclasses.replace(pol, ok=pol.ok & np.isinf(a))
 
 
 def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArray],
@@ -314,8 +290,22 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArra
         lp = _GridLP(fit[idx], a[idx], d[idx], [grids[i] for i in idx])
         live = np.arange(idx.size)
         for _ in range(MAX_ROUNDS):
-            hg, yg, lg = (v[live] for v in lp.solve())
+            hg, yg, lg, x = lp.solve()
+            hg, yg, lg = hg[live], yg[live], lg[live]
             sel = idx[live]
+            pol = _polish(lp, x, live, fit[sel], a[sel], d[sel], yg, lg)
+            if pol.ok.any():
+                done = np.flatnonzero(pol.ok)
+                for q in done:
+                    extrema[sel[q]] = pol.points[q][~np.isnan(pol.points[q])]
+                h[sel[done]] = pol.h[done]
+                y[sel[done]] = pol.y[done]
+                line[sel[done]] = pol.line[done]
+                gap[sel[done]] = pol.gap[done]
+                rest = ~pol.ok
+                live, sel, hg, yg, lg = live[rest], sel[rest], hg[rest], yg[rest], lg[rest]
+                if live.size == 0:
+                    break
             mx, cand = true_max(fit[sel], yg, lg)
             # shrink onto the continuous envelope; never grow (|y1| ≤ a may be what binds)
             scale = 1.0 / np.maximum(mx, 1.0)
