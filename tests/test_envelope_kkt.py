@@ -112,21 +112,37 @@ def test_polished_equals_exchange_alone(seed: int, fit: int) -> None:
     assert np.all(gap <= 1e-7)
 
 
-def test_cut_pairs_are_left_to_the_exchange(monkeypatch: pytest.MonkeyPatch) -> None:
-    # the optimality conditions have no term for |y1| ≤ a: such pairs must never be
-    # accepted from the polish
-    seen: list[np.ndarray] = []
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), fit=st.sampled_from(range(len(FITS))),
+       cut=st.floats(0.01, 3.0))
+def test_binding_cut_is_polished_like_the_exchange(seed: int, fit: int, cut: float) -> None:
+    # with |y1| ≤ a binding (directions weighting A1 heavily), the polish solves the
+    # conditions with the cut's weight μ; it agrees with the grid exchange alone and its
+    # answer respects the cut
+    rng = np.random.default_rng(seed)
+    d = rng.normal(size=(4, 5))
+    d[:, 0] = 5.0 + rng.random(4)
+    f = np.full(4, fit)
+    ms = np.zeros(4, dtype=int)
+    a = np.full(4, cut)
+    accepted: list[int] = []
     real = envelope_lp._polish
 
     def spy(*args: object, **kwargs: object) -> envelope_kkt.Polished:
         pol = real(*args, **kwargs)  # type: ignore[arg-type]
-        seen.append(pol.ok.copy())
+        accepted.append(int(pol.ok.sum()))
         return pol
 
-    monkeypatch.setattr(envelope_lp, "_polish", spy)
-    d = np.array([[1.0, 0.3, 0.0, 0.1, 0.0]])
-    envelope_lp.support(np.array([0]), np.array([0]), np.array([0.05]), d)
-    assert seen and not any(ok.any() for ok in seen)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(envelope_lp, "_polish", spy)
+        h, y, _, gap = envelope_lp.support(f, ms, a, d)
+    with pytest.MonkeyPatch.context() as mp:
+        _exchange_only(mp)
+        h_ex, *_ = envelope_lp.support(f, ms, a, d)
+    np.testing.assert_allclose(h, h_ex, rtol=3e-7)
+    assert np.all(np.abs(y[:, 0]) <= cut * (1 + 1e-12))
+    assert np.all(gap <= 1e-7)
+    assert sum(accepted) > 0
 
 
 def test_true_max_of_the_polished_chebyshev_is_one() -> None:

@@ -10,11 +10,13 @@ At its optimum the residual r = ψ̃ᵀỹ touches ±1 at a few points v_j, and
     ψ̃(v_j)ᵀỹ = s_j                 (r = ±1 there, s_j = ±1)
     ψ̃′(v_j)ᵀỹ = 0                  (an extremum, for v_j inside a side)
 
-with v_j fixed where it is an end u = ±1 or the kink u = 0. A grid LP
+with v_j fixed where it is an end u = ±1 or the kink u = 0. With an
+asymmetry cut |y1| ≤ a that binds, the stationarity gains s_μ·μ·e1 (μ ≥ 0)
+and y1 = s_μ·a holds. A grid LP
 solved by HiGHS names the points (its basic columns) and gives a starting
 point; :func:`polish` solves these equations by Newton's method. The result
-carries its own certificate: for any feasible y, dᵀy = Σ s_j·λ_j·r(v_j) ≤
-Σ λ_j (weak duality), so Σ λ_j bounds the continuous optimum from above
+carries its own certificate: for any feasible y, dᵀy = Σ s_j·λ_j·r(v_j) + s_μ·μ·y1 ≤
+Σ λ_j + a·μ (weak duality), so that sum bounds the continuous optimum from above
 while ỹ scaled onto the envelope (its true max |r| from every critical
 point) bounds it from below. The grid exchange
 (:mod:`gyrovib.core.envelope_lp`) accepts a polished pair only when the two
@@ -90,7 +92,8 @@ def _solve(jac: np.ndarray, rhs: np.ndarray) -> tuple[FloatArray, np.ndarray]:
 
 def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
            u0: np.ndarray, sign: np.ndarray, lam0: np.ndarray, active: np.ndarray,
-           tolerance: float) -> Polished:
+           tolerance: float, cut: np.ndarray | None = None,
+           mu0: np.ndarray | None = None) -> Polished:
     """Newton's method on the optimality conditions of the module docstring.
 
     fit (K,) FITS indices, d (K, 5) directions, y0 (K, 5) and line0 (K, 2) a
@@ -98,19 +101,27 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
     and weights λ_j ≥ 0, padded where ``active`` is False. Points at −1, 0
     or 1 stay there; the others move to the extremum of their side (a pair
     whose point would leave its side is not polished). ``tolerance`` is the
-    relative gap of the bounds under which a pair is ``ok``.
+    relative gap of the bounds under which a pair is ``ok``. ``cut`` (K,)
+    is a (inf: none) and ``mu0`` (K,) the grid optimum's signed weight of the
+    cut, μ⁺ − μ⁻ (0 where it does not bind).
     """
     k, p = u0.shape
-    n = 7 + 2 * p
+    n = 8 + 2 * p
+    a = np.full(k, np.inf) if cut is None else np.asarray(cut, dtype=float)
+    m0 = np.zeros(k) if mu0 is None else np.asarray(mu0, dtype=float)
+    total = np.sum(np.where(active, lam0, 0.0), axis=1) + np.abs(m0)
+    binds = np.isfinite(a) & (np.abs(m0) > 1e-10 * total)
+    s_mu = np.where(binds, np.sign(m0), 0.0)
+    a_fin = np.where(np.isfinite(a), a, 0.0)
     mm = fit == MINIMAX
     free = active & (u0 != 0) & (np.abs(u0) != 1)
     dt = np.concatenate([d, np.zeros((k, 2))], axis=1)
     z = np.concatenate([y0, np.where(mm[:, None], line0, 0.0), np.where(active, lam0, 0.0),
-                        u0], axis=1)
+                        u0, np.abs(m0)[:, None] * binds[:, None]], axis=1)
     alive = np.ones(k, dtype=bool)
     done = np.zeros(k, dtype=bool)
     ip = np.arange(p)
-    lam_i, v_i = 7 + ip, 7 + p + ip
+    lam_i, v_i, m_i = 7 + ip, 7 + p + ip, 7 + 2 * p
     w = np.where(active, sign, 0.0)
     for _ in range(ITERATIONS):
         run = alive & ~done
@@ -118,18 +129,22 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
             break
         zz, f_, fr, uu, ww, ac, fe = (z[run], fit[run], mm[run], u0[run], w[run], active[run],
                                       free[run])
-        y, lam, v = zz[:, :7], zz[:, 7:7 + p], zz[:, 7 + p:]
+        bd, sm = binds[run], s_mu[run]
+        y, lam, v, mu = zz[:, :7], zz[:, 7:7 + p], zz[:, 7 + p:m_i], zz[:, m_i]
         ps, dp = _psi(f_, v), _dpsi(f_, v)
         curv = np.einsum("kpi,ki->kp", _d2psi(v), y)
         slope = np.einsum("kpi,ki->kp", dp, y)
         fa = np.einsum("kp,kpi->ki", ww * lam, ps) - dt[run]
+        fa[:, 0] += sm * mu
         fa[~fr, 5:] = y[~fr, 5:]
         fb = np.where(ac, np.einsum("kpi,ki->kp", ps, y) - np.where(ac, sign[run], 0.0), lam)
         fc = np.where(fe, slope, v - uu)
-        f = np.concatenate([fa, fb, fc], axis=1)
+        fm = np.where(bd, y[:, 0] - sm * a_fin[run], mu)
+        f = np.concatenate([fa, fb, fc, fm[:, None]], axis=1)
         jac = np.zeros((zz.shape[0], n, n))
         jac[:, :7, 7:7 + p] = (ww[:, :, None] * ps).transpose(0, 2, 1)
-        jac[:, :7, 7 + p:] = ((ww * lam)[:, :, None] * dp).transpose(0, 2, 1)
+        jac[:, :7, 7 + p:m_i] = ((ww * lam)[:, :, None] * dp).transpose(0, 2, 1)
+        jac[:, 0, m_i] = sm
         jac[~fr, 5:, :] = 0.0
         jac[~fr, 5, 5] = jac[~fr, 6, 6] = 1.0
         jac[:, lam_i, :7] = ac[:, :, None] * ps
@@ -137,9 +152,11 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
         jac[:, lam_i, lam_i] += ~ac
         jac[:, v_i, :7] = fe[:, :, None] * dp
         jac[:, v_i, v_i] = np.where(fe, curv, 1.0)
+        jac[:, m_i, 0] = bd
+        jac[:, m_i, m_i] = ~bd
         step, good = _solve(jac, f)
         znew = zz - np.where(good[:, None], step, 0.0)
-        vn = znew[:, 7 + p:]
+        vn = znew[:, 7 + p:m_i]
         inside = np.all(~fe | ((np.sign(vn) == np.sign(uu)) & (np.abs(vn) < 1.0)), axis=1)
         ok = good & inside & np.all(np.isfinite(znew), axis=1)
         scale = 1.0 + np.max(np.abs(zz), axis=1)
@@ -148,8 +165,8 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
         z[idx[ok]] = znew[ok]
         alive[idx[~ok]] = False
         done[idx[ok & small]] = True
-    y, line, lam, v = z[:, :5], z[:, 5:7], z[:, 7:7 + p], z[:, 7 + p:]
-    upper = np.sum(np.where(active, lam, 0.0), axis=1)
+    y, line, lam, v, mu = z[:, :5], z[:, 5:7], z[:, 7:7 + p], z[:, 7 + p:m_i], z[:, m_i]
+    upper = np.sum(np.where(active, lam, 0.0), axis=1) + np.where(binds, a_fin * mu, 0.0)
     mx, _ = true_max(fit, y, line)
     scale = 1.0 / np.maximum(mx, 1.0)
     y = y * scale[:, None]
@@ -157,8 +174,10 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
     h = np.einsum("ki,ki->k", d, y)
     with np.errstate(invalid="ignore", divide="ignore"):
         gap = np.where(upper > 0, 1.0 - h / upper, np.inf)
-    dual_ok = np.all(~active | (lam >= -1e-12 * np.abs(upper)[:, None]), axis=1)
-    ok = (alive & done & dual_ok & np.isfinite(gap) & (gap <= tolerance) & (gap >= -1e-9)
-          & np.isfinite(h))
+    tiny = 1e-12 * np.abs(upper)
+    dual_ok = np.all(~active | (lam >= -tiny[:, None]), axis=1) & (mu >= -tiny)
+    within_cut = np.abs(y[:, 0]) <= a * (1.0 + 1e-12)
+    ok = (alive & done & dual_ok & within_cut & np.isfinite(gap) & (gap <= tolerance)
+          & (gap >= -1e-9) & np.isfinite(h))
     return Polished(ok=ok, h=h, upper=upper, gap=np.maximum(gap, 0.0), y=y, line=line,
                     points=np.where(active, v, np.nan))

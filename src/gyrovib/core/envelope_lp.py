@@ -11,7 +11,6 @@ an upper bound agree.
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 
 import numpy as np
@@ -151,6 +150,9 @@ class _GridLP:
         self.col_blk = np.empty(0, dtype=int)
         self.col_u = np.empty(0)
         self.col_s = np.empty(0)
+        # the cut's columns μ⁺ (μ⁻ follows after all of them) and their blocks
+        self.mu_blk = np.empty(0, dtype=int)
+        self.mu_col = np.empty(0, dtype=int)
 
     def _layout(self, blk: np.ndarray, u: np.ndarray, n_mu: int, reset: bool = False) -> None:
         parts = [] if reset else [(self.col_blk, self.col_u, self.col_s)]
@@ -169,6 +171,7 @@ class _GridLP:
         mu = np.flatnonzero(np.isfinite(self.a))
         n_mu = mu.size
         self._layout(blk, u, 2 * n_mu, reset=True)
+        self.mu_blk, self.mu_col = mu, 2 * u.size + np.arange(n_mu)
         sizes = np.concatenate([sizes, np.ones(2 * n_mu, dtype=int)])
         start = np.concatenate([[0], np.cumsum(sizes)])
         index = np.concatenate([index, 7 * mu, 7 * mu])
@@ -210,6 +213,13 @@ class _GridLP:
         x = res.row_dual.reshape(-1, 7)
         y = x[:, :5]
         return np.einsum("ki,ki->k", self.d, y), y, x[:, 5:], res.x
+
+    def cut_weights(self, x: np.ndarray, blocks: np.ndarray) -> FloatArray:
+        """μ⁺ − μ⁻ of ``blocks`` in the dual's solution x (0 without a cut)."""
+        mu = np.zeros(len(self.grids))
+        mu[self.mu_blk] = x[self.mu_col] - x[self.mu_col + self.mu_col.size]
+        out: FloatArray = mu[blocks]
+        return out
 
     def contacts(self, x: np.ndarray,
                  blocks: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
@@ -264,14 +274,10 @@ def _new_points(grid: np.ndarray, points: np.ndarray) -> FloatArray:
 
 def _polish(lp: _GridLP, x: np.ndarray, live: np.ndarray, fit: np.ndarray, a: np.ndarray,
             d: np.ndarray, y0: np.ndarray, line0: np.ndarray) -> envelope_kkt.Polished:
-    """Newton's polish of the grid optimum of blocks ``live`` (see envelope_kkt).
-
-    Blocks with an asymmetry cut are left to the exchange (``ok`` False): the
-    optimality conditions polished there have no term for the cut.
-    """
+    """Newton's polish of the grid optimum of blocks ``live`` (see envelope_kkt)."""
     u, sg, lam, act = lp.contacts(x, live)
-    pol = envelope_kkt.polish(fit, d, y0, line0, u, sg, lam, act, TOLERANCE)
-    return dataclasses.replace(pol, ok=pol.ok & np.isinf(a))
+    return envelope_kkt.polish(fit, d, y0, line0, u, sg, lam, act, TOLERANCE,
+                               cut=a, mu0=lp.cut_weights(x, live))
 
 
 def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArray],
