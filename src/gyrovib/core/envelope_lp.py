@@ -37,12 +37,10 @@ TOLERANCE = 1e-7
 #: Refinement rounds before giving up (the scaled solution is feasible anyway).
 MAX_ROUNDS = 40
 #: LPs stacked block-diagonally into one HiGHS call.
-CHUNK = 48
+CHUNK = 128
 #: Offsets added around each violating extremum: the extremum moves as the
 #: solution does, and a cluster of scales catches it in fewer rounds.
 _CLUSTER = np.array([-3e-3, -1e-4, 1e-4, 3e-3])
-#: Pairs solved from the coarse grid alone before the others are seeded.
-SEEDS = 16
 
 
 def _support_rms(fit: np.ndarray, a: np.ndarray, d: np.ndarray) -> tuple[FloatArray, FloatArray]:
@@ -280,20 +278,21 @@ def _polish(lp: _GridLP, x: np.ndarray, live: np.ndarray, fit: np.ndarray, a: np
                                cut=a, mu0=lp.cut_weights(x, live))
 
 
-def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArray],
-            todo: np.ndarray, out: tuple[FloatArray, ...]) -> list[FloatArray]:
-    """Grid LP, continuous check, add the residual's violating extrema; repeat.
+def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
+            out: tuple[FloatArray, ...]) -> None:
+    """Grid LP, polish, continuous check, add the residual's violating extrema; repeat.
 
-    Blocks go CHUNK at a time into one :class:`_GridLP`, re-solved from its
-    last basis after each round adds points. Fills ``out`` = (h, y, line,
-    gap) at ``todo`` with the feasible scaled solution; returns each block's
-    final extrema (|r| ≥ 0.99), for seeding.
+    Blocks go CHUNK at a time into one :class:`_GridLP` on the coarse grid,
+    re-solved from its last basis after each round adds points. A block is
+    done when its polish is certified (:mod:`gyrovib.core.envelope_kkt`) or
+    its grid optimum's scaled solution is within TOLERANCE of it. Fills
+    ``out`` = (h, y, line, gap) at ``todo``.
     """
     h, y, line, gap = out
-    extrema: list[FloatArray] = [np.empty(0)] * d.shape[0]
+    base = _initial_grid()
     for start in range(0, todo.size, CHUNK):
         idx = todo[start:start + CHUNK]
-        lp = _GridLP(fit[idx], a[idx], d[idx], [grids[i] for i in idx])
+        lp = _GridLP(fit[idx], a[idx], d[idx], [base] * idx.size)
         live = np.arange(idx.size)
         for _ in range(MAX_ROUNDS):
             hg, yg, lg, x = lp.solve()
@@ -301,15 +300,12 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArra
             sel = idx[live]
             pol = _polish(lp, x, live, fit[sel], a[sel], d[sel], yg, lg)
             if pol.ok.any():
-                done = np.flatnonzero(pol.ok)
-                for q in done:
-                    extrema[sel[q]] = pol.points[q][~np.isnan(pol.points[q])]
+                done = pol.ok
                 h[sel[done]] = pol.h[done]
                 y[sel[done]] = pol.y[done]
                 line[sel[done]] = pol.line[done]
                 gap[sel[done]] = pol.gap[done]
-                rest = ~pol.ok
-                live, sel, hg, yg, lg = live[rest], sel[rest], hg[rest], yg[rest], lg[rest]
+                live, sel, hg, yg, lg = live[~done], sel[~done], hg[~done], yg[~done], lg[~done]
                 if live.size == 0:
                     break
             mx, cand = true_max(fit[sel], yg, lg)
@@ -322,8 +318,7 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArra
             r = np.abs(residual_normalised(fit[sel], yg, lg, np.nan_to_num(cand)))
             ok = ~np.isnan(cand)
             adds: dict[int, FloatArray] = {}
-            for j, i in enumerate(sel):
-                extrema[i] = cand[j][ok[j] & (r[j] >= 0.99 * mx[j])]
+            for j in range(sel.size):
                 if mx[j] > 1.0 + TOLERANCE:
                     new = cand[j][ok[j] & (r[j] > 1.0)]
                     near = (new[:, None] + _CLUSTER[None, :]).ravel()
@@ -335,50 +330,14 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, grids: list[FloatArra
                 break
             lp.add(adds)
             live = np.fromiter(adds, dtype=int)
-        for j, i in enumerate(idx):
-            grids[i] = lp.grids[j]
-    return extrema
 
 
 def _support_max(fit: np.ndarray, a: np.ndarray,
                  d: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Semi-infinite LP by grid refinement (exchange): see :func:`support`.
-
-    Nearby directions have nearby extrema, so the pairs are solved in waves
-    (SEEDS, then 8× as many, then the rest): each grid of a later wave starts
-    from the coarse grid plus the final extrema of the most similar solved
-    pair (same fit; largest |cos| of the directions, then closest cut). This
-    only changes how many refinement rounds are needed, not the answer.
-    """
+    """Semi-infinite LP by grid refinement (exchange) and polish: see :func:`support`."""
     k = d.shape[0]
     out = (np.zeros(k), np.zeros((k, 5)), np.zeros((k, 2)), np.zeros(k))
-    live = np.flatnonzero(np.any(d != 0, axis=1))
-    unit = d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
-    cut = a / (1.0 + np.where(np.isfinite(a), a, 0.0))
-    cut = np.where(np.isfinite(a), cut, 1.0)
-    base = _initial_grid()
-    grids = [base for _ in range(k)]
-    # a fixed spread-out order (golden-ratio scrambling), so the seeds are not
-    # all neighbours in the caller's order
-    order = live[np.argsort((np.arange(live.size) * 0.6180339887498949) % 1.0, kind="stable")]
-    solved = np.empty(0, dtype=int)
-    extrema: list[FloatArray] = [np.empty(0)] * k
-    size = SEEDS
-    while order.size:
-        wave, order = order[:size], order[size:]
-        size *= 8
-        if solved.size:
-            sim = np.abs(unit[wave] @ unit[solved].T) - np.abs(
-                cut[wave][:, None] - cut[solved][None, :])
-            sim = np.where(fit[wave][:, None] == fit[solved][None, :], sim, -np.inf)
-            near = solved[np.argmax(sim, axis=1)]
-            for i, n in zip(wave, near, strict=True):
-                if fit[n] == fit[i]:
-                    grids[i] = union(base, extrema[n])
-        found = _refine(fit, a, d, grids, wave, out)
-        for i in wave:
-            extrema[i] = found[i]
-        solved = np.concatenate([solved, wave])
+    _refine(fit, a, d, np.flatnonzero(np.any(d != 0, axis=1)), out)
     return out
 
 
@@ -412,9 +371,11 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     maximiser y (K, 5) — feasible: its true max |r| is 1 (max measure) or its
     mean r² is 1 (rms) — its reference line (α, β) (K, 2), r = p − α − β·u
     (the fitted line of p for least-squares and endpoint), and the
-    relative gap (K,) between the last grid optimum and h (≤ 1e-7 once
-    converged; 0 for rms). For the max measure h is within that gap of the
-    continuous optimum and never above it (y is feasible).
+    relative gap (K,) between an upper bound of the continuous optimum and h
+    (≤ 1e-7 once converged; 0 for rms). The bound is the dual one, Σλ (+ a·μ),
+    where the polish is certified (usually ~1e-15), else the last grid
+    optimum. For the max measure h is within that gap of the continuous
+    optimum and never above it (y is feasible).
     """
     fit = np.asarray(fit, dtype=int)
     measure = np.asarray(measure, dtype=int)
