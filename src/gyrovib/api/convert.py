@@ -86,13 +86,23 @@ def resolve_rate(entry: ProfileEntry, override: Sequence[float] | None) -> Float
     raise OptionError("a rate is one number (Ω_K3) or three (Ω_K1, Ω_K2, Ω_K3)")
 
 
-def to_unit(error: VibrationError, unit: str) -> VibrationError:
+def to_unit(error: VibrationError, unit: str, *, in_place: bool = False) -> VibrationError:
     """Convert an error computed in deg/s to ``unit`` (Δ(q) carries rate^(1−q)).
 
     The additive terms of ``extra_terms`` (Δ0(6), k3·M3, k5·M5) are rates, like Δ0.
+    ``in_place``: divide ``error``'s own arrays (the same values, without a second
+    copy of a large result) and return it; a scale of 1 (deg/s) then costs nothing.
     """
     s = units.scale(unit)
     q_factor = np.array([1.0, s, s * s])
+    if in_place:
+        if s != 1.0:
+            for array in (error.additive_terms, error.additive, error.multiplicative,
+                          error.total, error.rms, error.extra_terms):
+                np.divide(array, s, out=array)
+            np.multiply(error.multiplicative_coefficients, q_factor,
+                        out=error.multiplicative_coefficients)
+        return error
     return VibrationError(
         additive_terms=error.additive_terms / s,
         multiplicative_coefficients=error.multiplicative_coefficients * q_factor,

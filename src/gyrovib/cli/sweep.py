@@ -104,5 +104,5 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
                                      color=use_color(output),
                                      ascii=plain_ascii(output)), output)
         return
-    renderers = {"json": render.to_json, "csv": render.to_csv}
+    renderers = {"json": render.to_json, "csv": render.to_csv_chunks}
     write_output(renderers[fmt](result, budget_value), output)

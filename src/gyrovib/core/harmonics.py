@@ -35,6 +35,8 @@ ComplexArray = NDArray[np.complex128]
 
 #: Unit-circle tolerance for the roots of Ω + x3(θ); extra breakpoints are harmless.
 _CIRCLE = 1e-5
+#: Rates above this multiple of Σ|p_n| (a bound on |x3|) are beyond the swing: E = 0.
+_BEYOND = 1.0 + 1e-9
 
 
 @dataclass(frozen=True)
@@ -240,13 +242,23 @@ def locked_abs_excess(omega: ArrayLike, orders: ArrayLike, coefficients: ArrayLi
     zero crossings where sign f ≠ s, which keeps its relative precision.
     """
     w = np.asarray(omega, dtype=float)
-    flat = w.ravel()
     n = np.asarray(orders, dtype=np.int64)
     p = np.asarray(coefficients, dtype=complex)
     keep = np.abs(p) > 0
     n, p = n[keep], p[keep]
-    if n.size == 0 or flat.size == 0:
-        return np.zeros(w.shape)
+    out = np.zeros(w.size)
+    if n.size == 0 or w.size == 0:
+        return out.reshape(w.shape)
+    # beyond the swing, |Ω| > Σ|p_n| ≥ max|x3|, Ω + x3 keeps the sign of Ω and the
+    # excess is exactly 0 (what the pieces below give there): only the others are solved
+    inside = ~(np.abs(w.ravel()) > _BEYOND * float(np.sum(np.abs(p))))
+    if inside.any():
+        out[inside] = _abs_excess(w.ravel()[inside], n, p)
+    return out.reshape(w.shape)
+
+
+def _abs_excess(flat: FloatArray, n: NDArray[np.int64], p: ComplexArray) -> FloatArray:
+    """:func:`locked_abs_excess` at the rates ``flat`` (W,), the pieces integrated."""
     roots = trig_roots(n, p, flat)
     pts = np.concatenate([np.zeros((flat.size, 1)), np.where(np.isnan(roots), 2 * math.pi, roots),
                           np.full((flat.size, 1), 2 * math.pi)], axis=1)
@@ -258,8 +270,8 @@ def locked_abs_excess(omega: ArrayLike, orders: ArrayLike, coefficients: ArrayLi
     fmid = flat[:, None] + np.sum((p * np.exp(1j * nf * mid[..., None])).imag, axis=-1)
     s = np.where(flat >= 0, 1.0, -1.0)
     wrong = (np.sign(fmid) != s[:, None]) & (np.diff(pts, axis=1) > 0)
-    out: FloatArray = (np.sum(np.where(wrong, np.abs(integral), 0.0), axis=1) / math.pi)
-    return out.reshape(w.shape)
+    out: FloatArray = np.sum(np.where(wrong, np.abs(integral), 0.0), axis=1) / math.pi
+    return out
 
 
 def locked_peak(orders: ArrayLike, coefficients: ArrayLike) -> float:

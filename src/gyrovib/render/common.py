@@ -65,10 +65,16 @@ def csv_cell(text: str) -> str:
 
 def float_cells(values: Any) -> list[str]:
     """The cells of a float column (any array-like), each ``repr`` of the float as
-    :func:`csv_text` writes it."""
+    :func:`csv_text` writes it. A column of one value throughout (bit for bit: a
+    sweep's exact zeros) is written once and its cell repeated."""
     import numpy as np
 
-    return list(map(float.__repr__, np.asarray(values, dtype=float).reshape(-1).tolist()))
+    a = np.ascontiguousarray(values, dtype=float).reshape(-1)
+    if a.size > 1:
+        bits = a.view(np.int64)
+        if bits[0] == bits[-1] and bool(np.all(bits == bits[0])):
+            return [repr(float(a[0]))] * a.size
+    return list(map(float.__repr__, a.tolist()))
 
 
 def csv_lines(columns: Sequence[Sequence[str]]) -> str:

@@ -9,7 +9,6 @@ from gyrovib.api import SweepResult
 from gyrovib.render.common import (
     csv_cell,
     csv_head,
-    csv_lines,
     dumps,
     float_cells,
     fmt,
@@ -64,27 +63,41 @@ def to_json(result: SweepResult, budget: float | None = None) -> str:
 def to_csv(result: SweepResult, budget: float | None = None) -> str:
     """Long format: one row per sensor × profile × rate; empty paper cells where it refuses.
 
+    The text of :func:`to_csv_chunks`, joined.
+    """
+    return "".join(to_csv_chunks(result, budget))
+
+
+def to_csv_chunks(result: SweepResult, budget: float | None = None) -> Iterator[str]:
+    """:func:`to_csv` in pieces: the header, then one piece per sensor × profile series.
+
     Written column by column (each number ``repr`` of its float, as
-    :func:`~gyrovib.render.common.csv_text` writes it), one series at a time.
+    :func:`~gyrovib.render.common.csv_text` writes it): the rate column is
+    written once for every series, a series' sensor and profile cells once as
+    its rows' common prefix, and only one series' text is held at a time.
     """
     head = ["sensor", "profile", "rate_x3", "exact_total", "exact_rms", "paper_total",
             "paper_rms", "saturated"]
+    yield csv_head(head)
     rates = float_cells(result.rates)
     n = len(rates)
-    empty = [""] * n
+    if not n:
+        return
     saturated = _saturated(result)
-    parts = [csv_head(head)]
+    e, p = result.exact, result.paper
     for i, j in _series(result):
         refused = result.profiles[j] in result.paper_refused
-        e, p = result.exact, result.paper
-        parts.append(csv_lines([
-            [csv_cell(result.sensors[i])] * n, [csv_cell(result.profiles[j])] * n, rates,
-            float_cells(e.total[i, j]), float_cells(e.rms[i, j]),
-            empty if refused else float_cells(p.total[i, j]),
-            empty if refused else float_cells(p.rms[i, j]),
-            ["True" if s else "False" for s in saturated[i, j].tolist()],
-        ]))
-    return "".join(parts)
+        prefix = f"{csv_cell(result.sensors[i])},{csv_cell(result.profiles[j])},"
+        # where the paper refuses, its two empty cells ride on the saturated column
+        flags = (",,False", ",,True") if refused else ("False", "True")
+        sat = saturated[i, j]
+        cells = ([flags[1]] * n if sat.all() else [flags[0]] * n if not sat.any()
+                 else list(map(flags.__getitem__, sat.tolist())))
+        columns = [rates, float_cells(e.total[i, j]), float_cells(e.rms[i, j])]
+        if not refused:
+            columns += [float_cells(p.total[i, j]), float_cells(p.rms[i, j])]
+        columns.append(cells)
+        yield prefix + ("\n" + prefix).join(map(",".join, zip(*columns, strict=True))) + "\n"
 
 
 def to_table(result: SweepResult, budget: float | None = None, width: int | None = None,

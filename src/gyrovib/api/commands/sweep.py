@@ -72,8 +72,13 @@ def sweep(
         tails = {"additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
                  "multiplicative": (), "total": (), "rms": (),
                  "extra_terms": (len(EXTRA_TERMS),)}
-        results = {m: {name: np.zeros((*shape, *tail)) for name, tail in tails.items()}
-                   for m in METHODS}
+        # one group of every sensor in order (the usual case): its arrays are the results,
+        # not copied into zeros, which would double the memory of a long sweep
+        whole = (len(prepared.groups) == 1
+                 and np.array_equal(prepared.groups[0].index, np.arange(shape[0])))
+        results: dict[str, dict[str, FloatArray]] = {
+            m: {} if whole else {name: np.zeros((*shape, *t)) for name, t in tails.items()}
+            for m in METHODS}
         refused: dict[int, str] = {}
         saturated = np.zeros(shape, dtype=bool)
         ranges = sensor_ranges(prepared.sensors)
@@ -85,8 +90,16 @@ def sweep(
                 err = vibration_error(prepared.coefficients[group.index],
                                       group.multipliers[method],
                                       g2_sensitivity=prepared.g2[group.index])
-                for name, array in results[method].items():
-                    array[group.index] = getattr(err, name)
+                for name, tail in tails.items():
+                    if whole:
+                        array = np.asarray(getattr(err, name))
+                        if (array.shape != (*shape, *tail) or not array.flags.writeable
+                                or any(np.may_share_memory(array, other)
+                                       for other in results[method].values())):
+                            array = np.array(np.broadcast_to(array, (*shape, *tail)))
+                        results[method][name] = array
+                    else:
+                        results[method][name][group.index] = getattr(err, name)
         worst_x = None
         for method in METHODS:
             spec = specs.spec_results(prepared, method, omega=omega)
@@ -94,8 +107,8 @@ def sweep(
                 specs.place(results[method], spec)
                 if method == "exact":
                     worst_x = specs.sweep_fields(len(prepared.sensors), spec, unit)
-        exact = to_unit(VibrationError(**results["exact"]), unit)
-        paper = to_unit(VibrationError(**results["paper"]), unit)
+        exact = to_unit(VibrationError(**results["exact"]), unit, in_place=True)
+        paper = to_unit(VibrationError(**results["paper"]), unit, in_place=True)
         check_finite(error_arrays(exact), prepared)
         check_finite(error_arrays(paper), prepared, exclude=sorted(refused))
     return SweepResult(
