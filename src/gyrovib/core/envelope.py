@@ -143,6 +143,19 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
         canon = np.where(norm[:, None] > 0, dd * t / norm[:, None], 0.0)
     key = np.column_stack([f, ms, aa, canon])
     uniq, inv = _unique_rows(key)
+    # hand the unique pairs over in the caller's order with the last axis (the term)
+    # outermost: then neighbours are the same term at neighbouring profiles or rates,
+    # whose optima are alike (support() polishes one from the other)
+    rank = np.arange(key.shape[0])
+    if len(shape) > 1:
+        rank[np.moveaxis(np.arange(key.shape[0]).reshape(shape), -1, 0).ravel()] = np.arange(
+            key.shape[0])
+    first = np.full(uniq.shape[0], key.shape[0])
+    np.minimum.at(first, inv, rank)
+    order = np.argsort(first, kind="stable")
+    where = np.empty_like(order)
+    where[order] = np.arange(order.size)
+    uniq, inv = uniq[order], where[inv]
     h, y, line, gap = support(uniq[:, 0].astype(int), uniq[:, 1].astype(int), uniq[:, 2],
                               uniq[:, 3:])
     hv = (norm * h[inv]).reshape(shape)

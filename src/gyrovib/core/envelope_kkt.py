@@ -33,7 +33,7 @@ from gyrovib.core.envelope_basis import MINIMAX, SLOPE, basis, true_max
 from gyrovib.core.transmissibility import FloatArray
 
 #: Newton iterations before a pair is left to the grid exchange.
-ITERATIONS = 8
+ITERATIONS = 12
 
 
 @dataclass(frozen=True)
@@ -41,7 +41,10 @@ class Polished:
     """Per pair (K,): ``ok`` where the bounds agree to the tolerance asked for;
     ``h`` the lower bound d·y (y feasible), ``upper`` the dual bound Σ λ_j,
     ``gap`` = 1 − h/upper, ``y`` (K, 5) and ``line`` (K, 2) = (α, β) of the
-    feasible solution, ``points`` (K, P) the contact points v_j (NaN pads)."""
+    feasible solution, ``points`` (K, P) the contact points v_j (NaN pads),
+    ``signs`` and ``weights`` (K, P) their s_j and λ_j, ``mu`` (K,) the
+    cut's signed weight s_μ·μ (0 where it does not bind): a start for a
+    nearby direction."""
 
     ok: np.ndarray
     h: FloatArray
@@ -50,6 +53,9 @@ class Polished:
     y: FloatArray
     line: FloatArray
     points: FloatArray
+    signs: FloatArray
+    weights: FloatArray
+    mu: FloatArray
 
 
 def _psi(fit: np.ndarray, u: np.ndarray) -> FloatArray:
@@ -115,6 +121,7 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
     a_fin = np.where(np.isfinite(a), a, 0.0)
     mm = fit == MINIMAX
     free = active & (u0 != 0) & (np.abs(u0) != 1)
+    pin = np.array(u0, dtype=float)
     dt = np.concatenate([d, np.zeros((k, 2))], axis=1)
     z = np.concatenate([y0, np.where(mm[:, None], line0, 0.0), np.where(active, lam0, 0.0),
                         u0, np.abs(m0)[:, None] * binds[:, None]], axis=1)
@@ -127,7 +134,7 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
         run = alive & ~done
         if not run.any():
             break
-        zz, f_, fr, uu, ww, ac, fe = (z[run], fit[run], mm[run], u0[run], w[run], active[run],
+        zz, f_, fr, uu, ww, ac, fe = (z[run], fit[run], mm[run], pin[run], w[run], active[run],
                                       free[run])
         bd, sm = binds[run], s_mu[run]
         y, lam, v, mu = zz[:, :7], zz[:, 7:7 + p], zz[:, 7 + p:m_i], zz[:, m_i]
@@ -157,12 +164,18 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
         step, good = _solve(jac, f)
         znew = zz - np.where(good[:, None], step, 0.0)
         vn = znew[:, 7 + p:m_i]
-        inside = np.all(~fe | ((np.sign(vn) == np.sign(uu)) & (np.abs(vn) < 1.0)), axis=1)
-        ok = good & inside & np.all(np.isfinite(znew), axis=1)
+        # a point that would leave its side stops at the end or the kink it reached
+        # and stays there (r′ = 0 is then not asked of it)
+        out = fe & ((np.sign(vn) != np.sign(uu)) | (np.abs(vn) >= 1.0))
+        stop = np.where(np.abs(vn) >= 1.0, np.sign(uu), 0.0)
+        znew[:, 7 + p:m_i] = np.where(out, stop, vn)
+        ok = good & np.all(np.isfinite(znew), axis=1)
         scale = 1.0 + np.max(np.abs(zz), axis=1)
         small = np.max(np.abs(step), axis=1) <= 1e-14 * scale
         idx = np.flatnonzero(run)
         z[idx[ok]] = znew[ok]
+        free[idx[ok]] = fe[ok] & ~out[ok]
+        pin[idx[ok]] = np.where(out[ok], stop[ok], uu[ok])
         alive[idx[~ok]] = False
         done[idx[ok & small]] = True
     y, line, lam, v, mu = z[:, :5], z[:, 5:7], z[:, 7:7 + p], z[:, 7 + p:m_i], z[:, m_i]
@@ -180,4 +193,6 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
     ok = (alive & done & dual_ok & within_cut & np.isfinite(gap) & (gap <= tolerance)
           & (gap >= -1e-9) & np.isfinite(h))
     return Polished(ok=ok, h=h, upper=upper, gap=np.maximum(gap, 0.0), y=y, line=line,
-                    points=np.where(active, v, np.nan))
+                    points=np.where(active, v, np.nan), signs=np.where(active, sign, 0.0),
+                    weights=np.where(active, lam, 0.0), mu=s_mu * mu)
+

@@ -38,6 +38,12 @@ TOLERANCE = 1e-7
 MAX_ROUNDS = 40
 #: LPs stacked block-diagonally into one HiGHS call.
 CHUNK = 128
+#: From this many pairs on, every SPACING-th is solved by the grid LP and the
+#: others are polished from a solved neighbour (see _support_max).
+SEEDED = 512
+SPACING = 8
+#: Pairs polished at once from their neighbours (Newton's batched systems).
+SEEDED_BATCH = 4096
 #: Offsets added around each violating extremum: the extremum moves as the
 #: solution does, and a cluster of scales catches it in fewer rounds.
 _CLUSTER = np.array([-3e-3, -1e-4, 1e-4, 3e-3])
@@ -278,15 +284,28 @@ def _polish(lp: _GridLP, x: np.ndarray, live: np.ndarray, fit: np.ndarray, a: np
                                cut=a, mu0=lp.cut_weights(x, live))
 
 
+#: What a certified pair leaves for its neighbours: contact points, signs, weights, cut weight.
+Contacts = dict[int, tuple[FloatArray, FloatArray, FloatArray, float]]
+
+
+def _record(found: Contacts, pairs: np.ndarray, pol: envelope_kkt.Polished) -> None:
+    """Keep the contacts of the certified pairs (pol.ok) for their neighbours."""
+    for q in np.flatnonzero(pol.ok):
+        keep = ~np.isnan(pol.points[q])
+        found[int(pairs[q])] = (pol.points[q][keep], pol.signs[q][keep], pol.weights[q][keep],
+                                float(pol.mu[q]))
+
+
 def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
-            out: tuple[FloatArray, ...]) -> None:
+            out: tuple[FloatArray, ...], found: Contacts | None = None) -> None:
     """Grid LP, polish, continuous check, add the residual's violating extrema; repeat.
 
     Blocks go CHUNK at a time into one :class:`_GridLP` on the coarse grid,
     re-solved from its last basis after each round adds points. A block is
     done when its polish is certified (:mod:`gyrovib.core.envelope_kkt`) or
     its grid optimum's scaled solution is within TOLERANCE of it. Fills
-    ``out`` = (h, y, line, gap) at ``todo``.
+    ``out`` = (h, y, line, gap) at ``todo``, and ``found`` (if given) with the
+    contacts of the certified pairs.
     """
     h, y, line, gap = out
     base = _initial_grid()
@@ -305,6 +324,8 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
                 y[sel[done]] = pol.y[done]
                 line[sel[done]] = pol.line[done]
                 gap[sel[done]] = pol.gap[done]
+                if found is not None:
+                    _record(found, sel, pol)
                 live, sel, hg, yg, lg = live[~done], sel[~done], hg[~done], yg[~done], lg[~done]
                 if live.size == 0:
                     break
@@ -332,12 +353,80 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
             live = np.fromiter(adds, dtype=int)
 
 
+def _seeded(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
+            seed: np.ndarray, found: Contacts, out: tuple[FloatArray, ...]) -> np.ndarray:
+    """Polish pairs ``todo`` from the certified solutions of pairs ``seed``; the ones certified.
+
+    The seed's contact points, signs and y start Newton's method for the new
+    direction (its weights scaled by the ratio of the directions' norms).
+    """
+    h, y, line, gap = out
+    done = np.zeros(todo.size, dtype=bool)
+    for start in range(0, todo.size, SEEDED_BATCH):
+        idx, src = todo[start:start + SEEDED_BATCH], seed[start:start + SEEDED_BATCH]
+        p = max(found[int(j)][0].size for j in src)
+        u0, sg, lam = (np.zeros((idx.size, p)) for _ in range(3))
+        act = np.zeros((idx.size, p), dtype=bool)
+        mu0 = np.zeros(idx.size)
+        ratio = np.linalg.norm(d[idx], axis=1) / np.linalg.norm(d[src], axis=1)
+        for j, n in enumerate(src):
+            pts, signs, weights, mu = found[int(n)]
+            u0[j, :pts.size], sg[j, :pts.size], act[j, :pts.size] = pts, signs, True
+            lam[j, :pts.size] = weights * ratio[j]
+            mu0[j] = mu * ratio[j]
+        pol = envelope_kkt.polish(fit[idx], d[idx], y[src], line[src], u0, sg, lam, act,
+                                  TOLERANCE, cut=a[idx], mu0=mu0)
+        ok = pol.ok
+        h[idx[ok]], y[idx[ok]], line[idx[ok]], gap[idx[ok]] = (pol.h[ok], pol.y[ok],
+                                                               pol.line[ok], pol.gap[ok])
+        _record(found, idx, pol)
+        done[start:start + idx.size] = ok
+    return done
+
+
 def _support_max(fit: np.ndarray, a: np.ndarray,
                  d: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Semi-infinite LP by grid refinement (exchange) and polish: see :func:`support`."""
+    """Semi-infinite LP by grid refinement (exchange) and polish: see :func:`support`.
+
+    Many pairs (a sweep: the same terms at neighbouring rates, given in
+    order) are solved in steps: every SPACING-th by :func:`_refine`; then,
+    pass after pass, each unsolved pair is polished from the more similar of
+    the nearest solved pairs before and after it in the given order (same fit
+    and cut kind), as long as passes certify new pairs; what is left goes to
+    :func:`_refine` too. The answer is certified either way; the order only
+    decides how much of it the grid LP has to do.
+    """
     k = d.shape[0]
     out = (np.zeros(k), np.zeros((k, 5)), np.zeros((k, 2)), np.zeros(k))
-    _refine(fit, a, d, np.flatnonzero(np.any(d != 0, axis=1)), out)
+    live = np.flatnonzero(np.any(d != 0, axis=1))
+    if live.size < SEEDED:
+        _refine(fit, a, d, live, out)
+        return out
+    found: Contacts = {}
+    _refine(fit, a, d, live[::SPACING], out, found)
+    unit = d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
+    pos = np.arange(live.size)
+    tried = np.full(live.size, -1)
+    while True:
+        solved = np.array([int(i) in found for i in live], dtype=bool)
+        left = np.maximum.accumulate(np.where(solved, pos, -1))
+        right = np.minimum.accumulate(np.where(solved, pos, live.size)[::-1])[::-1]
+        best = np.full(live.size, -1)
+        score = np.full(live.size, -1.0)
+        for side in (left, right):
+            ok = (side >= 0) & (side < live.size) & ~solved
+            n = live[np.clip(side, 0, live.size - 1)]
+            same = ok & (fit[n] == fit[live]) & (np.isfinite(a[n]) == np.isfinite(a[live]))
+            sim = np.where(same, np.abs(np.einsum("ki,ki->k", unit[live], unit[n])), -1.0)
+            better = sim > score
+            best, score = np.where(better, side, best), np.where(better, sim, score)
+        todo = np.flatnonzero((best >= 0) & (best != tried))
+        if todo.size == 0:
+            break
+        tried[todo] = best[todo]
+        if not _seeded(fit, a, d, live[todo], live[best[todo]], found, out).any():
+            break
+    _refine(fit, a, d, live[~np.array([int(i) in found for i in live], dtype=bool)], out)
     return out
 
 
