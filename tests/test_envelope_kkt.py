@@ -163,7 +163,11 @@ def test_seeded_from_neighbours_equals_solved_alone(seed: int, fit: int, cut: fl
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(envelope_lp, "SEEDED", 10**9)
         h_alone, *_ = envelope_lp.support(f, ms, a, d)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(envelope_lp, "WINDOW", 100)  # windows of 100 pairs, the last one short
+        h_windows, *_ = envelope_lp.support(f, ms, a, d)
     np.testing.assert_allclose(h, h_alone, rtol=2e-7)
+    np.testing.assert_allclose(h_windows, h_alone, rtol=2e-7)
     assert np.all(gap <= 1e-7)
     assert np.all(np.abs(y[:, 0]) <= cut * (1 + 1e-12))
 

@@ -42,6 +42,9 @@ CHUNK = 128
 #: others are polished from a solved neighbour (see _support_max).
 SEEDED = 512
 SPACING = 8
+#: Pairs taken together in those steps (their solutions' contacts are kept
+#: for the neighbours only while their window is worked on).
+WINDOW = 8192
 #: Pairs polished at once from their neighbours (Newton's batched systems).
 SEEDED_BATCH = 4096
 #: Offsets added around each violating extremum: the extremum moves as the
@@ -402,9 +405,17 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
     if live.size < SEEDED:
         _refine(fit, a, d, live, out)
         return out
+    for start in range(0, live.size, WINDOW):
+        _seeded_window(fit, a, d, live[start:start + WINDOW], out)
+    return out
+
+
+def _seeded_window(fit: np.ndarray, a: np.ndarray, d: np.ndarray, live: np.ndarray,
+                   out: tuple[FloatArray, ...]) -> None:
+    """The steps of :func:`_support_max` for the pairs ``live`` (consecutive in order)."""
     found: Contacts = {}
     _refine(fit, a, d, live[::SPACING], out, found)
-    unit = d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
+    unit = d[live] / np.maximum(np.linalg.norm(d[live], axis=1), 1e-300)[:, None]
     pos = np.arange(live.size)
     tried = np.full(live.size, -1)
     while True:
@@ -415,9 +426,10 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
         score = np.full(live.size, -1.0)
         for side in (left, right):
             ok = (side >= 0) & (side < live.size) & ~solved
-            n = live[np.clip(side, 0, live.size - 1)]
+            at = np.clip(side, 0, live.size - 1)
+            n = live[at]
             same = ok & (fit[n] == fit[live]) & (np.isfinite(a[n]) == np.isfinite(a[live]))
-            sim = np.where(same, np.abs(np.einsum("ki,ki->k", unit[live], unit[n])), -1.0)
+            sim = np.where(same, np.abs(np.einsum("ki,ki->k", unit, unit[at])), -1.0)
             better = sim > score
             best, score = np.where(better, side, best), np.where(better, sim, score)
         todo = np.flatnonzero((best >= 0) & (best != tried))
@@ -427,7 +439,6 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
         if not _seeded(fit, a, d, live[todo], live[best[todo]], found, out).any():
             break
     _refine(fit, a, d, live[~np.array([int(i) in found for i in live], dtype=bool)], out)
-    return out
 
 
 def without_idle_cuts(fit: np.ndarray, measure: np.ndarray, a: np.ndarray) -> FloatArray:
