@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from typing import Any
 
@@ -100,7 +99,7 @@ def _to_json_rows(result: AnalysisResult) -> str:
     return dumps(document)
 
 
-_COEFFICIENT_SOURCE = json.dumps("coefficients")
+_COEFFICIENT_SOURCE = '"coefficients"'  # json.dumps("coefficients")
 
 
 def _source_fields(result: AnalysisResult, i: int, j: int) -> dict[str, Any]:
@@ -132,6 +131,8 @@ _BLOCK = 4096
 
 def _row_template(with_stderr: bool) -> str:
     """The text of one result row with ``%s`` for every value, keys as json writes them."""
+    import json
+
     def obj(pairs: list[tuple[str, str]]) -> str:
         return "{" + ", ".join(f"{json.dumps(k)}: {v}" for k, v in pairs) + "}"
 
@@ -167,6 +168,8 @@ def to_json(result: AnalysisResult) -> str:
         return _to_json_rows(result)  # spec rows carry their envelope: one dict per row
     if result.worst_phases:
         return _to_json_rows(result)  # a key of some rows only: the reference form
+    import json  # not at import time: the tables do without it
+
     template = _row_template(extra is not None)
     n_s = len(result.sensors)
     sensors = [json.dumps(s) for s in result.sensors]
