@@ -20,11 +20,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, VibrationError
-from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # annotations only: analyze imports no synthesis
     from gyrovib.api.specs import DatasheetBounds
+    from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 
 #: The keys of ``additive_terms`` in JSON, CSV, tables and frames, in this order:
 #: Δ0(1..5) (eq. 14/15), g2 = Δ0(6) (MODEL.md section 8), k3 and k5 (section 10).
@@ -47,7 +48,7 @@ def _freeze(value: Any) -> Any:
     return value
 
 
-class _Frozen:
+class _Frozen(Frozen):
     """Read-only arrays and mappings after construction; a one-line repr."""
 
     def __post_init__(self) -> None:
@@ -99,7 +100,7 @@ class _SensorsByProfiles(_Frozen):
         return (len(self.sensors), len(self.profiles))
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class AnalysisResult(_SensorsByProfiles):
     """The direct problem for every chosen sensor × profile.
 
@@ -146,7 +147,7 @@ class AnalysisResult(_SensorsByProfiles):
         return any(self.linear)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class SweepResult(_SensorsByProfiles):
     """Δ_V and Δ_V(RMS) over a range of Ω_K3, by the exact and the paper's method.
 
@@ -183,7 +184,7 @@ class SweepResult(_SensorsByProfiles):
         return (len(self.sensors), len(self.profiles), len(self.rates))
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class BoundsResult(_Frozen):
     """Allowable coefficients of eq. (23), (25) for every chosen profile.
 
@@ -210,8 +211,8 @@ class BoundsResult(_Frozen):
         return (len(self.profiles),)
 
 
-@dataclass(frozen=True)
-class Limit:
+@dataclass(frozen=True, eq=False, repr=False)
+class Limit(Frozen):
     """What stops a failing sensor: the worst coefficient (or ``"rms"``) and where."""
 
     name: str
@@ -219,7 +220,7 @@ class Limit:
     ratio: float
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class SelectionResult(_SensorsByProfiles):
     """Every chosen sensor checked against the budget under every chosen profile.
 

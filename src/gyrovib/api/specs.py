@@ -41,6 +41,7 @@ from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
 from gyrovib.core.envelope_lp import minimax_line
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
 #: m/s² per g (the standard gravity the catalogue's ``g`` means).
 STANDARD_GRAVITY = 9.80665
@@ -62,8 +63,8 @@ def spec_index(entries: Sequence[SensorEntry]) -> NDArray[np.intp]:
     return np.array([i for i, e in enumerate(entries) if is_spec(e)], dtype=np.intp)
 
 
-@dataclass(frozen=True)
-class SpecFigures:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecFigures(Frozen):
     """The datasheet figures of N spec-form sensors, in deg/s (and g).
 
     ``range`` R and ``limit`` b (deg/s); ``value``, ``unit`` the nonlinearity
@@ -139,8 +140,8 @@ def terms_of(m: Multipliers) -> FloatArray:
                             zero if m.m5 is None else m.m5, m.omega)
 
 
-@dataclass(frozen=True)
-class SpecWorst:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecWorst(Frozen):
     """The worst case of N spec sensors over one group's profiles (× rates), in deg/s.
 
     ``error``: the :class:`VibrationError` of the worst polynomial (total =
@@ -256,8 +257,8 @@ def multipliers_of(group: Group, prepared: Prepared, method: str,
     return stack_multipliers(items)
 
 
-@dataclass(frozen=True)
-class SpecResults:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecResults(Frozen):
     """The spec-form rows of a command: which sensors, and their worst case (deg/s).
 
     ``index``: the spec sensors among the prepared ones (M,); ``error``: their
@@ -388,8 +389,8 @@ def analysis_fields(n_s: int, n_p: int, spec: SpecResults | None,
 # ----------------------------------------------------------------- select
 
 
-@dataclass(frozen=True)
-class SpecChecks:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecChecks(Frozen):
     """A spec sensor's datasheet against its own spec bounds, (M, P), deg/s and g.
 
     ``nl_value``: its nonlinearity in %FS (of its own range or span);
@@ -486,8 +487,8 @@ def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecC
 # ----------------------------------------------------------------- bounds
 
 
-@dataclass(frozen=True)
-class DatasheetBounds:
+@dataclass(frozen=True, eq=False, repr=False)
+class DatasheetBounds(Frozen):
     """Allowable datasheet figures for a part of range R, per profile (``bounds --range``).
 
     ``nonlinearity``: NL_max in %FS of R (``of`` range) or of 2R (span), inf

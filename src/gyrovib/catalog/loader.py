@@ -31,6 +31,7 @@ from gyrovib.catalog.records import Allocation, CatalogFile, Profile, Sensor
 from gyrovib.catalog.spec import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY
 from gyrovib.catalog.validate import Error, Invalid
 from gyrovib.errors import CatalogError, Problem
+from gyrovib.frozen import Frozen
 
 _Loader = Loader
 
@@ -57,8 +58,8 @@ def _capped(problems: list[Problem]) -> list[Problem]:
 # ---------------------------------------------------------------- one file
 
 
-@dataclass(frozen=True)
-class CatalogSource:
+@dataclass(frozen=True, eq=False, repr=False)
+class CatalogSource(Frozen):
     """One validated file: its name as given, its text and its model."""
 
     name: str
@@ -233,8 +234,8 @@ def _read_text(path: Path, name: str) -> str:
 # ---------------------------------------------------------------- several files
 
 
-@dataclass(frozen=True)
-class Entry:
+@dataclass(frozen=True, eq=False, repr=False)
+class Entry(Frozen):
     """A sensor or profile with the file it came from and its index there."""
 
     source: CatalogSource
@@ -250,18 +251,18 @@ class Entry:
         return self.source.model.acceleration_unit
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SensorEntry(Entry):
     sensor: Sensor
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ProfileEntry(Entry):
     profile: Profile
 
 
-@dataclass(frozen=True)
-class Catalog:
+@dataclass(frozen=True, eq=False, repr=False)
+class Catalog(Frozen):
     """Sensors and profiles merged from one or more files, ids unique."""
 
     sources: tuple[CatalogSource, ...]

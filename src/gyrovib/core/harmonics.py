@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.statistics import rectified_excess
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
 ComplexArray = NDArray[np.complex128]
 
@@ -37,8 +38,8 @@ ComplexArray = NDArray[np.complex128]
 _CIRCLE = 1e-5
 
 
-@dataclass(frozen=True)
-class LockedGroup:
+@dataclass(frozen=True, eq=False, repr=False)
+class LockedGroup(Frozen):
     """Harmonics of one fundamental with fixed relative phases.
 
     ``orders``: (N,) distinct positive integers n; ``phasors``: (N, 3) complex
@@ -120,8 +121,8 @@ def group_signal(orders: ArrayLike, phasors: ArrayLike, theta: ArrayLike) -> Flo
     return out
 
 
-@dataclass(frozen=True)
-class GroupMoments:
+@dataclass(frozen=True, eq=False, repr=False)
+class GroupMoments(Frozen):
     """Moments of a locked group over one period (rate^n units); shape (...,) each.
 
     ``m2..m5``: <x3^n>; ``c31``, ``c32``: <x3·x1>, <x3·x2>.

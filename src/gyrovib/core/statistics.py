@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from gyrovib.core.mixtures import _contour_excess
 from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
 from gyrovib.errors import ModelError
+from gyrovib.frozen import Frozen
 
 SQRT_2_OVER_PI = math.sqrt(2.0 / math.pi)
 #: The paper's printed multiplier of A1·a for a tone (eq. 14; docs/model.md).
@@ -34,8 +35,8 @@ PAPER_RANDOM_ASYMMETRY = 0.5
 
 
 
-@dataclass(frozen=True)
-class Vibration:
+@dataclass(frozen=True, eq=False, repr=False)
+class Vibration(Frozen):
     """The vibration at the sensor, after transmissibility.
 
     ``phasors``: complex amplitudes ``a_i·exp(jφ_i)`` of the tones, shape
