@@ -14,6 +14,7 @@ the same frequency are coherent and are first added as phasors.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Callable, Sequence
@@ -339,15 +340,22 @@ def _gauss_legendre(n: int) -> tuple[FloatArray, FloatArray]:
     return nodes, weights[::-1].copy()
 
 
-_GL_X, _GL_W = _gauss_legendre(24)
+#: Gauss-Legendre nodes per piece of :func:`_pieces`.
+_GL_N = 24
 #: Values one :func:`_pair_mean` / :func:`_triple_mean` argument makes (3 and 5 pieces).
-_PAIR_NODES = 3 * _GL_X.size
-_TRIPLE_NODES = 5 * _GL_X.size * _PAIR_NODES
-#: Gauss-Legendre nodes on [0, 1] mapped by θ = lo + L·(1 − cos πv)/2, which
-#: makes the (θ − θ*)^(3/2) behaviour at a kink smooth in v; with the Jacobian.
-_V = (_GL_X + 1.0) / 2.0
-_STRETCH = (1.0 - np.cos(math.pi * _V)) / 2.0
-_STRETCH_WEIGHT = _GL_W / 2.0 * (math.pi / 2.0) * np.sin(math.pi * _V)
+_PAIR_NODES = 3 * _GL_N
+_TRIPLE_NODES = 5 * _GL_N * _PAIR_NODES
+
+
+@functools.cache
+def _stretched_rule() -> tuple[FloatArray, FloatArray]:
+    """Gauss-Legendre nodes on [0, 1] mapped by θ = lo + L·(1 − cos πv)/2, which
+    makes the (θ − θ*)^(3/2) behaviour at a kink smooth in v; with the Jacobian.
+
+    Computed on first use, not at import (Newton's method: ~1 ms of start-up)."""
+    x, w = _gauss_legendre(_GL_N)
+    v = (x + 1.0) / 2.0
+    return (1.0 - np.cos(math.pi * v)) / 2.0, w / 2.0 * (math.pi / 2.0) * np.sin(math.pi * v)
 
 
 def _stretched_pieces(
@@ -361,10 +369,11 @@ def _stretched_pieces(
     half = math.pi / 2.0
     cuts = [np.arcsin(np.clip((t - c) / amplitude, -1.0, 1.0)) for t in targets]
     edges = [np.full_like(c, -half), *cuts, np.full_like(c, half)]
+    stretch, stretch_weight = _stretched_rule()
     pieces = []
     for lo, hi in itertools.pairwise(edges):
         length = hi - lo
-        pieces.append((lo + length * _STRETCH, length * _STRETCH_WEIGHT / math.pi))
+        pieces.append((lo + length * stretch, length * stretch_weight / math.pi))
     return pieces
 
 
