@@ -10,6 +10,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import bound_factors
+from gyrovib.api.other_results import BoundsResult
 from gyrovib.api.prepare import (
     TINY,
     Prepared,
@@ -18,7 +19,6 @@ from gyrovib.api.prepare import (
     overflow_problem,
     prepare,
 )
-from gyrovib.api.results import BoundsResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import METHODS

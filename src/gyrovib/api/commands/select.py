@@ -16,9 +16,9 @@ from gyrovib.api.commands.bounds import (
     resolve_allocation,
 )
 from gyrovib.api.convert import bound_factors, sensor_ranges
+from gyrovib.api.other_results import Limit, SelectionResult
 from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.reasons import saturation_reasons
-from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import COEFFICIENTS, vibration_error
