@@ -55,7 +55,8 @@ def test_help_and_version_import_no_heavy_module(template, args):
 #: What a first ``gyrovib analyze`` (table) does not need: pathlib (~3 ms with
 #: urllib.parse), json (tables only), the classes and engines of other commands.
 NOT_FOR_ANALYZE = ("pathlib", "json", "rich", "scipy", "pydantic", "gyrovib.core.synthesis",
-                   "gyrovib.core.phases", "gyrovib.core.numeric", "gyrovib.api.other_results")
+                   "gyrovib.core.phases", "gyrovib.core.numeric", "gyrovib.api.other_results",
+                   "gyrovib.api.spec_bounds")
 
 #: As VIA_CLI, json imported only after the modules are listed (it is one of them).
 VIA_CLI_LATE_JSON = """

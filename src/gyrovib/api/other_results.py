@@ -19,7 +19,7 @@ from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 if TYPE_CHECKING:
-    from gyrovib.api.specs import DatasheetBounds
+    from gyrovib.api.spec_bounds import DatasheetBounds
     from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 
 
@@ -77,7 +77,8 @@ class BoundsResult(_Frozen):
     rates: FloatArray
     bounds: CoefficientBounds
     allocation: AllocationConstants
-    #: ``--range``: the allowable datasheet figures (:class:`gyrovib.api.specs.DatasheetBounds`).
+    #: ``--range``: the allowable datasheet figures
+    #: (:class:`gyrovib.api.spec_bounds.DatasheetBounds`).
     spec_bounds: DatasheetBounds | None = None
     #: the rate unit tables write coefficient bounds in (the catalogue's own, so that
     #: k5 reads 6.7e-06 (deg/s)^-4 rather than 6e-23 (deg/h)^-4); None: :attr:`unit`.

@@ -179,7 +179,7 @@ def bounds(
         check_vre_bound(scaled.vre, prepared)
         datasheet = None
         if range_ is not None:
-            from gyrovib.api.specs import datasheet_bounds
+            from gyrovib.api.spec_bounds import datasheet_bounds
 
             multipliers = prepared.groups[0].multipliers[method] if prepared.groups else None
             datasheet = datasheet_bounds(multipliers, len(prepared.profiles), budget, range_,
