@@ -8,14 +8,19 @@ a time, as the renderer did before, and formats each with :func:`fmt`.
 from __future__ import annotations
 
 import dataclasses
+import math
+import re
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gyrovib import api
 from gyrovib.catalog.loader import merge, parse_catalog
 from gyrovib.formatting import fmt
 from gyrovib.render import analysis as render
+from gyrovib.render.common import Table, Text, rich_text
 
 CATALOG = """
 gyrovib: 1
@@ -108,3 +113,59 @@ def test_nan_and_infinite_values_print_as_fmt_writes_them() -> None:
     odd = dataclasses.replace(result, error=dataclasses.replace(e, total=total))
     found = table_rows(render.to_table(odd, width=400))
     assert found[0][0][-2] == "nan" and found[0][1][-2] == "-∞"
+
+
+# ---------------------------------------------------------------- the Table itself
+
+_SGR = re.compile("\x1b\\[[0-9;]*m")
+WORDS = st.text(alphabet="abc Δ±1.-", min_size=0, max_size=14)
+
+
+@st.composite
+def tables(draw: st.DrawFn) -> Table:
+    n_columns = draw(st.integers(1, 5))
+    table = Table(title=draw(st.one_of(st.none(), WORDS)))
+    for _ in range(n_columns):
+        table.add_column(draw(WORDS), justify=draw(st.sampled_from(["left", "right", "center"])),
+                         no_wrap=draw(st.booleans()), style=draw(st.sampled_from([None, "bold"])),
+                         min_width=draw(st.integers(0, 6)))
+    for _ in range(draw(st.integers(0, 6))):
+        cells: list[str | Text] = []
+        for _ in range(n_columns):
+            if draw(st.booleans()):
+                cells.append(draw(WORDS))
+            else:
+                text = Text(draw(WORDS))
+                text.append(draw(WORDS), style=draw(st.sampled_from([None, "yellow", "bold red"])))
+                cells.append(text)
+        table.add_row(*cells)
+    return table
+
+
+@settings(deadline=None, max_examples=300)
+@given(tables(), st.integers(40, 120))
+def test_plain_rows_are_the_coloured_rows_without_colour(table: Table, width: int) -> None:
+    # Without colour a row that fits is written from its plain texts; with colour every
+    # row goes through the general path. Colour only adds SGR codes around texts, so
+    # the coloured table without its codes is the reference for the plain one.
+    plain = rich_text([table], width=width, color=False)
+    coloured = rich_text([table], width=width, color=True)
+    assert "\x1b" not in plain
+    assert _SGR.sub("", coloured) == plain
+
+
+@settings(deadline=None, max_examples=500)
+@given(st.floats(allow_nan=True, allow_infinity=True), st.integers(1, 20))
+def test_fmt_is_its_definition(value: float, digits: int) -> None:
+    # the definition of gyrovib.formatting.fmt: `digits` significant figures,
+    # ∞/-∞ for infinities, nan, and 0 for either zero
+    if math.isinf(value):
+        expected = "∞" if value > 0 else "-∞"
+    elif math.isnan(value):
+        expected = "nan"
+    elif value == 0:
+        expected = "0"
+    else:
+        expected = f"{value:.{digits}g}"
+    assert fmt(value, digits) == expected
+    assert fmt(np.float64(value), digits) == expected
