@@ -96,11 +96,13 @@ def test_first_analyze_imports_only_what_it_uses():
 
 
 def test_analyze_of_coefficient_sensors_needs_no_numpy_ma(tmp_path):
-    # numpy.ma (~7 ms) comes with np.unique; the coefficient-form path avoids it
+    # numpy.ma (~7 ms) comes with np.unique; the coefficient-form path avoids it, and
+    # needs none of the datasheet envelope's modules
     path = tmp_path / "c.gyrovib.yaml"
     path.write_text(COEFFICIENTS_ONLY, encoding="utf-8")
     modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze", str(path)])
     assert "gyrovib.core.harmonics" in modules  # the probe works: a locked group was built
     heavy = sorted(m for m in modules if m in ("numpy.ma", "numpy.random", "highspy")
+                   or m.startswith(("gyrovib.core.envelope", "gyrovib.core.highs"))
                    or m in NOT_FOR_ANALYZE)
     assert heavy == []

@@ -39,7 +39,6 @@ from gyrovib import units
 from gyrovib.api.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
-from gyrovib.core.envelope_lp import minimax_line
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
@@ -426,6 +425,7 @@ def worst_residual(result: Any, i: int, j: int, r: int,
     the result's unit).
     """
     from gyrovib.core.envelope import residual
+    from gyrovib.core.envelope_lp import minimax_line
 
     x = np.asarray(result.worst_coefficients[i, j, r], dtype=float)
     big_r = float(result.nl_range[i])
