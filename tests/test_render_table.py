@@ -20,7 +20,7 @@ from gyrovib import api
 from gyrovib.catalog.loader import merge, parse_catalog
 from gyrovib.formatting import fmt
 from gyrovib.render import analysis as render
-from gyrovib.render.common import Table, Text, rich_text
+from gyrovib.render.common import Table, Text, rich_text, wrap
 
 CATALOG = """
 gyrovib: 1
@@ -169,3 +169,13 @@ def test_fmt_is_its_definition(value: float, digits: int) -> None:
         expected = f"{value:.{digits}g}"
     assert fmt(value, digits) == expected
     assert fmt(np.float64(value), digits) == expected
+
+
+@settings(deadline=None, max_examples=1000)
+@given(st.text(alphabet="ab Δ-.\t\n\r\x0b\x0c\xa0\u2003", max_size=40), st.integers(1, 45))
+def test_wrap_is_textwrap(text: str, width: int) -> None:
+    # render.common.wrap skips textwrap for a text that fits as it is; the reference
+    # is textwrap itself (an empty result read as one empty line)
+    import textwrap
+
+    assert wrap(text, width) == (textwrap.wrap(text, width) or [""])

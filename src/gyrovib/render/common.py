@@ -164,10 +164,7 @@ class Table:
         groups = _column_groups(widths, width)
         lines: list[str] = []
         if self.title:
-            import textwrap
-
-            lines.extend(_styled(part, "bold", color)
-                         for part in textwrap.wrap(self.title, width) or [""])
+            lines.extend(_styled(part, "bold", color) for part in wrap(self.title, width))
         for group in groups:
             group_widths = _fit(self.columns, group, widths, width)
             lines.extend(self._render_group(group, group_widths, color, plain, lengths))
@@ -282,13 +279,22 @@ def _wrap(cell: Cell, width: int) -> list[Text]:
     return [Text(chunk, style) for chunk in chunks]
 
 
+def wrap(text: str, width: int) -> list[str]:
+    """``textwrap.wrap(text, width) or [""]``; a text that fits as it is (no leading or
+    trailing whitespace, no tab or line break) is its own single line without
+    textwrap's splitting (~40 µs a call, every table title)."""
+    if len(text) <= width and text.isprintable() and text == text.strip():
+        return [text]
+    import textwrap
+
+    return textwrap.wrap(text, width) or [""]
+
+
 def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
               color: bool = False, ascii: bool = False) -> str:
     """Render tables and lines of text to a string ``width`` columns wide (160 unless
     given); a line of text longer than that is wrapped at spaces. ``ascii``: only
     ASCII characters (:func:`to_ascii`), laid out after the transliteration."""
-    import textwrap
-
     page = max(width or 160, 40)
     lines: list[str] = []
     for item in renderables:
@@ -301,8 +307,7 @@ def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
             lines.append(item.render(color))
             continue
         style = item.pieces[0][1] if item.pieces else None
-        lines.extend(_styled(chunk, style, color)
-                     for chunk in textwrap.wrap(item.plain, page) or [""])
+        lines.extend(_styled(chunk, style, color) for chunk in wrap(item.plain, page))
     text = "\n".join(lines) + "\n"
     return to_ascii(text) if ascii else text
 
