@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gyrovib.catalog.loader import CatalogError, load_catalog, parse_catalog
 
@@ -104,3 +106,24 @@ def test_a_file_is_composed_once_for_any_number_of_locations(monkeypatch):
     places = [src.locate(("sensors", i, "id")) for i in range(500)]
     assert places == [(3 + 2 * i, 9) for i in range(500)]  # "  - id: sI" on line 3 + 2i
     assert calls == [1]
+
+
+@settings(deadline=None, max_examples=300)
+@given(st.lists(st.sampled_from(["", ".", "..", "a", "b.yaml", " ", "a b"]), max_size=5)
+       .map("/".join))
+def test_the_file_opened_is_the_one_pathlib_would_open(name: str) -> None:
+    # read_catalog opens _native(path) without importing pathlib (a first-run cost);
+    # the reference is pathlib itself: Path(name).open() opens str(Path(name))
+    from pathlib import Path
+
+    from gyrovib.catalog.loader import _native
+
+    assert _native(name) == str(Path(name))
+    assert _native(Path(name)) == str(Path(name))
+
+
+def test_bundled_files_are_the_bundled_paths() -> None:
+    from gyrovib.catalog.loader import bundled_files, bundled_paths
+
+    assert bundled_files() == [str(p) for p in bundled_paths()]
+    assert len(bundled_files()) == 2

@@ -50,3 +50,59 @@ def test_help_and_version_import_no_heavy_module(template, args):
     assert "click" in modules  # the probe works
     heavy = sorted(m for m in modules if m.split(".")[0] in HEAVY)
     assert heavy == [], f"gyrovib {' '.join(args)} imported {heavy}"
+
+
+#: What a first ``gyrovib analyze`` (table) does not need: pathlib (~3 ms with
+#: urllib.parse), json (tables only), the classes and engines of other commands.
+NOT_FOR_ANALYZE = ("pathlib", "json", "rich", "scipy", "pydantic", "gyrovib.core.synthesis",
+                   "gyrovib.core.phases", "gyrovib.core.numeric", "gyrovib.api.other_results",
+                   "gyrovib.api.spec_bounds")
+
+#: As VIA_CLI, json imported only after the modules are listed (it is one of them).
+VIA_CLI_LATE_JSON = """
+import contextlib, io, sys
+from gyrovib.cli.main import cli
+with contextlib.redirect_stdout(io.StringIO()) as out:
+    code = cli.main({args!r}, prog_name="gyrovib", standalone_mode=False)
+assert code in (None, 0), code
+assert out.getvalue().strip(), "the command printed nothing"
+modules = sorted(sys.modules)
+import json
+print(json.dumps(modules))
+"""
+
+COEFFICIENTS_ONLY = """
+gyrovib: 1
+sensors:
+  - id: s
+    coefficients: {A1: 1e-3, k2: 1e-4, k4: 1e-8, m31: 1e-5}
+profiles:
+  - id: tone
+    harmonic: [{frequency: 100, amplitude: [0, 0, 20]}]
+  - id: shaft
+    rate: [0, 0, 2]
+    harmonics:
+      fundamental: 25
+      orders:
+        - {order: 1, amplitude: [0.5, 0.3, 1.5], phase: [0, 90, 0]}
+        - {order: 2, amplitude: [0.2, 0.2, 0.8], phase: [0, 0, 270]}
+"""
+
+
+def test_first_analyze_imports_only_what_it_uses():
+    modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze"])
+    assert "numpy" in modules and "gyrovib.api.results" in modules  # the probe works
+    assert sorted(set(NOT_FOR_ANALYZE) & set(modules)) == []
+
+
+def test_analyze_of_coefficient_sensors_needs_no_numpy_ma(tmp_path):
+    # numpy.ma (~7 ms) comes with np.unique; the coefficient-form path avoids it, and
+    # needs none of the datasheet envelope's modules
+    path = tmp_path / "c.gyrovib.yaml"
+    path.write_text(COEFFICIENTS_ONLY, encoding="utf-8")
+    modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze", str(path)])
+    assert "gyrovib.core.harmonics" in modules  # the probe works: a locked group was built
+    heavy = sorted(m for m in modules if m in ("numpy.ma", "numpy.random", "highspy")
+                   or m.startswith(("gyrovib.core.envelope", "gyrovib.core.highs"))
+                   or m in NOT_FOR_ANALYZE)
+    assert heavy == []

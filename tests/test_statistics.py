@@ -153,3 +153,15 @@ def test_two_tones_on_random_equal_nested_quadrature(a1, a2, sigma, omega):
 def test_excess_is_never_negative(amps, sigma, omega):
     # <|Ω + x|> ≥ |<Ω + x>| = |Ω| (Jensen): E ≥ 0 always
     assert rectified_excess([omega], amps, sigma)[0] >= 0.0
+
+
+def test_the_written_out_gauss_legendre_rule_is_the_computed_one() -> None:
+    # core.statistics writes the 24-point rule out (a first-run cost otherwise);
+    # it must be what Newton's method on P_24 gives, to the last bit, and integrate
+    # x^46 exactly over [-1, 1] (2/47: a 24-point rule is exact to degree 47)
+    from gyrovib.core import statistics
+
+    x, w = statistics._gauss_legendre(statistics._GL_N)
+    assert np.array_equal(x, np.array(statistics._GL24_X))
+    assert np.array_equal(w, np.array(statistics._GL24_W))
+    assert float(np.sum(w * x**46)) == pytest.approx(2.0 / 47.0, rel=1e-13)

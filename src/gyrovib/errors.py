@@ -11,9 +11,11 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from gyrovib.frozen import Frozen
 
-@dataclass(frozen=True)
-class Problem:
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Problem(Frozen):
     """One thing wrong with the input, with its place when it has one.
 
     ``line`` and ``column`` are 1-based, as editors show them.

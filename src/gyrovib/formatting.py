@@ -15,10 +15,14 @@ def fmt(value: float | None, digits: int = 4) -> str:
     if value is None:
         return "∞"
     v = float(value)
+    if v - v == 0.0 and v != 0.0:  # finite and not zero: the usual case, first
+        return format(v, _SPECS.get(digits) or f".{digits}g")
     if math.isinf(v):
         return "∞" if v > 0 else "-∞"
     if math.isnan(v):
         return "nan"
-    if v == 0:
-        return "0"
-    return f"{v:.{digits}g}"
+    return "0"
+
+
+#: The format specs of the usual digit counts, built once.
+_SPECS = {d: f".{d}g" for d in range(1, 18)}

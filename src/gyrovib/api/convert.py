@@ -13,8 +13,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
-from gyrovib.core.analysis import COEFFICIENTS, VibrationError
-from gyrovib.core.synthesis import BOUNDED
+from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, VibrationError
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 

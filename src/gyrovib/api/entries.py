@@ -8,17 +8,19 @@ messages and annotations.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from gyrovib.catalog.loader import (
     Catalog,
     ProfileEntry,
     SensorEntry,
-    bundled_paths,
+    bundled_files,
     load_catalog,
 )
 from gyrovib.errors import OptionError
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 #: (file, 1-based line) of an entry's ``id:``; ``(None, None)`` when unknown.
 Location = tuple[str | None, int | None]
@@ -31,7 +33,7 @@ def load(paths: Sequence[str | Path] = (), *, sensors: bool = True) -> Catalog:
     past by the YAML parser, neither built nor validated (``bounds`` uses no
     sensor; ``validate`` checks them).
     """
-    return load_catalog(list(paths) if paths else bundled_paths(),
+    return load_catalog(list(paths) if paths else bundled_files(),
                         skip=() if sensors else ("sensors",))
 
 

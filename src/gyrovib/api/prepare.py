@@ -29,14 +29,14 @@ from gyrovib.api.convert import coefficient_matrix, resolve_rate
 from gyrovib.api.entries import select_entries
 from gyrovib.api.linear import g2_matrix, profile_linear
 from gyrovib.catalog.loader import Catalog, ProfileEntry, SensorEntry
-from gyrovib.core.analysis import Multipliers, profile_multipliers, stack_multipliers
+from gyrovib.core.analysis import BOUNDED, Multipliers, profile_multipliers, stack_multipliers
 from gyrovib.core.harmonics import LockedGroup, locked_group
 from gyrovib.core.linear import LinearVibration
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR, group_peak, saturation_reach
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
-from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp
 from gyrovib.errors import ModelError, OptionError, Problem, RangeError
+from gyrovib.frozen import Frozen
 
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -227,8 +227,8 @@ def refusal_problem(profile: ProfileEntry, method: str, reason: str) -> Problem:
 # ----------------------------------------------------------------- the pipeline
 
 
-@dataclass(frozen=True)
-class Group:
+@dataclass(frozen=True, eq=False, repr=False)
+class Group(Frozen):
     """Sensors sharing one input-side response ν_sensor(f), and every profile as they see it.
 
     ``multipliers[method]`` is stacked over the profiles (shape profiles, or
@@ -253,8 +253,8 @@ class Group:
         return out
 
 
-@dataclass(frozen=True)
-class Prepared:
+@dataclass(frozen=True, eq=False, repr=False)
+class Prepared(Frozen):
     """What every command needs, in deg/s: chosen entries, coefficients, rates, groups.
 
     ``coefficients`` (sensors, 11) in deg/s powers; ``rates`` Ω_K per

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.results import SelectionResult
+from gyrovib.api.other_results import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE

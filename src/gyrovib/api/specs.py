@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -39,8 +39,15 @@ from gyrovib import units
 from gyrovib.api.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
-from gyrovib.core.envelope_lp import minimax_line
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
+
+if TYPE_CHECKING:
+    from gyrovib.api.spec_bounds import DatasheetBounds as DatasheetBounds
+    from gyrovib.api.spec_bounds import SpecChecks as SpecChecks
+    from gyrovib.api.spec_bounds import datasheet_bounds as datasheet_bounds
+    from gyrovib.api.spec_bounds import selection_fields as selection_fields
+    from gyrovib.api.spec_bounds import spec_checks as spec_checks
 
 #: m/s² per g (the standard gravity the catalogue's ``g`` means).
 STANDARD_GRAVITY = 9.80665
@@ -62,8 +69,8 @@ def spec_index(entries: Sequence[SensorEntry]) -> NDArray[np.intp]:
     return np.array([i for i, e in enumerate(entries) if is_spec(e)], dtype=np.intp)
 
 
-@dataclass(frozen=True)
-class SpecFigures:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecFigures(Frozen):
     """The datasheet figures of N spec-form sensors, in deg/s (and g).
 
     ``range`` R and ``limit`` b (deg/s); ``value``, ``unit`` the nonlinearity
@@ -139,8 +146,8 @@ def terms_of(m: Multipliers) -> FloatArray:
                             zero if m.m5 is None else m.m5, m.omega)
 
 
-@dataclass(frozen=True)
-class SpecWorst:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecWorst(Frozen):
     """The worst case of N spec sensors over one group's profiles (× rates), in deg/s.
 
     ``error``: the :class:`VibrationError` of the worst polynomial (total =
@@ -256,8 +263,8 @@ def multipliers_of(group: Group, prepared: Prepared, method: str,
     return stack_multipliers(items)
 
 
-@dataclass(frozen=True)
-class SpecResults:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecResults(Frozen):
     """The spec-form rows of a command: which sensors, and their worst case (deg/s).
 
     ``index``: the spec sensors among the prepared ones (M,); ``error``: their
@@ -385,154 +392,6 @@ def analysis_fields(n_s: int, n_p: int, spec: SpecResults | None,
     return {"sources": tuple(sources), "worst_coefficients": worst_x, "rms_bound": bound}
 
 
-# ----------------------------------------------------------------- select
-
-
-@dataclass(frozen=True)
-class SpecChecks:
-    """A spec sensor's datasheet against its own spec bounds, (M, P), deg/s and g.
-
-    ``nl_value``: its nonlinearity in %FS (of its own range or span);
-    ``nl_bound``: the allowable NL in the same %FS for Δ* (inf where the
-    profile does not excite the envelope); ``vre_value``: its VRE spec in
-    deg/s/g² (NaN: none given, taken as 0); ``vre_bound``: the allowable VRE
-    (inf without linear vibration). Passes use ``rtol``.
-    """
-
-    nl_value: FloatArray
-    nl_bound: FloatArray
-    nl_pass: NDArray[np.bool_]
-    vre_value: FloatArray
-    vre_bound: FloatArray
-    vre_pass: NDArray[np.bool_]
-
-
-def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: float,
-                weights: tuple[float, float] = (1.0, 1.0), rtol: float = 1e-9) -> SpecChecks:
-    """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (MODEL.md section 11).
-
-    NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds` for
-    the sensor's own range, fit, measure and ``of``, under its own response
-    (one programme per distinct datasheet definition and group).
-    """
-    from gyrovib.core.envelope import spec_bounds
-
-    figs = spec.figures
-    m_count, n_p = spec.index.size, len(prepared.profiles)
-    nl_bound = np.full((m_count, n_p), np.inf)
-    vre_bound = np.full((m_count, n_p), np.inf)
-    position = {int(i): k for k, i in enumerate(spec.index.tolist())}
-    for group in prepared.groups:
-        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
-        if not rows or not n_p:
-            continue
-        m = multipliers_of(group, prepared, method)
-        t = terms_of(m)
-        s = mean_square_acceleration(m)
-        keys: dict[tuple[float, str, str, str], list[int]] = {}
-        for k in rows:
-            keys.setdefault((float(figs.range[k]), figs.fit[k], figs.measure[k], figs.of[k]),
-                            []).append(k)
-        for (r, fit, measure, of), members in keys.items():
-            sb = spec_bounds(budget, t, s, r, fit, measure, of, weights)
-            nl_bound[members] = sb.nonlinearity[None]
-            vre_bound[members] = sb.vre[None]
-    nl_value = np.broadcast_to(figs.percent[:, None], (m_count, n_p)).copy()
-    vre_value = np.where(figs.has_vre, figs.vre, np.nan)[:, None] * np.ones((1, n_p))
-    nl_pass = nl_value <= nl_bound * (1.0 + rtol)
-    vre_pass = np.nan_to_num(vre_value) <= vre_bound * (1.0 + rtol)
-    return SpecChecks(nl_value, nl_bound, nl_pass, vre_value, vre_bound, vre_pass)
-
-
-def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecChecks | None,
-                     total: FloatArray, unit: str,
-                     vre: tuple[FloatArray, FloatArray, NDArray[np.bool_]]) -> dict[str, Any]:
-    """The spec-form fields of a :class:`~gyrovib.api.SelectionResult`.
-
-    ``total`` (|Δ_V|, the worst case for spec sensors) always; ``vre`` the
-    coefficient sensors' VRE check (effective VRE and its bound in deg/s per g²,
-    pass; MODEL.md section 8), whose spec-form rows are replaced by the datasheet
-    VRE against its allowable value (section 11); ``sources`` and the
-    nonlinearity check (NaN on coefficient rows) only with spec sensors.
-    """
-    s = units.scale(unit)
-    vre_value, vre_bound = np.array(vre[0], dtype=float), np.array(vre[1], dtype=float)
-    vre_pass = np.array(vre[2], dtype=bool)
-    out: dict[str, Any] = {"total": total / s}
-    if spec is None or checks is None:
-        out.update(vre_value=vre_value / s, vre_bound=vre_bound / s, vre_pass=vre_pass)
-        return out
-    sources = ["coefficients"] * n_s
-    for i in spec.index.tolist():
-        sources[i] = "specs"
-
-    def full(values: NDArray[Any], fill: float = np.nan) -> FloatArray:
-        array = np.full((n_s, n_p), fill)
-        array[spec.index] = values
-        return array
-
-    vre_value[spec.index] = checks.vre_value
-    vre_bound[spec.index] = checks.vre_bound
-    vre_pass[spec.index] = checks.vre_pass
-    out.update(
-        sources=tuple(sources),
-        nl_value=full(checks.nl_value), nl_bound=full(checks.nl_bound),
-        nl_pass=full(checks.nl_pass, True).astype(bool),
-        vre_value=vre_value / s, vre_bound=vre_bound / s, vre_pass=vre_pass,
-    )
-    return out
-
-
-# ----------------------------------------------------------------- bounds
-
-
-@dataclass(frozen=True)
-class DatasheetBounds:
-    """Allowable datasheet figures for a part of range R, per profile (``bounds --range``).
-
-    ``nonlinearity``: NL_max in %FS of R (``of`` range) or of 2R (span), inf
-    where the profile does not excite the envelope; ``vre``: VRE_max in the
-    output unit per g² (inf without linear vibration); ``range`` R in the
-    output unit; ``fit``, ``measure``, ``of``: the definition the NL is read
-    with; ``weights``: the NL:VRE split; ``w1``: W(1), the worst case for a
-    limit b = 1 (rate per rate); ``share_nl``, ``share_vre``: the fractions
-    of Δ* (MODEL.md section 11: NL_max·W(1) = share_nl·Δ*).
-    """
-
-    range: float
-    fit: str
-    measure: str
-    of: str
-    weights: tuple[float, float]
-    nonlinearity: FloatArray
-    vre: FloatArray
-    w1: FloatArray
-    share_nl: FloatArray
-    share_vre: FloatArray
-
-
-def datasheet_bounds(m: Multipliers | None, n_profiles: int, budget: float, range_: float,
-                     unit: str, fit: str = "least-squares", measure: str = "max",
-                     of: str = "range",
-                     weights: tuple[float, float] = (1.0, 1.0)) -> DatasheetBounds:
-    """NL_max and VRE_max of :func:`gyrovib.core.envelope.spec_bounds`, in output units.
-
-    ``budget`` and ``range_`` in deg/s; ``m`` the profiles' multipliers (the
-    profile alone, ν_sensor = 1), None when there are no profiles.
-    """
-    from gyrovib.core.envelope import spec_bounds
-
-    s = units.scale(unit)
-    if m is None or n_profiles == 0:
-        empty = np.zeros(0)
-        return DatasheetBounds(range_ / s, fit, measure, of, weights, empty, empty, empty,
-                               empty, empty)
-    sb = spec_bounds(budget, terms_of(m), mean_square_acceleration(m), range_, fit, measure,
-                     of, weights)
-    return DatasheetBounds(range_ / s, fit, measure, of, weights, sb.nonlinearity,
-                           sb.vre / s, sb.w1, sb.share_nl, sb.share_vre)
-
-
 # ----------------------------------------------------------------- sweep
 
 
@@ -566,6 +425,7 @@ def worst_residual(result: Any, i: int, j: int, r: int,
     the result's unit).
     """
     from gyrovib.core.envelope import residual
+    from gyrovib.core.envelope_lp import minimax_line
 
     x = np.asarray(result.worst_coefficients[i, j, r], dtype=float)
     big_r = float(result.nl_range[i])
@@ -581,3 +441,18 @@ def worst_residual(result: Any, i: int, j: int, r: int,
         slope, intercept = np.polyfit(w, p, 1)
         line = intercept + slope * w
     return w, p - line, float(result.nl_limit[i])
+
+
+#: The checks of ``select`` and the bounds of ``bounds --range`` live in
+#: :mod:`gyrovib.api.spec_bounds` (so that ``analyze`` defines none of their
+#: classes); still reachable from here.
+_ELSEWHERE = ("SpecChecks", "spec_checks", "selection_fields", "DatasheetBounds",
+              "datasheet_bounds")
+
+
+def __getattr__(name: str) -> Any:
+    if name in _ELSEWHERE:
+        from gyrovib.api import spec_bounds
+
+        return getattr(spec_bounds, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

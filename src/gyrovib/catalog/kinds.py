@@ -2,9 +2,12 @@
 mappings and rules (see :mod:`gyrovib.catalog.spec` for the format itself).
 
 Each is an immutable named tuple (cheap to define at start-up; change one
-with ``._replace``)."""
+with ``._replace``).
 
-from __future__ import annotations
+No ``from __future__ import annotations`` here: with it, ``typing.NamedTuple``
+turns every field annotation into a ``ForwardRef``, which compiles the string
+(44 compilations, ~2 ms of every start-up); evaluated, the annotations cost
+nothing."""
 
 from collections.abc import Callable
 from typing import Any, NamedTuple

@@ -11,11 +11,11 @@ read ``FILE:LINE:COL: message`` at a cost linear in the file.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from types import SimpleNamespace
-from typing import Any, NamedTuple, cast
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 from gyrovib.catalog import records
 from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
@@ -31,6 +31,10 @@ from gyrovib.catalog.records import Allocation, CatalogFile, Profile, Sensor
 from gyrovib.catalog.spec import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY
 from gyrovib.catalog.validate import Error, Invalid
 from gyrovib.errors import CatalogError, Problem
+from gyrovib.frozen import Frozen
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 _Loader = Loader
 
@@ -57,8 +61,8 @@ def _capped(problems: list[Problem]) -> list[Problem]:
 # ---------------------------------------------------------------- one file
 
 
-@dataclass(frozen=True)
-class CatalogSource:
+@dataclass(frozen=True, eq=False, repr=False)
+class CatalogSource(Frozen):
     """One validated file: its name as given, its text and its model."""
 
     name: str
@@ -186,12 +190,26 @@ def _ids_only(data: dict[str, Any], name: str, text: str, index: Index) -> Catal
 def read_catalog(path: str | Path, skip: Collection[str] = ()) -> CatalogSource:
     """Read, parse and validate one catalogue file (``skip``: as :func:`parse_catalog`)."""
     name = str(path)
-    return parse_catalog(_read_text(Path(path), name), name, skip)
+    return parse_catalog(_read_text(_native(path), name), name, skip)
 
 
-def _read_text(path: Path, name: str) -> str:
+def _native(path: str | Path) -> str:
+    """The name :meth:`pathlib.Path.open` would open for ``path``: ``path`` itself when
+    pathlib would not change it (a POSIX name without empty or ``.`` parts, nor a
+    trailing slash), else ``str(Path(path))``. pathlib is imported only then: its
+    import (with urllib.parse) is ~3 ms of a first run."""
+    if isinstance(path, str) and os.sep == "/" and os.altsep is None:
+        parts = path.split("/")
+        if path and "." not in parts and "" not in parts[1:]:
+            return path
+    from pathlib import Path
+
+    return str(Path(path))
+
+
+def _read_text(path: str, name: str) -> str:
     try:
-        with path.open("rb") as handle:
+        with open(path, "rb") as handle:
             raw = handle.read(MAX_FILE_BYTES + 1)
     except FileNotFoundError:
         raise CatalogError(Problem("no such file or directory", name)) from None
@@ -233,8 +251,8 @@ def _read_text(path: Path, name: str) -> str:
 # ---------------------------------------------------------------- several files
 
 
-@dataclass(frozen=True)
-class Entry:
+@dataclass(frozen=True, eq=False, repr=False)
+class Entry(Frozen):
     """A sensor or profile with the file it came from and its index there."""
 
     source: CatalogSource
@@ -250,18 +268,18 @@ class Entry:
         return self.source.model.acceleration_unit
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class SensorEntry(Entry):
     sensor: Sensor
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ProfileEntry(Entry):
     profile: Profile
 
 
-@dataclass(frozen=True)
-class Catalog:
+@dataclass(frozen=True, eq=False, repr=False)
+class Catalog(Frozen):
     """Sensors and profiles merged from one or more files, ids unique."""
 
     sources: tuple[CatalogSource, ...]
@@ -365,14 +383,24 @@ def load_catalog(paths: Sequence[str | Path], skip: Collection[str] = ()) -> Cat
 
 def bundled_paths() -> list[Path]:
     """The catalogues shipped with gyrovib, in name order."""
-    here = Path(__file__).parent.parent / "catalogs"
-    if here.is_dir():  # installed as files: no need for importlib.resources (slow import)
-        root: Any = here
-    else:
-        from importlib.resources import files
+    from pathlib import Path
 
-        root = files("gyrovib") / "catalogs"
-    return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith((".yaml", ".yml")))
+    return [Path(p) for p in bundled_files()]
+
+
+def bundled_files() -> list[str]:
+    """:func:`bundled_paths` as strings, found with :mod:`os.path` when gyrovib is
+    installed as files (importlib.resources and pathlib are slow imports)."""
+    here = os.path.join(os.path.dirname(os.path.dirname(__file__)), "catalogs")
+    if os.path.isdir(here):
+        return sorted(os.path.join(here, name) for name in os.listdir(here)
+                      if name.endswith((".yaml", ".yml")))
+    from importlib.resources import files
+    from pathlib import Path
+
+    root = files("gyrovib") / "catalogs"
+    return [str(p) for p in
+            sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith((".yaml", ".yml")))]
 
 
 __all__ = [
@@ -384,6 +412,7 @@ __all__ = [
     "ProfileEntry",
     "Sensor",
     "SensorEntry",
+    "bundled_files",
     "bundled_paths",
     "load_catalog",
     "merge",

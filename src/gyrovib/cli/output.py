@@ -15,7 +15,6 @@ import os
 import stat
 import sys
 from collections.abc import Iterable, Iterator
-from pathlib import Path
 from typing import BinaryIO, TextIO
 
 from gyrovib.errors import OptionError
@@ -132,6 +131,8 @@ def _replace(path: str, data: bytes | Iterable[bytes], what: str) -> None:
     """
     if not path:
         raise OptionError(f"{what}give a file name")
+    from pathlib import Path  # not at import time: ~3 ms of every start-up
+
     target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
     try:
         mode = os.stat(target).st_mode

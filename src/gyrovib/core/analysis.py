@@ -57,10 +57,13 @@ from gyrovib.core.statistics import (
 )
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
+from gyrovib.frozen import Frozen
 
 #: Column order of a coefficient matrix (eq. 2).
 COEFFICIENTS: tuple[str, ...] = ("k0", "k1", "A1", "k2", "k3", "k4", "k5", "m1", "m2", "m31", "m32")
 COLUMN: dict[str, int] = {name: i for i, name in enumerate(COEFFICIENTS)}
+#: The coefficients that receive a bound (:mod:`gyrovib.core.synthesis`), in report order.
+BOUNDED: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
 #: Names of the additive terms Δ0(1..5): the coefficient each is proportional to.
 ADDITIVE_TERMS: tuple[str, ...] = ("A1", "k2", "k4", "m31", "m32")
 #: Names of the additive terms of MODEL.md sections 8 and 10: Δ0(6) = ΣG_jk·⟨a_j a_k⟩
@@ -72,8 +75,8 @@ MULTIPLICATIVE_TERMS: tuple[str, ...] = ("q1", "q2", "q3")
 METHODS = ("exact", "paper")
 
 
-@dataclass(frozen=True)
-class Multipliers:
+@dataclass(frozen=True, eq=False, repr=False)
+class Multipliers(Frozen):
     """What the error needs from a vibration, at each rate Ω_K3.
 
     All arrays share one shape (profiles, or profiles × rates), rate units:
@@ -254,8 +257,8 @@ def stack_multipliers(items: Sequence[Multipliers]) -> Multipliers:
     return Multipliers(**fields)
 
 
-@dataclass(frozen=True)
-class VibrationError:
+@dataclass(frozen=True, eq=False, repr=False)
+class VibrationError(Frozen):
     """Eq. (13)-(16) for every sensor × profile (× rate): arrays in rate units.
 
     ``additive_terms[..., p]`` is Δ0(p+1) for :data:`ADDITIVE_TERMS`;

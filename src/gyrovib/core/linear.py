@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
 #: Order of the g²-sensitivities G_jk and of the second moments ⟨a_j·a_k⟩.
 G2_TERMS: tuple[str, ...] = ("G11", "G22", "G33", "G12", "G13", "G23")
@@ -101,8 +102,8 @@ def effective_vre(sensitivity: ArrayLike, moments: ArrayLike) -> FloatArray:
     return out
 
 
-@dataclass(frozen=True)
-class LinearVibration:
+@dataclass(frozen=True, eq=False, repr=False)
+class LinearVibration(Frozen):
     """A linear vibration at the sensor's axes, in g (MODEL.md section 8).
 
     ``amplitudes`` (K, 3) and ``phases`` (K, 3, degrees) of tones of distinct

@@ -80,6 +80,7 @@ from gyrovib.core.harmonics import LockedGroup, group_signal, locked_peak
 from gyrovib.core.linear import PAIRS, LinearVibration
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
 #: Evaluation points per block of the sample stream (fixed: results must not
 #: depend on how many sensors share the samples).
@@ -96,8 +97,8 @@ MIN_SAMPLES = 2 * REPLICATES
 Progress = Callable[[int], None]
 
 
-@dataclass(frozen=True)
-class NumericEstimate:
+@dataclass(frozen=True, eq=False, repr=False)
+class NumericEstimate(Frozen):
     """Brute-force vibration error of several sensors under one vibration.
 
     ``total`` (sensors,): Δ_V, the average of eq. (2) minus eq. (2) at rest.

@@ -35,6 +35,7 @@ from gyrovib.core.analysis import (
 from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
 #: Most nodes of the coarse grid over the free offsets.
 COARSE_NODES = 256
@@ -109,8 +110,8 @@ def maximise_on_torus(objective: Callable[[FloatArray], FloatArray], dims: int
     return best, best_value
 
 
-@dataclass(frozen=True)
-class WorstPhases:
+@dataclass(frozen=True, eq=False, repr=False)
+class WorstPhases(Frozen):
     """The worst case of a profile over its unknown phases, per sensor.
 
     ``offsets``: (sensors, D) ψ found (rad), for the orders ``free``

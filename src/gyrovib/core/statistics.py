@@ -14,6 +14,7 @@ the same frequency are coherent and are first added as phasors.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Callable, Sequence
@@ -25,6 +26,7 @@ from numpy.typing import ArrayLike, NDArray
 from gyrovib.core.mixtures import _contour_excess
 from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
 from gyrovib.errors import ModelError
+from gyrovib.frozen import Frozen
 
 SQRT_2_OVER_PI = math.sqrt(2.0 / math.pi)
 #: The paper's printed multiplier of A1·a for a tone (eq. 14; docs/model.md).
@@ -34,8 +36,8 @@ PAPER_RANDOM_ASYMMETRY = 0.5
 
 
 
-@dataclass(frozen=True)
-class Vibration:
+@dataclass(frozen=True, eq=False, repr=False)
+class Vibration(Frozen):
     """The vibration at the sensor, after transmissibility.
 
     ``phasors``: complex amplitudes ``a_i·exp(jφ_i)`` of the tones, shape
@@ -338,15 +340,41 @@ def _gauss_legendre(n: int) -> tuple[FloatArray, FloatArray]:
     return nodes, weights[::-1].copy()
 
 
-_GL_X, _GL_W = _gauss_legendre(24)
+#: Gauss-Legendre nodes per piece of :func:`_pieces`.
+_GL_N = 24
 #: Values one :func:`_pair_mean` / :func:`_triple_mean` argument makes (3 and 5 pieces).
-_PAIR_NODES = 3 * _GL_X.size
-_TRIPLE_NODES = 5 * _GL_X.size * _PAIR_NODES
-#: Gauss-Legendre nodes on [0, 1] mapped by θ = lo + L·(1 − cos πv)/2, which
-#: makes the (θ − θ*)^(3/2) behaviour at a kink smooth in v; with the Jacobian.
-_V = (_GL_X + 1.0) / 2.0
-_STRETCH = (1.0 - np.cos(math.pi * _V)) / 2.0
-_STRETCH_WEIGHT = _GL_W / 2.0 * (math.pi / 2.0) * np.sin(math.pi * _V)
+_PAIR_NODES = 3 * _GL_N
+_TRIPLE_NODES = 5 * _GL_N * _PAIR_NODES
+
+
+#: :func:`_gauss_legendre` (``_GL_N``) written out, as it computes them to the last bit
+#: (tests/test_statistics.py checks it): Newton's method is ~1 ms of a first run.
+_GL24_X = (
+    -0.9951872199970213, -0.9747285559713095, -0.9382745520027328, -0.8864155270044011,
+    -0.820001985973903, -0.7401241915785544, -0.6480936519369755, -0.5454214713888396,
+    -0.4337935076260452, -0.3150426796961634, -0.1911188674736163, -0.06405689286260563,
+    0.06405689286260563, 0.1911188674736163, 0.3150426796961634, 0.4337935076260452,
+    0.5454214713888396, 0.6480936519369755, 0.7401241915785544, 0.820001985973903,
+    0.8864155270044011, 0.9382745520027328, 0.9747285559713095, 0.9951872199970213,
+)
+_GL24_W = (
+    0.012341229799987334, 0.02853138862893381, 0.044277438817419676, 0.05929858491543666,
+    0.07334648141108027, 0.08619016153195322, 0.09761865210411391, 0.10744427011596562,
+    0.11550566805372554, 0.12167047292780338, 0.12583745634682839, 0.12793819534675224,
+    0.12793819534675224, 0.12583745634682839, 0.12167047292780338, 0.11550566805372554,
+    0.10744427011596562, 0.09761865210411391, 0.08619016153195322, 0.07334648141108027,
+    0.05929858491543666, 0.044277438817419676, 0.02853138862893381, 0.012341229799987334,
+)
+
+
+
+@functools.cache
+def _stretched_rule() -> tuple[FloatArray, FloatArray]:
+    """Gauss-Legendre nodes on [0, 1] mapped by θ = lo + L·(1 − cos πv)/2, which
+    makes the (θ − θ*)^(3/2) behaviour at a kink smooth in v; with the Jacobian."""
+    x, w = np.array(_GL24_X), np.array(_GL24_W)
+    v = (x + 1.0) / 2.0
+    return (1.0 - np.cos(math.pi * v)) / 2.0, w / 2.0 * (math.pi / 2.0) * np.sin(math.pi * v)
 
 
 def _stretched_pieces(
@@ -360,10 +388,11 @@ def _stretched_pieces(
     half = math.pi / 2.0
     cuts = [np.arcsin(np.clip((t - c) / amplitude, -1.0, 1.0)) for t in targets]
     edges = [np.full_like(c, -half), *cuts, np.full_like(c, half)]
+    stretch, stretch_weight = _stretched_rule()
     pieces = []
     for lo, hi in itertools.pairwise(edges):
         length = hi - lo
-        pieces.append((lo + length * _STRETCH, length * _STRETCH_WEIGHT / math.pi))
+        pieces.append((lo + length * stretch, length * stretch_weight / math.pi))
     return pieces
 
 

@@ -54,11 +54,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from gyrovib.core.analysis import BOUNDED as BOUNDED  # defined there: analyze needs no synthesis
 from gyrovib.core.analysis import Multipliers
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
-#: The coefficients that receive a bound, in report order.
-BOUNDED: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
 #: The two candidates behind the k4 and k5 bounds.
 PARTS: tuple[str, ...] = ("k4_additive", "k4_multiplicative", "k5_linear", "k5_cubic")
 #: The parts that odd moments add (MODEL.md section 10; finite only where M3, M5 ≠ 0).
@@ -73,8 +73,8 @@ DEFAULT_W: tuple[float, ...] = (1.0, 1.0, 1.0, 0.5, 0.5)
 DEFAULT_V: tuple[float, ...] = (1.0, 0.5, 0.5)
 
 
-@dataclass(frozen=True)
-class AllocationConstants:
+@dataclass(frozen=True, eq=False, repr=False)
+class AllocationConstants(Frozen):
     """Shares of Δ* (dimensionless).
 
     ``alpha``: α_1..α_5 for A1, k2, k4 (additive), m31, m32 (eq. 21, 22);
@@ -151,8 +151,8 @@ PAPER_CONSTANTS = AllocationConstants(
 )
 
 
-@dataclass(frozen=True)
-class CoefficientBounds:
+@dataclass(frozen=True, eq=False, repr=False)
+class CoefficientBounds(Frozen):
     """Allowable |coefficient| values, eq. (23) and (25); +inf where unconstrained.
 
     Every array has the shape of the multipliers (profiles, or groups ×

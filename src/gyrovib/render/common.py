@@ -162,22 +162,22 @@ class Table:
         self.rows.append(list(cells))
 
     def render(self, width: int, color: bool) -> list[str]:
-        widths = [max([len(c["header"]), c["min_width"], *(len(r[k]) for r in self.rows)])
+        # each cell's text and length once (a Text joins its pieces on every len())
+        plain = [[c if isinstance(c, str) else c.plain for c in row] for row in self.rows]
+        lengths = [[len(t) for t in row] for row in plain]
+        widths = [max([len(c["header"]), c["min_width"], *(r[k] for r in lengths)])
                   for k, c in enumerate(self.columns)]
         groups = _column_groups(widths, width)
         lines: list[str] = []
         if self.title:
-            import textwrap
-
-            lines.extend(_styled(part, "bold", color)
-                         for part in textwrap.wrap(self.title, width) or [""])
+            lines.extend(_styled(part, "bold", color) for part in wrap(self.title, width))
         for group in groups:
             group_widths = _fit(self.columns, group, widths, width)
-            lines.extend(self._render_group(group, group_widths, color))
+            lines.extend(self._render_group(group, group_widths, color, plain, lengths))
         return lines
 
-    def _render_group(self, group: list[int], widths: dict[int, int],
-                      color: bool) -> list[str]:
+    def _render_group(self, group: list[int], widths: dict[int, int], color: bool,
+                      plain: list[list[str]], lengths: list[list[int]]) -> list[str]:
         def rule(left: str, fill: str, mid: str, right: str) -> str:
             return left + mid.join(fill * (widths[k] + 2) for k in group) + right
 
@@ -207,13 +207,32 @@ class Table:
                               zip(group, split, strict=True)}, edge, styles)  # type: ignore[arg-type]
                     for n in range(height)]
 
+        # where a row fits and takes no colour, its line from the plain texts (as one_line
+        # writes it: a cell's render without colour is its plain text)
+        justify = [column["justify"] for column in columns]
+        width_of = [widths[k] for k in group]
+
+        def plain_line(texts: list[str], lens: list[int]) -> str | None:
+            parts = []
+            for k, w, j in zip(group, width_of, justify, strict=True):
+                pad = w - lens[k]
+                if pad < 0:
+                    return None  # wraps: the general path
+                left = pad // 2 if j == "center" else pad if j == "right" else 0
+                parts.append(" " * (left + 1) + texts[k] + " " * (pad - left + 1))
+            return "│" + "│".join(parts) + "│"
+
         lines = [rule("┏", "━", "┳", "┓")]
         lines += body([c["header"] for c in self.columns], "┃",
                       [self.header_style] * len(group))
         lines.append(rule("┡", "━", "╇", "┩"))
         styles = [column["style"] for column in columns]
-        for row in self.rows:
-            lines += body(row, "│", styles)
+        for row, texts, lens in zip(self.rows, plain, lengths, strict=True):
+            line = None if color else plain_line(texts, lens)
+            if line is None:
+                lines += body(row, "│", styles)
+            else:
+                lines.append(line)
         lines.append(rule("└", "─", "┴", "┘"))
         return lines
 
@@ -266,13 +285,22 @@ def _wrap(cell: Cell, width: int) -> list[Text]:
     return [Text(chunk, style) for chunk in chunks]
 
 
+def wrap(text: str, width: int) -> list[str]:
+    """``textwrap.wrap(text, width) or [""]``; a text that fits as it is (no leading or
+    trailing whitespace, no tab or line break) is its own single line without
+    textwrap's splitting (~40 µs a call, every table title)."""
+    if len(text) <= width and text.isprintable() and text == text.strip():
+        return [text]
+    import textwrap
+
+    return textwrap.wrap(text, width) or [""]
+
+
 def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
               color: bool = False, ascii: bool = False) -> str:
     """Render tables and lines of text to a string ``width`` columns wide (160 unless
     given); a line of text longer than that is wrapped at spaces. ``ascii``: only
     ASCII characters (:func:`to_ascii`), laid out after the transliteration."""
-    import textwrap
-
     page = max(width or 160, 40)
     lines: list[str] = []
     for item in renderables:
@@ -285,8 +313,7 @@ def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
             lines.append(item.render(color))
             continue
         style = item.pieces[0][1] if item.pieces else None
-        lines.extend(_styled(chunk, style, color)
-                     for chunk in textwrap.wrap(item.plain, page) or [""])
+        lines.extend(_styled(chunk, style, color) for chunk in wrap(item.plain, page))
     text = "\n".join(lines) + "\n"
     return to_ascii(text) if ascii else text
 

@@ -218,13 +218,13 @@ def _worst_phases(prepared: Prepared, group: Group,
     the phases found; returns, per (sensor, profile), per locked group, the
     phase (degrees, common to the axes) of each order written ``worst``.
     """
-    from gyrovib.core.phases import worst_phase_error
-
     out: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
     coeffs, rates, idx = prepared.coefficients, prepared.rates, group.index
     for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
         if not any(g.worst.any() for g in locked):
             continue
+        from gyrovib.core.phases import worst_phase_error  # only for phase: worst
+
         linear = prepared.linear[j] if prepared.linear else None
         found = worst_phase_error(coeffs[idx], v, locked, float(rates[j, 2]),
                                   acceleration=None if linear is None else linear.moments(),

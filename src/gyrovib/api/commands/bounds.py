@@ -10,6 +10,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import bound_factors
+from gyrovib.api.other_results import BoundsResult
 from gyrovib.api.prepare import (
     TINY,
     Prepared,
@@ -18,7 +19,6 @@ from gyrovib.api.prepare import (
     overflow_problem,
     prepare,
 )
-from gyrovib.api.results import BoundsResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import METHODS
@@ -179,7 +179,7 @@ def bounds(
         check_vre_bound(scaled.vre, prepared)
         datasheet = None
         if range_ is not None:
-            from gyrovib.api.specs import datasheet_bounds
+            from gyrovib.api.spec_bounds import datasheet_bounds
 
             multipliers = prepared.groups[0].multipliers[method] if prepared.groups else None
             datasheet = datasheet_bounds(multipliers, len(prepared.profiles), budget, range_,

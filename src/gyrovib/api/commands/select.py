@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api import specs
+from gyrovib.api import spec_bounds, specs
 from gyrovib.api.commands.bounds import (
     bounds,
     catalog_unit,
@@ -16,9 +16,9 @@ from gyrovib.api.commands.bounds import (
     resolve_allocation,
 )
 from gyrovib.api.convert import bound_factors, sensor_ranges
+from gyrovib.api.other_results import Limit, SelectionResult
 from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.reasons import saturation_reasons
-from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import COEFFICIENTS, vibration_error
@@ -175,7 +175,7 @@ def select(
         if spec is not None:
             rms[spec.index] = spec.error.rms
             total[spec.index] = spec.error.total
-            own = specs.spec_checks(prepared, spec, method, budget, spec_weights, PASS_RTOL)
+            own = spec_bounds.spec_checks(prepared, spec, method, budget, spec_weights, PASS_RTOL)
         check_finite([rms, total, vre_deg], prepared)
         check_bounds(limits_deg, prepared)
         factors = np.array([bound_factors(unit)[c] for c in BOUNDED])
@@ -238,7 +238,7 @@ def select(
         limits=limits,
         requirement_met=met,
         allocation=constants,
-        **specs.selection_fields(n_s, n_p, spec, own, total, unit,
+        **spec_bounds.selection_fields(n_s, n_p, spec, own, total, unit,
                                  (vre_deg, vre_bound_deg, vre_pass)),
         saturated=saturated,
         reasons=reasons,

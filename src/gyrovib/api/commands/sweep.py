@@ -9,8 +9,8 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
+from gyrovib.api.other_results import SweepResult
 from gyrovib.api.prepare import check_finite, float_guard, prepare
-from gyrovib.api.results import SweepResult
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
