@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 from gyrovib.core.envelope_lp import FITS, MEASURES, support, without_idle_cuts
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
+from gyrovib.frozen import Frozen
 
 #: The coefficients of the envelope, in the order of x.
 COEFFICIENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5")
@@ -164,8 +165,8 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     return hv, yv, lv, gap[inv].reshape(shape)
 
 
-@dataclass(frozen=True)
-class WorstCase:
+@dataclass(frozen=True, eq=False, repr=False)
+class WorstCase(Frozen):
     """The worst vibration error of N spec-form sensors under P profiles (or rates).
 
     ``total``: worst |Δ_V| = cᵀx* + |v|·S, rate, (N, P); ``nonlinearity``: its
@@ -263,8 +264,8 @@ def residual(coefficients: ArrayLike, line: ArrayLike, omega: ArrayLike) -> Floa
     return np.asarray(p - ln[..., :1] - ln[..., 1:2] * w, dtype=float)
 
 
-@dataclass(frozen=True)
-class SpecBounds:
+@dataclass(frozen=True, eq=False, repr=False)
+class SpecBounds(Frozen):
     """Allowable datasheet figures for a budget Δ*, per profile (P,).
 
     ``nonlinearity``: NL_max in %FS of R (``of`` range), of 2R (span) or in

@@ -31,13 +31,14 @@ import numpy as np
 
 from gyrovib.core.envelope_basis import MINIMAX, SLOPE, basis, true_max
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
 #: Newton iterations before a pair is left to the grid exchange.
 ITERATIONS = 12
 
 
-@dataclass(frozen=True)
-class Polished:
+@dataclass(frozen=True, eq=False, repr=False)
+class Polished(Frozen):
     """Per pair (K,): ``ok`` where the bounds agree to the tolerance asked for;
     ``h`` the lower bound d·y (y feasible), ``upper`` the dual bound Σ λ_j,
     ``gap`` = 1 − h/upper, ``y`` (K, 5) and ``line`` (K, 2) = (α, β) of the

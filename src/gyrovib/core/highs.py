@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 
 #: Tolerances of the envelope's grid LPs (HiGHS defaults are 1e-7).
 TIGHT: dict[str, float | str] = {"primal_feasibility_tolerance": 1e-10,
@@ -26,8 +27,8 @@ TIGHT: dict[str, float | str] = {"primal_feasibility_tolerance": 1e-10,
                                  "presolve": "off"}
 
 
-@dataclass(frozen=True)
-class Solution:
+@dataclass(frozen=True, eq=False, repr=False)
+class Solution(Frozen):
     """A solve: ``ok`` (optimal), the primal ``x``, the row duals, HiGHS's status text.
 
     ``row_dual`` is the sensitivity of the (minimised) objective to each row's
