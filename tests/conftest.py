@@ -66,6 +66,31 @@ profiles:
 # by test_linear_api.py and test_specs_linear.py. Tones A = (1, 2, 3) g at 100 Hz with
 # phases (0, 90, 0)°, random σ = (1, 2, 0.5) g, ρ = (0.5, −0.2, 0): Σ⟨a_j²⟩ = 1.5 + 6 +
 # 4.75 = 12.25 g² (worked in test_linear_api.py, MODEL.md section 8).
+#: Three sensors of different forms (coefficients with a range, cross-axis only,
+#: output coefficients with a response) under a tone and a random profile: the
+#: renderers' tests check every cell of their output against it.
+MIXED_FORMS = """
+gyrovib: 1
+units: {rate: deg/h}
+sensors:
+  - id: small
+    range: 10
+    coefficients: {A1: 1e-3, k2: 1e-4, k3: 1e-6, k5: -1e-12}
+  - id: odd.id_2
+    coefficients: {k2: -2e-4, m31: 1e-5}
+  - id: big
+    range: 1e6
+    output_coefficients: {K1: 3, K2: 1e-3, M32: 2e-5}
+    response: [[10, 1], [100, 0.5]]
+profiles:
+  - id: tone
+    rate: [0, 0, 5]
+    harmonic: [{frequency: 100, amplitude: [0, 0, 20000]}]
+  - id: random
+    random: {rms: [0, 0, 2]}
+"""
+
+
 LINEAR_PROFILE = """\
   - id: lin
     rate: [0, 0, 10]

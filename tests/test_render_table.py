@@ -21,27 +21,10 @@ from gyrovib.catalog.loader import merge, parse_catalog
 from gyrovib.formatting import fmt
 from gyrovib.render import analysis as render
 from gyrovib.render.common import Table, Text, rich_text, wrap
+from tests.conftest import MIXED_FORMS
 
-CATALOG = """
-gyrovib: 1
-units: {rate: deg/h}
-sensors:
-  - id: small
-    range: 10
-    coefficients: {A1: 1e-3, k2: 1e-4, k3: 1e-6, k5: -1e-12}
-  - id: odd.id_2
-    coefficients: {k2: -2e-4, m31: 1e-5}
-  - id: big
-    range: 1e6
-    output_coefficients: {K1: 3, K2: 1e-3, M32: 2e-5}
-    response: [[10, 1], [100, 0.5]]
-profiles:
-  - id: tone
-    rate: [0, 0, 5]
-    harmonic: [{frequency: 100, amplitude: [0, 0, 20000]}]
-  - id: random
-    random: {rms: [0, 0, 2]}
-  - id: shaft
+# the renderers' catalogue and a locked group (its odd-moment columns)
+CATALOG = MIXED_FORMS + """  - id: shaft
     rate: [0, 0, 1]
     harmonics:
       fundamental: 50
