@@ -295,3 +295,19 @@ def test_accepted_polish_carries_a_valid_certificate(monkeypatch: pytest.MonkeyP
     _weak_duality_across_pairs(f, a, d, h, y)
 
 
+
+
+def test_grid_answer_respects_the_cut() -> None:
+    # found by test_seeded_path_with_mixed_fits_and_cuts: an odd direction under the endpoint
+    # fit with the cut |y1| ≤ 0.2 binding. The polish is not certified there, so the answer
+    # is the grid LP's, whose y1 HiGHS returned 4e-9 above the cut (its tolerance); likewise
+    # 2e-11 off a cut at 0 (an asymmetry spec of 0). support() promises a y inside the
+    # envelope E ∩ {|y1| ≤ a} (envelope_basis), h = dᵀy never above the continuous
+    # optimum, and so the fine-grid bracket of this module
+    f, a = np.array([ENDPOINT, LS]), np.array([0.2, 0.0])
+    d = np.array([[0.0, 0.0, 0.980264318334658, 0.0, 1.27231174703939],
+                  [0.3, -1.0, 0.5, 0.2, 0.7]])
+    for i in range(2):   # each alone: HiGHS's last digits depend on its neighbours in a chunk
+        q = slice(i, i + 1)
+        h, y, line, gap = envelope_lp.support(f[q], np.zeros(1, dtype=int), a[q], d[q])
+        _assert_answers(f[q], a[q], d[q], h, y, line, gap, np.arange(1))

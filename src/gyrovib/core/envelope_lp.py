@@ -332,13 +332,17 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
                 live, sel, hg, yg, lg = live[~done], sel[~done], hg[~done], yg[~done], lg[~done]
                 if live.size == 0:
                     break
+            # HiGHS keeps the grid's y1 within its tolerance of the cut only: clip it onto
+            # |y1| ≤ a (its max |r| is measured after), then shrink onto the continuous
+            # envelope; never grow (|y1| ≤ a may be what binds)
+            yg = yg.copy()
+            yg[:, 0] = np.clip(yg[:, 0], -a[sel], a[sel])
             mx, cand = true_max(fit[sel], yg, lg)
-            # shrink onto the continuous envelope; never grow (|y1| ≤ a may be what binds)
             scale = 1.0 / np.maximum(mx, 1.0)
-            h[sel] = hg * scale
+            h[sel] = np.einsum("ki,ki->k", d[sel], yg) * scale
             y[sel] = yg * scale[:, None]
             line[sel] = lg * scale[:, None]
-            gap[sel] = 1.0 - scale
+            gap[sel] = np.where(hg > 0, 1.0 - h[sel] / np.where(hg > 0, hg, 1.0), 0.0)
             r = np.abs(residual_normalised(fit[sel], yg, lg, np.nan_to_num(cand)))
             ok = ~np.isnan(cand)
             adds: dict[int, FloatArray] = {}
