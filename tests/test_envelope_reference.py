@@ -311,3 +311,21 @@ def test_grid_answer_respects_the_cut() -> None:
         q = slice(i, i + 1)
         h, y, line, gap = envelope_lp.support(f[q], np.zeros(1, dtype=int), a[q], d[q])
         _assert_answers(f[q], a[q], d[q], h, y, line, gap, np.arange(1))
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e-12, 1e20, 1e200])
+@pytest.mark.parametrize("measure", [0, 1])
+def test_support_is_positively_homogeneous_at_any_norm(scale: float, measure: int) -> None:
+    # h(c·d) = c·h(d) for c > 0 (a support function; MODEL.md section 11: the worst case is
+    # proportional to the functional), with the same maximiser; support() is public and
+    # takes directions of any size, e.g. cᵀ·(b/R^i) in a caller's own units
+    d = np.array([[0.3, -1.0, 0.5, 0.2, 0.7], [0.0, 0.0, 1.0, 0.0, -0.4],
+                  [2.0, 0.1, 0.0, 0.0, 0.0]])
+    f = np.array([LS, ENDPOINT, LS]) if measure else np.array([LS, MINIMAX, ENDPOINT])
+    ms = np.full(3, measure)
+    a = np.array([np.inf, np.inf, 0.5])
+    h1, y1, _, _ = envelope_lp.support(f, ms, a, d)
+    h, y, _, gap = envelope_lp.support(f, ms, a, d * scale)
+    np.testing.assert_allclose(h / scale, h1, rtol=1e-9)
+    np.testing.assert_allclose(y, y1, rtol=1e-7, atol=1e-7)
+    assert np.all(gap <= 1e-7)

@@ -486,6 +486,10 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     a = np.asarray(a, dtype=float)
     d = np.asarray(d, dtype=float)
     k = d.shape[0]
+    # h is positively homogeneous: solve for d/max|d_i| (HiGHS's tolerances are absolute,
+    # and dᵀG⁻¹d under- or overflows far from 1) and scale h back
+    norm = np.max(np.abs(d), axis=1) if k else np.zeros(0)
+    d = np.where(norm[:, None] > 0, d / np.where(norm > 0, norm, 1.0)[:, None], 0.0)
     h = np.zeros(k)
     y = np.zeros((k, 5))
     line = np.zeros((k, 2))
@@ -498,7 +502,7 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
         h[mx], y[mx], line[mx], gap[mx] = _support_max(fit[mx], a[mx], d[mx])
     line[:, 0] += np.einsum("ki,ki->k", y, OFFSET[fit])
     line[:, 1] += np.einsum("ki,ki->k", y, SLOPE[fit])
-    return h, y, line, gap
+    return h * norm, y, line, gap
 
 
 def minimax_line(w: np.ndarray, p: np.ndarray) -> FloatArray:
