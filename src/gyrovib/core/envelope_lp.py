@@ -486,6 +486,8 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     a = np.asarray(a, dtype=float)
     d = np.asarray(d, dtype=float)
     k = d.shape[0]
+    # a cut at 0 fixes y1 = 0: d1 adds nothing, and left in it would set the scale below
+    d = np.where((a == 0)[:, None] & (np.arange(5) == 0), 0.0, d)
     # h is positively homogeneous: solve for d/max|d_i| (HiGHS's tolerances are absolute,
     # and dᵀG⁻¹d under- or overflows far from 1) and scale h back
     norm = np.max(np.abs(d), axis=1) if k else np.zeros(0)
