@@ -332,13 +332,17 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
                 live, sel, hg, yg, lg = live[~done], sel[~done], hg[~done], yg[~done], lg[~done]
                 if live.size == 0:
                     break
+            # HiGHS keeps the grid's y1 within its tolerance of the cut only: clip it onto
+            # |y1| ≤ a (its max |r| is measured after), then shrink onto the continuous
+            # envelope; never grow (|y1| ≤ a may be what binds)
+            yg = yg.copy()
+            yg[:, 0] = np.clip(yg[:, 0], -a[sel], a[sel])
             mx, cand = true_max(fit[sel], yg, lg)
-            # shrink onto the continuous envelope; never grow (|y1| ≤ a may be what binds)
             scale = 1.0 / np.maximum(mx, 1.0)
-            h[sel] = hg * scale
+            h[sel] = np.einsum("ki,ki->k", d[sel], yg) * scale
             y[sel] = yg * scale[:, None]
             line[sel] = lg * scale[:, None]
-            gap[sel] = 1.0 - scale
+            gap[sel] = np.where(hg > 0, 1.0 - h[sel] / np.where(hg > 0, hg, 1.0), 0.0)
             r = np.abs(residual_normalised(fit[sel], yg, lg, np.nan_to_num(cand)))
             ok = ~np.isnan(cand)
             adds: dict[int, FloatArray] = {}
@@ -482,6 +486,12 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     a = np.asarray(a, dtype=float)
     d = np.asarray(d, dtype=float)
     k = d.shape[0]
+    # a cut at 0 fixes y1 = 0: d1 adds nothing, and left in it would set the scale below
+    d = np.where((a == 0)[:, None] & (np.arange(5) == 0), 0.0, d)
+    # h is positively homogeneous: solve for d/max|d_i| (HiGHS's tolerances are absolute,
+    # and dᵀG⁻¹d under- or overflows far from 1) and scale h back
+    norm = np.max(np.abs(d), axis=1) if k else np.zeros(0)
+    d = np.where(norm[:, None] > 0, d / np.where(norm > 0, norm, 1.0)[:, None], 0.0)
     h = np.zeros(k)
     y = np.zeros((k, 5))
     line = np.zeros((k, 2))
@@ -494,7 +504,7 @@ def support(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
         h[mx], y[mx], line[mx], gap[mx] = _support_max(fit[mx], a[mx], d[mx])
     line[:, 0] += np.einsum("ki,ki->k", y, OFFSET[fit])
     line[:, 1] += np.einsum("ki,ki->k", y, SLOPE[fit])
-    return h, y, line, gap
+    return h * norm, y, line, gap
 
 
 def minimax_line(w: np.ndarray, p: np.ndarray) -> FloatArray:
