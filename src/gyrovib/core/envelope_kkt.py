@@ -181,6 +181,13 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
         done[idx[ok & small]] = True
     y, line, lam, v, mu = z[:, :5], z[:, 5:7], z[:, 7:7 + p], z[:, 7 + p:m_i], z[:, m_i]
     upper = np.sum(np.where(active, lam, 0.0), axis=1) + np.where(binds, a_fin * mu, 0.0)
+    # the bound holds for the weights as they are only if they solve the stationarity:
+    # its residual e adds at most |eᵀỹ| to it, so it must be negligible, not merely small
+    # in Newton's last step
+    stat = np.einsum("kp,kpi->ki", w * lam, _psi(fit, v)) - dt
+    stat[:, 0] += s_mu * mu
+    stat[~mm, 5:] = 0.0
+    settled = np.max(np.abs(stat), axis=1) <= 1e-12 * np.maximum(1.0, upper)
     mx, _ = true_max(fit, y, line)
     scale = 1.0 / np.maximum(mx, 1.0)
     y = y * scale[:, None]
@@ -191,7 +198,7 @@ def polish(fit: np.ndarray, d: np.ndarray, y0: np.ndarray, line0: np.ndarray,
     tiny = 1e-12 * np.abs(upper)
     dual_ok = np.all(~active | (lam >= -tiny[:, None]), axis=1) & (mu >= -tiny)
     within_cut = np.abs(y[:, 0]) <= a * (1.0 + 1e-12)
-    ok = (alive & done & dual_ok & within_cut & np.isfinite(gap) & (gap <= tolerance)
+    ok = (alive & done & settled & dual_ok & within_cut & np.isfinite(gap) & (gap <= tolerance)
           & (gap >= -1e-9) & np.isfinite(h))
     return Polished(ok=ok, h=h, upper=upper, gap=np.maximum(gap, 0.0), y=y, line=line,
                     points=np.where(active, v, np.nan), signs=np.where(active, sign, 0.0),
