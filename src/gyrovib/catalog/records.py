@@ -276,16 +276,12 @@ class Harmonics(Record):
     orders: list[Order]
 
 
-class AccelerationTone(Record):
-    frequency: float
-    amplitude: Triple
-    phase: Triple
+class AccelerationTone(Tone):
+    """A tone of the acceleration: the fields of :class:`Tone`, amplitude in g or m/s²."""
 
 
-class AccelerationPSD(Record):
-    x1: list[Pair] | None
-    x2: list[Pair] | None
-    x3: list[Pair] | None
+class AccelerationPSD(PSD):
+    """An acceleration PSD: the fields of :class:`PSD`, in (units.acceleration)²/Hz."""
 
 
 class AccelerationRandom(Record):

@@ -155,6 +155,18 @@ _RATE_FORM = (
     ("m32", 0.0, "Product cross-axis term x3·x2, rate^-1."),
 )
 
+
+def _per_axis_psd(summary: str, unit: str, shown: str) -> Object:
+    """A PSD given per axis x1, x2, x3 in ``unit``²/Hz (angular rate or acceleration)."""
+    return Object(
+        summary,
+        tuple(Field(axis, Table(band=True), None, nullable=True, unit=f"{unit}^2/Hz",
+                    description=f"[[f Hz, S {shown}], ...] for axis {axis}; left out means none.")
+              for axis in ("x1", "x2", "x3")),
+        groups=(Group(("x1", "x2", "x3"), "give the PSD of at least one axis (x1, x2 or x3)",
+                      at_least=True),),
+    )
+
 FORMAT: dict[str, Object] = {
     "CatalogFile": Object(
         "A whole catalogue file. 'gyrovib: 1' is required.",
@@ -318,14 +330,8 @@ FORMAT: dict[str, Object] = {
                   description="Phase per axis, degrees."),
         ),
     ),
-    "PSD": Object(
-        "Per-axis PSD breakpoints, rate²/Hz; an axis left out has none.",
-        tuple(Field(axis, Table(band=True), None, nullable=True, unit="rate^2/Hz",
-                    description=f"[[f Hz, S rate²/Hz], ...] for axis {axis}; left out means none.")
-              for axis in ("x1", "x2", "x3")),
-        groups=(Group(("x1", "x2", "x3"), "give the PSD of at least one axis (x1, x2 or x3)",
-                      at_least=True),),
-    ),
+    "PSD": _per_axis_psd("Per-axis PSD breakpoints, rate²/Hz; an axis left out has none.",
+                         "rate", "rate²/Hz"),
     "Random": Object(
         "The Gaussian broadband part: a PSD or the RMS per axis at the sensor.",
         (
@@ -421,14 +427,9 @@ FORMAT: dict[str, Object] = {
         groups=(Group(("psd", "rms"),
                       "give the random acceleration as 'psd' or as 'rms', exactly one of them"),),
     ),
-    "AccelerationPSD": Object(
+    "AccelerationPSD": _per_axis_psd(
         "Per-axis acceleration PSD breakpoints, (units.acceleration)²/Hz.",
-        tuple(Field(axis, Table(band=True), None, nullable=True, unit="acceleration^2/Hz",
-                    description=f"[[f Hz, S g²/Hz], ...] for axis {axis}; left out means none.")
-              for axis in ("x1", "x2", "x3")),
-        groups=(Group(("x1", "x2", "x3"), "give the PSD of at least one axis (x1, x2 or x3)",
-                      at_least=True),),
-    ),
+        "acceleration", "g²/Hz"),
     "Allocation": Object(
         "How the budget is split (eq. 18, 21, 24): ratio r and share weights w, v.",
         (
