@@ -106,15 +106,20 @@ def parse_rate_option(text: str | None, unit: str) -> list[float] | None:
         raise OptionError(f"--rate: {exc.problems[0].message}") from None
 
 
-def parse_budget(text: str, unit: str) -> float:
-    """``--budget`` → Δ*_V in deg/s; must be positive and finite."""
+def positive_rate(option: str, text: str, unit: str, what: str) -> float:
+    """A rate option's value in deg/s (a number in ``unit`` or with its own unit); > 0."""
     try:
         value = units.parse_rate(text, unit)
     except OptionError as exc:
-        raise OptionError(f"--budget: {exc.problems[0].message}") from None
+        raise OptionError(f"{option}: {exc.problems[0].message}") from None
     if value <= 0:
-        raise OptionError(f"--budget {text!r}: the budget must be positive")
+        raise OptionError(f"{option} {text!r}: {what} must be positive")
     return value
+
+
+def parse_budget(text: str, unit: str) -> float:
+    """``--budget`` → Δ*_V in deg/s; must be positive and finite."""
+    return positive_rate("--budget", text, unit, "the budget")
 
 
 def budget_option(f: F) -> F:

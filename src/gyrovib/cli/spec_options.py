@@ -8,7 +8,7 @@ from typing import Any, TypeVar
 
 import click
 
-from gyrovib import units
+from gyrovib.cli.options import positive_rate
 from gyrovib.errors import OptionError
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -61,12 +61,4 @@ def range_options(f: F) -> F:
 
 def parse_range(text: str | None, unit: str) -> float | None:
     """``--range`` → R in deg/s (positive, finite), or None."""
-    if text is None:
-        return None
-    try:
-        value = units.parse_rate(text, unit)
-    except OptionError as exc:
-        raise OptionError(f"--range: {exc.problems[0].message}") from None
-    if value <= 0:
-        raise OptionError(f"--range {text!r}: the range must be positive")
-    return value
+    return None if text is None else positive_rate("--range", text, unit, "the range")
