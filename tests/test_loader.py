@@ -127,3 +127,41 @@ def test_bundled_files_are_the_bundled_paths() -> None:
 
     assert bundled_files() == [str(p) for p in bundled_paths()]
     assert len(bundled_files()) == 2
+
+
+def test_a_one_of_rule_is_reported_beside_other_problems_of_its_entry():
+    # every problem in one run: each entry below also has a bad value, and the
+    # "give exactly one of" rules must be reported with it, not after it is mended
+    text = """gyrovib: 1
+sensors:
+  - id: s1
+    coefficients: {k2: 1.0e-6}
+    vre: 4.0e-4
+    g2_sensitivity: {G11: 1.0e-4}
+    response: {at: middle, table: [[10, 1.0]]}
+  - id: s2
+    coefficients: {k2: 1.0e-6}
+    specs: {range: 100, nonlinearity: {value: 0.1, unit: "%FS"}}
+    range: -3
+profiles:
+  - id: p
+    acceleration:
+      random:
+        psd: {x1: [[20, 0.04], [2000, 0.04]]}
+        rms: [1, 1, 1]
+        coherence: [2, 0, 0]
+"""
+    with pytest.raises(CatalogError) as err:
+        parse_catalog(text, "f.yaml")
+    lines = str(err.value).splitlines()
+    expected = [
+        ("f.yaml:3:5:", "'g2_sensitivity' or its shorthand 'vre'"),
+        ("f.yaml:7:20:", "unknown response position 'middle'"),
+        ("f.yaml:8:5:", "give the conversion function once"),
+        ("f.yaml:11:12:", "range: must be positive"),
+        ("f.yaml:16:9:", "as 'psd' or as 'rms', exactly one"),
+        ("f.yaml:18:21:", "coherence[0]: must not be greater than 1"),
+    ]
+    assert len(lines) == len(expected)
+    for line, (where, what) in zip(lines, expected, strict=True):
+        assert line.startswith(where) and what in line, line

@@ -358,6 +358,9 @@ class Validator:
             for key in required:
                 if key not in v:
                     errors.append(Error("missing", (*loc, key), None, {}))
+            # which of a group is given is known even where a value is bad: said now,
+            # not only on the next run once the other problems are mended
+            self._groups(obj, out, v, loc, errors)
             if len(errors) == before:
                 self._rules(obj, out, v, loc, errors)
             if len(errors) != before:
@@ -365,6 +368,18 @@ class Validator:
             return build(out)
 
         return check
+
+    @staticmethod
+    def _groups(obj: k.Object, out: dict[str, Any], raw: dict[str, Any], loc: tuple[Any, ...],
+                errors: list[Error]) -> None:
+        """Exactly one (or at least one) of each group of fields, by what the mapping gives."""
+        for group in obj.groups:
+            given = sum(1 for name in group.fields
+                        if (raw.get(name) if name in raw else out.get(name)) is not None)
+            if given == 0 and group.optional:
+                continue
+            if (given == 0) or (given > 1 and not group.at_least):
+                errors.append(Error("rule", loc, None, {"message": group.message}))
 
     @staticmethod
     def _rules(obj: k.Object, out: dict[str, Any], raw: dict[str, Any], loc: tuple[Any, ...],
@@ -381,12 +396,6 @@ class Validator:
                 errors.append(Error("rule", at, out[fc.field], {"message": message}))
         if len(errors) != before:
             return
-        for group in obj.groups:
-            given = sum(1 for name in group.fields if out[name] is not None)
-            if given == 0 and group.optional:
-                continue
-            if (given == 0) or (given > 1 and not group.at_least):
-                errors.append(Error("rule", loc, None, {"message": group.message}))
         for c in obj.checks:
             message = c.test(raw if c.raw else out)
             if message is not None:
