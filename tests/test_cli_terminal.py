@@ -47,10 +47,19 @@ def clean_env(**extra: str) -> dict[str, str]:
 
 def _interrupt(args: list[str], sig: int, after: float, cwd: Path) -> tuple[int, str]:
     """Start gyrovib, wait ``after`` seconds once Python runs, send ``sig``."""
-    # as the console script: its one import (gyrovib.cli, two tiny modules) done, then main()
-    # (argv is set before 'ready', so a signal sent at once lands in main() or its imports)
-    code = (f"import sys; from gyrovib.cli import main; sys.argv = ['gyrovib', *{args!r}]; "
-            "sys.stderr.write('ready\\n'); sys.stderr.flush(); main()")
+    # as the console script: its one import (gyrovib.cli, two tiny modules) done, then main().
+    # 'ready' is written from inside main(), as it starts importing the CLI (an audit hook on
+    # that import), so a signal sent at once lands in main() or its imports, never before it
+    code = "\n".join([
+        "import sys",
+        "from gyrovib.cli import main",
+        f"sys.argv = ['gyrovib', *{args!r}]",
+        "def ready(event, arg):",
+        "    if event == 'import' and arg[0] == 'gyrovib.cli.main':",
+        "        sys.stderr.write('ready\\n'); sys.stderr.flush()",
+        "sys.addaudithook(ready)",
+        "main()",
+    ])
     process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True, cwd=cwd, env=clean_env())
     assert process.stderr is not None
