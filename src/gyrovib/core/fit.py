@@ -1,0 +1,388 @@
+"""Rate-table data to the coefficients of eq. (1) and (2), with their uncertainty.
+
+MODEL.md section 14. A unit is turned at known rates Ω about its sensitive
+axis x3 (optionally with known cross rates ω1, ω2) and its mean output U is
+recorded. Eq. (1) is linear in its parameters θ:
+
+    U = K0 + K1·Ω + h·|Ω| + Σ_{n=2..N} Kn·Ωⁿ [+ M1·ω1 + M2·ω2 + M31·Ω·ω1 + M32·Ω·ω2]
+
+with h = ½·K1·A1 (the sign-dependent scale factor K1·(1 + ½A1·sign Ω)·Ω is
+K1·Ω + h·|Ω|). Ordinary least squares gives θ̂ and
+
+    Cov(θ̂) = s²·(XᵀX)⁻¹,   s² = RSS/(n − p),
+
+computed on a scaled design matrix: Ω divided by the largest |Ω| (and ωi by
+the largest |ωi|), then every column divided by its Euclidean norm, solved by
+a QR factorisation; the scales are undone on θ̂ and its covariance.
+
+Eq. (2) follows by division by K1: k0 = K0/K1, A1 = 2h/K1, kn = Kn/K1,
+mi = Mi/K1, m3i = M3i/K1 (k1 = 1 exactly), with the delta-method covariance
+J·Cov(θ̂)·Jᵀ, J the Jacobian of that map at θ̂:
+
+    ∂c_j/∂(numerator_j) = f_j/K1 (f = 2 for A1, else 1),   ∂c_j/∂K1 = −c_j/K1.
+
+The rates are in one rate unit (any), the output in one output unit (any):
+the eq. (2) coefficients come out in the rate unit (kn in rate^(1−n)) and do
+not depend on the output unit at all.
+
+The model is identifiable only when the data separate its columns: rates of
+both signs (else |Ω| = ±Ω and A1 is lost in K1), at least as many distinct
+|Ω| levels as the even part K0 + h|Ω| + K2Ω² + K4Ω⁴ has parameters (2 + ⌊N/2⌋)
+and as many distinct nonzero levels as the odd part K1Ω + K3Ω³ + K5Ω⁵ has
+(⌈N/2⌉), and more points than parameters (n > p, so that s² exists).
+:class:`IdentificationError` names what the data lack.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import ModelError
+from gyrovib.frozen import Frozen
+
+#: The highest power of Ω in eq. (1).
+MAX_ORDER = 5
+DEFAULT_ORDER = 5
+#: |t| below this is flagged "not significant" (MODEL.md section 14), never dropped.
+SIGNIFICANT_T = 2.0
+#: A scaled design matrix whose condition number exceeds this does not identify the model.
+MAX_CONDITION = 1e10
+
+
+class IdentificationError(ModelError):
+    """The rate-table data cannot identify the model of eq. (1): the message names
+    what the data lack (rates of one sign, too few |Ω| levels, too few points)."""
+
+
+def raw_names(order: int, cross: Sequence[int] = ()) -> tuple[str, ...]:
+    """The parameters θ of eq. (1) fitted at ``order``: K0, K1, h, K2..KN, then for
+    each cross axis i in ``cross`` (1, 2): Mi, then M3i."""
+    names = ["K0", "K1", "h", *(f"K{n}" for n in range(2, order + 1))]
+    names += [f"M{i}" for i in cross] + [f"M3{i}" for i in cross]
+    return tuple(names)
+
+
+def rate_names(order: int, cross: Sequence[int] = ()) -> tuple[str, ...]:
+    """The eq. (2) coefficients the fit gives (k1 = 1 exactly, not listed): k0, A1,
+    k2..kN, then mi and m3i for each cross axis i in ``cross``."""
+    names = ["k0", "A1", *(f"k{n}" for n in range(2, order + 1))]
+    names += [f"m{i}" for i in cross] + [f"m3{i}" for i in cross]
+    return tuple(names)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Nonlinearity(Frozen):
+    """The fitted eq. (2) curve's deviation from a straight line over [−R, R], in %FS.
+
+    With ω1 = ω2 = 0, p(ω) = k0 + ω + ½A1|ω| + Σ kn·ωⁿ; ``least_squares_max`` is
+    100·max|p − L|/R for L the least-squares line of p over uniform ω in [−R, R]
+    ("best-fit straight line"), ``endpoint_max`` the same for the line through
+    p(−R) and p(R) ("terminal-based"); ``range`` is R (the largest |Ω| tested),
+    in the rate unit. MODEL.md sections 11 and 14.
+    """
+
+    least_squares_max: float
+    endpoint_max: float
+    range: float
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class RateFit(Frozen):
+    """The fit of one unit (MODEL.md section 14).
+
+    ``names``/``values``/``covariance``: the eq. (2) coefficients (rate units,
+    kn in rate^(1−n), m3i in 1/rate; k1 = 1 exactly, not among them), their
+    covariance; ``sigma`` the standard uncertainties, ``correlation`` the
+    correlation matrix (NaN where a σ is 0), ``t`` = value/σ.
+    ``raw_names``/``raw_values``/``raw_covariance``: θ of eq. (1) in output
+    units (K1 in output per rate, h = ½K1·A1). ``residuals`` = U − Û per point
+    (output units); ``residual_rms`` = √(RSS/n); ``residual_sigma`` s = √(RSS/(n−p)).
+    """
+
+    order: int
+    names: tuple[str, ...]
+    values: FloatArray
+    covariance: FloatArray
+    raw_names: tuple[str, ...]
+    raw_values: FloatArray
+    raw_covariance: FloatArray
+    residuals: FloatArray
+    residual_rms: float
+    residual_sigma: float
+    nonlinearity: Nonlinearity
+    points: int
+
+    @property
+    def sigma(self) -> FloatArray:
+        """Standard uncertainties of :attr:`values`."""
+        out: FloatArray = np.sqrt(np.clip(np.diag(self.covariance), 0.0, None))
+        return out
+
+    @property
+    def correlation(self) -> FloatArray:
+        """Correlation matrix of :attr:`values` (NaN in the rows of a zero σ)."""
+        s = self.sigma
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out: FloatArray = self.covariance / np.outer(s, s)
+        np.fill_diagonal(out, np.where(s > 0, 1.0, np.nan))
+        return out
+
+    @property
+    def t(self) -> FloatArray:
+        """t = value/σ of each coefficient (±inf where σ = 0 and the value is not)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out: FloatArray = self.values / self.sigma
+        return out
+
+    @property
+    def significant(self) -> NDArray[np.bool_]:
+        """|t| ≥ 2 per coefficient (MODEL.md section 14: smaller is "not significant")."""
+        out: NDArray[np.bool_] = np.abs(self.t) >= SIGNIFICANT_T
+        return out
+
+    @property
+    def scale_factor(self) -> float:
+        """K1, output units per rate unit."""
+        return float(self.raw_values[1])
+
+    @property
+    def scale_factor_sigma(self) -> float:
+        """Standard uncertainty of K1."""
+        return float(np.sqrt(max(self.raw_covariance[1, 1], 0.0)))
+
+    def value(self, name: str) -> float:
+        """One eq. (2) coefficient by name."""
+        return float(self.values[self.names.index(name)])
+
+
+def _levels(values: FloatArray, scale: float) -> FloatArray:
+    """The distinct values of ``values`` (≥ 0), those within 1e-9·scale merged."""
+    ordered = np.sort(values)
+    if ordered.size == 0:
+        return ordered
+    keep = np.concatenate([[True], np.diff(ordered) > 1e-9 * scale])
+    out: FloatArray = ordered[keep]
+    return out
+
+
+def check_identifiable(rate: FloatArray, order: int, p: int) -> None:
+    """Raise :class:`IdentificationError` unless the rates can identify eq. (1) at ``order``
+    with ``p`` parameters (both signs, enough |Ω| levels, n > p)."""
+    n = rate.size
+    problems = []
+    positive, negative = bool(np.any(rate > 0)), bool(np.any(rate < 0))
+    if not (positive and negative):
+        sign = "positive" if positive else "negative" if negative else "zero"
+        wanted = "negative" if positive else "positive" if negative else "nonzero"
+        problems.append(
+            f"every rate is {sign}: the asymmetry A1 (the |Ω| term) needs rates of both "
+            f"signs; add runs at {wanted} rates")
+    scale = float(np.max(np.abs(rate))) if n else 0.0
+    levels = _levels(np.abs(rate), scale)
+    nonzero = levels[levels > 1e-9 * scale] if scale > 0 else levels[:0]
+    even = ["K0", "h", *(f"K{k}" for k in range(2, order + 1, 2))]
+    odd = [f"K{k}" if k > 1 else "K1" for k in range(1, order + 1, 2)]
+    if scale > 0 and levels.size < len(even):
+        problems.append(
+            f"order {order} needs at least {len(even)} distinct |Ω| levels (zero counts) for "
+            f"the even part ({', '.join(even)}); the table has {levels.size}: add rates at "
+            "other magnitudes, or lower --order")
+    if scale > 0 and nonzero.size < len(odd):
+        problems.append(
+            f"order {order} needs at least {len(odd)} distinct nonzero |Ω| levels for the odd "
+            f"part ({', '.join(odd)}); the table has {nonzero.size}: add rates at other "
+            "magnitudes, or lower --order")
+    if n <= p:
+        problems.append(
+            f"{n} point{'s' if n != 1 else ''} for {p} parameters: the fit needs more points "
+            "than parameters (n > p) to estimate its uncertainty; repeat runs or add rates")
+    if problems:
+        raise IdentificationError("; ".join(problems))
+
+
+def _design(rate: FloatArray, order: int, cross: FloatArray | None,
+            axes: tuple[int, ...]) -> tuple[FloatArray, FloatArray]:
+    """The scaled design matrix (columns of unit norm) and the factor undoing each
+    column's scaling (θ_j = β_j·factor_j); ``cross`` (n, len(axes)) holds ω_i, i in ``axes``."""
+    scale = float(np.max(np.abs(rate)))
+    x = rate / scale
+    columns = [np.ones_like(x), x, np.abs(x), *(x**k for k in range(2, order + 1))]
+    unscale = [1.0, 1.0 / scale, 1.0 / scale, *(scale ** (-k) for k in range(2, order + 1))]
+    if cross is not None:
+        cross_scale = np.max(np.abs(cross), axis=0)
+        if np.any(cross_scale == 0):
+            missing = [f"rate_x{i}" for i, s in zip(axes, cross_scale, strict=True) if s == 0]
+            raise IdentificationError(
+                f"{', '.join(missing)} is zero in every row: the cross-axis terms need runs "
+                "with a cross rate; drop the column or add such runs")
+        y = cross / cross_scale
+        columns += [y[:, i] for i in range(y.shape[1])]
+        unscale += [1.0 / float(s) for s in cross_scale]
+        columns += [x * y[:, i] for i in range(y.shape[1])]
+        unscale += [1.0 / (scale * float(s)) for s in cross_scale]
+    design = np.stack(columns, axis=1)
+    norms = np.linalg.norm(design, axis=0)
+    norms[norms == 0] = 1.0
+    factor = np.asarray(unscale) / norms
+    return design / norms, factor
+
+
+def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDER,
+                   cross: ArrayLike | None = None,
+                   cross_axes: Sequence[int] | None = None) -> RateFit:
+    """Least-squares fit of eq. (1) to one unit's rate-table points (MODEL.md section 14).
+
+    ``rate``: Ω per point (n,), any rate unit; ``output``: mean output U (n,),
+    any output unit; ``cross``: (n, k) applied cross rates in the rate unit about
+    the axes ``cross_axes`` (default 1..k; e.g. ``(2,)`` for ω2 alone), or None
+    (no cross-axis terms); ``order``: N, 1 to 5.
+    Returns the eq. (2) coefficients with their delta-method covariance
+    (see the module docstring). Raises :class:`IdentificationError` when the
+    data cannot identify the model.
+    """
+    omega = np.asarray(rate, dtype=float).ravel()
+    u = np.asarray(output, dtype=float).ravel()
+    if omega.shape != u.shape:
+        raise ValueError("rate and output must have the same length")
+    if not (isinstance(order, int | np.integer) and 1 <= order <= MAX_ORDER):
+        raise IdentificationError(f"the order must be 1 to {MAX_ORDER} (eq. 1), not {order!r}")
+    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(u))):
+        raise IdentificationError("the rates and outputs must be finite numbers")
+    w = None
+    axes: tuple[int, ...] = ()
+    if cross is not None:
+        w = np.asarray(cross, dtype=float).reshape(omega.size, -1)
+        axes = tuple(cross_axes) if cross_axes is not None else tuple(range(1, w.shape[1] + 1))
+        if len(axes) != w.shape[1] or not set(axes) <= {1, 2} or len(set(axes)) != len(axes):
+            raise ValueError("cross must have one column per axis of cross_axes (1, 2)")
+        if not np.all(np.isfinite(w)):
+            raise IdentificationError("the cross rates must be finite numbers")
+    names_raw = raw_names(order, axes)
+    p = len(names_raw)
+    check_identifiable(omega, order, p)
+    design, factor = _design(omega, order, w, axes)
+    _check_rank(design, names_raw)
+    q, r = np.linalg.qr(design)
+    beta = np.linalg.solve(r, q.T @ u)
+    residuals = u - design @ beta
+    n = omega.size
+    rss = float(residuals @ residuals)
+    s2 = rss / (n - p)
+    r_inv = np.linalg.solve(r, np.eye(p))
+    cov_beta = s2 * (r_inv @ r_inv.T)
+    theta = beta * factor
+    cov_theta = cov_beta * np.outer(factor, factor)
+    values, covariance = to_rate_form(theta, cov_theta, order, axes)
+    return RateFit(
+        order=order,
+        names=rate_names(order, axes),
+        values=values,
+        covariance=covariance,
+        raw_names=names_raw,
+        raw_values=theta,
+        raw_covariance=cov_theta,
+        residuals=residuals,
+        residual_rms=float(np.sqrt(rss / n)),
+        residual_sigma=float(np.sqrt(s2)),
+        nonlinearity=nonlinearity(values, rate_names(order, axes), float(np.max(np.abs(omega)))),
+        points=n,
+    )
+
+
+def _check_rank(design: FloatArray, names: tuple[str, ...]) -> None:
+    """Raise when the scaled design matrix is (numerically) rank deficient, naming the
+    parameters that the data cannot tell apart (the null direction's main entries)."""
+    _, singular, vt = np.linalg.svd(design, full_matrices=False)
+    if singular[-1] > singular[0] / MAX_CONDITION:
+        return
+    null = np.abs(vt[-1])
+    involved = [name for name, v in zip(names, null, strict=True) if v > 0.1 * null.max()]
+    raise IdentificationError(
+        f"the rates do not separate the terms {', '.join(involved)} of eq. (1) (their "
+        "columns are linearly dependent on these points): add runs at other rates or "
+        "cross rates, or lower --order")
+
+
+def to_rate_form(theta: FloatArray, cov_theta: FloatArray, order: int,
+                 axes: Sequence[int] = ()) -> tuple[FloatArray, FloatArray]:
+    """Eq. (1) parameters θ (:func:`raw_names` order) to the eq. (2) coefficients
+    (:func:`rate_names` order) by division by K1, with the covariance J·Cov(θ)·Jᵀ."""
+    k1 = float(theta[1])
+    sigma_k1 = float(np.sqrt(max(cov_theta[1, 1], 0.0)))
+    if k1 == 0.0 or not np.isfinite(k1) or abs(k1) < SIGNIFICANT_T * sigma_k1:
+        raise IdentificationError(
+            f"the output does not follow the rate (K1 = {k1:.4g} ± {sigma_k1:.3g}): eq. (2) "
+            "divides by K1; check the rate and output columns")
+    numerators = [0, *range(2, theta.size)]  # K0, h, K2..KN, M…: all but K1
+    factors = np.ones(len(numerators))
+    factors[1] = 2.0  # A1 = 2h/K1
+    values = factors * theta[numerators] / k1
+    jac = np.zeros((len(numerators), theta.size))
+    jac[np.arange(len(numerators)), numerators] = factors / k1
+    jac[:, 1] = -values / k1
+    covariance = jac @ cov_theta @ jac.T
+    covariance = 0.5 * (covariance + covariance.T)
+    return values, covariance
+
+
+def _moment_line(coefficients: FloatArray, kink: float) -> tuple[float, float]:
+    """The least-squares line a + b·u of q(u) = Σ c_n uⁿ + kink·|u| over uniform u ∈ [−1, 1]:
+    a = ½∫q, b = (3/2)∫u·q (∫uⁿ = 2/(n+1) for even n, ∫|u| = 1, ∫u|u| = 0)."""
+    n = np.arange(coefficients.size)
+    even = n % 2 == 0
+    mean = float(np.sum(coefficients[even] / (n[even] + 1))) + 0.5 * kink
+    slope = 1.5 * float(np.sum(coefficients[~even] * 2.0 / (n[~even] + 2)))
+    return mean, slope
+
+
+def _max_abs_piecewise(coefficients: FloatArray, kink: float, line: tuple[float, float]
+                       ) -> float:
+    """max over u ∈ [−1, 1] of |q(u) − a − b·u|, q as in :func:`_moment_line`: on each half
+    the residual is a polynomial, so its maximum is at ±1, 0 or a root of its derivative."""
+    from numpy.polynomial import polynomial as P
+
+    best = 0.0
+    for side in (1.0, -1.0):
+        poly = coefficients.copy()
+        poly[0] -= line[0]
+        poly[1] += side * kink - line[1]  # |u| = side·u on this half
+        candidates = [0.0, side]
+        deriv = P.polyder(poly)
+        if deriv.size > 1 and np.any(deriv[1:] != 0):
+            roots = P.polyroots(P.polytrim(deriv))
+            real = roots[np.abs(roots.imag) <= 1e-9].real
+            candidates += [float(v) for v in real if 0.0 <= side * v <= 1.0]
+        best = max(best, float(np.max(np.abs(P.polyval(np.asarray(candidates), poly)))))
+    return best
+
+
+def nonlinearity(values: ArrayLike, names: Sequence[str], span: float) -> Nonlinearity:
+    """The nonlinearity in %FS of the eq. (2) curve p(ω) = k0 + ω + ½A1|ω| + Σ kn·ωⁿ
+    (cross rates 0) over [−R, R], R = ``span`` (see :class:`Nonlinearity`).
+
+    In u = ω/R, q(u) = p(R·u)/R = k0/R + u + ½A1|u| + Σ kn·R^(n−1)·uⁿ; the deviation
+    from a line, in %FS, is 100·max|q − L| — exactly, from the critical points of
+    the residual on each half (it is a polynomial there).
+    """
+    c = np.asarray(values, dtype=float)
+    coefficient = dict(zip(names, c, strict=True))
+    poly = np.zeros(MAX_ORDER + 1)
+    poly[0] = coefficient.get("k0", 0.0) / span
+    poly[1] = 1.0
+    for k in range(2, MAX_ORDER + 1):
+        poly[k] = coefficient.get(f"k{k}", 0.0) * span ** (k - 1)
+    kink = 0.5 * coefficient.get("A1", 0.0)
+    ls = _moment_line(poly, kink)
+    q_plus = float(np.sum(poly)) + kink
+    q_minus = float(np.sum(poly * (-1.0) ** np.arange(poly.size))) + kink
+    endpoint = (0.5 * (q_plus + q_minus), 0.5 * (q_plus - q_minus))
+    return Nonlinearity(
+        least_squares_max=100.0 * _max_abs_piecewise(poly, kink, ls),
+        endpoint_max=100.0 * _max_abs_piecewise(poly, kink, endpoint),
+        range=float(span),
+    )
