@@ -74,6 +74,10 @@ _WHERE: dict[str, str] = {
     "resolve_allocation": "commands.bounds",
     "select": "commands.select",
     "CRITERIA": "commands.select",
+    "fit": "commands.fit",
+    "FitResult": "fit_results",
+    "RateTable": "ratetable",
+    "read_rate_table": "ratetable",
     "REQUIREMENTS": "commands.select",
     "PASS_RTOL": "commands.select",
     # catalogue types, for annotations
@@ -95,9 +99,11 @@ __all__ = [
     "AnalysisResult",
     "BoundsResult",
     "Catalog",
+    "FitResult",
     "Limit",
     "Prepared",
     "ProfileEntry",
+    "RateTable",
     "ProgressCallback",
     "SelectionResult",
     "SensorEntry",
@@ -107,6 +113,7 @@ __all__ = [
     "check_bounds",
     "check_finite",
     "coefficient_matrix",
+    "fit",
     "float_guard",
     "load",
     "prepare",
@@ -118,6 +125,7 @@ __all__ = [
     "profile_vibration",
     "quiet_float",
     "rate_range",
+    "read_rate_table",
     "resolve_allocation",
     "resolve_rate",
     "response_groups",
@@ -174,6 +182,9 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     from gyrovib.api.commands.bounds import (
         resolve_allocation as resolve_allocation,
     )
+    from gyrovib.api.commands.fit import (
+        fit as fit,
+    )
     from gyrovib.api.commands.select import (
         CRITERIA as CRITERIA,
     )
@@ -212,6 +223,9 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     )
     from gyrovib.api.entries import (
         load as load,
+    )
+    from gyrovib.api.fit_results import (
+        FitResult as FitResult,
     )
     from gyrovib.api.entries import (
         profile_location as profile_location,
@@ -263,6 +277,12 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     )
     from gyrovib.api.prepare import (
         vibration_swing as vibration_swing,
+    )
+    from gyrovib.api.ratetable import (
+        RateTable as RateTable,
+    )
+    from gyrovib.api.ratetable import (
+        read_rate_table as read_rate_table,
     )
     from gyrovib.api.results import (
         AnalysisResult as AnalysisResult,

@@ -101,7 +101,7 @@ class RateFit(Frozen):
     correlation matrix (NaN where a σ is 0), ``t`` = value/σ.
     ``raw_names``/``raw_values``/``raw_covariance``: θ of eq. (1) in output
     units (K1 in output per rate, h = ½K1·A1). ``residuals`` = U − Û per point
-    (output units); ``residual_rms`` = √(RSS/n); ``residual_sigma`` s = √(RSS/(n−p)).
+    (output units), at the rates ``rates``; ``residual_rms`` = √(RSS/n); ``residual_sigma`` s = √(RSS/(n−p)).
     """
 
     order: int
@@ -111,6 +111,7 @@ class RateFit(Frozen):
     raw_names: tuple[str, ...]
     raw_values: FloatArray
     raw_covariance: FloatArray
+    rates: FloatArray
     residuals: FloatArray
     residual_rms: float
     residual_sigma: float
@@ -286,6 +287,7 @@ def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDE
         raw_names=names_raw,
         raw_values=theta,
         raw_covariance=cov_theta,
+        rates=omega,
         residuals=residuals,
         residual_rms=float(np.sqrt(rss / n)),
         residual_sigma=float(np.sqrt(s2)),

@@ -1,0 +1,63 @@
+"""``gyrovib fit``: rate-table points to eq. (2) coefficients, per unit and per lot.
+
+MODEL.md section 14: one least-squares fit of eq. (1) per unit
+(:func:`gyrovib.core.fit.fit_rate_table`), eq. (2) by division by K1 with the
+delta-method covariance; with two or more units the lot's mean and sample
+covariance (:func:`gyrovib.core.lot.lot_statistics`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from gyrovib.api.fit_results import FitResult
+from gyrovib.api.ratetable import RateTable, read_rate_table
+from gyrovib.core.fit import DEFAULT_ORDER, MAX_ORDER, IdentificationError, RateFit, fit_rate_table
+from gyrovib.core.lot import lot_statistics
+from gyrovib.errors import OptionError, Problem
+
+
+def fit(table: RateTable | str | Path, order: int = DEFAULT_ORDER, *, rate_unit: str = "deg/s",
+        output_unit: str | None = None) -> FitResult:
+    """Fit every unit of ``table`` (a :class:`~gyrovib.api.ratetable.RateTable`, or the
+    path of a rate-table CSV read in ``rate_unit`` and ``output_unit``).
+
+    Raises :class:`~gyrovib.core.fit.IdentificationError` naming each unit whose
+    points cannot identify eq. (1) at ``order`` and what they lack, placed at the
+    unit's first line; :class:`~gyrovib.api.ratetable.RateTableError` for a file
+    that cannot be read.
+    """
+    if isinstance(order, bool) or not isinstance(order, int | np.integer) or not (
+            1 <= order <= MAX_ORDER):
+        raise OptionError(f"--order {order!r}: eq. (1) has orders 1 to {MAX_ORDER}")
+    if not isinstance(table, RateTable):
+        table = read_rate_table(table, rate_unit, output_unit)
+    fits: list[RateFit] = []
+    problems: list[Problem] = []
+    for k, unit in enumerate(table.units):
+        line = int(table.lines[k][0])
+        try:
+            fits.append(fit_rate_table(table.rate[k], table.output[k], int(order),
+                                       table.cross[k], table.cross_axes))
+        except IdentificationError as exc:
+            who = f"unit {unit!r} ({table.rate[k].size} points): " if table.unit_column else ""
+            problems.append(Problem(f"{who}{exc.reason}", table.file, line, None))
+    if problems:
+        raise IdentificationError(problems)
+    names = fits[0].names
+    lot = lot_statistics(np.array([f.values for f in fits])) if len(fits) >= 2 else None
+    warnings = (lot.warning,) if lot is not None and lot.warning else ()
+    return FitResult(
+        file=table.file,
+        unit=table.rate_unit,
+        output_unit=table.output_unit,
+        order=int(order),
+        units=table.units,
+        names=names,
+        fits=tuple(fits),
+        lot=lot,
+        lines=tuple(int(n[0]) for n in table.lines),
+        warnings=warnings,
+    )

@@ -1,0 +1,141 @@
+"""The immutable result of ``gyrovib fit`` (MODEL.md section 14).
+
+In a module of its own so that no other command defines its classes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from gyrovib import units as rate_units
+from gyrovib.api.results import _freeze, _Frozen
+from gyrovib.core.fit import SIGNIFICANT_T, RateFit
+from gyrovib.core.lot import LotStatistics
+
+
+def coefficient_unit(name: str, rate_unit: str) -> str:
+    """The unit of an eq. (2) coefficient built on ``rate_unit``: k0 in it, kn in
+    rate^(1−n), m3i in 1/rate, A1 and mi dimensionless ("1")."""
+    power = rate_units.COEFFICIENT_RATE_POWER[name]
+    if power == 0:
+        return "1"
+    if power == 1:
+        return rate_unit
+    return f"({rate_unit})^{power}"
+
+
+def pair_key(a: str, b: str) -> str:
+    """The key of a correlation pair, as the catalogue and the JSON write it: ``"A1 k2"``."""
+    return f"{a} {b}"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FitResult(_Frozen):
+    """One least-squares fit per unit of a rate table, and the lot of them.
+
+    ``fits[i]`` (:class:`gyrovib.core.fit.RateFit`) is unit ``units[i]``'s fit:
+    eq. (2) coefficients ``names`` in :attr:`unit` powers (k1 = 1 exactly) with
+    their covariance, the eq. (1) parameters in :attr:`output_unit`, residuals,
+    nonlinearity. ``lot``: μ and Σ over the units (two or more), else None.
+    ``lines[i]``: the file line of unit i's first point. ``warnings``: e.g. a lot
+    too small for its correlations.
+    """
+
+    file: str
+    unit: str
+    output_unit: str | None
+    order: int
+    units: tuple[str, ...]
+    names: tuple[str, ...]
+    fits: tuple[RateFit, ...]
+    lot: LotStatistics | None
+    lines: tuple[int, ...]
+    warnings: tuple[str, ...] = ()
+    method: str = "least-squares"
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        for item in (*self.fits, self.lot):
+            if item is not None:
+                _freeze(item)
+
+    def _shape(self) -> tuple[int, ...]:
+        return (len(self.units), len(self.names))
+
+    def coefficient_units(self) -> tuple[str, ...]:
+        """The unit of each of :attr:`names`."""
+        return tuple(coefficient_unit(n, self.unit) for n in self.names)
+
+    def coefficients(self) -> Any:
+        """(units, coefficients): every unit's eq. (2) coefficients."""
+        return np.array([f.values for f in self.fits])
+
+    def to_frame(self) -> Any:
+        """Tidy pandas DataFrame: one row per unit × coefficient, columns as in
+        ``--format csv`` (unit, coefficient, value, sigma, t, significant,
+        coefficient_unit, residual_rms, nonlinearity.least_squares_max,
+        nonlinearity.endpoint_max, nonlinearity.range, points); the lot in
+        ``frame.attrs["lot"]`` (the JSON's mapping) when there is one."""
+        from gyrovib.api.frames import _frame
+
+        columns = fit_columns(self)
+        attrs: dict[str, Any] = {"method": self.method, "unit": self.unit,
+                                 "output_unit": self.output_unit, "order": self.order,
+                                 "file": self.file}
+        if self.lot is not None:
+            attrs["lot"] = lot_mapping(self)
+        return _frame(columns, attrs)
+
+
+#: The columns of the fit's CSV and DataFrame, in order.
+FIT_COLUMNS: tuple[str, ...] = (
+    "unit", "coefficient", "value", "sigma", "t", "significant", "coefficient_unit",
+    "residual_rms", "nonlinearity.least_squares_max", "nonlinearity.endpoint_max",
+    "nonlinearity.range", "points")
+
+
+def fit_columns(result: FitResult) -> dict[str, list[Any]]:
+    """The rows of the CSV and the DataFrame, column by column (:data:`FIT_COLUMNS`)."""
+    out: dict[str, list[Any]] = {c: [] for c in FIT_COLUMNS}
+    units = result.coefficient_units()
+    for name, f in zip(result.units, result.fits, strict=True):
+        for k, coefficient in enumerate(result.names):
+            t = float(f.t[k])
+            row = (name, coefficient, float(f.values[k]), float(f.sigma[k]), t,
+                   bool(abs(t) >= SIGNIFICANT_T), units[k], f.residual_rms,
+                   f.nonlinearity.least_squares_max, f.nonlinearity.endpoint_max,
+                   f.nonlinearity.range, f.points)
+            for column, value in zip(FIT_COLUMNS, row, strict=True):
+                out[column].append(value)
+    return out
+
+
+def pairs(names: tuple[str, ...], correlation: Any) -> dict[str, float]:
+    """The correlation matrix as the pairs mapping ``{"A1 k2": ρ}`` (i < j, every pair;
+    NaN pairs, of a zero σ, left out)."""
+    out: dict[str, float] = {}
+    for i in range(len(names)):
+        for j in range(i + 1, len(names)):
+            value = float(correlation[i, j])
+            if np.isfinite(value):
+                out[pair_key(names[i], names[j])] = value
+    return out
+
+
+def lot_mapping(result: FitResult) -> dict[str, Any]:
+    """The lot as the catalogue's ``lot`` entry and the JSON's ``"lot"`` write it:
+    units, mean, sigma, correlation pairs (none when only the diagonal is used)."""
+    lot = result.lot
+    if lot is None:
+        return {}
+    names = result.names
+    return {
+        "units": lot.units,
+        "mean": dict(zip(names, map(float, lot.mean), strict=True)),
+        "sigma": dict(zip(names, map(float, lot.sigma), strict=True)),
+        "correlation": {} if lot.diagonal else pairs(names, lot.correlation),
+    }
+

@@ -1,0 +1,67 @@
+"""`gyrovib fit`: rate-table data to coefficient-form sensors (MODEL.md section 14)."""
+
+from __future__ import annotations
+
+import click
+
+from gyrovib.cli.common import page_width, plain_ascii, use_color
+from gyrovib.cli.options import format_option
+
+
+@click.command()
+@click.argument("table", metavar="TABLE")
+@click.option("--output", "-o", metavar="FILE",
+              help="Write the catalogue (YAML): one coefficient-form sensor per unit with its "
+                   "uncertainty, and the lot entry with two or more units. '-': the catalogue "
+                   "on standard output instead of the report.")
+@click.option("--order", type=click.IntRange(1, 5), default=5, show_default=True, metavar="N",
+              help="Highest power of the rate in eq. (1), 1 to 5.")
+@click.option("--rate-unit", "rate_unit", default="deg/s", show_default=True, metavar="UNIT",
+              help="Unit of the rate, rate_x1 and rate_x2 columns: deg/s, deg/h, rad/s, rpm. "
+                   "The coefficients are written in it.")
+@click.option("--output-unit", "output_unit", default=None, metavar="UNIT",
+              help="Unit of the output column (a label: mV, V, LSB, or a rate unit); the "
+                   "eq. (2) coefficients do not depend on it.")
+@click.option("--plot", metavar="PNG",
+              help="Write the residuals against the rate, one panel per unit (matplotlib).")
+@format_option("table", "json", "csv", "markdown")
+def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit: str | None,
+        plot: str | None, fmt: str) -> None:
+    """Fit eq. (1) to rate-table data: per unit the coefficients of eq. (2), their
+    uncertainty, residuals and nonlinearity; the lot over the units.
+
+    TABLE is a CSV file ('-': standard input) with a header row: unit (optional),
+    rate, output, and optionally rate_x1, rate_x2 (cross rates). Lines starting
+    with '#' are comments. Each unit needs rates of both signs, enough distinct
+    |rate| levels for --order, and more points than parameters.
+    """
+    from gyrovib import api
+    from gyrovib.api.ratetable import STDIN, STDIN_NAME, read_rate_table_bytes
+    from gyrovib.cli.output import write_binary, write_output
+    from gyrovib.render import fit as render
+
+    if table == STDIN:
+        import sys
+
+        from gyrovib.api.ratetable import MAX_BYTES
+
+        raw = sys.stdin.buffer.read(MAX_BYTES + 1) if sys.stdin is not None else b""
+        data = read_rate_table_bytes(raw, STDIN_NAME, rate_unit, output_unit)
+    else:
+        data = api.read_rate_table(table, rate_unit, output_unit)
+    result = api.fit(data, order)
+    for warning in result.warnings:
+        click.echo(f"gyrovib: warning: {warning}", err=True)
+    if plot is not None:
+        write_binary(render.residuals_png(result), plot)
+    if output is not None:
+        write_output(render.to_catalog(result), output)
+        if output == "-":
+            return
+    if fmt == "table":
+        text = render.to_table(result, color=use_color(), width=page_width(),
+                               ascii=plain_ascii())
+    else:
+        text = {"json": render.to_json, "csv": render.to_csv,
+                "markdown": render.to_markdown}[fmt](result)
+    write_output(text, None)

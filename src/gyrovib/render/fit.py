@@ -1,0 +1,258 @@
+"""Renderers of :class:`gyrovib.api.FitResult` (``gyrovib fit``, MODEL.md section 14):
+table, JSON, CSV, Markdown, the catalogue YAML of ``-o`` and the residual plot."""
+
+from __future__ import annotations
+
+import io
+import math
+from typing import Any
+
+from gyrovib._version import __version__
+from gyrovib.api.fit_results import FIT_COLUMNS, FitResult, fit_columns, lot_mapping, pairs
+from gyrovib.core.fit import SIGNIFICANT_T
+from gyrovib.errors import GyrovibError
+from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+
+
+def _numbers(names: tuple[str, ...], values: Any) -> dict[str, float | None]:
+    return {n: number(v) for n, v in zip(names, values, strict=True)}
+
+
+def unit_document(result: FitResult, i: int) -> dict[str, Any]:
+    """One unit as the JSON writes it (INTERFACE.md, "JSON additions": fit)."""
+    f = result.fits[i]
+    names = result.names
+    return {
+        "unit": result.units[i],
+        "coefficients": _numbers(names, f.values),
+        "uncertainty": {"sigma": _numbers(names, f.sigma),
+                        "correlation": pairs(names, f.correlation)},
+        "t": _numbers(names, f.t),
+        "residual_rms": number(f.residual_rms),
+        "nonlinearity": {"least_squares_max": number(f.nonlinearity.least_squares_max),
+                         "endpoint_max": number(f.nonlinearity.endpoint_max),
+                         "unit": "%FS", "range": number(f.nonlinearity.range)},
+        "points": f.points,
+    }
+
+
+def to_json(result: FitResult) -> str:
+    """The JSON document: header, file, order, output unit, ``units`` (one object per
+    unit), ``lot`` when there are two or more units, ``warnings``."""
+    document = header(result.method, result.unit)
+    document.update({"output_unit": result.output_unit, "file": result.file,
+                     "order": result.order,
+                     "units": [unit_document(result, i) for i in range(len(result.units))]})
+    if result.lot is not None:
+        document["lot"] = lot_mapping(result)
+    document["warnings"] = list(result.warnings)
+    return dumps(document)
+
+
+def to_csv(result: FitResult) -> str:
+    """One row per unit × coefficient (the DataFrame's columns)."""
+    columns = fit_columns(result)
+    rows = zip(*(columns[c] for c in FIT_COLUMNS), strict=True)
+    return csv_text(FIT_COLUMNS, ([str(v).lower() if isinstance(v, bool) else v for v in row]
+                                  for row in rows))
+
+
+def _output_unit(result: FitResult) -> str:
+    return result.output_unit or "output units"
+
+
+def _title(result: FitResult, i: int) -> str:
+    f = result.fits[i]
+    out = _output_unit(result)
+    return (f"{result.units[i]}: {f.points} points, K1 = {fmt(f.scale_factor, 6)} ± "
+            f"{fmt(f.scale_factor_sigma, 2)} {out} per {result.unit}, residual rms "
+            f"{fmt(f.residual_rms, 3)} {out}")
+
+
+def _nonlinearity(result: FitResult, i: int) -> str:
+    nl = result.fits[i].nonlinearity
+    return (f"nonlinearity over ±{fmt(nl.range)} {result.unit}: "
+            f"{fmt(nl.least_squares_max, 3)} %FS (least-squares line), "
+            f"{fmt(nl.endpoint_max, 3)} %FS (endpoint line)")
+
+
+_HEAD = ["coefficient", "value", "σ", "t", "unit", "note"]
+_LOT_HEAD = ["coefficient", "mean", "σ (unit to unit)", "unit"]
+
+
+def _rows(result: FitResult, i: int) -> list[list[str]]:
+    f = result.fits[i]
+    units = result.coefficient_units()
+    rows = []
+    for k, name in enumerate(result.names):
+        t = float(f.t[k])
+        note = "" if abs(t) >= SIGNIFICANT_T else "not significant (|t| < 2)"
+        rows.append([name, fmt(f.values[k]), fmt(f.sigma[k], 2), fmt(t, 3), units[k], note])
+    return rows
+
+
+def _lot_rows(result: FitResult) -> list[list[str]]:
+    lot = result.lot
+    assert lot is not None
+    units = result.coefficient_units()
+    return [[name, fmt(lot.mean[k]), fmt(lot.sigma[k], 3), units[k]]
+            for k, name in enumerate(result.names)]
+
+
+def _lot_title(result: FitResult) -> str:
+    return f"The lot: {len(result.units)} units of {result.file}"
+
+
+def _legend(result: FitResult) -> str:
+    return (f"Eq. (2) coefficients (k1 = 1 by construction: eq. (1) divided by K1), in "
+            f"{result.unit} powers, with standard uncertainties σ (delta method) and "
+            "t = value/σ; a term with |t| < 2 is kept, flagged. Nonlinearity: the fitted "
+            "curve's largest deviation from its least-squares line and from its endpoint "
+            f"line, in % of the largest |rate| tested (MODEL.md section 14). Fit of order "
+            f"{result.order}.")
+
+
+def to_table(result: FitResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """One table per unit (coefficients, σ, t), then the lot's mean and spread."""
+    from gyrovib.render.common import Table, Text
+
+    def table(head: list[str], rows: list[list[str]], title: str | None) -> Table:
+        out = Table(title=title, header_style="bold")
+        for k, label in enumerate(head):
+            right = 0 < k < 4 if head is _HEAD else 0 < k < 3
+            out.add_column(label, justify="right" if right else "left", no_wrap=k < 5)
+        for row in rows:
+            out.add_row(*row)
+        return out
+
+    items: list[Any] = []
+    for i in range(len(result.units)):
+        items += [table(_HEAD, _rows(result, i), _title(result, i)),
+                  Text(_nonlinearity(result, i))]
+    if result.lot is not None:
+        items.append(table(_LOT_HEAD, _lot_rows(result), _lot_title(result)))
+    items.append(Text(_legend(result), style="dim"))
+    items += [Text(f"warning: {w}", style="yellow") for w in result.warnings]
+    return rich_text(items, width=width, color=color, ascii=ascii)
+
+
+def to_markdown(result: FitResult) -> str:
+    """One Markdown table per unit, then the lot's."""
+    parts = [f"Rate-table fit of `{result.file}`, order {result.order}\n"]
+    for i in range(len(result.units)):
+        parts.append(f"**{_title(result, i)}**\n\n" + markdown_table(_HEAD, _rows(result, i))
+                     + f"\n{_nonlinearity(result, i)}\n")
+    if result.lot is not None:
+        parts.append(f"**{_lot_title(result)}**\n\n" + markdown_table(_LOT_HEAD,
+                                                                      _lot_rows(result)))
+    parts.append(_legend(result) + "\n")
+    parts += [f"Warning: {w}\n" for w in result.warnings]
+    return "\n".join(parts)
+
+
+# --------------------------------------------------------------------------- catalogue YAML
+
+
+def yaml_number(value: float) -> str:
+    """A float as YAML 1.2 and 1.1 both read it (12 significant digits, ``1.5e-06`` with
+    a dot in the mantissa: ``1e-06`` would be a string to YAML 1.1)."""
+    v = float(value)
+    if not math.isfinite(v):
+        raise GyrovibError(f"cannot write the non-finite value {v!r} into a catalogue")
+    text = format(v, ".12g")
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        if "." not in mantissa:
+            mantissa += ".0"
+        return f"{mantissa}e{exponent}"
+    return text if "." in text else text + ".0"
+
+
+def _flow(mapping: dict[str, float]) -> str:
+    return "{" + ", ".join(f"{k}: {yaml_number(v)}" for k, v in mapping.items()) + "}"
+
+
+def _block(mapping: dict[str, float], indent: str) -> list[str]:
+    if not mapping:
+        return [" {}"]
+    return [""] + [f"{indent}{k}: {yaml_number(v)}" for k, v in mapping.items()]
+
+
+def lot_id(result: FitResult) -> str:
+    """The id of the lot entry: ``lot-`` and the table's file stem (as an id)."""
+    import re
+    from pathlib import Path
+
+    stem = re.sub(r"[^A-Za-z0-9._-]+", "-", Path(result.file).stem).strip("-.") or "table"
+    return f"lot-{stem}"[:200]
+
+
+def to_catalog(result: FitResult) -> str:
+    """The catalogue ``-o`` writes (INTERFACE.md, third round): one coefficient-form
+    sensor per unit with its ``uncertainty`` (σ and every correlation pair), and with
+    two or more units a ``lot`` entry (mean, σ, correlation pairs unless the lot is
+    too small for them). Values in the table's rate unit, 12 significant digits."""
+    names = result.names
+    lines = [
+        f"# Written by gyrovib {__version__} fit from {result.file}: least squares of eq. (1),",
+        f"# order {result.order}, {sum(f.points for f in result.fits)} points; eq. (2) "
+        "coefficients (k1 = 1) with standard uncertainties",
+        "# and correlations (MODEL.md section 14).",
+        "gyrovib: 1",
+        "units:",
+        f"  rate: {result.unit}",
+        "sensors:",
+    ]
+    for name, f in zip(result.units, result.fits, strict=True):
+        lines += [
+            f"  - id: {name}",
+            f"    # K1 = {fmt(f.scale_factor, 8)} ± {fmt(f.scale_factor_sigma, 2)} "
+            f"{_output_unit(result)} per {result.unit}, {f.points} points, residual rms "
+            f"{fmt(f.residual_rms, 3)}",
+            f"    coefficients: {_flow(dict(zip(names, map(float, f.values), strict=True)))}",
+            "    uncertainty:",
+            f"      sigma: {_flow(dict(zip(names, map(float, f.sigma), strict=True)))}",
+            "      correlation:" + "\n".join(_block(pairs(names, f.correlation), " " * 8)),
+        ]
+    if result.lot is not None:
+        lot = lot_mapping(result)
+        lines += [f"  - id: {lot_id(result)}"]
+        lines += [f"    # {w}" for w in result.warnings]
+        lines += [
+            "    lot:",
+            f"      units: {lot['units']}",
+            f"      mean: {_flow(lot['mean'])}",
+            f"      sigma: {_flow(lot['sigma'])}",
+            "      correlation:" + "\n".join(_block(lot["correlation"], " " * 8)),
+        ]
+    return "\n".join(lines) + "\n"
+
+
+# --------------------------------------------------------------------------- plot
+
+
+def residuals_png(result: FitResult, dpi: int = 100) -> bytes:
+    """Residuals U − Û against the rate, one panel per unit (matplotlib, optional)."""
+    from gyrovib.render.plot import _figure_class
+
+    figure_class = _figure_class()
+    n = len(result.units)
+    columns = min(n, 2)
+    rows = (n + columns - 1) // columns
+    fig = figure_class(figsize=(5.0 * columns, 1.0 + 2.4 * rows), dpi=dpi, layout="constrained")
+    axes = fig.subplots(rows, columns, squeeze=False, sharex=True)
+    out = _output_unit(result)
+    for k, (name, f) in enumerate(zip(result.units, result.fits, strict=True)):
+        ax = axes[k // columns][k % columns]
+        ax.axhline(0.0, color="0.6", lw=0.8)
+        ax.plot(f.rates, f.residuals, "o", ms=3.5, color="C0")
+        ax.set_title(f"{name}: residual rms {fmt(f.residual_rms, 3)} {out}", fontsize=9,
+                     loc="left")
+        ax.set_ylabel(f"residual ({out})")
+        ax.set_xlabel(f"rate ({result.unit})")
+    for k in range(n, rows * columns):
+        axes[k // columns][k % columns].set_visible(False)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png")
+    return buffer.getvalue()
