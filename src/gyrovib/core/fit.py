@@ -192,12 +192,12 @@ def check_identifiable(rate: FloatArray, order: int, p: int) -> None:
         problems.append(
             f"order {order} needs at least {len(even)} distinct |Ω| levels (zero counts) for "
             f"the even part ({', '.join(even)}); the table has {levels.size}: add rates at "
-            "other magnitudes, or lower --order")
+            "other magnitudes, or fit a lower order")
     if scale > 0 and nonzero.size < len(odd):
         problems.append(
             f"order {order} needs at least {len(odd)} distinct nonzero |Ω| levels for the odd "
             f"part ({', '.join(odd)}); the table has {nonzero.size}: add rates at other "
-            "magnitudes, or lower --order")
+            "magnitudes, or fit a lower order")
     if n <= p:
         problems.append(
             f"{n} point{'s' if n != 1 else ''} for {p} parameters: the fit needs more points "
@@ -300,14 +300,18 @@ def _check_rank(design: FloatArray, names: tuple[str, ...]) -> None:
     """Raise when the scaled design matrix is (numerically) rank deficient, naming the
     parameters that the data cannot tell apart (the null direction's main entries)."""
     _, singular, vt = np.linalg.svd(design, full_matrices=False)
-    if singular[-1] > singular[0] / MAX_CONDITION:
+    small = singular <= singular[0] / MAX_CONDITION
+    if not np.any(small):
         return
-    null = np.abs(vt[-1])
-    involved = [name for name, v in zip(names, null, strict=True) if v > 0.1 * null.max()]
+    groups = []
+    for vector in vt[small]:
+        null = np.abs(vector)
+        groups.append(", ".join(n for n, v in zip(names, null, strict=True)
+                                if v > 0.1 * null.max()))
     raise IdentificationError(
-        f"the rates do not separate the terms {', '.join(involved)} of eq. (1) (their "
-        "columns are linearly dependent on these points): add runs at other rates or "
-        "cross rates, or lower --order")
+        "the rates do not separate the terms " + "; nor ".join(sorted(groups)) + " of eq. (1) "
+        "(their columns are linearly dependent on these points): add runs at other rates or "
+        "cross rates, or fit a lower order")
 
 
 def to_rate_form(theta: FloatArray, cov_theta: FloatArray, order: int,
