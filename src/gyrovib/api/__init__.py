@@ -103,8 +103,8 @@ __all__ = [
     "Limit",
     "Prepared",
     "ProfileEntry",
-    "RateTable",
     "ProgressCallback",
+    "RateTable",
     "SelectionResult",
     "SensorEntry",
     "SweepResult",
@@ -224,9 +224,6 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     from gyrovib.api.entries import (
         load as load,
     )
-    from gyrovib.api.fit_results import (
-        FitResult as FitResult,
-    )
     from gyrovib.api.entries import (
         profile_location as profile_location,
     )
@@ -241,6 +238,9 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     )
     from gyrovib.api.entries import (
         sensor_locations as sensor_locations,
+    )
+    from gyrovib.api.fit_results import (
+        FitResult as FitResult,
     )
     from gyrovib.api.prepare import (
         Prepared as Prepared,

@@ -101,7 +101,8 @@ class RateFit(Frozen):
     correlation matrix (NaN where a σ is 0), ``t`` = value/σ.
     ``raw_names``/``raw_values``/``raw_covariance``: θ of eq. (1) in output
     units (K1 in output per rate, h = ½K1·A1). ``residuals`` = U − Û per point
-    (output units), at the rates ``rates``; ``residual_rms`` = √(RSS/n); ``residual_sigma`` s = √(RSS/(n−p)).
+    (output units), at the rates ``rates``; ``residual_rms`` = √(RSS/n);
+    ``residual_sigma`` s = √(RSS/(n−p)).
     """
 
     order: int
