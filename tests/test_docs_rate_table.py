@@ -1,0 +1,70 @@
+"""docs/rate-table.md shows gyrovib's own output.
+
+Each ``$ gyrovib ...`` console block is what the command prints at 100 columns;
+a line ``...`` in a block stands for lines left out (the pieces between must
+appear in that order, the first at the start and the last at the end). The
+``>>>`` examples run as doctests from the root of the tree, and the ``text``
+block is the head of the bundled table. When the example data change,
+regenerate the page's blocks.
+"""
+
+from __future__ import annotations
+
+import doctest
+import os
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+PAGE = ROOT / "docs" / "rate-table.md"
+
+
+def console_blocks() -> list[tuple[str, str]]:
+    return re.findall(r"```console\n\$ (gyrovib [^\n]*)\n(.*?)```",
+                      PAGE.read_text(encoding="utf-8"), flags=re.S)
+
+
+def test_the_page_has_its_examples() -> None:
+    commands = [c for c, _ in console_blocks()]
+    assert any(c.startswith("gyrovib fit") and "-o -" not in c for c in commands)
+    assert any(c.startswith("gyrovib fit") and c.endswith("-o -") for c in commands)
+
+
+@pytest.mark.parametrize(("command", "shown"), console_blocks())
+def test_console_block_is_the_output(command: str, shown: str) -> None:
+    env = {**os.environ, "COLUMNS": "100", "NO_COLOR": "1"}
+    env.pop("FORCE_COLOR", None)
+    done = subprocess.run([sys.executable, "-m", "gyrovib", *shlex.split(command)[1:]],
+                          cwd=ROOT, capture_output=True, text=True, env=env, timeout=120,
+                          check=False)
+    assert done.returncode == 0, done.stderr
+    pieces = ("\n" + shown).split("\n...\n")
+    out = done.stdout
+    assert out.startswith(pieces[0].lstrip("\n")), f"regenerate {PAGE.name}: {command}"
+    assert out.endswith(pieces[-1]), f"regenerate {PAGE.name}: {command}"
+    at = 0
+    for piece in pieces:
+        found = out.find(piece.strip("\n"), at)
+        assert found >= 0, f"regenerate {PAGE.name}: {command}: {piece[:80]!r}"
+        at = found + len(piece.strip("\n"))
+
+
+def test_python_examples_run(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(ROOT)
+    failed, attempted = doctest.testfile(str(PAGE), module_relative=False, verbose=False,
+                                         optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert attempted >= 10
+    assert failed == 0
+
+
+def test_the_table_head_is_the_file() -> None:
+    block = re.search(r"```text\n(.*?)\.\.\.\n```", PAGE.read_text(encoding="utf-8"), re.S)
+    assert block
+    shown = block.group(1)
+    data = (ROOT / "docs" / "examples" / "rate-table-gx100.csv").read_text(encoding="utf-8")
+    assert data.startswith(shown)
