@@ -27,8 +27,12 @@ from gyrovib.cli.options import format_option
 @format_option("table", "json", "csv", "markdown")
 def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit: str | None,
         plot: str | None, fmt: str) -> None:
-    """Fit eq. (1) to rate-table data: per unit the coefficients of eq. (2), their
-    uncertainty, residuals and nonlinearity; the lot over the units.
+    """Fit rate-table data: each unit's coefficients with their uncertainty, and the lot.
+
+    Per unit, the least-squares fit of eq. (1) and the coefficients of eq. (2)
+    with their standard uncertainties, correlations and t values, the residual
+    rms and the fitted curve's nonlinearity (%FS); with two or more units, the
+    lot's mean and spread (MODEL.md section 14).
 
     TABLE is a CSV file ('-': standard input) with a header row: unit (optional),
     rate, output, and optionally rate_x1, rate_x2 (cross rates). Lines starting
