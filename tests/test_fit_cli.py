@@ -289,3 +289,23 @@ def test_standard_input(table: Path) -> None:
     result = invoke("fit", "-", "--format", "json", input=table.read_bytes())
     assert result.exit_code == 0, result.stderr
     assert json.loads(result.stdout)["file"] == "<stdin>"
+
+
+def test_cross_rate_columns(tmp_path: Path) -> None:
+    """rate_x2 alone adds m2 and m32 (noise-free: given back); quoted cells and a BOM read."""
+    rows = []
+    for w in LEVELS:
+        for x2 in (0.0, 60.0):
+            u = 20.0 * (0.05 + w + 0.5 * 1e-3 * abs(w) + 2e-6 * w**2 + 1e-3 * x2
+                        + 4e-6 * w * x2)
+            rows.append(f'"a",{w:g},{u!r},"{x2:g}"')
+    path = tmp_path / "cross.csv"
+    path.write_bytes(("\ufeffunit,rate,output,rate_x2\n" + "\n".join(rows) + "\n")
+                     .encode("utf-8"))
+    result = invoke("fit", path, "--order", "2", "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    coefficients = json.loads(result.stdout)["units"][0]["coefficients"]
+    assert list(coefficients) == ["k0", "A1", "k2", "m2", "m32"]
+    expected = {"k0": 0.05, "A1": 1e-3, "k2": 2e-6, "m2": 1e-3, "m32": 4e-6}
+    for name, value in expected.items():
+        assert coefficients[name] == pytest.approx(value, rel=1e-9), name
