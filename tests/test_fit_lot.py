@@ -21,6 +21,7 @@ from gyrovib.core.analysis import COEFFICIENTS, profile_multipliers, vibration_e
 from gyrovib.core.lot import (
     WILSON_Z,
     LotError,
+    bounds_test,
     check_correlation,
     correlation_from_pairs,
     covariance_from,
@@ -223,3 +224,39 @@ def test_correlations_that_no_distribution_has() -> None:
     r = correlation_from_pairs(("a", "b"), {"a b": 1.0})
     factor = normal_factor(covariance_from([1.0, 2.0], r))
     np.testing.assert_allclose(factor @ factor.T, [[1.0, 2.0], [2.0, 4.0]], atol=1e-12)
+
+
+def test_bound_checks_by_monte_carlo() -> None:
+    """|c1| ≤ b1 and |c2| ≤ b2 for independent normal c: the exact probability is the
+    product of two normal intervals; a second row with c2 unconstrained is the first
+    factor alone. The Monte-Carlo interval must cover both."""
+    mean, sigma = np.array([1e-3, -2e-4]), np.array([5e-4, 1e-4])
+    bounds = np.array([[1.5e-3, 3e-4], [1.5e-3, np.inf]])
+    cov = np.diag(sigma**2)
+
+    def interval(m: float, s: float, b: float) -> float:
+        law = NormalDist(m, s)
+        return law.cdf(b) - law.cdf(-b)
+
+    first = interval(1e-3, 5e-4, 1.5e-3)
+    exact = np.array([first * interval(-2e-4, 1e-4, 3e-4), first])
+    estimate = monte_carlo_yield(bounds_test(bounds), mean, cov, np.random.default_rng(12))
+    assert estimate.value.shape == (2,)
+    assert np.all(estimate.low <= exact) and np.all(exact <= estimate.high)
+
+
+def test_yield_json_shape() -> None:
+    from gyrovib.core.lot import exact_estimate
+    from gyrovib.render.fit import yield_document
+
+    mc = monte_carlo_yield(direct_test(np.array([[1.0], [2.0]]), 1.0), np.array([0.0]),
+                           np.array([[1.0]]), np.random.default_rng(0), draws=1000)
+    document = yield_document(mc, (1,))
+    assert set(document) == {"value", "method", "interval", "draws"}
+    assert document["method"] == "monte-carlo" and document["draws"] == 1000
+    lo, hi = document["interval"]
+    assert lo <= document["value"] <= hi
+    # |2c| ≤ 1 for c ~ N(0, 1): P = 2Φ(½) − 1 = 0.3829
+    assert lo <= 2 * NormalDist().cdf(0.5) - 1 <= hi
+    exact = yield_document(exact_estimate(np.array(0.5)))
+    assert exact == {"value": 0.5, "method": "exact", "interval": None, "draws": 0}

@@ -236,6 +236,20 @@ def rms_test(terms: ArrayLike, budget: ArrayLike) -> Callable[[FloatArray], NDAr
     return test
 
 
+def bounds_test(bounds: ArrayLike) -> Callable[[FloatArray], NDArray[np.bool_]]:
+    """The bound checks (eq. 23, 25) |c_i| ≤ b_i for every coefficient as a function of
+    draws c (k, p); ``bounds`` (..., p), +inf where a coefficient is unconstrained, gives
+    verdicts (k, ...)."""
+    limit = np.asarray(bounds, dtype=float)
+
+    def test(c: FloatArray) -> NDArray[np.bool_]:
+        expand = (slice(None),) + (None,) * (limit.ndim - 1) + (slice(None),)
+        out: NDArray[np.bool_] = np.all(np.abs(c[expand]) <= limit, axis=-1)
+        return out
+
+    return test
+
+
 # --------------------------------------------------------------------------- g from the engine
 
 

@@ -10,6 +10,7 @@ from typing import Any
 from gyrovib._version import __version__
 from gyrovib.api.fit_results import FIT_COLUMNS, FitResult, fit_columns, lot_mapping, pairs
 from gyrovib.core.fit import SIGNIFICANT_T
+from gyrovib.core.lot import YieldEstimate
 from gyrovib.errors import GyrovibError
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
@@ -149,6 +150,18 @@ def to_markdown(result: FitResult) -> str:
     parts.append(_legend(result) + "\n")
     parts += [f"Warning: {w}\n" for w in result.warnings]
     return "\n".join(parts)
+
+
+def yield_document(estimate: YieldEstimate, index: tuple[int, ...] = ()) -> dict[str, Any]:
+    """A yield as the JSON writes it (INTERFACE.md, ``select --yield``): ``{"value",
+    "method": "exact"|"monte-carlo", "interval": [lo, hi] | null, "draws"}``; ``index``
+    picks one entry of an estimate made for several tests at once."""
+    value = float(estimate.value[index])
+    interval = None
+    if estimate.method != "exact":
+        interval = [number(estimate.low[index]), number(estimate.high[index])]
+    return {"value": number(value), "method": estimate.method, "interval": interval,
+            "draws": estimate.draws}
 
 
 # --------------------------------------------------------------------------- catalogue YAML
