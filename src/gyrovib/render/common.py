@@ -204,6 +204,9 @@ def _ascii_cell(value: Any) -> Text:
 
 def _print_lines(console: Console, text: Text, page: int) -> None:
     """``text`` wrapped at spaces to ``page`` columns, no line ending in a space."""
+    if text.cell_len <= page and "\n" not in text.plain:
+        console.print(text)
+        return
     for line in text.wrap(console, page, overflow="fold"):
         line.rstrip()
         console.print(line)
@@ -227,12 +230,18 @@ def _groups(table: Table, page: int, cell: Callable[[Any], Text]) -> list[Table]
               for h, c, column in zip(headers, columns, cells, strict=True)]
     drawn = []
     for group in column_groups(widths, page):
+        # a group still wider than the page (the key and one wide column) may wrap any
+        # column but the key, so that rich narrows those and crops no value
+        squeezed = 1 + sum(widths[k] + 3 for k in group) > page
         part = Table(box=box.HEAVY_HEAD, show_edge=True, pad_edge=True, collapse_padding=False,
                      header_style=table.header_style or "bold", highlight=False)
         for k in group:
             c = columns[k]
-            part.add_column(headers[k], justify=c.justify, style=c.style, no_wrap=c.no_wrap,
-                            overflow="fold", min_width=c.min_width)
+            part.add_column(headers[k], justify=c.justify, style=c.style,
+                            no_wrap=c.no_wrap and not (squeezed and k != group[0]),
+                            overflow="fold", min_width=c.min_width,
+                            # a group that fits: its widths measured here once, not by rich
+                            width=None if squeezed else widths[k])
         for row in zip(*(cells[k] for k in group), strict=True):
             part.add_row(*row)
         drawn.append(part)
