@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import itertools
 import math
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any
@@ -132,7 +133,7 @@ class _Page(io.StringIO):
         self._encoding = encoding
 
     @property
-    def encoding(self) -> str:
+    def encoding(self) -> str:  # type: ignore[override]  # StringIO's is None, read-only
         return self._encoding
 
 
@@ -152,7 +153,6 @@ def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
     """
     from rich.console import Console
     from rich.table import Table
-    from rich.text import Text
 
     page = max(width or 160, 40)
     out = _Page("ascii" if ascii else "utf-8")
@@ -194,9 +194,7 @@ def _ascii_cell(value: Any) -> Text:
     cuts = sorted({0, len(plain), *(s.start for s in spans), *(s.end for s in spans)})
     out = Text(style=text.style, justify=text.justify, overflow=text.overflow,
                no_wrap=text.no_wrap, end=text.end)
-    for a, b in zip(cuts, cuts[1:], strict=False):
-        if a >= b:
-            continue
+    for a, b in itertools.pairwise(cuts):
         styles = [str(s.style) for s in spans if s.start <= a and b <= s.end]
         out.append(to_ascii(plain[a:b]), style=" ".join(styles) or None)
     return out
