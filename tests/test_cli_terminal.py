@@ -267,14 +267,22 @@ def test_narrow_table_keeps_every_value_and_repeats_the_key_column() -> None:
     assert groups >= 2 and text.count("│ s1 ") == groups
 
 
-def test_ascii_stream_gets_an_ascii_table() -> None:
+@pytest.mark.parametrize("encoding", ["ascii", "latin-1"])
+def test_ascii_stream_gets_an_ascii_table(encoding: str) -> None:
+    # latin-1 has ± and µ but neither Δ nor the box glyphs: the whole table falls back
     done = gyrovib("analyze", "--profile", "engine-harmonics",
-                   env=clean_env(PYTHONIOENCODING="ascii"))
+                   env=clean_env(PYTHONIOENCODING=encoding))
     assert done.returncode == 0, done.stderr
     assert done.stdout.isascii()
     assert "Delta_V" in done.stdout and "Omega_K3" in done.stdout
     rows = [line for line in done.stdout.splitlines() if line.startswith(("+", "|"))]
     assert rows and len({len(line) for line in rows}) == 1  # laid out after transliteration
+    # rich's box.ASCII: "+---+" above and below (no column dividers), "|---+---|" under
+    # the header
+    assert rows[0].strip("+-") == "" and rows[-1].strip("+-") == ""
+    assert re.fullmatch(r"\|-+(\+-+)+\|", rows[2])
+    if encoding != "ascii":
+        return
     marks = gyrovib("select", "--budget", "0.001", env=clean_env(PYTHONIOENCODING="ascii"))
     assert marks.returncode == 0 and marks.stdout.isascii()
     assert re.search(r"\| +x [0-9][0-9.e+-]* +\|", marks.stdout)  # ✗ of a failing cell
@@ -284,6 +292,38 @@ def test_ascii_stream_gets_an_ascii_table() -> None:
     assert re.search(r"\| +x SAT ", marks.stdout)
     csv = gyrovib("analyze", "--format", "markdown", env=clean_env(PYTHONIOENCODING="ascii"))
     assert csv.returncode == 0 and csv.stdout.isascii() and "Delta_V" in csv.stdout
+
+
+def test_color_flags_and_variables_on_the_command_line() -> None:
+    # resolve_color's rules end to end (the output is a pipe, not a terminal): FORCE_COLOR
+    # colours even with TERM=dumb, --color never beats it, --color always beats NO_COLOR
+    # and TERM=dumb together
+    args = ["analyze", "--profile", "engine-harmonics"]
+    forced = gyrovib(*args, env=clean_env(FORCE_COLOR="1", TERM="dumb"))
+    assert ANSI.search(forced.stdout)
+    never = gyrovib("--color", "never", *args, env=clean_env(FORCE_COLOR="1"))
+    assert not ANSI.search(never.stdout)
+    always = gyrovib("--color", "always", *args, env=clean_env(NO_COLOR="1", TERM="dumb"))
+    assert ANSI.search(always.stdout)
+    assert ANSI.sub("", always.stdout) == ANSI.sub("", forced.stdout) == never.stdout
+
+
+def test_a_long_table_says_once_that_csv_and_json_are_the_fast_path() -> None:
+    # a sweep table is a row per rate: 2,001 rates of one sensor × profile is past
+    # SLOW_TABLE_ROWS (2,000); 2,000 is not; csv and json never say it
+    one = ["sweep", "--sensor", "adxrs453", "--profile", "flat-random-hover"]
+    long = CliRunner().invoke(cli, [*one, "--rate-range", "0:10:2001"])
+    assert long.exit_code == 0, long.stderr
+    note = ("gyrovib: note: 2,001 table rows take a while to draw; "
+            "--format csv or --format json is the fast path\n")
+    assert long.stderr == note  # once, on stderr only
+    assert "fast path" not in long.stdout
+    assert long.stdout.count("│") > 2001  # the table is still drawn
+    short = CliRunner().invoke(cli, [*one, "--rate-range", "0:10:2000"])
+    assert short.exit_code == 0 and short.stderr == ""
+    for fmt in ("csv", "json"):
+        fast = CliRunner().invoke(cli, [*one, "--rate-range", "0:10:2001", "--format", fmt])
+        assert fast.exit_code == 0 and fast.stderr == ""
 
 
 def test_to_ascii() -> None:

@@ -20,7 +20,7 @@ from gyrovib import api
 from gyrovib.catalog.loader import merge, parse_catalog
 from gyrovib.formatting import fmt
 from gyrovib.render import analysis as render
-from gyrovib.render.common import Table, Text, rich_text, wrap
+from gyrovib.render.common import Table, Text, column_groups, rich_text
 from tests.conftest import MIXED_FORMS
 
 # the renderers' catalogue and a locked group (its odd-moment columns)
@@ -128,9 +128,8 @@ def tables(draw: st.DrawFn) -> Table:
 @settings(deadline=None, max_examples=300)
 @given(tables(), st.integers(40, 120))
 def test_plain_rows_are_the_coloured_rows_without_colour(table: Table, width: int) -> None:
-    # Without colour a row that fits is written from its plain texts; with colour every
-    # row goes through the general path. Colour only adds SGR codes around texts, so
-    # the coloured table without its codes is the reference for the plain one.
+    # Colour only adds SGR codes around texts (rich's "standard" colour system), never
+    # moves a character: the coloured table without its codes is the plain one.
     plain = rich_text([table], width=width, color=False)
     coloured = rich_text([table], width=width, color=True)
     assert "\x1b" not in plain
@@ -154,11 +153,117 @@ def test_fmt_is_its_definition(value: float, digits: int) -> None:
     assert fmt(np.float64(value), digits) == expected
 
 
-@settings(deadline=None, max_examples=1000)
-@given(st.text(alphabet="ab Δ-.\t\n\r\x0b\x0c\xa0\u2003", max_size=40), st.integers(1, 45))
-def test_wrap_is_textwrap(text: str, width: int) -> None:
-    # render.common.wrap skips textwrap for a text that fits as it is; the reference
-    # is textwrap itself (an empty result read as one empty line)
-    import textwrap
+# ---------------------------------------------------------------- drawn by rich
 
-    assert wrap(text, width) == (textwrap.wrap(text, width) or [""])
+
+def test_ascii_table_is_richs_ascii_box() -> None:
+    # rich.box.ASCII, as rich/box.py defines it ("+--+", "| ||", "|-+|", ... "+--+"):
+    # no column divider on the top and bottom lines, "|-+|" under the header. The
+    # texts are transliterated first (Δ -> Delta, ± -> +/-), so the widths are theirs.
+    table = Table()
+    table.add_column("a")
+    table.add_column("Δ")
+    table.add_row("x", Text("±", style="red"))
+    assert rich_text([table], ascii=True) == (
+        "+-----------+\n"
+        "| a | Delta |\n"
+        "|---+-------|\n"
+        "| x | +/-   |\n"
+        "+-----------+\n")
+    # and the heavy head (rich.box.HEAVY_HEAD) on a UTF-8 stream, as README.md shows
+    assert rich_text([table]) == (
+        "┏━━━┳━━━┓\n"
+        "┃ a ┃ Δ ┃\n"
+        "┡━━━╇━━━┩\n"
+        "│ x │ ± │\n"
+        "└───┴───┘\n")
+
+
+def test_ascii_keeps_each_pieces_style() -> None:
+    # "⚠1" becomes "!1" and keeps its yellow (SGR 33); "Δ" becomes "Delta", unstyled
+    name = Text("Δ")
+    name.append(" ⚠1", style="yellow")
+    table = Table()
+    table.add_column("sensor")
+    table.add_row(name)
+    text = rich_text([table], ascii=True, color=True)
+    assert text.isascii()
+    assert "Delta\x1b[33m !1\x1b[0m" in text
+
+
+def test_color_ignores_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    # the CLI decides (resolve_color: --color beats NO_COLOR/FORCE_COLOR, TERM=dumb plain);
+    # rich must not second-guess it from the same variables, nor take COLUMNS as width
+    table = Table()
+    table.add_column("h", style="bold")
+    table.add_row("v")
+    for env in ({"NO_COLOR": "1", "TERM": "dumb", "COLUMNS": "50"},
+                {"FORCE_COLOR": "1", "TERM": "xterm-256color", "COLUMNS": "50"}):
+        with monkeypatch.context() as m:
+            for key, value in env.items():
+                m.setenv(key, value)
+            coloured = rich_text([table, Text("w " * 40)], width=60, color=True)
+            plain = rich_text([table, Text("w " * 40)], width=60, color=False)
+        assert "\x1b[1mv\x1b[0m" in coloured  # the column's bold: SGR 1
+        assert "\x1b" not in plain
+        assert max(len(line) for line in plain.splitlines()) == 59  # 60, not COLUMNS=50
+        assert _SGR.sub("", coloured) == plain
+
+
+def test_column_groups_by_hand() -> None:
+    # a heavy box with one space of padding is 1 + Σ (width + 3) wide: the key (6) and
+    # ten columns of 9 fit 80 five at a time (1 + 9 + 5·12 = 70; six: 82)
+    widths = [6] + [9] * 10
+    assert column_groups(widths, 80) == [[0, 1, 2, 3, 4, 5], [0, 6, 7, 8, 9, 10]]
+    assert column_groups(widths, 1 + 9 + 10 * 12) == [list(range(11))]
+    # a key and one column wider than the page stay a group (rich narrows it)
+    assert column_groups([6, 100, 3], 80) == [[0, 1], [0, 2]]
+    assert column_groups([6, 100], 80) == [[0, 1]]
+
+
+def test_wide_table_is_sliced_at_80_columns() -> None:
+    table = Table(title="wide")
+    table.add_column("sensor", no_wrap=True)
+    for k in range(10):
+        table.add_column(f"c{k}", justify="right", no_wrap=True)
+    table.add_row("s1", *(f"{k}.000e-05" for k in range(10)))  # 9 wide, as by hand above
+    table.add_row("s2", *(f"-{k}.00e-05" for k in range(10)))
+    lines = rich_text([table], width=80).splitlines()
+    assert lines[0] == "wide"
+    heads = [line for line in lines if line.startswith("┃ sensor")]
+    assert len(heads) == 2  # [0, 1..5] and [0, 6..10]
+    assert heads[0].split("┃")[2:-1] == [f"        c{k} " for k in range(5)]
+    assert heads[1].split("┃")[2:-1] == [f"        c{k} " for k in range(5, 10)]
+    assert max(len(line) for line in lines) == 1 + 9 + 5 * 12 == 70
+    body = [line for line in lines if line.startswith("│")]
+    assert [line.split("│")[1] for line in body] == [" s1     ", " s2     "] * 2
+    for k in range(10):  # every value whole, in its group
+        assert f" {k}.000e-05 " in body[k // 5 * 2] and f" -{k}.00e-05 " in body[k // 5 * 2 + 1]
+
+
+def test_display_width_not_len() -> None:
+    from rich.cells import cell_len
+
+    # 日本語: 3 characters, 6 columns (East Asian Wide); "e" + U+0301 (combining acute):
+    # 2 characters, 1 column. A table laid out by len() would be ragged.
+    table = Table()
+    table.add_column("名前")
+    table.add_column("x", justify="right")
+    for name in ("日本語", "e\u0301", "abc"):
+        table.add_row(name, "1")
+    lines = rich_text([table]).splitlines()
+    assert {cell_len(line) for line in lines} == {1 + (6 + 3) + (1 + 3)}
+    assert len({len(line) for line in lines}) > 1  # the characters differ, the columns not
+    assert "│ e\u0301      │ 1 │" in lines and "│ 日本語 │ 1 │" in lines
+    # and the slicing measures display columns too: ten columns of 漢字漢字 (8 wide,
+    # 4 long) do not fit 80 together (1 + 4 + 10·11 = 115; by len() 1 + 4 + 10·7 = 75
+    # would fit), six at a time do (1 + 4 + 6·11 = 71; seven: 82)
+    wide = Table()
+    wide.add_column("k")
+    for k in range(10):
+        wide.add_column(f"h{k}")
+    wide.add_row("r", *["漢字漢字"] * 10)
+    lines = rich_text([wide], width=80).splitlines()
+    assert sum(1 for line in lines if line.startswith("┃ k")) == 2
+    assert max(cell_len(line) for line in lines) == 1 + 4 + 6 * 11
+    assert [line.count("漢字漢字") for line in lines if line.startswith("│ r")] == [6, 4]

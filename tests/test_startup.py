@@ -54,7 +54,8 @@ def test_help_and_version_import_no_heavy_module(template, args):
 
 #: What a first ``gyrovib analyze`` (table) does not need: pathlib (~3 ms with
 #: urllib.parse), json (tables only), the classes and engines of other commands.
-NOT_FOR_ANALYZE = ("pathlib", "json", "rich", "scipy", "pydantic", "gyrovib.core.synthesis",
+#: (rich it needs: it draws the table.)
+NOT_FOR_ANALYZE = ("pathlib", "json", "scipy", "pydantic", "gyrovib.core.synthesis",
                    "gyrovib.core.phases", "gyrovib.core.numeric", "gyrovib.api.other_results",
                    "gyrovib.api.spec_bounds")
 
@@ -93,6 +94,15 @@ def test_first_analyze_imports_only_what_it_uses():
     modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze"])
     assert "numpy" in modules and "gyrovib.api.results" in modules  # the probe works
     assert sorted(set(NOT_FOR_ANALYZE) & set(modules)) == []
+
+
+def test_csv_and_json_output_do_not_import_rich():
+    # rich draws the tables only: the machine formats, the fast path past 2,000 rows,
+    # pay nothing for it
+    for fmt in ("json", "csv"):
+        modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze", "--format", fmt])
+        assert "gyrovib.api.results" in modules  # the probe works
+        assert "rich" not in modules, fmt
 
 
 def test_analyze_of_coefficient_sensors_needs_no_numpy_ma(tmp_path):

@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
+from gyrovib.cli.common import (
+    load_catalog,
+    note_slow_table,
+    page_width,
+    plain_ascii,
+    use_color,
+)
 from gyrovib.cli.options import (
     SAMPLES_MAX,
     files_argument,
@@ -64,6 +70,7 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
                              rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
                              seed=seed, progress=advance, peak_factor=peak_factor)
     if fmt == "table":
+        note_slow_table(len(result.sensors) * len(result.profiles))
         write_output(render.to_table(result, color=use_color(output), width=page_width(output),
                                      ascii=plain_ascii(output)), output)
         return

@@ -103,6 +103,19 @@ def page_width(output: str | None = None) -> int | None:
     return max(int(columns), 40) if columns.isdigit() else None
 
 
+#: Table rows past which a table is slow to draw: rich lays out every cell (about a
+#: millisecond a row, against microseconds a row for CSV or JSON).
+SLOW_TABLE_ROWS = 2000
+
+
+def note_slow_table(rows: int) -> None:
+    """Say once, on standard error, that CSV and JSON are the fast path for a table
+    of more than :data:`SLOW_TABLE_ROWS` rows (tables are for people)."""
+    if rows > SLOW_TABLE_ROWS:
+        click.echo(f"gyrovib: note: {rows:,} table rows take a while to draw; "
+                   "--format csv or --format json is the fast path", err=True)
+
+
 def github_errors(enabled: bool = True) -> None:
     """Also print errors raised from now on as GitHub annotations (on stdout)."""
     _settings().github = enabled

@@ -6,7 +6,14 @@ from collections.abc import Iterator
 
 import click
 
-from gyrovib.cli.common import github_errors, load_catalog, page_width, plain_ascii, use_color
+from gyrovib.cli.common import (
+    github_errors,
+    load_catalog,
+    note_slow_table,
+    page_width,
+    plain_ascii,
+    use_color,
+)
 from gyrovib.cli.options import (
     budget_arguments,
     budget_options,
@@ -65,7 +72,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     result = api.select(catalog, sensors=sensors, profiles=profiles, method=method, **split,
                         criterion=criterion, require=require,
                         spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor)
-    if fmt == "table":
+    if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
+        note_slow_table(2 * len(result.sensors))
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
     elif fmt == "github":

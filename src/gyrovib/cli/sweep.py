@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
+from gyrovib.cli.common import (
+    load_catalog,
+    note_slow_table,
+    page_width,
+    plain_ascii,
+    use_color,
+)
 from gyrovib.cli.options import (
     budget_unit_option,
     files_argument,
@@ -99,7 +105,8 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
         envelope = envelope_png(result)
         if envelope is not None:  # datasheet sensors: their worst polynomials, a second PNG
             write_binary(envelope, envelope_path(plot))
-    if fmt == "table":
+    if fmt == "table":  # a table per sensor × profile, a row per rate
+        note_slow_table(len(result.sensors) * len(result.profiles) * len(result.rates))
         write_output(render.to_table(result, budget_value, width=page_width(output),
                                      color=use_color(output),
                                      ascii=plain_ascii(output)), output)

@@ -2,13 +2,20 @@
 
 from __future__ import annotations
 
+import io
+import itertools
 import math
-from collections.abc import Iterable, Sequence
-from typing import Any
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any
 
 from gyrovib._version import __version__
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
+
+if TYPE_CHECKING:  # at run time rich is imported on first use (module __getattr__)
+    from rich.console import Console
+    from rich.table import Table as Table
+    from rich.text import Text as Text
 
 
 def number(value: float) -> float | None:
@@ -103,142 +110,148 @@ def markdown_table(header_row: list[str], rows: Iterable[list[str]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-#: ANSI SGR codes of the few styles the tables use.
-_SGR = {"bold": "1", "dim": "2", "red": "31", "green": "32", "yellow": "33"}
+def __getattr__(name: str) -> Any:
+    """``Table`` and ``Text`` are rich's own, imported on first use: the renderers'
+    modules load without rich (``gyrovib --help`` never imports it)."""
+    if name == "Table":
+        from rich.table import Table
+
+        return Table
+    if name == "Text":
+        from rich.text import Text
+
+        return Text
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def _styled(text: str, style: str | None, color: bool) -> str:
-    if not color or not style or not text:
-        return text
-    codes = ";".join(_SGR[word] for word in style.split() if word in _SGR)
-    return f"\x1b[{codes}m{text}\x1b[0m" if codes else text
+class _Page(io.StringIO):
+    """A text buffer that tells rich which encoding its output is for (``ascii``:
+    rich then draws ``box.ASCII`` instead of the heavy box)."""
 
-
-class Text:
-    """A line of text with one style per piece (a small subset of rich's ``Text``)."""
-
-    def __init__(self, text: str = "", style: str | None = None) -> None:
-        self.pieces: list[tuple[str, str | None]] = [(text, style)] if text else []
-
-    def append(self, text: str, style: str | None = None) -> None:
-        self.pieces.append((text, style))
+    def __init__(self, encoding: str) -> None:
+        super().__init__()
+        self._encoding = encoding
 
     @property
-    def plain(self) -> str:
-        return "".join(text for text, _ in self.pieces)
-
-    def render(self, color: bool, default: str | None = None) -> str:
-        return "".join(_styled(text, style or default, color) for text, style in self.pieces)
-
-    def __len__(self) -> int:
-        return len(self.plain)
+    def encoding(self) -> str:  # type: ignore[override]  # StringIO's is None, read-only
+        return self._encoding
 
 
-Cell = str | Text
-
-
-class Table:
-    """A box table rendered by hand: what rich's ``Table`` drew here, at a fraction of
-    its import and per-row cost (< 10 µs a row instead of ~1 ms).
+def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
+              color: bool = False, ascii: bool = False) -> str:
+    """Tables and lines of text drawn by rich into a string ``width`` columns wide
+    (160 unless given; display columns, :func:`rich.cells.cell_len`).
 
     A table wider than the page is cut into column groups stacked one under the
-    other, each repeating the first (key) column; a column that is still too
-    wide and may wrap has its cells wrapped.
+    other, each repeating the first (key) column (:func:`column_groups`); rich draws
+    each group, narrowing (folding) a column only when one group alone is wider
+    than the page. A table's title is a bold line above its first group; a line of
+    text longer than the page is wrapped at spaces. ``color``: ANSI styles (bold,
+    dim, red, green, yellow), nothing else. ``ascii``: only ASCII characters: the
+    texts transliterated (:func:`to_ascii`) before the layout, the box drawn by
+    rich's ASCII fallback.
     """
+    from rich.console import Console
+    from rich.table import Table
 
-    def __init__(self, title: str | None = None, title_justify: str = "left",
-                 header_style: str | None = "bold") -> None:
-        self.title = title
-        self.header_style = header_style
-        self.columns: list[dict[str, Any]] = []
-        self.rows: list[list[Cell]] = []
-
-    def add_column(self, header: str, justify: str = "left", no_wrap: bool = False,
-                   style: str | None = None, min_width: int = 0, overflow: str = "fold") -> None:
-        self.columns.append({"header": header, "justify": justify, "wrap": not no_wrap,
-                             "style": style, "min_width": min_width})
-
-    def add_row(self, *cells: Cell) -> None:
-        self.rows.append(list(cells))
-
-    def render(self, width: int, color: bool) -> list[str]:
-        # each cell's text and length once (a Text joins its pieces on every len())
-        plain = [[c if isinstance(c, str) else c.plain for c in row] for row in self.rows]
-        lengths = [[len(t) for t in row] for row in plain]
-        widths = [max([len(c["header"]), c["min_width"], *(r[k] for r in lengths)])
-                  for k, c in enumerate(self.columns)]
-        groups = _column_groups(widths, width)
-        lines: list[str] = []
-        if self.title:
-            lines.extend(_styled(part, "bold", color) for part in wrap(self.title, width))
-        for group in groups:
-            group_widths = _fit(self.columns, group, widths, width)
-            lines.extend(self._render_group(group, group_widths, color, plain, lengths))
-        return lines
-
-    def _render_group(self, group: list[int], widths: dict[int, int], color: bool,
-                      plain: list[list[str]], lengths: list[list[int]]) -> list[str]:
-        def rule(left: str, fill: str, mid: str, right: str) -> str:
-            return left + mid.join(fill * (widths[k] + 2) for k in group) + right
-
-        columns = [self.columns[k] for k in group]
-
-        def one_line(cells: list[Cell], edge: str, styles: list[str | None]) -> str:
-            parts = []
-            for k, column, style in zip(group, columns, styles, strict=True):
-                cell = cells[k]
-                if isinstance(cell, str):
-                    pad = widths[k] - len(cell)
-                    text = _styled(cell, style, color) if color else cell
-                else:
-                    pad = widths[k] - len(cell)
-                    text = cell.render(color, style)
-                justify = column["justify"]
-                left = pad // 2 if justify == "center" else pad if justify == "right" else 0
-                parts.append(" " * (left + 1) + text + " " * (pad - left + 1))
-            return edge + edge.join(parts) + edge
-
-        def body(cells: list[Cell], edge: str, styles: list[str | None]) -> list[str]:
-            if all(len(cells[k]) <= widths[k] for k in group):
-                return [one_line(cells, edge, styles)]
-            split = [_wrap(cells[k], widths[k]) for k in group]
-            height = max(len(v) for v in split)
-            return [one_line({k: v[n] if n < len(v) else "" for k, v in
-                              zip(group, split, strict=True)}, edge, styles)  # type: ignore[arg-type]
-                    for n in range(height)]
-
-        # where a row fits and takes no colour, its line from the plain texts (as one_line
-        # writes it: a cell's render without colour is its plain text)
-        justify = [column["justify"] for column in columns]
-        width_of = [widths[k] for k in group]
-
-        def plain_line(texts: list[str], lens: list[int]) -> str | None:
-            parts = []
-            for k, w, j in zip(group, width_of, justify, strict=True):
-                pad = w - lens[k]
-                if pad < 0:
-                    return None  # wraps: the general path
-                left = pad // 2 if j == "center" else pad if j == "right" else 0
-                parts.append(" " * (left + 1) + texts[k] + " " * (pad - left + 1))
-            return "│" + "│".join(parts) + "│"
-
-        lines = [rule("┏", "━", "┳", "┓")]
-        lines += body([c["header"] for c in self.columns], "┃",
-                      [self.header_style] * len(group))
-        lines.append(rule("┡", "━", "╇", "┩"))
-        styles = [column["style"] for column in columns]
-        for row, texts, lens in zip(self.rows, plain, lengths, strict=True):
-            line = None if color else plain_line(texts, lens)
-            if line is None:
-                lines += body(row, "│", styles)
-            else:
-                lines.append(line)
-        lines.append(rule("└", "─", "┴", "┘"))
-        return lines
+    page = max(width or 160, 40)
+    out = _Page("ascii" if ascii else "utf-8")
+    # every setting given, so that no environment variable (COLUMNS, NO_COLOR,
+    # FORCE_COLOR, TERM) changes what the CLI's own rules decided
+    console = Console(file=out, width=page, height=25, color_system="standard" if color else None,
+                      force_terminal=color, force_jupyter=False, force_interactive=False,
+                      no_color=False, legacy_windows=False, markup=False, emoji=False,
+                      highlight=False, soft_wrap=False, _environ={})
+    cell = _ascii_cell if ascii else _cell
+    for item in renderables:
+        if isinstance(item, Table):
+            if item.title:
+                _print_lines(console, _styled_title(cell(item.title)), page)
+            for group in _groups(item, page, cell):
+                console.print(group)
+        else:
+            _print_lines(console, cell(item), page)
+    text = out.getvalue()
+    return to_ascii(text) if ascii else text
 
 
-def _column_groups(widths: list[int], page: int) -> list[list[int]]:
-    """Split columns 1.. into groups that fit ``page`` with column 0 repeated in each."""
+def _cell(value: Any) -> Text:
+    """A cell as rich ``Text`` (a ``str`` taken literally: no markup, no highlighting)."""
+    from rich.text import Text
+
+    return value if isinstance(value, Text) else Text(str(value))
+
+
+def _ascii_cell(value: Any) -> Text:
+    """:func:`_cell` transliterated by :func:`to_ascii`, each styled piece keeping its style."""
+    from rich.text import Text
+
+    text = _cell(value)
+    plain = text.plain
+    if plain.isascii():
+        return text
+    spans = text.spans
+    cuts = sorted({0, len(plain), *(s.start for s in spans), *(s.end for s in spans)})
+    out = Text(style=text.style, justify=text.justify, overflow=text.overflow,
+               no_wrap=text.no_wrap, end=text.end)
+    for a, b in itertools.pairwise(cuts):
+        styles = [str(s.style) for s in spans if s.start <= a and b <= s.end]
+        out.append(to_ascii(plain[a:b]), style=" ".join(styles) or None)
+    return out
+
+
+def _print_lines(console: Console, text: Text, page: int) -> None:
+    """``text`` wrapped at spaces to ``page`` columns, no line ending in a space."""
+    if text.cell_len <= page and "\n" not in text.plain:
+        console.print(text)
+        return
+    for line in text.wrap(console, page, overflow="fold"):
+        line.rstrip()
+        console.print(line)
+
+
+def _styled_title(title: Text) -> Text:
+    title = title.copy()
+    title.stylize("bold")
+    return title
+
+
+def _groups(table: Table, page: int, cell: Callable[[Any], Text]) -> list[Table]:
+    """``table`` as rich tables of today's look, one per column group that fits ``page``."""
+    from rich import box
+    from rich.table import Table
+
+    columns = table.columns
+    headers = [cell(c.header) for c in columns]
+    cells = [[cell(x) for x in c.cells] for c in columns]
+    widths = [max([h.cell_len, c.min_width or 0, *(x.cell_len for x in column)])
+              for h, c, column in zip(headers, columns, cells, strict=True)]
+    drawn = []
+    for group in column_groups(widths, page):
+        # a group still wider than the page (the key and one wide column) may wrap any
+        # column but the key, so that rich narrows those and crops no value
+        squeezed = 1 + sum(widths[k] + 3 for k in group) > page
+        part = Table(box=box.HEAVY_HEAD, show_edge=True, pad_edge=True, collapse_padding=False,
+                     header_style=table.header_style or "bold", highlight=False)
+        for k in group:
+            c = columns[k]
+            part.add_column(headers[k], justify=c.justify, style=c.style,
+                            no_wrap=c.no_wrap and not (squeezed and k != group[0]),
+                            overflow="fold", min_width=c.min_width,
+                            # a group that fits: its widths measured here once, not by rich
+                            width=None if squeezed else widths[k])
+        for row in zip(*(cells[k] for k in group), strict=True):
+            part.add_row(*row)
+        drawn.append(part)
+    return drawn
+
+
+def column_groups(widths: Sequence[int], page: int) -> list[list[int]]:
+    """The column groups of a table whose columns are ``widths`` display columns wide:
+    columns 1.. split, in order, into groups that fit ``page`` with column 0 (the key)
+    repeated in each. A group of the key and one column is kept even when wider
+    than the page (rich then narrows it). A table of a heavy box with cells padded
+    by one space is ``1 + Σ (width + 3)`` wide."""
     def span(ks: list[int]) -> int:
         return 1 + sum(widths[k] + 3 for k in ks)
 
@@ -253,87 +266,6 @@ def _column_groups(widths: list[int], page: int) -> list[list[int]]:
         current.append(k)
     groups.append(current)
     return groups
-
-
-def _fit(columns: list[dict[str, Any]], group: list[int], widths: list[int],
-         page: int) -> dict[int, int]:
-    """Column widths of one group, narrowed until it fits ``page``: the wrappable
-    columns first, then, as a last resort, any but the key column (folded)."""
-    fitted = {k: widths[k] for k in group}
-    excess = 1 + sum(w + 3 for w in fitted.values()) - page
-    for last_resort in (False, True):
-        for k in sorted(group, key=lambda k: -fitted[k]):
-            if excess <= 0:
-                return fitted
-            if columns[k]["wrap"] or (last_resort and k != group[0]):
-                cut = min(excess, fitted[k] - max(8, columns[k]["min_width"]))
-                if cut > 0:
-                    fitted[k] -= cut
-                    excess -= cut
-    return fitted
-
-
-def _wrap(cell: Cell, width: int) -> list[Text]:
-    """``cell`` in lines of at most ``width`` characters (at spaces where it can)."""
-    text = cell if isinstance(cell, Text) else Text(cell)
-    if len(text) <= width:
-        return [text]
-    import textwrap
-
-    style = text.pieces[0][1] if len(text.pieces) == 1 else None
-    chunks = textwrap.wrap(text.plain, width, break_long_words=True) or [""]
-    return [Text(chunk, style) for chunk in chunks]
-
-
-def wrap(text: str, width: int) -> list[str]:
-    """``textwrap.wrap(text, width) or [""]``; a text that fits as it is (no leading or
-    trailing whitespace, no tab or line break) is its own single line without
-    textwrap's splitting (~40 µs a call, every table title)."""
-    if len(text) <= width and text.isprintable() and text == text.strip():
-        return [text]
-    import textwrap
-
-    return textwrap.wrap(text, width) or [""]
-
-
-def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
-              color: bool = False, ascii: bool = False) -> str:
-    """Render tables and lines of text to a string ``width`` columns wide (160 unless
-    given); a line of text longer than that is wrapped at spaces. ``ascii``: only
-    ASCII characters (:func:`to_ascii`), laid out after the transliteration."""
-    page = max(width or 160, 40)
-    lines: list[str] = []
-    for item in renderables:
-        if ascii:
-            item = _ascii_item(item)
-        if isinstance(item, Table):
-            lines.extend(item.render(page, color))
-            continue
-        if len(item) <= page:
-            lines.append(item.render(color))
-            continue
-        style = item.pieces[0][1] if item.pieces else None
-        lines.extend(_styled(chunk, style, color) for chunk in wrap(item.plain, page))
-    text = "\n".join(lines) + "\n"
-    return to_ascii(text) if ascii else text
-
-
-def _ascii_item(item: Table | Text) -> Table | Text:
-    def text(cell: Cell) -> Text:
-        out = Text()
-        for piece, style in (cell.pieces if isinstance(cell, Text) else [(cell, None)]):
-            out.append(to_ascii(piece), style)
-        return out
-
-    if isinstance(item, Text):
-        return text(item)
-    table = Table(title=None if item.title is None else to_ascii(item.title),
-                  header_style=item.header_style)
-    table.columns = [{**c, "header": to_ascii(c["header"])} for c in item.columns]
-    table.rows = [[text(c) for c in row] for row in item.rows]
-    return table
-
-
 
 
 #: What each non-ASCII character of the renderers becomes on a stream that

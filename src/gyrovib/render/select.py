@@ -382,7 +382,7 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
                        title_justify="left", header_style="bold")
         for label, justify in (("rank", "right"), ("sensor", "left"),
                                ("worst margin", "right"), ("under", "left")):
-            ranked.add_column(label, justify=justify, no_wrap=True)
+            ranked.add_column(label, justify=justify, no_wrap=True)  # type: ignore[arg-type]
         for row in passing:
             ranked.add_row(*row)
         out.append(ranked)
