@@ -112,17 +112,18 @@ STDIN = "-"
 STDIN_NAME = "<stdin>"
 
 
-def load_catalog(files: tuple[str, ...], sensors: bool = True) -> Any:
+def load_catalog(files: tuple[str, ...]) -> Any:
     """The merged catalogue of ``files``, or the bundled catalogues when none are given.
 
-    ``-`` stands for standard input, named ``<stdin>`` in messages.
-    ``sensors=False``: profiles only, sensors neither loaded nor validated.
+    ``-`` stands for standard input, named ``<stdin>`` in messages. Every file
+    is validated whole, whatever the command uses of it: what ``validate``
+    refuses, every command refuses at the same place.
     """
     from gyrovib.api import load
 
     if STDIN not in files:
-        return load(files, sensors=sensors)
-    return _load_with_stdin(files, sensors)
+        return load(files)
+    return _load_with_stdin(files)
 
 
 def _read_stdin() -> str:
@@ -148,7 +149,7 @@ def _read_stdin() -> str:
                                    "catalogue as UTF-8", STDIN_NAME, line, 1)) from None
 
 
-def _load_with_stdin(files: tuple[str, ...], sensors: bool = True) -> Any:
+def _load_with_stdin(files: tuple[str, ...]) -> Any:
     """Like :func:`gyrovib.api.load`, standard input read once for ``-``."""
     from gyrovib.catalog.loader import CatalogSource, merge, parse_catalog, read_catalog
     from gyrovib.errors import CatalogError, OptionError, Problem
@@ -159,9 +160,8 @@ def _load_with_stdin(files: tuple[str, ...], sensors: bool = True) -> Any:
     sources: list[CatalogSource] = []
     for name in files:
         try:
-            skip = () if sensors else ("sensors",)
-            sources.append(parse_catalog(_read_stdin(), STDIN_NAME, skip) if name == STDIN
-                           else read_catalog(name, skip))
+            sources.append(parse_catalog(_read_stdin(), STDIN_NAME) if name == STDIN
+                           else read_catalog(name))
         except CatalogError as exc:
             problems.extend(exc.problems)
     if problems:
