@@ -229,8 +229,8 @@ def cli(ctx: click.Context, color: str) -> None:
     Without FILE arguments every command uses the catalogues bundled with
     gyrovib. Exit status: 0 success, 1 a `select` requirement not met,
     2 bad usage or bad input, 3 an internal error (please report it),
-    74 the output could not be written, 130 interrupted, 141 standard output
-    closed early.
+    74 the output could not be written, 129 hung up, 130 interrupted,
+    143 terminated, 141 standard output closed early.
     """
     ctx.obj = Settings(color=color)
 
