@@ -39,7 +39,7 @@ import click
 
 from gyrovib._version import __version__
 from gyrovib.cli.common import Settings, say
-from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout
+from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
 from gyrovib.errors import GyrovibError
 
 EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
@@ -163,6 +163,7 @@ class _Group(click.Group):
         return super().main(args, *rest, **extra)
 
     def invoke(self, ctx: click.Context) -> Any:
+        start_run()
         try:
             with warnings.catch_warnings():
                 # numpy overflow warnings: results are checked for finiteness instead.

@@ -34,6 +34,12 @@ def output_in_place() -> bool:
     return _in_place
 
 
+def start_run() -> None:
+    """A command starts: its output is not in place yet (one process may run several)."""
+    global _in_place
+    _in_place = False
+
+
 def silence_stdout() -> None:
     """Point standard output at the null device, so that nothing more is written
     (nor fails again when Python flushes it on exit)."""
