@@ -9,6 +9,7 @@ import re
 import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -129,6 +130,25 @@ def test_a_signal_once_the_output_is_in_place_is_a_success(
     assert SIGNALS[sig][1] not in done.stderr
     assert target.read_text() != "previous\n" and len(target.read_text()) > 100
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out.txt"]
+
+
+@pytest.mark.parametrize("sig", list(SIGNALS), ids=[s.name for s in SIGNALS])
+def test_a_signal_as_python_shuts_down_does_not_change_the_status(
+        tmp_path: Path, sig: signal.Signals) -> None:
+    # Python's shutdown puts back the default action of the signals it handled: a
+    # SIGTERM then killed a run whose output was in place (-15, shown as 143 by a
+    # shell). Once main() has decided, the signals are ignored: sent right after
+    # it, the status stays the run's.
+    target = tmp_path / "out.json"
+    code = "\n".join([
+        "import os, signal, sys", "from gyrovib.cli import main",
+        f"sys.argv = ['gyrovib', 'schema', '-o', {str(target)!r}]",
+        "try:", "    main()", "except SystemExit as done:", f"    os.kill(os.getpid(), {int(sig)})",
+        "    raise"])
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          cwd=tmp_path, env=clean_env(), timeout=120, check=False)
+    assert done.returncode == 0, done.stderr
+    assert target.read_text().startswith("{")
 
 
 def test_a_hang_up_during_a_long_computation_exits_129(tmp_path: Path) -> None:
@@ -281,3 +301,34 @@ def test_debug_shows_tracebacks_only_when_asked(monkeypatch: pytest.MonkeyPatch,
     assert ("Traceback (most recent call last)" in result.stderr) is traceback
     assert result.stderr.rstrip().splitlines()[-1].startswith(
         "gyrovib: internal error: ZeroDivisionError: simulated bug")
+
+
+def test_a_late_signal_never_contradicts_the_output(tmp_path: Path) -> None:
+    # the audit's case: SIGTERM sent in the last moments of `analyze -o` (8 of 32
+    # tries exited 143 with the new file already in place). Whenever the signal
+    # lands, the status and the file must agree: 0 and the new output, or 143
+    # (or killed before main() took the signal) and the old file, no temporary file.
+    target = tmp_path / "out.json"
+    args = ["analyze", "--format", "json", "-o", str(target)]
+    started = time.perf_counter()
+    assert _run_with("", args, tmp_path).returncode == 0
+    whole = time.perf_counter() - started
+    new = target.read_text()
+    outcomes = set()
+    for k in range(8):
+        target.write_text("previous\n")
+        process = subprocess.Popen([sys.executable, "-m", "gyrovib", *args], cwd=tmp_path,
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                   env=clean_env())
+        time.sleep(whole * (0.6 + 0.08 * k))  # from mid-run to just past the end
+        process.send_signal(signal.SIGTERM)
+        _, err = process.communicate(timeout=120)
+        text = target.read_text()
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["out.json"]
+        if process.returncode == 0:
+            assert text == new, err
+        else:
+            assert process.returncode in (143, -signal.SIGTERM), err
+            assert text == "previous\n", process.returncode
+        outcomes.add(process.returncode)
+    assert outcomes  # at least one run; which outcomes depends on the machine's speed

@@ -238,7 +238,7 @@ def cli(ctx: click.Context, color: str) -> None:
 
 def main(args: list[str] | None = None) -> NoReturn:
     """Console-script entry point: runs the command and exits with its status."""
-    _catch_signals()
+    caught = _catch_signals()
     try:
         code = cli.main(args, prog_name="gyrovib", standalone_mode=False)
     except click.exceptions.Abort:  # a KeyboardInterrupt while click parsed the group
@@ -275,13 +275,22 @@ def main(args: list[str] | None = None) -> NoReturn:
             silence_stdout()
             say(f"gyrovib: error: cannot write standard output: {exc}")
             code = EXIT_WRITE_FAILED
+    # The outcome is decided (and any output in place): the signals caught are now
+    # ignored. Python's shutdown would otherwise put back their default action,
+    # and a SIGTERM in its last milliseconds would kill a run that has succeeded.
+    for signum in caught:
+        signal.signal(signum, signal.SIG_IGN)
     sys.exit(code)
 
 
-def _catch_signals() -> None:
+def _catch_signals() -> list[signal.Signals]:
     """SIGINT, SIGTERM and SIGHUP become exceptions (:func:`_on_signal`); a signal the
-    parent set to be ignored (``nohup``, a background job) stays ignored."""
+    parent set to be ignored (``nohup``, a background job) stays ignored. Returns
+    the signals now caught."""
+    caught = []
     for signum in _SIGNALS:
         previous = signal.getsignal(signum)
         if previous in (signal.SIG_DFL, None, signal.default_int_handler):
             signal.signal(signum, _on_signal)
+            caught.append(signum)
+    return caught
