@@ -224,6 +224,8 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
     gyrovib.errors.CatalogError
         A file cannot be read or is not valid; the message names file, line
         and column.
+    gyrovib.errors.ArgumentTypeError
+        A path is not a str or os.PathLike (bytes, a number, a list in a list).
 
     Examples
     --------
