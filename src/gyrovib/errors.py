@@ -54,6 +54,16 @@ class OptionError(GyrovibError):
     """A command-line option or library argument is not valid."""
 
 
+class ArgumentError(OptionError, ValueError):
+    """An argument of the notebook API has a wrong value (a NaN rate, samples past the
+    cap); the message names the argument. Also a :class:`ValueError`."""
+
+
+class ArgumentTypeError(OptionError, TypeError):
+    """An argument of the notebook API has a wrong type (bytes for a path, a float for a
+    count); the message names the argument. Also a :class:`TypeError`."""
+
+
 class ModelError(GyrovibError):
     """A method of the model cannot handle a vibration (e.g. ``paper`` with two tones).
 

@@ -10,15 +10,28 @@ as on the command line. Every result has ``to_frame()`` (needs
 
 ``import gyrovib`` does not import this module: the package's ``__getattr__``
 does on first use of one of these names.
+
+Every argument is checked here, at the face, before any work: a wrong type
+raises :class:`~gyrovib.errors.ArgumentTypeError` (a :class:`TypeError`), a
+wrong value :class:`~gyrovib.errors.ArgumentError` (a :class:`ValueError`);
+both are :class:`~gyrovib.errors.GyrovibError` and name the argument. The
+command line's caps hold here too: samples (:data:`gyrovib.limits.MAX_SAMPLES`),
+rates and sweep points (``gyrovib.api.MAX_SWEEP_POINTS``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import math
+import operator
+import os
+from collections.abc import Iterable, Sequence
+from numbers import Real
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from gyrovib import units
+from gyrovib.errors import ArgumentError, ArgumentTypeError, OptionError
+from gyrovib.limits import MAX_SAMPLES
 
 if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
@@ -26,7 +39,170 @@ if TYPE_CHECKING:
 
 __all__ = ["analyze", "bounds", "load", "select", "sweep"]
 
+#: The methods of bounds and select (analyze adds 'numeric').
+METHODS = ("exact", "paper")
+
 CatalogLike = Any  # None | str | Path | Sequence[str | Path] | Catalog
+
+#: The fewest samples of ``method='numeric'`` (core.numeric.MIN_SAMPLES; the
+#: library refuses fewer too).
+_MIN_SAMPLES = 32
+
+
+# ----------------------------------------------------------------- argument checks
+
+
+def _wrong_type(name: str, value: object, expected: str) -> NoReturn:
+    raise ArgumentTypeError(f"argument {name!r}: expected {expected}, "
+                            f"got {type(value).__name__} {_show(value)}")
+
+
+def _show(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _text(name: str, value: object, choices: Sequence[str] = ()) -> str:
+    if not isinstance(value, str):
+        _wrong_type(name, value, "text")
+    if choices and value not in choices:
+        raise ArgumentError(f"argument {name!r}: {value!r} is not one of "
+                            f"{', '.join(choices)}")
+    return value
+
+
+def _number(name: str, value: object, *, positive: bool = False,
+            nonnegative: bool = False) -> float:
+    """A real number (not a bool), finite, and > 0 or ≥ 0 when asked."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        _wrong_type(name, value, "a number")
+    try:
+        number = float(value)
+    except (OverflowError, ValueError):
+        number = math.inf
+    if not math.isfinite(number):
+        raise ArgumentError(f"argument {name!r}: {_show(value)} is not a finite number")
+    if positive and not number > 0:
+        raise ArgumentError(f"argument {name!r}: {number!r} must be positive")
+    if nonnegative and number < 0:
+        raise ArgumentError(f"argument {name!r}: {number!r} must not be negative")
+    return number
+
+
+def _integer(name: str, value: object, low: int, high: int | None = None) -> int:
+    """A whole number (an int or numpy integer, not a bool or float) in [low, high]."""
+    if isinstance(value, bool):
+        _wrong_type(name, value, "a whole number")
+    try:
+        whole = operator.index(value)  # type: ignore[arg-type]
+    except TypeError:
+        _wrong_type(name, value, "a whole number")
+    if whole < low or (high is not None and whole > high):
+        # a huge int is not printed (nor turned into a float, which would overflow)
+        magnitude = f"{'-' if whole < 0 else ''}10^{int(whole.bit_length() * math.log10(2))}"
+        shown = f"{whole:,}" if abs(whole) < 10**15 else f"about {magnitude}"
+        span = f"from {low:,} to {high:,}" if high is not None else f"at least {low:,}"
+        raise ArgumentError(f"argument {name!r}: {shown} is out of range; give {span}")
+    return whole
+
+
+def _unit(name: str, value: object) -> str:
+    try:
+        return units.canonical_unit(_text(name, value))
+    except OptionError as exc:
+        if isinstance(exc, ArgumentError | ArgumentTypeError):
+            raise
+        raise ArgumentError(f"argument {name!r}: {exc.problems[0].message}") from None
+
+
+def _quantity(name: str, value: object, unit: str, positive: bool = False) -> float:
+    """A rate in deg/s: a number in ``unit`` or a string with its own unit; finite."""
+    if isinstance(value, str):
+        try:
+            rate = units.parse_rate(value, unit)
+        except OptionError as exc:
+            raise ArgumentError(f"argument {name!r}: {exc.problems[0].message}") from None
+        if positive and not rate > 0:
+            raise ArgumentError(f"argument {name!r}: {value!r} must be positive")
+        return rate
+    rate = _number(name, value, positive=positive) * units.scale(unit)
+    if not math.isfinite(rate):
+        raise ArgumentError(f"argument {name!r}: {_show(value)} {unit} overflows")
+    return rate
+
+
+def _sequence(name: str, value: object, what: str) -> list[Any]:
+    """The items of a list, tuple, array…: not of a string, bytes or a mapping."""
+    if isinstance(value, str | bytes | bytearray | dict) or not isinstance(value, Iterable):
+        _wrong_type(name, value, what)
+    return list(value)
+
+
+def _rates(name: str, value: object, unit: str, counts: tuple[int, ...] = (1, 3)
+           ) -> list[float] | None:
+    if value is None:
+        return None
+    if isinstance(value, str | Real) and not isinstance(value, bool):
+        items: list[Any] = [value]
+    else:
+        items = _sequence(name, value, "a rate, or a sequence of rates")
+    if len(items) not in counts:
+        raise ArgumentError(f"argument {name!r}: give one rate (Ω_K3) or three, "
+                            f"not {len(items)}")
+    return [_quantity(name, v, unit) for v in items]
+
+
+def _ids(name: str, value: object) -> tuple[str, ...]:
+    if isinstance(value, str):
+        return (value,)
+    items = _sequence(name, value, "an id or a sequence of ids")
+    for item in items:
+        if not isinstance(item, str):
+            _wrong_type(name, item, "ids as text")
+    return tuple(items)
+
+
+def _paths(values: Iterable[object], name: str = "paths") -> list[str | Path]:
+    """Paths as str or os.PathLike, or sequences of them (one level)."""
+    flat: list[str | Path] = []
+    for item in values:
+        if isinstance(item, str | os.PathLike):
+            flat.append(_path(name, item))
+            continue
+        for inner in _sequence(name, item, "a path or a sequence of paths"):
+            if not isinstance(inner, str | os.PathLike):
+                _wrong_type(name, inner, "a path (str or pathlib.Path)")
+            flat.append(_path(name, inner))
+    return flat
+
+
+def _path(name: str, value: str | os.PathLike[Any]) -> str | Path:
+    path = os.fspath(value)
+    if not isinstance(path, str):  # os.PathLike of bytes
+        _wrong_type(name, value, "a path as text (str or pathlib.Path)")
+    if not path or "\0" in path:
+        raise ArgumentError(f"argument {name!r}: {path!r} is not a file name")
+    return value if isinstance(value, Path) else path
+
+
+def _allocation(value: object) -> list[float] | None:
+    if value is None:
+        return None
+    items = _sequence("allocation", value, "a sequence of numbers")
+    numbers = [_number("allocation", v, positive=True) for v in items]
+    if len(numbers) not in (1, 9, 10):
+        raise ArgumentError("argument 'allocation': give r alone, 9 numbers r, w1..w5, "
+                            f"v1..v3 or 10 numbers r, w1..w6, v1..v3 (got {len(numbers)})")
+    return numbers
+
+
+def _spec_weights(value: object) -> tuple[float, float]:
+    items = _sequence("spec_weights", value, "two numbers (NL, VRE)")
+    if len(items) != 2:
+        raise ArgumentError(f"argument 'spec_weights': give two numbers (NL, VRE), "
+                            f"not {len(items)}")
+    return (_number("spec_weights", items[0], positive=True),
+            _number("spec_weights", items[1], positive=True))
 
 
 def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
@@ -48,6 +224,8 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
     gyrovib.errors.CatalogError
         A file cannot be read or is not valid; the message names file, line
         and column.
+    gyrovib.errors.ArgumentTypeError
+        A path is not a str or os.PathLike (bytes, a number, a list in a list).
 
     Examples
     --------
@@ -58,13 +236,7 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
     """
     from gyrovib import api
 
-    flat: list[str | Path] = []
-    for item in paths:
-        if isinstance(item, str | Path):
-            flat.append(item)
-        else:
-            flat.extend(item)
-    return api.load(flat)
+    return api.load(_paths(paths))
 
 
 def _catalog(catalog: CatalogLike) -> Catalog:
@@ -74,33 +246,16 @@ def _catalog(catalog: CatalogLike) -> Catalog:
         return catalog
     if catalog is None:
         return load()
-    return load(catalog)
+    from gyrovib import api
+
+    return api.load(_paths([catalog], "catalog"))
 
 
-def _rate(value: float | str, unit: str) -> float:
-    """A rate in deg/s from a number in ``unit`` or a string with its own unit."""
-    if isinstance(value, str):
-        return units.parse_rate(value, unit)
-    return float(value) * units.scale(unit)
-
-
-def _rates(value: float | str | Sequence[float | str] | None, unit: str) -> list[float] | None:
-    if value is None:
-        return None
-    if isinstance(value, str | int | float):
-        return [_rate(value, unit)]
-    return [_rate(v, unit) for v in value]
-
-
-def _budget_unit(unit: str | None, budget: float | str) -> str:
+def _budget_unit(unit: object, budget: object) -> str:
     """``unit`` as given, else the unit a budget string carries, else deg/s (as ``--unit``)."""
     if unit is not None:
-        return unit
+        return _unit("unit", unit)
     return (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/s"
-
-
-def _ids(value: str | Sequence[str]) -> tuple[str, ...]:
-    return (value,) if isinstance(value, str) else tuple(value)
 
 
 def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
@@ -142,11 +297,17 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
     """
     from gyrovib import api
 
-    extra: dict[str, Any] = {"seed": seed, "peak_factor": peak_factor}
+    unit = _unit("unit", unit)
+    extra: dict[str, Any] = {"seed": _integer("seed", seed, 0),
+                             "peak_factor": _number("peak_factor", peak_factor,
+                                                    nonnegative=True)}
     if samples is not None:
-        extra["samples"] = samples
-    return api.analyze(_catalog(catalog), sensors=_ids(sensors), profiles=_ids(profiles),
-                       method=method, rate=_rates(rate, unit), unit=unit, **extra)
+        extra["samples"] = _integer("samples", samples, _MIN_SAMPLES, MAX_SAMPLES)
+    arguments: dict[str, Any] = {
+        "sensors": _ids("sensors", sensors), "profiles": _ids("profiles", profiles),
+        "method": _text("method", method, api.ANALYZE_METHODS),
+        "rate": _rates("rate", rate, unit)}
+    return api.analyze(_catalog(catalog), unit=unit, **arguments, **extra)
 
 
 def bounds(catalog: CatalogLike = None, *, budget: float | str,
@@ -187,13 +348,19 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
         ``to_frame()`` gives one row per profile; an unconstrained bound is inf.
     """
     from gyrovib import api
+    from gyrovib.core.envelope import OF
+    from gyrovib.core.envelope_basis import FITS, MEASURES
 
     unit = _budget_unit(unit, budget)
-    return api.bounds(_catalog(catalog), profiles=_ids(profiles), method=method,
-                      rate=_rates(rate, unit), budget=_rate(budget, unit), unit=unit,
-                      allocation=allocation,
-                      range_=None if range_ is None else _rate(range_, unit), nl_fit=nl_fit,
-                      nl_measure=nl_measure, nl_of=nl_of, spec_weights=spec_weights)
+    arguments: dict[str, Any] = {
+        "profiles": _ids("profiles", profiles), "method": _text("method", method, METHODS),
+        "rate": _rates("rate", rate, unit), "budget": _quantity("budget", budget, unit, True),
+        "allocation": _allocation(allocation),
+        "range_": None if range_ is None else _quantity("range_", range_, unit, True),
+        "nl_fit": _text("nl_fit", nl_fit, FITS),
+        "nl_measure": _text("nl_measure", nl_measure, MEASURES),
+        "nl_of": _text("nl_of", nl_of, OF), "spec_weights": _spec_weights(spec_weights)}
+    return api.bounds(_catalog(catalog), unit=unit, **arguments)
 
 
 def select(catalog: CatalogLike = None, *, budget: float | str,
@@ -247,10 +414,15 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     from gyrovib import api
 
     unit = _budget_unit(unit, budget)
-    return api.select(_catalog(catalog), sensors=_ids(sensors), profiles=_ids(profiles),
-                      method=method, rate=_rates(rate, unit), budget=_rate(budget, unit),
-                      unit=unit, criterion=criterion, require=require, allocation=allocation,
-                      spec_weights=spec_weights, peak_factor=peak_factor)
+    arguments: dict[str, Any] = {
+        "sensors": _ids("sensors", sensors), "profiles": _ids("profiles", profiles),
+        "method": _text("method", method, METHODS), "rate": _rates("rate", rate, unit),
+        "budget": _quantity("budget", budget, unit, True),
+        "criterion": _text("criterion", criterion, api.CRITERIA),
+        "require": _text("require", require, api.REQUIREMENTS),
+        "allocation": _allocation(allocation), "spec_weights": _spec_weights(spec_weights),
+        "peak_factor": _number("peak_factor", peak_factor, nonnegative=True)}
+    return api.select(_catalog(catalog), unit=unit, **arguments)
 
 
 def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-200, 200),
@@ -279,7 +451,18 @@ def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-20
     """
     from gyrovib import api
 
-    values = [_rate(v, unit) for v in list(rates)]
-    omega = api.rate_range(values[0], values[1], points) if len(values) == 2 else values
-    return api.sweep(_catalog(catalog), omega, sensors=_ids(sensors),
-                     profiles=_ids(profiles), unit=unit)
+    unit = _unit("unit", unit)
+    items = _sequence("rates", rates, "(start, stop) or a sequence of rates")
+    if not 1 <= len(items) <= api.MAX_SWEEP_POINTS:
+        raise ArgumentError(f"argument 'rates': give (start, stop) or from 1 to "
+                            f"{api.MAX_SWEEP_POINTS:,} rates, not {len(items):,}")
+    values = [_quantity("rates", v, unit) for v in items]
+    if len(values) == 2:
+        count = _integer("points", points, 1, api.MAX_SWEEP_POINTS)
+        if not math.isfinite(values[1] - values[0]):
+            raise ArgumentError("argument 'rates': the span from start to stop overflows")
+        omega: Any = api.rate_range(values[0], values[1], count)
+    else:
+        omega = values
+    return api.sweep(_catalog(catalog), omega, sensors=_ids("sensors", sensors),
+                     profiles=_ids("profiles", profiles), unit=unit)

@@ -30,8 +30,9 @@ def load(paths: Sequence[str | Path] = (), *, sensors: bool = True) -> Catalog:
     """Load and merge catalogue files; no paths means the bundled catalogues.
 
     ``sensors=False``: the profiles only. The ``sensors:`` sections are read
-    past by the YAML parser, neither built nor validated (``bounds`` uses no
-    sensor; ``validate`` checks them).
+    past by the YAML parser, neither built nor validated: a library shortcut
+    for profiles alone. No command uses it; every command validates each file
+    whole.
     """
     return load_catalog(list(paths) if paths else bundled_files(),
                         skip=() if sensors else ("sensors",))

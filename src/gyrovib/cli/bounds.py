@@ -35,8 +35,9 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
            output: str | None) -> None:
     """The inverse problem: the largest coefficients that keep the error within budget.
 
-    Only the profiles of the files are read: their sensors are skipped, not
-    validated (`gyrovib validate` checks them).
+    Every file is validated whole, sensors included, as `gyrovib validate`
+    does (a CI step running `bounds` fails on a broken file); the bounds use
+    only the profiles.
 
     For each profile, bounds on |A1|, |k2|…|k5|, |m31|, |m32| from the paper's
     split of the budget (eq. 18-25). A sensor within every bound meets the
@@ -49,7 +50,7 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
     from gyrovib.cli.output import write_output
     from gyrovib.render import bounds as render
 
-    catalog = load_catalog(files, sensors=False)  # bounds uses no sensor: not even loaded
+    catalog = load_catalog(files)  # validated whole; the bounds use the profiles only
     split = budget_arguments(budget, unit, rate, allocation)
     result = api.bounds(catalog, profiles=profiles, method=method, **split,
                         range_=parse_range(range_, split["unit"]), nl_fit=nl_fit,

@@ -44,15 +44,46 @@ def resolve_color(mode: str, environ: Mapping[str, str], is_terminal: bool) -> b
     return is_terminal and environ.get("TERM") != "dumb"
 
 
-#: The characters escaped by :func:`printable`: C0 controls, DEL and C1 controls.
+#: The characters escaped by :func:`printable`: C0 controls, DEL and C1 controls, the
+#: Unicode line and paragraph separators (``str.splitlines`` breaks at them) and the
+#: bidirectional embeddings, overrides and isolates (they reorder what a terminal shows).
 _CONTROL = {c: f"\\x{c:02x}" for c in (*range(0x20), *range(0x7F, 0xA0))}
 _CONTROL.update({ord("\n"): "\\n", ord("\r"): "\\r", ord("\t"): "\\t"})
+_CONTROL.update({c: f"\\u{c:04x}" for c in (0x2028, 0x2029, *range(0x202A, 0x202F),
+                                            *range(0x2066, 0x206A))})
 
 
 def printable(text: str) -> str:
     """``text`` with control characters (newlines, ANSI escapes) shown as ``\\n``,
     ``\\x1b``…, so a hostile file name cannot forge lines or drive the terminal."""
     return text.translate(_CONTROL)
+
+
+def say(line: str) -> None:
+    """Write one line to standard error, its control characters escaped (:func:`printable`).
+
+    A standard error that cannot be written (closed, ``2>/dev/full``) loses the
+    line, never the exit status: it is pointed at the null device, so neither
+    the next message nor Python's flush at exit fails again.
+    """
+    try:
+        stream = sys.stderr
+        stream.write(printable(line) + "\n")
+        stream.flush()
+    except (OSError, ValueError, AttributeError):
+        silence_stderr()
+
+
+def silence_stderr() -> None:
+    """Point standard error (the descriptor and ``sys.stderr``) at the null device."""
+    import contextlib
+
+    with contextlib.suppress(OSError, ValueError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 2)
+        os.close(devnull)
+    with contextlib.suppress(OSError):
+        sys.stderr = open(os.devnull, "w", encoding="utf-8")  # noqa: SIM115
 
 
 def _settings() -> Settings:
@@ -125,17 +156,18 @@ STDIN = "-"
 STDIN_NAME = "<stdin>"
 
 
-def load_catalog(files: tuple[str, ...], sensors: bool = True) -> Any:
+def load_catalog(files: tuple[str, ...]) -> Any:
     """The merged catalogue of ``files``, or the bundled catalogues when none are given.
 
-    ``-`` stands for standard input, named ``<stdin>`` in messages.
-    ``sensors=False``: profiles only, sensors neither loaded nor validated.
+    ``-`` stands for standard input, named ``<stdin>`` in messages. Every file
+    is validated whole, whatever the command uses of it: what ``validate``
+    refuses, every command refuses at the same place.
     """
     from gyrovib.api import load
 
     if STDIN not in files:
-        return load(files, sensors=sensors)
-    return _load_with_stdin(files, sensors)
+        return load(files)
+    return _load_with_stdin(files)
 
 
 def _read_stdin() -> str:
@@ -161,7 +193,7 @@ def _read_stdin() -> str:
                                    "catalogue as UTF-8", STDIN_NAME, line, 1)) from None
 
 
-def _load_with_stdin(files: tuple[str, ...], sensors: bool = True) -> Any:
+def _load_with_stdin(files: tuple[str, ...]) -> Any:
     """Like :func:`gyrovib.api.load`, standard input read once for ``-``."""
     from gyrovib.catalog.loader import CatalogSource, merge, parse_catalog, read_catalog
     from gyrovib.errors import CatalogError, OptionError, Problem
@@ -172,9 +204,8 @@ def _load_with_stdin(files: tuple[str, ...], sensors: bool = True) -> Any:
     sources: list[CatalogSource] = []
     for name in files:
         try:
-            skip = () if sensors else ("sensors",)
-            sources.append(parse_catalog(_read_stdin(), STDIN_NAME, skip) if name == STDIN
-                           else read_catalog(name, skip))
+            sources.append(parse_catalog(_read_stdin(), STDIN_NAME) if name == STDIN
+                           else read_catalog(name))
         except CatalogError as exc:
             problems.extend(exc.problems)
     if problems:

@@ -9,13 +9,22 @@ Exit status (the contract; no environment variable changes it):
 
 * 0 success; 1 ``select``'s requirement not met; 2 bad usage or bad input;
 * 3 an internal error (a bug in gyrovib), reported in one line asking for a
-  report; ``GYROVIB_DEBUG=1`` adds the traceback, the status stays 3;
+  report; ``GYROVIB_DEBUG=1`` (or ``true``, ``yes``; any case) adds the
+  traceback, the status stays 3;
 * 74 (``EX_IOERR``) the output could not be written (standard output closed or
   on a full disk, ``--output`` on a failing device): one line naming it;
-* 130 interrupted (Ctrl-C, SIGINT), 143 terminated (SIGTERM): one line, and
-  ``--output`` is left as it was;
+  an ``--output`` that cannot be a file (no such directory, a name too long,
+  no permission) is bad usage, 2, naming it too;
+* 129 hung up (SIGHUP), 130 interrupted (Ctrl-C, SIGINT), 143 terminated
+  (SIGTERM): one line, ``--output`` is left as it was and no temporary file
+  remains; a signal once the output is in place (renamed over ``--output``)
+  no longer interrupts: the run has succeeded, and exits as it would have;
 * 141 standard output closed before everything was written (``| head``), as
   for a process killed by SIGPIPE; nothing is printed.
+
+A standard error that cannot be written (``2>/dev/full``) costs the messages,
+never the status. Names in messages are written with their control characters
+escaped (:func:`~gyrovib.cli.common.printable`).
 """
 
 from __future__ import annotations
@@ -29,8 +38,8 @@ from typing import Any, NoReturn
 import click
 
 from gyrovib._version import __version__
-from gyrovib.cli.common import Settings, printable
-from gyrovib.cli.output import WriteFailure, silence_stdout
+from gyrovib.cli.common import Settings, say
+from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
 from gyrovib.errors import GyrovibError
 
 EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
@@ -38,24 +47,63 @@ EXIT_WRITE_FAILED = 74  # EX_IOERR of sysexits.h
 EXIT_INTERRUPTED = 128 + signal.SIGINT
 EXIT_BROKEN_PIPE = 128 + 13
 EXIT_TERMINATED = 128 + signal.SIGTERM
+EXIT_HUNG_UP = 128 + signal.SIGHUP
+
+#: The signals turned into exceptions (so ``finally`` blocks clean up), and their words.
+_SIGNALS = {signal.SIGINT: "interrupted", signal.SIGTERM: "terminated",
+            signal.SIGHUP: "hung up"}
 
 _CLICK_FLOW = (click.exceptions.Exit, click.exceptions.Abort)
 
 
 class Terminated(KeyboardInterrupt):
-    """Raised in the main thread on SIGTERM, so ``finally`` blocks clean up."""
+    """Raised in the main thread on SIGTERM or SIGHUP, so ``finally`` blocks clean up."""
+
+    def __init__(self, signum: int = signal.SIGTERM) -> None:
+        super().__init__(signum)
+        self.signum = signum
 
 
-def _on_sigterm(signum: int, frame: Any) -> None:
-    raise Terminated
+def _on_signal(signum: int, frame: Any) -> None:
+    """SIGINT, SIGTERM, SIGHUP: an exception, unless the output is already in place.
+
+    Once the output has been renamed over ``--output`` the run has succeeded:
+    a signal in its last moments must not report a failure the file contradicts.
+    """
+    if output_in_place():
+        return
+    if signum == signal.SIGINT:
+        raise KeyboardInterrupt
+    raise Terminated(signum)
+
+
+def _signal_status(exc: KeyboardInterrupt) -> int:
+    """128 + the signal behind ``exc``: 130 for Ctrl-C, 143 SIGTERM, 129 SIGHUP."""
+    return 128 + (exc.signum if isinstance(exc, Terminated) else signal.SIGINT)
+
+
+def _debug() -> bool:
+    """Whether ``GYROVIB_DEBUG`` asks for tracebacks: 1, true or yes, in any case."""
+    return os.environ.get("GYROVIB_DEBUG", "").strip().lower() in ("1", "true", "yes")
+
+
+def _traceback() -> None:
+    if not _debug():
+        return
+    import traceback
+
+    try:
+        traceback.print_exc(file=sys.stderr)
+        sys.stderr.flush()
+    except (OSError, ValueError, AttributeError):
+        pass
 
 
 def _report(exc: GyrovibError, settings: Settings | None) -> None:
     # The plain lines first: a reader that went away from standard output must
     # not cost the user the messages on standard error.
     for problem in exc.problems:
-        click.echo(printable(f"gyrovib: error: {problem}" if problem.file is None
-                             else str(problem)), err=True)
+        say(f"gyrovib: error: {problem}" if problem.file is None else str(problem))
     if settings is not None and settings.github:
         from gyrovib.render.github import problems_to_github
 
@@ -73,12 +121,14 @@ def _wants_github(argv: list[str]) -> bool:
 
 
 def _echo_interrupted(code: int) -> None:
-    word = "interrupted" if code == EXIT_INTERRUPTED else "terminated"
+    word = _SIGNALS.get(signal.Signals(code - 128), "terminated")
     try:
         sys.stderr.write(f"\ngyrovib: {word}\n")
         sys.stderr.flush()
     except (OSError, AttributeError, ValueError):
-        pass
+        from gyrovib.cli.common import silence_stderr
+
+        silence_stderr()
 
 
 #: Each command lives in its own module, imported only when that command runs
@@ -114,6 +164,7 @@ class _Group(click.Group):
         return super().main(args, *rest, **extra)
 
     def invoke(self, ctx: click.Context) -> Any:
+        start_run()
         try:
             with warnings.catch_warnings():
                 # numpy overflow warnings: results are checked for finiteness instead.
@@ -137,32 +188,26 @@ class _Group(click.Group):
         except (click.exceptions.ClickException, *_CLICK_FLOW):
             raise
         except KeyboardInterrupt as exc:
-            code = EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED
+            code = _signal_status(exc)
             _echo_interrupted(code)
             ctx.exit(code)
         except MemoryError:
-            click.echo("gyrovib: error: out of memory", err=True)
+            say("gyrovib: error: out of memory")
             ctx.exit(EXIT_BAD_INPUT)
         except BrokenPipeError:
             # The reader went away (`| head`): stop quietly, as a SIGPIPE would.
             silence_stdout()
             ctx.exit(EXIT_BROKEN_PIPE)
         except WriteFailure as exc:
-            click.echo(f"gyrovib: error: {printable(str(exc))}", err=True)
+            say(f"gyrovib: error: {exc}")
             ctx.exit(EXIT_WRITE_FAILED)
         except Exception as exc:
-            if os.environ.get("GYROVIB_DEBUG"):
-                import traceback
-
-                traceback.print_exc(file=sys.stderr)
+            _traceback()
             detail = str(exc).splitlines()[0][:300] if str(exc) else ""
-            click.echo(
-                f"gyrovib: internal error: {type(exc).__name__}"
-                + (f": {printable(detail)}" if detail else "")
+            say(f"gyrovib: internal error: {type(exc).__name__}"
+                + (f": {detail}" if detail else "")
                 + "; this is a bug in gyrovib, not in your input: please report it with the "
-                "command and files used (GYROVIB_DEBUG=1 shows the traceback)",
-                err=True,
-            )
+                "command and files used (GYROVIB_DEBUG=1 shows the traceback)")
             ctx.exit(EXIT_INTERNAL)
 
 
@@ -186,39 +231,38 @@ def cli(ctx: click.Context, color: str) -> None:
     Without FILE arguments every command uses the catalogues bundled with
     gyrovib. Exit status: 0 success, 1 a `select` requirement not met,
     2 bad usage or bad input, 3 an internal error (please report it),
-    74 the output could not be written, 130 interrupted, 141 standard output
-    closed early.
+    74 the output could not be written, 129 hung up, 130 interrupted,
+    143 terminated, 141 standard output closed early.
     """
     ctx.obj = Settings(color=color)
 
 
 def main(args: list[str] | None = None) -> NoReturn:
     """Console-script entry point: runs the command and exits with its status."""
-    previous = signal.getsignal(signal.SIGTERM)
-    if previous in (signal.SIG_DFL, None):
-        signal.signal(signal.SIGTERM, _on_sigterm)
+    caught = _catch_signals()
     try:
         code = cli.main(args, prog_name="gyrovib", standalone_mode=False)
     except click.exceptions.Abort:  # a KeyboardInterrupt while click parsed the group
         _echo_interrupted(EXIT_INTERRUPTED)
         code = EXIT_INTERRUPTED
     except click.exceptions.ClickException as exc:
-        exc.show()
+        try:
+            exc.show()
+        except (OSError, ValueError, AttributeError):
+            from gyrovib.cli.common import silence_stderr
+
+            silence_stderr()
         code = exc.exit_code
     except KeyboardInterrupt as exc:
-        code = EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED
+        code = _signal_status(exc)
         _echo_interrupted(code)
     except BrokenPipeError:
         silence_stdout()
         code = EXIT_BROKEN_PIPE
     except Exception as exc:  # outside a command (parsing the group, completion): still a bug
-        if os.environ.get("GYROVIB_DEBUG"):
-            import traceback
-
-            traceback.print_exc(file=sys.stderr)
-        click.echo(f"gyrovib: internal error: {type(exc).__name__}: "
-                   f"{printable(str(exc))[:300]}; this is a bug in gyrovib: please report it",
-                   err=True)
+        _traceback()
+        say(f"gyrovib: internal error: {type(exc).__name__}: "
+            f"{str(exc)[:300]}; this is a bug in gyrovib: please report it")
         code = EXIT_INTERNAL
     code = code if isinstance(code, int) else 0
     if code in (EXIT_OK, EXIT_NOT_MET):
@@ -230,6 +274,24 @@ def main(args: list[str] | None = None) -> NoReturn:
             code = EXIT_BROKEN_PIPE
         except (OSError, ValueError) as exc:
             silence_stdout()
-            click.echo(f"gyrovib: error: cannot write standard output: {exc}", err=True)
+            say(f"gyrovib: error: cannot write standard output: {exc}")
             code = EXIT_WRITE_FAILED
+    # The outcome is decided (and any output in place): the signals caught are now
+    # ignored. Python's shutdown would otherwise put back their default action,
+    # and a SIGTERM in its last milliseconds would kill a run that has succeeded.
+    for signum in caught:
+        signal.signal(signum, signal.SIG_IGN)
     sys.exit(code)
+
+
+def _catch_signals() -> list[signal.Signals]:
+    """SIGINT, SIGTERM and SIGHUP become exceptions (:func:`_on_signal`); a signal the
+    parent set to be ignored (``nohup``, a background job) stays ignored. Returns
+    the signals now caught."""
+    caught = []
+    for signum in _SIGNALS:
+        previous = signal.getsignal(signum)
+        if previous in (signal.SIG_DFL, None, signal.default_int_handler):
+            signal.signal(signum, _on_signal)
+            caught.append(signum)
+    return caught

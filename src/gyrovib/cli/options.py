@@ -10,14 +10,15 @@ import click
 
 from gyrovib import units
 from gyrovib.errors import OptionError
+from gyrovib.limits import MAX_SAMPLES
 
 F = TypeVar("F", bound=Callable[..., Any])
 
 UNIT_CHOICES = tuple(units.RATE_UNITS)
 
-#: The most samples ``analyze --method numeric`` takes per sensor × profile: 10^8
-#: evaluations of eq. (2) take minutes; more is a typo, not a study.
-SAMPLES_MAX = 100_000_000
+#: The most samples ``analyze --method numeric`` takes per sensor × profile
+#: (:data:`gyrovib.limits.MAX_SAMPLES`, which the library enforces too).
+SAMPLES_MAX = MAX_SAMPLES
 
 
 def files_argument(f: F) -> F:

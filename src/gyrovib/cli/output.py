@@ -24,6 +24,22 @@ class WriteFailure(Exception):
     """The output could not be written (closed stream, full disk, I/O error)."""
 
 
+#: Set as a command's ``--output`` is renamed into place: from then on the run
+#: has succeeded, and a signal no longer interrupts it (cli/main.py).
+_in_place = False
+
+
+def output_in_place() -> bool:
+    """Whether the command's output file is (being) put in place: the run has succeeded."""
+    return _in_place
+
+
+def start_run() -> None:
+    """A command starts: its output is not in place yet (one process may run several)."""
+    global _in_place
+    _in_place = False
+
+
 def silence_stdout() -> None:
     """Point standard output at the null device, so that nothing more is written
     (nor fails again when Python flushes it on exit)."""
@@ -83,7 +99,8 @@ def write_output(text: Output, path: str | None) -> None:
                 reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
                 raise WriteFailure(f"cannot write standard output: {reason}") from None
         return
-    _replace(path, (chunk.encode("utf-8") for chunk in _chunks(text)), "--output: ")
+    _replace(path, (chunk.encode("utf-8") for chunk in _chunks(text)), "--output: ",
+             final=True)
 
 
 def _write_all(stream: TextIO, text: str) -> None:
@@ -118,7 +135,8 @@ def write_binary(data: bytes, path: str) -> None:
     _replace(path, data, "")
 
 
-def _replace(path: str, data: bytes | Iterable[bytes], what: str) -> None:
+def _replace(path: str, data: bytes | Iterable[bytes], what: str,
+             final: bool = False) -> None:
     """Put ``data`` (bytes, or pieces of it in order) at ``path`` through a
     temporary file in the same directory.
 
@@ -128,35 +146,46 @@ def _replace(path: str, data: bytes | Iterable[bytes], what: str) -> None:
     exceptions), the temporary file is removed and ``path`` is left as it was.
     A path that is not a regular file (``/dev/null``, a FIFO, a terminal) is
     written to directly: renaming over it would replace the device.
+
+    ``final``: this is the command's output, its last act. Just before the
+    rename the run is marked as succeeded (:func:`output_in_place`): a signal
+    from then on is let pass, so a status of 130 or 143 always means that
+    ``path`` was left as it was, and 0 that it holds the new output.
     """
+    global _in_place
     if not path:
         raise OptionError(f"{what}give a file name")
     from pathlib import Path  # not at import time: ~3 ms of every start-up
 
-    target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
-    try:
-        mode = os.stat(target).st_mode
-    except OSError:
-        mode = None
+    try:  # a name too long, a loop of links, a directory that cannot be searched: exit 2
+        target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
+        try:
+            mode: int | None = os.stat(target).st_mode
+        except (FileNotFoundError, NotADirectoryError):
+            mode = None
+        directory = target.parent if str(target.parent) else Path(".")
+        directory_exists = directory.is_dir()
+    except (OSError, ValueError) as exc:
+        raise OptionError(f"{what}cannot write {path!r}: {_reason(exc)}") from None
     if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
         try:
             with open(target, "wb") as handle:
                 _write_pieces(handle, data)
         except OSError as exc:
-            raise WriteFailure(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
+            raise WriteFailure(f"{what}cannot write {path!r}: {_reason(exc)}") from None
         return
-    directory = target.parent if str(target.parent) else Path(".")
-    if not directory.is_dir():
+    if not directory_exists:
         raise OptionError(f"{what}directory {str(directory)!r} of {path!r} does not exist")
-    if target.is_dir():
+    if mode is not None and stat.S_ISDIR(mode):
         raise OptionError(f"{what}{path!r} is a directory")
     import tempfile  # not at import time: it costs ~7 ms of start-up
 
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=directory)
+    try:  # the temporary name stays short, whatever the length of the target's
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name[:_PREFIX]}.", suffix=".tmp",
+                                   dir=directory)
     except OSError as exc:
-        raise OptionError(f"{what}cannot write in {str(directory)!r}: "
-                           f"{exc.strerror or exc}") from None
+        raise OptionError(f"{what}cannot write in {str(directory)!r} to create {path!r}: "
+                          f"{_reason(exc)}") from None
     try:
         with os.fdopen(fd, "wb") as handle:
             _write_pieces(handle, data)
@@ -168,12 +197,24 @@ def _replace(path: str, data: bytes | Iterable[bytes], what: str) -> None:
             umask = os.umask(0)
             os.umask(umask)
             os.chmod(tmp, 0o666 & ~umask)
+        _in_place = final  # a signal from here on no longer interrupts (cli/main.py)
         os.replace(tmp, target)
     except OSError as exc:
-        raise WriteFailure(f"{what}cannot write {path!r}: {exc.strerror or exc}") from None
+        _in_place = False
+        raise WriteFailure(f"{what}cannot write {path!r}: {_reason(exc)}") from None
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+#: Characters of the target's name kept in the temporary file's: with the random part
+#: and the suffix the temporary name stays far below the 255 bytes of a file name.
+_PREFIX = 40
+
+
+def _reason(exc: BaseException) -> str:
+    """An OSError's own words (``File name too long``), else the exception's text."""
+    return (exc.strerror if isinstance(exc, OSError) and exc.strerror else None) or str(exc)
 
 
 def _write_pieces(handle: BinaryIO, data: bytes | Iterable[bytes]) -> None:

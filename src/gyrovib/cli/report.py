@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog
+from gyrovib.cli.common import load_catalog, say
 from gyrovib.cli.options import (
     budget_arguments,
     budget_options,
@@ -62,4 +62,4 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
     write_output(to_html(result), output)
     if output not in ("-", ""):
-        click.echo(f"gyrovib: wrote {output}", err=True)
+        say(f"gyrovib: wrote {output}")

@@ -9,6 +9,7 @@ from gyrovib.cli.common import (
     note_slow_table,
     page_width,
     plain_ascii,
+    say,
     use_color,
 )
 from gyrovib.cli.options import (
@@ -95,7 +96,7 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
                        profiles=profiles, unit=unit, peak_factor=peak_factor)
     if result.paper_refused:
         listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
-        click.echo(f"gyrovib: note: the paper's columns are empty for {listed}", err=True)
+        say(f"gyrovib: note: the paper's columns are empty for {listed}")
     if plot is not None:
         if plot == "-":
             raise OptionError("--plot writes a PNG file: give a file name, not '-'")

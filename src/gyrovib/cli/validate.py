@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import github_errors, load_catalog
+from gyrovib.cli.common import github_errors, load_catalog, say
 
 
 @click.command()
@@ -21,5 +21,5 @@ def validate(files: tuple[str, ...], fmt: str) -> None:
     """
     github_errors(fmt == "github")
     catalog = load_catalog(files)
-    click.echo(f"{len(files)} file(s) valid: {len(catalog.sensors)} sensor(s), "
-               f"{len(catalog.profiles)} profile(s)", err=True)
+    say(f"{len(files)} file(s) valid: {len(catalog.sensors)} sensor(s), "
+        f"{len(catalog.profiles)} profile(s)")

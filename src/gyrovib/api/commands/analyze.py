@@ -57,9 +57,13 @@ def _check_options(method: str, samples: int, seed: int) -> None:
     if method != "numeric":
         return
     from gyrovib.core.numeric import MIN_SAMPLES
+    from gyrovib.limits import MAX_SAMPLES
 
     if samples < MIN_SAMPLES:
         raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")
+    if samples > MAX_SAMPLES:
+        raise OptionError(f"--samples {samples}: give at most {MAX_SAMPLES:,} (10^8 "
+                          "evaluations of eq. 2 already take minutes)")
     if seed < 0:
         raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
 
