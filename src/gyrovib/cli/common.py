@@ -143,8 +143,8 @@ def note_slow_table(rows: int) -> None:
     """Say once, on standard error, that CSV and JSON are the fast path for a table
     of more than :data:`SLOW_TABLE_ROWS` rows (tables are for people)."""
     if rows > SLOW_TABLE_ROWS:
-        click.echo(f"gyrovib: note: {rows:,} table rows take a while to draw; "
-                   "--format csv or --format json is the fast path", err=True)
+        say(f"gyrovib: note: {rows:,} table rows take a while to draw; "
+            "--format csv or --format json is the fast path")
 
 
 def github_errors(enabled: bool = True) -> None:

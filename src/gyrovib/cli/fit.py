@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import page_width, plain_ascii, use_color
+from gyrovib.cli.common import page_width, plain_ascii, say, use_color
 from gyrovib.cli.options import format_option
 
 
@@ -55,7 +55,7 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
         data = api.read_rate_table(table, rate_unit, output_unit)
     result = api.fit(data, order)
     for warning in result.warnings:
-        click.echo(f"gyrovib: warning: {warning}", err=True)
+        say(f"gyrovib: warning: {warning}")
     if plot is not None:
         write_binary(render.residuals_png(result), plot)
     if output is not None:
