@@ -139,6 +139,18 @@ def invoke(*args: object, input: str | bytes | None = None,
     return result
 
 
+#: The terminal settings gyrovib reads from the environment. pytest-xdist's workers run
+#: with COLUMNS=80 and a developer's shell may export any of them, so every test starts
+#: without them (a test that needs one sets it) and prints the same under any runner.
+TERMINAL_ENV = ("COLUMNS", "LINES", "NO_COLOR", "FORCE_COLOR")
+
+
+@pytest.fixture(autouse=True)
+def _terminal_neutral_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    for name in TERMINAL_ENV:
+        monkeypatch.delenv(name, raising=False)
+
+
 @pytest.fixture
 def valid_text() -> str:
     return VALID
