@@ -166,7 +166,7 @@ def _signed_gauss_excess(m: float, s: float) -> float:
     return s * math.sqrt(2 / math.pi) * math.exp(-u * u) - m * special.erfc(u)
 
 
-def _phase_mean(f, c: float, a: float, kinks: Sequence[float]) -> float:
+def _phase_mean(f, c: float, a: float, kinks: Sequence[float], epsrel: float = 1e-13) -> float:
     """(1/π)∫ f(c + a·sin θ) dθ over [−π/2, π/2], split where the argument hits a kink."""
     cuts = sorted(math.asin((k - c) / a) for k in kinks if -1 < (k - c) / a < 1)
     edges = [-math.pi / 2, *cuts, math.pi / 2]
@@ -175,14 +175,15 @@ def _phase_mean(f, c: float, a: float, kinks: Sequence[float]) -> float:
         warnings.simplefilter("ignore", integrate.IntegrationWarning)
         for lo, hi in itertools.pairwise(edges):
             val, _ = integrate.quad(lambda t: f(c + a * math.sin(t)), lo, hi,
-                                    epsabs=0, epsrel=1e-13, limit=200)
+                                    epsabs=0, epsrel=epsrel, limit=200)
             total += val
     return total / math.pi
 
 
-def excess(omega: float, amplitudes: Sequence[float], sigma: float) -> float:
+def excess(omega: float, amplitudes: Sequence[float], sigma: float,
+           epsrel: float = 1e-13) -> float:
     """E(Ω) = <|Ω + x3|> − |Ω| for up to three tones (tones only) or one or two
-    tones plus a Gaussian part, by nested quadrature."""
+    tones plus a Gaussian part, by nested quadrature (``epsrel`` per level)."""
     w = abs(omega)
     amps = sorted((a for a in amplitudes if a > 0), reverse=True)
     if sigma > 0:
@@ -194,11 +195,12 @@ def excess(omega: float, amplitudes: Sequence[float], sigma: float) -> float:
             w, a1, [])
     a1 = amps[0]
     if len(amps) == 2:
-        return _phase_mean(lambda m: _signed_tone_excess(m, a1), w, amps[1], [-a1, a1])
+        return _phase_mean(lambda m: _signed_tone_excess(m, a1), w, amps[1], [-a1, a1],
+                           epsrel)
     a2, a3 = amps[1], amps[2]
     return _phase_mean(
-        lambda c: _phase_mean(lambda m: _signed_tone_excess(m, a1), c, a2, [-a1, a1]),
-        w, a3, [-a1 - a2, -a1 + a2, a1 - a2, a1 + a2])
+        lambda c: _phase_mean(lambda m: _signed_tone_excess(m, a1), c, a2, [-a1, a1], epsrel),
+        w, a3, [-a1 - a2, -a1 + a2, a1 - a2, a1 + a2], epsrel)
 
 
 # ------------------------------------------------- E(Ω) for many tones, two ways
@@ -251,12 +253,15 @@ def excess_phase_grid(omega: float, amplitudes: Sequence[float], sigma: float, n
 
 def excess_four_tones(omega: float, amplitudes: Sequence[float]) -> float:
     """E(Ω) for four tones alone: the smallest tone's phase by adaptive quadrature
-    (split where the three-tone excess has kinks, ±a1 ± a2 ± a3) over :func:`excess`."""
+    (split where the three-tone excess has kinks, ±a1 ± a2 ± a3) over :func:`excess`.
+
+    Three nested levels, each to 1e-10 relative (1e-13 took ten times longer, 12 s for
+    Ω = 3.6 of (1.5, 1.2, 0.7, 0.3), and changed the result by 1e-13 relative)."""
     a1, a2, a3, a4 = sorted(amplitudes, reverse=True)
     kinks = sorted({x * a1 + y * a2 + z * a3 for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)})
 
     def three(c: float) -> float:
         # the signed three-tone excess <|c + x|> − c, for c of either sign
-        return excess(c, [a1, a2, a3], 0.0) + abs(c) - c
+        return excess(c, [a1, a2, a3], 0.0, epsrel=1e-10) + abs(c) - c
 
-    return _phase_mean(three, abs(omega), a4, kinks)
+    return _phase_mean(three, abs(omega), a4, kinks, epsrel=1e-10)

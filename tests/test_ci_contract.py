@@ -9,6 +9,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -35,6 +37,55 @@ def test_ci_runs_the_readme_test_command() -> None:
 def test_ci_installs_within_the_constraints() -> None:
     assert "-c constraints.txt" in _quick_start()[1]
     assert (ROOT / "constraints.txt").is_file()
+
+
+def _requirement(lines: list[str], name: str) -> str:
+    found = [line.split("#", 1)[0].strip().strip('",') for line in lines]
+    found = [r for r in found if re.match(rf"{re.escape(name)}\s*[<>=!~]", r)]
+    assert len(found) == 1, (name, found)
+    return found[0].replace(" ", "")
+
+
+def test_published_highspy_range_is_the_checked_one() -> None:
+    # core/highs.py uses highspy's private base class _Highs: a user's install must not
+    # resolve to a highspy release the suite has not run against (issue 20)
+    import tomllib
+
+    meta = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    published = _requirement(meta["project"]["dependencies"], "highspy")
+    checked = _requirement((ROOT / "constraints.txt").read_text(encoding="utf-8").splitlines(),
+                           "highspy")
+    assert published == checked
+    assert "<" in published
+
+
+def test_the_test_command_runs_in_parallel_with_a_checked_xdist() -> None:
+    # the README's test command uses pytest-xdist (-n auto), so the test extra installs it
+    # and constraints.txt bounds it
+    import tomllib
+
+    assert " -n auto" in _quick_start()[1]
+    meta = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    assert _requirement(meta["project"]["optional-dependencies"]["test"], "pytest-xdist")
+    constraint = _requirement((ROOT / "constraints.txt").read_text(encoding="utf-8")
+                              .splitlines(), "pytest-xdist")
+    assert "<" in constraint
+
+
+def test_hypothesis_profile_is_deterministic() -> None:
+    # tests/conftest.py loads the "ci" profile unless GYROVIB_HYPOTHESIS_PROFILE asks
+    # otherwise: the same examples on every run, no timing deadline
+    import os
+
+    from hypothesis import settings
+
+    if os.environ.get("GYROVIB_HYPOTHESIS_PROFILE", "ci") != "ci":
+        pytest.skip("another hypothesis profile was chosen")
+    assert settings.default.derandomize
+    assert settings.default.deadline is None
+    # and no test opts out of it
+    for path in (ROOT / "tests").glob("test_*.py"):
+        assert not re.search(r"derandomize\s*=\s*False", path.read_text(encoding="utf-8")), path
 
 
 def test_readme_example_table_is_what_gyrovib_prints() -> None:

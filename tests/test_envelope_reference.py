@@ -30,10 +30,17 @@ from gyrovib.core.envelope_basis import true_max
 
 LS, MINIMAX, ENDPOINT = 0, 1, 2
 DENSE = np.linspace(-1.0, 1.0, 100001)
+FINE = np.linspace(-1.0, 1.0, 200001)
 
 
 def _phi(u: np.ndarray) -> np.ndarray:
     return np.stack([0.5 * np.abs(u), u**2, u**3, u**4, u**5], axis=-1)
+
+
+# The basis on the two fixed grids, with the columns 1 and u of a line appended: built once
+# per process (each check is then one matrix product over the grid)
+DENSE_BASIS = np.ascontiguousarray(np.vstack([_phi(DENSE).T, np.ones_like(DENSE), DENSE]))
+FINE_PHI = _phi(FINE)
 
 
 def _fit_lines(fit: int) -> tuple[np.ndarray, np.ndarray]:
@@ -58,9 +65,9 @@ def _residual(fit: int, y: np.ndarray, line: np.ndarray, u: np.ndarray) -> np.nd
 
 def _max_abs_residual(fit: int, y: np.ndarray, line: np.ndarray) -> float:
     """max |r| over [−1, 1]: a 200001-point grid and the real roots of r′ on each side."""
-    _, slope = _fit_lines(fit)
-    u = np.linspace(-1.0, 1.0, 200001)
-    best = float(np.max(np.abs(_residual(fit, y, line, u))))
+    off, slope = _fit_lines(fit)
+    # _residual on FINE, its basis precomputed
+    best = float(np.max(np.abs(FINE_PHI @ y - (off @ y + line[0]) - (slope @ y + line[1]) * FINE)))
     for side in (-1.0, 1.0):
         c1 = 0.5 * y[0] * side - slope @ y - line[1]
         coef = np.array([5 * y[4], 4 * y[3], 3 * y[2], 2 * y[1], c1])
@@ -107,11 +114,11 @@ def fine_grid_bracket(fit: int, d: np.ndarray, a: float, n: int = 4001) -> tuple
 
 def _dense_max(y: np.ndarray, line: np.ndarray) -> np.ndarray:
     """max |p − line| on DENSE for rows of y (K, 5) and the returned reference lines (K, 2)."""
-    phi = _phi(DENSE)
+    coef = np.column_stack([y, -line])       # p − line = [y, −line0, −line1]·[φ, 1, u]
     out = np.empty(y.shape[0])
-    for s in range(0, y.shape[0], 64):
-        r = y[s:s + 64] @ phi.T - line[s:s + 64, :1] - line[s:s + 64, 1:] * DENSE
-        out[s:s + 64] = np.max(np.abs(r), axis=1)
+    for s in range(0, y.shape[0], 32):
+        r = coef[s:s + 32] @ DENSE_BASIS
+        out[s:s + 32] = np.maximum(r.max(axis=1), -r.min(axis=1))
     return out
 
 

@@ -49,6 +49,13 @@ profiles:
 """
 
 
+@pytest.fixture(scope="module")
+def bundled_study() -> object:
+    """The trade study of the bundled catalogues at 10 deg/h, computed once for the module
+    (an immutable result; two tests read it)."""
+    return trade_study(api.load(), budget=10 / 3600)
+
+
 @pytest.fixture
 def catalog_file(tmp_path: Path) -> Path:
     path = tmp_path / "a<b>&c.yaml"
@@ -126,12 +133,12 @@ def test_terms_of_eq16_add_up_to_the_rms(catalog_file):
     assert term_names() == [*ADDITIVE_TERMS, "q1·Ω", "q2·Ω²", "q3·Ω³"]
 
 
-def test_breakdown_of_locked_harmonics_and_linear_vibration_adds_up_to_the_rms():
+def test_breakdown_of_locked_harmonics_and_linear_vibration_adds_up_to_the_rms(bundled_study):
     """The bundled catalogues have a linear vibration and phase-locked harmonics
     (rotor-harmonics): the breakdown gains g2 = Δ0(6) (MODEL.md section 8) and k3·M3,
     k5·M5 (section 10), and eq. (16)'s squares again sum to Δ_V(RMS)² for every sensor
     given by coefficients (a datasheet sensor's RMS is its envelope's worst case)."""
-    study = trade_study(api.load(), budget=10 / 3600)
+    study = bundled_study
     a = study.analysis
     assert a.has_linear and any(a.locked)
     names = term_names(a.has_linear, any(a.locked))
@@ -232,13 +239,12 @@ def test_every_plotted_value_lies_inside_the_axes(values, log):
     assert all(lo * (1 - 1e-9) <= t <= hi * (1 + 1e-9) for t in scale.ticks() if log)
 
 
-def test_bundled_catalogues_are_named_by_package_path_with_their_hash() -> None:
+def test_bundled_catalogues_are_named_by_package_path_with_their_hash(bundled_study) -> None:
     # the inputs table names a bundled file gyrovib/catalogs/NAME, not where it is
     # installed; its hash is still that of the file's bytes (hashlib, independently)
     from gyrovib.catalog.loader import bundled_paths
 
-    study = trade_study(api.load(), budget=10 / 3600)
-    shown = {f.name: f.sha256 for f in study.files}
+    shown = {f.name: f.sha256 for f in bundled_study.files}
     for path in bundled_paths():
         key = f"gyrovib/catalogs/{path.name} (bundled)"
         assert shown[key] == hashlib.sha256(path.read_bytes()).hexdigest()

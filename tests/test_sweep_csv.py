@@ -104,7 +104,9 @@ def sweeps(draw: st.DrawFn) -> SweepResult:
                        saturated=saturated if draw(st.booleans()) else None)
 
 
-@settings(deadline=None, max_examples=300)
+# 100 sweeps draw ~5,700 cells, each AWKWARD value at least 37 times (the profile's fixed
+# seed: the same ones every run); each special value alone is pinned by the test below
+@settings(deadline=None, max_examples=100)
 @given(sweeps())
 def test_sweep_csv_is_the_row_by_row_text_for_awkward_values(result: SweepResult) -> None:
     expected = row_by_row(result)
