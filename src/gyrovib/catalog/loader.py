@@ -191,6 +191,16 @@ def _ids_only(data: dict[str, Any], name: str, text: str, index: Index) -> Catal
     return CatalogSource(name=name, text=text, model=model, index=index)
 
 
+def model_source(model: Catalogue, name: str = "<gyrovib.models.Catalogue>") -> CatalogSource:
+    """A catalogue built in Python as a source: its text is the model as JSON (a YAML
+    document; it identifies the content in a study's digest), and nothing is placed
+    in it (a problem names ``name`` alone)."""
+    import json
+
+    text = json.dumps(model.model_dump(mode="json", exclude_defaults=True), indent=1) + "\n"
+    return CatalogSource(name=name, text=text, model=model, index=Index(""))
+
+
 def read_catalog(path: str | Path, skip: Collection[str] = ()) -> CatalogSource:
     """Read, parse and validate one catalogue file (``skip``: as :func:`parse_catalog`)."""
     name = str(path)
@@ -290,6 +300,22 @@ class Catalog(Frozen):
     sensors: tuple[SensorEntry, ...]
     profiles: tuple[ProfileEntry, ...]
     allocation: Allocation | None
+
+    @property
+    def models(self) -> tuple[Catalogue, ...]:
+        """The model of each file (:class:`gyrovib.models.Catalogue`), in order."""
+        return tuple(s.model for s in self.sources)
+
+    @property
+    def sensor_models(self) -> tuple[Sensor, ...]:
+        """The merged sensors as :class:`gyrovib.models.Sensor` (in the units of their
+        files: see :attr:`Entry.unit`)."""
+        return tuple(e.sensor for e in self.sensors)
+
+    @property
+    def profile_models(self) -> tuple[Profile, ...]:
+        """The merged profiles as :class:`gyrovib.models.Profile` (file units)."""
+        return tuple(e.profile for e in self.profiles)
 
     def sensor_line(self, entry: SensorEntry) -> tuple[int, int] | None:
         return entry.source.locate((SECTIONS[0][0], entry.index, ID_KEY))
@@ -420,6 +446,7 @@ __all__ = [
     "bundled_paths",
     "load_catalog",
     "merge",
+    "model_source",
     "parse_catalog",
     "read_catalog",
 ]
