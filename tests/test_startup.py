@@ -107,3 +107,16 @@ def test_analyze_of_coefficient_sensors_needs_no_numpy_ma(tmp_path):
                    or m.startswith(("gyrovib.core.envelope", "gyrovib.core.highs"))
                    or m in NOT_FOR_ANALYZE)
     assert heavy == []
+
+
+def test_a_command_scans_no_pydantic_plugins_unless_asked(monkeypatch):
+    # importlib.metadata (~20 ms, with the entry-point scan) is what pydantic's plugin
+    # loader needs; the command runs no plugin, so neither is imported...
+    monkeypatch.delenv("PYDANTIC_DISABLE_PLUGINS", raising=False)
+    modules = imported_modules(VIA_CLI, ["analyze", "--sensor", "adxrs453"])
+    assert "gyrovib.models.catalogue" in modules  # the probe works: models were built
+    assert "importlib.metadata" not in modules
+    # ... unless the user asks for plugins: then pydantic's own loader runs
+    monkeypatch.setenv("PYDANTIC_DISABLE_PLUGINS", "")
+    modules = imported_modules(VIA_CLI, ["analyze", "--sensor", "adxrs453"])
+    assert "importlib.metadata" in modules

@@ -2,7 +2,6 @@
 harmonics, the random part, the mount and the linear vibration. Values are in
 the file's units."""
 
-from __future__ import annotations
 
 from typing import Annotated, Any, ClassVar, Literal
 
@@ -250,7 +249,7 @@ class Profile(Model):
         None, description="Linear vibration at the sensor's axes (MODEL.md section 8).")
 
     @model_validator(mode="after")
-    def _groups_listed(self) -> Profile:
+    def _groups_listed(self) -> "Profile":
         """``harmonics`` is a list of groups, also when one group or none was written."""
         if not isinstance(self.harmonics, list):
             self.__dict__["harmonics"] = [] if self.harmonics is None else [self.harmonics]

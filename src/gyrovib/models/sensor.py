@@ -1,7 +1,6 @@
 """A sensor: its conversion function (eq. 1, eq. 2 or a datasheet), its own
 response and its g² sensitivity. Values are in the file's units."""
 
-from __future__ import annotations
 
 import math
 from typing import Annotated, Any, ClassVar, Literal, get_args
@@ -90,7 +89,7 @@ class OutputCoefficients(Model):
         return value
 
     @model_validator(mode="after")
-    def _divisible(self) -> OutputCoefficients:
+    def _divisible(self) -> "OutputCoefficients":
         k1 = self.K1
         for name in ("K0", "K2", "K3", "K4", "K5", "M1", "M2", "M31", "M32"):
             if not math.isfinite(getattr(self, name) / k1):
@@ -152,7 +151,7 @@ class Nonlinearity(Model):
             "measure": {"const": "rms"}, "fit": {"const": "minimax"}}}}]}}
 
     @model_validator(mode="after")
-    def _rules(self) -> Nonlinearity:
+    def _rules(self) -> "Nonlinearity":
         if "of" in self.model_fields_set and self.unit != "%FS":
             raise_at(("of",), rule_error(
                 f"'of' applies to a nonlinearity in %FS only; {self.value!r} "
