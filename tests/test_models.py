@@ -153,3 +153,37 @@ def test_gyrovib_schema_is_the_models_schema_in_draft_07_form():
     assert schema["definitions"] == body["definitions"]
     assert schema["properties"] == body["properties"]
     assert set(schema["definitions"]) >= {"Sensor", "Profile", "Allocation", "Units"}
+
+
+# ---------------------------------------------------------------- messages of pydantic's errors
+
+
+def _messages(text):
+    from gyrovib.catalog.loader import parse_catalog
+
+    with pytest.raises(CatalogError) as info:
+        parse_catalog(text, "c.yaml")
+    return [str(p) for p in info.value.problems]
+
+
+def test_a_bad_value_in_a_list_of_five_or_six_is_not_a_wrong_count():
+    # pydantic counts a tuple after dropping its bad values ("4 items"): not said
+    assert _messages("gyrovib: 1\nallocation: {w: [1, 1, -1, 1, 1]}\n") == [
+        "c.yaml:2:24: allocation.w[2]: must be positive (greater than 0), got -1"]
+    assert _messages("gyrovib: 1\nallocation: {w: [1, 1, 1, 1]}\n") == [
+        "c.yaml:2:17: allocation.w: too few values (4; expected 5 or 6)"]
+
+
+def test_a_wrong_count_is_said_once_not_with_its_values():
+    assert _messages("gyrovib: 1\nprofiles:\n  - {id: p, rate: [[1], 2, 3, 4]}\n") == [
+        "c.yaml:3:19: profile 'p': rate: too many values (4; expected 3)"]
+
+
+def test_the_one_of_rule_follows_the_mappings_other_problems():
+    assert _messages("gyrovib: 1\nsensors:\n  - {name: n, x: 1}\n") == [
+        "c.yaml:3:5: sensors[0]: missing required key 'id'",
+        "c.yaml:3:5: sensors[0]: give the conversion function once: either 'coefficients' "
+        "(eq. 2), 'output_coefficients' (eq. 1) or 'specs' (the datasheet)",
+        "c.yaml:3:15: sensors[0]: unknown key 'x'; allowed here: id, name, vendor, part, "
+        "notes, range, coefficients, output_coefficients, specs, response, g2_sensitivity, vre",
+    ]

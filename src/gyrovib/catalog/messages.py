@@ -90,6 +90,12 @@ def _error(e: Any, data: Any) -> Error:
         op, key = _BOUNDS[kind]
         return Error("bound", loc, value, {"op": op, "bound": ctx[key],
                                            "hint": introspect.at(loc).hint})
+    if kind in ("too_short", "too_long") and ctx.get("field_type") == "Tuple" \
+            and isinstance(value, (list, tuple)):
+        node = introspect.at(loc)
+        low, high = node.lengths or (node.size, node.size)
+        if low and low <= len(value) <= high:  # counted after its bad values were dropped
+            return Error("ignored", loc, value, {})
     if kind in ("too_short", "too_long"):
         node = introspect.at(loc)
         exact = ctx.get("field_type") == "Tuple"
@@ -98,8 +104,9 @@ def _error(e: Any, data: Any) -> Error:
             low, high = node.lengths
             n = low if low == high else f"{low} or {high}" if high == low + 1 \
                 else f"{low} to {high}"
+        have = len(value) if isinstance(value, (list, tuple)) else ctx.get("actual_length")
         return Error("too_few" if kind == "too_short" else "too_many", loc, value,
-                     {"n": n, "have": ctx.get("actual_length", len(value)), "exact": exact})
+                     {"n": n, "have": have, "exact": exact})
     if kind == "literal_error":
         node = introspect.at(loc)
         return Error("choice", loc, value, {"values": node.choices, "what": node.what})
@@ -131,10 +138,23 @@ def _order(data: Any, loc: tuple[Any, ...]) -> tuple[int, ...]:
 
 def errors(exc: ValidationError, data: Any) -> list[Error]:
     """The errors of ``exc`` (raised validating ``data``), in the order of the file."""
-    found = list({(e.kind, e.loc): e for e in
-                  (_error(x, data) for x in exc.errors(include_url=False))}.values())
-    found.sort(key=lambda e: _order(data, e.loc))
+    every = [_error(x, data) for x in exc.errors(include_url=False)]
+    found = list({(e.kind, e.loc): e for e in every if e.kind != "ignored"}.values())
+    if not found:  # (cannot happen: a wrong count comes with the values' own problems)
+        found = [e._replace(kind="rule", ctx={"message": "not valid here"}) for e in every]
+    # a list of the wrong length is said once, not with its values' own problems
+    lengths = {e.loc for e in found if e.kind in ("too_few", "too_many")}
+    if lengths:
+        found = [e for e in found
+                 if not any(e.loc[:len(at)] == at and len(e.loc) > len(at) for at in lengths)]
+    # a rule of a mapping (or value) comes after the problems within it, as it is judged
+    # on the whole
+    found.sort(key=lambda e: (*_order(data, e.loc), _LAST) if e.kind == "rule"
+               else _order(data, e.loc))
     return found
+
+
+_LAST = 1 << 62
 
 
 def where(loc: Sequence[Any], data: Any) -> str:
