@@ -187,3 +187,21 @@ def test_the_one_of_rule_follows_the_mappings_other_problems():
         "c.yaml:3:15: sensors[0]: unknown key 'x'; allowed here: id, name, vendor, part, "
         "notes, range, coefficients, output_coefficients, specs, response, g2_sensitivity, vre",
     ]
+
+
+def test_values_other_layers_hold_agree_with_the_models():
+    """Where another layer must hold a value of the format without importing pydantic
+    (the engine's paper allocation, the command line's --nl-* choices, read by
+    `gyrovib --help`), it must agree with the models."""
+    from typing import get_args
+
+    from gyrovib.cli import spec_options
+    from gyrovib.core import synthesis
+    from gyrovib.models import Allocation, Nonlinearity
+
+    a = Allocation()
+    assert (a.r, a.w, a.v) == (synthesis.DEFAULT_R, synthesis.DEFAULT_W, synthesis.DEFAULT_V)
+    fields = Nonlinearity.model_fields
+    assert spec_options.NL_FITS == get_args(fields["fit"].annotation)
+    assert spec_options.NL_MEASURES == get_args(fields["measure"].annotation)
+    assert spec_options.NL_OF == get_args(fields["of"].annotation)
