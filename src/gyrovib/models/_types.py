@@ -143,7 +143,6 @@ def one_of(*groups: Group) -> Any:
         found += [InitErrorDetails(type=rule_error(m), loc=(), input=data) for m in broken]
         raise ValidationError.from_exception_data(cls.__name__, found)
 
-    check.groups = groups  # type: ignore[attr-defined]
     return model_validator(mode="wrap")(classmethod(check))  # type: ignore[arg-type]
 
 
