@@ -202,6 +202,25 @@ def test_values_other_layers_hold_agree_with_the_models():
     a = Allocation()
     assert (a.r, a.w, a.v) == (synthesis.DEFAULT_R, synthesis.DEFAULT_W, synthesis.DEFAULT_V)
     fields = Nonlinearity.model_fields
-    assert spec_options.NL_FITS == get_args(fields["fit"].annotation)
-    assert spec_options.NL_MEASURES == get_args(fields["measure"].annotation)
-    assert spec_options.NL_OF == get_args(fields["of"].annotation)
+    assert get_args(fields["fit"].annotation) == spec_options.NL_FITS
+    assert get_args(fields["measure"].annotation) == spec_options.NL_MEASURES
+    assert get_args(fields["of"].annotation) == spec_options.NL_OF
+
+
+def test_two_broken_rules_of_one_mapping_are_both_said():
+    assert _messages("gyrovib: 1\nsensors:\n  - {id: a, coefficients: {}, specs: {range: 1, "
+                     "nonlinearity: {value: 1, unit: '%FS'}}, vre: 1, g2_sensitivity: {}}\n") == [
+        "c.yaml:3:5: sensor 'a': give the conversion function once: either 'coefficients' "
+        "(eq. 2), 'output_coefficients' (eq. 1) or 'specs' (the datasheet)",
+        "c.yaml:3:5: sensor 'a': give the g² sensitivity once: 'g2_sensitivity' or its "
+        "shorthand 'vre' (G11 = G22 = G33), not both",
+    ]
+
+
+def test_the_schema_carries_units_and_descriptions_from_the_models():
+    from gyrovib.models.schema import catalog_schema
+
+    sensor = catalog_schema()["definitions"]["Sensor"]["properties"]
+    assert sensor["range"]["unit"] == "rate"
+    assert sensor["range"]["description"] == Sensor.model_fields["range"].description
+    assert sensor["vre"]["unit"] == "rate/g^2"

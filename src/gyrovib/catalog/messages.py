@@ -139,7 +139,10 @@ def _order(data: Any, loc: tuple[Any, ...]) -> tuple[int, ...]:
 def errors(exc: ValidationError, data: Any) -> list[Error]:
     """The errors of ``exc`` (raised validating ``data``), in the order of the file."""
     every = [_error(x, data) for x in exc.errors(include_url=False)]
-    found = list({(e.kind, e.loc): e for e in every if e.kind != "ignored"}.values())
+    # one error per place and kind (pydantic reports a short tuple once per missing
+    # value), but every rule broken there
+    found = list({(e.kind, e.loc, e.ctx.get("message")): e for e in every
+                  if e.kind != "ignored"}.values())
     if not found:  # (cannot happen: a wrong count comes with the values' own problems)
         found = [e._replace(kind="rule", ctx={"message": "not valid here"}) for e in every]
     # a list of the wrong length is said once, not with its values' own problems
