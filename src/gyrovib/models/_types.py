@@ -7,7 +7,6 @@ field that carries it (see the model modules); the types here carry none but
 the ones every value of the type shares (a breakpoint's frequency is > 0).
 """
 
-
 from collections.abc import Callable
 from typing import Annotated, Any, NamedTuple
 

@@ -1,7 +1,6 @@
 """A whole catalogue file: the format version, the units, the sensors, the
 profiles and the allocation of a budget."""
 
-
 from typing import Annotated, Any, Literal
 
 from pydantic import BeforeValidator, Field

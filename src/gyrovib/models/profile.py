@@ -2,7 +2,6 @@
 harmonics, the random part, the mount and the linear vibration. Values are in
 the file's units."""
 
-
 from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import AfterValidator, BeforeValidator, Field, Strict, Tag, model_validator

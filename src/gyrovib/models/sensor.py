@@ -1,7 +1,6 @@
 """A sensor: its conversion function (eq. 1, eq. 2 or a datasheet), its own
 response and its g² sensitivity. Values are in the file's units."""
 
-
 import math
 from typing import Annotated, Any, ClassVar, Literal, get_args
 
