@@ -11,8 +11,8 @@ from __future__ import annotations
 import jsonschema
 import pytest
 
-from gyrovib.catalog.jsonschema import catalog_schema
 from gyrovib.catalog.loader import CatalogError, _parse, parse_catalog
+from gyrovib.models.schema import catalog_schema
 
 INTERFACE_EXAMPLE = """\
 gyrovib: 1
@@ -58,7 +58,7 @@ def test_the_interface_example_is_valid_and_exposed():
     coeffs, specs = model.sensors
     # values as written in INTERFACE.md's example
     assert coeffs.g2 == (4.0e-4, 4.0e-4, 4.0e-4, 0.0, 0.0, 0.0)
-    assert coeffs.response == [(10.0, 1.0), (500.0, 0.7)]
+    assert coeffs.response_table == [(10.0, 1.0), (500.0, 0.7)]
     assert coeffs.response_at == "output"
     assert coeffs.specs is None
     assert specs.coefficients is None and specs.output_coefficients is None
@@ -111,8 +111,8 @@ profiles:
     a, b = model.sensors
     assert a.g2 == (-2.5e-4, -2.5e-4, -2.5e-4, 0.0, 0.0, 0.0)  # signed, G11 = G22 = G33
     assert a.vre == -2.5e-4 and a.g2_sensitivity is None
-    assert (a.response, a.response_at) == ([(10.0, 1.0)], "output")  # a bare table: output
-    assert (b.response, b.response_at) == ([(10.0, 1.0), (20.0, 0.5)], "input")
+    assert (a.response_table, a.response_at) == ([(10.0, 1.0)], "output")  # a bare table: output
+    assert (b.response_table, b.response_at) == ([(10.0, 1.0), (20.0, 0.5)], "input")
     assert b.g2 == (0.0,) * 6
     p, q = model.profiles
     first, second = p.harmonics

@@ -302,8 +302,8 @@ def test_a_catalogue_allocation_of_six_weights_sets_the_vre_share(tmp_path: Path
     # α_p = w_p·c_A/‖w1..w5‖ and so every bound of the five-weight file
     assert by6["angular-only"] == by5["angular-only"]
     # a seventh weight is refused by the loader and by the JSON Schema alike
-    from gyrovib.catalog.jsonschema import catalog_schema
     from gyrovib.catalog.loader import _parse
+    from gyrovib.models.schema import catalog_schema
 
     jsonschema = pytest.importorskip("jsonschema")
     seven = six.replace("0.5, 2]", "0.5, 2, 1]")

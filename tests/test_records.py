@@ -1,5 +1,5 @@
-"""The format is defined once (catalog/spec.py): the validator, the records,
-the JSON Schema, the messages and the locator all follow it.
+"""The format is defined once (gyrovib.models): validation, the models, the
+JSON Schema, the messages and the locator all follow it.
 
 ``validate`` and the JSON Schema must agree on every rule a JSON Schema can
 express; the only rules left to ``validate`` are those it cannot (breakpoint
@@ -12,16 +12,18 @@ from __future__ import annotations
 import copy
 import math
 from pathlib import Path
+from typing import Annotated
 
 import jsonschema
 import pytest
 import yaml
+from pydantic import AllowInfNan, Field, Strict, ValidationError
 
-from gyrovib.catalog import kinds, messages, records, spec
-from gyrovib.catalog.jsonschema import catalog_schema
+from gyrovib import models
+from gyrovib.catalog import messages
 from gyrovib.catalog.loader import _Loader, bundled_paths, parse_catalog
-from gyrovib.catalog.locate import Index
-from gyrovib.catalog.validate import Invalid, Validator
+from gyrovib.errors import CatalogError
+from gyrovib.models.schema import catalog_schema
 
 BASE = {
     "gyrovib": 1,
@@ -110,10 +112,10 @@ def schema_validator() -> jsonschema.Draft7Validator:
 def verdicts(data, schema_validator):
     """(validate's errors or None when valid, whether the JSON Schema accepts)."""
     try:
-        records.catalog_file(copy.deepcopy(data))
+        models.validate_document(copy.deepcopy(data))
         errors = None
-    except Invalid as exc:
-        errors = exc.errors
+    except ValidationError as exc:
+        errors = messages.errors(exc, data)
     return errors, schema_validator.is_valid(data)
 
 
@@ -173,36 +175,22 @@ def test_validation_accepts_many_mutations():
 
 def _valid(data):
     try:
-        records.catalog_file(data)
-    except Invalid:
+        models.validate_document(data)
+    except ValidationError:
         return False
     return True
 
 
-def test_defaults_of_the_records_come_from_the_spec():
-    assert records.Allocation._defaults == spec.defaults("Allocation")
-    assert records.Tone._defaults["phase"] == (0.0, 0.0, 0.0)
-    built = records.catalog_file({"gyrovib": 1, "profiles": [{"id": "p"}]})
-    assert built.profiles[0].rate == spec.FORMAT["Profile"].field("rate").default
-    assert built.units == records.Units(rate="deg/s")
+def test_defaults_of_the_models_are_their_fields_defaults():
+    built = models.validate_document({"gyrovib": 1, "profiles": [{"id": "p"}]})
+    assert built.profiles[0].rate == models.Profile.model_fields["rate"].default
+    assert built.units == models.Units(rate="deg/s")
+    assert built.units.acceleration == models.Units.model_fields["acceleration"].default
+    assert models.Allocation().w == models.Allocation.model_fields["w"].default
+    assert models.Tone(frequency=1, amplitude=[0, 0, 0]).phase == (0.0, 0.0, 0.0)
 
 
-# ---------------------------------------------------------------- the spec drives everything
-
-
-def _changed_format():
-    """The format with Sensor.range bounded by 1e6 and a new sensor field 'mass'."""
-    fmt = dict(spec.FORMAT)
-    sensor = fmt["Sensor"]
-    fields = []
-    for f in sensor.fields:
-        if f.name == "range":
-            f = f._replace(type=f.type._replace(maximum=1e6))
-        fields.append(f)
-    fields.append(kinds.Field("mass", kinds.Number(minimum=0), None, nullable=True,
-                             description="Mass in grams.", unit="g"))
-    fmt["Sensor"] = sensor._replace(fields=tuple(fields))
-    return fmt
+# ---------------------------------------------------------------- the models drive everything
 
 
 CHANGED = """\
@@ -210,51 +198,78 @@ gyrovib: 1
 sensors:
   - id: s
     range: 2.0e+6
-    mass: -3
     coefficients: {}
   - id: t
-    mass: 12.5
+    range: 12.5
     coefficients: {}
   - id: u
-    masse: 1
+    ranges: 1
     coefficients: {}
 """
 
 
-def test_a_changed_spec_changes_validate_schema_messages_and_locator():
-    fmt = _changed_format()
-    data = yaml.load(CHANGED, Loader=_Loader)
-    # the validator (the only path: the same code builds records for valid files)
-    with pytest.raises(Invalid) as info:
-        Validator(fmt)(data)
-    errors = info.value.errors
-    index = Index(CHANGED)
-    found = {}
-    for e in errors:
-        place = index.place(e.loc, want_key=e.kind == "unknown_key")
-        found[messages.message(e, data)] = place
-    assert found == {
-        "sensor 's': range: must not be greater than 1000000, got 2000000.0": (4, 12),
-        "sensor 's': mass: must not be negative, got -3": (5, 11),
-        "sensor 'u': unknown key 'masse'; did you mean 'mass'?": (11, 5),
-    }
-    # valid data with the new field: built, with the field
-    valid = {"gyrovib": 1, "sensors": [{"id": "t", "mass": 12.5, "coefficients": {}}]}
-    assert Validator(fmt)(valid)["sensors"][0]["mass"] == 12.5
-    # the JSON Schema follows: the new field is known and bounded, range is capped
-    schema = catalog_schema(fmt)
+@pytest.fixture
+def capped_range(monkeypatch):
+    """Sensor.range bounded above by 1e6 as well: the field's constraint changed in
+    the model and the models rebuilt (undone afterwards)."""
+    from annotated_types import Le
+
+    field = models.Sensor.model_fields["range"]
+    changed = copy.copy(field)
+    changed.annotation = Annotated[float, Strict(), AllowInfNan(False), Field(gt=0),
+                                   Le(1e6)] | None
+    monkeypatch.setitem(models.Sensor.model_fields, "range", changed)
+    models.Sensor.model_rebuild(force=True)
+    models.Catalogue.model_rebuild(force=True)
+    yield
+    monkeypatch.undo()
+    models.Sensor.model_rebuild(force=True)
+    models.Catalogue.model_rebuild(force=True)
+
+
+def _problems(text):
+    try:
+        parse_catalog(text, "c.yaml")
+    except CatalogError as exc:
+        return [str(p) for p in exc.problems]
+    return []
+
+
+def test_a_changed_bound_changes_validate_schema_and_messages(capped_range):
+    # validate and its located message follow the model
+    assert _problems(CHANGED) == [
+        "c.yaml:4:12: sensor 's': range: must not be greater than 1000000, got 2000000.0",
+        "c.yaml:10:5: sensor 'u': unknown key 'ranges'; did you mean 'range'?",
+    ]
+    assert parse_catalog(CHANGED.split("  - id: u")[0].replace("2.0e+6", "9"),
+                         "c.yaml").model.sensors[0].range == 9.0
+    # the JSON Schema follows
+    schema = catalog_schema()
     sensor = schema["definitions"]["Sensor"]["properties"]
-    assert sensor["mass"]["description"] == "Mass in grams."
     assert sensor["range"]["anyOf"][0]["maximum"] == 1e6
     check = jsonschema.Draft7Validator(schema)
-    assert check.is_valid(valid)
     assert not check.is_valid({"gyrovib": 1, "sensors": [{"id": "s", "range": 2e6,
                                                           "coefficients": {}}]})
-    assert not check.is_valid({"gyrovib": 1, "sensors": [{"id": "s", "mass": -3,
-                                                          "coefficients": {}}]})
-    # and the shipped format is untouched: 'mass' is still unknown there
-    assert not jsonschema.Draft7Validator(catalog_schema()).is_valid(valid)
-    assert not _valid(copy.deepcopy(valid))
+
+
+def test_the_shipped_bound_is_back_after_the_change():
+    assert _problems(CHANGED) == [
+        "c.yaml:10:5: sensor 'u': unknown key 'ranges'; did you mean 'range'?"]
+    sensor = catalog_schema()["definitions"]["Sensor"]["properties"]
+    assert sensor["range"]["anyOf"][0]["maximum"] > 1e300
+
+
+def test_no_bound_or_default_is_written_outside_the_models():
+    """The old constants of the hand-written format are gone; the numbers of the
+    format (bounds, most tones, table sizes) are named only in gyrovib.models."""
+    src = Path(models.__file__).parents[1]
+    outside = [p for p in src.rglob("*.py") if "models" not in p.relative_to(src).parts]
+    for name in ("MAX_TONES", "MAX_TABLE", "MAX_TEXT", "MAX_ID", "ID_PATTERN",
+                 "NONLINEARITY_UNITS", "ASYMMETRY_UNITS", "RESPONSE_AT", "FLOAT_MAX",
+                 "_RATE_FORM", "spec.FORMAT", "catalog.spec", "catalog.kinds",
+                 "catalog.records", "catalog.validate", "catalog.jsonschema"):
+        users = [p.name for p in outside if name in p.read_text(encoding="utf-8")]
+        assert not users, (name, users)
 
 
 EXAMPLE = Path(__file__).parents[1] / "docs" / "examples" / "select-example.yaml"
@@ -271,13 +286,13 @@ def test_real_catalogues_are_valid_for_both(path, schema_validator):
 def test_huge_integer_still_loads():
     src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n    range: 1180591620717411303424\n"
                         "    coefficients: {}\n")
-    assert isinstance(src.model, records.CatalogFile)
+    assert isinstance(src.model, models.Catalogue)
     assert src.model.sensors[0].range == 2.0**70
 
 
 def test_records_are_immutable():
     src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n    coefficients: {k2: 1}\n")
-    with pytest.raises(AttributeError):
+    with pytest.raises(ValidationError, match="frozen"):
         src.model.sensors[0].id = "t"  # type: ignore[misc]
 
 

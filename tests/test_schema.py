@@ -8,8 +8,8 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from gyrovib.catalog.jsonschema import DRAFT_07, catalog_schema
 from gyrovib.catalog.loader import _parse, bundled_paths
+from gyrovib.models.schema import DRAFT_07, catalog_schema
 from tests.conftest import VALID, invoke
 
 #: The bundled catalogues, as files of the source tree (one copy: package data).

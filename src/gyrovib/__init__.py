@@ -6,9 +6,13 @@ import-linter contracts of pyproject.toml enforce it; docs/architecture.md):
 ``gyrovib.core``
     Pure numpy engines: vibration statistics, the error of eq. (13)-(16), the
     allowable coefficients of eq. (23)/(25) and brute-force averaging.
+``gyrovib.models``
+    The catalogue format as pydantic models (``Catalogue``, ``Sensor``,
+    ``Profile``...): a notebook can build them and pass them to
+    ``gyrovib.analyze`` (imports no ``core``, no YAML).
 ``gyrovib.catalog``
-    The catalogue file format (one spec, plain-Python validation) and the YAML
-    loader (imports no ``core``).
+    Catalogue files: the YAML dialect and loader, validation through the
+    models, located messages (imports no ``core``).
 ``gyrovib.api``
     Library entry points joining the two: catalogue in, immutable results out;
     one module per command on one preparation pipeline.

@@ -2,8 +2,10 @@
 
 Thin wrappers over :mod:`gyrovib.api` for interactive use. They differ from
 the library functions only in what they accept: a catalogue may be given as
-nothing (the bundled catalogues), a path, a list of paths or a loaded
-:class:`~gyrovib.catalog.loader.Catalog`; rates and budgets are numbers in
+nothing (the bundled catalogues), a path, a list of paths, a loaded
+:class:`~gyrovib.catalog.loader.Catalog`, or catalogues built in Python
+(:class:`gyrovib.models.Catalogue`, one or a list, e.g.
+``Catalogue.model_validate({"gyrovib": 1, "sensors": [...]})``); rates and budgets are numbers in
 ``unit`` (the output unit) or strings carrying their own unit (``"10deg/h"``),
 as on the command line. Every result has ``to_frame()`` (needs
 ``gyrovib[pandas]``).
@@ -42,7 +44,7 @@ __all__ = ["analyze", "bounds", "load", "select", "sweep"]
 #: The methods of bounds and select (analyze adds 'numeric').
 METHODS = ("exact", "paper")
 
-CatalogLike = Any  # None | str | Path | Sequence[str | Path] | Catalog
+CatalogLike = Any  # None | str | Path | Sequence[str | Path] | Catalog | models.Catalogue(s)
 
 #: The fewest samples of ``method='numeric'`` (core.numeric.MIN_SAMPLES; the
 #: library refuses fewer too).
@@ -246,9 +248,33 @@ def _catalog(catalog: CatalogLike) -> Catalog:
         return catalog
     if catalog is None:
         return load()
+    models = _models(catalog)
+    if models is not None:
+        from gyrovib.catalog.loader import merge, model_source
+
+        return merge([model_source(m, f"<gyrovib.models.Catalogue #{i + 1}>" if len(models) > 1
+                                   else "<gyrovib.models.Catalogue>")
+                      for i, m in enumerate(models)])
     from gyrovib import api
 
     return api.load(_paths([catalog], "catalog"))
+
+
+def _models(catalog: Any) -> list[Any] | None:
+    """``catalog`` as a list of :class:`gyrovib.models.Catalogue`, if it is one or a list
+    of them (pydantic is imported only when the value may be one)."""
+    import sys
+
+    if "gyrovib.models" not in sys.modules:  # no model was ever built
+        return None
+    from gyrovib.models import Catalogue
+
+    if isinstance(catalog, Catalogue):
+        return [catalog]
+    if isinstance(catalog, (list, tuple)) and catalog \
+            and all(isinstance(c, Catalogue) for c in catalog):
+        return list(catalog)
+    return None
 
 
 def _budget_unit(unit: object, budget: object) -> str:
@@ -267,7 +293,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
 
     Parameters
     ----------
-    catalog : Catalog, path, list of paths or None
+    catalog : Catalog, path, list of paths, gyrovib.models.Catalogue(s) or None
         What to analyse; None: the bundled catalogues.
     sensors, profiles : str or sequence of str
         Only these ids (all when empty).
@@ -320,7 +346,7 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
 
     Parameters
     ----------
-    catalog : Catalog, path, list of paths or None
+    catalog : Catalog, path, list of paths, gyrovib.models.Catalogue(s) or None
         Profiles to bound; None: the bundled catalogues.
     budget : float or str
         Δ*_V: a number in ``unit`` or a string with a unit (``"10deg/h"``).
@@ -374,7 +400,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
 
     Parameters
     ----------
-    catalog : Catalog, path, list of paths or None
+    catalog : Catalog, path, list of paths, gyrovib.models.Catalogue(s) or None
         Sensors and profiles; None: the bundled catalogues.
     budget : float or str
         Δ*_V: a number in ``unit`` or a string with a unit (``"10deg/h"``).
@@ -432,7 +458,7 @@ def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-20
 
     Parameters
     ----------
-    catalog : Catalog, path, list of paths or None
+    catalog : Catalog, path, list of paths, gyrovib.models.Catalogue(s) or None
         Sensors and profiles; None: the bundled catalogues.
     rates : (start, stop) or array_like
         Two values: ``points`` evenly spaced rates from start to stop

@@ -84,7 +84,7 @@ _WHERE: dict[str, str] = {
     "Catalog": "gyrovib.catalog.loader",
     "ProfileEntry": "gyrovib.catalog.loader",
     "SensorEntry": "gyrovib.catalog.loader",
-    "Allocation": "gyrovib.catalog.records",
+    "Allocation": "gyrovib.models",
 }
 
 __all__ = [
@@ -308,6 +308,6 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     from gyrovib.catalog.loader import (
         SensorEntry as SensorEntry,
     )
-    from gyrovib.catalog.records import (
+    from gyrovib.models import (
         Allocation as Allocation,
     )

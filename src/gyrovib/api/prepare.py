@@ -82,9 +82,9 @@ def input_response(entry: SensorEntry) -> tuple[tuple[float, float], ...] | None
     output filter, applied after the error is rectified: it earns no credit.
     """
     s = entry.sensor
-    if s.response is None or s.response_at != "input":
+    if s.response_table is None or s.response_at != "input":
         return None
-    return tuple((float(f), float(g)) for f, g in s.response)
+    return tuple((float(f), float(g)) for f, g in s.response_table)
 
 
 def response_table(entry: SensorEntry) -> Table | None:
@@ -157,7 +157,7 @@ def profile_locked(entry: ProfileEntry, response: Table | None = None) -> tuple[
     s = units.scale(entry.unit)
     tables = _gain_tables(entry, response)
     out = []
-    for h in p.harmonics:
+    for h in p.harmonic_groups:
         orders = [o.order for o in h.orders]
         freqs = np.asarray(orders, dtype=float) * float(h.fundamental)
         gains = np.ones(len(orders))

@@ -22,8 +22,8 @@ from gyrovib import api, units
 from gyrovib._version import __version__
 from gyrovib.api.linear import profile_linear
 from gyrovib.catalog.loader import Catalog, ProfileEntry
-from gyrovib.catalog.records import Allocation
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.models import Allocation
 
 #: Points of the default rate sweep (odd: Ω_K3 = 0 is one of them).
 SWEEP_POINTS = 241

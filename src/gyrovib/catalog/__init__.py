@@ -1,3 +1,6 @@
-"""The catalogue file format (defined once in :mod:`gyrovib.catalog.spec`), its YAML
-dialect, validation into immutable records, located messages, the JSON Schema
-and the bundled files. See docs/architecture.md, "Catalogue"."""
+"""Catalogue files: their YAML dialect and guards (:mod:`~gyrovib.catalog.dialect`),
+reading, validating through :mod:`gyrovib.models` and merging
+(:mod:`~gyrovib.catalog.loader`), placing a path in a file
+(:mod:`~gyrovib.catalog.locate`) and pydantic's errors as located sentences
+(:mod:`~gyrovib.catalog.messages`). The format itself is :mod:`gyrovib.models`.
+See docs/architecture.md, "Catalogue"."""

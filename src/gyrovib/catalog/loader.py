@@ -1,9 +1,9 @@
 """Loading catalogues: read a file, parse it, validate it, merge several.
 
-Each file is read and parsed once (:mod:`gyrovib.catalog.dialect`) and
-checked against the format in the same pass that builds its records
-(:mod:`gyrovib.catalog.validate`). When something is wrong, the errors are
-phrased by :mod:`gyrovib.catalog.messages` and placed by the file's
+Each file is read and parsed once (:mod:`gyrovib.catalog.dialect`) and the
+whole document is validated into the models of :mod:`gyrovib.models` in one
+call. When something is wrong, pydantic's errors are turned into sentences by
+:mod:`gyrovib.catalog.messages` and placed by the file's
 :class:`~gyrovib.catalog.locate.Index`, composed once per file and reused
 (for every error, every duplicate id and every later ``locate``), so errors
 read ``FILE:LINE:COL: message`` at a cost linear in the file.
@@ -17,7 +17,8 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
-from gyrovib.catalog import records
+from pydantic import ValidationError
+
 from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
     MAX_DEPTH,
     MAX_EXPANDED_NODES,
@@ -27,11 +28,10 @@ from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and 
 )
 from gyrovib.catalog.dialect import parse as _parse
 from gyrovib.catalog.locate import Index
-from gyrovib.catalog.records import Allocation, CatalogFile, Profile, Sensor
-from gyrovib.catalog.spec import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY
-from gyrovib.catalog.validate import Error, Invalid
+from gyrovib.catalog.messages import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY, Error
 from gyrovib.errors import CatalogError, Problem
 from gyrovib.frozen import Frozen
+from gyrovib.models import Allocation, Catalogue, Profile, Sensor, validate_document
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -63,11 +63,12 @@ def _capped(problems: list[Problem]) -> list[Problem]:
 
 @dataclass(frozen=True, eq=False, repr=False)
 class CatalogSource(Frozen):
-    """One validated file: its name as given, its text and its model."""
+    """One validated file: its name as given, its text and its model
+    (:class:`gyrovib.models.Catalogue`)."""
 
     name: str
     text: str
-    model: CatalogFile
+    model: Catalogue
     index: Index = field(default=None, compare=False, repr=False)  # type: ignore[assignment]
 
     def __post_init__(self) -> None:
@@ -148,12 +149,15 @@ def parse_catalog(text: str, name: str = "<string>",
         )
     try:
         with _gc_paused():
-            model = records.catalog_file(data)
-    except Invalid as exc:
+            model = validate_document(data)
+    except ValidationError as exc:
+        from gyrovib.catalog import messages  # only on the error path
+
+        found = messages.errors(exc, data)
         index = Index(text)
-        shown = _error_problems(exc.errors[:MAX_PROBLEMS], data, index, name)
+        shown = _error_problems(found[:MAX_PROBLEMS], data, index, name)
         shown.extend(_raw_duplicates(data, index, name))
-        hidden = len(exc.errors) - len(exc.errors[:MAX_PROBLEMS])
+        hidden = len(found) - len(found[:MAX_PROBLEMS])
         shown.sort(key=lambda p: (p.line is None, p.line or 0, p.column or 0))
         hidden += len(shown[MAX_PROBLEMS:])
         problems = shown[:MAX_PROBLEMS]
@@ -183,8 +187,18 @@ def _ids_only(data: dict[str, Any], name: str, text: str, index: Index) -> Catal
         items = data.get(section)
         sections[section] = [_Id(x.get(ID_KEY) if isinstance(x, dict) else None)
                              for x in (items if isinstance(items, list) else ())]
-    model = cast(CatalogFile, SimpleNamespace(**sections, allocation=None))
+    model = cast(Catalogue, SimpleNamespace(**sections, allocation=None))
     return CatalogSource(name=name, text=text, model=model, index=index)
+
+
+def model_source(model: Catalogue, name: str = "<gyrovib.models.Catalogue>") -> CatalogSource:
+    """A catalogue built in Python as a source: its text is the model as JSON (a YAML
+    document; it identifies the content in a study's digest), and nothing is placed
+    in it (a problem names ``name`` alone)."""
+    import json
+
+    text = json.dumps(model.model_dump(mode="json", exclude_defaults=True), indent=1) + "\n"
+    return CatalogSource(name=name, text=text, model=model, index=Index(""))
 
 
 def read_catalog(path: str | Path, skip: Collection[str] = ()) -> CatalogSource:
@@ -286,6 +300,22 @@ class Catalog(Frozen):
     sensors: tuple[SensorEntry, ...]
     profiles: tuple[ProfileEntry, ...]
     allocation: Allocation | None
+
+    @property
+    def models(self) -> tuple[Catalogue, ...]:
+        """The model of each file (:class:`gyrovib.models.Catalogue`), in order."""
+        return tuple(s.model for s in self.sources)
+
+    @property
+    def sensor_models(self) -> tuple[Sensor, ...]:
+        """The merged sensors as :class:`gyrovib.models.Sensor` (in the units of their
+        files: see :attr:`Entry.unit`)."""
+        return tuple(e.sensor for e in self.sensors)
+
+    @property
+    def profile_models(self) -> tuple[Profile, ...]:
+        """The merged profiles as :class:`gyrovib.models.Profile` (file units)."""
+        return tuple(e.profile for e in self.profiles)
 
     def sensor_line(self, entry: SensorEntry) -> tuple[int, int] | None:
         return entry.source.locate((SECTIONS[0][0], entry.index, ID_KEY))
@@ -416,6 +446,7 @@ __all__ = [
     "bundled_paths",
     "load_catalog",
     "merge",
+    "model_source",
     "parse_catalog",
     "read_catalog",
 ]

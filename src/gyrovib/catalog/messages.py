@@ -1,20 +1,163 @@
-"""Errors of :mod:`gyrovib.catalog.validate` as sentences: where, what, what to write.
+"""Errors of the catalogue models as sentences: where, what, what to write.
 
-One small function per kind of error; :func:`message` picks it. The place in
-the file (line and column) is added by :mod:`gyrovib.catalog.locate`.
+:func:`errors` turns a pydantic ``ValidationError`` of :mod:`gyrovib.models`
+into :class:`Error` records (kind, path in the file, value, details) in the
+order of the file; :func:`message` phrases one, with one small function per
+kind of error. Bounds, allowed values and key names are read from the models
+(:func:`gyrovib.models.introspect.at`), never written here. The place in the
+file (line and column) is added by :mod:`gyrovib.catalog.locate`.
 """
 
 from __future__ import annotations
 
 import re
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
-from gyrovib.catalog.spec import ID_KEY, SECTIONS
-from gyrovib.catalog.validate import Error
+if TYPE_CHECKING:
+    from pydantic import ValidationError
+
+#: The top-level key holding the format version.
+VERSION_KEY = "gyrovib"
+#: Top-level lists of items with an id unique across files, with the item's name.
+SECTIONS = (("sensors", "sensor"), ("profiles", "profile"))
+#: The key of an item's id.
+ID_KEY = "id"
+#: The top-level key every merged file must agree on.
+SHARED_KEY = "allocation"
 
 _SHOWN_ID = re.compile(r"[A-Za-z0-9._-]{1,80}")
 _SECTIONS = dict(SECTIONS)
+
+
+class Error(NamedTuple):
+    """One broken rule: ``kind`` (see :data:`_KINDS`), where, the value, details."""
+
+    kind: str
+    loc: tuple[Any, ...]
+    value: Any
+    ctx: dict[str, Any]
+
+
+# ---------------------------------------------------------------- pydantic's errors
+
+_TYPES = {"float_type": "number", "int_type": "integer", "int_from_float": "integer",
+          "int_parsing": "integer", "string_type": "text", "list_type": "list",
+          "tuple_type": "list", "model_type": "mapping", "model_attributes_type": "mapping",
+          "dict_type": "mapping"}
+_BOUNDS = {"greater_than": (">", "gt"), "greater_than_equal": (">=", "ge"),
+           "less_than_equal": ("<=", "le"), "less_than": ("<", "lt")}
+
+
+def _value(data: Any, loc: Sequence[Any]) -> Any:
+    for part in loc:
+        try:
+            data = data[part]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return data
+
+
+def _error(e: Any, data: Any) -> Error:
+    """One pydantic error as an :class:`Error`."""
+    from gyrovib.models import introspect
+
+    loc = tuple(p for p in e["loc"] if p not in introspect.TAGS)
+    kind, value, ctx = e["type"], e["input"], e.get("ctx") or {}
+    if kind in ("rule", "version"):
+        return Error(kind, loc, value, dict(ctx))
+    if kind == "missing" and loc and isinstance(loc[-1], int):  # a short fixed-length list
+        given = _value(data, loc[:-1])
+        return Error("too_few", loc[:-1], given, {"n": introspect.at(loc[:-1]).size,
+                                                  "have": len(given), "exact": True})
+    if kind == "missing":
+        return Error("missing", loc, None, {})
+    if kind == "extra_forbidden":
+        fields = introspect.fields(loc[:-1])
+        return Error("unknown_key" if isinstance(loc[-1], str) else "bad_key", loc, loc[-1],
+                     {"fields": fields})
+    if kind == "invalid_key":
+        return Error("bad_key", loc, value, {"fields": ()})
+    if kind == "float_type" and type(value) is int:
+        return Error("finite", loc, value, {})  # an integer too large for a float
+    if kind == "finite_number":
+        return Error("finite", loc, value, {})
+    if kind in _TYPES:
+        return Error("type", loc, value, {"expected": _TYPES[kind]})
+    if kind == "kind":  # a union chosen by the kind of value written
+        return Error("type", loc, value, {"expected": e["msg"]})
+    if kind in _BOUNDS:
+        op, key = _BOUNDS[kind]
+        return Error("bound", loc, value, {"op": op, "bound": ctx[key],
+                                           "hint": introspect.at(loc).hint})
+    if kind in ("too_short", "too_long") and ctx.get("field_type") == "Tuple" \
+            and isinstance(value, (list, tuple)):
+        node = introspect.at(loc)
+        low, high = node.lengths or (node.size, node.size)
+        if low and low <= len(value) <= high:  # counted after its bad values were dropped
+            return Error("ignored", loc, value, {})
+    if kind in ("too_short", "too_long"):
+        node = introspect.at(loc)
+        exact = ctx.get("field_type") == "Tuple"
+        n: Any = ctx.get("min_length" if kind == "too_short" else "max_length")
+        if exact and node.lengths is not None:
+            low, high = node.lengths
+            n = low if low == high else f"{low} or {high}" if high == low + 1 \
+                else f"{low} to {high}"
+        have = len(value) if isinstance(value, (list, tuple)) else ctx.get("actual_length")
+        return Error("too_few" if kind == "too_short" else "too_many", loc, value,
+                     {"n": n, "have": have, "exact": exact})
+    if kind == "literal_error":
+        node = introspect.at(loc)
+        return Error("choice", loc, value, {"values": node.choices, "what": node.what})
+    if kind == "string_pattern_mismatch":
+        return Error("id_pattern", loc, value, {})
+    if kind == "string_too_short":
+        return Error("id_empty", loc, value, {})
+    if kind == "string_too_long":
+        return Error("text_long", loc, value, {"max": ctx["max_length"]})
+    return Error("rule", loc, value, {"message": e["msg"]})  # pragma: no cover - a new kind
+
+
+def _order(data: Any, loc: tuple[Any, ...]) -> tuple[int, ...]:
+    """Where ``loc`` is in the document, as positions (the key order of each mapping)."""
+    out: list[int] = []
+    node = data
+    for part in loc:
+        if isinstance(node, dict):
+            keys = list(node)
+            out.append(keys.index(part) if part in node else len(keys))
+            node = node.get(part)
+        elif isinstance(node, list) and isinstance(part, int) and 0 <= part < len(node):
+            out.append(part)
+            node = node[part]
+        else:
+            break
+    return tuple(out)
+
+
+def errors(exc: ValidationError, data: Any) -> list[Error]:
+    """The errors of ``exc`` (raised validating ``data``), in the order of the file."""
+    every = [_error(x, data) for x in exc.errors(include_url=False)]
+    # one error per place and kind (pydantic reports a short tuple once per missing
+    # value), but every rule broken there
+    found = list({(e.kind, e.loc, e.ctx.get("message")): e for e in every
+                  if e.kind != "ignored"}.values())
+    if not found:  # (cannot happen: a wrong count comes with the values' own problems)
+        found = [e._replace(kind="rule", ctx={"message": "not valid here"}) for e in every]
+    # a list of the wrong length is said once, not with its values' own problems
+    lengths = {e.loc for e in found if e.kind in ("too_few", "too_many")}
+    if lengths:
+        found = [e for e in found
+                 if not any(e.loc[:len(at)] == at and len(e.loc) > len(at) for at in lengths)]
+    # a rule of a mapping (or value) comes after the problems within it, as it is judged
+    # on the whole
+    found.sort(key=lambda e: (*_order(data, e.loc), _LAST) if e.kind == "rule"
+               else _order(data, e.loc))
+    return found
+
+
+_LAST = 1 << 62
 
 
 def where(loc: Sequence[Any], data: Any) -> str:
@@ -120,7 +263,7 @@ def _type(e: Error, prefix: str, at: str, text: str | None) -> str:
 
 
 _BOUND_WORDS = {">": "must be greater than", ">=": "must not be less than",
-                "<=": "must not be greater than"}
+                "<": "must be less than", "<=": "must not be greater than"}
 
 
 def _bound(e: Error, prefix: str, at: str, text: str | None) -> str:

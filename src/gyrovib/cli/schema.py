@@ -18,7 +18,7 @@ def schema(output: str | None) -> None:
     \b
         # yaml-language-server: $schema=./gyrovib.schema.json
     """
-    from gyrovib.catalog.jsonschema import schema_text
     from gyrovib.cli.output import write_output
+    from gyrovib.models.schema import schema_text
 
     write_output(schema_text(), output)

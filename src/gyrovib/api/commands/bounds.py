@@ -20,7 +20,6 @@ from gyrovib.api.prepare import (
     prepare,
 )
 from gyrovib.catalog.loader import Catalog
-from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import METHODS
 from gyrovib.core.synthesis import (
     DEFAULT_R,
@@ -34,6 +33,7 @@ from gyrovib.core.synthesis import (
 )
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import GyrovibError, OptionError, RangeError
+from gyrovib.models import Allocation
 
 
 def _is_default(allocation: Allocation) -> bool:

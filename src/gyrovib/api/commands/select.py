@@ -20,7 +20,6 @@ from gyrovib.api.other_results import Limit, SelectionResult
 from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.reasons import saturation_reasons
 from gyrovib.catalog.loader import Catalog
-from gyrovib.catalog.records import Allocation
 from gyrovib.core.analysis import COEFFICIENTS, vibration_error
 from gyrovib.core.linear import effective_vre
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
@@ -28,6 +27,7 @@ from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
+from gyrovib.models import Allocation
 
 CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")

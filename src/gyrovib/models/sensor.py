@@ -1,0 +1,292 @@
+"""A sensor: its conversion function (eq. 1, eq. 2 or a datasheet), its own
+response and its g² sensitivity. Values are in the file's units."""
+
+import math
+from typing import Annotated, Any, ClassVar, Literal, get_args
+
+from pydantic import Field, Tag, field_validator, model_validator
+
+from gyrovib.errors import CatalogError
+from gyrovib.models._types import (
+    FREE_TEXT,
+    ID_TEXT,
+    RATE,
+    Group,
+    Identifier,
+    Model,
+    Named,
+    Number,
+    Table,
+    Text,
+    by_kind,
+    groups_schema,
+    in_unit,
+    one_of,
+    raise_at,
+    rule_error,
+)
+
+#: Units a rate may be written in (``units.rate``).
+RateUnit = Literal["deg/s", "deg/h", "rad/s", "rpm"]
+#: Units of a datasheet nonlinearity: percent of full scale, or an absolute rate.
+NonlinearityUnit = Literal["%FS", "deg/s", "deg/h", "rad/s", "rpm"]
+
+# ---------------------------------------------------------------- eq. (2)
+
+
+def _rate_coefficient(default: float, text: str) -> Any:
+    return Field(default, description=text, json_schema_extra=in_unit("rate"))
+
+
+class Coefficients(Model):
+    """Eq. (2), in rate units: an omitted coefficient is 0, except 'k1 = 1'."""
+
+    k0: Number = _rate_coefficient(0.0, f"Bias, {RATE}.")
+    k1: Number = _rate_coefficient(1.0, "Scale factor (1 in eq. 2).")
+    A1: Number = _rate_coefficient(0.0, "Scale-factor asymmetry (dimensionless).")
+    k2: Number = _rate_coefficient(0.0, "Second-order nonlinearity, rate^-1.")
+    k3: Number = _rate_coefficient(0.0, "Third-order nonlinearity, rate^-2.")
+    k4: Number = _rate_coefficient(0.0, "Fourth-order nonlinearity, rate^-3.")
+    k5: Number = _rate_coefficient(0.0, "Fifth-order nonlinearity, rate^-4.")
+    m1: Number = _rate_coefficient(0.0, "Cross-axis sensitivity to x1 (dimensionless).")
+    m2: Number = _rate_coefficient(0.0, "Cross-axis sensitivity to x2 (dimensionless).")
+    m31: Number = _rate_coefficient(0.0, "Product cross-axis term x3·x1, rate^-1.")
+    m32: Number = _rate_coefficient(0.0, "Product cross-axis term x3·x2, rate^-1.")
+
+
+# ---------------------------------------------------------------- eq. (1)
+
+
+def _output_coefficient(name: str) -> Any:
+    return Field(0.0, description=f"As {name.lower()} of eq. (2), times K1 (output units).",
+                 json_schema_extra=in_unit("output"))
+
+
+class OutputCoefficients(Model):
+    """Eq. (1), in output units per rate unit; divided by 'K1' to give eq. (2)."""
+
+    unit: Text | None = Field(None, description="The output unit (free text, e.g. mV or LSB).")
+    K1: Number = Field(description="Scale factor, output per rate unit; required and non-zero.",
+                       json_schema_extra={**in_unit("output/rate"), "not": {"const": 0}})
+    K0: Number = Field(0.0, description="Bias, output units.", json_schema_extra=in_unit("output"))
+    A1: Number = Field(0.0, description="Scale-factor asymmetry (dimensionless).")
+    K2: Number = _output_coefficient("K2")
+    K3: Number = _output_coefficient("K3")
+    K4: Number = _output_coefficient("K4")
+    K5: Number = _output_coefficient("K5")
+    M1: Number = _output_coefficient("M1")
+    M2: Number = _output_coefficient("M2")
+    M31: Number = _output_coefficient("M31")
+    M32: Number = _output_coefficient("M32")
+
+    @field_validator("K1")
+    @classmethod
+    def _k1_nonzero(cls, value: float) -> float:
+        if value == 0:
+            raise rule_error("K1 (output per rate unit) must not be zero: "
+                             "it divides every other coefficient")
+        return value
+
+    @model_validator(mode="after")
+    def _divisible(self) -> "OutputCoefficients":
+        k1 = self.K1
+        for name in ("K0", "K2", "K3", "K4", "K5", "M1", "M2", "M31", "M32"):
+            if not math.isfinite(getattr(self, name) / k1):
+                raise rule_error(f"K1 = {k1:g} is so small that {name} / K1 overflows; "
+                                 "check the units of K1")
+        return self
+
+    def to_coefficients(self) -> Coefficients:
+        """``k0 = K0/K1``, ``kn = Kn/K1``, ``mi = Mi/K1``, ``m3i = M3i/K1``; k1 = 1."""
+        k = self.K1
+        return Coefficients.model_construct(
+            k0=self.K0 / k, k1=1.0, A1=self.A1, k2=self.K2 / k, k3=self.K3 / k,
+            k4=self.K4 / k, k5=self.K5 / k, m1=self.M1 / k, m2=self.M2 / k,
+            m31=self.M31 / k, m32=self.M32 / k)
+
+
+# ---------------------------------------------------------------- g² sensitivity
+
+
+def _g(text: str) -> Any:
+    return Field(0.0, description=text, json_schema_extra=in_unit("rate/g^2"))
+
+
+class G2Sensitivity(Model):
+    """Acceleration-squared sensitivity (IEEE 528/1431), rate per g², signed."""
+
+    G11: Number = _g("G11: along x1 squared (a datasheet VRE), rate/g².")
+    G22: Number = _g("G22: along x2 squared, rate/g².")
+    G33: Number = _g("G33: along x3 squared, rate/g².")
+    G12: Number = _g("G12: anisoelastic x1·x2, rate/g².")
+    G13: Number = _g("G13: anisoelastic x1·x3, rate/g².")
+    G23: Number = _g("G23: anisoelastic x2·x3, rate/g².")
+
+
+# ---------------------------------------------------------------- datasheet
+
+
+class Nonlinearity(Model):
+    """A datasheet nonlinearity: the bound on the residual from a reference line."""
+
+    value: Annotated[Number, Field(gt=0)] = Field(description="The bound; > 0.")
+    unit: Annotated[NonlinearityUnit, Named("nonlinearity unit")] = Field(
+        description="%FS, or a rate unit (deg/s, deg/h, rad/s, rpm; not "
+        "necessarily the file's) for an absolute bound.")
+    fit: Annotated[Literal["least-squares", "minimax", "endpoint"], Named("fit")] = Field(
+        "least-squares",
+        description="Reference line: least-squares (default), minimax or endpoint.")
+    measure: Annotated[Literal["max", "rms"], Named("measure")] = Field(
+        "max", description="max (default): every point within the bound; rms: the RMS "
+        "residual (not with fit minimax).")
+    of: Annotated[Literal["range", "span"], Named("base")] = Field(
+        "range",
+        description="%FS of the range R (default) or of the span 2R; only with %FS.")
+
+    model_config = Model.model_config | {"json_schema_extra": {"allOf": [
+        {"if": {"required": ["unit"], "properties": {"unit": {"enum": list(get_args(RateUnit))}}},
+         "then": {"not": {"required": ["of"]}}},
+        {"not": {"required": ["measure", "fit"], "properties": {
+            "measure": {"const": "rms"}, "fit": {"const": "minimax"}}}}]}}
+
+    @model_validator(mode="after")
+    def _rules(self) -> "Nonlinearity":
+        if "of" in self.model_fields_set and self.unit != "%FS":
+            raise_at(("of",), rule_error(
+                f"'of' applies to a nonlinearity in %FS only; {self.value!r} "
+                f"{self.unit} is already an absolute rate: remove 'of'"), self.of, "Nonlinearity")
+        if self.measure == "rms" and self.fit == "minimax":
+            raise_at(("measure",), rule_error(
+                "an RMS nonlinearity needs a reference line fixed in advance: use fit "
+                "least-squares or endpoint with measure rms (minimax goes with measure max)"),
+                self.measure, "Nonlinearity")
+        return self
+
+
+class Asymmetry(Model):
+    """A datasheet scale-factor asymmetry."""
+
+    value: Annotated[Number, Field(ge=0)] = Field(description="The bound; >= 0.")
+    unit: Annotated[Literal["ppm", "%"], Named("asymmetry unit")] = Field(
+        description="ppm or %.")
+
+
+class Specs(Model):
+    """A sensor given by its datasheet (MODEL.md section 11).
+
+    ``range``: R in the file's rate unit; ``nonlinearity``: its ``value`` in its own
+    ``unit`` (``"%FS"`` of R or of the span 2R as ``of`` says, or an absolute rate in
+    the rate unit named, not necessarily the file's); ``asymmetry``: ``value`` in
+    ``"ppm"`` or ``"%"``, or None; ``vre``: the bound on |G_jj|, rate per
+    acceleration unit², or None.
+    """
+
+    range: Annotated[Number, Field(gt=0)] = Field(
+        description=f"Full-scale range R, {RATE}; > 0.", json_schema_extra=in_unit("rate"))
+    nonlinearity: Nonlinearity = Field(
+        description="The nonlinearity spec: value, unit, fit, measure, of.")
+    asymmetry: Asymmetry | None = Field(
+        None, description="Scale-factor asymmetry bound: |A1| <= value.")
+    vre: Annotated[Number, Field(ge=0)] | None = Field(
+        None, description="Vibration rectification bound |G_jj| <= vre, rate per g².",
+        json_schema_extra=in_unit("rate/g^2"))
+
+
+# ---------------------------------------------------------------- the sensor
+
+
+class Response(Model):
+    """A sensor's own response with the place where it acts (MODEL.md section 9)."""
+
+    at: Annotated[Literal["output", "input"], Named("response position")] = Field(
+        "output", description="output (default): after the nonlinearity, no credit against "
+        "the vibration error; input: it scales the vibration like a mount.")
+    table: Table = Field(description="ν(f): [[f Hz, gain], ...], frequencies increasing.")
+
+
+ResponseForm = Annotated[
+    Annotated[Table, Tag("<list>")] | Annotated[Response, Tag("<mapping>")],
+    by_kind("list or mapping")]
+
+
+_SENSOR_GROUPS = (
+    Group(("coefficients", "output_coefficients", "specs"),
+          "give the conversion function once: either 'coefficients' (eq. 2), "
+          "'output_coefficients' (eq. 1) or 'specs' (the datasheet)"),
+    Group(("g2_sensitivity", "vre"),
+          "give the g² sensitivity once: 'g2_sensitivity' or its shorthand 'vre' "
+          "(G11 = G22 = G33), not both", optional=True),
+)
+
+
+class Sensor(Model):
+    """One angular-rate sensor: its conversion function and, optionally, ν_sensor(f).
+
+    Values are in the file's own units (rates in ``units.rate``, accelerations in
+    ``units.acceleration``). Exactly one of ``coefficients`` (eq. 2),
+    ``output_coefficients`` (eq. 1) and ``specs`` (the datasheet) is given;
+    ``response`` is as written (a bare table acting at the output, or a
+    :class:`Response`): read it through ``response_table`` and ``response_at``;
+    ``g2`` is the g² sensitivity from either of its forms.
+    """
+
+    id: Identifier = Field(description=ID_TEXT)
+    name: Text | None = Field(None, description=FREE_TEXT)
+    vendor: Text | None = Field(None, description=FREE_TEXT)
+    part: Text | None = Field(None, description="Free text (part number).")
+    notes: Text | None = Field(None, description=FREE_TEXT)
+    range: Annotated[Number, Field(gt=0)] | None = Field(
+        None, description=f"Full-scale range, {RATE}; > 0.", json_schema_extra=in_unit("rate"))
+    coefficients: Coefficients | None = Field(
+        None, description="Conversion function of eq. (2), in rate units (k1 = 1). "
+        "Give this or output_coefficients.")
+    output_coefficients: OutputCoefficients | None = Field(
+        None, description="Conversion function of eq. (1), in output units. "
+        "Give this or coefficients.")
+    specs: Specs | None = Field(
+        None, description="Datasheet specifications instead of coefficients: the worst "
+        "conversion function they allow is used (MODEL.md section 11).")
+    response: ResponseForm | None = Field(
+        None, description="The sensor's own transmissibility ν(f): a table "
+        "[[f Hz, gain], ...] (acting at the output), or {at, table}.")
+    g2_sensitivity: G2Sensitivity | None = Field(
+        None, description="Acceleration-squared sensitivity G_jk, rate per g² "
+        "(MODEL.md section 8); an omitted term is 0.", json_schema_extra=in_unit("rate/g^2"))
+    vre: Number | None = Field(
+        None, description="Shorthand for g2_sensitivity with G11 = G22 = G33 = vre "
+        "(rate per g², signed) and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
+
+    model_config = Model.model_config | {"json_schema_extra": groups_schema(*_SENSOR_GROUPS)}
+
+    check_one_of: ClassVar[Any] = one_of(*_SENSOR_GROUPS)
+
+    @property
+    def response_table(self) -> list[tuple[float, float]] | None:
+        """ν_sensor(f) as ``[(f Hz, gain), ...]``, whichever form was written, or None."""
+        return self.response.table if isinstance(self.response, Response) else self.response
+
+    @property
+    def response_at(self) -> str:
+        """Where the response acts: ``"output"`` (no credit) or ``"input"`` (MODEL.md 9)."""
+        if isinstance(self.response, Response):
+            return self.response.at
+        return str(Response.model_fields["at"].default)
+
+    @property
+    def g2(self) -> tuple[float, float, float, float, float, float]:
+        """(G11, G22, G33, G12, G13, G23), rate per (units.acceleration)²; 0 if not given."""
+        if self.g2_sensitivity is not None:
+            g = self.g2_sensitivity
+            return (g.G11, g.G22, g.G33, g.G12, g.G13, g.G23)
+        v = 0.0 if self.vre is None else self.vre
+        return (v, v, v, 0.0, 0.0, 0.0)
+
+    @property
+    def rate_coefficients(self) -> Coefficients:
+        """The eq. (2) coefficients, whichever form the file used."""
+        if self.coefficients is not None:
+            return self.coefficients
+        if self.output_coefficients is None:  # the datasheet form: no single function
+            raise CatalogError(f"sensor {self.id!r} is given by its datasheet ('specs:'), "
+                               "not by coefficients; it has no conversion function to use here")
+        return self.output_coefficients.to_coefficients()
