@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import click
-
 from typing import Any
+
+import click
 
 from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (

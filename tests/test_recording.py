@@ -1,0 +1,272 @@
+"""Recordings (MODEL.md section 13): Δ_V,rec, the fitted profile, reading and refusing input."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.conftest import invoke
+
+scipy_signal = pytest.importorskip("scipy.signal")
+
+DATA = Path(__file__).parent / "data"
+ULOG = DATA / "px4-sample.ulg"
+
+#: A coefficient-form sensor with every term of eq. (2) and of MODEL.md section 8
+#: (values chosen so that each term contributes at the rates used below).
+SENSOR = """\
+gyrovib: 1
+units: {rate: deg/s, acceleration: g}
+sensors:
+  - id: every-term
+    range: 500
+    coefficients: {k0: 0.3, k1: 1.02, A1: 2.0e-2, k2: 8.0e-4, k3: -6.4e-5, k4: 1.28e-5,
+                   k5: -7.8e-7, m1: 1.0e-2, m2: -2.0e-2, m31: 4.0e-3, m32: -3.0e-3}
+    g2_sensitivity: {G11: 0.01, G22: 0.02, G33: 0.03, G12: 0.004, G13: 0.005, G23: 0.006}
+  - id: k4-only
+    range: 500
+    coefficients: {k4: 1.0e-3}
+"""
+
+
+def _sensor_file(tmp_path: Path) -> Path:
+    path = tmp_path / "sensors.gyrovib.yaml"
+    path.write_text(SENSOR)
+    return path
+
+
+def _synthetic(rng: np.random.Generator, fs: float = 1000.0, seconds: float = 120.0,
+               noise: str = "gauss") -> tuple[np.ndarray, float]:
+    """Two tones (37 and 83 Hz, not harmonics), noise σ = 0.7 deg/s, a slow carrier."""
+    n = int(fs * seconds)
+    t = np.arange(n) / fs
+    rate = np.zeros((n, 3))
+    for f, a, ph in TONES:
+        for j in range(3):
+            rate[:, j] += a[j] * np.sin(2 * np.pi * f * t + np.deg2rad(ph[j]))
+    if noise == "gauss":
+        rate += rng.normal(0.0, SIGMA, (n, 3))
+    else:  # uniform of the same σ: excess kurtosis −1.2
+        half = SIGMA * np.sqrt(3.0)
+        rate += rng.uniform(-half, half, (n, 3))
+    rate[:, 2] += 3.0 + 2.0 * np.sin(2 * np.pi * 0.05 * t)
+    return rate, fs
+
+
+TONES = [(37.0, (0.5, 0.3, 1.5), (0.0, 40.0, 0.0)), (83.0, (0.2, 0.4, 0.8), (0.0, 0.0, 90.0))]
+SIGMA = 0.7
+
+
+def _eq2(c: dict[str, float], w: np.ndarray) -> np.ndarray:
+    """Eq. (2) written out, with k0: the independent reference of Δ_V,rec."""
+    w1, w2, w3 = w[:, 0], w[:, 1], w[:, 2]
+    return (c["k0"] + c["k1"] * (1 + 0.5 * c["A1"] * np.sign(w3)) * w3 + c["k2"] * w3**2
+            + c["k3"] * w3**3 + c["k4"] * w3**4 + c["k5"] * w3**5 + c["m1"] * w1
+            + c["m2"] * w2 + c["m31"] * w3 * w1 + c["m32"] * w3 * w2)
+
+
+def test_recorded_error_matches_the_definition(tmp_path: Path) -> None:
+    """Δ_V,rec of MODEL.md section 13, evaluated here sample by sample with scipy's own
+    butter/sosfiltfilt, over two segments split by a gap, with accelerations in m/s²."""
+    from gyrovib.api import load
+    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings import read_recording
+
+    rng = np.random.default_rng(7)
+    fs, fc = 400.0, 5.0
+    t = np.concatenate([np.arange(4000), np.arange(6000, 9000)]) / fs  # a gap of 5 s
+    n = t.size
+    w = rng.normal(0, 3.0, (n, 3)) + np.array([1.0, -2.0, 4.0]) + 5 * np.sin(0.3 * t)[:, None]
+    a = rng.normal(0, 4.0, (n, 3)) + np.array([0.0, 0.0, 9.80665])
+    np.savez(tmp_path / "rec.npz", t=t, wx=w[:, 0], wy=w[:, 1], wz=w[:, 2],
+             ax=a[:, 0], ay=a[:, 1], az=a[:, 2])
+    rec = read_recording(str(tmp_path / "rec.npz"), rate_columns=("wx", "wy", "wz"),
+                         accel_columns=("ax", "ay", "az"), accel_unit="m/s^2")
+    assert rec.segments.tolist() == [[0, 4000], [4000, 7000]]
+    result = analyze_recording(rec, load([_sensor_file(tmp_path)]), crossover=fc)
+
+    c = {"k0": 0.3, "k1": 1.02, "A1": 2.0e-2, "k2": 8.0e-4, "k3": -6.4e-5, "k4": 1.28e-5,
+         "k5": -7.8e-7, "m1": 1.0e-2, "m2": -2.0e-2, "m31": 4.0e-3, "m32": -3.0e-3}
+    g = [0.01, 0.02, 0.03, 0.004, 0.005, 0.006]
+    pairs = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
+    sos = scipy_signal.butter(4, fc, fs=fs, output="sos")
+    total, count = 0.0, 0
+    for lo, hi in ((0, 4000), (4000, 7000)):
+        ws = w[lo:hi]
+        ks = scipy_signal.sosfiltfilt(sos, ws, axis=0)
+        x = ws - ks
+        gs = a[lo:hi] / 9.80665
+        big = scipy_signal.sosfiltfilt(sos, gs, axis=0)
+        per = (_eq2(c, ws) - _eq2(c, ks) - c["k1"] * x[:, 2] - c["m1"] * x[:, 0]
+               - c["m2"] * x[:, 1])
+        per += sum(gj * (gs[:, j] * gs[:, k] - big[:, j] * big[:, k])
+                   for gj, (j, k) in zip(g, pairs, strict=True))
+        total += float(per.sum())
+        count += hi - lo
+    expected = total / count
+    assert result.recorded[0] == pytest.approx(expected, rel=1e-9)
+    assert result.terms[0].sum() + result.g2[0] == pytest.approx(expected, rel=1e-9)
+    assert abs(result.g2[0]) > 0.1 * abs(expected)  # the g² term is really exercised
+
+
+def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:
+    """Known tones + Gaussian noise: tones within 3 % amplitude and 0.5 % frequency,
+    the random rms within 10 %, and the fitted mission's closed form within [0.8, 1.25]
+    of Δ_V,rec for a sensor with every term."""
+    rate, fs = _synthetic(np.random.default_rng(1))
+    np.save(tmp_path / "syn.npy", rate)
+    out = tmp_path / "fit.gyrovib.yaml"
+    r = invoke("profile", tmp_path / "syn.npy", "--fs", fs, "-o", out)
+    assert r.exit_code == 0, r.stderr
+    assert "held" in r.stderr and "excess kurtosis" in r.stderr
+    assert invoke("validate", out).exit_code == 0
+    from gyrovib.api import load
+
+    profile = load([out]).profiles[0].profile
+    assert len(profile.harmonic) == 2 and not profile.harmonics
+    for tone, (f, amp, _) in zip(profile.harmonic, TONES, strict=True):
+        assert tone.frequency == pytest.approx(f, rel=5e-3)
+        assert np.asarray(tone.amplitude) == pytest.approx(np.asarray(amp), rel=0.03)
+    from gyrovib.core.transmissibility import as_table, psd_variance
+
+    psd = profile.random.psd
+    for axis in ("x1", "x2", "x3"):
+        sigma = np.sqrt(psd_variance(as_table(getattr(psd, axis))))
+        # the fitted band starts at f_c: white noise loses the part below it (5/500)
+        assert sigma == pytest.approx(SIGMA * np.sqrt(1 - 5 / 500), rel=0.10)
+    r = invoke("analyze", "--recording", tmp_path / "syn.npy", "--fs", fs,
+               _sensor_file(tmp_path), "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    doc = json.loads(r.stdout)
+    for row in doc["results"]:
+        assert 0.8 <= row["ratio"] <= 1.25, row
+        assert row["warnings"] == []
+
+
+def test_non_gaussian_recording_is_flagged(tmp_path: Path) -> None:
+    """Uniform noise (excess kurtosis −1.2): for k4 alone at Ω ≈ 0 the closed form takes
+    ⟨x⁴⟩ = 3σ⁴ where the recording has 1.8σ⁴, a ratio near 3/1.8 — outside [0.8, 1.25]."""
+    rng = np.random.default_rng(3)
+    n, fs = 120_000, 1000.0
+    half = 2.0 * np.sqrt(3.0)
+    rate = rng.uniform(-half, half, (n, 3))
+    np.save(tmp_path / "uni.npy", rate)
+    r = invoke("analyze", "--recording", tmp_path / "uni.npy", "--fs", fs,
+               _sensor_file(tmp_path), "--sensor", "k4-only", "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    doc = json.loads(r.stdout)
+    row = doc["results"][0]
+    assert row["ratio"] > 1.25
+    assert any("not Gaussian-plus-tones" in w for w in row["warnings"])
+    assert doc["recording"]["axes"]["Z"]["excess_kurtosis"] == pytest.approx(-1.2, abs=0.05)
+
+
+def test_json_keys_are_the_contract(tmp_path: Path) -> None:
+    rate, fs = _synthetic(np.random.default_rng(2), seconds=20.0)
+    np.save(tmp_path / "syn.npy", rate)
+    r = invoke("analyze", "--recording", tmp_path / "syn.npy", "--fs", fs,
+               _sensor_file(tmp_path), "--format", "json")
+    doc = json.loads(r.stdout)
+    row = doc["results"][0]
+    assert {"sensor", "recorded", "fitted", "ratio", "saturated", "peak_rate"} <= set(row)
+    assert {"total", "additive_terms", "g2"} == set(row["recorded"])
+    assert {"total", "rms"} == set(row["fitted"])
+    assert set(doc["recording"]) == {"file", "sha256", "samples", "fs", "crossover",
+                                     "segments", "duration", "axes"}
+    assert set(doc["recording"]["axes"]["X"]) == {"variance", "held", "skewness",
+                                                  "excess_kurtosis"}
+    import hashlib
+
+    assert doc["recording"]["sha256"] == hashlib.sha256(
+        (tmp_path / "syn.npy").read_bytes()).hexdigest()
+    for fmt in ("csv", "markdown", "table"):
+        assert invoke("analyze", "--recording", tmp_path / "syn.npy", "--fs", fs,
+                      _sensor_file(tmp_path), "--format", fmt).exit_code == 0
+    from gyrovib.api import load
+    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings import read_recording
+
+    frame = analyze_recording(read_recording(str(tmp_path / "syn.npy"), fs=fs),
+                              load([_sensor_file(tmp_path)])).to_frame()
+    assert list(frame["sensor"]) == ["every-term", "k4-only"]
+    assert frame["recorded"].tolist() == pytest.approx(
+        [r["recorded"]["total"] for r in doc["results"]], rel=1e-12)
+
+
+def test_gaps_split_and_short_segments_are_dropped(tmp_path: Path) -> None:
+    """An interval > 1.5 median intervals splits; a segment < 4/f_c s is dropped, warned."""
+    from gyrovib.api.recordings import read_recording
+
+    fs = 200.0
+    t = np.concatenate([np.arange(0, 2000), np.arange(2003, 2100), np.arange(2200, 4200)]) / fs
+    rng = np.random.default_rng(0)
+    rows = ["t,gx,gy,gz", *(f"{float(ti)!r},{a!r},{b!r},{c!r}" for ti, (a, b, c)
+                             in zip(t, rng.normal(size=(t.size, 3)).tolist(), strict=True))]
+    path = tmp_path / "gaps.csv"
+    path.write_text("\n".join(rows) + "\n")
+    rec = read_recording(str(path))
+    assert rec.segments.tolist() == [[0, 2000], [2000, 2097], [2097, 4097]]
+    assert rec.fs == pytest.approx(fs)
+    r = invoke("profile", path)
+    assert r.exit_code == 0, r.stderr
+    assert "1 segment(s) shorter than 4/f_c = 0.8 s dropped" in r.stderr
+    assert "segments: 2" in r.stdout
+
+
+def _csv(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    return path
+
+
+def _long_csv(tmp_path: Path, n: int = 4000, fs: float = 200.0) -> Path:
+    rows = ["time,gx,gy,gz"] + [f"{k / fs!r},0.1,0.2,{float(np.sin(k))!r}" for k in range(n)]
+    return _csv(tmp_path, "\n".join(rows) + "\n")
+
+
+@pytest.mark.parametrize(("args", "text", "message"), [
+    (("--rate-columns", "gx,gy,nope"), None, "no column named 'nope'"),
+    (("--rate-columns", "0,1,9"), None, "column 9 does not exist"),
+    ((), "t,gx,gy,gz\n0,1,2,3\n0.01,1,x,3\n", "bad.csv:3:8: column 'gy': 'x' is not a number"),
+    ((), "t,gx,gy,gz\n0,1,2,3\n0.01,1,2,3\n0.005,1,2,3\n", "sample 2: timestamps must increase"),
+    (("--crossover", "150"), None, "too low for the crossover 150 Hz"),
+    ((), "t,gx,gy,gz\n0,1,2,3\n0.01,1,2,3\n0.02,1,2,3\n", "shorter than one segment"),
+    ((), "gx,gy,gz\n1,2,3\n1,2,3\n", "give the sample rate with --fs"),
+])
+def test_bad_input_is_refused(tmp_path: Path, args: tuple[str, ...], text: str | None,
+                              message: str) -> None:
+    path = _long_csv(tmp_path) if text is None else _csv(tmp_path, text)
+    r = invoke("profile", path, *args)
+    assert r.exit_code == 2
+    assert message in r.stderr, r.stderr
+    assert str(path) in r.stderr
+
+
+def test_ulog_without_pyulog_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "pyulog", None)
+    r = invoke("profile", ULOG)
+    assert r.exit_code == 2
+    assert "gyrovib[ulog]" in r.stderr and "px4-sample.ulg" in r.stderr
+
+
+def test_ulog_end_to_end(tmp_path: Path) -> None:
+    """A public PX4 log (tests/data/README.md): fit, validate, analyze."""
+    pytest.importorskip("pyulog", reason="the ULog path needs the extra gyrovib[ulog]")
+    out = tmp_path / "px4.gyrovib.yaml"
+    r = invoke("profile", ULOG, "--crossover", "2", "--resolution", "1", "-o", out)
+    assert r.exit_code == 0, r.stderr
+    assert invoke("validate", out).exit_code == 0
+    text = out.read_text()
+    assert "# file: px4-sample.ulg" in text and "acceleration:" in text
+    r = invoke("analyze", "--recording", ULOG, "--crossover", "2", "--resolution", "1",
+               "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    doc = json.loads(r.stdout)
+    assert doc["recording"]["samples"] == 2373
+    assert doc["recording"]["fs"] == pytest.approx(250.0, rel=1e-6)
+    r = invoke("profile", ULOG, "--topic", "no_such_topic")
+    assert r.exit_code == 2 and "no topic 'no_such_topic'" in r.stderr
