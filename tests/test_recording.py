@@ -270,3 +270,90 @@ def test_ulog_end_to_end(tmp_path: Path) -> None:
     assert doc["recording"]["fs"] == pytest.approx(250.0, rel=1e-6)
     r = invoke("profile", ULOG, "--topic", "no_such_topic")
     assert r.exit_code == 2 and "no topic 'no_such_topic'" in r.stderr
+
+
+def test_input_response_is_a_zero_phase_gain(tmp_path: Path) -> None:
+    """A sensor whose response acts at the input sees ν·x (MODEL.md section 13): checked
+    against the gain applied here bin by bin (log-log interpolation written out)."""
+    from gyrovib.api import load
+    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings import read_recording
+
+    rng = np.random.default_rng(11)
+    fs, fc, n = 500.0, 5.0, 6000
+    w = rng.normal(0, 4.0, (n, 3)) + np.array([0.0, 0.0, 2.0])
+    np.save(tmp_path / "r.npy", w)
+    (tmp_path / "s.gyrovib.yaml").write_text(
+        "gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n"
+        "  - id: pre-filtered\n    coefficients: {A1: 0.01, k2: 1.0e-3, k3: 2.0e-4}\n"
+        "    response: {at: input, table: [[10, 1.0], [50, 0.5], [100, 0.1]]}\n")
+    rec = read_recording(str(tmp_path / "r.npy"), fs=fs)
+    result = analyze_recording(rec, load([tmp_path / "s.gyrovib.yaml"]), crossover=fc)
+    sos = scipy_signal.butter(4, fc, fs=fs, output="sos")
+    big = scipy_signal.sosfiltfilt(sos, w, axis=0)
+    f = np.fft.rfftfreq(n, 1 / fs)
+    tf, tg = np.log([10.0, 50.0, 100.0]), np.log([1.0, 0.5, 0.1])
+    gain = np.exp(np.interp(np.log(np.maximum(f, f[1])), tf, tg))  # held past the ends
+    x = np.fft.irfft(np.fft.rfft(w - big, axis=0) * gain[:, None], n=n, axis=0)
+    om, ok3 = big[:, 2] + x[:, 2], big[:, 2]
+    expected = np.mean(0.5 * 0.01 * (np.abs(om) - np.abs(ok3)) + 1e-3 * (om**2 - ok3**2)
+                       + 2e-4 * (om**3 - ok3**3))
+    assert result.recorded[0] == pytest.approx(expected, rel=1e-9)
+    assert result.peak_rate[0] == pytest.approx(np.max(np.abs(om)), rel=1e-12)
+
+
+def test_spec_form_worst_case_scales_with_the_nonlinearity(tmp_path: Path) -> None:
+    """The worst Δ_V,rec over a datasheet envelope is proportional to the limit b
+    (MODEL.md section 11): doubling NL doubles it; with no VRE nothing else adds."""
+    from gyrovib.api import load
+    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings import read_recording
+
+    rate, fs = _synthetic(np.random.default_rng(5), seconds=20.0)
+    np.save(tmp_path / "s.npy", rate)
+    (tmp_path / "c.gyrovib.yaml").write_text(
+        "gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n"
+        "  - id: nl1\n    specs: {range: 100, nonlinearity: {value: 0.1, unit: '%FS'}}\n"
+        "  - id: nl2\n    specs: {range: 100, nonlinearity: {value: 0.2, unit: '%FS'}}\n")
+    result = analyze_recording(read_recording(str(tmp_path / "s.npy"), fs=fs),
+                               load([tmp_path / "c.gyrovib.yaml"]))
+    assert result.spec.all()
+    assert result.recorded[0] > 0
+    assert result.recorded[1] == pytest.approx(2 * result.recorded[0], rel=1e-6)
+    assert result.terms[0, :5].sum() == pytest.approx(result.recorded[0], rel=1e-6)
+
+
+def test_harmonics_are_grouped_unless_independent(tmp_path: Path) -> None:
+    """Lines at 40, 80 and 120 Hz form one group (phase: worst); a line at 57 Hz stays a
+    tone; --independent-tones writes all four as tones."""
+    rng = np.random.default_rng(9)
+    fs, n = 1000.0, 60_000
+    t = np.arange(n) / fs
+    rate = rng.normal(0, 0.3, (n, 3))
+    for f, a in ((40.0, 1.0), (80.0, 0.6), (120.0, 0.4), (57.0, 0.8)):
+        rate += a * np.sin(2 * np.pi * f * t)[:, None]
+    np.save(tmp_path / "h.npy", rate)
+    out = tmp_path / "h.gyrovib.yaml"
+    png = tmp_path / "h.png"
+    assert invoke("profile", tmp_path / "h.npy", "--fs", fs, "-o", out, "--plot",
+                  png).exit_code == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert invoke("validate", out).exit_code == 0
+    from gyrovib.api import load
+
+    p = load([out]).profiles[0].profile
+    (group,) = p.harmonics if isinstance(p.harmonics, tuple | list) else (p.harmonics,)
+    assert group.fundamental == pytest.approx(40.0, rel=5e-3)
+    assert [o.order for o in group.orders] == [1, 2, 3]
+    assert all(o.worst_phase for o in group.orders)
+    assert [h.frequency for h in p.harmonic] == pytest.approx([57.0], rel=5e-3)
+    assert invoke("profile", tmp_path / "h.npy", "--fs", fs, "-o", out,
+                  "--independent-tones").exit_code == 0
+    p = load([out]).profiles[0].profile
+    assert not p.harmonics and len(p.harmonic) == 4
+
+
+def test_analyze_options_without_meaning_are_refused(tmp_path: Path) -> None:
+    np.save(tmp_path / "r.npy", np.zeros((10, 3)))
+    r = invoke("analyze", "--recording", tmp_path / "r.npy", "--fs", 100, "--rate", "3")
+    assert r.exit_code == 2 and "--recording does not take --rate" in r.stderr

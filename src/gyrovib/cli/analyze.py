@@ -67,7 +67,9 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     unit = parse_unit(unit)
     catalog = load_catalog(files)
     if recording is not None:
-        from gyrovib.cli.recording import analyze_recording
+        from gyrovib.cli.recording import analyze_recording, refuse_with_recording
+
+        refuse_with_recording(profiles=profiles, rate=rate, method=method)
 
         analyze_recording(recording, catalog, sensors, unit, fmt, output, rec)
         return

@@ -77,3 +77,18 @@ def analyze_recording(path: str, catalog: Any, sensors: tuple[str, ...], unit: s
     renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
                  "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)
+
+
+def refuse_with_recording(**given: Any) -> None:
+    """Options of ``analyze`` that mean nothing with ``--recording``: refused, not ignored."""
+    from gyrovib.errors import OptionError
+
+    bad = []
+    if given["profiles"]:
+        bad.append("--profile (the recording is the profile)")
+    if given["rate"] is not None:
+        bad.append("--rate (the carrier rate is the recorded one)")
+    if given["method"] != "exact":
+        bad.append("--method (Δ_V,rec is the recording's own average; the fit uses exact)")
+    if bad:
+        raise OptionError(f"--recording does not take {', '.join(bad)}")
