@@ -357,3 +357,23 @@ def test_analyze_options_without_meaning_are_refused(tmp_path: Path) -> None:
     np.save(tmp_path / "r.npy", np.zeros((10, 3)))
     r = invoke("analyze", "--recording", tmp_path / "r.npy", "--fs", 100, "--rate", "3")
     assert r.exit_code == 2 and "--recording does not take --rate" in r.stderr
+
+
+def test_welch_spectra_are_scipys_csd() -> None:
+    """The cross-spectral matrix equals scipy.signal.csd (Hann, 50 %, no detrend) pair by
+    pair, and two segments average their windows alike (weights = window counts)."""
+    from gyrovib.core.recording import welch_spectra
+
+    rng = np.random.default_rng(4)
+    a, b = rng.normal(size=(5000, 3)), rng.normal(size=(2300, 3))
+    f, s, count = welch_spectra([a, b], 200.0, 0.5)
+    kw = {"fs": 200.0, "window": "hann", "nperseg": 400, "noverlap": 200, "detrend": False}
+    for i in range(3):
+        for j in range(3):
+            fa, sa = scipy_signal.csd(a[:, i], a[:, j], **kw)
+            _, sb = scipy_signal.csd(b[:, i], b[:, j], **kw)
+            na, nb = 1 + (5000 - 400) // 200, 1 + (2300 - 400) // 200
+            assert f == pytest.approx(fa)
+            np.testing.assert_allclose(s[i, j], (na * sa + nb * sb) / (na + nb), rtol=1e-10,
+                                       atol=1e-14)
+    assert count == 24 + 10
