@@ -377,3 +377,17 @@ def test_welch_spectra_are_scipys_csd() -> None:
             np.testing.assert_allclose(s[i, j], (na * sa + nb * sb) / (na + nb), rtol=1e-10,
                                        atol=1e-14)
     assert count == 24 + 10
+
+
+def test_honesty_moments_are_scipys() -> None:
+    """Chunked power sums → variance, skewness, excess kurtosis as scipy.stats computes them."""
+    stats = pytest.importorskip("scipy.stats")
+    from gyrovib.core import recording as core
+
+    rng = np.random.default_rng(8)
+    x = np.column_stack([rng.exponential(size=1_500_000), rng.normal(size=1_500_000) + 5.0,
+                         rng.standard_t(6, size=1_500_000)])
+    var, skew, kurt = core.central_moments(core.power_sums(x), x.shape[0])
+    np.testing.assert_allclose(var, np.var(x, axis=0), rtol=1e-9)
+    np.testing.assert_allclose(skew, stats.skew(x, axis=0), rtol=1e-7)
+    np.testing.assert_allclose(kurt, stats.kurtosis(x, axis=0), rtol=1e-7)

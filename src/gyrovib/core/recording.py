@@ -364,27 +364,30 @@ def fit_breakpoints(f: FloatArray, psd: FloatArray, count: int,
     return bf, bs
 
 
-def moments_of(x: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Per column: variance, skewness and excess kurtosis (population moments)."""
+def power_sums(x: ArrayLike, order: int = 4) -> FloatArray:
+    """Per column, the sums Σx, Σx², …, Σx^order (shape (order, m)), a chunk at a time."""
     v = np.asarray(x, dtype=float)
-    n = v.shape[0]
-    s1 = np.zeros(v.shape[1])
-    for lo in range(0, n, _CHUNK):
-        s1 += v[lo:lo + _CHUNK].sum(axis=0)
-    mean = s1 / max(n, 1)
-    s2 = np.zeros_like(s1)
-    s3 = np.zeros_like(s1)
-    s4 = np.zeros_like(s1)
-    for lo in range(0, n, _CHUNK):
-        d = v[lo:lo + _CHUNK] - mean
-        d2 = d * d
-        s2 += d2.sum(axis=0)
-        s3 += (d2 * d).sum(axis=0)
-        s4 += (d2 * d2).sum(axis=0)
-    var = s2 / max(n, 1)
+    out = np.zeros((order, v.shape[1]))
+    for lo in range(0, v.shape[0], _CHUNK):
+        chunk = v[lo:lo + _CHUNK]
+        power = chunk.copy()
+        out[0] += power.sum(axis=0)
+        for p in range(1, order):
+            power *= chunk
+            out[p] += power.sum(axis=0)
+    return out
+
+
+def central_moments(sums: ArrayLike, n: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Variance, skewness and excess kurtosis (population) from :func:`power_sums` of n
+    samples; NaN where the variance is 0."""
+    m1, m2, m3, m4 = (np.asarray(sums, dtype=float)[p] / n for p in range(4))
+    var = m2 - m1**2
+    c3 = m3 - 3 * m1 * m2 + 2 * m1**3
+    c4 = m4 - 4 * m1 * m3 + 6 * m1**2 * m2 - 3 * m1**4
     with np.errstate(invalid="ignore", divide="ignore"):
-        skew = np.where(var > 0, s3 / max(n, 1) / var**1.5, np.nan)
-        kurt = np.where(var > 0, s4 / max(n, 1) / var**2 - 3.0, np.nan)
+        skew = np.where(var > 0, c3 / var**1.5, np.nan)
+        kurt = np.where(var > 0, c4 / var**2 - 3.0, np.nan)
     return var, skew, kurt
 
 

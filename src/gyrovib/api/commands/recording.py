@@ -181,8 +181,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
             moments[i] += core.recorded_moments(xr, omega_k)
             peak[i + 1] = max(peak[i + 1], float(np.max(np.abs(xr[:, 2]))))
             del xr, omega_k
-        for p in range(4):
-            raw[p] += np.sum(c ** (p + 1), axis=0)
+        raw += core.power_sums(c)
         x_segments.append(c)
         if recording.accel is not None and g2_sums is not None:
             a = recording.accel[lo:hi]
@@ -193,7 +192,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     for key in moments:
         moments[key] = moments[key] / n_total
     g2_moments = None if g2_sums is None else g2_sums / n_total
-    var, skew, kurt = _central(raw, n_total)
+    var, skew, kurt = core.central_moments(raw, n_total)
     axes_on = np.array(recording.rate_axes)
     var, skew, kurt = (np.where(axes_on, v, np.nan) for v in (var, skew, kurt))
     angular = _fit_part(recording.file, x_segments, fs, resolution, tone_threshold, breakpoints,
@@ -201,10 +200,9 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     del x_segments
     linear = None
     if xa_segments:
-        raw_a = np.zeros((4, 3))
+        raw_a = np.zeros((2, 3))
         for xa in xa_segments:
-            for p in range(2):
-                raw_a[p] += np.sum(xa ** (p + 1), axis=0)
+            raw_a += core.power_sums(xa, 2)
         var_a = raw_a[1] / n_total - (raw_a[0] / n_total) ** 2
         var_a = np.where(np.array(recording.accel_axes), var_a, np.nan)
         linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
@@ -244,18 +242,6 @@ def _default_id(base: str) -> str:
     stem = base.split(".")[0] or "recording"
     clean = "".join(ch if ch.isalnum() or ch in "-_" else "-" for ch in stem).strip("-_")
     return f"{clean or 'recording'}-fitted"
-
-
-def _central(raw: FloatArray, n: int) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Variance, skewness, excess kurtosis from the raw sums Σx, Σx², Σx³, Σx⁴."""
-    m1, m2, m3, m4 = (raw[p] / n for p in range(4))
-    var = m2 - m1**2
-    c3 = m3 - 3 * m1 * m2 + 2 * m1**3
-    c4 = m4 - 4 * m1 * m3 + 6 * m1**2 * m2 - 3 * m1**4
-    with np.errstate(invalid="ignore", divide="ignore"):
-        skew = np.where(var > 0, c3 / var**1.5, np.nan)
-        kurt = np.where(var > 0, c4 / var**2 - 3.0, np.nan)
-    return var, skew, kurt
 
 
 def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: float, threshold: float,
