@@ -347,7 +347,13 @@ class RecordingAnalysis(Frozen):
                      "fitted_rms": self.fitted_rms, "ratio": self.ratio,
                      "saturated": self.saturated, "peak_rate": self.peak_rate,
                      "unit": self.unit})
-        return pd.DataFrame(data)
+        frame = pd.DataFrame(data)
+        fit = self.fit
+        frame.attrs.update({"unit": self.unit, "file": os.path.basename(fit.file),
+                            "sha256": fit.sha256, "samples": fit.samples, "fs": fit.fs,
+                            "crossover": fit.crossover, "segments": fit.segments,
+                            "duration": fit.duration})
+        return frame
 
 
 def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[str] = (),
