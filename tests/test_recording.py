@@ -41,7 +41,7 @@ def _sensor_file(tmp_path: Path) -> Path:
 
 def _synthetic(rng: np.random.Generator, fs: float = 1000.0, seconds: float = 120.0,
                noise: str = "gauss") -> tuple[np.ndarray, float]:
-    """Two tones (37 and 83 Hz, not harmonics), noise σ = 0.7 deg/s, a slow carrier."""
+    """Two tones (37.23 and 83.71 Hz, between Welch bins, not harmonics), noise σ = 0.7 deg/s, a slow carrier."""
     n = int(fs * seconds)
     t = np.arange(n) / fs
     rate = np.zeros((n, 3))
@@ -57,7 +57,7 @@ def _synthetic(rng: np.random.Generator, fs: float = 1000.0, seconds: float = 12
     return rate, fs
 
 
-TONES = [(37.0, (0.5, 0.3, 1.5), (0.0, 40.0, 0.0)), (83.0, (0.2, 0.4, 0.8), (0.0, 0.0, 90.0))]
+TONES = [(37.23, (0.5, 0.3, 1.5), (0.0, 40.0, 0.0)), (83.71, (0.2, 0.4, 0.8), (0.0, 0.0, 90.0))]
 SIGMA = 0.7
 
 
@@ -128,9 +128,12 @@ def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:
 
     profile = load([out]).profiles[0].profile
     assert len(profile.harmonic) == 2 and not profile.harmonics
-    for tone, (f, amp, _) in zip(profile.harmonic, TONES, strict=True):
+    for tone, (f, amp, phase) in zip(profile.harmonic, TONES, strict=True):
         assert tone.frequency == pytest.approx(f, rel=5e-3)
         assert np.asarray(tone.amplitude) == pytest.approx(np.asarray(amp), rel=0.03)
+        # phases relative to the largest axis (x3), as MODEL.md section 13 writes them
+        relative = (np.asarray(phase) - phase[2] - np.asarray(tone.phase) + 180) % 360 - 180
+        assert np.abs(relative) == pytest.approx(np.zeros(3), abs=3.0)
     from gyrovib.core.transmissibility import as_table, psd_variance
 
     psd = profile.random.psd
