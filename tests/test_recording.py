@@ -39,20 +39,17 @@ def _sensor_file(tmp_path: Path) -> Path:
     return path
 
 
-def _synthetic(rng: np.random.Generator, fs: float = 1000.0, seconds: float = 120.0,
-               noise: str = "gauss") -> tuple[np.ndarray, float]:
-    """Two tones (37.23 and 83.71 Hz, between Welch bins, not harmonics), noise σ = 0.7 deg/s, a slow carrier."""
+def _synthetic(rng: np.random.Generator, fs: float = 1000.0,
+               seconds: float = 120.0) -> tuple[np.ndarray, float]:
+    """Two tones (37.23 and 83.71 Hz, between Welch bins, not harmonics), Gaussian noise
+    σ = 0.7 deg/s, a slow carrier Ω_K3 = 3 + 2·sin(2π·0.05·t) deg/s."""
     n = int(fs * seconds)
     t = np.arange(n) / fs
     rate = np.zeros((n, 3))
     for f, a, ph in TONES:
         for j in range(3):
             rate[:, j] += a[j] * np.sin(2 * np.pi * f * t + np.deg2rad(ph[j]))
-    if noise == "gauss":
-        rate += rng.normal(0.0, SIGMA, (n, 3))
-    else:  # uniform of the same σ: excess kurtosis −1.2
-        half = SIGMA * np.sqrt(3.0)
-        rate += rng.uniform(-half, half, (n, 3))
+    rate += rng.normal(0.0, SIGMA, (n, 3))
     rate[:, 2] += 3.0 + 2.0 * np.sin(2 * np.pi * 0.05 * t)
     return rate, fs
 
