@@ -391,3 +391,18 @@ def test_honesty_moments_are_scipys() -> None:
     np.testing.assert_allclose(var, np.var(x, axis=0), rtol=1e-9)
     np.testing.assert_allclose(skew, stats.skew(x, axis=0), rtol=1e-7)
     np.testing.assert_allclose(kurt, stats.kurtosis(x, axis=0), rtol=1e-7)
+
+
+def test_csv_with_bom_crlf_blank_lines_and_short_rows(tmp_path: Path) -> None:
+    """A spreadsheet's CSV (UTF-8 BOM, CRLF, blank lines) reads; a short row is named."""
+    from gyrovib.api.recordings import read_recording
+
+    rows = ["\ufefftime,gx,gy,gz", *(f"{k / 100!r},0.1,0.2,{k!r}" for k in range(50)), ""]
+    path = tmp_path / "sheet.csv"
+    path.write_bytes("\r\n".join(rows).encode("utf-8"))
+    rec = read_recording(str(path))
+    assert rec.samples == 50 and rec.fs == pytest.approx(100.0)
+    assert rec.rate[:, 2].tolist() == list(range(50))
+    path.write_text("t,gx,gy,gz\n0,1,2,3\n\n0.01,1,2\n")
+    r = invoke("profile", path)
+    assert r.exit_code == 2 and "sheet.csv:4:1: 3 cells where the header has 4" in r.stderr

@@ -248,7 +248,7 @@ class _Columns:
 
 def _csv_header(path: str) -> tuple[list[str], int]:
     try:
-        with open(path, encoding="utf-8", newline="") as fh:
+        with open(path, encoding="utf-8-sig", newline="") as fh:
             header = fh.readline()
     except UnicodeDecodeError:
         raise _problem(path, "not a text file (a CSV recording is UTF-8 text)") from None
@@ -288,7 +288,7 @@ class _CsvColumns(_Columns):
         cols = sorted({c for c, *_ in targets} | ({time_col} if time_col is not None else set()))
         where = {c: k for k, c in enumerate(cols)}
         row = 0
-        with open(self.path, encoding="utf-8", newline="") as fh:
+        with open(self.path, encoding="utf-8-sig", newline="") as fh:
             fh.readline()
             line_no = 2
             while True:
@@ -322,7 +322,7 @@ class _CsvColumns(_Columns):
     def _locate(self, lines: list[str], cols: list[int], first_line: int) -> None:
         for k, line in enumerate(lines):
             if not line.strip():
-                raise _problem(self.path, "empty line inside the data", first_line + k, 1)
+                continue  # blank lines are skipped, as the parser skips them
             cells = line.rstrip("\r\n").split(",")
             if len(cells) != self.count:
                 raise _problem(self.path, f"{len(cells)} cells where the header has "
