@@ -406,3 +406,20 @@ def test_csv_with_bom_crlf_blank_lines_and_short_rows(tmp_path: Path) -> None:
     path.write_text("t,gx,gy,gz\n0,1,2,3\n\n0.01,1,2\n")
     r = invoke("profile", path)
     assert r.exit_code == 2 and "sheet.csv:4:1: 3 cells where the header has 4" in r.stderr
+
+
+def test_report_with_a_recording(tmp_path: Path) -> None:
+    """report --recording: the recording's section (PSD charts, honesty, Δ_V,rec beside
+    the closed form) and the fitted profile among the study's profiles."""
+    rate, fs = _synthetic(np.random.default_rng(6), seconds=20.0)
+    np.save(tmp_path / "s.npy", rate)
+    out = tmp_path / "r.html"
+    r = invoke("report", "--recording", tmp_path / "s.npy", "--fs", fs, "--budget", "0.01",
+               "--profile", "uav-blade-pass-tone", "-o", out)
+    assert r.exit_code == 0, r.stderr
+    html = out.read_text(encoding="utf-8")
+    section = html[html.index('<section class="recording"'):]
+    section = section[:section.index("</section>")]
+    assert section.count("<svg") == 3 and "Honesty of the fit" in section
+    assert "adxrs453" in section and "s-fitted" in section
+    assert 'id="p1"' in html and "s-fitted" in html[html.index('id="p1"'):]

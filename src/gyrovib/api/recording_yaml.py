@@ -9,7 +9,7 @@ comment block: the catalogue format of this version has no missions yet.
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -106,3 +106,18 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
 
 def _quote(text: str) -> str:
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def with_fitted_profile(catalog: Any, fit: RecordingFit) -> Any:
+    """``catalog`` with the fitted profile added (its source named after the recording);
+    an id already in the catalogue is refused with a pointer to ``--id``."""
+    from gyrovib.catalog.loader import merge, parse_catalog
+    from gyrovib.errors import GyrovibError, OptionError
+
+    source = parse_catalog(fit.yaml, f"<fitted from {os.path.basename(fit.file)}>",
+                           skip=("sensors",))
+    try:
+        return merge([*catalog.sources, source])
+    except GyrovibError as exc:
+        raise OptionError(f"the fitted profile's id {fit.profile_id!r} is already used in the "
+                          "catalogue: choose another with --id") from exc

@@ -92,3 +92,19 @@ def refuse_with_recording(**given: Any) -> None:
         bad.append("--method (Δ_V,rec is the recording's own average; the fit uses exact)")
     if bad:
         raise OptionError(f"--recording does not take {', '.join(bad)}")
+
+
+def report_recording(path: str, catalog: Any, sensors: tuple[str, ...],
+                     profiles: tuple[str, ...], unit: str, options: dict[str, Any],
+                     ) -> tuple[Any, tuple[str, ...], str]:
+    """``gyrovib report --recording``: the catalogue with the fitted profile added, the
+    profiles to study (the fitted one too when some were named), and the HTML section."""
+    from gyrovib.api.commands.recording import analyze_recording as run
+    from gyrovib.api.recording_yaml import with_fitted_profile
+    from gyrovib.render.recording import report_section
+
+    result = run(read(path, options), catalog, sensors=sensors, unit=unit,
+                 **fit_options(options))
+    combined = with_fitted_profile(catalog, result.fit)
+    chosen = (*profiles, result.fit.profile_id) if profiles else profiles
+    return combined, chosen, report_section(result)

@@ -180,3 +180,76 @@ def plot_fit(fit: RecordingFit, path: str) -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
+
+
+def _thin(f: Any, s: Any, points: int = 400) -> tuple[list[float], list[float]]:
+    """At most ``points`` log-spaced bins of a PSD (f > 0), for a chart."""
+    import numpy as np
+
+    ok = np.flatnonzero((f > 0) & (s > 0))
+    if ok.size <= points:
+        return f[ok].tolist(), s[ok].tolist()
+    idx = np.unique(np.geomspace(1, ok.size, points).astype(int) - 1)
+    return f[ok[idx]].tolist(), s[ok[idx]].tolist()
+
+
+def report_section(result: RecordingAnalysis) -> str:
+    """The recording's part of ``gyrovib report --recording`` (HTML): its PSD against the
+    fitted profile per axis, the honesty table, and Δ_V,rec beside the closed form."""
+    from html import escape
+
+    from gyrovib.render.svg import LineChart, Marker, Series, color
+
+    fit = result.fit
+    part = fit.angular
+    charts = []
+    for j, axis in enumerate(AXES):
+        if not fit.rate_axes[j]:
+            continue
+        fx, sx = _thin(part.frequencies, part.measured[j])
+        series = [Series(f"measured {axis}", fx, sx, color(0))]
+        table = part.psd[j]
+        if table is not None:
+            series.append(Series("fitted breakpoints", table[0].tolist(), table[1].tolist(),
+                                 color(1)))
+        lines = [(t.frequency, t.amplitude[j]) for t in part.tones]
+        lines += [(h.fundamental * o, a[j]) for h in part.harmonics
+                  for o, a in zip(h.orders, h.amplitude, strict=True)]
+        markers = [Marker(f"{freq:.4g} Hz, a = {amp:.3g}", x=freq, style="tone", row=k % 3)
+                   for k, (freq, amp) in enumerate(lines)]
+        charts.append(LineChart(f"Recording {escape(os.path.basename(fit.file))}: axis {axis}",
+                                "frequency (Hz)", "PSD (deg/s)²/Hz", series, xlog=True,
+                                ylog=True, markers=markers).svg())
+    head = ["axis", "variance (deg/s)²", "held", "skewness", "excess kurtosis"]
+    rows = [[a, _fmt(h.variance), "—" if not math.isfinite(h.held) else f"{100 * h.held:.1f} %",
+             _fmt(h.skewness, 3), _fmt(h.excess_kurtosis, 3)]
+            for a, h in zip(AXES, fit.honesty, strict=True)]
+    honesty = _html_table(head, rows)
+    compare = _html_table(_HEAD, _table_rows(result))
+    notes = "".join(f"<li>{escape(result.sensors[i])}: {escape(m)}</li>"
+                    for i, ms in sorted(result.warnings.items()) for m in ms)
+    notes += "".join(f"<li>{escape(w)}</li>" for w in fit.warnings)
+    figures = "".join(f"<figure>{c}</figure>" for c in charts)
+    return (
+        '<section class="recording" id="recording"><h2>Recording</h2>'
+        f"<p class=\"sub\">{escape(os.path.basename(fit.file))}, SHA-256 "
+        f"<code>{fit.sha256}</code>: {fit.samples} samples at {fit.fs:.6g} Hz, crossover "
+        f"f_c = {fit.crossover:g} Hz, {fit.segments} segment(s), {fit.duration:.6g} s "
+        f"analysed. Its fitted profile <code>{escape(fit.profile_id)}</code> is among the "
+        "profiles below.</p>"
+        f"<h3>Recorded error Δ_V,rec and the fitted mission's closed form ({result.unit})</h3>"
+        f"{compare}<p>Δ_V,rec is eq. (2) averaged over the recorded samples (MODEL.md section "
+        "13); the ratio fitted/recorded outside [0.8, 1.25] means the recording is not "
+        "Gaussian-plus-tones or not stationary, and Δ_V,rec is the number to trust.</p>"
+        f"<h3>Honesty of the fit</h3>{honesty}"
+        + (f"<ul class=\"warnings\">{notes}</ul>" if notes else "")
+        + f'<div class="charts">{figures}</div></section>')
+
+
+def _html_table(head: list[str], rows: list[list[str]]) -> str:
+    from html import escape
+
+    cells = "".join(f"<th>{escape(h)}</th>" for h in head)
+    body = "".join("<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>"
+                   for r in rows)
+    return f"<table><thead><tr>{cells}</tr></thead><tbody>{body}</tbody></table>"

@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.recordings import Recording, RecordingError, iter_segments
 from gyrovib.core.transmissibility import FloatArray, Table
-from gyrovib.errors import GyrovibError, OptionError, Problem
+from gyrovib.errors import OptionError, Problem
 from gyrovib.frozen import Frozen
 
 #: Defaults of the options (INTERFACE.md, third round).
@@ -470,17 +470,11 @@ def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str],
     """
     from gyrovib.api.commands.analyze import analyze
     from gyrovib.api.prepare import float_guard, prepare
+    from gyrovib.api.recording_yaml import with_fitted_profile
     from gyrovib.api.specs import mean_square_acceleration, terms_of
-    from gyrovib.catalog.loader import merge, parse_catalog
     from gyrovib.core.envelope import worst_case
 
-    source = parse_catalog(fit.yaml, f"<fitted from {os.path.basename(fit.file)}>",
-                           skip=("sensors",))
-    try:
-        combined = merge([*catalog.sources, source])
-    except GyrovibError as exc:
-        raise OptionError(f"the fitted profile's id {fit.profile_id!r} is already used in the "
-                          "catalogue: choose another with --id") from exc
+    combined = with_fitted_profile(catalog, fit)
     durations = fit.mission_durations
     total = np.zeros(len(sensor_ids))
     square = np.zeros(len(sensor_ids))
