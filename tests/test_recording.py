@@ -423,3 +423,16 @@ def test_report_with_a_recording(tmp_path: Path) -> None:
     assert section.count("<svg") == 3 and "Honesty of the fit" in section
     assert "adxrs453" in section and "s-fitted" in section
     assert 'id="p1"' in html and "s-fitted" in html[html.index('id="p1"'):]
+
+
+def test_a_recording_without_vibration(tmp_path: Path) -> None:
+    """A constant rate: no vibration (the filter's rounding is not one), one carrier bin,
+    and a profile that validates with the rate alone."""
+    np.save(tmp_path / "c.npy", np.full((5000, 3), 2.5))
+    out = tmp_path / "c.gyrovib.yaml"
+    r = invoke("profile", tmp_path / "c.npy", "--fs", 1000, "-o", out)
+    assert r.exit_code == 0, r.stderr
+    assert invoke("validate", out).exit_code == 0
+    text = out.read_text()
+    assert "random:" not in text and "harmonic" not in text.split("profiles:")[1]
+    assert text.count("{profile: c-fitted, duration: 5, rate: [2.5, 2.5, 2.5]}") == 1

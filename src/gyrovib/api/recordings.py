@@ -420,10 +420,16 @@ def _ulog_columns(path: str, topic: str) -> _ArrayColumns:
     return _ArrayColumns(path, names, [data[k] for k in names], time_scale=1e-6)
 
 
+#: sosfiltfilt's default padding of the 4th-order split (3·(2·sections + 1) samples):
+#: a segment must be longer than it.
+PADDING = 15
+
+
 def iter_segments(recording: Recording, crossover: float) -> Iterator[tuple[int, int]]:
-    """The segments kept for crossover f_c: those at least 4/f_c long (MODEL.md section 13)."""
+    """The segments kept for crossover f_c: those at least 4/f_c long (MODEL.md section 13)
+    and longer than the filter's padding."""
     for lo, hi in recording.segments.tolist():
-        if (hi - lo) / recording.fs >= 4.0 / crossover:
+        if (hi - lo) / recording.fs >= 4.0 / crossover and hi - lo > PADDING:
             yield int(lo), int(hi)
 
 

@@ -397,8 +397,8 @@ def carrier_histogram(carrier3: ArrayLike, bins: int = MISSION_BINS,
     bins that hold samples (MODEL.md section 13's fitted mission)."""
     c = np.asarray(carrier3, dtype=float)
     lo, hi = float(c.min()), float(c.max())
-    if hi <= lo:
-        return np.array([lo]), np.array([float(c.size)])
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):  # a constant carrier, up to rounding
+        return np.array([float(c.mean())]), np.array([float(c.size)])
     edges = np.linspace(lo, hi, bins + 1)
     idx = np.clip(np.searchsorted(edges, c, side="right") - 1, 0, bins - 1)
     counts = np.bincount(idx, minlength=bins).astype(float)

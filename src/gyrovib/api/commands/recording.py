@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.recordings import Recording, RecordingError, iter_segments
+from gyrovib.api.recordings import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.core.transmissibility import FloatArray, Table
 from gyrovib.errors import OptionError, Problem
 from gyrovib.frozen import Frozen
@@ -32,6 +32,8 @@ DEFAULT_THRESHOLD = 10.0
 DEFAULT_BREAKPOINTS = 12
 #: The fitted mission's closed form and Δ_V,rec should agree within this range.
 RATIO_RANGE = (0.8, 1.25)
+#: A vibration whose rms is below this fraction of the signal's is rounding: none.
+NEGLIGIBLE = 1e-10
 #: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.
 _LINE_FLOOR = 2.0
 
@@ -154,7 +156,8 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         raise RecordingError(Problem(
             f"the recording is shorter than one segment: its longest contiguous stretch "
             f"is {longest} samples = {longest / fs:.6g} s, and a segment needs 4/f_c = "
-            f"{4 / crossover:g} s (raise --crossover, or record longer)", recording.file))
+            f"{4 / crossover:g} s and more than {PADDING} samples (the filter's padding) "
+            "(raise --crossover, or record longer)", recording.file))
     n_total = sum(hi - lo for lo, hi in kept)
     moments: dict[Any, FloatArray] = {None: np.zeros(len(core.MOMENTS))}
     peak = np.zeros(1 + len(responses))
@@ -166,6 +169,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     x_segments: list[FloatArray] = []
     xa_segments: list[FloatArray] = []
     raw = np.zeros((4, 3))
+    signal = np.zeros(3)  # Σω² per axis, against which a vibration is negligible
     for lo, hi in kept:
         w = recording.rate[lo:hi]
         c = core.lowpass(w, fs, crossover)
@@ -182,6 +186,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
             peak[i + 1] = max(peak[i + 1], float(np.max(np.abs(xr[:, 2]))))
             del xr, omega_k
         raw += core.power_sums(c)
+        signal += np.einsum("ij,ij->j", w, w)
         x_segments.append(c)
         if recording.accel is not None and g2_sums is not None:
             a = recording.accel[lo:hi]
@@ -193,6 +198,10 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         moments[key] = moments[key] / n_total
     g2_moments = None if g2_sums is None else g2_sums / n_total
     var, skew, kurt = core.central_moments(raw, n_total)
+    # a vibration below 1e-10 of the signal's rms is the filter's rounding, not a vibration
+    quiet = var <= NEGLIGIBLE**2 * signal / n_total
+    var = np.where(quiet, 0.0, var)
+    skew, kurt = (np.where(quiet, np.nan, v) for v in (skew, kurt))
     axes_on = np.array(recording.rate_axes)
     var, skew, kurt = (np.where(axes_on, v, np.nan) for v in (var, skew, kurt))
     angular = _fit_part(recording.file, x_segments, fs, resolution, tone_threshold, breakpoints,
@@ -204,6 +213,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         for xa in xa_segments:
             raw_a += core.power_sums(xa, 2)
         var_a = raw_a[1] / n_total - (raw_a[0] / n_total) ** 2
+        var_a = np.where(var_a <= NEGLIGIBLE**2 * np.abs(raw_a[1]) / n_total, 0.0, var_a)
         var_a = np.where(np.array(recording.accel_axes), var_a, np.nan)
         linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
                            breakpoints, True, crossover, var_a, rate=False)
@@ -252,6 +262,9 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     from gyrovib.core.transmissibility import psd_variance
 
     f, spectra, windows = core.welch_spectra(segments, fs, resolution)
+    silent = ~(variance > 0)  # not recorded, or negligible: no spectrum to fit
+    spectra[silent, :, :] = 0.0
+    spectra[:, silent, :] = 0.0
     if windows == 0:
         raise RecordingError(Problem(
             f"no contiguous segment holds one Welch window of 1/Δf = {1 / resolution:g} s: "
