@@ -332,6 +332,7 @@ def test_harmonics_are_grouped_unless_independent(tmp_path: Path) -> None:
     rate = rng.normal(0, 0.3, (n, 3))
     for f, a in ((40.0, 1.0), (80.0, 0.6), (120.0, 0.4), (57.0, 0.8)):
         rate += a * np.sin(2 * np.pi * f * t)[:, None]
+    rate[:, 2] += 2.0  # a carrier rate, so that the odd moments act (MODEL.md section 10)
     np.save(tmp_path / "h.npy", rate)
     out = tmp_path / "h.gyrovib.yaml"
     png = tmp_path / "h.png"
@@ -351,6 +352,15 @@ def test_harmonics_are_grouped_unless_independent(tmp_path: Path) -> None:
                   "--independent-tones").exit_code == 0
     p = load([out]).profiles[0].profile
     assert not p.harmonics and len(p.harmonic) == 4
+    # the worst phases bound the recorded error from above; independent tones estimate it
+    grouped = json.loads(invoke("analyze", "--recording", tmp_path / "h.npy", "--fs", fs,
+                                "--sensor", "generic-rate-mems", "--format", "json").stdout)
+    alone = json.loads(invoke("analyze", "--recording", tmp_path / "h.npy", "--fs", fs,
+                              "--sensor", "generic-rate-mems", "--independent-tones",
+                              "--format", "json").stdout)
+    assert grouped["results"][0]["ratio"] > alone["results"][0]["ratio"]
+    assert 0.8 <= alone["results"][0]["ratio"] <= 1.25
+    assert all("--independent-tones" in w for w in grouped["results"][0]["warnings"])
 
 
 def test_analyze_options_without_meaning_are_refused(tmp_path: Path) -> None:

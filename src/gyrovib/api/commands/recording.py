@@ -424,9 +424,13 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
     for i in range(n):
         w: list[str] = []
         if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
+            worst = (" (the fitted harmonics take their worst relative phases, so the closed "
+                     "form is a bound over phases the recording does not show: "
+                     "--independent-tones compares like with like)"
+                     if fit.angular.harmonics else "")
             w.append(f"the fitted profile's closed form is {ratio[i]:.3g} × Δ_V,rec, outside "
                      f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
-                     "stationary, and Δ_V,rec is the number to trust")
+                     f"stationary, and Δ_V,rec is the number to trust{worst}")
         if saturated[i]:
             w.append(f"max |ω3| = {peak[i] / s:.6g} {unit} on the recording exceeds the "
                      f"sensor's range {ranges[i] / s:.6g} {unit}: the static model does not "
