@@ -30,6 +30,8 @@ sensors:
   - id: k4-only
     range: 500
     coefficients: {k4: 1.0e-3}
+  - id: linear-only
+    coefficients: {k0: 5.0, k1: 1.3, m1: 0.2, m2: -0.1}
 """
 
 
@@ -108,6 +110,8 @@ def test_recorded_error_matches_the_definition(tmp_path: Path) -> None:
     assert result.recorded[0] == pytest.approx(expected, rel=1e-9)
     assert result.terms[0].sum() + result.g2[0] == pytest.approx(expected, rel=1e-9)
     assert abs(result.g2[0]) > 0.1 * abs(expected)  # the g² term is really exercised
+    # eq. (2)'s linear terms are the measured rate itself: nothing rectifies
+    assert result.sensors[2] == "linear-only" and result.recorded[2] == 0.0
 
 
 def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:
@@ -192,7 +196,7 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
 
     frame = analyze_recording(read_recording(str(tmp_path / "syn.npy"), fs=fs),
                               load([_sensor_file(tmp_path)])).to_frame()
-    assert list(frame["sensor"]) == ["every-term", "k4-only"]
+    assert list(frame["sensor"]) == ["every-term", "k4-only", "linear-only"]
     assert frame["recorded"].tolist() == pytest.approx(
         [r["recorded"]["total"] for r in doc["results"]], rel=1e-12)
 
@@ -458,3 +462,17 @@ def test_a_recording_without_vibration(tmp_path: Path) -> None:
     text = out.read_text()
     assert "random:" not in text and "harmonic" not in text.split("profiles:")[1]
     assert text.count("{profile: c-fitted, duration: 5, rate: [2.5, 2.5, 2.5]}") == 1
+
+
+def test_npz_with_one_2d_array(tmp_path: Path) -> None:
+    """An .npz holding one 2-D array reads like an .npy: columns by index, --fs."""
+    from gyrovib.api.recordings import read_recording
+
+    a = np.arange(300.0).reshape(100, 3)
+    np.savez_compressed(tmp_path / "a.npz", data=a)
+    rec = read_recording(str(tmp_path / "a.npz"), fs=50.0, rate_columns=(2, None, 0),
+                         rate_unit="rad/s")
+    assert rec.rate_axes == (True, False, True)
+    np.testing.assert_allclose(rec.rate[:, 0], a[:, 2] * 180 / np.pi, rtol=1e-15)
+    np.testing.assert_array_equal(rec.rate[:, 1], 0.0)
+    assert rec.segments.tolist() == [[0, 100]] and not rec.time_given
