@@ -371,7 +371,11 @@ class _ArrayColumns(_Columns):
                 raise _problem(self.path, f"column {self.names[c]!r}, sample {int(bad[0])}: "
                                           "not a finite number")
         if time is not None and time_col is not None:
-            time[:n] = self.columns[time_col]
+            column = self.columns[time_col]
+            if not np.issubdtype(column.dtype, np.number):
+                raise _problem(self.path, f"time column {self.names[time_col]!r} is not "
+                                          f"numeric ({column.dtype})")
+            time[:n] = column
         return n
 
 
