@@ -146,9 +146,13 @@ def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:
                _sensor_file(tmp_path), "--format", "json")
     assert r.exit_code == 0, r.stderr
     doc = json.loads(r.stdout)
-    for row in doc["results"]:
+    *rectifying, linear = doc["results"]
+    for row in rectifying:
         assert 0.8 <= row["ratio"] <= 1.25, row
         assert row["warnings"] == []
+    # nothing rectifies, so there is no ratio: unknown (null), not 0
+    assert linear["sensor"] == "linear-only" and linear["ratio"] is None
+    assert linear["recorded"]["total"] == 0.0 and linear["fitted"]["total"] == 0.0
 
 
 def test_non_gaussian_recording_is_flagged(tmp_path: Path) -> None:
