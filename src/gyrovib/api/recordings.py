@@ -137,8 +137,10 @@ def read_recording(path: str, *, fs: float | None = None,
         reader = _CsvColumns(path, names, columns)
     elif kind == "ulog":
         reader = _ulog_columns(path, topic or ULOG_TOPIC)
-        if rate_columns is None:
-            rate_columns = ULOG_RATE
+        if rate_columns is None:  # sensor_combined's, or x, y, z of a sensor_gyro topic
+            plain = ("x", "y", "z")
+            rate_columns = (plain if all(c in reader.names for c in plain)
+                            and ULOG_RATE[0] not in reader.names else ULOG_RATE)
         if accel_columns is None and all(c in reader.names for c in ULOG_ACCEL):
             accel_columns = ULOG_ACCEL
     else:
