@@ -480,3 +480,17 @@ def test_npz_with_one_2d_array(tmp_path: Path) -> None:
     np.testing.assert_allclose(rec.rate[:, 0], a[:, 2] * 180 / np.pi, rtol=1e-15)
     np.testing.assert_array_equal(rec.rate[:, 1], 0.0)
     assert rec.segments.tolist() == [[0, 100]] and not rec.time_given
+
+
+def test_ulog_another_topic_by_column_names() -> None:
+    """--topic with --rate-columns: vehicle_attitude's body rates (rad/s), timestamps in µs."""
+    pyulog = pytest.importorskip("pyulog", reason="the ULog path needs gyrovib[ulog]")
+    from gyrovib.api.recordings import read_recording
+
+    rec = read_recording(str(ULOG), topic="vehicle_attitude",
+                         rate_columns=("rollspeed", "pitchspeed", "yawspeed"))
+    data = pyulog.ULog(str(ULOG), ["vehicle_attitude"]).data_list[0].data
+    assert rec.samples == data["timestamp"].size and rec.accel is None
+    np.testing.assert_allclose(rec.rate[:, 2], np.rad2deg(data["yawspeed"].astype(float)),
+                               rtol=1e-6)
+    assert rec.fs == pytest.approx(1e6 / np.median(np.diff(data["timestamp"])), rel=1e-9)
