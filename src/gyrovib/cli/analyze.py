@@ -70,7 +70,6 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         from gyrovib.cli.recording import analyze_recording, refuse_with_recording
 
         refuse_with_recording(profiles=profiles, rate=rate, method=method)
-
         analyze_recording(recording, catalog, sensors, unit, fmt, output, rec)
         return
     with progress_bar("brute force", enabled=method == "numeric") as advance:
