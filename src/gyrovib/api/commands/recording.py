@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.recordings import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.core.transmissibility import FloatArray, Table
-from gyrovib.errors import OptionError, Problem
+from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
 
 #: Defaults of the options (INTERFACE.md, third round).
@@ -238,8 +238,15 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         rate_axes=recording.rate_axes, warnings=tuple(warnings), yaml="", peak=peak,
         moments=moments, g2_moments=g2_moments)
     from gyrovib.api.recording_yaml import profile_yaml
+    from gyrovib.catalog.loader import parse_catalog
 
-    return _replace_yaml(fit, profile_yaml(fit, independent_tones=independent_tones))
+    text = profile_yaml(fit, independent_tones=independent_tones)
+    try:  # what is written must validate: an --id the format refuses is said here
+        parse_catalog(text, "<fitted profile>")
+    except GyrovibError as exc:
+        raise OptionError(f"--id {pid!r}: the fitted profile does not validate: "
+                          f"{exc.problems[0].message}") from None
+    return _replace_yaml(fit, text)
 
 
 def _replace_yaml(fit: RecordingFit, text: str) -> RecordingFit:
