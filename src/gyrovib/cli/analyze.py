@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import click
 
 from gyrovib.cli.common import (
@@ -23,6 +25,7 @@ from gyrovib.cli.options import (
     selection_options,
     unit_option,
 )
+from gyrovib.cli.recording import recording_options
 
 
 @click.command()
@@ -42,10 +45,14 @@ from gyrovib.cli.options import (
 @peak_factor_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
+@click.option("--recording", metavar="RECORDING",
+              help="Δ_V,rec of every sensor on a recording (MODEL.md section 13), beside "
+                   "the fitted profile's closed form; see `gyrovib profile` for its options.")
+@recording_options
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
             method: str, samples: int, seed: int, rate: str | None, unit: str,
             peak_factor: float, fmt: str,
-            output: str | None) -> None:
+            output: str | None, recording: str | None, **rec: Any) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 
     Computes the additive terms Δ0 (eq. 14/15), Δ_VA, Δ_VM, the total Δ_V
@@ -65,6 +72,12 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
 
     unit = parse_unit(unit)
     catalog = load_catalog(files)
+    if recording is not None:
+        from gyrovib.cli.recording import analyze_recording, refuse_with_recording
+
+        refuse_with_recording(profiles=profiles, rate=rate, method=method)
+        analyze_recording(recording, catalog, sensors, unit, fmt, output, rec)
+        return
     with progress_bar("brute force", enabled=method == "numeric") as advance:
         result = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
                              rate=parse_rate_option(rate, unit), unit=unit, samples=samples,

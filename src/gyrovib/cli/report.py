@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import click
 
 from gyrovib.cli.common import load_catalog, say
@@ -12,6 +14,7 @@ from gyrovib.cli.options import (
     peak_factor_option,
     selection_options,
 )
+from gyrovib.cli.recording import recording_options
 
 DEFAULT_OUTPUT = "report.html"
 
@@ -33,10 +36,15 @@ DEFAULT_OUTPUT = "report.html"
                    "±1.5 × the largest |Ω_K3| + vibration peak of the chosen profiles.")
 @click.option("--output", "-o", default=DEFAULT_OUTPUT, show_default=True, metavar="PATH",
               help="Write the HTML here (atomically); '-' for standard output.")
+@click.option("--recording", metavar="RECORDING",
+              help="Add a recording (MODEL.md section 13): its PSD against the fitted "
+                   "profile, the honesty of the fit, Δ_V,rec beside the closed form; the "
+                   "fitted profile joins the study's profiles.")
+@recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, require: str, rate_range: str | None,
-           output: str) -> None:
+           output: str, recording: str | None, **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -57,9 +65,16 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
         from gyrovib.cli.sweep import parse_rate_range
 
         sweep_rates = api.rate_range(*parse_rate_range(rate_range, split["unit"]))
+    catalog = load_catalog(files)
+    section = ""
+    if recording is not None:
+        from gyrovib.cli.recording import report_recording
+
+        catalog, profiles, section = report_recording(recording, catalog, sensors, profiles,
+                                                      split["unit"], rec)
     result = studies.trade_study(
-        load_catalog(files), sensors=sensors, profiles=profiles, method=method, **split,
+        catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
-    write_output(to_html(result), output)
+    write_output(to_html(result, section), output)
     if output not in ("-", ""):
         say(f"gyrovib: wrote {output}")

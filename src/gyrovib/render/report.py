@@ -357,8 +357,10 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
             f"<div class=\"charts\">{''.join(figures)}</div></section>")
 
 
-def to_html(study: TradeStudy) -> str:
-    """The whole report as one HTML document (UTF-8 text)."""
+def to_html(study: TradeStudy, recording: str = "") -> str:
+    """The whole report as one HTML document (UTF-8 text); ``recording``: the HTML of
+    ``report --recording`` (:func:`gyrovib.render.recording.report_section`), placed
+    before the profiles."""
     s = study.selection
     names = term_names(study.analysis.has_linear, any(study.analysis.locked))
     squares = term_squares(study)
@@ -383,6 +385,7 @@ def to_html(study: TradeStudy) -> str:
         f'<div class="charts">{_figure(worst_margin_chart(study))}</div>', _warnings(study),
         "<h2>Passing sensors, ranked</h2>", _ranking(study),
         "<h2>Failing sensors: what limits them</h2>", _failing(study),
+        recording,
         "<h2>Profiles</h2>",
         *(_profile_section(study, j, squares, names) for j in range(len(s.profiles))),
     ]

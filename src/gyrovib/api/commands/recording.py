@@ -1,0 +1,532 @@
+"""Recordings (MODEL.md section 13): the recorded error Δ_V,rec and the fitted profile.
+
+:func:`fit_recording` splits a recording at the crossover, fits a catalogue
+profile to its vibration (tones, phase-locked harmonics, a log-log PSD,
+coherences, the carrier histogram, the linear vibration) and writes it as
+catalogue YAML; :func:`analyze_recording` adds every sensor's Δ_V,rec on the
+recording itself beside the closed form of the fitted profile over the
+carrier histogram (the fitted mission), and their ratio.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gyrovib import units
+from gyrovib.api.recordings import PADDING, Recording, RecordingError, iter_segments
+from gyrovib.core.transmissibility import FloatArray, Table
+from gyrovib.errors import GyrovibError, OptionError, Problem
+from gyrovib.frozen import Frozen
+
+#: Defaults of the options (INTERFACE.md, third round).
+DEFAULT_CROSSOVER = 5.0
+DEFAULT_RESOLUTION = 0.5
+DEFAULT_THRESHOLD = 10.0
+DEFAULT_BREAKPOINTS = 12
+#: The fitted mission's closed form and Δ_V,rec should agree within this range.
+RATIO_RANGE = (0.8, 1.25)
+#: A vibration whose rms is below this fraction of the signal's is rounding: none.
+NEGLIGIBLE = 1e-10
+#: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.
+_LINE_FLOOR = 2.0
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class AxisHonesty(Frozen):
+    """One axis of the honesty table: variance of x (unit²), the fraction of it the
+    fitted profile holds, skewness and excess kurtosis of x (NaN: not recorded)."""
+
+    variance: float
+    held: float
+    skewness: float
+    excess_kurtosis: float
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FittedTone(Frozen):
+    """A tone: frequency (Hz), amplitude (3,) and phase (3,) in degrees."""
+
+    frequency: float
+    amplitude: FloatArray
+    phase: FloatArray
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FittedHarmonics(Frozen):
+    """A phase-locked group: fundamental (Hz), orders, amplitudes (orders, 3)."""
+
+    fundamental: float
+    orders: tuple[int, ...]
+    amplitude: FloatArray
+    phase: FloatArray
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FittedPart(Frozen):
+    """The fitted vibration of one kind (rate in deg/s, or acceleration in g)."""
+
+    tones: tuple[FittedTone, ...]
+    harmonics: tuple[FittedHarmonics, ...]
+    psd: tuple[Table | None, Table | None, Table | None]
+    coherence: FloatArray
+    frequencies: FloatArray
+    measured: FloatArray
+    median: FloatArray
+    variance: FloatArray
+    held: FloatArray
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class RecordingFit(Frozen):
+    """What :func:`fit_recording` found (rates deg/s, accelerations g).
+
+    ``mission_rates`` (bins, 3) and ``mission_durations`` (bins,) s: the
+    histogram of Ω_K3 (each bin's mean Ω_K3, the time means of Ω_K1, Ω_K2);
+    ``yaml``: the catalogue text (profile ``profile_id``) with provenance.
+    """
+
+    file: str
+    sha256: str
+    samples: int
+    fs: float
+    crossover: float
+    segments: int
+    duration: float
+    profile_id: str
+    rate: FloatArray
+    mission_rates: FloatArray
+    mission_durations: FloatArray
+    angular: FittedPart
+    linear: FittedPart | None
+    honesty: tuple[AxisHonesty, AxisHonesty, AxisHonesty]
+    rate_axes: tuple[bool, bool, bool]
+    warnings: tuple[str, ...]
+    yaml: str
+    peak: FloatArray = field(default_factory=lambda: np.zeros(0))
+    moments: dict[Any, FloatArray] = field(default_factory=dict)
+    g2_moments: FloatArray | None = None
+
+
+def _check(crossover: float, resolution: float, threshold: float, breakpoints: int) -> None:
+    if not (math.isfinite(crossover) and crossover > 0):
+        raise OptionError(f"--crossover {crossover:g}: give a positive frequency in Hz")
+    if not (math.isfinite(resolution) and resolution > 0):
+        raise OptionError(f"--resolution {resolution:g}: give a positive frequency in Hz")
+    if not math.isfinite(threshold) or threshold <= 0:
+        raise OptionError(f"--tone-threshold {threshold:g}: give a positive number of dB")
+    if breakpoints < 2:
+        raise OptionError(f"--breakpoints {breakpoints}: give at least 2")
+
+
+def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
+                  resolution: float = DEFAULT_RESOLUTION,
+                  tone_threshold: float = DEFAULT_THRESHOLD,
+                  breakpoints: int = DEFAULT_BREAKPOINTS, independent_tones: bool = False,
+                  profile_id: str | None = None,
+                  responses: Sequence[Table] = ()) -> RecordingFit:
+    """Split, measure and fit a recording (MODEL.md section 13).
+
+    ``responses``: input-side sensor responses for which Δ_V,rec moments are
+    wanted besides the plain ones (``moments[None]``); each gets
+    ``moments[i]`` and ``peak[i + 1]`` (``peak[0]``: max |ω3| as recorded).
+    """
+    from gyrovib.core import recording as core
+
+    _check(crossover, resolution, tone_threshold, breakpoints)
+    fs = recording.fs
+    if crossover >= fs / 2:
+        raise RecordingError(Problem(
+            f"fs = {fs:.6g} Hz is too low for the crossover {crossover:g} Hz (it must lie "
+            f"below fs/2 = {fs / 2:.6g} Hz): lower --crossover", recording.file))
+    kept = list(iter_segments(recording, crossover))
+    warnings: list[str] = []
+    dropped = len(recording.segments) - len(kept)
+    if dropped:
+        warnings.append(f"{dropped} segment(s) shorter than 4/f_c = {4 / crossover:g} s "
+                        "dropped (MODEL.md section 13)")
+    if not kept:
+        longest = int(np.max(recording.segments[:, 1] - recording.segments[:, 0]))
+        raise RecordingError(Problem(
+            f"the recording is shorter than one segment: its longest contiguous stretch "
+            f"is {longest} samples = {longest / fs:.6g} s, and a segment needs 4/f_c = "
+            f"{4 / crossover:g} s and more than {PADDING} samples (the filter's padding) "
+            "(raise --crossover, or record longer)", recording.file))
+    n_total = sum(hi - lo for lo, hi in kept)
+    moments: dict[Any, FloatArray] = {None: np.zeros(len(core.MOMENTS))}
+    peak = np.zeros(1 + len(responses))
+    for i in range(len(responses)):
+        moments[i] = np.zeros(len(core.MOMENTS))
+    g2_sums = np.zeros(len(core.G2_PAIRS)) if recording.accel is not None else None
+    carrier_sum = np.zeros(3)
+    carrier3: list[FloatArray] = []
+    x_segments: list[FloatArray] = []
+    xa_segments: list[FloatArray] = []
+    raw = np.zeros((4, 3))
+    signal = np.zeros(3)  # Σω² per axis, against which a vibration is negligible
+    for lo, hi in kept:
+        w = recording.rate[lo:hi]
+        c = core.lowpass(w, fs, crossover)
+        moments[None] += core.recorded_moments(w, c)
+        peak[0] = max(peak[0], float(np.max(np.abs(w[:, 2]))))
+        carrier_sum += c.sum(axis=0)
+        carrier3.append(c[:, 2].copy())
+        np.subtract(w, c, out=c)  # c is now x
+        for i, table in enumerate(responses):
+            omega_k = w - c
+            xr = core.zero_phase_gain(c, fs, table)
+            xr += omega_k  # Ω_K + ν·x: the rate at the nonlinear element
+            moments[i] += core.recorded_moments(xr, omega_k)
+            peak[i + 1] = max(peak[i + 1], float(np.max(np.abs(xr[:, 2]))))
+            del xr, omega_k
+        raw += core.power_sums(c)
+        signal += np.einsum("ij,ij->j", w, w)
+        x_segments.append(c)
+        if recording.accel is not None and g2_sums is not None:
+            a = recording.accel[lo:hi]
+            big_a = core.lowpass(a, fs, crossover)
+            g2_sums += core.recorded_g2_moments(a, big_a)
+            np.subtract(a, big_a, out=big_a)
+            xa_segments.append(big_a)
+    for key in moments:
+        moments[key] = moments[key] / n_total
+    g2_moments = None if g2_sums is None else g2_sums / n_total
+    var, skew, kurt = core.central_moments(raw, n_total)
+    # a vibration below 1e-10 of the signal's rms is the filter's rounding, not a vibration
+    quiet = var <= NEGLIGIBLE**2 * signal / n_total
+    var = np.where(quiet, 0.0, var)
+    skew, kurt = (np.where(quiet, np.nan, v) for v in (skew, kurt))
+    axes_on = np.array(recording.rate_axes)
+    var, skew, kurt = (np.where(axes_on, v, np.nan) for v in (var, skew, kurt))
+    angular = _fit_part(recording.file, x_segments, fs, resolution, tone_threshold, breakpoints,
+                        independent_tones, crossover, var, rate=True)
+    del x_segments
+    linear = None
+    if xa_segments:
+        raw_a = np.zeros((2, 3))
+        for xa in xa_segments:
+            raw_a += core.power_sums(xa, 2)
+        var_a = raw_a[1] / n_total - (raw_a[0] / n_total) ** 2
+        var_a = np.where(var_a <= NEGLIGIBLE**2 * np.abs(raw_a[1]) / n_total, 0.0, var_a)
+        var_a = np.where(np.array(recording.accel_axes), var_a, np.nan)
+        linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
+                           breakpoints, True, crossover, var_a, rate=False)
+    del xa_segments
+    rate = carrier_sum / n_total
+    c3 = np.concatenate(carrier3)
+    del carrier3
+    bin_rates, counts = core.carrier_histogram(c3)
+    del c3
+    mission_rates = np.column_stack([np.full(bin_rates.size, rate[0]),
+                                     np.full(bin_rates.size, rate[1]), bin_rates])
+    honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
+                                float(kurt[j])) for j in range(3))
+    base = os.path.basename(recording.file)
+    pid = profile_id or _default_id(base)
+    fit = RecordingFit(
+        file=recording.file, sha256=recording.sha256, samples=recording.samples, fs=fs,
+        crossover=crossover, segments=len(kept), duration=n_total / fs, profile_id=pid,
+        rate=rate, mission_rates=mission_rates, mission_durations=counts / fs,
+        angular=angular, linear=linear,
+        honesty=honesty,  # type: ignore[arg-type]
+        rate_axes=recording.rate_axes, warnings=tuple(warnings), yaml="", peak=peak,
+        moments=moments, g2_moments=g2_moments)
+    from gyrovib.api.recording_yaml import profile_yaml
+    from gyrovib.catalog.loader import parse_catalog
+
+    text = profile_yaml(fit, independent_tones=independent_tones)
+    try:  # what is written must validate: an --id the format refuses is said here
+        parse_catalog(text, "<fitted profile>")
+    except GyrovibError as exc:
+        raise OptionError(f"--id {pid!r}: the fitted profile does not validate: "
+                          f"{exc.problems[0].message}") from None
+    return _replace_yaml(fit, text)
+
+
+def _replace_yaml(fit: RecordingFit, text: str) -> RecordingFit:
+    import dataclasses
+
+    return dataclasses.replace(fit, yaml=text)
+
+
+def _default_id(base: str) -> str:
+    stem = base.split(".")[0] or "recording"
+    clean = "".join(ch if ch.isalnum() or ch in "-_" else "-" for ch in stem).strip("-_")
+    return f"{clean or 'recording'}-fitted"
+
+
+def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: float, threshold: float,
+              breakpoints: int, independent: bool, crossover: float, variance: FloatArray,
+              *, rate: bool) -> FittedPart:
+    """Tones, harmonics, PSD breakpoints and coherences of one kind of vibration."""
+    from gyrovib.core import recording as core
+    from gyrovib.core.transmissibility import psd_variance
+
+    f, spectra, windows = core.welch_spectra(segments, fs, resolution)
+    silent = ~(variance > 0)  # not recorded, or negligible: no spectrum to fit
+    spectra[silent, :, :] = 0.0
+    spectra[:, silent, :] = 0.0
+    if windows == 0:
+        raise RecordingError(Problem(
+            f"no contiguous segment holds one Welch window of 1/Δf = {1 / resolution:g} s: "
+            "raise --resolution", file))
+    lines, median = core.find_lines(f, spectra, threshold, fmin=_LINE_FLOOR * crossover)
+    df = float(f[1] - f[0])
+    psd = np.real(np.stack([spectra[i, i] for i in range(3)]))
+    random = psd.copy()
+    in_line = np.zeros(f.size, dtype=bool)
+    for line in lines:
+        random[:, line.lo:line.hi] = median[:, line.lo:line.hi]
+        in_line[line.lo:line.hi] = True
+    band = (f >= crossover) & (f < f[-1])
+    tables: list[Table | None] = []
+    sigma2 = np.zeros(3)
+    for j in range(3):
+        if not np.isfinite(variance[j]) or not np.any(random[j, band] > 0):
+            tables.append(None)
+            continue
+        bf, bs = core.fit_breakpoints(f[band], random[j, band], breakpoints)
+        tables.append((bf, bs))
+        sigma2[j] = psd_variance((bf, bs))
+    keep = band & ~in_line
+    coh = np.zeros(3)  # ρ31, ρ32, ρ12 (rate) or ρ12, ρ13, ρ23 (acceleration)
+    pairs = ((2, 0), (2, 1), (0, 1)) if rate else ((0, 1), (0, 2), (1, 2))
+    for k, (i, j) in enumerate(pairs):
+        si = float(np.sum(psd[i, keep]) * df)
+        sj = float(np.sum(psd[j, keep]) * df)
+        if si > 0 and sj > 0:
+            coh[k] = float(np.clip(np.real(np.sum(spectra[i, j, keep])) * df
+                                   / math.sqrt(si * sj), -1.0, 1.0))
+    tones: list[FittedTone] = []
+    harmonics: list[FittedHarmonics] = []
+    grouped: set[int] = set()
+    if not independent and rate:
+        for f0, members, orders in core.harmonic_groups([ln.frequency for ln in lines]):
+            order_sort = np.argsort(orders)
+            mem = [members[k] for k in order_sort]
+            harmonics.append(FittedHarmonics(
+                f0, tuple(int(orders[k]) for k in order_sort),
+                np.array([lines[m].amplitude for m in mem]),
+                np.array([lines[m].phase for m in mem])))
+            grouped.update(members)
+    for k, line in enumerate(lines):
+        if k not in grouped:
+            tones.append(FittedTone(line.frequency, line.amplitude, line.phase))
+    tone_var = sum((ln.amplitude**2 / 2 for ln in lines), np.zeros(3))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
+    return FittedPart(tuple(tones), tuple(harmonics),
+                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held)
+
+
+# ----------------------------------------------------------------- analyze --recording
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class RecordingAnalysis(Frozen):
+    """Δ_V,rec of every sensor beside the fitted mission's closed form (output unit).
+
+    ``recorded`` (N,) Δ_V,rec; ``terms`` (N, 7) its parts per coefficient
+    (:data:`gyrovib.core.recording.MOMENTS`); ``g2`` (N,) the g² part;
+    ``fitted`` (N,) the time-weighted closed form over the fitted mission,
+    ``fitted_rms`` (N,); ``ratio`` (N,) fitted/recorded (NaN where either is 0);
+    ``saturated`` (N,), ``peak_rate`` (N,) max |ω3| at the element;
+    ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope).
+    """
+
+    unit: str
+    sensors: tuple[str, ...]
+    recorded: FloatArray
+    terms: FloatArray
+    g2: FloatArray
+    fitted: FloatArray
+    fitted_rms: FloatArray
+    ratio: FloatArray
+    saturated: NDArray[np.bool_]
+    peak_rate: FloatArray
+    spec: NDArray[np.bool_]
+    fit: RecordingFit
+    warnings: dict[int, tuple[str, ...]]
+
+    def to_frame(self) -> Any:
+        """One row per sensor (pandas DataFrame); columns as the CSV output's."""
+        import pandas as pd
+
+        from gyrovib.core.recording import MOMENTS
+
+        data: dict[str, Any] = {"sensor": list(self.sensors), "recorded": self.recorded}
+        for k, name in enumerate(MOMENTS):
+            data[f"recorded_{name}"] = self.terms[:, k]
+        data.update({"recorded_g2": self.g2, "fitted": self.fitted,
+                     "fitted_rms": self.fitted_rms, "ratio": self.ratio,
+                     "saturated": self.saturated, "peak_rate": self.peak_rate,
+                     "unit": self.unit})
+        frame = pd.DataFrame(data)
+        fit = self.fit
+        frame.attrs.update({"unit": self.unit, "file": os.path.basename(fit.file),
+                            "sha256": fit.sha256, "samples": fit.samples, "fs": fit.fs,
+                            "crossover": fit.crossover, "segments": fit.segments,
+                            "duration": fit.duration})
+        return frame
+
+
+def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[str] = (),
+                      unit: str = "deg/s", crossover: float = DEFAULT_CROSSOVER,
+                      resolution: float = DEFAULT_RESOLUTION,
+                      tone_threshold: float = DEFAULT_THRESHOLD,
+                      breakpoints: int = DEFAULT_BREAKPOINTS, independent_tones: bool = False,
+                      profile_id: str | None = None) -> RecordingAnalysis:
+    """Δ_V,rec (MODEL.md section 13) of every chosen sensor, and the fitted mission's
+    closed form beside it.
+
+    Coefficient-form sensors: the definition itself, vectorised; sensors whose
+    response acts at the input see ν·x (a zero-phase gain). Spec-form
+    sensors: the worst Δ_V,rec over their datasheet envelope (it is linear in
+    the coefficients, MODEL.md section 11). The closed form evaluates the
+    fitted profile at each histogram bin of Ω_K3 and weights the bins by
+    their time (MODEL.md section 12's mean error Δ̄_V).
+    """
+    from gyrovib.api.convert import coefficient_matrix, sensor_ranges
+    from gyrovib.api.entries import select_entries
+    from gyrovib.api.linear import g2_matrix
+    from gyrovib.api.prepare import input_response
+    from gyrovib.api.specs import figures, is_spec
+    from gyrovib.core.recording import recorded_error
+    from gyrovib.core.transmissibility import as_table
+
+    unit = units.canonical_unit(unit)
+    entries, _ = select_entries(catalog, sensors, (), need=("sensors",))
+    keys: list[tuple[tuple[float, float], ...] | None] = [input_response(e) for e in entries]
+    distinct = [k for k in dict.fromkeys(keys) if k is not None]
+    fit = fit_recording(recording, crossover=crossover, resolution=resolution,
+                        tone_threshold=tone_threshold, breakpoints=breakpoints,
+                        independent_tones=independent_tones, profile_id=profile_id,
+                        responses=[as_table(k) for k in distinct])
+    n = len(entries)
+    coeffs = coefficient_matrix(entries)
+    g2 = g2_matrix(entries)
+    group = [None if k is None else distinct.index(k) for k in keys]
+    moments = np.array([fit.moments[g] for g in group]).reshape(n, -1)
+    peak = np.array([fit.peak[0 if g is None else g + 1] for g in group])
+    total, terms, g2_part = recorded_error(coeffs, moments, g2, fit.g2_moments)
+    spec = np.array([is_spec(e) for e in entries], dtype=bool)
+    if spec.any():
+        total, terms, g2_part = _spec_recorded(entries, spec, moments, fit, total, terms,
+                                               g2_part, figures)
+    ranges = sensor_ranges(entries)
+    saturated = peak > ranges
+    fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries], spec,
+                                         entries, figures)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
+    s = units.scale(unit)
+    warnings: dict[int, tuple[str, ...]] = {}
+    lo, hi = RATIO_RANGE
+    for i in range(n):
+        w: list[str] = []
+        if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
+            worst = (" (the fitted harmonics take their worst relative phases, so the closed "
+                     "form is a bound over phases the recording does not show: "
+                     "--independent-tones compares like with like)"
+                     if fit.angular.harmonics else "")
+            w.append(f"the fitted profile's closed form is {ratio[i]:.3g} × Δ_V,rec, outside "
+                     f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
+                     f"stationary, and Δ_V,rec is the number to trust{worst}")
+        if saturated[i]:
+            w.append(f"max |ω3| = {peak[i] / s:.6g} {unit} on the recording exceeds the "
+                     f"sensor's range {ranges[i] / s:.6g} {unit}: the static model does not "
+                     "hold in saturation")
+        if w:
+            warnings[i] = tuple(w)
+    return RecordingAnalysis(
+        unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
+        terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
+        ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
+        warnings=warnings)
+
+
+def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: FloatArray,
+                   fit: RecordingFit, total: FloatArray, terms: FloatArray,
+                   g2_part: FloatArray, figures: Any) -> tuple[FloatArray, FloatArray,
+                                                               FloatArray]:
+    """Spec-form rows: worst Δ_V,rec over the envelope (MODEL.md sections 11, 13).
+
+    Δ_V,rec = cᵀx + Σ G_jj⟨a_j² − A_j²⟩ with c = (½⟨|ω3|−|Ω3|⟩, ⟨ω3ⁿ−Ω3ⁿ⟩),
+    k1 = 1 and m31 = m32 = 0 (datasheets do not give them); each row of c is
+    handed to :func:`gyrovib.core.envelope.worst_case` as a diagonal term matrix.
+    """
+    from gyrovib.core.envelope import worst_case
+
+    total, terms, g2_part = total.copy(), terms.copy(), g2_part.copy()
+    idx = np.flatnonzero(spec)
+    figs = figures([entries[i] for i in idx.tolist()])
+    s_acc = 0.0 if fit.g2_moments is None else float(np.sum(fit.g2_moments[:3]))
+    for k, i in enumerate(idx.tolist()):
+        t = np.zeros((1, 8, 5))
+        for c in range(5):
+            t[0, c, c] = moments[i, c]
+        wc = worst_case(t, s_acc, figs.range[k:k + 1], figs.limit[k:k + 1],
+                        figs.fit[k:k + 1], figs.measure[k:k + 1],
+                        asymmetry=figs.asymmetry[k:k + 1], vre=figs.vre[k:k + 1])
+        x = wc.coefficients[0, 0]
+        terms[i] = 0.0
+        terms[i, :5] = x * moments[i, :5]
+        g2_part[i] = float(wc.g2[0, 0])
+        total[i] = float(wc.total[0, 0])
+    return total, terms, g2_part
+
+
+def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str],
+                    spec: NDArray[np.bool_], entries: Sequence[Any],
+                    figures: Any) -> tuple[FloatArray, FloatArray]:
+    """Time-weighted closed form (exact method) of the fitted profile over the carrier
+    histogram: Δ̄ = Σ T_b·Δ_V(Ω_b)/ΣT, and √(Σ T_b·Δ_V(RMS)_b²/ΣT), deg/s.
+
+    A spec-form sensor's Δ̄ is the worst case over its envelope of the whole
+    mission — one conversion function for every bin (MODEL.md section 12):
+    its term functionals are time-weighted first, then maximised once.
+    """
+    from gyrovib.api.commands.analyze import analyze
+    from gyrovib.api.prepare import float_guard, prepare
+    from gyrovib.api.recording_yaml import with_fitted_profile
+    from gyrovib.api.specs import mean_square_acceleration, terms_of
+    from gyrovib.core.envelope import worst_case
+
+    combined = with_fitted_profile(catalog, fit)
+    durations = fit.mission_durations
+    total = np.zeros(len(sensor_ids))
+    square = np.zeros(len(sensor_ids))
+    spec_ids = [sensor_ids[i] for i in np.flatnonzero(spec).tolist()]
+    spec_terms = np.zeros((len(spec_ids), 8, 5))
+    spec_s = np.zeros(len(spec_ids))
+    for rate, t in zip(fit.mission_rates, durations, strict=True):
+        result = analyze(combined, sensors=sensor_ids, profiles=(fit.profile_id,),
+                         rate=[float(v) for v in rate])
+        total += t * result.error.total[:, 0]
+        square += t * result.error.rms[:, 0] ** 2
+        if spec_ids:
+            with float_guard():
+                prepared = prepare(combined, sensors=spec_ids, profiles=(fit.profile_id,),
+                                   rate=[float(v) for v in rate], methods=("exact",))
+            for group in prepared.groups:
+                m = group.multipliers["exact"]
+                spec_terms[group.index] += t * terms_of(m).reshape(8, 5)
+                spec_s[group.index] += t * float(mean_square_acceleration(m).reshape(-1)[0])
+    weight = float(np.sum(durations))
+    total /= weight
+    if spec_ids:
+        idx = np.flatnonzero(spec)
+        figs = figures([entries[i] for i in idx.tolist()])
+        for k, i in enumerate(idx.tolist()):
+            wc = worst_case(spec_terms[k:k + 1] / weight, spec_s[k] / weight,
+                            figs.range[k:k + 1], figs.limit[k:k + 1], figs.fit[k:k + 1],
+                            figs.measure[k:k + 1], asymmetry=figs.asymmetry[k:k + 1],
+                            vre=figs.vre[k:k + 1])
+            total[i] = float(wc.total[0, 0])
+    return total, np.sqrt(square / weight)

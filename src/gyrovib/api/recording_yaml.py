@@ -1,0 +1,123 @@
+"""The fitted profile of a recording as catalogue YAML (``gyrovib: 1``), with its provenance.
+
+The text is data for the catalogue loader (``gyrovib validate`` accepts it),
+so it is built here, beside the fit, and not by a renderer. The carrier
+histogram — the fitted mission of MODEL.md section 13 — is written as a
+comment block: the catalogue format of this version has no missions yet.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from gyrovib.api.commands.recording import FittedPart, RecordingFit
+    from gyrovib.core.transmissibility import Table
+
+
+def _num(v: float) -> str:
+    text = f"{float(v):.6g}"
+    return "0" if text in ("-0", "0") else text
+
+
+def _triple(values: object) -> str:
+    return "[" + ", ".join(_num(v) for v in np.asarray(values, dtype=float)) + "]"
+
+
+def _table(table: Table) -> str:
+    f, s = table
+    return "[" + ", ".join(f"[{_num(a)}, {_num(b)}]" for a, b in zip(f, s, strict=True)) + "]"
+
+
+def _part(part: FittedPart, indent: str, *, rate: bool) -> list[str]:
+    out: list[str] = []
+    if part.tones:
+        out.append(f"{indent}harmonic:")
+        for t in part.tones:
+            out.append(f"{indent}  - {{frequency: {_num(t.frequency)}, amplitude: "
+                       f"{_triple(t.amplitude)}, phase: {_triple(t.phase)}}}")
+    if rate and part.harmonics:
+        out.append(f"{indent}harmonics:")
+        for h in part.harmonics:
+            out.append(f"{indent}  - fundamental: {_num(h.fundamental)}")
+            out.append(f"{indent}    orders:")
+            for order, amp in zip(h.orders, h.amplitude, strict=True):
+                out.append(f"{indent}      - {{order: {order}, amplitude: {_triple(amp)}, "
+                           "phase: worst}")
+    if any(t is not None for t in part.psd):
+        out.append(f"{indent}random:")
+        out.append(f"{indent}  psd:")
+        for axis, table in zip(("x1", "x2", "x3"), part.psd, strict=True):
+            if table is not None:
+                out.append(f"{indent}    {axis}: {_table(table)}")
+        coherence = part.coherence[:2] if rate else part.coherence
+        out.append(f"{indent}  coherence: {_triple(coherence)}")
+    return out
+
+
+def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
+    """The catalogue text of ``fit``'s profile: provenance and mission as comments."""
+    base = os.path.basename(fit.file)
+    lines = [
+        "# Fitted by `gyrovib profile` from a recording (MODEL.md section 13).",
+        f"# file: {base}",
+        f"# sha256: {fit.sha256}",
+        f"# samples: {fit.samples}; fs: {_num(fit.fs)} Hz; crossover f_c: {_num(fit.crossover)}"
+        f" Hz; segments: {fit.segments}; duration analysed: {_num(fit.duration)} s",
+        "# Rates in deg/s (PSD in (deg/s)^2/Hz), accelerations in g (PSD in g^2/Hz).",
+    ]
+    if fit.angular.harmonics:
+        lines.append("# Lines at integer multiples of a fundamental are one phase-locked group; "
+                     "their relative phases are unobservable in a PSD, so each order is "
+                     "'phase: worst'.")
+    c = fit.angular.coherence
+    lines.append(f"# Coherence of the random part: rho31 = {_num(c[0])}, rho32 = {_num(c[1])}, "
+                 f"rho12 = {_num(c[2])} (the format holds rho31, rho32).")
+    lines.append("# Fitted mission (carrier histogram of Omega_K3, MODEL.md sections 12-13),")
+    lines.append("# a comment until the catalogue format has missions:")
+    lines.append("#   mission:")
+    lines.append(f"#     id: {fit.profile_id}-mission")
+    lines.append("#     segments:")
+    for rate, t in zip(fit.mission_rates, fit.mission_durations, strict=True):
+        lines.append(f"#       - {{profile: {fit.profile_id}, duration: {_num(t)}, "
+                     f"rate: {_triple(rate)}}}")
+    lines += [
+        "",
+        "gyrovib: 1",
+        "units:",
+        "  rate: deg/s",
+        "  acceleration: g",
+        "",
+        "profiles:",
+        f"  - id: {fit.profile_id}",
+        f"    name: {_quote('Fitted from ' + base)}",
+        f"    rate: {_triple(fit.rate)}",
+    ]
+    lines += _part(fit.angular, "    ", rate=True)
+    if fit.linear is not None and (fit.linear.tones or any(t is not None
+                                                           for t in fit.linear.psd)):
+        lines.append("    acceleration:")
+        lines += _part(fit.linear, "      ", rate=False)
+    return "\n".join(lines) + "\n"
+
+
+def _quote(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def with_fitted_profile(catalog: Any, fit: RecordingFit) -> Any:
+    """``catalog`` with the fitted profile added (its source named after the recording);
+    an id already in the catalogue is refused with a pointer to ``--id``."""
+    from gyrovib.catalog.loader import merge, parse_catalog
+    from gyrovib.errors import GyrovibError, OptionError
+
+    source = parse_catalog(fit.yaml, f"<fitted from {os.path.basename(fit.file)}>",
+                           skip=("sensors",))
+    try:
+        return merge([*catalog.sources, source])
+    except GyrovibError as exc:
+        raise OptionError(f"the fitted profile's id {fit.profile_id!r} is already used in the "
+                          "catalogue: choose another with --id") from exc

@@ -1,0 +1,35 @@
+"""`gyrovib profile`: fit a catalogue profile to a recording (MODEL.md section 13)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import click
+
+from gyrovib.cli.options import output_option
+from gyrovib.cli.recording import fit_options, read, recording_options
+
+
+@click.command()
+@click.argument("recording", metavar="RECORDING")
+@recording_options
+@click.option("--plot", metavar="PNG", help="Plot the measured PSD against the fit, per axis.")
+@output_option
+def profile(recording: str, plot: str | None, output: str | None, **options: Any) -> None:
+    """Fit a profile (and its carrier mission) to a RECORDING.
+
+    RECORDING: CSV with a header row (time column t/time in s, or --fs),
+    .npy (2-D, columns), .npz, or PX4 ULog .ulg (pip install 'gyrovib[ulog]').
+    Writes catalogue YAML (stdout, or -o FILE) that `gyrovib validate`
+    accepts, with the fit's provenance as comments; the honesty table goes to
+    standard error.
+    """
+    from gyrovib.api.commands.recording import fit_recording
+    from gyrovib.cli.output import write_output
+    from gyrovib.render.recording import honesty_table, plot_fit
+
+    fit = fit_recording(read(recording, options), **fit_options(options))
+    write_output(fit.yaml, output)
+    click.echo(honesty_table(fit), err=True, nl=False)
+    if plot is not None:
+        plot_fit(fit, plot)

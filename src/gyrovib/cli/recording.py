@@ -1,0 +1,110 @@
+"""Options and calls shared by ``gyrovib profile`` and ``gyrovib analyze --recording``."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import click
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def recording_options(f: F) -> F:
+    """The recording input and fit options of INTERFACE.md (third round)."""
+    options = [
+        click.option("--id", "profile_id", metavar="NAME",
+                     help="Id of the fitted profile (default: the file's name + -fitted)."),
+        click.option("--independent-tones", is_flag=True,
+                     help="Write integer-multiple lines as independent tones, not as one "
+                          "phase-locked harmonics group (phase: worst)."),
+        click.option("--breakpoints", type=click.IntRange(min=2), default=12,
+                     show_default=True, metavar="B",
+                     help="At most B log-log breakpoints for the random part's PSD."),
+        click.option("--tone-threshold", type=float, default=10.0, show_default=True,
+                     metavar="DB", help="A line stands this many dB above the running median."),
+        click.option("--resolution", type=float, default=0.5, show_default=True,
+                     metavar="DF", help="Frequency resolution of the Welch PSD, Hz."),
+        click.option("--crossover", type=float, default=5.0, show_default=True, metavar="F",
+                     help="f_c, Hz: below it the carrier's manoeuvres, above it vibration."),
+        click.option("--topic", metavar="NAME",
+                     help="ULog topic (default sensor_combined)."),
+        click.option("--accel-unit", metavar="UNIT",
+                     help="Unit of the accelerations: g or m/s^2 (default g; ULog m/s^2)."),
+        click.option("--rate-unit", metavar="UNIT",
+                     help="Unit of the rates: deg/s, deg/h, rad/s, rpm (default deg/s; "
+                          "ULog rad/s)."),
+        click.option("--accel-columns", metavar="X,Y,Z",
+                     help="Acceleration columns: names or 0-based indices, - for none."),
+        click.option("--rate-columns", metavar="X,Y,Z",
+                     help="Rate columns: names or 0-based indices, - for an axis not "
+                          "recorded (default: the first three columns other than t/time)."),
+        click.option("--fs", type=float, metavar="HZ",
+                     help="Sample rate, Hz, for a recording without a time column."),
+    ]
+    for option in options:
+        f = option(f)
+    return f
+
+
+def read(path: str, options: dict[str, Any]) -> Any:
+    """The recording named on the command line, read with the options given."""
+    from gyrovib.api.recordings import parse_columns, read_recording
+
+    return read_recording(
+        path, fs=options["fs"],
+        rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
+        accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
+        rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
+        topic=options["topic"])
+
+
+def fit_options(options: dict[str, Any]) -> dict[str, Any]:
+    """The fit's keyword arguments from the parsed options."""
+    return {k: options[k] for k in ("crossover", "resolution", "tone_threshold", "breakpoints",
+                                    "independent_tones", "profile_id")}
+
+
+def analyze_recording(path: str, catalog: Any, sensors: tuple[str, ...], unit: str, fmt: str,
+                      output: str | None, options: dict[str, Any]) -> None:
+    """``gyrovib analyze --recording``: one library call, then the renderer."""
+    from gyrovib.api.commands.recording import analyze_recording as run
+    from gyrovib.cli.output import write_output
+    from gyrovib.render import recording as render
+
+    result = run(read(path, options), catalog, sensors=sensors, unit=unit,
+                 **fit_options(options))
+    renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
+                 "markdown": render.to_markdown}
+    write_output(renderers[fmt](result), output)
+
+
+def refuse_with_recording(**given: Any) -> None:
+    """Options of ``analyze`` that mean nothing with ``--recording``: refused, not ignored."""
+    from gyrovib.errors import OptionError
+
+    bad = []
+    if given["profiles"]:
+        bad.append("--profile (the recording is the profile)")
+    if given["rate"] is not None:
+        bad.append("--rate (the carrier rate is the recorded one)")
+    if given["method"] != "exact":
+        bad.append("--method (Δ_V,rec is the recording's own average; the fit uses exact)")
+    if bad:
+        raise OptionError(f"--recording does not take {', '.join(bad)}")
+
+
+def report_recording(path: str, catalog: Any, sensors: tuple[str, ...],
+                     profiles: tuple[str, ...], unit: str, options: dict[str, Any],
+                     ) -> tuple[Any, tuple[str, ...], str]:
+    """``gyrovib report --recording``: the catalogue with the fitted profile added, the
+    profiles to study (the fitted one too when some were named), and the HTML section."""
+    from gyrovib.api.commands.recording import analyze_recording as run
+    from gyrovib.api.recording_yaml import with_fitted_profile
+    from gyrovib.render.recording import report_section
+
+    result = run(read(path, options), catalog, sensors=sensors, unit=unit,
+                 **fit_options(options))
+    combined = with_fitted_profile(catalog, result.fit)
+    chosen = (*profiles, result.fit.profile_id) if profiles else profiles
+    return combined, chosen, report_section(result)

@@ -1,0 +1,407 @@
+"""Recordings: carrier rate and vibration from a time series (MODEL.md section 13).
+
+Pure numpy; ``scipy.signal`` (the Butterworth split, Welch spectra) and
+``scipy.ndimage`` (the running median) are imported inside the functions
+that need them.
+
+Units are the caller's: rates in one rate unit (gyrovib passes deg/s),
+accelerations in g, frequencies in Hz, time in s.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
+from gyrovib.errors import ModelError
+from gyrovib.frozen import Frozen
+
+#: Order of the zero-phase Butterworth low-pass (applied forward and backward).
+FILTER_ORDER = 4
+#: Half-width (bins) of the running median a line must stand above.
+MEDIAN_HALF_WIDTH = 20
+#: Half-width (bins) of a line's main lobe under the Hann window (its power is summed there).
+LOBE_HALF_WIDTH = 3
+#: Lines within this fraction of n·f0 are order n of f0 (MODEL.md section 13).
+HARMONIC_TOLERANCE = 0.01
+#: At most this many histogram bins of Ω_K3 make the fitted mission.
+MISSION_BINS = 16
+#: The six products a_j·a_k of the g² term, in the order of core.linear.G2_TERMS.
+G2_PAIRS: tuple[tuple[int, int], ...] = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
+#: Columns of :func:`recorded_moments`: ½⟨|ω3|−|Ω3|⟩, ⟨ω3ⁿ−Ω3ⁿ⟩ (n = 2…5), C31, C32.
+MOMENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
+_CHUNK = 1 << 20
+
+
+def gap_segments(time: ArrayLike, factor: float = 1.5) -> tuple[NDArray[np.intp], float]:
+    """Split sample times at gaps: ``(bounds, median interval)``.
+
+    A gap is an interval longer than ``factor`` median intervals (MODEL.md
+    section 13). ``bounds`` is (S, 2): start and stop indices of each
+    contiguous segment. Times must increase strictly (checked by the caller).
+    """
+    t = np.asarray(time, dtype=float)
+    if t.size < 2:
+        return np.array([[0, t.size]], dtype=np.intp), float("nan")
+    dt = np.diff(t)
+    med = float(np.median(dt))
+    cut = np.flatnonzero(dt > factor * med) + 1
+    edges = np.concatenate([[0], cut, [t.size]]).astype(np.intp)
+    return np.column_stack([edges[:-1], edges[1:]]), med
+
+
+def lowpass(signal: ArrayLike, fs: float, crossover: float) -> FloatArray:
+    """Zero-phase 4th-order Butterworth low-pass of each column (MODEL.md section 13).
+
+    ``butter(4, f_c, fs=fs, output="sos")`` applied forward and backward with
+    ``sosfiltfilt`` and its default padding, along axis 0, one column at a
+    time (so the temporary arrays are one column long). Returns the carrier
+    Ω_K(t) (or A(t) for accelerations), same shape as ``signal``.
+    """
+    from scipy.signal import butter, sosfiltfilt
+
+    x = np.asarray(signal, dtype=float)
+    if not 0 < crossover < fs / 2:
+        raise ModelError(f"the crossover {crossover:g} Hz must lie in (0, fs/2 = {fs / 2:g} Hz)")
+    sos = butter(FILTER_ORDER, crossover, fs=fs, output="sos")
+    out = np.empty_like(x)
+    if x.ndim == 1:
+        out[:] = sosfiltfilt(sos, x)
+        return out
+    for j in range(x.shape[1]):
+        out[:, j] = sosfiltfilt(sos, x[:, j])
+    return out
+
+
+def zero_phase_gain(x: ArrayLike, fs: float, table: Table) -> FloatArray:
+    """x filtered by a zero-phase gain ν(f): the FFT of each column times the table's
+    gain at each bin (log-log interpolated, held past its ends; MODEL.md sections 3, 13)."""
+    v = np.asarray(x, dtype=float)
+    n = v.shape[0]
+    f = np.fft.rfftfreq(n, 1.0 / fs)
+    gain = np.ones_like(f)
+    pos = f > 0
+    gain[pos] = loglog_interp(table, f[pos])
+    gain[0] = float(loglog_interp(table, np.array([max(f[1] if n > 1 else 1.0, 1e-12)]))[0])
+    spectrum = np.fft.rfft(v, axis=0)
+    spectrum *= gain.reshape(-1, *([1] * (v.ndim - 1)))
+    out: FloatArray = np.fft.irfft(spectrum, n=n, axis=0)
+    return out
+
+
+def recorded_moments(rate: ArrayLike, carrier: ArrayLike) -> FloatArray:
+    """The sums behind Δ_V,rec (MODEL.md section 13), over the samples given.
+
+    With ω = ``rate`` and Ω_K = ``carrier`` (n, 3) in one rate unit, returns
+    the sums (not yet divided by n) of
+
+        ½(|ω3| − |Ω3|),  ω3ⁿ − Ω3ⁿ (n = 2…5),  ω3·ω1 − Ω3·Ω1,  ω3·ω2 − Ω3·Ω2,
+
+    so that, dotted with (k1·A1, k2, k3, k4, k5, m31, m32) and divided by the
+    sample count, they give Δ_V,rec without its g² part: the linear terms
+    k1·x3, m1·x1, m2·x2 cancel exactly against eq. (2)'s own. Chunked, so
+    the temporaries are small.
+    """
+    w = np.asarray(rate, dtype=float)
+    c = np.asarray(carrier, dtype=float)
+    out = np.zeros(len(MOMENTS))
+    for lo in range(0, w.shape[0], _CHUNK):
+        w3, c3 = w[lo:lo + _CHUNK, 2], c[lo:lo + _CHUNK, 2]
+        out[0] += 0.5 * (np.abs(w3).sum() - np.abs(c3).sum())
+        wp, cp = w3 * w3, c3 * c3
+        for k in range(1, 5):
+            out[k] += wp.sum() - cp.sum()
+            wp *= w3
+            cp *= c3
+        out[5] += w3 @ w[lo:lo + _CHUNK, 0] - c3 @ c[lo:lo + _CHUNK, 0]
+        out[6] += w3 @ w[lo:lo + _CHUNK, 1] - c3 @ c[lo:lo + _CHUNK, 1]
+    return out
+
+
+def recorded_g2_moments(accel: ArrayLike, lowpassed: ArrayLike) -> FloatArray:
+    """Sums of a_j·a_k − A_j·A_k over the samples (g²), for the six pairs of :data:`G2_PAIRS`."""
+    a = np.asarray(accel, dtype=float)
+    b = np.asarray(lowpassed, dtype=float)
+    out = np.zeros(len(G2_PAIRS))
+    for lo in range(0, a.shape[0], _CHUNK):
+        aa, bb = a[lo:lo + _CHUNK], b[lo:lo + _CHUNK]
+        for p, (j, k) in enumerate(G2_PAIRS):
+            out[p] += aa[:, j] @ aa[:, k] - bb[:, j] @ bb[:, k]
+    return out
+
+
+def recorded_error(coefficients: ArrayLike, moments: ArrayLike, g2: ArrayLike | None = None,
+                   g2_moments: ArrayLike | None = None) -> tuple[FloatArray, FloatArray,
+                                                                 FloatArray]:
+    """Δ_V,rec of every sensor from mean moments (MODEL.md section 13), vectorised.
+
+    ``coefficients`` (N, 11) in the order of core.analysis.COEFFICIENTS;
+    ``moments`` (7,) or (N, 7): the means of :func:`recorded_moments`
+    (per sensor where input responses differ); ``g2`` (N, 6) G_jk in rate/g²
+    with ``g2_moments`` (6,) the mean ⟨a_j a_k − A_j A_k⟩ in g².
+    Returns (total (N,), terms (N, 7) for :data:`MOMENTS`, g² part (N,)):
+
+        Δ_V,rec = k1·A1·½⟨|ω3|−|Ω3|⟩ + Σn kn⟨ω3ⁿ−Ω3ⁿ⟩ + Σi m3i⟨ω3ωi−Ω3Ωi⟩
+                  + Σ G_jk⟨a_j a_k − A_j A_k⟩
+    """
+    k = np.atleast_2d(np.asarray(coefficients, dtype=float))
+    m = np.asarray(moments, dtype=float)
+    factors = np.column_stack([k[:, 1] * k[:, 2], k[:, 3], k[:, 4], k[:, 5], k[:, 6],
+                               k[:, 9], k[:, 10]])
+    terms: FloatArray = factors * m
+    if g2 is None or g2_moments is None:
+        g2_part = np.zeros(k.shape[0])
+    else:
+        g2_part = np.asarray(g2, dtype=float).reshape(-1, 6) @ np.asarray(g2_moments,
+                                                                          dtype=float)
+    return terms.sum(axis=1) + g2_part, terms, g2_part
+
+
+# ----------------------------------------------------------------- spectra
+
+
+def welch_spectra(segments: Sequence[FloatArray], fs: float,
+                  resolution: float) -> tuple[FloatArray, NDArray[np.complex128], int]:
+    """Welch cross-spectral matrix of (n, m) segments: ``(f, S (m, m, F), windows)``.
+
+    Hann window (periodic), 50 % overlap, nperseg = round(fs / resolution),
+    no detrending, one-sided density (units²/Hz):
+
+        S_ij(f) = c·mean_windows[conj(X_i(f))·X_j(f)],  c = 2/(fs·Σw²) (1/(fs·Σw²) at
+        DC and at the Nyquist bin of an even window)
+
+    — scipy.signal.csd's estimate, with every window averaged alike across
+    segments. Each window is transformed once per column (not once per pair),
+    a block of windows at a time, so the temporaries stay small. Segments
+    shorter than one window are left out; ``windows`` = 0 when none is long enough.
+    """
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    nper = max(8, round(fs / resolution))
+    step = nper - nper // 2
+    window = 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(nper) / nper)
+    freqs: FloatArray = np.fft.rfftfreq(nper, 1.0 / fs).astype(float)
+    m = segments[0].shape[1] if segments else 0
+    total = np.zeros((m, m, freqs.size), dtype=np.complex128)
+    count = 0
+    block = max(1, (1 << 22) // nper)
+    for seg in segments:
+        n = seg.shape[0]
+        if n < nper:
+            continue
+        starts = np.arange(0, n - nper + 1, step)
+        views = [sliding_window_view(seg[:, i], nper) for i in range(m)]
+        for lo in range(0, starts.size, block):
+            st = starts[lo:lo + block]
+            spectra = [np.fft.rfft(v[st] * window, axis=1) for v in views]
+            for i in range(m):
+                for j in range(i, m):
+                    total[i, j] += np.einsum("wf,wf->f", spectra[i].conj(), spectra[j])
+        count += starts.size
+    if count == 0:
+        return freqs, np.zeros((0, 0, freqs.size), dtype=np.complex128), 0
+    scale = np.full(freqs.size, 2.0 / (fs * float(np.sum(window**2))))
+    scale[0] /= 2.0
+    if nper % 2 == 0:
+        scale[-1] /= 2.0
+    mean: NDArray[np.complex128] = total * (scale / count)
+    for i in range(m):
+        for j in range(i):
+            mean[i, j] = np.conj(mean[j, i])
+    return freqs, mean, count
+
+
+def running_median(psd: ArrayLike, half_width: int = MEDIAN_HALF_WIDTH) -> FloatArray:
+    """The median over ±``half_width`` bins of each bin (edges: nearest value repeated)."""
+    from scipy.ndimage import median_filter
+
+    out: FloatArray = median_filter(np.asarray(psd, dtype=float), size=2 * half_width + 1,
+                                    mode="nearest")
+    return out
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Line(Frozen):
+    """One spectral line: frequency (Hz), per-axis amplitude and phase (deg, relative
+    to the largest axis), and the bins of its lobe."""
+
+    frequency: float
+    amplitude: FloatArray
+    phase: FloatArray
+    lo: int
+    hi: int
+
+
+def find_lines(f: FloatArray, spectra: NDArray[np.complex128], threshold_db: float,
+               fmin: float = 0.0) -> tuple[tuple[Line, ...], FloatArray]:
+    """Spectral lines above the running median (MODEL.md section 13).
+
+    A bin whose PSD exceeds the running median by ``threshold_db`` on any axis
+    starts a line; its lobe is the peak ± :data:`LOBE_HALF_WIDTH` bins. Per
+    axis, a = √(2·P) with P = Σ_lobe (S − median)·Δf (negative excess counts
+    as 0); the frequency is the power-weighted centroid of the lobe on the
+    largest axis; the phase of axis i is arg S_ref,i at the peak (the
+    cross-spectrum with the largest axis ``ref``). Returns the lines and the
+    per-axis running medians (m, F). Bins below ``fmin`` are not searched.
+    """
+    m = spectra.shape[0]
+    psd = np.real(np.stack([spectra[i, i] for i in range(m)]))
+    med = np.stack([running_median(p) for p in psd])
+    df = float(f[1] - f[0])
+    ratio = 10.0 ** (threshold_db / 10.0)
+    hot = np.any(psd > ratio * np.maximum(med, np.finfo(float).tiny), axis=0)
+    hot[f < fmin] = False
+    hot[0] = hot[-1] = False
+    lines: list[Line] = []
+    taken = np.zeros(f.size, dtype=bool)
+    excess = np.clip(psd - med, 0.0, None)
+    order = np.argsort(-excess.max(axis=0))
+    for peak in order.tolist():
+        if not hot[peak] or taken[peak]:
+            continue
+        lo = max(1, peak - LOBE_HALF_WIDTH)
+        hi = min(f.size - 1, peak + LOBE_HALF_WIDTH + 1)
+        while lo < hi and taken[lo]:
+            lo += 1
+        while hi > lo and taken[hi - 1]:
+            hi -= 1
+        power = excess[:, lo:hi].sum(axis=1) * df
+        ref = int(np.argmax(power))
+        weights = excess[ref, lo:hi]
+        freq = float(np.sum(weights * f[lo:hi]) / np.sum(weights))
+        phase = np.rad2deg(np.angle(spectra[ref, :, peak]))
+        phase[ref] = 0.0
+        lines.append(Line(freq, np.sqrt(2.0 * power), np.mod(phase, 360.0), lo, hi))
+        taken[lo:hi] = True
+    lines.sort(key=lambda line: line.frequency)
+    return tuple(lines), med
+
+
+def harmonic_groups(frequencies: ArrayLike,
+                    tolerance: float = HARMONIC_TOLERANCE) -> list[tuple[float, list[int],
+                                                                         list[int]]]:
+    """Lines that are integer multiples of a common fundamental (MODEL.md section 13).
+
+    Ascending: each line not yet grouped is tried as a fundamental f0; every
+    later ungrouped line within ``tolerance``·f of n·f0 (n ≥ 2, one line per
+    order) joins it. Returns ``(f0, line indices, orders)`` for groups of two
+    lines or more.
+    """
+    fr = np.asarray(frequencies, dtype=float)
+    used = np.zeros(fr.size, dtype=bool)
+    groups = []
+    for i in np.argsort(fr).tolist():
+        if used[i]:
+            continue
+        f0 = fr[i]
+        members, orders = [i], [1]
+        for j in np.argsort(fr).tolist():
+            if used[j] or j == i or fr[j] <= f0:
+                continue
+            n = round(fr[j] / f0)
+            if n >= 2 and n not in orders and abs(fr[j] - n * f0) <= tolerance * fr[j]:
+                members.append(j)
+                orders.append(n)
+        if len(members) > 1:
+            used[members] = True
+            groups.append((float(f0), members, orders))
+    return groups
+
+
+def fit_breakpoints(f: FloatArray, psd: FloatArray, count: int,
+                    tolerance: float = 0.01) -> tuple[FloatArray, FloatArray]:
+    """At most ``count`` log-log breakpoints (f, S) for a measured PSD (MODEL.md section 13).
+
+    Breakpoints are added greedily where the log error of the current fit is
+    largest (starting from the band's ends); the levels are the least-squares
+    fit of log S over all bins for those breakpoints, then scaled by one
+    factor so that ∫S df of the fit equals Σ psd·Δf of the band (within
+    ``tolerance``, 1 %, by construction). Bins with S ≤ 0 are left out.
+    """
+    ok = psd > 0
+    fb, sb = f[ok], psd[ok]
+    if fb.size < 2:
+        raise ModelError("the random part has fewer than two positive PSD bins to fit")
+    df = float(f[1] - f[0])
+    lf, ls = np.log(fb), np.log(sb)
+    chosen = [0, fb.size - 1]
+    count = max(2, min(count, fb.size))
+
+    def solve(idx: list[int]) -> FloatArray:
+        knots = lf[sorted(idx)]
+        basis = np.zeros((lf.size, knots.size))
+        for k in range(knots.size):
+            y = np.zeros(knots.size)
+            y[k] = 1.0
+            basis[:, k] = np.interp(lf, knots, y)
+        out: FloatArray = np.linalg.lstsq(basis, ls, rcond=None)[0].astype(float)
+        return out
+
+    levels = solve(chosen)
+    while len(chosen) < count:
+        knots = lf[sorted(chosen)]
+        err = np.abs(np.interp(lf, knots, levels) - ls)
+        err[chosen] = -1.0
+        # a smoothed error, so that one noisy bin does not take a breakpoint
+        smooth = np.convolve(err, np.ones(5) / 5, mode="same")
+        smooth[chosen] = -1.0
+        nxt = int(np.argmax(smooth))
+        if smooth[nxt] <= 0.05:
+            break
+        chosen.append(nxt)
+        levels = solve(chosen)
+    idx = sorted(chosen)
+    bf: FloatArray = fb[idx]
+    bs: FloatArray = np.exp(levels)
+    measured = float(np.sum(sb) * df)
+    fitted = psd_variance((bf, bs))
+    if fitted > 0 and measured > 0:
+        bs = bs * (measured / fitted)
+    return bf, bs
+
+
+def power_sums(x: ArrayLike, order: int = 4) -> FloatArray:
+    """Per column, the sums Σx, Σx², …, Σx^order (shape (order, m)), a chunk at a time."""
+    v = np.asarray(x, dtype=float)
+    out = np.zeros((order, v.shape[1]))
+    for lo in range(0, v.shape[0], _CHUNK):
+        chunk = v[lo:lo + _CHUNK]
+        power = chunk.copy()
+        out[0] += power.sum(axis=0)
+        for p in range(1, order):
+            power *= chunk
+            out[p] += power.sum(axis=0)
+    return out
+
+
+def central_moments(sums: ArrayLike, n: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Variance, skewness and excess kurtosis (population) from :func:`power_sums` of n
+    samples; NaN where the variance is 0."""
+    m1, m2, m3, m4 = (np.asarray(sums, dtype=float)[p] / n for p in range(4))
+    var = m2 - m1**2
+    c3 = m3 - 3 * m1 * m2 + 2 * m1**3
+    c4 = m4 - 4 * m1 * m3 + 6 * m1**2 * m2 - 3 * m1**4
+    with np.errstate(invalid="ignore", divide="ignore"):
+        skew = np.where(var > 0, c3 / var**1.5, np.nan)
+        kurt = np.where(var > 0, c4 / var**2 - 3.0, np.nan)
+    return var, skew, kurt
+
+
+def carrier_histogram(carrier3: ArrayLike, bins: int = MISSION_BINS,
+                      ) -> tuple[FloatArray, FloatArray]:
+    """The histogram of Ω_K3 in at most ``bins`` bins: (mean rate, sample count) of the
+    bins that hold samples (MODEL.md section 13's fitted mission)."""
+    c = np.asarray(carrier3, dtype=float)
+    lo, hi = float(c.min()), float(c.max())
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):  # a constant carrier, up to rounding
+        return np.array([float(c.mean())]), np.array([float(c.size)])
+    edges = np.linspace(lo, hi, bins + 1)
+    idx = np.clip(np.searchsorted(edges, c, side="right") - 1, 0, bins - 1)
+    counts = np.bincount(idx, minlength=bins).astype(float)
+    sums = np.bincount(idx, weights=c, minlength=bins)
+    keep = counts > 0
+    return sums[keep] / counts[keep], counts[keep]

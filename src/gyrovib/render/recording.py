@@ -1,0 +1,255 @@
+"""Renderers of recordings (MODEL.md section 13): the honesty table of a fit, and
+``analyze --recording`` as table, JSON, CSV and markdown (keys: INTERFACE.md)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+from typing import TYPE_CHECKING, Any
+
+from gyrovib.render.common import dumps, header
+
+if TYPE_CHECKING:
+    from gyrovib.api.commands.recording import RecordingAnalysis, RecordingFit
+
+AXES = ("X", "Y", "Z")
+_TERMS = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
+
+
+def _num(v: float) -> float | None:
+    return float(v) if math.isfinite(v) else None
+
+
+def _fmt(v: float, digits: int = 4) -> str:
+    return "—" if not math.isfinite(v) else f"{v:.{digits}g}"
+
+
+def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
+    """The ``"recording"`` object of the JSON; variances in (output unit)²."""
+    return {
+        "file": os.path.basename(fit.file), "sha256": fit.sha256, "samples": fit.samples,
+        "fs": fit.fs, "crossover": fit.crossover, "segments": fit.segments,
+        "duration": fit.duration,
+        "axes": {a: {"variance": _num(h.variance / scale**2), "held": _num(h.held),
+                     "skewness": _num(h.skewness), "excess_kurtosis": _num(h.excess_kurtosis)}
+                 for a, h in zip(AXES, fit.honesty, strict=True)},
+    }
+
+
+def honesty_table(fit: RecordingFit) -> str:
+    """The honesty of the fit (MODEL.md section 13), one row per axis, as plain text."""
+    lines = [f"recording {os.path.basename(fit.file)}: {fit.samples} samples, "
+             f"fs {fit.fs:.6g} Hz, f_c {fit.crossover:g} Hz, {fit.segments} segment(s), "
+             f"{fit.duration:.6g} s analysed",
+             f"{'axis':<5} {'variance (deg/s)²':>18} {'held':>8} {'skewness':>9} "
+             f"{'excess kurtosis':>16}"]
+    for axis, h in zip(AXES, fit.honesty, strict=True):
+        held = "—" if not math.isfinite(h.held) else f"{100 * h.held:.1f} %"
+        lines.append(f"{axis:<5} {_fmt(h.variance):>18} {held:>8} {_fmt(h.skewness, 3):>9} "
+                     f"{_fmt(h.excess_kurtosis, 3):>16}")
+    tones = len(fit.angular.tones) + sum(len(h.orders) for h in fit.angular.harmonics)
+    lines.append(f"fitted: {len(fit.angular.tones)} tone(s), {len(fit.angular.harmonics)} "
+                 f"harmonic group(s) ({tones} lines in all), carrier {len(fit.mission_rates)} "
+                 f"histogram bin(s), mean rate Ω_K = [{', '.join(f'{v:.4g}' for v in fit.rate)}]"
+                 " deg/s")
+    lines += [f"warning: {w}" for w in fit.warnings]
+    return "\n".join(lines) + "\n"
+
+
+def _rows(result: RecordingAnalysis) -> list[dict[str, Any]]:
+    rows = []
+    for i, sensor in enumerate(result.sensors):
+        rows.append({
+            "sensor": sensor,
+            "recorded": {"total": _num(result.recorded[i]),
+                         "additive_terms": {t: _num(result.terms[i, k])
+                                            for k, t in enumerate(_TERMS)},
+                         "g2": _num(result.g2[i])},
+            "fitted": {"total": _num(result.fitted[i]), "rms": _num(result.fitted_rms[i])},
+            "ratio": _num(result.ratio[i]),
+            "saturated": bool(result.saturated[i]),
+            "peak_rate": _num(result.peak_rate[i]),
+            "source": "specs" if result.spec[i] else "coefficients",
+            "warnings": list(result.warnings.get(i, ())),
+        })
+    return rows
+
+
+def to_json(result: RecordingAnalysis) -> str:
+    """``analyze --recording --format json``."""
+    from gyrovib import units
+
+    document = header("recording", result.unit)
+    document["results"] = _rows(result)
+    document["recording"] = recording_info(result.fit, units.scale(result.unit))
+    document["warnings"] = list(result.fit.warnings)
+    return dumps(document)
+
+
+_CSV_HEAD = ["sensor", "recorded", *[f"recorded_{t}" for t in _TERMS], "recorded_g2",
+             "fitted", "fitted_rms", "ratio", "saturated", "peak_rate", "unit"]
+
+
+def to_csv(result: RecordingAnalysis) -> str:
+    """``analyze --recording --format csv``: one row per sensor (the DataFrame's columns)."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(_CSV_HEAD)
+    for i, sensor in enumerate(result.sensors):
+        values = [result.recorded[i], *result.terms[i].tolist(), result.g2[i], result.fitted[i],
+                  result.fitted_rms[i], result.ratio[i]]
+        w.writerow([sensor, *(repr(float(v)) if math.isfinite(v) else "" for v in values),
+                    "true" if result.saturated[i] else "false", repr(float(result.peak_rate[i])),
+                    result.unit])
+    return buf.getvalue()
+
+
+def _table_rows(result: RecordingAnalysis) -> list[list[str]]:
+    return [[s, _fmt(result.recorded[i]), _fmt(result.fitted[i]), _fmt(result.ratio[i], 3),
+             _fmt(result.peak_rate[i]), "yes" if result.saturated[i] else "no"]
+            for i, s in enumerate(result.sensors)]
+
+
+_HEAD = ["sensor", "Δ_V,rec", "fitted Δ̄_V", "ratio", "peak |ω3|", "saturated"]
+
+
+def to_table(result: RecordingAnalysis) -> str:
+    """``analyze --recording`` as a plain-text table, the honesty table after it."""
+    rows = [_HEAD, *_table_rows(result)]
+    widths = [max(len(r[k]) for r in rows) for k in range(len(_HEAD))]
+    out = [f"recorded error Δ_V,rec and the fitted mission's closed form, {result.unit}"]
+    for n, r in enumerate(rows):
+        out.append("  ".join(c.ljust(widths[k]) if k == 0 else c.rjust(widths[k])
+                             for k, c in enumerate(r)))
+        if n == 0:
+            out.append("  ".join("-" * w for w in widths))
+    for i, messages in sorted(result.warnings.items()):
+        out += [f"warning: {result.sensors[i]}: {m}" for m in messages]
+    return "\n".join(out) + "\n\n" + honesty_table(result.fit)
+
+
+def to_markdown(result: RecordingAnalysis) -> str:
+    """``analyze --recording --format markdown``."""
+    out = [f"Recorded error Δ_V,rec and the fitted mission's closed form ({result.unit}), "
+           f"recording `{os.path.basename(result.fit.file)}`", "",
+           "| " + " | ".join(_HEAD) + " |", "|" + "---|" * len(_HEAD)]
+    out += ["| " + " | ".join(r) + " |" for r in _table_rows(result)]
+    for i, messages in sorted(result.warnings.items()):
+        out += ["", *[f"> **warning** `{result.sensors[i]}`: {m}" for m in messages]]
+    return "\n".join(out) + "\n"
+
+
+def plot_fit(fit: RecordingFit, path: str) -> None:
+    """Measured PSD against the fitted breakpoints and tones, one panel per axis (PNG)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    part = fit.angular
+    fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
+    f = part.frequencies
+    for j, ax in enumerate(axes):
+        ax.set_title(f"axis {AXES[j]}")
+        if not fit.rate_axes[j]:
+            ax.text(0.5, 0.5, "not recorded", transform=ax.transAxes, ha="center")
+            continue
+        ok = f > 0
+        ax.loglog(f[ok], np.maximum(part.measured[j, ok], 1e-30), lw=0.6, color="0.5",
+                  label="measured PSD (Welch)")
+        table = part.psd[j]
+        if table is not None:
+            ax.loglog(table[0], table[1], "o-", color="C0", label="fitted breakpoints")
+        df = float(f[1] - f[0])
+        lines = [(t.frequency, t.amplitude[j]) for t in part.tones]
+        lines += [(h.fundamental * o, a[j]) for h in part.harmonics
+                  for o, a in zip(h.orders, h.amplitude, strict=True)]
+        for k, (freq, amp) in enumerate(lines):
+            # a tone of amplitude a as the PSD level that holds its power a²/2 in one bin
+            ax.plot([freq, freq], [1e-30, max(amp**2 / 2 / df, 1e-30)], color="C3",
+                    label="fitted tones (a²/2 per bin)" if k == 0 else None)
+        ax.set_ylim(bottom=max(1e-12, float(np.min(part.measured[j, ok][
+            part.measured[j, ok] > 0], initial=1e-12)) / 10))
+        ax.set_ylabel("(deg/s)²/Hz")
+        ax.legend(fontsize=7, loc="lower left")
+    axes[-1].set_xlabel("frequency, Hz")
+    fig.suptitle(f"{os.path.basename(fit.file)}: measured and fitted (f_c {fit.crossover:g} Hz)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def _thin(f: Any, s: Any, points: int = 400) -> tuple[list[float], list[float]]:
+    """At most ``points`` log-spaced bins of a PSD (f > 0), for a chart."""
+    import numpy as np
+
+    ok = np.flatnonzero((f > 0) & (s > 0))
+    if ok.size <= points:
+        return f[ok].tolist(), s[ok].tolist()
+    idx = np.unique(np.geomspace(1, ok.size, points).astype(int) - 1)
+    return f[ok[idx]].tolist(), s[ok[idx]].tolist()
+
+
+def report_section(result: RecordingAnalysis) -> str:
+    """The recording's part of ``gyrovib report --recording`` (HTML): its PSD against the
+    fitted profile per axis, the honesty table, and Δ_V,rec beside the closed form."""
+    from html import escape
+
+    from gyrovib.render.svg import LineChart, Marker, Series, color
+
+    fit = result.fit
+    part = fit.angular
+    charts = []
+    for j, axis in enumerate(AXES):
+        if not fit.rate_axes[j]:
+            continue
+        fx, sx = _thin(part.frequencies, part.measured[j])
+        series = [Series(f"measured {axis}", fx, sx, color(0))]
+        table = part.psd[j]
+        if table is not None:
+            series.append(Series("fitted breakpoints", table[0].tolist(), table[1].tolist(),
+                                 color(1)))
+        lines = [(t.frequency, t.amplitude[j]) for t in part.tones]
+        lines += [(h.fundamental * o, a[j]) for h in part.harmonics
+                  for o, a in zip(h.orders, h.amplitude, strict=True)]
+        markers = [Marker(f"{freq:.4g} Hz, a = {amp:.3g}", x=freq, style="tone", row=k % 3)
+                   for k, (freq, amp) in enumerate(lines)]
+        charts.append(LineChart(f"Recording {escape(os.path.basename(fit.file))}: axis {axis}",
+                                "frequency (Hz)", "PSD (deg/s)²/Hz", series, xlog=True,
+                                ylog=True, markers=markers).svg())
+    head = ["axis", "variance (deg/s)²", "held", "skewness", "excess kurtosis"]
+    rows = [[a, _fmt(h.variance), "—" if not math.isfinite(h.held) else f"{100 * h.held:.1f} %",
+             _fmt(h.skewness, 3), _fmt(h.excess_kurtosis, 3)]
+            for a, h in zip(AXES, fit.honesty, strict=True)]
+    honesty = _html_table(head, rows)
+    compare = _html_table(_HEAD, _table_rows(result))
+    notes = "".join(f"<li>{escape(result.sensors[i])}: {escape(m)}</li>"
+                    for i, ms in sorted(result.warnings.items()) for m in ms)
+    notes += "".join(f"<li>{escape(w)}</li>" for w in fit.warnings)
+    figures = "".join(f"<figure>{c}</figure>" for c in charts)
+    return (
+        '<section class="recording" id="recording"><h2>Recording</h2>'
+        f"<p class=\"sub\">{escape(os.path.basename(fit.file))}, SHA-256 "
+        f"<code>{fit.sha256}</code>: {fit.samples} samples at {fit.fs:.6g} Hz, crossover "
+        f"f_c = {fit.crossover:g} Hz, {fit.segments} segment(s), {fit.duration:.6g} s "
+        f"analysed. Its fitted profile <code>{escape(fit.profile_id)}</code> is among the "
+        "profiles below.</p>"
+        f"<h3>Recorded error Δ_V,rec and the fitted mission's closed form ({result.unit})</h3>"
+        f"{compare}<p>Δ_V,rec is eq. (2) averaged over the recorded samples (MODEL.md section "
+        "13); the ratio fitted/recorded outside [0.8, 1.25] means the recording is not "
+        "Gaussian-plus-tones or not stationary, and Δ_V,rec is the number to trust.</p>"
+        f"<h3>Honesty of the fit</h3>{honesty}"
+        + (f"<ul class=\"warnings\">{notes}</ul>" if notes else "")
+        + f'<div class="charts">{figures}</div></section>')
+
+
+def _html_table(head: list[str], rows: list[list[str]]) -> str:
+    from html import escape
+
+    cells = "".join(f"<th>{escape(h)}</th>" for h in head)
+    body = "".join("<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>"
+                   for r in rows)
+    return f"<table><thead><tr>{cells}</tr></thead><tbody>{body}</tbody></table>"
