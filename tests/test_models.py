@@ -183,9 +183,11 @@ def test_the_one_of_rule_follows_the_mappings_other_problems():
     assert _messages("gyrovib: 1\nsensors:\n  - {name: n, x: 1}\n") == [
         "c.yaml:3:5: sensors[0]: missing required key 'id'",
         "c.yaml:3:5: sensors[0]: give the conversion function once: either 'coefficients' "
-        "(eq. 2), 'output_coefficients' (eq. 1) or 'specs' (the datasheet)",
+        "(eq. 2), 'output_coefficients' (eq. 1), 'specs' (the datasheet) or 'lot' (a "
+        "production lot)",
         "c.yaml:3:15: sensors[0]: unknown key 'x'; allowed here: id, name, vendor, part, "
-        "notes, range, coefficients, output_coefficients, specs, response, g2_sensitivity, vre",
+        "notes, range, coefficients, output_coefficients, specs, response, g2_sensitivity, vre, "
+        "uncertainty, lot",
     ]
 
 
@@ -211,7 +213,8 @@ def test_two_broken_rules_of_one_mapping_are_both_said():
     assert _messages("gyrovib: 1\nsensors:\n  - {id: a, coefficients: {}, specs: {range: 1, "
                      "nonlinearity: {value: 1, unit: '%FS'}}, vre: 1, g2_sensitivity: {}}\n") == [
         "c.yaml:3:5: sensor 'a': give the conversion function once: either 'coefficients' "
-        "(eq. 2), 'output_coefficients' (eq. 1) or 'specs' (the datasheet)",
+        "(eq. 2), 'output_coefficients' (eq. 1), 'specs' (the datasheet) or 'lot' (a "
+        "production lot)",
         "c.yaml:3:5: sensor 'a': give the g² sensitivity once: 'g2_sensitivity' or its "
         "shorthand 'vre' (G11 = G22 = G33), not both",
     ]

@@ -40,12 +40,14 @@ from gyrovib.models.sensor import (
     Asymmetry,
     Coefficients,
     G2Sensitivity,
+    Lot,
     Nonlinearity,
     OutputCoefficients,
     Response,
     Sensor,
     Specs,
 )
+from gyrovib.models.uncertainty import Sigmas, Uncertainty
 
 __all__ = [
     "MAX_TONES",
@@ -61,6 +63,7 @@ __all__ = [
     "Coefficients",
     "G2Sensitivity",
     "Harmonics",
+    "Lot",
     "Nonlinearity",
     "Order",
     "OutputCoefficients",
@@ -68,8 +71,10 @@ __all__ = [
     "Random",
     "Response",
     "Sensor",
+    "Sigmas",
     "Specs",
     "Tone",
+    "Uncertainty",
     "Units",
     "validate_document",
 ]

@@ -25,6 +25,7 @@ from gyrovib.models._types import (
     raise_at,
     rule_error,
 )
+from gyrovib.models.uncertainty import LotSpread, Uncertainty
 
 #: Units a rate may be written in (``units.rate``).
 RateUnit = Literal["deg/s", "deg/h", "rad/s", "rpm"]
@@ -209,10 +210,18 @@ ResponseForm = Annotated[
     by_kind("list or mapping")]
 
 
+class Lot(LotSpread):
+    """A part as drawn from production (MODEL.md section 14): c ~ N(mean, Σ)."""
+
+    mean: Coefficients = Field(description="Mean of the units' eq. (2) coefficients, in rate "
+                               "units (the lot is analysed at its mean).")
+
+
 _SENSOR_GROUPS = (
-    Group(("coefficients", "output_coefficients", "specs"),
+    Group(("coefficients", "output_coefficients", "specs", "lot"),
           "give the conversion function once: either 'coefficients' (eq. 2), "
-          "'output_coefficients' (eq. 1) or 'specs' (the datasheet)"),
+          "'output_coefficients' (eq. 1), 'specs' (the datasheet) or 'lot' (a production "
+          "lot)"),
     Group(("g2_sensitivity", "vre"),
           "give the g² sensitivity once: 'g2_sensitivity' or its shorthand 'vre' "
           "(G11 = G22 = G33), not both", optional=True),
@@ -255,10 +264,25 @@ class Sensor(Model):
     vre: Number | None = Field(
         None, description="Shorthand for g2_sensitivity with G11 = G22 = G33 = vre "
         "(rate per g², signed) and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
+    uncertainty: Uncertainty | None = Field(
+        None, description="Standard uncertainties and correlations of the coefficients "
+        "(MODEL.md section 14); only beside 'coefficients'.")
+    lot: Lot | None = Field(
+        None, description="A production lot instead of one unit: the mean, standard "
+        "deviations and correlations of its units' coefficients (MODEL.md section 14).")
 
-    model_config = Model.model_config | {"json_schema_extra": groups_schema(*_SENSOR_GROUPS)}
+    model_config = Model.model_config | {"json_schema_extra": {"allOf": [
+        groups_schema(*_SENSOR_GROUPS), {"dependencies": {"uncertainty": ["coefficients"]}}]}}
 
     check_one_of: ClassVar[Any] = one_of(*_SENSOR_GROUPS)
+
+    @model_validator(mode="after")
+    def _uncertainty_beside_coefficients(self) -> "Sensor":
+        if self.uncertainty is not None and self.coefficients is None:
+            raise_at(("uncertainty",), rule_error(
+                "'uncertainty' goes beside 'coefficients' (eq. 2) only; a lot gives its "
+                "spread in 'lot' itself"), self.uncertainty, "Sensor")
+        return self
 
     @property
     def response_table(self) -> list[tuple[float, float]] | None:
@@ -286,6 +310,8 @@ class Sensor(Model):
         """The eq. (2) coefficients, whichever form the file used."""
         if self.coefficients is not None:
             return self.coefficients
+        if self.lot is not None:  # a lot is analysed at its mean
+            return self.lot.mean
         if self.output_coefficients is None:  # the datasheet form: no single function
             raise CatalogError(f"sensor {self.id!r} is given by its datasheet ('specs:'), "
                                "not by coefficients; it has no conversion function to use here")
