@@ -99,6 +99,9 @@ def analysis_frame(result: AnalysisResult) -> Any:
         for k, name in enumerate(WORST_COEFFICIENTS):
             columns[f"envelope.worst_coefficients.{name}"] = worst[:, k]
         columns["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
+    if result.uncertainty is not None:  # MODEL.md section 14: NaN where not known
+        columns["uncertainty.total"] = np.asarray(result.uncertainty)[s_idx, p_idx]
+        columns["lot_mean"] = [result.is_lot(int(i)) for i in s_idx]
     columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx]
     if result.worst_phases:
         columns["worst_phases"] = [

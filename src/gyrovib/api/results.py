@@ -146,11 +146,23 @@ class AnalysisResult(_SensorsByProfiles):
     #: orders written ``phase: worst``; only for such profiles.
     worst_phases: Mapping[tuple[int, int], tuple[dict[str, float], ...]] = field(
         default_factory=dict)
+    #: (sensors, profiles): u(Δ_V) = √(gᵀΣg) (k = 1) in :attr:`unit` of sensors with
+    #: ``uncertainty`` or ``lot`` (MODEL.md section 14), NaN for the others (and where
+    #: phases are searched); None when no sensor has one.
+    uncertainty: FloatArray | None = None
+    #: Per sensor: a production lot, analysed at its mean (empty: none is).
+    lots: tuple[bool, ...] = ()
+    #: Warnings about the run, not one cell (a lot too small for its correlations).
+    notes: tuple[str, ...] = ()
 
     @property
     def has_linear(self) -> bool:
         """Whether any profile has a linear vibration (the g² term, MODEL.md section 8)."""
         return any(self.linear)
+
+    def is_lot(self, i: int) -> bool:
+        """Whether sensor ``i`` is a production lot (its row is the lot's mean)."""
+        return bool(self.lots) and self.lots[i]
 
 
 #: The results of sweep, bounds and select live in :mod:`gyrovib.api.other_results`

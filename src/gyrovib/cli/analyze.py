@@ -11,6 +11,7 @@ from gyrovib.cli.common import (
     note_slow_table,
     page_width,
     plain_ascii,
+    say,
     use_color,
 )
 from gyrovib.cli.options import (
@@ -82,6 +83,8 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         result = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
                              rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
                              seed=seed, progress=advance, peak_factor=peak_factor)
+    for note in result.notes:
+        say(f"gyrovib: warning: {note}")
     if fmt == "table":
         note_slow_table(len(result.sensors) * len(result.profiles))
         write_output(render.to_table(result, color=use_color(output), width=page_width(output),

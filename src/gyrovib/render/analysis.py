@@ -57,6 +57,30 @@ def _saturation_note(result: AnalysisResult) -> str:
             "(MODEL.md section 9): the error shown does not hold.")
 
 
+def _u(result: AnalysisResult, i: int, j: int) -> float | None:
+    """u(Δ_V) of a cell (MODEL.md section 14), None where the sensor has none."""
+    u = result.uncertainty
+    return None if u is None else number(u[i, j])
+
+
+def _u_text(result: AnalysisResult, i: int, j: int) -> str:
+    """u(Δ_V) for a table: '-' where not known (no uncertainty, or searched phases)."""
+    u = _u(result, i, j)
+    return "-" if u is None else fmt(u, 2)
+
+
+def _lot_name(result: AnalysisResult, i: int) -> str:
+    return result.sensors[i] + (f" {LOT_MARK}" if result.is_lot(i) else "")
+
+
+#: The mark of a lot sensor, analysed at its mean, in tables.
+LOT_MARK = "(lot mean)"
+_UNCERTAINTY_NOTE = ("u(Δ_V): standard uncertainty (k = 1) of Δ_V from the coefficients' "
+                     "uncertainty, √(gᵀΣg) with Δ_V = gᵀc (MODEL.md section 14); '-' where "
+                     "not known. A sensor marked (lot mean) is a production lot analysed at "
+                     "its mean coefficients; its u is the spread of Δ_V over the lot.")
+
+
 def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
     for j in range(len(result.profiles)):
         for i in range(len(result.sensors)):
@@ -89,6 +113,10 @@ def _to_json_rows(result: AnalysisResult) -> str:
         if extra is not None:
             row["stderr"] = number(extra[i, j])
         row.update(_source_fields(result, i, j))
+        if result.uncertainty is not None and _u(result, i, j) is not None:
+            row["uncertainty"] = {"total": _u(result, i, j)}
+        if result.is_lot(i):
+            row["lot_mean"] = True
         row["saturated"] = _saturated(result, i, j)
         if (i, j) in result.worst_phases:
             row["worst_phases"] = [dict(g) for g in result.worst_phases[(i, j)]]
@@ -166,7 +194,7 @@ def to_json(result: AnalysisResult) -> str:
         return _to_json_rows(result)  # json refuses NaN/infinity; let it say so
     if "specs" in result.sources:
         return _to_json_rows(result)  # spec rows carry their envelope: one dict per row
-    if result.worst_phases:
+    if result.worst_phases or result.uncertainty is not None:
         return _to_json_rows(result)  # a key of some rows only: the reference form
     import json  # not at import time: the tables do without it
 
@@ -202,12 +230,15 @@ def to_json(result: AnalysisResult) -> str:
     return f"{head}, \"results\": [{', '.join(blocks)}]}}\n"
 
 
-def _csv_header(with_stderr: bool = False, linear: bool = False) -> list[str]:
+def _csv_header(with_stderr: bool = False, linear: bool = False,
+                uncertainty: bool = False) -> list[str]:
     return (["sensor", "profile", "rate_x1", "rate_x2", "rate_x3"]
             + [f"additive_{JSON_TERMS[k]}" for k in _shown(linear, True)]
             + [f"multiplicative_{q}" for q in MULTIPLICATIVE_TERMS]
             + ["additive", "multiplicative", "total", "rms"]
-            + (["stderr"] if with_stderr else []) + ["saturated", "warnings"])
+            + (["stderr"] if with_stderr else [])
+            + (["uncertainty.total", "lot_mean"] if uncertainty else [])
+            + ["saturated", "warnings"])
 
 
 def to_csv(result: AnalysisResult) -> str:
@@ -228,11 +259,19 @@ def to_csv(result: AnalysisResult) -> str:
                 *map(float, e.multiplicative_coefficients[i, j]),
                 float(e.additive[i, j]), float(e.multiplicative[i, j]), float(e.total[i, j]),
                 float(e.rms[i, j]), *([float(extra[i, j])] if extra is not None else []),
+                *([_csv_u(result, i, j), "true" if result.is_lot(i) else "false"]
+                  if result.uncertainty is not None else []),
                 "true" if _saturated(result, i, j) else "false",
                 "; ".join(result.warnings.get((i, j), ())),
             ]
 
-    return csv_text(_csv_header(extra is not None, result.has_linear), rows())
+    return csv_text(_csv_header(extra is not None, result.has_linear,
+                                result.uncertainty is not None), rows())
+
+
+def _csv_u(result: AnalysisResult, i: int, j: int) -> float | str:
+    u = _u(result, i, j)
+    return "" if u is None else u
 
 
 def to_markdown(result: AnalysisResult) -> str:
@@ -241,7 +280,8 @@ def to_markdown(result: AnalysisResult) -> str:
     extra = getattr(result, "stderr", None)
     odd = any(result.locked)
     head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_labels(result, odd),
-            "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []), "Δ_V(RMS)",
+            "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []),
+            *(["u(Δ_V)"] if result.uncertainty is not None else []), "Δ_V(RMS)",
             "saturated"]
     rows: list[list[str]] = []
     notes: list[str] = []
@@ -251,15 +291,19 @@ def to_markdown(result: AnalysisResult) -> str:
             notes.extend(f"{result.sensors[i]} / {result.profiles[j]}: {w}"
                          for w in result.warnings[(i, j)])
             mark = f" ⚠{len(notes)}"
-        rows.append([result.sensors[i] + mark, result.profiles[j], fmt(result.rates[j, 2]),
+        rows.append([_lot_name(result, i) + mark, result.profiles[j], fmt(result.rates[j, 2]),
                      *(fmt(x) for x in _terms(result, i, j, odd)), fmt(e.additive[i, j]),
                      fmt(e.multiplicative[i, j]), fmt(e.total[i, j]),
-                     *([fmt(extra[i, j], 2)] if extra is not None else []), fmt(e.rms[i, j]),
+                     *([fmt(extra[i, j], 2)] if extra is not None else []),
+                     *([_u_text(result, i, j)] if result.uncertainty is not None else []),
+                     fmt(e.rms[i, j]),
                      "yes" if _saturated(result, i, j) else "no"])
     text = (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
             + markdown_table(head, rows))
     if "specs" in result.sources:
         text += "\n" + _SPECS_NOTE + "\n"
+    if result.uncertainty is not None:
+        text += "\n" + _UNCERTAINTY_NOTE + "\n"
     if extra is not None:
         text += "\n" + _numeric_note(result) + "\n"
     if notes:
@@ -297,10 +341,12 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             table.add_column(label, justify="right", no_wrap=True, style="bold")
         if extra is not None:
             table.add_column("± stderr", justify="right", no_wrap=True)
+        if result.uncertainty is not None:
+            table.add_column("u(Δ_V)", justify="right", no_wrap=True)
         table.add_column("Δ_V(RMS)", justify="right", no_wrap=True, style="bold")
         shown = _shown(result.has_linear, odd)
         for i, sensor in enumerate(result.sensors):
-            name = Text(sensor)
+            name = Text(_lot_name(result, i))
             if (i, j) in result.warnings:
                 notes.extend(f"{sensor} / {profile}: {w}" for w in result.warnings[(i, j)])
                 name.append(f" ⚠{len(notes)}", style="yellow")
@@ -316,6 +362,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             table.add_row(name, *[fmt(values[k]) for k in shown],
                           fmt(additive[i][j]), fmt(multiplicative[i][j]), fmt(total[i][j]),
                           *([fmt(stderr[i][j], 2)] if stderr is not None else []),
+                          *([_u_text(result, i, j)] if result.uncertainty is not None else []),
                           fmt(rms[i][j]))
         out.append(table)
     legend = (f"All values in {result.unit}. Δ0 = additive terms of eq. (14)/(15); Δ_VA their "
@@ -327,6 +374,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
     out.append(Text(legend, style="dim"))
     if "specs" in result.sources:
         out.append(Text(_SPECS_NOTE, style="dim"))
+    if result.uncertainty is not None:
+        out.append(Text(_UNCERTAINTY_NOTE, style="dim"))
     if any_saturated:
         out.append(Text(_saturation_note(result), style="red"))
     if extra is not None:

@@ -20,6 +20,7 @@ from gyrovib.api.prepare import (
     profile_problem,
 )
 from gyrovib.api.results import AnalysisResult
+from gyrovib.api.uncertainty import with_uncertainty
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
 from gyrovib.core.harmonics import LockedGroup
@@ -163,6 +164,7 @@ def analyze(
         check_finite([*error_arrays(error), *([] if stderr_out is None else [stderr_out])],
                      prepared)
         locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
+        spread = with_uncertainty(prepared, method, unit)
     return AnalysisResult(
         method=method,
         unit=unit,
@@ -180,6 +182,7 @@ def analyze(
         peak_factor=peak_factor,
         locked=locked,
         worst_phases=worst,
+        **spread,
     )
 
 
