@@ -203,13 +203,22 @@ def selection_frame(result: SelectionResult) -> Any:
             columns[f"checks.{key}"] = np.asarray(array).reshape(-1)
         columns["checks.nonlinearity.unit"] = ["%FS" if result.source(int(i)) == "specs"
                                                else None for i in s_idx]
+    if result.yields is not None:  # --yield (MODEL.md section 14): NaN off the lots
+        y = result.yields
+        columns["yield.value"] = np.asarray(y.value).reshape(-1)
+        columns["yield.method"] = [y.method if y.is_lot(int(i)) else None for i in s_idx]
+        columns["yield.interval.low"] = np.asarray(y.low).reshape(-1)
+        columns["yield.interval.high"] = np.asarray(y.high).reshape(-1)
+        columns["yield.draws"] = [y.draws if y.is_lot(int(i)) else None for i in s_idx]
     columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
     for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
         columns[f"profile_{key}"] = column
-    return _frame(columns, {"method": result.method, "unit": result.unit,
-                            "budget": result.budget, "criterion": result.criterion,
-                            "require": result.require,
-                            "requirement_met": result.requirement_met})
+    attrs = {"method": result.method, "unit": result.unit, "budget": result.budget,
+             "criterion": result.criterion, "require": result.require,
+             "requirement_met": result.requirement_met}
+    if result.yields is not None:
+        attrs.update({"yield": result.yields.target, "seed": result.yields.seed})
+    return _frame(columns, attrs)
 
 
 def _reason(result: SelectionResult, i: int, j: int) -> str | None:

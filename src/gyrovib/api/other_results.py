@@ -20,6 +20,7 @@ from gyrovib.frozen import Frozen
 
 if TYPE_CHECKING:
     from gyrovib.api.spec_bounds import DatasheetBounds
+    from gyrovib.api.yields import LotYields
     from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 
 
@@ -161,6 +162,11 @@ class SelectionResult(_SensorsByProfiles):
     peak_factor: float = 3.0
     #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
     coefficient_unit: str | None = None
+    #: ``--yield``: the lots' yields (MODEL.md section 14), by which lots are judged;
+    #: None without --yield or without lots.
+    yields: LotYields | None = None
+    #: Warnings about the run, not one cell (a lot too small for its correlations).
+    notes: tuple[str, ...] = ()
 
     @property
     def has_linear(self) -> bool:

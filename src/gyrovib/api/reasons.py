@@ -69,6 +69,10 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     reasons: list[str] = []
     if (i, j) in result.reasons:
         reasons.append(result.reasons[(i, j)])
+    if result.yields is not None and result.yields.is_lot(i):  # judged by its yield
+        from gyrovib.api.yields import yield_reason
+
+        return reasons + yield_reason(result.yields, i, j)
     spec = result.source(i) == "specs"
     if result.criterion in ("bounds", "both") and spec:
         reasons.extend(_spec_failures(result, i, j))

@@ -12,6 +12,7 @@ from gyrovib.cli.common import (
     note_slow_table,
     page_width,
     plain_ascii,
+    say,
     use_color,
 )
 from gyrovib.cli.options import (
@@ -24,6 +25,7 @@ from gyrovib.cli.options import (
     selection_options,
 )
 from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
+from gyrovib.cli.yield_options import yield_options
 
 
 @click.command()
@@ -43,13 +45,15 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
+@yield_options
 @format_option("table", "json", "csv", "markdown", "junit", "github")
 @output_option
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
-           spec_weights: str | None, require: str, fmt: str, output: str | None) -> None:
+           spec_weights: str | None, require: str, yield_target: float | None, seed: int,
+           draws: int, fmt: str, output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its frequency response where it acts at its
@@ -58,7 +62,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     budget (eq. 17). A datasheet (spec-form) sensor is checked by its
     nonlinearity and VRE against the allowable figures for its range, and its
     margin is that of its worst case. A sensor that saturates under a profile
-    fails there.
+    fails there. With --yield Y a production lot (`lot:`) passes a profile when the
+    probability that a part drawn from it passes is at least Y (MODEL.md section 14).
     Exit status 1 when the --require condition is not met.
     """
     from gyrovib import api
@@ -71,7 +76,10 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     split = budget_arguments(budget, unit, rate, allocation)
     result = api.select(catalog, sensors=sensors, profiles=profiles, method=method, **split,
                         criterion=criterion, require=require,
-                        spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor)
+                        spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor,
+                        yield_target=yield_target, seed=seed, draws=draws)
+    for note in result.notes:
+        say(f"gyrovib: warning: {note}")
     if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
         note_slow_table(2 * len(result.sensors))
         text = render.to_table(result, color=use_color(output), width=page_width(output),

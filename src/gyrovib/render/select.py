@@ -65,6 +65,11 @@ def limit_text(result: SelectionResult, i: int) -> str:
     ratio = fmt(limit.ratio, 3)
     if limit.name == "saturated":
         return f"its range under {profile}: {result.reasons[(i, j)]}"
+    if limit.name == "yield" and result.yields is not None:
+        from gyrovib.api.yields import yield_text
+
+        return (f"yield {yield_text(result.yields, i, j)} under {profile}, below "
+                f"{result.yields.target:g}")
     if limit.name == "rms":
         return (f"Δ_V(RMS) = {fmt_budget(result.rms[i, j], result.budget)} {result.unit} is "
                 f"{ratio}× the budget under {profile}")
@@ -153,11 +158,24 @@ def _legend(result: SelectionResult) -> str:
                                              ("A1", "k2", "k4", "m31", "m32", "vre"))
                  + "; the vre check compares each sensor's effective VRE "
                  "|Δ0(6)|/Σ⟨a_j²⟩ with its bound.")
+    if result.yields is not None:
+        text += " " + _yield_legend(result)
     if result.saturated is not None and result.saturated.any():
         text += (f" {SATURATED_MARK}: the sensor saturates (|Ω_K3| + Σ tone amplitudes + "
                  f"locked peaks + {result.peak_factor:g}σ3 at its nonlinear element exceeds "
                  "its range, MODEL.md section 9) and fails whatever the criterion.")
     return text
+
+
+def _yield_legend(result: SelectionResult) -> str:
+    y = result.yields
+    assert y is not None
+    how = ("exact: Δ_V ~ N(Δ_V at the mean, u(Δ_V)²)" if y.method == "exact" else
+           f"Monte Carlo, {y.draws} draws (seed {y.seed}), 95 % Wilson interval in JSON/CSV")
+    return (f"A production lot (lot:) shows its yield, the probability that a part drawn "
+            f"from it passes the criterion ({how}; MODEL.md section 14); it passes where "
+            f"the yield is at least {y.target:g}. Its margin and ranking are those of its "
+            "mean.")
 
 
 # ------------------------------------------------------------------ JSON, CSV
@@ -192,6 +210,8 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
     document["criterion"] = result.criterion
     document["require"] = result.require
+    if result.yields is not None:
+        document["yield"] = {"target": result.yields.target, "seed": result.yields.seed}
     document["sensors"] = _SLOT
     before, after = dumps(document).split(json.dumps(_SLOT), 1)
     yield before + "["
@@ -234,12 +254,24 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
                     "checks": checks}
             if result.total is not None:
                 cell["total"] = number(result.total[i, j])
+            if result.yields is not None and result.yields.is_lot(i):
+                cell["yield"] = _yield_json(result, i, j)
             cell["saturated"] = _sat(result, i, j)
             cell["reason"] = reason(result, i, j)
             cells.append(cell)
         sensors.append({"sensor": sensor, "source": result.source(i),
                         "pass": bool(result.sensor_pass[i]), "profiles": cells})
     return sensors
+
+
+def _yield_json(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
+    """``{"value", "method", "interval": [lo, hi] | null, "draws"}`` (INTERFACE.md)."""
+    y = result.yields
+    assert y is not None
+    interval = (None if y.method == "exact"
+                else [number(y.low[i, j]), number(y.high[i, j])])
+    return {"value": number(y.value[i, j]), "method": y.method, "interval": interval,
+            "draws": y.draws}
 
 
 def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
@@ -279,6 +311,9 @@ def to_csv(result: SelectionResult) -> str:
                  "pass_nonlinearity"]
     if with_specs or vre:
         head += ["value_vre", "bound_vre", "pass_vre"]
+    y = result.yields
+    if y is not None:
+        head += ["yield", "yield_method", "yield_low", "yield_high", "yield_draws"]
     head += ["saturated", "reason"]
 
     def rows() -> Iterator[list[Any]]:
@@ -306,6 +341,11 @@ def to_csv(result: SelectionResult) -> str:
                     row += [*_vre(result, i, j), bool(_get(result.vre_pass, i, j))]
                 elif with_specs:
                     row += [""] * 3
+                if y is not None:
+                    row += ([float(y.value[i, j]), y.method,
+                             *(["", ""] if y.method == "exact"
+                               else [float(y.low[i, j]), float(y.high[i, j])]), y.draws]
+                            if y.is_lot(i) else [""] * 5)
                 row += [_sat(result, i, j), reason(result, i, j) or ""]
                 yield row
 
@@ -318,6 +358,8 @@ def to_csv(result: SelectionResult) -> str:
 def _cell(result: SelectionResult, i: int, j: int) -> str:
     mark = "✓" if result.passed[i, j] else "✗"
     sat = f" {SATURATED_MARK}" if _sat(result, i, j) else ""
+    if result.yields is not None and result.yields.is_lot(i):
+        return f"{mark}{sat} yield {fmt(float(result.yields.value[i, j]), 4)}"
     return f"{mark}{sat} {_margin(result.margin[i, j])}"
 
 

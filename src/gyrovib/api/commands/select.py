@@ -19,6 +19,15 @@ from gyrovib.api.convert import bound_factors, sensor_ranges
 from gyrovib.api.other_results import Limit, SelectionResult
 from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard, prepare
 from gyrovib.api.reasons import saturation_reasons
+from gyrovib.api.yields import (
+    DEFAULT_DRAWS,
+    DEFAULT_SEED,
+    check_yield_options,
+    judge,
+    lot_yields,
+    notes,
+    yield_limits,
+)
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import COEFFICIENTS, vibration_error
 from gyrovib.core.linear import effective_vre
@@ -109,6 +118,9 @@ def select(
     allocation: Allocation | Sequence[float] | None = None,
     spec_weights: tuple[float, float] = (1.0, 1.0),
     peak_factor: float = DEFAULT_PEAK_FACTOR,
+    yield_target: float | None = None,
+    seed: int = DEFAULT_SEED,
+    draws: int = DEFAULT_DRAWS,
 ) -> SelectionResult:
     """Which sensors meet the budget: the bound checks and eq. (17), per profile.
 
@@ -133,8 +145,15 @@ def select(
     Σ tone amplitudes + locked peaks + κσ3 at its nonlinear element above its
     range, κ = ``peak_factor``) fails there whatever the criterion: the
     static model behind both tests does not hold (:attr:`SelectionResult.reasons`).
+
+    ``yield_target`` Y (0 < Y < 1): a production lot (``lot:``) passes a profile when
+    the yield of a part drawn from it is at least Y (MODEL.md section 14,
+    :mod:`gyrovib.api.yields`: exact under ``worst``, else Monte Carlo with ``draws``
+    draws seeded by ``seed``); without it a lot is judged at its mean.
     """
     check_method_budget(method, budget)
+    if yield_target is not None:
+        check_yield_options(yield_target, draws, seed)
     if criterion not in CRITERIA:
         raise OptionError(f"unknown criterion {criterion!r}; use one of {', '.join(CRITERIA)}")
     if require not in REQUIREMENTS:
@@ -194,6 +213,11 @@ def select(
         # saturation fails a sensor whatever the criterion (MODEL.md section 9)
         passed = {"bounds": bounds_pass, "rms": rms_pass, "worst": worst_pass,
                   "both": bounds_pass & rms_pass}[criterion] & ~saturated
+        yields = None if yield_target is None else lot_yields(
+            prepared, method, criterion, budget, limits_deg, vre_pass, yield_target,
+            seed=seed, draws=draws, rtol=PASS_RTOL)
+        if yields is not None:
+            passed = judge(yields, passed, saturated)
         sensor_pass = np.all(passed, axis=1)
         judged = rms.copy() if criterion != "worst" else total.copy()
         if spec is not None:
@@ -212,6 +236,8 @@ def select(
         limits = _limits(criterion, np.nonzero(~sensor_pass)[0], ratios, rms, budget, total,
                          spec_ratios, saturated, reach / ranges[:, None])
         reasons = saturation_reasons(saturated, reach, ranges, peak_factor, unit)
+        if yields is not None:
+            limits = yield_limits(yields, limits, sensor_pass, saturated)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
     s = units.scale(unit)
     return SelectionResult(
@@ -245,6 +271,8 @@ def select(
         peak_factor=peak_factor,
         coefficient_unit=catalog_unit([e.unit for e in prepared.sensors])
         or alone.coefficient_unit,
+        yields=yields,
+        notes=notes(prepared),
     )
 
 

@@ -1,0 +1,276 @@
+"""The yield of a production lot under ``select --yield`` (MODEL.md section 14).
+
+A part drawn from a lot has c ~ N(μ, Σ) (:mod:`gyrovib.api.uncertainty`: μ
+the lot's mean, Σ from its sigma and correlations, the diagonal only for a lot
+of n ≤ p units). Its yield under a profile is the probability that it passes
+the criterion of ``select``:
+
+* ``worst`` (the direct test |Δ_V| ≤ Δ*): exactly, Δ_V ~ N(m, s²) with
+  m = Δ_V at the mean and s = u(Δ_V) (:func:`gyrovib.core.lot.direct_yield`);
+* ``rms`` (Δ_V(RMS) ≤ Δ*, eq. 17), ``bounds`` (every |coefficient| within its
+  bound, and the VRE check, which no coefficient of eq. 2 moves) and ``both``:
+  by Monte Carlo (:func:`gyrovib.core.lot.monte_carlo_yield`), ``draws`` draws
+  from a generator seeded by the seed and the lot's id (so a lot's yield does
+  not change when other sensors are chosen), with the 95 % Wilson interval.
+
+The parts of Δ_V and of the RMS terms that no uncertain coefficient moves (the
+fixed coefficients, the g² term of MODEL.md section 8) enter as one more
+coordinate of c fixed at 1 (its column is that part, its variance 0), so every
+test is a function of the draws alone.
+
+A lot passes a profile when its yield is at least the target Y (and it does not
+saturate there, MODEL.md section 9).
+"""
+
+from __future__ import annotations
+
+import zlib
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gyrovib.api.other_results import Limit
+from gyrovib.api.prepare import Prepared
+from gyrovib.api.results import _Frozen
+from gyrovib.api.uncertainty import (
+    Distribution,
+    distributions,
+    group_multipliers,
+    lot_warnings,
+    sensor_sensitivity,
+)
+from gyrovib.core.analysis import COEFFICIENTS, Multipliers, vibration_error
+from gyrovib.core.lot import DEFAULT_DRAWS as DEFAULT_DRAWS
+from gyrovib.core.lot import (
+    bounds_test,
+    direct_yield,
+    monte_carlo_yield,
+    rms_test,
+    term_matrix,
+)
+from gyrovib.core.synthesis import BOUNDED
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import OptionError
+
+#: Seed of the Monte-Carlo yields unless told otherwise.
+DEFAULT_SEED = 0
+#: Most draws per lot (memory and time: 10⁷ draws × profiles tests).
+MAX_DRAWS = 10_000_000
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class LotYields(_Frozen):
+    """The yields of the lots among the chosen sensors, (sensors, profiles).
+
+    ``value``: the yield (NaN on a sensor that is not a lot); ``low``/``high``:
+    its 95 % Wilson interval (NaN for the exact yield and off lots);
+    ``method``: ``"exact"`` (criterion ``worst``) or ``"monte-carlo"``;
+    ``draws``: Monte-Carlo draws per lot (0 for exact); ``target``: Y;
+    ``seed``; ``lots``: per sensor, whether it is a lot.
+    """
+
+    value: FloatArray
+    low: FloatArray
+    high: FloatArray
+    method: str
+    draws: int
+    target: float
+    seed: int
+    lots: tuple[bool, ...]
+
+    def _shape(self) -> tuple[int, ...]:
+        return tuple(self.value.shape)
+
+    def is_lot(self, i: int) -> bool:
+        """Whether sensor ``i`` is a lot (judged by its yield)."""
+        return self.lots[i]
+
+    def shortfall(self, i: int, j: int) -> float:
+        """(1 − yield)/(1 − Y): the fraction failing over the fraction allowed (> 1 fails)."""
+        return float((1.0 - self.value[i, j]) / (1.0 - self.target))
+
+
+def check_yield_options(target: float, draws: int, seed: int) -> None:
+    """0 < Y < 1, 1 ≤ draws ≤ :data:`MAX_DRAWS`, seed ≥ 0."""
+    if not (0.0 < target < 1.0):
+        raise OptionError(f"--yield {target:g}: give a probability between 0 and 1 "
+                          "(exclusive), e.g. 0.99 or 0.9973 for 3σ")
+    if isinstance(draws, bool) or not (1 <= draws <= MAX_DRAWS):
+        raise OptionError(f"--draws {draws}: give 1 to {MAX_DRAWS:,}")
+    if seed < 0:
+        raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
+
+
+def lot_generator(seed: int, sensor_id: str) -> np.random.Generator:
+    """The random stream of one lot: a function of the seed and the lot's id only."""
+    return np.random.default_rng([seed, zlib.crc32(sensor_id.encode("utf-8"))])
+
+
+def _augmented(dist: Distribution) -> tuple[FloatArray, FloatArray]:
+    """μ and Σ with one more coordinate fixed at 1 (variance 0): the fixed part."""
+    p = len(dist.names)
+    mean = np.append(dist.mean, 1.0)
+    cov = np.zeros((p + 1, p + 1))
+    cov[:p, :p] = dist.covariance
+    return mean, cov
+
+
+def _direct(multipliers: Multipliers, dist: Distribution, row: FloatArray,
+            g2: FloatArray) -> FloatArray:
+    """(profiles, p + 1): g of Δ_V over the lot's coefficients and, last, the fixed part
+    Δ_V(μ) − gᵀμ (deg/s)."""
+    g = sensor_sensitivity(multipliers, dist)
+    total = vibration_error(row[None], multipliers, g2_sensitivity=g2[None]).total[0]
+    out: FloatArray = np.concatenate([g, (total - g @ dist.mean)[..., None]], axis=-1)
+    return out
+
+
+def _terms(multipliers: Multipliers, dist: Distribution, row: FloatArray,
+           g2: FloatArray) -> FloatArray:
+    """(profiles, terms, p + 1): the terms of eq. (16) as G·c over the lot's coefficients
+    and, last, the fixed part (deg/s)."""
+    g = term_matrix(multipliers, dist.names)
+    if "A1" in dist.names:
+        g = g.copy()
+        g[..., dist.names.index("A1")] *= dist.k1
+    error = vibration_error(row[None], multipliers, g2_sensitivity=g2[None])
+    powers = np.stack([multipliers.omega ** q for q in (1, 2, 3)], axis=-1)
+    terms = np.concatenate([error.additive_terms[0], error.extra_terms[0],
+                            error.multiplicative_coefficients[0] * powers], axis=-1)
+    fixed = terms - np.einsum("...tp,p->...t", g, dist.mean)
+    out: FloatArray = np.concatenate([g, fixed[..., None]], axis=-1)
+    return out
+
+
+def _bounds(dist: Distribution, row: FloatArray, limits: FloatArray,
+            vre_pass: NDArray[np.bool_], rtol: float
+            ) -> tuple[FloatArray, NDArray[np.bool_]]:
+    """The bound of each lot coefficient per profile (profiles, p + 1; +inf where none,
+    and for the fixed coordinate), and per profile whether the fixed coefficients and
+    the VRE pass their checks."""
+    n_p = limits.shape[0]
+    out = np.full((n_p, len(dist.names) + 1), np.inf)
+    fixed_ok = np.asarray(vre_pass, dtype=bool).copy()
+    for b, name in enumerate(BOUNDED):
+        bound = limits[:, b] * (1.0 + rtol)
+        if name in dist.names:
+            out[:, dist.names.index(name)] = bound
+        else:
+            fixed_ok &= abs(float(row[COEFFICIENTS.index(name)])) <= bound
+    return out, fixed_ok
+
+
+def _and_fixed(test: Callable[[FloatArray], NDArray[np.bool_]], fixed_ok: NDArray[np.bool_]
+               ) -> Callable[[FloatArray], NDArray[np.bool_]]:
+    """``test`` and, per profile, the checks no drawn coefficient moves."""
+
+    def both(c: FloatArray) -> NDArray[np.bool_]:
+        out: NDArray[np.bool_] = test(c) & fixed_ok[None, :]
+        return out
+
+    return both
+
+
+def lot_yields(prepared: Prepared, method: str, criterion: str, budget: float,
+               limits_deg: FloatArray, vre_pass: NDArray[np.bool_], target: float, *,
+               seed: int = DEFAULT_SEED, draws: int = DEFAULT_DRAWS, rtol: float = 0.0,
+               found: Sequence[Distribution | None] | None = None) -> LotYields | None:
+    """The yield of every lot under every profile for ``criterion`` (module docstring);
+    None when no chosen sensor is a lot.
+
+    ``budget`` Δ* in deg/s; ``limits_deg`` (sensors, profiles, :data:`BOUNDED`) each
+    sensor's coefficient bounds in deg/s powers; ``vre_pass`` (sensors, profiles) the
+    VRE check; ``rtol`` the slack of every ≤ (``select``'s).
+    """
+    check_yield_options(target, draws, seed)
+    found = distributions(prepared) if found is None else found
+    lots = tuple(d is not None and d.is_lot for d in found)
+    if not any(lots):
+        return None
+    n_s, n_p = len(prepared.sensors), len(prepared.profiles)
+    value = np.full((n_s, n_p), np.nan)
+    low, high = value.copy(), value.copy()
+    exact = criterion == "worst"
+    limit = budget * (1.0 + rtol)
+    for group in prepared.groups:
+        multipliers = group_multipliers(prepared, group, method)
+        for i in (int(k) for k in group.index if lots[int(k)]):
+            dist = found[i]
+            assert dist is not None
+            row, g2 = prepared.coefficients[i], prepared.g2[i]
+            mean, cov = _augmented(dist)
+            if exact:
+                value[i] = direct_yield(_direct(multipliers, dist, row, g2), mean, cov, limit)
+                continue
+            tests: list[Callable[[FloatArray], NDArray[np.bool_]]] = []
+            if criterion in ("bounds", "both"):
+                bounds, fixed_ok = _bounds(dist, row, limits_deg[i], vre_pass[i], rtol)
+                tests.append(_and_fixed(bounds_test(bounds), fixed_ok))
+            if criterion in ("rms", "both"):
+                tests.append(rms_test(_terms(multipliers, dist, row, g2), limit))
+
+            def passes(c: FloatArray,
+                       tests: list[Callable[[FloatArray], NDArray[np.bool_]]] = tests
+                       ) -> NDArray[np.bool_]:
+                out = tests[0](c)
+                for more in tests[1:]:
+                    out = out & more(c)
+                return out
+
+            estimate = monte_carlo_yield(passes, mean, cov,
+                                         lot_generator(seed, prepared.sensors[i].sensor.id),
+                                         draws=draws)
+            value[i], low[i], high[i] = estimate.value, estimate.low, estimate.high
+    return LotYields(value=value, low=low, high=high,
+                     method="exact" if exact else "monte-carlo",
+                     draws=0 if exact else draws, target=target, seed=seed, lots=lots)
+
+
+def judge(yields: LotYields, passed: NDArray[np.bool_],
+          saturated: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``passed`` with each lot's cells replaced by yield ≥ Y (and not saturated)."""
+    out = passed.copy()
+    rows = np.array(yields.lots, dtype=bool)
+    out[rows] = (yields.value[rows] >= yields.target) & ~saturated[rows]
+    return out
+
+
+def yield_limits(yields: LotYields, limits: Mapping[int, Limit],
+                 sensor_pass: NDArray[np.bool_], saturated: NDArray[np.bool_]
+                 ) -> dict[int, Limit]:
+    """``limits`` with each failing lot (not saturating) limited by its lowest yield:
+    ``Limit("yield", profile, (1 − yield)/(1 − Y))``."""
+    out = dict(limits)
+    for i, lot in enumerate(yields.lots):
+        if not lot or sensor_pass[i] or saturated[i].any():
+            continue
+        j = int(np.nanargmin(yields.value[i]))
+        out[i] = Limit("yield", j, yields.shortfall(i, j))
+    return out
+
+
+def yield_text(yields: LotYields, i: int, j: int) -> str:
+    """A lot's yield in words: ``0.9912 (exact)`` or ``0.9911 [0.9905, 0.9917] (monte-carlo,
+    100000 draws)``."""
+    from gyrovib.formatting import fmt
+
+    value = float(yields.value[i, j])
+    if yields.method == "exact":
+        return f"{fmt(value, 4)} (exact)"
+    return (f"{fmt(value, 4)} [{fmt(float(yields.low[i, j]), 4)}, "
+            f"{fmt(float(yields.high[i, j]), 4)}] (monte-carlo, {yields.draws} draws)")
+
+
+def yield_reason(yields: LotYields, i: int, j: int) -> list[str]:
+    """Why lot ``i`` fails under profile ``j`` by its yield (empty when the yield is
+    enough: it fails there by saturation only)."""
+    if float(yields.value[i, j]) >= yields.target:
+        return []
+    return [f"yield {yield_text(yields, i, j)} is below {yields.target:g}"]
+
+
+def notes(prepared: Prepared) -> tuple[str, ...]:
+    """The warnings of lots too small for their correlations."""
+    return lot_warnings(distributions(prepared))
