@@ -33,6 +33,26 @@ def test_the_page_has_its_examples() -> None:
     commands = [c for c, _ in console_blocks()]
     assert any(c.startswith("gyrovib fit") and "-o -" not in c for c in commands)
     assert any(c.startswith("gyrovib fit") and c.endswith("-o -") for c in commands)
+    # the page ends with the purchase decision: the lot judged by its yield
+    assert any(c.startswith("gyrovib select") and "--yield" in c for c in commands)
+
+
+def test_the_quoted_rms_yield_is_the_output() -> None:
+    """Section 4 quotes the lot's RMS-test yield from `--format json`."""
+    import json
+
+    env = {**os.environ, "NO_COLOR": "1"}
+    done = subprocess.run(
+        [sys.executable, "-m", "gyrovib", "select", "docs/examples/rate-table-gx100.gyrovib.yaml",
+         "docs/examples/rotor-tone.gyrovib.yaml", "--budget", "36deg/h", "--criterion", "rms",
+         "--yield", "0.99", "--format", "json"],
+        cwd=ROOT, capture_output=True, text=True, env=env, timeout=120, check=False)
+    entry = next(s for s in json.loads(done.stdout)["sensors"]
+                 if s["sensor"] == "lot-rate-table-gx100")["profiles"][0]["yield"]
+    text = " ".join(PAGE.read_text(encoding="utf-8").split())
+    low, high = (f"{v:.4f}" for v in entry["interval"])
+    assert (f'"yield": {{"value": {entry["value"]}, "method": "monte-carlo", "interval": '
+            f'[{low}…, {high}…], "draws": 100000}}') in text
 
 
 @pytest.mark.parametrize(("command", "shown"), console_blocks())

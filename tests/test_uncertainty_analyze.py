@@ -141,7 +141,7 @@ def test_every_format_carries_u(tmp_path: Path) -> None:
     csv = pandas.read_csv(io.StringIO(invoke("analyze", path, "--format", "csv").stdout))
     np.testing.assert_allclose(csv["uncertainty.total"], u, rtol=1e-15, equal_nan=True)
     table = invoke("analyze", path, env={"COLUMNS": "200"}).stdout
-    assert "u(Δ_V)" in table and "lot-1 (lot mean)" in table
+    assert "u(Δ_V)" in table and "lot-1 (lot)" in table
     assert f"{u[0]:.2g}" in table
     markdown = invoke("analyze", path, "--format", "markdown").stdout
     assert "| u(Δ_V) |" in markdown and f"| {u[0]:.2g} |" in markdown

@@ -74,10 +74,10 @@ def _lot_name(result: AnalysisResult, i: int) -> str:
 
 
 #: The mark of a lot sensor, analysed at its mean, in tables.
-LOT_MARK = "(lot mean)"
+LOT_MARK = "(lot)"
 _UNCERTAINTY_NOTE = ("u(Δ_V): standard uncertainty (k = 1) of Δ_V from the coefficients' "
                      "uncertainty, √(gᵀΣg) with Δ_V = gᵀc (MODEL.md section 14); '-' where "
-                     "not known. A sensor marked (lot mean) is a production lot analysed at "
+                     "not known. A sensor marked (lot) is a production lot, analysed at "
                      "its mean coefficients; its u is the spread of Δ_V over the lot.")
 
 
