@@ -237,3 +237,22 @@ def test_without_yield_a_lot_is_judged_at_its_mean(catalogue: Path) -> None:
     document = run(catalogue, "--budget", BUDGET, "--criterion", "worst")
     assert "yield" not in document and "yield" not in cell(document, "lot-k2")
     assert cell(document, "lot-k2")["pass"] == cell(document, "unit-k2")["pass"] is True
+
+
+def test_the_report_shows_yields_and_uncertainties(tmp_path: Path) -> None:
+    catalogue = ROOT / "docs" / "examples" / "rate-table-gx100.gyrovib.yaml"
+    out = tmp_path / "report.html"
+    result = invoke("report", catalogue, ROTOR, "--budget", "36deg/h", "--criterion", "rms",
+                    "--yield", "0.99", "--draws", "20000", "-o", out)
+    assert result.exit_code == 0, result.stderr
+    html = out.read_text(encoding="utf-8")
+    study = api.select(api.load([catalogue, ROTOR]), budget=0.01, criterion="rms",
+                       yield_target=0.99, draws=20000)
+    assert study.yields is not None
+    i = study.sensors.index("lot-rate-table-gx100")
+    assert f"yield {study.yields.value[i, 0]:.4g}" in html
+    assert "pass where the yield is at least 0.99 (Monte Carlo, 20000 draws" in html
+    analysis = api.analyze(api.load([catalogue, ROTOR]), unit="deg/h")
+    assert analysis.uncertainty is not None
+    assert f"lot mean Δ_V = {analysis.error.total[i, 0]:.4g} ± " in html
+    assert f"Δ_V = {analysis.error.total[0, 0]:.4g} ± {analysis.uncertainty[0, 0]:.2g}" in html

@@ -135,6 +135,8 @@ def sensor_form(sensor: object) -> str:
         return "datasheet"
     if getattr(sensor, "output_coefficients", None) is not None:
         return "output coefficients"
+    if getattr(sensor, "lot", None) is not None:
+        return "lot"  # a production lot (MODEL.md section 14), analysed at its mean
     return "coefficients"
 
 
@@ -169,17 +171,23 @@ def trade_study(
     sweep_rates: Sequence[float] | FloatArray | None = None,
     created: _dt.datetime | None = None,
     peak_factor: float = 3.0,
+    yield_target: float | None = None,
+    seed: int = 0,
+    draws: int = 100_000,
 ) -> TradeStudy:
     """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
 
     ``sweep_rates`` default: :data:`SWEEP_POINTS` rates over ±:func:`envelope`.
     ``created`` (default: now, UTC) is stamped on the study. ``peak_factor``:
     κ of the saturation check (MODEL.md section 9) of the selection and analysis.
+    ``yield_target``, ``seed``, ``draws``: production lots judged by their yield
+    (:func:`gyrovib.api.select`, MODEL.md section 14).
     """
     unit = units.canonical_unit(unit)
     selection = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, budget=budget, unit=unit, criterion=criterion,
-                           require=require, allocation=allocation, peak_factor=peak_factor)
+                           require=require, allocation=allocation, peak_factor=peak_factor,
+                           yield_target=yield_target, seed=seed, draws=draws)
     analysis = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, unit=unit, peak_factor=peak_factor)
     if sweep_rates is None:

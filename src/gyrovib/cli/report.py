@@ -15,6 +15,7 @@ from gyrovib.cli.options import (
     selection_options,
 )
 from gyrovib.cli.recording import recording_options
+from gyrovib.cli.yield_options import yield_options
 
 DEFAULT_OUTPUT = "report.html"
 
@@ -34,6 +35,7 @@ DEFAULT_OUTPUT = "report.html"
 @click.option("--rate-range", "rate_range", metavar="START:STOP:COUNT",
               help="Ω_K3 values of the sweep charts, in --unit. Default: 241 rates over "
                    "±1.5 × the largest |Ω_K3| + vibration peak of the chosen profiles.")
+@yield_options
 @click.option("--output", "-o", default=DEFAULT_OUTPUT, show_default=True, metavar="PATH",
               help="Write the HTML here (atomically); '-' for standard output.")
 @click.option("--recording", metavar="RECORDING",
@@ -44,7 +46,8 @@ DEFAULT_OUTPUT = "report.html"
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, require: str, rate_range: str | None,
-           output: str, recording: str | None, **rec: Any) -> None:
+           yield_target: float | None, seed: int, draws: int, output: str,
+           recording: str | None, **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -74,7 +77,8 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
                                                       split["unit"], rec)
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
-        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
+        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,
+        yield_target=yield_target, seed=seed, draws=draws)
     write_output(to_html(result, section), output)
     if output not in ("-", ""):
         say(f"gyrovib: wrote {output}")

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from html import escape
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -25,9 +26,13 @@ from gyrovib.render.common import fmt
 from gyrovib.render.select import limit_text
 from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
 
+if TYPE_CHECKING:
+    from gyrovib.api.yields import LotYields
+
 PASS_FILL, FAIL_FILL = "#2ca02c", "#d62728"
 FORM_TAGS = {"datasheet": "datasheet (spec form): worst case",
-             "output coefficients": "from output coefficients (eq. 1)"}
+             "output coefficients": "from output coefficients (eq. 1)",
+             "lot": "production lot: analysed at its mean"}
 SUPERSCRIPT = {1: "", 2: "²", 3: "³", 4: "⁴", 5: "⁵"}
 
 CSS = """
@@ -161,11 +166,18 @@ def _inputs(study: TradeStudy) -> str:
         *([["… under a linear vibration (g² term, MODEL.md section 8)",
             "; ".join(f"{k}: {v}" for k, v in shares(s.allocation, linear=True).items())]]
           if s.has_linear else []),
+        *([["production lots", _yield_input(s.yields)]] if s.yields is not None else []),
         ["sensors × profiles", f"{len(s.sensors)} × {len(s.profiles)}"],
         ["gyrovib version", study.version],
         ["date", study.created],
     ]
     return files + _table(["input", "value"], rows)
+
+
+def _yield_input(y: LotYields) -> str:
+    how = ("exact" if y.method == "exact"
+           else f"Monte Carlo, {y.draws} draws, seed {y.seed}, 95 % Wilson interval")
+    return f"pass where the yield is at least {y.target:g} ({how}; MODEL.md section 14)"
 
 
 def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str:
@@ -188,15 +200,28 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
             mark = " ⚠" if notes else ""
             saturates = ('<br><span class="small"><b>saturates</b></span>'
                          if s.saturated is not None and s.saturated[i, j] else "")
+            shown = (f"yield {fmt(float(s.yields.value[i, j]), 4)}"
+                     if s.yields is not None and s.yields.is_lot(i) else fmt(s.margin[i, j], 3))
             cells.append(
-                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} {_e(fmt(s.margin[i, j], 3))}'
+                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} {_e(shown)}'
                 f'{mark}<br><span class="small">{_e(_dominant(squares[i, j], names))}</span>'
-                f'{saturates}</td>'
+                f'{_uncertainty(study, i, j)}{saturates}</td>'
             )
         rows.append(cells)
     # many profiles: a compact table that scrolls rather than widening the page
     table = _table(head, rows, raw=True).replace("<table>", '<table class="matrix">', 1)
     return f'<div class="scroll">{table}</div>'
+
+
+def _uncertainty(study: TradeStudy, i: int, j: int) -> str:
+    """``Δ_V = m ± u`` (MODEL.md section 14) under a cell, for a sensor with uncertainty
+    or a lot (then the spread over the lot, at its mean)."""
+    a = study.analysis
+    if a.uncertainty is None or not np.isfinite(a.uncertainty[i, j]):
+        return ""
+    what = "lot mean Δ_V" if a.is_lot(i) else "Δ_V"
+    return (f'<br><span class="small">{what} = {_e(fmt(a.error.total[i, j]))} ± '
+            f'{_e(fmt(a.uncertainty[i, j], 2))}</span>')
 
 
 def _ranking(study: TradeStudy) -> str:
