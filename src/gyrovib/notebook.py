@@ -395,7 +395,8 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
            unit: str | None = None, criterion: str = "bounds", require: str = "any",
            allocation: Sequence[float] | None = None,
            spec_weights: tuple[float, float] = (1.0, 1.0),
-           peak_factor: float = 3.0) -> SelectionResult:
+           peak_factor: float = 3.0, yield_target: float | None = None, seed: int = 0,
+           draws: int = 100_000) -> SelectionResult:
     """Which sensors meet the budget: bound checks and eq. (17), ranked by margin.
 
     Parameters
@@ -424,6 +425,10 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
         As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
     peak_factor : float
         κ of the saturation check (MODEL.md section 9), default 3.
+    yield_target : float, optional
+        Y, 0 < Y < 1: a production lot (``lot:``) passes a profile when the
+        probability that a part drawn from it passes is at least Y (MODEL.md
+        section 14; ``select --yield``); ``seed`` and ``draws`` of its Monte Carlo.
 
     Returns
     -------
@@ -447,7 +452,9 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
         "criterion": _text("criterion", criterion, api.CRITERIA),
         "require": _text("require", require, api.REQUIREMENTS),
         "allocation": _allocation(allocation), "spec_weights": _spec_weights(spec_weights),
-        "peak_factor": _number("peak_factor", peak_factor, nonnegative=True)}
+        "peak_factor": _number("peak_factor", peak_factor, nonnegative=True),
+        "yield_target": None if yield_target is None else _number("yield_target", yield_target),
+        "seed": _integer("seed", seed, 0), "draws": _integer("draws", draws, 1)}
     return api.select(_catalog(catalog), unit=unit, **arguments)
 
 
