@@ -256,3 +256,28 @@ def test_the_report_shows_yields_and_uncertainties(tmp_path: Path) -> None:
     assert analysis.uncertainty is not None
     assert f"lot mean Δ_V = {analysis.error.total[i, 0]:.4g} ± " in html
     assert f"Δ_V = {analysis.error.total[0, 0]:.4g} ± {analysis.uncertainty[0, 0]:.2g}" in html
+
+
+def test_unknown_phases_are_refused_for_a_lot(catalogue: Path, tmp_path: Path) -> None:
+    """Under `phase: worst` orders Δ_V is maximised over the phases part by part: no yield
+    is computed, the profile is named (exit 2); analyze leaves u(Δ_V) out there."""
+    text = CATALOGUE + """\
+  - id: locked
+    rate: [0, 0, 0]
+    harmonics:
+      fundamental: 20
+      orders:
+        - {order: 1, amplitude: [0.5, 0.0, 2.0], phase: [30, 0, 0]}
+        - {order: 2, amplitude: [0.0, 0.3, 1.0], phase: worst}
+"""
+    path = tmp_path / "locked.yaml"
+    path.write_text(text, encoding="utf-8")
+    result = invoke("select", path, "--budget", BUDGET, "--yield", 0.9, "--criterion", "worst")
+    assert result.exit_code == 2
+    assert f"{path}:" in result.stderr and "'locked'" in result.stderr
+    assert "phase: worst" in result.stderr
+    fine = invoke("select", path, "--budget", BUDGET, "--yield", 0.9, "--profile", "random-x3")
+    assert fine.exit_code in (0, 1), fine.stderr
+    rows = json.loads(invoke("analyze", path, "--format", "json").stdout)["results"]
+    lot = {r["profile"]: r for r in rows if r["sensor"] == "lot-k2"}
+    assert "uncertainty" in lot["random-x3"] and "uncertainty" not in lot["locked"]

@@ -32,12 +32,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib.api.other_results import Limit
-from gyrovib.api.prepare import Prepared
+from gyrovib.api.prepare import Prepared, profile_problem
 from gyrovib.api.results import _Frozen
 from gyrovib.api.uncertainty import (
     Distribution,
     distributions,
     group_multipliers,
+    has_worst_phases,
     lot_warnings,
     sensor_sensitivity,
 )
@@ -52,7 +53,7 @@ from gyrovib.core.lot import (
 )
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
-from gyrovib.errors import OptionError
+from gyrovib.errors import ModelError, OptionError
 
 #: Seed of the Monte-Carlo yields unless told otherwise.
 DEFAULT_SEED = 0
@@ -173,6 +174,21 @@ def _and_fixed(test: Callable[[FloatArray], NDArray[np.bool_]], fixed_ok: NDArra
     return both
 
 
+def _refuse_searched_phases(prepared: Prepared, lots: Sequence[bool]) -> None:
+    """A profile with ``phase: worst`` orders has Δ_V maximised over phases per part (MODEL.md
+    section 10): no linear form, no yield computed here. Refused, located at the profile."""
+    searched = sorted({j for group in prepared.groups if any(lots[int(i)] for i in group.index)
+                       for j in range(len(prepared.profiles)) if has_worst_phases(group, j)})
+    if searched:
+        raise ModelError([profile_problem(
+            prepared.profiles[j],
+            f"profile {prepared.profiles[j].profile.id!r}: --yield cannot judge a lot under "
+            "'phase: worst' orders (the error is maximised over the phases part by part, "
+            "which no distribution of Δ_V gives here); write the phases, or choose other "
+            "profiles with --profile") for j in searched],
+            reason="--yield with phase: worst")
+
+
 def lot_yields(prepared: Prepared, method: str, criterion: str, budget: float,
                limits_deg: FloatArray, vre_pass: NDArray[np.bool_], target: float, *,
                seed: int = DEFAULT_SEED, draws: int = DEFAULT_DRAWS, rtol: float = 0.0,
@@ -194,6 +210,7 @@ def lot_yields(prepared: Prepared, method: str, criterion: str, budget: float,
     low, high = value.copy(), value.copy()
     exact = criterion == "worst"
     limit = budget * (1.0 + rtol)
+    _refuse_searched_phases(prepared, lots)
     for group in prepared.groups:
         multipliers = group_multipliers(prepared, group, method)
         for i in (int(k) for k in group.index if lots[int(k)]):
