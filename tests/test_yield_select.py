@@ -281,3 +281,29 @@ def test_unknown_phases_are_refused_for_a_lot(catalogue: Path, tmp_path: Path) -
     rows = json.loads(invoke("analyze", path, "--format", "json").stdout)["results"]
     lot = {r["profile"]: r for r in rows if r["sensor"] == "lot-k2"}
     assert "uncertainty" in lot["random-x3"] and "uncertainty" not in lot["locked"]
+
+
+def test_both_is_the_joint_event(catalogue: Path) -> None:
+    """--criterion both passes a draw when bounds and rms both do: with the same draws (same
+    seed, same lot) its yield is at most either one's and at least their sum minus 1."""
+    def value(criterion: str) -> float:
+        result = api.select(api.load([catalogue]), budget=BUDGET, criterion=criterion,
+                            yield_target=0.5, draws=20000, seed=3)
+        assert result.yields is not None
+        return float(result.yields.value[0, 0])
+
+    bounds, rms, both = value("bounds"), value("rms"), value("both")
+    assert 0 < both < 1
+    assert both <= min(bounds, rms) and both >= bounds + rms - 1
+
+
+def test_yield_without_lots_says_so(tmp_path: Path) -> None:
+    path = tmp_path / "units.yaml"
+    head, lot = CATALOGUE.split("  - id: lot-k2\n")
+    path.write_text(head + "  - id: unit-k2" + lot.split("  - id: unit-k2", 1)[1],
+                    encoding="utf-8")
+    result = invoke("select", path, "--budget", BUDGET, "--yield", 0.9, "--criterion", "worst",
+                    "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    assert "no production lot" in result.stderr
+    assert "yield" not in json.loads(result.stdout)

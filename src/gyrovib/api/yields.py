@@ -288,6 +288,14 @@ def yield_reason(yields: LotYields, i: int, j: int) -> list[str]:
     return [f"yield {yield_text(yields, i, j)} is below {yields.target:g}"]
 
 
-def notes(prepared: Prepared) -> tuple[str, ...]:
-    """The warnings of lots too small for their correlations."""
-    return lot_warnings(distributions(prepared))
+#: The note of ``--yield`` without a lot among the chosen sensors.
+NO_LOTS = ("--yield: no production lot ('lot:') among the chosen sensors; every sensor is "
+           "judged as without it")
+
+
+def notes(prepared: Prepared, target: float | None = None,
+          yields: LotYields | None = None) -> tuple[str, ...]:
+    """The warnings of lots too small for their correlations; and, when a yield
+    ``target`` was given but no sensor is a lot, that it changed nothing."""
+    out = lot_warnings(distributions(prepared))
+    return out + ((NO_LOTS,) if target is not None and yields is None else ())

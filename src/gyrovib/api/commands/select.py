@@ -272,7 +272,7 @@ def select(
         coefficient_unit=catalog_unit([e.unit for e in prepared.sensors])
         or alone.coefficient_unit,
         yields=yields,
-        notes=notes(prepared),
+        notes=notes(prepared, yield_target, yields),
     )
 
 
