@@ -233,8 +233,9 @@ class Sensor(Model):
 
     Values are in the file's own units (rates in ``units.rate``, accelerations in
     ``units.acceleration``). Exactly one of ``coefficients`` (eq. 2),
-    ``output_coefficients`` (eq. 1) and ``specs`` (the datasheet) is given;
-    ``response`` is as written (a bare table acting at the output, or a
+    ``output_coefficients`` (eq. 1), ``specs`` (the datasheet) and ``lot`` (a
+    production lot, MODEL.md section 14) is given, and ``uncertainty`` only beside
+    ``coefficients``; ``response`` is as written (a bare table acting at the output, or a
     :class:`Response`): read it through ``response_table`` and ``response_at``;
     ``g2`` is the g² sensitivity from either of its forms.
     """
