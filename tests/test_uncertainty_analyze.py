@@ -1,4 +1,4 @@
-"""`analyze` for sensors with ``uncertainty`` or a ``lot``: u(Δ_V) = √(gᵀΣg) (MODEL.md
+"""`analyze` for sensors with ``uncertainty`` or a ``lot``: u(Δ_V) = √(gᵀΣg) (docs/model.md
 section 14) in every format.
 
 The expected u is built by hand here: g_i is Δ_V of a sensor whose only coefficient is

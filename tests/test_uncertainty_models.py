@@ -1,5 +1,5 @@
 """The catalogue's ``uncertainty`` and ``lot`` blocks (INTERFACE.md, third round;
-MODEL.md section 14): what the models accept, the located exit-2 errors, the JSON
+docs/model.md section 14): what the models accept, the located exit-2 errors, the JSON
 Schema agreeing with validate, and `gyrovib fit -o` writing what validate accepts."""
 
 from __future__ import annotations

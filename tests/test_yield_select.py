@@ -1,4 +1,4 @@
-"""`select --yield Y`: production lots judged by their yield (MODEL.md section 14).
+"""`select --yield Y`: production lots judged by their yield (docs/model.md section 14).
 
 Expected yields come from closed forms worked here: a lot whose only uncertain
 coefficient is k2, under a random vibration about x3 alone at Ω_K = 0, has

@@ -427,7 +427,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
         κ of the saturation check (MODEL.md section 9), default 3.
     yield_target : float, optional
         Y, 0 < Y < 1: a production lot (``lot:``) passes a profile when the
-        probability that a part drawn from it passes is at least Y (MODEL.md
+        probability that a part drawn from it passes is at least Y (docs/model.md
         section 14; ``select --yield``); ``seed`` and ``draws`` of its Monte Carlo.
 
     Returns

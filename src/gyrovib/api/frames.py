@@ -99,7 +99,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
         for k, name in enumerate(WORST_COEFFICIENTS):
             columns[f"envelope.worst_coefficients.{name}"] = worst[:, k]
         columns["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
-    if result.uncertainty is not None:  # MODEL.md section 14: NaN where not known
+    if result.uncertainty is not None:  # docs/model.md section 14: NaN where not known
         columns["uncertainty.total"] = np.asarray(result.uncertainty)[s_idx, p_idx]
         columns["lot_mean"] = [result.is_lot(int(i)) for i in s_idx]
     columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx]
@@ -203,7 +203,7 @@ def selection_frame(result: SelectionResult) -> Any:
             columns[f"checks.{key}"] = np.asarray(array).reshape(-1)
         columns["checks.nonlinearity.unit"] = ["%FS" if result.source(int(i)) == "specs"
                                                else None for i in s_idx]
-    if result.yields is not None:  # --yield (MODEL.md section 14): NaN off the lots
+    if result.yields is not None:  # --yield (docs/model.md section 14): NaN off the lots
         y = result.yields
         columns["yield.value"] = np.asarray(y.value).reshape(-1)
         columns["yield.method"] = [y.method if y.is_lot(int(i)) else None for i in s_idx]

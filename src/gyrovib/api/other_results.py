@@ -162,7 +162,7 @@ class SelectionResult(_SensorsByProfiles):
     peak_factor: float = 3.0
     #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
     coefficient_unit: str | None = None
-    #: ``--yield``: the lots' yields (MODEL.md section 14), by which lots are judged;
+    #: ``--yield``: the lots' yields (docs/model.md section 14), by which lots are judged;
     #: None without --yield or without lots.
     yields: LotYields | None = None
     #: Warnings about the run, not one cell (a lot too small for its correlations).

@@ -147,7 +147,7 @@ class AnalysisResult(_SensorsByProfiles):
     worst_phases: Mapping[tuple[int, int], tuple[dict[str, float], ...]] = field(
         default_factory=dict)
     #: (sensors, profiles): u(Δ_V) = √(gᵀΣg) (k = 1) in :attr:`unit` of sensors with
-    #: ``uncertainty`` or ``lot`` (MODEL.md section 14), NaN for the others (and where
+    #: ``uncertainty`` or ``lot`` (docs/model.md section 14), NaN for the others (and where
     #: phases are searched); None when no sensor has one.
     uncertainty: FloatArray | None = None
     #: Per sensor: a production lot, analysed at its mean (empty: none is).

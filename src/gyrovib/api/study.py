@@ -136,7 +136,7 @@ def sensor_form(sensor: object) -> str:
     if getattr(sensor, "output_coefficients", None) is not None:
         return "output coefficients"
     if getattr(sensor, "lot", None) is not None:
-        return "lot"  # a production lot (MODEL.md section 14), analysed at its mean
+        return "lot"  # a production lot (docs/model.md section 14), analysed at its mean
     return "coefficients"
 
 
@@ -181,7 +181,7 @@ def trade_study(
     ``created`` (default: now, UTC) is stamped on the study. ``peak_factor``:
     κ of the saturation check (MODEL.md section 9) of the selection and analysis.
     ``yield_target``, ``seed``, ``draws``: production lots judged by their yield
-    (:func:`gyrovib.api.select`, MODEL.md section 14).
+    (:func:`gyrovib.api.select`, docs/model.md section 14).
     """
     unit = units.canonical_unit(unit)
     selection = api.select(catalog, sensors=sensors, profiles=profiles, method=method,

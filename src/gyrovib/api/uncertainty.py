@@ -1,6 +1,6 @@
 """The distribution of a sensor's coefficients, and the uncertainty of its vibration error.
 
-MODEL.md section 14. A sensor with ``uncertainty`` (beside ``coefficients``)
+docs/model.md section 14. A sensor with ``uncertainty`` (beside ``coefficients``)
 or a ``lot`` has coefficients c ~ (μ, Σ): μ its coefficients (a lot: their
 mean), Σ = diag(σ)·R·diag(σ) from its sigma and correlation pairs, in deg/s
 powers (each σ converts as its coefficient). A lot of n units with n ≤ p (p
@@ -42,7 +42,7 @@ from gyrovib.frozen import Frozen
 class Distribution(Frozen):
     """A sensor's coefficients as a distribution, in deg/s powers.
 
-    ``names``: the coefficients with a sigma (MODEL.md section 14 order);
+    ``names``: the coefficients with a sigma (docs/model.md section 14 order);
     ``mean``: μ at those names; ``covariance``: Σ (p, p), the diagonal only for
     a lot with ``units`` ≤ p (then ``warning`` says so); ``units``: the lot's
     n, None for one unit's ``uncertainty``; ``k1``: the sensor's scale factor
@@ -115,7 +115,7 @@ def group_multipliers(prepared: Prepared, group: Group, method: str) -> Multipli
 
 
 def sensor_sensitivity(multipliers: Multipliers, dist: Distribution) -> FloatArray:
-    """g with Δ_V = gᵀc over ``dist.names`` (MODEL.md section 14), deg/s per coefficient
+    """g with Δ_V = gᵀc over ``dist.names`` (docs/model.md section 14), deg/s per coefficient
     unit, shape ``multipliers.omega.shape + (p,)``; the A1 entry at the sensor's k1."""
     g = sensitivity(multipliers, dist.names)
     if "A1" in dist.names:
@@ -125,7 +125,7 @@ def sensor_sensitivity(multipliers: Multipliers, dist: Distribution) -> FloatArr
 
 
 def has_worst_phases(group: Group, j: int) -> bool:
-    """Whether profile ``j`` has orders written ``phase: worst`` (MODEL.md section 10)."""
+    """Whether profile ``j`` has orders written ``phase: worst`` (docs/model.md section 10)."""
     return any(g.worst.any() for g in group.locked[j])
 
 

@@ -1,4 +1,4 @@
-"""The yield of a production lot under ``select --yield`` (MODEL.md section 14).
+"""The yield of a production lot under ``select --yield`` (docs/model.md section 14).
 
 A part drawn from a lot has c ~ N(μ, Σ) (:mod:`gyrovib.api.uncertainty`: μ
 the lot's mean, Σ from its sigma and correlations, the diagonal only for a lot
@@ -14,12 +14,12 @@ the criterion of ``select``:
   not change when other sensors are chosen), with the 95 % Wilson interval.
 
 The parts of Δ_V and of the RMS terms that no uncertain coefficient moves (the
-fixed coefficients, the g² term of MODEL.md section 8) enter as one more
+fixed coefficients, the g² term of docs/model.md section 8) enter as one more
 coordinate of c fixed at 1 (its column is that part, its variance 0), so every
 test is a function of the draws alone.
 
 A lot passes a profile when its yield is at least the target Y (and it does not
-saturate there, MODEL.md section 9).
+saturate there, docs/model.md section 9).
 """
 
 from __future__ import annotations
@@ -175,7 +175,7 @@ def _and_fixed(test: Callable[[FloatArray], NDArray[np.bool_]], fixed_ok: NDArra
 
 
 def _refuse_searched_phases(prepared: Prepared, lots: Sequence[bool]) -> None:
-    """A profile with ``phase: worst`` orders has Δ_V maximised over phases per part (MODEL.md
+    """A profile with ``phase: worst`` orders has Δ_V maximised over phases per part (docs/model.md
     section 10): no linear form, no yield computed here. Refused, located at the profile."""
     searched = sorted({j for group in prepared.groups if any(lots[int(i)] for i in group.index)
                        for j in range(len(prepared.profiles)) if has_worst_phases(group, j)})

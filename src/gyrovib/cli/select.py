@@ -63,7 +63,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     nonlinearity and VRE against the allowable figures for its range, and its
     margin is that of its worst case. A sensor that saturates under a profile
     fails there. With --yield Y a production lot (`lot:`) passes a profile when the
-    probability that a part drawn from it passes is at least Y (MODEL.md section 14).
+    probability that a part drawn from it passes is at least Y (docs/model.md section 14).
     Exit status 1 when the --require condition is not met.
     """
     from gyrovib import api

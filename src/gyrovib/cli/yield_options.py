@@ -1,4 +1,4 @@
-"""The options of ``select --yield`` (MODEL.md section 14): the target yield of a
+"""The options of ``select --yield`` (docs/model.md section 14): the target yield of a
 production lot, and the Monte-Carlo draws and seed."""
 
 from __future__ import annotations
@@ -31,6 +31,6 @@ def yield_options(function: F) -> F:
         help="Judge a production lot (`lot:`) by its yield: it passes a profile when the "
              "probability that a part drawn from it passes the criterion is at least Y "
              "(0 < Y < 1, e.g. 0.9973 for 3σ). Exact for --criterion worst, Monte Carlo "
-             "with a 95% Wilson interval otherwise (MODEL.md section 14). Other sensors "
+             "with a 95% Wilson interval otherwise (docs/model.md section 14). Other sensors "
              "are judged as without it.",
     )(function)

@@ -211,7 +211,7 @@ ResponseForm = Annotated[
 
 
 class Lot(LotSpread):
-    """A part as drawn from production (MODEL.md section 14): c ~ N(mean, Σ)."""
+    """A part as drawn from production (docs/model.md section 14): c ~ N(mean, Σ)."""
 
     mean: Coefficients = Field(description="Mean of the units' eq. (2) coefficients, in rate "
                                "units (the lot is analysed at its mean).")
@@ -234,7 +234,7 @@ class Sensor(Model):
     Values are in the file's own units (rates in ``units.rate``, accelerations in
     ``units.acceleration``). Exactly one of ``coefficients`` (eq. 2),
     ``output_coefficients`` (eq. 1), ``specs`` (the datasheet) and ``lot`` (a
-    production lot, MODEL.md section 14) is given, and ``uncertainty`` only beside
+    production lot, docs/model.md section 14) is given, and ``uncertainty`` only beside
     ``coefficients``; ``response`` is as written (a bare table acting at the output, or a
     :class:`Response`): read it through ``response_table`` and ``response_at``;
     ``g2`` is the g² sensitivity from either of its forms.
@@ -267,10 +267,10 @@ class Sensor(Model):
         "(rate per g², signed) and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
     uncertainty: Uncertainty | None = Field(
         None, description="Standard uncertainties and correlations of the coefficients "
-        "(MODEL.md section 14); only beside 'coefficients'.")
+        "(docs/model.md section 14); only beside 'coefficients'.")
     lot: Lot | None = Field(
         None, description="A production lot instead of one unit: the mean, standard "
-        "deviations and correlations of its units' coefficients (MODEL.md section 14).")
+        "deviations and correlations of its units' coefficients (docs/model.md section 14).")
 
     model_config = Model.model_config | {"json_schema_extra": {"allOf": [
         groups_schema(*_SENSOR_GROUPS), {"dependencies": {"uncertainty": ["coefficients"]}}]}}

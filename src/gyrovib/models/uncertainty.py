@@ -1,4 +1,4 @@
-"""The uncertainty of a sensor's coefficients, and a production lot (MODEL.md section 14).
+"""The uncertainty of a sensor's coefficients, and a production lot (docs/model.md section 14).
 
 ``uncertainty`` sits beside ``coefficients``: the standard uncertainty σ of
 each eq. (2) coefficient and the correlations of pairs, written
@@ -104,7 +104,7 @@ def smallest_eigenvalue(names: list[str], pairs: dict[str, float]) -> float:
 
 
 class Uncertainty(Model):
-    """Standard uncertainties and correlations of the coefficients (MODEL.md section 14)."""
+    """Standard uncertainties and correlations of the coefficients (docs/model.md section 14)."""
 
     sigma: Sigmas = Field(description="Standard uncertainty of each coefficient (k = 1), in "
                           "its unit; coefficients not named are exact.")

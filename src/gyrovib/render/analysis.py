@@ -58,7 +58,7 @@ def _saturation_note(result: AnalysisResult) -> str:
 
 
 def _u(result: AnalysisResult, i: int, j: int) -> float | None:
-    """u(Δ_V) of a cell (MODEL.md section 14), None where the sensor has none."""
+    """u(Δ_V) of a cell (docs/model.md section 14), None where the sensor has none."""
     u = result.uncertainty
     return None if u is None else number(u[i, j])
 
@@ -76,7 +76,7 @@ def _lot_name(result: AnalysisResult, i: int) -> str:
 #: The mark of a lot sensor, analysed at its mean, in tables.
 LOT_MARK = "(lot)"
 _UNCERTAINTY_NOTE = ("u(Δ_V): standard uncertainty (k = 1) of Δ_V from the coefficients' "
-                     "uncertainty, √(gᵀΣg) with Δ_V = gᵀc (MODEL.md section 14); '-' where "
+                     "uncertainty, √(gᵀΣg) with Δ_V = gᵀc (docs/model.md section 14); '-' where "
                      "not known. A sensor marked (lot) is a production lot, analysed at "
                      "its mean coefficients; its u is the spread of Δ_V over the lot.")
 

@@ -177,7 +177,7 @@ def _inputs(study: TradeStudy) -> str:
 def _yield_input(y: LotYields) -> str:
     how = ("exact" if y.method == "exact"
            else f"Monte Carlo, {y.draws} draws, seed {y.seed}, 95 % Wilson interval")
-    return f"pass where the yield is at least {y.target:g} ({how}; MODEL.md section 14)"
+    return f"pass where the yield is at least {y.target:g} ({how}; docs/model.md section 14)"
 
 
 def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str:
@@ -214,7 +214,7 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
 
 
 def _uncertainty(study: TradeStudy, i: int, j: int) -> str:
-    """``Δ_V = m ± u`` (MODEL.md section 14) under a cell, for a sensor with uncertainty
+    """``Δ_V = m ± u`` (docs/model.md section 14) under a cell, for a sensor with uncertainty
     or a lot (then the spread over the lot, at its mean)."""
     a = study.analysis
     if a.uncertainty is None or not np.isfinite(a.uncertainty[i, j]):

@@ -173,7 +173,7 @@ def _yield_legend(result: SelectionResult) -> str:
     how = ("exact: Δ_V ~ N(Δ_V at the mean, u(Δ_V)²)" if y.method == "exact" else
            f"Monte Carlo, {y.draws} draws (seed {y.seed}), 95 % Wilson interval in JSON/CSV")
     return (f"A production lot (lot:) shows its yield, the probability that a part drawn "
-            f"from it passes the criterion ({how}; MODEL.md section 14); it passes where "
+            f"from it passes the criterion ({how}; docs/model.md section 14); it passes where "
             f"the yield is at least {y.target:g}. Its margin and ranking are those of its "
             "mean.")
 

@@ -147,7 +147,7 @@ def select(
     static model behind both tests does not hold (:attr:`SelectionResult.reasons`).
 
     ``yield_target`` Y (0 < Y < 1): a production lot (``lot:``) passes a profile when
-    the yield of a part drawn from it is at least Y (MODEL.md section 14,
+    the yield of a part drawn from it is at least Y (docs/model.md section 14,
     :mod:`gyrovib.api.yields`: exact under ``worst``, else Monte Carlo with ``draws``
     draws seeded by ``seed``); without it a lot is judged at its mean.
     """
