@@ -134,12 +134,12 @@ def test_every_format_carries_u(tmp_path: Path) -> None:
     assert result.uncertainty is not None and np.isnan(result.uncertainty[1]).all()
     frame = result.to_frame()
     u = result.uncertainty.T.reshape(-1)  # profiles outermost, as the JSON
-    np.testing.assert_allclose(frame["uncertainty.total"], u, equal_nan=True)
+    np.testing.assert_allclose(frame["uncertainty_total"], u, equal_nan=True)
     assert list(frame["lot_mean"][:3]) == [False, False, True]
     import pandas
 
     csv = pandas.read_csv(io.StringIO(invoke("analyze", path, "--format", "csv").stdout))
-    np.testing.assert_allclose(csv["uncertainty.total"], u, rtol=1e-15, equal_nan=True)
+    np.testing.assert_allclose(csv["uncertainty_total"], u, rtol=1e-15, equal_nan=True)
     table = invoke("analyze", path, env={"COLUMNS": "200"}).stdout
     assert "u(Δ_V)" in table and "lot-1 (lot)" in table
     assert f"{u[0]:.2g}" in table

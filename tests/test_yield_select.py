@@ -199,15 +199,15 @@ def test_every_format_shows_the_yield(catalogue: Path) -> None:
                         yield_target=0.9, draws=4000)
     frame = result.to_frame()
     row = frame[frame["sensor"] == "lot-k2"].iloc[0]
-    assert row["yield.value"] == y["value"] and row["yield.method"] == "monte-carlo"
-    assert [row["yield.interval.low"], row["yield.interval.high"]] == y["interval"]
-    assert row["yield.draws"] == 4000
-    assert math.isnan(frame[frame["sensor"] == "unit-k2"].iloc[0]["yield.value"])
+    assert row["yield_value"] == y["value"] and row["yield_method"] == "monte-carlo"
+    assert [row["yield_interval_low"], row["yield_interval_high"]] == y["interval"]
+    assert row["yield_draws"] == 4000
+    assert math.isnan(frame[frame["sensor"] == "unit-k2"].iloc[0]["yield_value"])
     import pandas
 
     csv = pandas.read_csv(io.StringIO(invoke("select", catalogue, *args,
                                              "--format", "csv").stdout))
-    assert csv[csv["sensor"] == "lot-k2"].iloc[0]["yield"] == y["value"]
+    assert csv[csv["sensor"] == "lot-k2"].iloc[0]["yield_value"] == y["value"]
     table = invoke("select", catalogue, *args, env={"COLUMNS": "200"}).stdout
     assert f"yield {y['value']:.4g}" in table and "below 0.9" in table
     markdown = invoke("select", catalogue, *args, "--format", "markdown").stdout

@@ -100,7 +100,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
             columns[f"envelope.worst_coefficients.{name}"] = worst[:, k]
         columns["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
     if result.uncertainty is not None:  # docs/model.md section 14: NaN where not known
-        columns["uncertainty.total"] = np.asarray(result.uncertainty)[s_idx, p_idx]
+        columns["uncertainty_total"] = np.asarray(result.uncertainty)[s_idx, p_idx]
         columns["lot_mean"] = [result.is_lot(int(i)) for i in s_idx]
     columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx]
     if result.worst_phases:
@@ -205,11 +205,11 @@ def selection_frame(result: SelectionResult) -> Any:
                                                else None for i in s_idx]
     if result.yields is not None:  # --yield (docs/model.md section 14): NaN off the lots
         y = result.yields
-        columns["yield.value"] = np.asarray(y.value).reshape(-1)
-        columns["yield.method"] = [y.method if y.is_lot(int(i)) else None for i in s_idx]
-        columns["yield.interval.low"] = np.asarray(y.low).reshape(-1)
-        columns["yield.interval.high"] = np.asarray(y.high).reshape(-1)
-        columns["yield.draws"] = [y.draws if y.is_lot(int(i)) else None for i in s_idx]
+        columns["yield_value"] = np.asarray(y.value).reshape(-1)
+        columns["yield_method"] = [y.method if y.is_lot(int(i)) else None for i in s_idx]
+        columns["yield_interval_low"] = np.asarray(y.low).reshape(-1)
+        columns["yield_interval_high"] = np.asarray(y.high).reshape(-1)
+        columns["yield_draws"] = [y.draws if y.is_lot(int(i)) else None for i in s_idx]
     columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
     for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
         columns[f"profile_{key}"] = column

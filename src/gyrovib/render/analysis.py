@@ -237,7 +237,7 @@ def _csv_header(with_stderr: bool = False, linear: bool = False,
             + [f"multiplicative_{q}" for q in MULTIPLICATIVE_TERMS]
             + ["additive", "multiplicative", "total", "rms"]
             + (["stderr"] if with_stderr else [])
-            + (["uncertainty.total", "lot_mean"] if uncertainty else [])
+            + (["uncertainty_total", "lot_mean"] if uncertainty else [])
             + ["saturated", "warnings"])
 
 

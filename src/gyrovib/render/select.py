@@ -313,7 +313,8 @@ def to_csv(result: SelectionResult) -> str:
         head += ["value_vre", "bound_vre", "pass_vre"]
     y = result.yields
     if y is not None:
-        head += ["yield", "yield_method", "yield_low", "yield_high", "yield_draws"]
+        head += ["yield_value", "yield_method", "yield_interval_low", "yield_interval_high",
+                 "yield_draws"]
     head += ["saturated", "reason"]
 
     def rows() -> Iterator[list[Any]]:
