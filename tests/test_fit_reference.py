@@ -318,3 +318,59 @@ def test_the_engine_g_of_a_tone_is_the_closed_form() -> None:
                         ("k0", "A1", "k2", "k3", "k4", "k5"))[0]
         expected = tone_g(omega, 20.0)
         assert np.allclose(g, expected, rtol=1e-10, atol=1e-10 * np.max(np.abs(expected)))
+
+
+# --------------------------------------------------------------------------- disagreements
+
+
+def test_a_lot_counts_the_coefficients_of_delta_v_not_the_bias() -> None:
+    """MODEL.md section 14: the lot is over c = (A1, k2, k3, k4, k5, m31, m32, G…), the
+    coefficients Δ_V is linear in; Σ is singular, and only its diagonal used, when
+    n ≤ the number of them. The bias k0 (and m1, m2) does not rectify (section 11) and
+    is not in c: six units at order 5 (c of 5) give a regular Σ of c and keep their
+    correlations, which change the yield (the docs' lot has ρ(A1, k2) ≈ −0.96)."""
+    from gyrovib.core.lot import lot_covariance
+
+    names = ("k0", "A1", "k2", "k3", "k4", "k5")
+    units = example_units()
+    fits = [fit_rate_table(rate, output, 5) for rate, output in list(units.values())[:6]]
+    c = np.array([f.values for f in fits])
+    lot = lot_statistics(c, names)
+    assert not lot.diagonal and lot.warning is None
+    sample = np.cov(c, rowvar=False, ddof=1)
+    assert np.allclose(lot.covariance, sample, rtol=1e-9, atol=0.0)
+    block = np.corrcoef(c[:, 1:], rowvar=False)  # c proper: regular with 6 units
+    assert np.min(np.linalg.eigvalsh(block)) > 1e-6
+    g = tone_g(5.0, 20.0)
+    assert float(direct_yield(g, lot.mean, lot.covariance, 0.01)) == pytest.approx(
+        reference_yield(g, c.mean(axis=0), sample, 0.01), rel=1e-9)
+    # five units: n = 5 ≤ 5 coefficients of c, the diagonal and the warning
+    small = lot_statistics(c[:5], names)
+    assert small.diagonal and "5 units" in (small.warning or "")
+    assert "5 coefficients" in (small.warning or "")
+    # the same rule where a catalogue's lot entry is read back
+    correlation = np.corrcoef(c, rowvar=False)
+    cov, warning = lot_covariance(c.std(axis=0, ddof=1), correlation, 6, names)
+    assert warning is None and cov[1, 2] != 0.0
+    cov, warning = lot_covariance(c.std(axis=0, ddof=1), correlation, 5, names)
+    assert warning is not None and cov[1, 2] == 0.0
+
+
+def test_the_fit_command_keeps_the_correlations_of_six_units(tmp_path: Path) -> None:
+    """`gyrovib fit` on six units at order 5: the lot entry carries its correlations and
+    no warning (MODEL.md section 14, c without k0)."""
+    import json
+
+    from tests.conftest import invoke
+
+    lines = EXAMPLE.read_text(encoding="utf-8").splitlines()
+    keep = {f"gx100-0{k}" for k in range(1, 7)}
+    table = tmp_path / "six.csv"
+    table.write_text("\n".join(line for line in lines
+                               if line.startswith(("#", "unit,")) or line.split(",")[0] in keep)
+                     + "\n", encoding="utf-8")
+    result = invoke("fit", table, "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    document = json.loads(result.stdout)
+    assert document["lot"]["units"] == 6 and document["warnings"] == []
+    assert "A1 k2" in document["lot"]["correlation"]

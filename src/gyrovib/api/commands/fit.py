@@ -47,7 +47,8 @@ def fit(table: RateTable | str | Path, order: int = DEFAULT_ORDER, *, rate_unit:
     if problems:
         raise IdentificationError(problems)
     names = fits[0].names
-    lot = lot_statistics(np.array([f.values for f in fits])) if len(fits) >= 2 else None
+    lot = (lot_statistics(np.array([f.values for f in fits]), names) if len(fits) >= 2
+           else None)
     warnings = (lot.warning,) if lot is not None and lot.warning else ()
     return FitResult(
         file=table.file,
