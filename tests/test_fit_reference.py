@@ -105,12 +105,18 @@ def reference_fit(rate: Any, output: Any, order: int,
     cov_c = [[sum(jac[a][i] * cov_theta[i][j] * jac[b][j] for i in range(p) for j in range(p))
               for b in range(len(c))] for a in range(len(c))]
 
-    def floats(m: Any) -> np.ndarray:
-        return np.array([[float(v) for v in row] for row in m])
+    def real(v: Fraction) -> float:
+        try:
+            return float(v)
+        except OverflowError:  # beyond double precision (a variance of outputs ~1e300)
+            return math.inf if v > 0 else -math.inf
 
-    return {"theta": np.array([float(v) for v in theta]), "cov_theta": floats(cov_theta),
-            "c": np.array([float(v) for v in c]), "cov_c": floats(cov_c),
-            "rms": math.sqrt(rss / n), "s": math.sqrt(s2),
+    def floats(m: Any) -> np.ndarray:
+        return np.array([[real(v) for v in row] for row in m])
+
+    return {"theta": np.array([real(v) for v in theta]), "cov_theta": floats(cov_theta),
+            "c": np.array([real(v) for v in c]), "cov_c": floats(cov_c),
+            "rms": math.sqrt(real(rss / n)), "s": math.sqrt(real(s2)),
             "R": float(max(abs(v) for v in w))}
 
 
@@ -374,3 +380,95 @@ def test_the_fit_command_keeps_the_correlations_of_six_units(tmp_path: Path) -> 
     document = json.loads(result.stdout)
     assert document["lot"]["units"] == 6 and document["warnings"] == []
     assert "A1 k2" in document["lot"]["correlation"]
+
+
+def _gx100_01() -> tuple[np.ndarray, np.ndarray]:
+    return example_units()["gx100-01"]
+
+
+@pytest.mark.parametrize("factor", [1e300, 1e-300, 1e-310])
+def test_outputs_of_any_magnitude_give_the_same_coefficients(factor: float) -> None:
+    """Eq. (2) does not depend on the output unit (MODEL.md section 2): the output
+    column times 1e300 or 1e-300 gives the coefficients of the reference on those very
+    numbers (s² = RSS/(n − p) of outputs near 1e300 overflows in double precision, and
+    subnormal outputs lose their digits, unless the output is scaled first), and K1's
+    σ is finite."""
+    rate, output = _gx100_01()
+    scaled = output * factor
+    fit = fit_rate_table(rate, scaled, 5)
+    ref = reference_fit(rate, scaled, 5)
+    sigma = np.sqrt(np.diag(ref["cov_c"]))
+    tolerance = TOLERANCE if factor > 1e-305 else 1e-6  # subnormal inputs carry few digits
+    assert np.all(np.abs(fit.values - ref["c"]) <= tolerance * np.maximum(np.abs(ref["c"]),
+                                                                          sigma))
+    assert np.all(np.abs(fit.covariance - ref["cov_c"]) <= tolerance * np.outer(sigma, sigma))
+    plain = reference_fit(rate, output, 5)
+    assert fit.scale_factor == pytest.approx(plain["theta"][1] * factor, rel=1e-6)
+    assert fit.scale_factor_sigma == pytest.approx(
+        math.sqrt(plain["cov_theta"][1, 1]) * factor, rel=1e-6)
+    assert fit.residual_rms == pytest.approx(plain["rms"] * factor, rel=1e-6)
+
+
+def test_huge_outputs_through_the_command(tmp_path: Path) -> None:
+    """`gyrovib fit` on outputs near 1e300: the coefficients, not 'the output does not
+    follow the rate (K1 = 1e+300 ± inf)'."""
+    import json
+
+    from tests.conftest import invoke
+
+    rate, output = _gx100_01()
+    table = tmp_path / "huge.csv"
+    table.write_text("rate,output\n" + "".join(f"{float(w)!r},{float(u) * 1e300!r}\n"
+                                               for w, u in zip(rate, output, strict=True)),
+                     encoding="utf-8")
+    result = invoke("fit", table, "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    values = json.loads(result.stdout)["units"][0]["coefficients"]
+    ref = reference_fit(rate, output * 1e300, 5)
+    assert values["A1"] == pytest.approx(ref["c"][1], rel=1e-9)
+    assert values["k3"] == pytest.approx(ref["c"][3], rel=1e-9)
+    text = invoke("fit", table)
+    assert text.exit_code == 0 and "inf" not in text.stdout
+
+
+@pytest.mark.parametrize("factor", [1e300, 1e-300, 1e100, 1e-100])
+def test_rates_whose_powers_leave_double_precision_are_refused(tmp_path: Path,
+                                                              factor: float) -> None:
+    """Rates near 1e±300 (or 1e±100 at order 5: R⁵ = 1e±500): kn scales as R^(1−n) and
+    its variance as R^(2−2n), outside double precision. Exit 2 with the unit's line and
+    what is wrong, not an internal error (OverflowError in R**k)."""
+    from tests.conftest import invoke
+
+    rate, output = _gx100_01()
+    table = tmp_path / "fast.csv"
+    table.write_text("unit,rate,output\n" + "".join(
+        f"u,{float(w) * factor / 300!r},{float(u)!r}\n"
+        for w, u in zip(rate, output, strict=True)),
+        encoding="utf-8")
+    result = invoke("fit", table)
+    assert result.exit_code == 2, result.stderr
+    assert f"{table}:2:1: unit 'u' (22 points): the largest |rate| is " in result.stderr
+    assert "double precision" in result.stderr
+
+
+def test_a_large_rate_range_at_order_one_is_fitted() -> None:
+    """R = 1e100 at order 1 (k0 ~ R, A1 dimensionless: nothing leaves double precision):
+    the reference's coefficients; the nonlinearity no longer raises OverflowError on
+    R⁴ for the absent k5."""
+    rate = _gx100_01()[0]
+    w = rate * (1e100 / 300)
+    u = 2.0 * w + 1e-3 * np.abs(w) + 1e97 * np.cos(rate)
+    fit = fit_rate_table(w, u, 1)
+    ref = reference_fit(w, u, 1)
+    assert_same_fit(fit, ref)
+
+
+def test_a_cross_rate_of_extreme_magnitude_is_refused() -> None:
+    """A cross rate of 1e-300: M1 = m1·K1 scales as 1e300 and its variance as 1e600."""
+    from gyrovib.core.fit import IdentificationError
+
+    w = np.tile([-200.0, -100.0, -50.0, 0.0, 50.0, 100.0, 200.0], 3)
+    x1 = np.repeat([0.0, 1e-300, -2e-300], 7)
+    u = 25.0 * w + 0.01 * w**2 + 3e300 * x1 + np.cos(w) * 0.01
+    with pytest.raises(IdentificationError, match=r"the largest \|rate_x1\| is 2e-300"):
+        fit_rate_table(w, u, 3, x1[:, None])
