@@ -489,3 +489,34 @@ def test_many_units_that_cannot_be_fitted_give_a_bounded_report(tmp_path: Path) 
     assert len(lines) == 21
     assert lines[0].startswith(f"{table}:2:1: unit 'u0' (1 point): every rate is positive")
     assert lines[-1] == f"{table}: ... and 99980 more units that cannot be fitted"
+
+
+@pytest.mark.parametrize("factor", [1e20, 1e-20])
+def test_rates_up_to_1e20_at_order_five_keep_their_uncertainty(factor: float) -> None:
+    """R = 1e±20 at order 5: the reference's coefficients and σ (the variances of k5,
+    ~R^-8, are far from underflow)."""
+    rate = _gx100_01()[0]
+    x = rate / 300.0
+    u = 25.0 * (0.1 + x + 1e-3 * np.abs(x) + 1e-4 * x**2 + 1e-5 * x**3 + 1e-6 * x**4
+                + 1e-7 * x**5) + 1e-10 * np.cos(rate)
+    w = x * factor
+    fit = fit_rate_table(w, u, 5)
+    ref = reference_fit(w, u, 5)
+    sigma = np.sqrt(np.diag(ref["cov_c"]))
+    assert np.all(np.abs(fit.values - ref["c"]) <= 1e-8 * np.maximum(np.abs(ref["c"]), sigma))
+    assert np.allclose(fit.sigma, sigma, rtol=1e-4, atol=0.0)  # s of 1e-10 noise: round-off
+
+
+def test_rates_of_1e30_at_order_five_are_refused_not_given_sigma_zero() -> None:
+    """R = 1e30: Var(k5) ~ R^-8·Var(K5·R⁵) of a near noise-free table was below the
+    smallest double and came out as σ = 0 (t = inf), an unknown reported as zero."""
+    from gyrovib.core.fit import IdentificationError
+
+    rate = _gx100_01()[0]
+    x = rate / 300.0
+    u = 25.0 * (0.1 + x + 1e-3 * np.abs(x) + 1e-4 * x**2 + 1e-5 * x**3 + 1e-6 * x**4
+                + 1e-7 * x**5) + 1e-13 * np.cos(rate)
+    with pytest.raises(IdentificationError, match=r"the largest \|rate\| is 1e\+30"):
+        fit_rate_table(x * 1e30, u, 5)
+    fit = fit_rate_table(x * 1e30, u, 2)  # order 2: R² = 1e60, well inside
+    assert np.all(fit.sigma > 0)

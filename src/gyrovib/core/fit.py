@@ -17,8 +17,9 @@ a QR factorisation; the scales are undone on θ̂ and its covariance. The
 output is divided by a power of two near its largest |U| first (exact), so
 that RSS and s² neither overflow (outputs near 1e300) nor underflow (near
 1e-300, which would give σ = 0); eq. (2) does not depend on that scale.
-Rates so large or small that R^(±2n) leaves double precision (the variance of
-kn scales as R^(2−2n)) are refused, as are results that are not finite.
+Rates so large or small that R^(±n) leaves 1e±100 (the variance of kn scales
+as R^(2−2n)) are refused, as are results that are not finite or whose
+variance underflowed.
 
 Eq. (2) follows by division by K1: k0 = K0/K1, A1 = 2h/K1, kn = Kn/K1,
 mi = Mi/K1, m3i = M3i/K1 (k1 = 1 exactly), with the delta-method covariance
@@ -217,8 +218,10 @@ def check_identifiable(rate: FloatArray, order: int, p: int) -> None:
 
 
 #: Each scale undone on θ (R^−n, 1/max|ωi|, …) must stay within 10^±this, so that
-#: its square, which scales the covariance, is a normal double (about 1e±308).
-MAX_DECADES = 150.0
+#: its square times a variance as small as round-off (1e-32 of the output's square)
+#: stays a normal double (about 1e±308): at R = 1e30 and order 5 the variance of
+#: k5 of a near noise-free table underflowed to σ = 0.
+MAX_DECADES = 100.0
 
 
 def _check_magnitude(scale: float, order: int, column: str) -> None:
@@ -322,7 +325,8 @@ def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDE
     theta = beta * factor
     cov_theta = cov_beta * np.outer(factor, factor)
     values, covariance = to_rate_form(theta, cov_theta, order, axes, out_scale)
-    if not (np.all(np.isfinite(values)) and np.all(np.isfinite(covariance))):
+    lost = s2 > 0 and bool(np.any(np.diag(covariance) < np.finfo(float).tiny))
+    if lost or not (np.all(np.isfinite(values)) and np.all(np.isfinite(covariance))):
         raise IdentificationError(
             "the coefficients or their variances are not finite double-precision numbers "
             "(rates or outputs of extreme magnitude); are the columns in the units "
