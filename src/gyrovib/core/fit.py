@@ -234,10 +234,10 @@ def _check_magnitude(scale: float, order: int, column: str) -> None:
     if column == "rate":
         scaling = (f"at order {order} the fitted coefficients scale as its powers up to "
                    f"{order} (10^{decades:.0f})")
-        remedy = "are the rates in the unit --rate-unit says? (or fit a lower order)"
+        remedy = "are the rates in the stated rate unit? (or fit a lower order)"
     else:
         scaling = f"the cross-axis coefficients scale as its inverse (10^{decades:.0f})"
-        remedy = "are the cross rates in the unit --rate-unit says?"
+        remedy = "are the cross rates in the stated rate unit?"
     raise IdentificationError(
         f"the largest |{column}| is {scale:.3g}: {scaling} and their variances as the "
         f"square of that, beyond double precision (about 1e±308); {remedy}")
@@ -329,8 +329,8 @@ def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDE
     if lost or not (np.all(np.isfinite(values)) and np.all(np.isfinite(covariance))):
         raise IdentificationError(
             "the coefficients or their variances are not finite double-precision numbers "
-            "(rates or outputs of extreme magnitude); are the columns in the units "
-            "--rate-unit and --output-unit say?")
+            "(rates or outputs of extreme magnitude); are the columns in the stated "
+            "units?")
     with np.errstate(over="ignore"):
         raw_values = theta * out_scale
         raw_covariance = cov_theta * out_scale * out_scale  # inf beyond ~1e154
