@@ -9,10 +9,11 @@ on the unit vectors, so it is the engine's own). Hence, exactly,
     u(Δ_V) = √(gᵀ·Σ·g)                                          (:func:`dispersion`)
 
 A lot: the coefficient vectors c_u of n units give the mean μ and the sample
-covariance Σ (n − 1 in the denominator); with n ≤ p (p coefficients) Σ is
-singular and only its diagonal is used, with a warning (:func:`lot_statistics`,
-:func:`lot_covariance`). A part drawn from the lot is c ~ N(μ, Σ); its
-**yield**, the probability that it meets the budget Δ*:
+covariance Σ (n − 1 in the denominator); with n ≤ p, p the number of
+coefficients Δ_V is linear in (A1, k2…k5, m31, m32: not the bias k0 nor m1, m2,
+which do not rectify), Σ of them is singular and only its diagonal is used,
+with a warning (:func:`lot_statistics`, :func:`lot_covariance`). A part drawn
+from the lot is c ~ N(μ, Σ); its **yield**, the probability that it meets the budget Δ*:
 
 * the direct test, exactly (:func:`direct_yield`): Δ_V ~ N(m, s²), m = gᵀμ,
   s² = gᵀΣg, P(|Δ_V| ≤ Δ*) = Φ((Δ* − m)/s) − Φ((−Δ* − m)/s);
@@ -31,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core.analysis import COEFFICIENTS, Multipliers, vibration_error
+from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, Multipliers, vibration_error
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
@@ -353,6 +354,15 @@ def covariance_from(sigma: ArrayLike, correlation: ArrayLike) -> FloatArray:
     return out
 
 
+def rectifying_count(names: Sequence[str] | None, size: int) -> int:
+    """The number p of coefficients among ``names`` that Δ_V is linear in (MODEL.md
+    section 14: c = (A1, k2, k3, k4, k5, m31, m32); k0, m1, m2 do not rectify): the
+    lot's Σ of them is singular when n ≤ p. Without names, all ``size``."""
+    if names is None:
+        return size
+    return sum(1 for n in names if n in BOUNDED)
+
+
 def diagonal_warning(units: int, p: int) -> str:
     """The warning of a lot too small for its covariance (n ≤ p)."""
     return (f"a lot of {units} unit{'s' if units != 1 else ''} cannot estimate the "
@@ -360,14 +370,16 @@ def diagonal_warning(units: int, p: int) -> str:
             "only the standard deviations are used, correlations taken as 0")
 
 
-def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int
-                   ) -> tuple[FloatArray, str | None]:
+def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int,
+                   names: Sequence[str] | None = None) -> tuple[FloatArray, str | None]:
     """The covariance of a lot of ``units`` units (MODEL.md section 14) and a warning:
-    with units ≤ p only the diagonal σ² (and the warning of :func:`diagonal_warning`),
-    else diag(σ)·R·diag(σ)."""
+    with units ≤ p (:func:`rectifying_count` of ``names``, the coefficients σ is
+    given for; all of them when None) only the diagonal σ² (and the warning of
+    :func:`diagonal_warning`), else diag(σ)·R·diag(σ)."""
     s = np.asarray(sigma, dtype=float)
-    if units <= s.size:
-        return covariance_from(s, np.eye(s.size)), diagonal_warning(units, s.size)
+    p = rectifying_count(names, s.size)
+    if units <= p:
+        return covariance_from(s, np.eye(s.size)), diagonal_warning(units, p)
     return covariance_from(s, correlation), None
 
 
@@ -389,19 +401,25 @@ class LotStatistics(Frozen):
     warning: str | None
 
 
-def lot_statistics(coefficients: ArrayLike) -> LotStatistics:
-    """μ and Σ of the rows c_u of ``coefficients`` (n, p), n ≥ 2: Σ with n − 1 in the
-    denominator; with n ≤ p only its diagonal, with a warning."""
+def lot_statistics(coefficients: ArrayLike, names: Sequence[str] | None = None
+                   ) -> LotStatistics:
+    """μ and Σ of the rows c_u of ``coefficients`` (n, k), n ≥ 2: Σ with n − 1 in the
+    denominator; with n ≤ p only its diagonal, with a warning. p counts the columns
+    ``names`` that Δ_V is linear in (:func:`rectifying_count`: k0, m1, m2 excluded,
+    MODEL.md section 14), or all k when ``names`` is None."""
     c = np.asarray(coefficients, dtype=float)
     if c.ndim != 2 or c.shape[0] < 2:
         raise LotError("a lot needs the coefficients of at least two units")
-    n, p = c.shape
+    if names is not None and len(names) != c.shape[1]:
+        raise ValueError("one name per column of coefficients")
+    n, k = c.shape
+    p = rectifying_count(names, k)
     mean = c.mean(axis=0)
     full = np.atleast_2d(np.cov(c, rowvar=False, ddof=1))
     sigma = np.sqrt(np.clip(np.diag(full), 0.0, None))
     diagonal = n <= p
     if diagonal:
-        correlation = np.eye(p)
+        correlation = np.eye(k)
     else:
         with np.errstate(divide="ignore", invalid="ignore"):
             correlation = full / np.outer(sigma, sigma)
