@@ -89,6 +89,18 @@ def test_ctrl_c_during_start_up_imports_exits_130_without_traceback(tmp_path: Pa
     assert err.strip() == "gyrovib: interrupted"
 
 
+@pytest.mark.parametrize(("sig", "code", "word"), [(signal.SIGTERM, 143, "terminated"),
+                                                  (signal.SIGHUP, 129, "hung up")])
+def test_sigterm_or_hangup_during_start_up_imports_exits_in_one_line(
+        tmp_path: Path, sig: int, code: int, word: str) -> None:
+    # sent as soon as main() starts importing the command line: before the command's
+    # own handlers exist, the default action would kill the process (exit -15 / -1)
+    status, err = _interrupt(["analyze"], sig, 0.0, tmp_path)
+    assert status == code, err
+    assert "Traceback" not in err
+    assert err.strip() == f"gyrovib: {word}"
+
+
 def test_sigterm_exits_143_and_leaves_no_temporary_file(tmp_path: Path) -> None:
     target = tmp_path / "result.json"
     target.write_text("previous result\n")
