@@ -65,7 +65,7 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert result.exit_code == 0, result.stderr          # "good" passes: any is met
     doc = strict_json(result.stdout)
     assert set(doc) == {"tool", "version", "method", "unit", "budget", "profiles",
-                        "criterion", "require", "sensors"}
+                        "criterion", "require", "assume_unknown", "sensors"}
     assert doc["tool"] == "gyrovib" and doc["method"] == "exact" and doc["unit"] == "deg/s"
     assert doc["budget"] == 0.01 and doc["criterion"] == "bounds" and doc["require"] == "any"
     assert [p["profile"] for p in doc["profiles"]] == ["tone", "noise"]
@@ -83,8 +83,11 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert sensors["awful"]["pass"] is False
     bad_tone, bad_noise = sensors["bad"]["profiles"]
     # total (|Δ_V|), saturated and reason: INTERFACE.md, second round
-    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks", "total", "saturated",
-                             "reason"}
+    assert set(bad_tone) == {"profile", "pass", "status", "unknown", "rms", "margin", "checks",
+                             "total", "saturated", "reason"}
+    # a coefficient-form part states its coefficients: nothing unknown (INTERFACE.md, trust)
+    assert (bad_tone["status"], bad_noise["status"], bad_tone["unknown"]) == ("fail", "pass", [])
+    assert (sensors["bad"]["status"], sensors["good"]["status"]) == ("fail", "pass")
     assert sensors["bad"]["source"] == "coefficients"
     assert bad_tone["saturated"] is False and "exceeds its bound" in bad_tone["reason"]
     assert bad_tone["pass"] is False and bad_noise["pass"] is True

@@ -134,5 +134,13 @@ def test_select_mixes_the_coefficient_vre_check_and_the_datasheet_checks(
     assert result.limits[0].name == "vre"
     frame = result.to_frame()
     assert frame["reason"].iloc[0] == cell["reason"]
-    assert spec_cell["reason"] is None and frame["reason"].isna().iloc[1]  # it passes
     assert list(frame["checks.vre.pass"]) == [False, spec_cell["checks"]["vre"]["pass"]]
+    # it passes on its datasheet, but lin's angular x1, x2 are correlated with x3 (the
+    # default coherence 1): m31, m32, not on a datasheet, can decide it -> unverified
+    assert (spec_cell["status"], spec_cell["unknown"]) == ("unverified", ["m31", "m32"])
+    assert spec_cell["pass"] is False and frame["status"].iloc[1] == "unverified"
+    assert spec_cell["reason"].startswith("unverified: passes on its published figures, "
+                                          "but m31 not published")
+    assert frame["reason"].iloc[1] == spec_cell["reason"]
+    zero = gyrovib.select(str(path), budget=0.01, assume_unknown="zero").to_frame()
+    assert zero["reason"].isna().iloc[1] and zero["status"].iloc[1] == "pass"  # it passes

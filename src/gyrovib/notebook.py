@@ -202,7 +202,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
            unit: str | None = None, criterion: str = "bounds", require: str = "any",
            allocation: Sequence[float] | None = None,
            spec_weights: tuple[float, float] = (1.0, 1.0),
-           peak_factor: float = 3.0) -> SelectionResult:
+           peak_factor: float = 3.0, assume_unknown: str = "none") -> SelectionResult:
     """Which sensors meet the budget: bound checks and eq. (17), ranked by margin.
 
     Parameters
@@ -231,6 +231,11 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
         As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
     peak_factor : float
         κ of the saturation check (MODEL.md section 9), default 3.
+    assume_unknown : {'none', 'zero'}
+        A figure a datasheet does not publish (the VRE, m31, m32) is unknown:
+        where it can decide a part's verdict the part is ``unverified``
+        (``status``), not passing, with ``questions`` for its vendor.
+        ``'zero'`` takes such figures as 0 instead.
 
     Returns
     -------
@@ -250,7 +255,8 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     return api.select(_catalog(catalog), sensors=_ids(sensors), profiles=_ids(profiles),
                       method=method, rate=_rates(rate, unit), budget=_rate(budget, unit),
                       unit=unit, criterion=criterion, require=require, allocation=allocation,
-                      spec_weights=spec_weights, peak_factor=peak_factor)
+                      spec_weights=spec_weights, peak_factor=peak_factor,
+                      assume_unknown=assume_unknown)
 
 
 def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-200, 200),

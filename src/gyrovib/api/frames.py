@@ -156,10 +156,12 @@ def bounds_frame(result: BoundsResult) -> Any:
 def selection_frame(result: SelectionResult) -> Any:
     """``select``: one row per sensor × profile.
 
-    ``pass``, ``rms``, ``margin`` and ``checks.<coefficient>.value|bound|pass``
-    are the JSON's per-profile cell; ``sensor_pass`` is the sensor's overall
-    ``pass``; ``rate.*`` and ``profile_bounds.*`` are the profile's entry of the
-    JSON's ``profiles`` list (its bounds for ν_sensor = 1).
+    ``pass``, ``status`` (pass, fail, unverified), ``unknown``, ``rms``,
+    ``margin`` and ``checks.<coefficient>.value|bound|pass`` are the JSON's
+    per-profile cell; ``sensor_pass`` and ``sensor_status`` are the sensor's
+    overall ``pass`` and ``status``; ``rate.*`` and ``profile_bounds.*`` are
+    the profile's entry of the JSON's ``profiles`` list (its bounds for
+    ν_sensor = 1).
     """
     import numpy as np
 
@@ -171,7 +173,11 @@ def selection_frame(result: SelectionResult) -> Any:
         "sensor": [result.sensors[i] for i in s_idx],
         "profile": [result.profiles[j] for j in p_idx],
         "sensor_pass": np.asarray(result.sensor_pass, dtype=bool)[s_idx],
+        "sensor_status": [result.sensor_status(int(i)) for i in s_idx],
         "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
+        "status": [result.status(int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
+        "unknown": [list(result.unknown.get((int(i), int(j)), ()))
+                    for i, j in zip(s_idx, p_idx, strict=True)],
         "rms": np.asarray(result.rms).reshape(-1),
         "margin": np.asarray(result.margin).reshape(-1),
         "saturated": np.asarray(result.saturated, dtype=bool).reshape(-1),

@@ -161,8 +161,46 @@ class SelectionResult(_SensorsByProfiles):
     peak_factor: float = 3.0
     #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
     coefficient_unit: str | None = None
+    #: (sensors, profiles): the sensor would pass there on its published figures, but
+    #: an unpublished one (``unknown``) can change the verdict: neither passed
+    #: (``passed`` is False there) nor ranked on it. None: nowhere.
+    unverified: NDArray[np.bool_] | None = None
+    #: (sensor, profile) → the unpublished figures that can matter there
+    #: (``"vre"``, ``"m31"``, ``"m32"``; MODEL.md section 11), also under
+    #: ``assume_unknown="zero"``, where they are taken as 0.
+    unknown: Mapping[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
+    #: Per sensor with unknown figures: the questions for the vendor (the
+    #: figures that would decide it, with the value that would pass).
+    questions: Mapping[int, tuple[str, ...]] = field(default_factory=dict)
+    #: ``"none"`` (an unknown figure leaves the verdict open) or ``"zero"``
+    #: (``--assume-unknown zero``: taken as 0, as stated in the output).
+    assume_unknown: str = "none"
 
     @property
     def has_linear(self) -> bool:
         """Whether some profile has a linear vibration (so the ``vre`` check can bind)."""
         return self.profile_bounds.vre is not None
+
+    def is_unverified(self, i: int, j: int) -> bool:
+        """Whether sensor ``i``'s verdict under profile ``j`` hangs on an unknown figure."""
+        return bool(self.unverified is not None and self.unverified[i, j])
+
+    def status(self, i: int, j: int) -> str:
+        """``"pass"``, ``"fail"`` or ``"unverified"`` of sensor ``i`` under profile ``j``."""
+        if self.passed[i, j]:
+            return "pass"
+        return "unverified" if self.is_unverified(i, j) else "fail"
+
+    def sensor_status(self, i: int) -> str:
+        """Sensor ``i`` over every profile: ``fail`` if it fails one, else ``unverified``
+        if one is unverified, else ``pass``."""
+        found = {self.status(i, j) for j in range(len(self.profiles))}
+        for status in ("fail", "unverified"):
+            if status in found:
+                return status
+        return "pass"
+
+    def sensor_unknown(self, i: int) -> tuple[str, ...]:
+        """The unknown figures of sensor ``i`` that matter under some profile, in order."""
+        found = {n for (k, _), names in self.unknown.items() if k == i for n in names}
+        return tuple(n for n in ("vre", "m31", "m32") if n in found)

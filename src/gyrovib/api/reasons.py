@@ -67,6 +67,8 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     Δ_V(RMS) as 0; otherwise in :attr:`~SelectionResult.unit` (JSON, frames).
     """
     reasons: list[str] = []
+    if result.is_unverified(i, j):
+        reasons.append(unverified_reason(result, i, j))
     if (i, j) in result.reasons:
         reasons.append(result.reasons[(i, j)])
     spec = result.source(i) == "specs"
@@ -97,6 +99,17 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     return reasons
 
 
+def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
+    """Why sensor ``i`` is unverified under profile ``j``: the unpublished figures that can
+    decide it (MODEL.md section 11), e.g. ``unverified: VRE not published (…)``."""
+    from gyrovib.api.spec_bounds import UNKNOWN_WORDS
+
+    names = result.unknown.get((i, j), ())
+    return ("unverified: passes on its published figures, but "
+            + "; ".join(UNKNOWN_WORDS[n] for n in names)
+            + " -- ask the vendor, or --assume-unknown zero to take it as 0")
+
+
 def _vre_failure(result: SelectionResult, i: int, j: int) -> str:
     """A coefficient sensor's effective VRE above its bound (MODEL.md section 8)."""
     assert result.vre_value is not None and result.vre_bound is not None
@@ -114,7 +127,7 @@ def _spec_failures(result: SelectionResult, i: int, j: int) -> list[str]:
     if not result.nl_pass[i, j]:
         out.append(f"datasheet nonlinearity {fmt(result.nl_value[i, j])} %FS exceeds the "
                    f"allowable {fmt(result.nl_bound[i, j])} %FS")
-    if not result.vre_pass[i, j]:
+    if not result.vre_pass[i, j] and not np.isnan(result.vre_value[i, j]):
         out.append(f"datasheet VRE {fmt(result.vre_value[i, j])} {result.unit}/g² exceeds the "
                    f"allowable {fmt(result.vre_bound[i, j])} {result.unit}/g²")
     return out

@@ -169,17 +169,20 @@ def trade_study(
     sweep_rates: Sequence[float] | FloatArray | None = None,
     created: _dt.datetime | None = None,
     peak_factor: float = 3.0,
+    assume_unknown: str = "none",
 ) -> TradeStudy:
     """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
 
     ``sweep_rates`` default: :data:`SWEEP_POINTS` rates over ±:func:`envelope`.
     ``created`` (default: now, UTC) is stamped on the study. ``peak_factor``:
-    κ of the saturation check (MODEL.md section 9) of the selection and analysis.
+    κ of the saturation check (MODEL.md section 9) of the selection and analysis;
+    ``assume_unknown``: as :func:`gyrovib.api.select`.
     """
     unit = units.canonical_unit(unit)
     selection = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, budget=budget, unit=unit, criterion=criterion,
-                           require=require, allocation=allocation, peak_factor=peak_factor)
+                           require=require, allocation=allocation, peak_factor=peak_factor,
+                           assume_unknown=assume_unknown)
     analysis = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, unit=unit, peak_factor=peak_factor)
     if sweep_rates is None:

@@ -12,6 +12,7 @@ from gyrovib.cli.options import (
     peak_factor_option,
     selection_options,
 )
+from gyrovib.cli.spec_options import assume_unknown_option
 
 DEFAULT_OUTPUT = "report.html"
 
@@ -25,6 +26,7 @@ DEFAULT_OUTPUT = "report.html"
               show_default=True,
               help="What a pass means: every coefficient within its bound, Δ_V(RMS) ≤ budget "
                    "(eq. 17), or both.")
+@assume_unknown_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="The requirement the report states as met or not: at least one (any) or "
                    "every (all) sensor passes under every chosen profile.")
@@ -35,8 +37,8 @@ DEFAULT_OUTPUT = "report.html"
               help="Write the HTML here (atomically); '-' for standard output.")
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
-           peak_factor: float, criterion: str, require: str, rate_range: str | None,
-           output: str) -> None:
+           peak_factor: float, criterion: str, assume_unknown: str | None, require: str,
+           rate_range: str | None, output: str) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -59,7 +61,8 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
         sweep_rates = api.rate_range(*parse_rate_range(rate_range, split["unit"]))
     result = studies.trade_study(
         load_catalog(files), sensors=sensors, profiles=profiles, method=method, **split,
-        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
+        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,
+        assume_unknown=assume_unknown or "none")
     write_output(to_html(result), output)
     if output not in ("-", ""):
         click.echo(f"gyrovib: wrote {output}", err=True)

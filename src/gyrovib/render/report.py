@@ -22,17 +22,19 @@ from gyrovib.api.study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares
 from gyrovib.render.common import fmt
-from gyrovib.render.select import limit_text
+from gyrovib.render.select import assumption_note, limit_text
 from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
 
-PASS_FILL, FAIL_FILL = "#2ca02c", "#d62728"
+PASS_FILL, FAIL_FILL, OPEN_FILL = "#2ca02c", "#d62728", "#7b5ea7"
+#: Words and matrix classes of each status (unverified: its own colour, never "✓ ∞").
+STATUS_TEXT = {"pass": "✓ pass", "fail": "✗ fail", "unverified": "? unverified"}
 FORM_TAGS = {"datasheet": "datasheet (spec form): worst case",
              "output coefficients": "from output coefficients (eq. 1)"}
 SUPERSCRIPT = {1: "", 2: "²", 3: "³", 4: "⁴", 5: "⁵"}
 
 CSS = """
 :root { --ink: #1a1a1a; --muted: #666; --line: #d0d0d0; --pass: #e3f4e1; --fail: #fbe3e1;
-  --warn: #fff4d6; }
+  --warn: #fff4d6; --open: #ebe4f7; }
 * { box-sizing: border-box; }
 body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif;
   color: var(--ink); margin: 0 auto; max-width: 1180px; padding: 24px; }
@@ -47,6 +49,7 @@ th, td { border: 1px solid var(--line); padding: 3px 7px; text-align: left;
   vertical-align: top; }
 th { background: #f3f3f3; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
 td.pass { background: var(--pass); } td.fail { background: var(--fail); }
+td.unverified { background: var(--open); }
 td.warn { outline: 2px solid #e0a800; outline-offset: -2px; }
 .small { font-size: 11px; color: var(--muted); } code, .hash { font-family: ui-monospace,
   "SFMono-Regular", Menlo, Consolas, monospace; font-size: 12px; }
@@ -174,17 +177,24 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
     head = ["sensor", "overall", *s.profiles]
     rows = []
     for i, sensor in enumerate(s.sensors):
-        overall = "pass" if s.sensor_pass[i] else "fail"
+        overall = s.sensor_status(i)
         form = study.sensor_forms[i]
         tag = f'<br><span class="small">{_e(FORM_TAGS.get(form, form))}</span>' if (
             form != "coefficients") else ""
         cells = [f"<td><b>{_e(sensor)}</b>{tag}</td>",
-                 f'<td class="{overall}">{"✓ pass" if s.sensor_pass[i] else "✗ fail"}</td>']
+                 f'<td class="{overall}">{STATUS_TEXT[overall]}</td>']
         for j in range(len(s.profiles)):
             ok = bool(s.passed[i, j])
+            status = s.status(i, j)
             notes = warnings.get((i, j), ())
-            klass = ("pass" if ok else "fail") + (" warn" if notes else "")
-            tip = f' title="{_e(" ".join(notes))}"' if notes else ""
+            klass = status + (" warn" if notes else "")
+            if status == "unverified":  # no margin: it hangs on figures not published
+                unknown = ", ".join("VRE" if n == "vre" else n
+                                    for n in s.unknown.get((i, j), ()))
+                cells.append(f'<td class="{klass}"{_tip(notes)}>? unverified<br>'
+                             f'<span class="small">{_e(unknown)} unknown</span></td>')
+                continue
+            tip = _tip(notes)
             mark = " ⚠" if notes else ""
             saturates = ('<br><span class="small"><b>saturates</b></span>'
                          if s.saturated is not None and s.saturated[i, j] else "")
@@ -197,6 +207,10 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
     # many profiles: a compact table that scrolls rather than widening the page
     table = _table(head, rows, raw=True).replace("<table>", '<table class="matrix">', 1)
     return f'<div class="scroll">{table}</div>'
+
+
+def _tip(notes: Sequence[str]) -> str:
+    return f' title="{_e(" ".join(notes))}"' if notes else ""
 
 
 def _ranking(study: TradeStudy) -> str:
@@ -218,14 +232,32 @@ def _ranking(study: TradeStudy) -> str:
 
 def _failing(study: TradeStudy) -> str:
     s = study.selection
-    failing = [i for i in range(len(s.sensors)) if not s.sensor_pass[i]]
+    failing = [i for i in range(len(s.sensors)) if s.sensor_status(i) == "fail"]
     if not failing:
-        return "<p>Every sensor passes under every profile.</p>"
+        return "<p>No sensor fails on its published figures.</p>"
     rows = [[s.sensors[i], limit_text(s, i),
              str(sum(1 for j in range(len(s.profiles)) if not s.passed[i, j]))]
             for i in failing]
     return _table(["sensor", "what limits it (largest value/bound ratio)",
                    "profiles failed"], rows)
+
+
+def _questions(study: TradeStudy) -> str:
+    """Unverified sensors: the figures their vendor should be asked for."""
+    s = study.selection
+    note = assumption_note(s)
+    open_ = [i for i in s.ranking if s.sensor_status(i) == "unverified"]
+    if not open_:
+        return f"<p>{_e(note)}</p>" if note else ""
+    items = "".join(
+        f"<li><b>{_e(s.sensors[i])}</b><ul>"
+        + "".join(f"<li>{_e(q)}</li>" for q in s.questions.get(i, ()))
+        + "</ul></li>" for i in open_)
+    return ("<h2>Unverified sensors: questions for the vendor</h2>"
+            "<p>These pass on their published figures, but their datasheets leave out a "
+            "figure that can decide the verdict under a chosen profile (unknown, not zero; "
+            "MODEL.md section 11). Each line is a figure to ask for, with the largest value "
+            f'that would still pass.</p><ul class="questions">{items}</ul>')
 
 
 def _warnings(study: TradeStudy) -> str:
@@ -243,20 +275,26 @@ def _warnings(study: TradeStudy) -> str:
 # ----------------------------------------------------------------- charts
 
 
+def _fill(status: str) -> str:
+    return {"pass": PASS_FILL, "fail": FAIL_FILL}.get(status, OPEN_FILL)
+
+
 def margins_chart(study: TradeStudy, j: int) -> str:
     s = study.selection
-    fills = [PASS_FILL if s.passed[i, j] else FAIL_FILL for i in range(len(s.sensors))]
+    fills = [_fill(s.status(i, j)) for i in range(len(s.sensors))]
     return bar_chart(f"Δ_V(RMS) against the budget: {s.profiles[j]}",
-                     f"Δ_V(RMS) ({s.unit}, log); green: passes the criterion, red: fails",
+                     f"Δ_V(RMS) ({s.unit}, log); green: passes the criterion, red: fails, "
+                     "purple: unverified (on its published figures only)",
                      s.sensors, [float(v) for v in s.rms[:, j]], fills,
                      Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
 
 
 def worst_margin_chart(study: TradeStudy) -> str:
     s = study.selection
-    fills = [PASS_FILL if s.sensor_pass[i] else FAIL_FILL for i in range(len(s.sensors))]
+    fills = [_fill(s.sensor_status(i)) for i in range(len(s.sensors))]
     return bar_chart("Worst margin Δ*/Δ_V(RMS) over the profiles, per sensor",
-                     "margin (log); green: passes under every profile, red: fails somewhere",
+                     "margin (log); green: passes under every profile, red: fails somewhere, "
+                     "purple: unverified",
                      s.sensors, [float(v) for v in s.worst_margin], fills,
                      Marker("margin 1", x=1.0))
 
@@ -364,9 +402,12 @@ def to_html(study: TradeStudy) -> str:
     squares = term_squares(study)
     met = s.requirement_met
     n_pass = int(np.sum(s.sensor_pass))
+    n_open = sum(1 for i in range(len(s.sensors)) if s.sensor_status(i) == "unverified")
     verdict = (f'<span class="verdict {"met" if met else "not"}">Requirement '
                f'{"met" if met else "NOT met"}</span> {n_pass} of {len(s.sensors)} sensor(s) '
-               f"pass under every profile.")
+               f"pass under every profile"
+               + (f", {n_open} unverified (see the questions for the vendor)" if n_open
+                  else "") + ".")
     toc = "".join(f'<li><a href="#p{j}">{_e(p)}</a></li>' for j, p in enumerate(s.profiles))
     title = f"gyrovib trade study: Δ* = {fmt(s.budget)} {s.unit}"
     body = [
@@ -378,11 +419,14 @@ def to_html(study: TradeStudy) -> str:
         "<h2>Inputs</h2>", _inputs(study),
         "<h2>Pass/fail matrix</h2>",
         "<p>Each cell: ✓ pass / ✗ fail under the criterion, the margin Δ*/Δ_V(RMS) (above 1: "
-        "the RMS error is within the budget) and the term that dominates Δ_V(RMS)².</p>",
+        "the RMS error is within the budget) and the term that dominates Δ_V(RMS)²; "
+        "? unverified: passes on its published figures, but a figure its datasheet does "
+        "not publish (named) can change the verdict.</p>",
         _matrix(study, squares, names),
         f'<div class="charts">{_figure(worst_margin_chart(study))}</div>', _warnings(study),
         "<h2>Passing sensors, ranked</h2>", _ranking(study),
         "<h2>Failing sensors: what limits them</h2>", _failing(study),
+        _questions(study),
         "<h2>Profiles</h2>",
         *(_profile_section(study, j, squares, names) for j in range(len(s.profiles))),
     ]

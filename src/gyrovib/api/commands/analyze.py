@@ -151,7 +151,8 @@ def analyze(
             specs.place_analysis(parts, spec, numeric=numeric)
             # a spec-form row is the worst case over its envelope, not a polynomial's phases
             worst = {k: v for k, v in worst.items() if k[0] not in set(spec.index.tolist())}
-        warnings = specs.with_cross_axis(_saturation(prepared, unit), spec)
+        warnings = specs.with_cross_axis(_saturation(prepared, unit), spec,
+                                         [v is not None for v in prepared.linear])
         saturated = _saturated(prepared)
         error = to_unit(VibrationError(**parts), unit)
         out_scale = units.scale(unit)
