@@ -83,8 +83,9 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert sensors["awful"]["pass"] is False
     bad_tone, bad_noise = sensors["bad"]["profiles"]
     # total (|Δ_V|), saturated and reason: INTERFACE.md, second round
-    assert set(bad_tone) == {"profile", "pass", "status", "unknown", "rms", "margin", "checks",
-                             "total", "saturated", "reason"}
+    assert set(bad_tone) == {"profile", "pass", "status", "unknown", "rms", "margin",
+                             "criterion_margin", "disagrees", "checks", "total", "saturated",
+                             "reason"}
     # a coefficient-form part states its coefficients: nothing unknown (INTERFACE.md, trust)
     assert (bad_tone["status"], bad_noise["status"], bad_tone["unknown"]) == ("fail", "pass", [])
     assert (sensors["bad"]["status"], sensors["good"]["status"]) == ("fail", "pass")
@@ -102,6 +103,12 @@ def test_select_json_verdicts(catalog: str) -> None:
     # rms = k2·M2 = 3e-3·2 = 6e-3, margin = 0.01/6e-3 = 1.6667
     assert bad_tone["rms"] == pytest.approx(6e-3, rel=1e-12)
     assert bad_tone["margin"] == pytest.approx(0.01 / 6e-3, rel=1e-12)
+    # The cell is decided by the bounds (the criterion): its margin is the least
+    # bound/value, k2's 0.4447496·0.01/2 / 3e-3 = 0.7412 (< 1: it fails), and the direct
+    # tests Δ_V(RMS) = |Δ_V| = 6e-3 ≤ 0.01 would pass it: they disagree, and say so.
+    assert bad_tone["criterion_margin"] == pytest.approx(0.4447496 * BUDGET / 2 / 3e-3,
+                                                         rel=1e-6)
+    assert bad_tone["disagrees"] == ["rms", "worst"] and bad_noise["disagrees"] == []
     # k3 under Ω̄ = 0.5: bound finite; a coefficient the sensor does not have: value 0, pass.
     # Its share is β1/2 = 0.2264554 (MODEL.md section 6): (β1/2)·Δ*/(|Ω̄|·3M2), |Ω̄|·3M2 = 3
     assert bad_tone["checks"]["k3"] == {"value": 0.0, "bound": pytest.approx(

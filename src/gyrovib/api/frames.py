@@ -178,6 +178,10 @@ def selection_frame(result: SelectionResult) -> Any:
         "status": [result.status(int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
         "unknown": [list(result.unknown.get((int(i), int(j)), ()))
                     for i, j in zip(s_idx, p_idx, strict=True)],
+        "criterion_margin": (np.asarray(result.margin) if result.criterion_margin is None
+                             else np.asarray(result.criterion_margin)).reshape(-1),
+        "disagrees": [list(result.disagrees.get((int(i), int(j)), ()))
+                      for i, j in zip(s_idx, p_idx, strict=True)],
         "rms": np.asarray(result.rms).reshape(-1),
         "margin": np.asarray(result.margin).reshape(-1),
         "saturated": np.asarray(result.saturated, dtype=bool).reshape(-1),

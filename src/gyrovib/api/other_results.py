@@ -165,6 +165,16 @@ class SelectionResult(_SensorsByProfiles):
     #: an unpublished one (``unknown``) can change the verdict: neither passed
     #: (``passed`` is False there) nor ranked on it. None: nowhere.
     unverified: NDArray[np.bool_] | None = None
+    #: (sensors, profiles): the margin of the test that decides the cell under
+    #: :attr:`criterion` (``bounds``: the least bound/value ratio of the checks,
+    #: a datasheet part's NL and VRE against their allowable figures; ``rms``:
+    #: Δ*/Δ_V(RMS); ``worst``: Δ*/|Δ_V|; ``both``: the smaller of bounds and rms),
+    #: above 1 where that test passes; +inf: nothing to bound. ``margin`` keeps
+    #: Δ*/Δ_V(RMS) (a datasheet part: Δ*/worst |Δ_V|) whatever the criterion.
+    criterion_margin: FloatArray | None = None
+    #: (sensor, profile) → the tests among ``bounds``, ``rms``, ``worst`` not deciding
+    #: the cell whose verdict differs from the cell's (on the published figures).
+    disagrees: Mapping[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
     #: (sensor, profile) → the unpublished figures that can matter there
     #: (``"vre"``, ``"m31"``, ``"m32"``; MODEL.md section 11), also under
     #: ``assume_unknown="zero"``, where they are taken as 0.

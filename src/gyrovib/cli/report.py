@@ -22,10 +22,10 @@ DEFAULT_OUTPUT = "report.html"
 @selection_options
 @budget_options
 @peak_factor_option
-@click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
-              show_default=True,
+@click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
+              default="bounds", show_default=True,
               help="What a pass means: every coefficient within its bound, Δ_V(RMS) ≤ budget "
-                   "(eq. 17), or both.")
+                   "(eq. 17), |Δ_V| ≤ budget (worst), or bounds and rms (both).")
 @assume_unknown_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="The requirement the report states as met or not: at least one (any) or "

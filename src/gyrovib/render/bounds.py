@@ -107,14 +107,19 @@ def _spec_rows(result: BoundsResult, j: int) -> list[list[str]]:
              f"{fmt(sb.share_nl[j], 3)}" if total else "0",
              f"{sb.fit}, {sb.measure}; R = {fmt(sb.range)} {result.unit}"],
             ["VRE", fmt(sb.vre[j]), f"{result.unit}/g²", fmt(sb.share_vre[j], 3),
-             "|G_jj| of the datasheet"]]
+             "|G_jj| of the datasheet: the VRE to ask for"]]
 
 
 _SPEC_HEAD = ["datasheet figure", "allowable", "unit", "share of Δ*", "read as"]
 
 _SPEC_LEGEND = ("Datasheet bounds (MODEL.md section 11): a part of range R whose nonlinearity "
                 "(so read) and VRE are within these meets the budget whatever its polynomial "
-                "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). ∞ = the profile does not excite it.")
+                "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). ∞ = the profile does not excite it. "
+                "For a purchase spec, ask for these two figures. The coefficient allocation "
+                "above has its own VRE bound (share α6 of the additive terms, for a "
+                "coefficient-form sensor's effective VRE |Δ0(6)|/Σ⟨a_j²⟩ beside its other "
+                "coefficients; `bounds.vre` in --format json, or this command without "
+                "--range); it is not the datasheet figure, and is not repeated here.")
 
 
 def shares(constants: AllocationConstants, linear: bool = False, m3: bool = False,
@@ -217,7 +222,7 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     rows = [[name, fmt(in_table_unit(result, name, getattr(result.bounds, name)[j])),
              coefficient_unit(name, unit), share[name], _which(converted, j, name)]
             for name in BOUNDED]
-    if linear:
+    if linear and result.spec_bounds is None:  # with --range: the datasheet VRE alone
         assert result.bounds.vre is not None
         rows.append(["vre", fmt(result.bounds.vre[j]), vre_unit(result.unit), share["vre"],
                      "|Δ0(6)|/Σ⟨a_j²⟩"])

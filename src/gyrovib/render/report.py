@@ -22,7 +22,14 @@ from gyrovib.api.study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares
 from gyrovib.render.common import fmt
-from gyrovib.render.select import assumption_note, limit_text
+from gyrovib.render.select import (
+    CELL_MARGIN,
+    DISAGREE_MARK,
+    assumption_note,
+    cell_margin,
+    limit_text,
+    ranking_margin,
+)
 from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
 
 PASS_FILL, FAIL_FILL, OPEN_FILL = "#2ca02c", "#d62728", "#7b5ea7"
@@ -198,8 +205,12 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
             mark = " ⚠" if notes else ""
             saturates = ('<br><span class="small"><b>saturates</b></span>'
                          if s.saturated is not None and s.saturated[i, j] else "")
+            other = s.disagrees.get((i, j))
+            disagree = (f' <span class="small">{DISAGREE_MARK}{_e(",".join(other))}</span>'
+                        if other else "")
             cells.append(
-                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} {_e(fmt(s.margin[i, j], 3))}'
+                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} '
+                f'{_e(fmt(cell_margin(s, i, j), 3))}{disagree}'
                 f'{mark}<br><span class="small">{_e(_dominant(squares[i, j], names))}</span>'
                 f'{saturates}</td>'
             )
@@ -226,7 +237,7 @@ def _ranking(study: TradeStudy) -> str:
                      fmt(s.worst_margin[i], 3),
                      s.profiles[j] if len(s.profiles) else "",
                      f"{fmt(s.rms[i, j])} {s.unit}" if len(s.profiles) else ""])
-    return _table(["rank", "sensor", "name", "given as", "worst margin Δ*/Δ_V(RMS)",
+    return _table(["rank", "sensor", "name", "given as", f"worst margin {ranking_margin(s)}",
                    "under profile", "Δ_V(RMS) there"], rows)
 
 
@@ -282,6 +293,12 @@ def _fill(status: str) -> str:
 def margins_chart(study: TradeStudy, j: int) -> str:
     s = study.selection
     fills = [_fill(s.status(i, j)) for i in range(len(s.sensors))]
+    if s.criterion == "worst" and s.total is not None:  # what the verdict compares
+        return bar_chart(f"|Δ_V| against the budget: {s.profiles[j]}",
+                         f"|Δ_V| ({s.unit}, log; a datasheet part: its worst case); green: "
+                         "passes, red: fails, purple: unverified",
+                         s.sensors, [float(v) for v in s.total[:, j]], fills,
+                         Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
     return bar_chart(f"Δ_V(RMS) against the budget: {s.profiles[j]}",
                      f"Δ_V(RMS) ({s.unit}, log); green: passes the criterion, red: fails, "
                      "purple: unverified (on its published figures only)",
@@ -292,7 +309,7 @@ def margins_chart(study: TradeStudy, j: int) -> str:
 def worst_margin_chart(study: TradeStudy) -> str:
     s = study.selection
     fills = [_fill(s.sensor_status(i)) for i in range(len(s.sensors))]
-    return bar_chart("Worst margin Δ*/Δ_V(RMS) over the profiles, per sensor",
+    return bar_chart(f"Worst margin {ranking_margin(s)} over the profiles, per sensor",
                      "margin (log); green: passes under every profile, red: fails somewhere, "
                      "purple: unverified",
                      s.sensors, [float(v) for v in s.worst_margin], fills,
@@ -418,8 +435,11 @@ def to_html(study: TradeStudy) -> str:
         f'<nav><b>Profiles</b><ol>{toc}</ol></nav>',
         "<h2>Inputs</h2>", _inputs(study),
         "<h2>Pass/fail matrix</h2>",
-        "<p>Each cell: ✓ pass / ✗ fail under the criterion, the margin Δ*/Δ_V(RMS) (above 1: "
-        "the RMS error is within the budget) and the term that dominates Δ_V(RMS)²; "
+        f"<p>Each cell: ✓ pass / ✗ fail under the criterion, the margin of the test that "
+        f"decides it, {_e(CELL_MARGIN[s.criterion])} (above 1: within), "
+        f"{DISAGREE_MARK} and the names of the other tests (rms: Δ_V(RMS) ≤ Δ*; worst: "
+        "|Δ_V| ≤ Δ*; bounds: every coefficient or datasheet figure within its bound) that "
+        "would decide it otherwise, and the term that dominates Δ_V(RMS)²; "
         "? unverified: passes on its published figures, but a figure its datasheet does "
         "not publish (named) can change the verdict.</p>",
         _matrix(study, squares, names),

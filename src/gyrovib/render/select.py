@@ -141,13 +141,16 @@ BOUNDS_NOTE = ("The bounds are sufficient, not necessary: a sensor within every 
 
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
-    judged = "Δ*/|Δ_V|" if result.criterion == "worst" else "Δ*/Δ_V(RMS)"
-    spec = (" A datasheet (spec-form) sensor's margin is Δ*/its worst |Δ_V| over the "
-            "envelope; under bounds its nonlinearity and VRE are checked against the "
-            "allowable figures for its own range and NL definition."
-            if "specs" in result.sources else "")
-    text = (f"Cells: ✓ pass / ✗ fail under the criterion, with the margin {judged} "
-            "(> 1: the error is within the budget; ∞: no error at all)." + spec + " Each sensor's "
+    judged = CELL_MARGIN[result.criterion]
+    spec = (" Under bounds a datasheet (spec-form) sensor's nonlinearity and VRE are "
+            "checked against the allowable figures for its own range and NL definition."
+            if "specs" in result.sources and result.criterion in ("bounds", "both") else "")
+    text = (f"Cells: ✓ pass / ✗ fail under the criterion, with the margin of the test that "
+            f"decides it, {judged} (> 1: within; ∞: nothing to bound).{spec} "
+            f"{DISAGREE_MARK}rms, {DISAGREE_MARK}worst, {DISAGREE_MARK}bounds: that other "
+            "test would decide the cell otherwise (rms: Δ_V(RMS) ≤ Δ*; worst: |Δ_V| ≤ Δ*; "
+            "bounds: every coefficient, or datasheet figure, within its bound). Ranked by "
+            f"the worst margin {ranking_margin(result)} over the profiles. Each sensor's "
             "bounds include its own frequency response where it acts at the input "
             "(`at: input`); an output filter earns no credit. Shares of Δ*: "
             + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE
@@ -245,6 +248,8 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
                     "status": result.status(i, j),
                     "unknown": list(result.unknown.get((i, j), ())),
                     "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
+                    "criterion_margin": number(cell_margin(result, i, j)),
+                    "disagrees": list(result.disagrees.get((i, j), ())),
                     "checks": checks}
             if result.total is not None:
                 cell["total"] = number(result.total[i, j])
@@ -297,7 +302,7 @@ def to_csv(result: SelectionResult) -> str:
                  "pass_nonlinearity"]
     if with_specs or vre:
         head += ["value_vre", "bound_vre", "pass_vre"]
-    head += ["saturated", "status", "unknown", "reason"]
+    head += ["saturated", "status", "unknown", "criterion_margin", "disagrees", "reason"]
 
     def rows() -> Iterator[list[Any]]:
         for i, sensor in enumerate(result.sensors):
@@ -325,7 +330,8 @@ def to_csv(result: SelectionResult) -> str:
                 elif with_specs:
                     row += [""] * 3
                 row += [_sat(result, i, j), result.status(i, j),
-                        " ".join(result.unknown.get((i, j), ())), reason(result, i, j) or ""]
+                        " ".join(result.unknown.get((i, j), ())), cell_margin(result, i, j),
+                        " ".join(result.disagrees.get((i, j), ())), reason(result, i, j) or ""]
                 yield row
 
     return csv_text(head, rows())
@@ -348,7 +354,38 @@ def _cell(result: SelectionResult, i: int, j: int) -> str:
     mark = "✓" if result.passed[i, j] else "✗"
     sat = f" {SATURATED_MARK}" if _sat(result, i, j) else ""
     assumed = "*" if result.unknown.get((i, j)) and result.passed[i, j] else ""
-    return f"{mark}{sat} {_margin(result.margin[i, j])}{assumed}"
+    other = result.disagrees.get((i, j))
+    disagree = f" {DISAGREE_MARK}{','.join(other)}" if other else ""
+    return f"{mark}{sat} {_margin(cell_margin(result, i, j))}{assumed}{disagree}"
+
+
+def cell_margin(result: SelectionResult, i: int, j: int) -> float:
+    """The margin a cell shows: that of the test deciding it (:attr:`criterion_margin`)."""
+    if result.criterion_margin is None:
+        return float(result.margin[i, j])
+    return float(result.criterion_margin[i, j])
+
+
+#: What each criterion's cell margin is.
+CELL_MARGIN = {
+    "bounds": "the least bound/value over the sensor's checks (a datasheet part: allowable "
+              "NL/its NL and allowable VRE/its VRE)",
+    "rms": "Δ*/Δ_V(RMS)",
+    "worst": "Δ*/|Δ_V| (a datasheet part: over its envelope)",
+    "both": "the smaller of the bounds margin (least bound/value) and Δ*/Δ_V(RMS)",
+}
+#: What the ranking's margin is: Δ*/Δ_V(RMS) (Δ*/|Δ_V| under ``worst``); a
+#: datasheet part's is Δ*/its worst |Δ_V| over the envelope.
+#: The mark of a cell that another test would decide otherwise, before their names.
+DISAGREE_MARK = "≠"
+
+
+def ranking_margin(result: SelectionResult) -> str:
+    """The margin :attr:`~SelectionResult.ranking` orders by, in words."""
+    base = "Δ*/|Δ_V|" if result.criterion == "worst" else "Δ*/Δ_V(RMS)"
+    if "specs" in result.sources and result.criterion != "worst":
+        return base + " (a spec-form part: Δ*/its worst |Δ_V|)"
+    return base
 
 
 def _unknown_names(result: SelectionResult, i: int, j: int) -> list[str]:
@@ -404,7 +441,7 @@ def to_markdown(result: SelectionResult) -> str:
     text.append(markdown_table(head, rows))
     passing = _passing(result)
     if passing:
-        text.append("Passing sensors, ranked by worst margin:\n\n"
+        text.append(f"Passing sensors, ranked by worst margin {ranking_margin(result)}:\n\n"
                     + markdown_table(["rank", "sensor", "worst margin", "under"], passing))
     failing = _failing(result)
     if failing:
@@ -440,7 +477,7 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
     out.append(matrix)
     passing = _passing(result)
     if passing:
-        ranked = Table(title="Passing sensors, ranked by worst margin Δ*/Δ_V(RMS)",
+        ranked = Table(title=f"Passing sensors, ranked by worst margin {ranking_margin(result)}",
                        title_justify="left", header_style="bold")
         for label, justify in (("rank", "right"), ("sensor", "left"),
                                ("worst margin", "right"), ("under", "left")):

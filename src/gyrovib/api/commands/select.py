@@ -240,6 +240,19 @@ def select(
                 for k, i in enumerate(spec.index.tolist())}
         limits = _limits(criterion, np.nonzero(fails)[0], ratios, rms, budget, total,
                          spec_ratios, saturated, reach / ranges[:, None])
+        # the margin of the test that decides each cell, and the tests that disagree
+        largest = ratios.max(axis=-1) if n_p else np.zeros((n_s, 0))
+        for i, found in (spec_ratios or {}).items():
+            largest[i] = np.maximum(found["nonlinearity"], found["vre"])
+        bounds_margin = np.where(largest > 0, 1.0 / np.where(largest > 0, largest, 1.0),
+                                 np.inf)
+        direct = {"rms": _inverse(rms, budget), "worst": _inverse(total, budget)}
+        criterion_margin = {"bounds": bounds_margin, "rms": direct["rms"],
+                            "worst": direct["worst"],
+                            "both": np.minimum(bounds_margin, direct["rms"])}[criterion]
+        disagrees = _disagreements(criterion, passed | unverified, saturated,
+                                   {"bounds": bounds_pass, "rms": rms_pass,
+                                    "worst": worst_pass})
         reasons = saturation_reasons(saturated, reach, ranges, peak_factor, unit)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
     fields = spec_bounds.selection_fields(n_s, n_p, spec, own, total, unit,
@@ -279,12 +292,41 @@ def select(
         reasons=reasons,
         peak_factor=peak_factor,
         unverified=unverified,
+        criterion_margin=criterion_margin,
+        disagrees=disagrees,
         unknown=unknown,
         questions=questions,
         assume_unknown=assume_unknown,
         coefficient_unit=catalog_unit([e.unit for e in prepared.sensors])
         or alone.coefficient_unit,
     )
+
+
+def _inverse(value: FloatArray, budget: float) -> FloatArray:
+    """Δ*/value, +inf where the value is 0."""
+    out: FloatArray = np.where(value > 0, budget / np.where(value > 0, value, 1.0), np.inf)
+    return out
+
+
+#: The tests a cell can be judged by, in the order ``disagrees`` names them.
+TESTS = ("bounds", "rms", "worst")
+#: The tests each criterion is decided by.
+DECIDED_BY = {"bounds": ("bounds",), "rms": ("rms",), "worst": ("worst",),
+              "both": ("bounds", "rms")}
+
+
+def _disagreements(criterion: str, verdict: NDArray[np.bool_], saturated: NDArray[np.bool_],
+                   tests: dict[str, NDArray[np.bool_]]) -> dict[tuple[int, int], tuple[str, ...]]:
+    """Per (sensor, profile): the tests, other than the criterion's, that would decide
+    otherwise than ``verdict`` (the verdict on the published figures). A saturated cell
+    fails every test (MODEL.md section 9): none disagrees there."""
+    others = [t for t in TESTS if t not in DECIDED_BY[criterion]]
+    out: dict[tuple[int, int], tuple[str, ...]] = {}
+    for i, j in np.argwhere(~saturated).tolist():
+        names = tuple(t for t in others if bool(tests[t][i, j]) != bool(verdict[i, j]))
+        if names:
+            out[(int(i), int(j))] = names
+    return out
 
 
 def _unknowns(prepared: Prepared, spec: specs.SpecResults | None,
