@@ -29,7 +29,7 @@ __all__ = ["analyze", "bounds", "load", "select", "sweep"]
 CatalogLike = Any  # None | str | Path | Sequence[str | Path] | Catalog
 
 
-def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
+def load(*paths: str | Path | Sequence[str | Path], bundled: str | None = None) -> Catalog:
     """Load and merge catalogue files.
 
     Parameters
@@ -37,6 +37,9 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
     *paths : str or pathlib.Path, or sequences of them
         Catalogue files (YAML); several are merged, an id used twice is an
         error. None at all: the catalogues bundled with gyrovib.
+    bundled : {'sensors', 'profiles', 'all'}, optional
+        Add these bundled catalogues to ``paths`` (as ``--bundled``): e.g.
+        ``gyrovib.load("my-profiles.yaml", bundled="sensors")``.
 
     Returns
     -------
@@ -54,7 +57,7 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
     >>> import gyrovib
     >>> catalog = gyrovib.load()
     >>> [e.sensor.id for e in catalog.sensors][:2]
-    ['adxrs645', 'generic-rate-mems']
+    ['adxrs645', 'adis16460']
     """
     from gyrovib import api
 
@@ -64,7 +67,7 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
             flat.append(item)
         else:
             flat.extend(item)
-    return api.load(flat)
+    return api.load(flat, bundled=bundled)
 
 
 def _catalog(catalog: CatalogLike) -> Catalog:

@@ -115,14 +115,29 @@ STDIN_NAME = "<stdin>"
 def load_catalog(files: tuple[str, ...], sensors: bool = True) -> Any:
     """The merged catalogue of ``files``, or the bundled catalogues when none are given.
 
+    The command's ``--bundled`` choice adds bundled catalogues to ``files``.
     ``-`` stands for standard input, named ``<stdin>`` in messages.
     ``sensors=False``: profiles only, sensors neither loaded nor validated.
     """
     from gyrovib.api import load
 
+    bundled = _bundled()
     if STDIN not in files:
-        return load(files, sensors=sensors)
+        return load(files, sensors=sensors, bundled=bundled)
+    if bundled is not None:
+        from gyrovib.api.entries import bundled_choice
+
+        files = (*files, *bundled_choice(bundled))
     return _load_with_stdin(files, sensors)
+
+
+def _bundled() -> str | None:
+    """The command's ``--bundled`` choice (:func:`gyrovib.cli.options.bundled_option`)."""
+    from gyrovib.cli.options import BUNDLED_KEY
+
+    ctx = click.get_current_context(silent=True)
+    found = None if ctx is None else ctx.meta.get(BUNDLED_KEY)
+    return found if isinstance(found, str) else None
 
 
 def _read_stdin() -> str:

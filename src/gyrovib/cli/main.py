@@ -84,7 +84,8 @@ def _echo_interrupted(code: int) -> None:
 #: Each command lives in its own module, imported only when that command runs
 #: (or ``--help`` lists them all).
 _COMMANDS = {name: f"gyrovib.cli.{name}"
-             for name in ("analyze", "bounds", "select", "sweep", "report", "validate", "schema")}
+             for name in ("analyze", "bounds", "select", "sweep", "report", "validate", "schema",
+                          "catalog")}
 
 
 class _Group(click.Group):

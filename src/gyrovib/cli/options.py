@@ -20,8 +20,26 @@ UNIT_CHOICES = tuple(units.RATE_UNITS)
 SAMPLES_MAX = 100_000_000
 
 
+#: Where ``--bundled`` leaves its choice for :func:`gyrovib.cli.common.load_catalog`.
+BUNDLED_KEY = "gyrovib.bundled"
+
+
+def _keep_bundled(ctx: click.Context, param: click.Parameter, value: str | None) -> None:
+    if value is not None:
+        ctx.meta[BUNDLED_KEY] = value
+
+
+def bundled_option(f: F) -> F:
+    return click.option(
+        "--bundled", type=click.Choice(["sensors", "profiles", "all"]), default=None,
+        expose_value=False, callback=_keep_bundled, is_eager=True,
+        help="Add the bundled catalogues (the public sensors, the example profiles, or "
+             "both) to the files given: e.g. your own profiles with --bundled sensors. "
+             "`gyrovib catalog export DIR` writes them out for editing.")(f)
+
+
 def files_argument(f: F) -> F:
-    return click.argument("files", nargs=-1, metavar="[FILE]...")(f)
+    return bundled_option(click.argument("files", nargs=-1, metavar="[FILE]...")(f))
 
 
 def selection_options(f: F) -> F:
