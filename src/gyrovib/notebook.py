@@ -129,7 +129,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
     samples, seed : int
         ``method='numeric'`` only: evaluations per sensor × profile, seed.
     peak_factor : float
-        κ of the saturation check (MODEL.md section 9), default 3.
+        κ of the saturation check (docs/model.md section 9), default 3.
 
     Returns
     -------
@@ -176,11 +176,11 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
         Output unit; default the unit a budget string carries, else deg/s.
     allocation : sequence of float, optional
         r alone, or r, w1..w5, v1..v3, or r, w1..w6, v1..v3 with w6 the weight of
-        the g² term (eq. 18, 21, 24; MODEL.md section 8).
+        the g² term (eq. 18, 21, 24; docs/model.md section 8).
     range_ : number or str, optional
         R of a datasheet part (in ``unit``, or with a unit): adds ``spec_bounds``,
         the allowable nonlinearity in %FS (read as ``nl_fit``, ``nl_measure``,
-        of R or of the span 2R as ``nl_of``) and VRE (MODEL.md section 11).
+        of R or of the span 2R as ``nl_of``) and VRE (docs/model.md section 11).
     spec_weights : (float, float)
         Split of Δ* between the nonlinearity envelope and the VRE term.
 
@@ -233,7 +233,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     spec_weights : (float, float)
         As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
     peak_factor : float
-        κ of the saturation check (MODEL.md section 9), default 3.
+        κ of the saturation check (docs/model.md section 9), default 3.
     assume_unknown : {'none', 'zero'}
         A figure a datasheet does not publish (the VRE, m31, m32) is unknown:
         where it can decide a part's verdict the part is ``unverified``

@@ -119,7 +119,7 @@ def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
     from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 
     out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
-    # the VRE bound (MODEL.md section 8): JSON null, here inf, without linear vibration
+    # the VRE bound (docs/model.md section 8): JSON null, here inf, without linear vibration
     vre = np.full(len(rows), np.inf) if bounds.vre is None else np.asarray(bounds.vre)[rows]
     out["bounds.vre"] = vre
     present = PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
@@ -194,7 +194,7 @@ def selection_frame(result: SelectionResult) -> Any:
         columns[f"checks.{name}.value"] = values[:, b]
         columns[f"checks.{name}.bound"] = bounds[:, b]
         columns[f"checks.{name}.pass"] = checks[:, b]
-    if result.vre_pass is not None:  # the VRE check, MODEL.md section 8
+    if result.vre_pass is not None:  # the VRE check, docs/model.md section 8
         columns["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
         columns["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
         columns["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)

@@ -51,7 +51,7 @@ class SweepResult(_SensorsByProfiles):
     nl_limit: FloatArray | None = None
     nl_range: FloatArray | None = None
     nl_fit: tuple[str, ...] = ()
-    #: (sensors, profiles, rates): the sensor saturates at that Ω_K3 (MODEL.md section 9).
+    #: (sensors, profiles, rates): the sensor saturates at that Ω_K3 (docs/model.md section 9).
     saturated: NDArray[np.bool_] | None = None
     #: κ of the saturation reach.
     peak_factor: float = 3.0
@@ -136,7 +136,7 @@ class SelectionResult(_SensorsByProfiles):
     requirement_met: bool
     allocation: AllocationConstants
     #: The ``vre`` check, (sensor, profile), in :attr:`unit` per g². A coefficient
-    #: sensor (MODEL.md section 8): its effective VRE |Δ0(6)|/Σ⟨a_j²⟩ (0 where the
+    #: sensor (docs/model.md section 8): its effective VRE |Δ0(6)|/Σ⟨a_j²⟩ (0 where the
     #: profile has no linear vibration), its bound (+inf there) and whether it is
     #: within it (part of ``bounds_pass``). A spec-form sensor (section 11): its
     #: datasheet VRE (NaN: no VRE spec, taken as 0) against the allowable VRE.
@@ -147,13 +147,13 @@ class SelectionResult(_SensorsByProfiles):
     total: FloatArray | None = None
     #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
     sources: tuple[str, ...] = ()
-    #: Spec-form sensors against their spec bounds (MODEL.md section 11), (sensors,
+    #: Spec-form sensors against their spec bounds (docs/model.md section 11), (sensors,
     #: profiles), NaN (pass True) on coefficient rows: the nonlinearity and its
     #: allowable value in %FS (the sensor's own range or span).
     nl_value: FloatArray | None = None
     nl_bound: FloatArray | None = None
     nl_pass: NDArray[np.bool_] | None = None
-    #: (sensors, profiles): saturates there (MODEL.md section 9), which fails it.
+    #: (sensors, profiles): saturates there (docs/model.md section 9), which fails it.
     saturated: NDArray[np.bool_] | None = None
     #: (sensor, profile) → why it fails there beyond the criterion (one line).
     reasons: Mapping[tuple[int, int], str] = field(default_factory=dict)
@@ -176,7 +176,7 @@ class SelectionResult(_SensorsByProfiles):
     #: the cell whose verdict differs from the cell's (on the published figures).
     disagrees: Mapping[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
     #: (sensor, profile) → the unpublished figures that can matter there
-    #: (``"vre"``, ``"m31"``, ``"m32"``; MODEL.md section 11), also under
+    #: (``"vre"``, ``"m31"``, ``"m32"``; docs/model.md section 11), also under
     #: ``assume_unknown="zero"``, where they are taken as 0.
     unknown: Mapping[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
     #: Per sensor with unknown figures: the questions for the vendor (the

@@ -43,7 +43,8 @@ def in_table_unit(result: Any, name: str, value: float) -> float:
 
 
 def saturation_reason(reach: float, range_: float, peak_factor: float, unit: str) -> str:
-    """Why a saturating sensor fails (MODEL.md section 9); ``reach``, ``range_`` in ``unit``."""
+    """Why a saturating sensor fails (docs/model.md section 9); ``reach``, ``range_`` in
+    ``unit``."""
     return (f"saturated: |Ω_K3| + Σ tone amplitudes + locked peaks + {peak_factor:g}σ3 = "
             f"{reach:.6g} {unit} exceeds the range {range_:.6g} {unit}")
 
@@ -101,7 +102,7 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
 
 def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
     """Why sensor ``i`` is unverified under profile ``j``: the unpublished figures that can
-    decide it (MODEL.md section 11), e.g. ``unverified: VRE not published (…)``."""
+    decide it (docs/model.md section 11), e.g. ``unverified: VRE not published (…)``."""
     from gyrovib.api.spec_bounds import UNKNOWN_WORDS
 
     names = result.unknown.get((i, j), ())
@@ -111,7 +112,7 @@ def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
 
 
 def _vre_failure(result: SelectionResult, i: int, j: int) -> str:
-    """A coefficient sensor's effective VRE above its bound (MODEL.md section 8)."""
+    """A coefficient sensor's effective VRE above its bound (docs/model.md section 8)."""
     assert result.vre_value is not None and result.vre_bound is not None
     unit = f"{result.unit}/g^2"
     return (f"effective VRE |Δ0(6)|/Σ⟨a_j²⟩ = {fmt(result.vre_value[i, j])} {unit} exceeds "
@@ -119,7 +120,7 @@ def _vre_failure(result: SelectionResult, i: int, j: int) -> str:
 
 
 def _spec_failures(result: SelectionResult, i: int, j: int) -> list[str]:
-    """A datasheet sensor's figures above their spec bounds (MODEL.md section 11)."""
+    """A datasheet sensor's figures above their spec bounds (docs/model.md section 11)."""
     out: list[str] = []
     assert result.nl_pass is not None and result.nl_value is not None
     assert result.nl_bound is not None and result.vre_pass is not None

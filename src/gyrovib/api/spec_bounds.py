@@ -1,6 +1,6 @@
 """The datasheet checks of ``select`` and the allowable figures of ``bounds --range``.
 
-Spec-form sensors (MODEL.md section 11) against their spec bounds, and the
+Spec-form sensors (docs/model.md section 11) against their spec bounds, and the
 bounds themselves. Apart from :mod:`gyrovib.api.specs` (which still gives
 their names) so that ``analyze`` does not define their classes.
 """
@@ -49,7 +49,7 @@ class SpecChecks(Frozen):
 
 def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: float,
                 weights: tuple[float, float] = (1.0, 1.0), rtol: float = 1e-9) -> SpecChecks:
-    """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (MODEL.md section 11).
+    """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (docs/model.md section 11).
 
     NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds` for
     the sensor's own range, fit, measure and ``of``, under its own response
@@ -89,17 +89,17 @@ UNKNOWN_FIGURES: tuple[str, ...] = ("vre", "m31", "m32")
 #: Why each unknown figure can matter, as a reason names it.
 UNKNOWN_WORDS = {
     "vre": "VRE not published (the profile has linear vibration, so its g² term "
-           "G_jj·⟨a_j²⟩ can rectify; MODEL.md section 8)",
+           "G_jj·⟨a_j²⟩ can rectify; docs/model.md section 8)",
     "m31": "m31 not published (the profile has cross-axis vibration x1 correlated with "
-           "x3, so m31·C31 can rectify; MODEL.md section 11)",
+           "x3, so m31·C31 can rectify; docs/model.md section 11)",
     "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
-           "x3, so m32·C32 can rectify; MODEL.md section 11)",
+           "x3, so m32·C32 can rectify; docs/model.md section 11)",
 }
 
 
 @dataclass(frozen=True, eq=False, repr=False)
 class UnknownFigures(Frozen):
-    """Where a spec sensor's unpublished figure can matter, (M, P) (MODEL.md section 11).
+    """Where a spec sensor's unpublished figure can matter, (M, P) (docs/model.md section 11).
 
     ``vre``: no VRE spec and the profile has linear vibration (Σ⟨a_j²⟩ > 0);
     ``m31``, ``m32``: datasheets never give them, and the profile's C31 (C32)
@@ -154,7 +154,7 @@ def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecC
 
     ``total`` (|Δ_V|, the worst case for spec sensors) always; ``vre`` the
     coefficient sensors' VRE check (effective VRE and its bound in deg/s per g²,
-    pass; MODEL.md section 8), whose spec-form rows are replaced by the datasheet
+    pass; docs/model.md section 8), whose spec-form rows are replaced by the datasheet
     VRE against its allowable value (section 11); ``sources`` and the
     nonlinearity check (NaN on coefficient rows) only with spec sensors.
     """
@@ -199,7 +199,7 @@ class DatasheetBounds(Frozen):
     output unit; ``fit``, ``measure``, ``of``: the definition the NL is read
     with; ``weights``: the NL:VRE split; ``w1``: W(1), the worst case for a
     limit b = 1 (rate per rate); ``share_nl``, ``share_vre``: the fractions
-    of Δ* (MODEL.md section 11: NL_max·W(1) = share_nl·Δ*).
+    of Δ* (docs/model.md section 11: NL_max·W(1) = share_nl·Δ*).
     """
 
     range: float

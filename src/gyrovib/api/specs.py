@@ -1,4 +1,4 @@
-"""Spec-form (datasheet) sensors: their worst case over the envelope (MODEL.md section 11).
+"""Spec-form (datasheet) sensors: their worst case over the envelope (docs/model.md section 11).
 
 A sensor written with ``specs:`` (range, nonlinearity, optional asymmetry and
 VRE) has no single conversion function. The commands route it here: its

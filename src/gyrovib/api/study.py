@@ -48,7 +48,7 @@ class Spectrum:
     (frequency Hz, amplitudes about x1, x2, x3); ``rms``: the random part given
     as σ per axis instead of a PSD; ``mount``: the isolation mount's ν(f);
     ``linear_rms``: the RMS per axis of the linear vibration at the sensor, in g
-    (through its mount; MODEL.md section 8), or None without one.
+    (through its mount; docs/model.md section 8), or None without one.
     """
 
     profile: str
@@ -175,7 +175,7 @@ def trade_study(
 
     ``sweep_rates`` default: :data:`SWEEP_POINTS` rates over ±:func:`envelope`.
     ``created`` (default: now, UTC) is stamped on the study. ``peak_factor``:
-    κ of the saturation check (MODEL.md section 9) of the selection and analysis;
+    κ of the saturation check (docs/model.md section 9) of the selection and analysis;
     ``assume_unknown``: as :func:`gyrovib.api.select`.
     """
     unit = units.canonical_unit(unit)

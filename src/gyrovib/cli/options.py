@@ -78,7 +78,7 @@ def peak_factor_option(f: F) -> F:
     return click.option(
         "--peak-factor", "peak_factor", type=click.FloatRange(min=0.0), default=3.0,
         show_default=True, metavar="K",
-        help="κ of the saturation check (MODEL.md section 9): a sensor saturates when "
+        help="κ of the saturation check (docs/model.md section 9): a sensor saturates when "
              "|Ω_K3| + Σ tone amplitudes + locked-harmonic peaks + κ·σ3, at its nonlinear "
              "element, exceeds its range.",
     )(f)
@@ -168,7 +168,7 @@ def allocation_option(f: F) -> F:
 
 def parse_allocation(text: str | None) -> list[float] | None:
     """``--allocation`` → r alone, the 9 numbers r, w1..w5, v1..v3 or the 10 numbers
-    r, w1..w6, v1..v3 (w6: the g² term, MODEL.md section 8), positive and finite."""
+    r, w1..w6, v1..v3 (w6: the g² term, docs/model.md section 8), positive and finite."""
     if text is None:
         return None
     pieces = [p.strip() for p in text.split(",")]

@@ -16,11 +16,11 @@ _ADDITIVE_LABELS = ("Δ0 A1", "Δ0 k2", "Δ0 k4", "Δ0 m31", "Δ0 m32")
 #: The JSON keys of ``additive_terms`` (Δ0(1..5), g2 = Δ0(6), k3, k5): one order for
 #: JSON, CSV, tables and frames.
 JSON_TERMS = _JSON_TERMS
-#: The odd-moment terms of locked harmonics (MODEL.md section 10), k3·M3 and k5·M5:
+#: The odd-moment terms of locked harmonics (docs/model.md section 10), k3·M3 and k5·M5:
 #: always in JSON (0 where x3 is symmetric), in tables only where a profile has them.
 ODD_TERMS: tuple[str, ...] = ("k3", "k5")
 _LABELS = dict(zip(JSON_TERMS, (*_ADDITIVE_LABELS, "Δ0 g²", "Δ0 k3", "Δ0 k5"), strict=True))
-#: The mark of a saturating sensor in tables (MODEL.md section 9).
+#: The mark of a saturating sensor in tables (docs/model.md section 9).
 SATURATED_MARK = "SAT"
 
 
@@ -54,7 +54,7 @@ def _saturated(result: AnalysisResult, i: int, j: int) -> bool:
 def _saturation_note(result: AnalysisResult) -> str:
     return (f"{SATURATED_MARK}: saturated, |Ω_K3| + Σ tone amplitudes + locked peaks + "
             f"{result.peak_factor:g}σ at the nonlinear element exceeds the sensor's range "
-            "(MODEL.md section 9): the error shown does not hold.")
+            "(docs/model.md section 9): the error shown does not hold.")
 
 
 def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
@@ -103,7 +103,7 @@ _COEFFICIENT_SOURCE = '"coefficients"'  # json.dumps("coefficients")
 
 
 def _source_fields(result: AnalysisResult, i: int, j: int) -> dict[str, Any]:
-    """``source``, and for a spec-form sensor its ``envelope`` (MODEL.md section 11)."""
+    """``source``, and for a spec-form sensor its ``envelope`` (docs/model.md section 11)."""
     source = result.source(i)
     out: dict[str, Any] = {"source": source}
     if source == "specs" and result.worst_coefficients is not None:
@@ -323,7 +323,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
               "Δ_V(RMS) of eq. (16).")
     if result.has_linear:
         legend += (" Δ0 g² = Δ0(6) = Σ G_jk·⟨a_j·a_k⟩, the rectification of the linear "
-                   "vibration by the g²-sensitivity (VRE), MODEL.md section 8.")
+                   "vibration by the g²-sensitivity (VRE), docs/model.md section 8.")
     out.append(Text(legend, style="dim"))
     if "specs" in result.sources:
         out.append(Text(_SPECS_NOTE, style="dim"))

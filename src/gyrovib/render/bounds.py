@@ -21,7 +21,7 @@ from gyrovib.core.synthesis import (
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 
-#: Unit of the VRE bound in an output rate unit (rate per g², MODEL.md section 8).
+#: Unit of the VRE bound in an output rate unit (rate per g², docs/model.md section 8).
 def vre_unit(unit: str) -> str:
     """``deg/s/g^2`` for ``deg/s``: the unit of a VRE (rate per g²)."""
     return f"{unit}/g^2"
@@ -37,7 +37,7 @@ def bounds_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
 
 def part_names(bounds: CoefficientBounds) -> tuple[str, ...]:
     """The candidates the bounds carry: the k4/k5 ones, and those of locked harmonics
-    (:data:`~gyrovib.core.synthesis.ODD_PARTS`, MODEL.md section 10) where they exist."""
+    (:data:`~gyrovib.core.synthesis.ODD_PARTS`, docs/model.md section 10) where they exist."""
     return PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
 
 
@@ -112,7 +112,7 @@ def _spec_rows(result: BoundsResult, j: int) -> list[list[str]]:
 
 _SPEC_HEAD = ["datasheet figure", "allowable", "unit", "share of Δ*", "read as"]
 
-_SPEC_LEGEND = ("Datasheet bounds (MODEL.md section 11): a part of range R whose nonlinearity "
+_SPEC_LEGEND = ("Datasheet bounds (docs/model.md section 11): a part of range R whose nonlinearity "
                 "(so read) and VRE are within these meets the budget whatever its polynomial "
                 "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). ∞ = the profile does not excite it. "
                 "For a purchase spec, ask for these two figures. The coefficient allocation "
@@ -127,9 +127,9 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
     """The share of Δ* behind each bound, as printed in the tables.
 
     ``linear``: for a profile with linear vibration, whose additive shares
-    include α6 for the g² term (MODEL.md section 8), so that α1..α5 shrink.
+    include α6 for the g² term (docs/model.md section 8), so that α1..α5 shrink.
     ``m3`` / ``m5``: a profile whose phase-locked harmonics give M3 ≠ 0 /
-    M5 ≠ 0 (MODEL.md section 10): k3 / k5 gain additive shares, and with M3 ≠ 0
+    M5 ≠ 0 (docs/model.md section 10): k3 / k5 gain additive shares, and with M3 ≠ 0
     Δ(1) is split between k3, k4, k5 (β1/3 each) and Δ(2) between k4, k5 (β2/2).
     """
     a, b = constants.alpha, constants.beta
@@ -158,7 +158,7 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
             **extra,
         }
     # the exact method splits β1 equally between k3 and the linear k5 (they add
-    # linearly in Δ(1), MODEL.md section 6); the paper prints its own 0.35
+    # linearly in Δ(1), docs/model.md section 6); the paper prints its own 0.35
     half = abs(constants.k3 - float(b[0]) / 2.0) <= 1e-12 * float(b[0])
     k3 = f"β1/2 = {constants.k3:.4g}" if half else f"{constants.k3:.4g} (paper)"
     k5 = (f"β1/2 = {constants.k5_linear:.4g}" if half
@@ -175,7 +175,7 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
     }
 
 
-#: The parts whose least is each coefficient's bound (MODEL.md sections 6 and 10):
+#: The parts whose least is each coefficient's bound (docs/model.md sections 6 and 10):
 #: label and attribute of :class:`~gyrovib.core.synthesis.CoefficientBounds`. The
 #: section-10 parts exist only with odd moments (None, or not finite, otherwise).
 _CANDIDATES = {
@@ -264,7 +264,7 @@ _LEGEND = ("A sensor whose every |coefficient| is at most its bound meets the bu
            "(the coefficient does not act under this profile). k1 = 1; the sensor's own "
            "response is taken as 1 (see `gyrovib select`).")
 _VRE_LEGEND = (" vre bounds the effective vibration rectification |Δ0(6)|/Σ⟨a_j²⟩ of the "
-               "linear vibration, per g² (MODEL.md section 8); for a datasheet VRE v "
+               "linear vibration, per g² (docs/model.md section 8); for a datasheet VRE v "
                "(G11 = G22 = G33 = v) it is a bound on |v|.")
 
 

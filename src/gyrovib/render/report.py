@@ -107,9 +107,9 @@ def _table(head: Sequence[str], rows: Iterable[Sequence[str]], raw: bool = False
 def term_names(linear: bool = False, locked: bool = False) -> list[str]:
     """Labels of the terms of eq. (16): the additive Δ0 terms, then Δ(q)·Ω^q.
 
-    ``linear``: Δ0(6), the g² term of a linear vibration (MODEL.md section 8),
+    ``linear``: Δ0(6), the g² term of a linear vibration (docs/model.md section 8),
     follows the additive terms; ``locked``: then k3·M3 and k5·M5, the odd-moment
-    terms of phase-locked harmonics (MODEL.md section 10).
+    terms of phase-locked harmonics (docs/model.md section 10).
     """
     powers = [int(q[1:]) if q[1:].isdigit() else k + 1
               for k, q in enumerate(MULTIPLICATIVE_TERMS)]
@@ -168,7 +168,7 @@ def _inputs(study: TradeStudy) -> str:
         ["requirement", f"{s.require}: " + ("at least one sensor" if s.require == "any"
                                               else "every sensor") + " passes everywhere"],
         ["allocation (shares of Δ*)", "; ".join(f"{k}: {v}" for k, v in share.items())],
-        *([["… under a linear vibration (g² term, MODEL.md section 8)",
+        *([["… under a linear vibration (g² term, docs/model.md section 8)",
             "; ".join(f"{k}: {v}" for k, v in shares(s.allocation, linear=True).items())]]
           if s.has_linear else []),
         ["sensors × profiles", f"{len(s.sensors)} × {len(s.profiles)}"],
@@ -267,7 +267,7 @@ def _questions(study: TradeStudy) -> str:
     return ("<h2>Unverified sensors: questions for the vendor</h2>"
             "<p>These pass on their published figures, but their datasheets leave out a "
             "figure that can decide the verdict under a chosen profile (unknown, not zero; "
-            "MODEL.md section 11). Each line is a figure to ask for, with the largest value "
+            "docs/model.md section 11). Each line is a figure to ask for, with the largest value "
             f'that would still pass.</p><ul class="questions">{items}</ul>')
 
 

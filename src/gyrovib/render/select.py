@@ -50,7 +50,7 @@ def _vre(result: SelectionResult, i: int, j: int) -> tuple[float, float]:
 
 
 def _vre_text(result: SelectionResult, i: int, j: int, relation: str) -> str:
-    """The VRE check of sensor ``i`` under profile ``j`` in words (MODEL.md section 8)."""
+    """The VRE check of sensor ``i`` under profile ``j`` in words (docs/model.md section 8)."""
     value, bound = _vre(result, i, j)
     unit = vre_unit(result.unit)
     return (f"effective VRE |Δ0(6)|/Σ⟨a_j²⟩ = {fmt(value)} {unit} {relation} "
@@ -155,7 +155,7 @@ def _legend(result: SelectionResult) -> str:
             "(`at: input`); an output filter earns no credit. Shares of Δ*: "
             + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE
             + unit_note(result))
-    if result.has_linear:  # MODEL.md section 8: α6 joins the additive shares
+    if result.has_linear:  # docs/model.md section 8: α6 joins the additive shares
         linear = shares(result.allocation, linear=True)
         text += (" Under a profile with linear vibration the additive shares make room for "
                  "the g² term: " + ", ".join(f"{k} {linear[k]}" for k in
@@ -170,7 +170,7 @@ def _legend(result: SelectionResult) -> str:
     if result.saturated is not None and result.saturated.any():
         text += (f" {SATURATED_MARK}: the sensor saturates (|Ω_K3| + Σ tone amplitudes + "
                  f"locked peaks + {result.peak_factor:g}σ3 at its nonlinear element exceeds "
-                 "its range, MODEL.md section 9) and fails whatever the criterion.")
+                 "its range, docs/model.md section 9) and fails whatever the criterion.")
     return text
 
 

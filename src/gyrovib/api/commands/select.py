@@ -120,25 +120,25 @@ def select(
     written ``at: input`` (an output filter earns no credit; computed once
     per distinct response). ``criterion``: ``bounds`` (every |coefficient| at
     most its bound, and the effective VRE |Δ0(6)|/Σ⟨a_j²⟩ at most the ``vre``
-    bound where a profile has linear vibration, MODEL.md section 8), ``rms``
+    bound where a profile has linear vibration, docs/model.md section 8), ``rms``
     (Δ_V(RMS) ≤ Δ*, eq. 17, with Δ0(6) in it) or ``both``. A sensor
     passes when it passes under every chosen profile; ``require`` ``any``
     (at least one sensor passes) or ``all`` decides :attr:`requirement_met`.
     ``budget`` and ``rate`` are in deg/s; ``unit`` is the output unit.
 
-    ``worst``: the direct test |Δ_V| ≤ Δ*. A spec-form sensor (MODEL.md
+    ``worst``: the direct test |Δ_V| ≤ Δ*. A spec-form sensor (docs/model.md
     section 11) is judged by its datasheet: under ``bounds`` its nonlinearity
     (%FS) and VRE against the spec bounds of its own range, fit and measure
     (Δ* split ``spec_weights`` = NL:VRE), under ``rms`` its per-term RMS
     bound, under ``worst`` its worst |Δ_V| over the envelope; its margin is
     always Δ*/worst |Δ_V| (and every sensor's is Δ*/|Δ_V| under ``worst``).
 
-    A sensor that saturates under a profile (MODEL.md section 9: |Ω_K3| +
+    A sensor that saturates under a profile (docs/model.md section 9: |Ω_K3| +
     Σ tone amplitudes + locked peaks + κσ3 at its nonlinear element above its
     range, κ = ``peak_factor``) fails there whatever the criterion: the
     static model behind both tests does not hold (:attr:`SelectionResult.reasons`).
 
-    An unpublished datasheet figure is unknown, not zero (MODEL.md section 11):
+    An unpublished datasheet figure is unknown, not zero (docs/model.md section 11):
     where a spec-form sensor passes on its published figures but one it lacks
     can matter under the profile (the VRE under linear vibration; m31, m32
     under cross-axis vibration correlated with x3), it is ``unverified`` there:
@@ -206,7 +206,7 @@ def select(
             bounds_pass[spec.index] = own.nl_pass & own.vre_pass
         rms_pass = _at_most(rms, budget)
         worst_pass = _at_most(total, budget)
-        # saturation fails a sensor whatever the criterion (MODEL.md section 9)
+        # saturation fails a sensor whatever the criterion (docs/model.md section 9)
         passed = {"bounds": bounds_pass, "rms": rms_pass, "worst": worst_pass,
                   "both": bounds_pass & rms_pass}[criterion] & ~saturated
         unknown, questions = _unknowns(prepared, spec, own, method, criterion, passed,
@@ -319,7 +319,7 @@ def _disagreements(criterion: str, verdict: NDArray[np.bool_], saturated: NDArra
                    tests: dict[str, NDArray[np.bool_]]) -> dict[tuple[int, int], tuple[str, ...]]:
     """Per (sensor, profile): the tests, other than the criterion's, that would decide
     otherwise than ``verdict`` (the verdict on the published figures). A saturated cell
-    fails every test (MODEL.md section 9): none disagrees there."""
+    fails every test (docs/model.md section 9): none disagrees there."""
     others = [t for t in TESTS if t not in DECIDED_BY[criterion]]
     out: dict[tuple[int, int], tuple[str, ...]] = {}
     for i, j in np.argwhere(~saturated).tolist():
@@ -396,7 +396,7 @@ def _unknowns(prepared: Prepared, spec: specs.SpecResults | None,
 
 
 def _effective_vre(prepared: Prepared) -> FloatArray:
-    """|Δ0(6)|/Σ⟨a_j²⟩ of every sensor under every profile, deg/s per g² (MODEL.md section 8).
+    """|Δ0(6)|/Σ⟨a_j²⟩ of every sensor under every profile, deg/s per g² (docs/model.md section 8).
 
     0 where a profile has no linear vibration.
     """
@@ -406,7 +406,7 @@ def _effective_vre(prepared: Prepared) -> FloatArray:
 
 
 def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray) -> None:
-    """|Δ_V| maximised over the phases of ``phase: worst`` orders (MODEL.md section 10).
+    """|Δ_V| maximised over the phases of ``phase: worst`` orders (docs/model.md section 10).
 
     The synthesis multipliers take each moment at its largest magnitude, which
     fixes their signs; the direct test |Δ_V| ≤ Δ* needs, as ``analyze`` does,
