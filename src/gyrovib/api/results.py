@@ -146,6 +146,9 @@ class AnalysisResult(_SensorsByProfiles):
     #: orders written ``phase: worst``; only for such profiles.
     worst_phases: Mapping[tuple[int, int], tuple[dict[str, float], ...]] = field(
         default_factory=dict)
+    #: The rate unit of the profiles' files (None: they differ): tables write the
+    #: vehicle's rates in it, the errors in :attr:`unit` (JSON: all in :attr:`unit`).
+    rate_unit: str | None = None
 
     @property
     def has_linear(self) -> bool:

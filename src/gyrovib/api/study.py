@@ -76,6 +76,9 @@ class TradeStudy:
     sensor_forms: tuple[str, ...]
     version: str
     created: str
+    #: The unit of the vehicle's rates, tones and PSDs in :attr:`spectra` and the
+    #: report (the profiles' own; the errors stay in the selection's unit).
+    rate_unit: str = ""
 
 
 def file_digest(name: str, text: str) -> InputFile:
@@ -195,10 +198,11 @@ def trade_study(
         selection=selection,
         analysis=analysis,
         sweep=swept,
-        spectra=tuple(spectrum(p, unit) for p in p_entries),
+        spectra=tuple(spectrum(p, analysis.rate_unit or unit) for p in p_entries),
         files=tuple(file_digest(s.name, s.text) for s in catalog.sources),
         sensor_names=tuple(e.sensor.name for e in s_entries),
         sensor_forms=tuple(sensor_form(e.sensor) for e in s_entries),
         version=__version__,
         created=when.strftime("%Y-%m-%d %H:%M:%S UTC"),
+        rate_unit=analysis.rate_unit or unit,
     )

@@ -34,11 +34,15 @@ from gyrovib.cli.options import (
 @rate_option
 @unit_option
 @peak_factor_option
+@click.option("--detail/--matrix", "detail", default=None,
+              help="Tables: one table per profile with every term of eq. (13) (the default "
+                   "with one or two profiles), or one compact matrix of the errors and their "
+                   "dominant terms (the default with more).")
 @format_option("table", "json", "csv", "markdown")
 @output_option
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
             method: str, samples: int, seed: int, rate: str | None, unit: str,
-            peak_factor: float, fmt: str,
+            peak_factor: float, detail: bool | None, fmt: str,
             output: str | None) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 
@@ -65,7 +69,7 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
                              seed=seed, progress=advance, peak_factor=peak_factor)
     if fmt == "table":
         write_output(render.to_table(result, color=use_color(output), width=page_width(output),
-                                     ascii=plain_ascii(output)), output)
+                                     ascii=plain_ascii(output), detail=detail), output)
         return
     renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

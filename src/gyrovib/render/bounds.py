@@ -246,7 +246,12 @@ _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
 
 
 def _title(result: BoundsResult, j: int) -> str:
-    return (f"{result.profiles[j]}  (Ω_K3 = {fmt(result.rates[j, 2])} {result.unit}, "
+    """The profile, its Ω_K3 in the catalogue's rate unit and Δ* in the output unit."""
+    from gyrovib import units
+
+    rate_unit = table_unit(result)
+    omega = float(result.rates[j, 2]) * units.scale(result.unit) / units.scale(rate_unit)
+    return (f"{result.profiles[j]}  (Ω_K3 = {fmt(omega)} {rate_unit}, "
             f"Δ* = {fmt(result.budget)} {result.unit}, method {result.method})")
 
 

@@ -394,7 +394,11 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
                      names: Sequence[str]) -> str:
     s = study.selection
     spectrum = study.spectra[j]
-    rate = ", ".join(fmt(v, 4) for v in s.rates[j])
+    rate_unit = study.rate_unit or s.unit  # the vehicle in its own unit, errors in Δ*'s
+    from gyrovib import units
+
+    to_rate = units.scale(s.unit) / units.scale(rate_unit)
+    rate = ", ".join(fmt(float(v) * to_rate, 4) for v in s.rates[j])
     title = spectrum.profile + (f" — {spectrum.name}" if spectrum.name else "")
     notes = f'<p class="notes">{_e(spectrum.notes)}</p>' if spectrum.notes else ""
     figures = [
@@ -403,12 +407,12 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
                 "Which coefficient dominates: each term's share of Δ_V(RMS)²."),
         _figure(sweep_chart(study, j), "Ω_K1, Ω_K2 stay the profile's; the dotted line marks "
                                        "the profile's own Ω_K3."),
-        *(_figure(c) for c in spectrum_charts(spectrum, s.unit)),
+        *(_figure(c) for c in spectrum_charts(spectrum, rate_unit)),
     ]
     return (f'<section class="profile" id="p{j}"><div class="profile-head">'
             f"<h3>{_e(title)}</h3>{notes}"
-            f'<p class="sub">Ω_K = ({_e(rate)}) {_e(s.unit)}; '
-            f"{_e(_spectrum_text(spectrum, s.unit))}</p></div>"
+            f'<p class="sub">Ω_K = ({_e(rate)}) {_e(rate_unit)}; '
+            f"{_e(_spectrum_text(spectrum, rate_unit))}</p></div>"
             f"<div class=\"charts\">{''.join(figures)}</div></section>")
 
 

@@ -177,7 +177,14 @@ def analyze(
         peak_factor=peak_factor,
         locked=locked,
         worst_phases=worst,
+        rate_unit=_shared_unit([p.unit for p in prepared.profiles]),
     )
+
+
+def _shared_unit(file_units: Sequence[str]) -> str | None:
+    """The rate unit the profiles' files share (canonical), or None when they differ."""
+    found = {units.canonical_unit(u) for u in file_units}
+    return found.pop() if len(found) == 1 else None
 
 
 def _refuse_unknown_phases(prepared: Prepared) -> None:
