@@ -21,11 +21,13 @@ import gyrovib
 
 # %% [markdown]
 # ## Load the bundled catalogues
-# `gyrovib.load()` with no argument gives the nine bundled sensors and seven
-# illustrative profiles; give paths to load your own.
+# `gyrovib.load()` with no argument gives the nine bundled sensors and fourteen
+# profiles; give paths to load your own, or both: `gyrovib.load("mine.yaml",
+# bundled="sensors")`. Printing the catalogue gives one line.
 
 # %%
 catalog = gyrovib.load()
+print(catalog)
 print([entry.sensor.id for entry in catalog.sensors])
 print([entry.profile.id for entry in catalog.profiles])
 
@@ -47,6 +49,9 @@ margins = selection.pivot(index="profile", columns="sensor", values="margin")
 better = margins.idxmax(axis=1)
 print(margins.round(2))
 print(better.value_counts())
+# The verdict column is `passed` (the JSON's `pass`); `status` says pass, fail or
+# unverified (a datasheet figure that is not published could decide it).
+print(selection.query("not passed")[["sensor", "profile", "status"]].head())
 
 # %% [markdown]
 # ## Plot one DataFrame

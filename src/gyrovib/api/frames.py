@@ -156,10 +156,11 @@ def bounds_frame(result: BoundsResult) -> Any:
 def selection_frame(result: SelectionResult) -> Any:
     """``select``: one row per sensor × profile.
 
-    ``pass``, ``status`` (pass, fail, unverified), ``unknown``, ``rms``,
-    ``margin`` and ``checks.<coefficient>.value|bound|pass`` are the JSON's
-    per-profile cell; ``sensor_pass`` and ``sensor_status`` are the sensor's
-    overall ``pass`` and ``status``; ``rate.*`` and ``profile_bounds.*`` are
+    ``passed`` (the JSON's ``pass``: ``df.query("not passed")`` works),
+    ``status`` (pass, fail, unverified), ``unknown``, ``rms``, ``margin`` and
+    ``checks.<coefficient>.value|bound|pass`` are the JSON's per-profile cell;
+    ``sensor_pass`` and ``sensor_status`` are the sensor's overall ``pass`` and
+    ``status``; ``rate.*`` and ``profile_bounds.*`` are
     the profile's entry of the JSON's ``profiles`` list (its bounds for
     ν_sensor = 1).
     """
@@ -174,7 +175,8 @@ def selection_frame(result: SelectionResult) -> Any:
         "profile": [result.profiles[j] for j in p_idx],
         "sensor_pass": np.asarray(result.sensor_pass, dtype=bool)[s_idx],
         "sensor_status": [result.sensor_status(int(i)) for i in s_idx],
-        "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
+        # "passed", not the JSON's "pass": a Python keyword breaks df.query("not pass")
+        "passed": np.asarray(result.passed, dtype=bool).reshape(-1),
         "status": [result.status(int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
         "unknown": [list(result.unknown.get((int(i), int(j)), ()))
                     for i, j in zip(s_idx, p_idx, strict=True)],

@@ -103,10 +103,11 @@ def _spec_rows(result: BoundsResult, j: int) -> list[list[str]]:
     sb = result.spec_bounds
     assert sb is not None
     total = sb.weights[0] * (sb.share_nl[j] > 0) + sb.weights[1] * (sb.share_vre[j] > 0)
-    return [["nonlinearity", fmt(sb.nonlinearity[j]), f"%FS of {'2R' if sb.of == 'span' else 'R'}",
+    return [["nonlinearity", bound_text("nonlinearity", sb.nonlinearity[j]),
+             f"%FS of {'2R' if sb.of == 'span' else 'R'}",
              f"{fmt(sb.share_nl[j], 3)}" if total else "0",
              f"{sb.fit}, {sb.measure}; R = {fmt(sb.range)} {result.unit}"],
-            ["VRE", fmt(sb.vre[j]), f"{result.unit}/g²", fmt(sb.share_vre[j], 3),
+            ["VRE", bound_text("VRE", sb.vre[j]), f"{result.unit}/g²", fmt(sb.share_vre[j], 3),
              "|G_jj| of the datasheet: the VRE to ask for"]]
 
 
@@ -114,7 +115,7 @@ _SPEC_HEAD = ["datasheet figure", "allowable", "unit", "share of Δ*", "read as"
 
 _SPEC_LEGEND = ("Datasheet bounds (docs/model.md section 11): a part of range R whose nonlinearity "
                 "(so read) and VRE are within these meets the budget whatever its polynomial "
-                "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). ∞ = the profile does not excite it. "
+                "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). unbounded = the profile does not excite it. "
                 "For a purchase spec, ask for these two figures. The coefficient allocation "
                 "above has its own VRE bound (share α6 of the additive terms, for a "
                 "coefficient-form sensor's effective VRE |Δ0(6)|/Σ⟨a_j²⟩ beside its other "
@@ -207,6 +208,20 @@ def _which(bounds: Any, j: int, name: str) -> str:
             + f": {binding} binds")
 
 
+#: |A1| < 2 for any rate sensor: its scale factors k1(1 ± A1/2) keep their sign.
+A1_LIMIT = 2.0
+UNBOUNDED = "unbounded"
+
+
+def bound_text(name: str, value: float) -> str:
+    """A coefficient's bound as a table writes it: ``unbounded`` where it constrains
+    nothing (+inf: the coefficient does not act; A1: no |A1| < 2 uses up its share)."""
+    v = float(value)
+    if v == float("inf") or (name == "A1" and v >= A1_LIMIT):
+        return UNBOUNDED
+    return fmt(v)
+
+
 def has_vre(bounds: CoefficientBounds, j: int) -> bool:
     """Whether profile ``j`` has a linear vibration to bound (a finite VRE bound)."""
     return bounds.vre is not None and bool(np.isfinite(bounds.vre[j]))
@@ -219,7 +234,7 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     share = shares(result.allocation, linear=linear, m3=m3, m5=m5)
     unit = table_unit(result)
     converted = _Converted(result)
-    rows = [[name, fmt(in_table_unit(result, name, getattr(result.bounds, name)[j])),
+    rows = [[name, bound_text(name, in_table_unit(result, name, getattr(result.bounds, name)[j])),
              coefficient_unit(name, unit), share[name], _which(converted, j, name)]
             for name in BOUNDED]
     if linear and result.spec_bounds is None:  # with --range: the datasheet VRE alone
@@ -265,8 +280,10 @@ def unit_note(result: Any) -> str:
 
 
 _LEGEND = ("A sensor whose every |coefficient| is at most its bound meets the budget "
-           "(eq. 17) under this allocation: sufficient, not necessary. ∞ = unconstrained "
-           "(the coefficient does not act under this profile). k1 = 1; the sensor's own "
+           "(eq. 17) under this allocation: sufficient, not necessary. unbounded = "
+           "unconstrained (the coefficient does not act under this profile; for A1, no "
+           "|A1| < 2, the most a rate sensor can have, uses up its share). k1 = 1; the "
+           "sensor's own "
            "response is taken as 1 (see `gyrovib select`).")
 _VRE_LEGEND = (" vre bounds the effective vibration rectification |Δ0(6)|/Σ⟨a_j²⟩ of the "
                "linear vibration, per g² (docs/model.md section 8); for a datasheet VRE v "
