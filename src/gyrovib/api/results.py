@@ -136,6 +136,9 @@ class AnalysisResult(_SensorsByProfiles):
     #: (sensors, profiles); NaN on coefficient-form rows; None without spec sensors.
     worst_coefficients: FloatArray | None = None
     rms_bound: FloatArray | None = None
+    #: Per sensor, the datasheet figures a spec-form sensor publishes ("nonlinearity",
+    #: "asymmetry", "vre"); () for a coefficient-form sensor (or no spec sensors).
+    published: tuple[tuple[str, ...], ...] = ()
     #: (sensors, profiles): the saturation reach exceeds the sensor's range (docs/model.md 9).
     saturated: NDArray[np.bool_] | None = None
     #: κ of the saturation reach.

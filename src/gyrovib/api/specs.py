@@ -402,7 +402,13 @@ def analysis_fields(n_s: int, n_p: int, spec: SpecResults | None,
     worst_x[spec.index] = coefficients_in(spec.coefficients, unit)
     bound = np.full((n_s, n_p), np.nan)
     bound[spec.index] = spec.error.rms / units.scale(unit)
-    return {"sources": tuple(sources), "worst_coefficients": worst_x, "rms_bound": bound}
+    published: list[tuple[str, ...]] = [()] * n_s
+    for k, i in enumerate(spec.index.tolist()):
+        published[i] = ("nonlinearity",
+                        *(("asymmetry",) if np.isfinite(spec.figures.asymmetry[k]) else ()),
+                        *(("vre",) if spec.figures.has_vre[k] else ()))
+    return {"sources": tuple(sources), "worst_coefficients": worst_x, "rms_bound": bound,
+            "published": tuple(published)}
 
 
 # ----------------------------------------------------------------- sweep

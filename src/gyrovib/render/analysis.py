@@ -300,6 +300,45 @@ def dominant_term(result: AnalysisResult, i: int, j: int) -> str:
     return names[k] if magnitudes[k] > 0 else ""
 
 
+#: Which worst-polynomial coefficients make each dominant term.
+_MADE_OF = {"A1": ("A1",), "k2": ("k2",), "k4": ("k4",), "k3·M3": ("k3",), "k5·M5": ("k5",),
+            "Δ(1)·Ω": ("k3", "k5"), "Δ(2)·Ω²": ("k4",), "Δ(3)·Ω³": ("k5",)}
+_WORST = ("A1", "k2", "k3", "k4", "k5")
+
+
+def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:
+    """Why a datasheet part's worst case is what it is, in one line (None for other rows).
+
+    The coefficients of the worst polynomial behind its dominant term (e.g.
+    ``A1 = -0.14``), and the datasheet figure that would shrink the error most:
+    a smaller VRE where the g² term dominates, an asymmetry figure where the
+    asymmetry dominates and none is published, otherwise a smaller
+    nonlinearity (the envelope's worst case is proportional to it).
+    """
+    if result.source(i) != "specs" or result.worst_coefficients is None:
+        return None
+    term = dominant_term(result, i, j)
+    if not term:
+        return None
+    from gyrovib.api.reasons import coefficient_unit
+
+    x = dict(zip(_WORST, (float(v) for v in result.worst_coefficients[i, j]), strict=True))
+    shown = [f"{name} = {fmt(x[name], 2)}"
+             + (f" (a {fmt(abs(x[name]) * 100, 2)} % scale-factor asymmetry)" if name == "A1"
+                else f" {coefficient_unit(name, result.unit)}")
+             for name in _MADE_OF.get(term, ())]
+    published = result.published[i] if result.published else ()
+    if term == "g²":
+        ask = "a smaller VRE"
+    elif term == "A1" and "asymmetry" not in published:
+        ask = "an asymmetry figure (a published bound on |A1| cuts the worst case)"
+    else:
+        ask = "a smaller nonlinearity (the worst case is proportional to it)"
+    what = f"worst case {', '.join(shown)}, its {term} term dominating" if shown else (
+        f"worst case dominated by its {term} term")
+    return f"{result.sensors[i]}: {what}; the datasheet figure that would shrink it most: {ask}"
+
+
 def rate_in_table_unit(result: AnalysisResult, value: float) -> tuple[float, str]:
     """A vehicle rate of ``result`` (in its :attr:`unit`) in the catalogue's rate unit."""
     from gyrovib import units
@@ -409,6 +448,10 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
                           *([fmt(stderr[i][j], 2)] if stderr is not None else []),
                           numbers[-1])
         out.append(table)
+        for i in range(len(result.sensors)):
+            why = worst_case_text(result, i, j)
+            if why is not None:
+                out.append(Text(why, style="dim"))
     legend = (f"Errors in {result.unit}. Δ0 = additive terms of eq. (14)/(15); Δ_VA their "
               "sum; Δ_VM = Δ(1)·Ω + Δ(2)·Ω² + Δ(3)·Ω³; Δ_V = Δ_VA + Δ_VM (eq. 13); "
               "Δ_V(RMS) of eq. (16); below 1e-12 of its row's largest a value is shown as 0.")

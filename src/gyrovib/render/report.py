@@ -401,6 +401,13 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
     rate = ", ".join(fmt(float(v) * to_rate, 4) for v in s.rates[j])
     title = spectrum.profile + (f" — {spectrum.name}" if spectrum.name else "")
     notes = f'<p class="notes">{_e(spectrum.notes)}</p>' if spectrum.notes else ""
+    from gyrovib.render.analysis import worst_case_text
+
+    why = [w for w in (worst_case_text(study.analysis, i, j)
+                       for i in range(len(study.analysis.sensors))) if w]
+    if why:  # the datasheet parts' worst cases, explained
+        notes += ('<ul class="small worst">' + "".join(f"<li>{_e(w)}</li>" for w in why)
+                  + "</ul>")
     figures = [
         _figure(margins_chart(study, j)),
         _figure(breakdown_chart(study, j, squares, names),
