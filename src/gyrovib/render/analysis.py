@@ -245,13 +245,13 @@ def to_markdown(result: AnalysisResult) -> str:
             "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []), "Δ_V(RMS)",
             "saturated"]
     rows: list[list[str]] = []
-    notes: list[str] = []
+    groups = grouped_warnings(result)
+    number_of = {message: k for k, (message, _) in enumerate(groups, 1)}
+    notes = [f"{message} ({cells_text(result, cells)})" for message, cells in groups]
     for i, j in _rows(result):
         mark = ""
         if (i, j) in result.warnings:
-            notes.extend(f"{result.sensors[i]} / {result.profiles[j]}: {w}"
-                         for w in result.warnings[(i, j)])
-            mark = f" ⚠{len(notes)}"
+            mark = " ⚠" + ",".join(str(number_of[w]) for w in result.warnings[(i, j)])
         rows.append([result.sensors[i] + mark, result.profiles[j], fmt(result.rates[j, 2]),
                      *(fmt(x) for x in _terms(result, i, j, odd)), fmt(e.additive[i, j]),
                      fmt(e.multiplicative[i, j]), fmt(e.total[i, j]),
