@@ -34,7 +34,7 @@ print([entry.profile.id for entry in catalog.profiles])
 # %% [markdown]
 # ## Compare two parts
 # Two MEMS gyroscopes under every profile, in deg/h: `to_frame()` gives one
-# row per sensor × profile, columns named as in `gyrovib analyze --format json`.
+# row per sensor × profile, columns named as in `gyrovib analyze --format csv`.
 
 # %%
 parts = ["adxrs645", "sch16t"]
@@ -62,7 +62,7 @@ sweep = gyrovib.sweep(catalog, rates=(-100, 100), points=201, sensors=parts,
                       profiles="flat-random-hover").to_frame()
 figure, axes = plt.subplots(figsize=(7, 4))
 for sensor, rows in sweep.groupby("sensor"):
-    axes.semilogy(rows["rate"], rows["exact.rms"], label=sensor)
+    axes.semilogy(rows["rate_x3"], rows["exact_rms"], label=sensor)
 axes.set_xlabel("Ω_K3 (deg/s)")
 axes.set_ylabel("Δ_V(RMS) (deg/s)")
 axes.set_title("flat-random-hover: error over the carrier rate")

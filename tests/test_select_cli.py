@@ -256,7 +256,8 @@ def test_csv_and_markdown(catalog: str) -> None:
     rows = list(csv.DictReader(io.StringIO(text)))
     assert len(rows) == 6
     bad_tone = next(r for r in rows if r["sensor"] == "bad" and r["profile"] == "tone")
-    assert bad_tone["pass"] == "False" and bad_tone["pass_k2"] == "False"
+    # the verdict column is "passed" (as in the DataFrame; "pass" is a Python keyword)
+    assert bad_tone["passed"] == "False" and bad_tone["pass_k2"] == "False"
     assert float(bad_tone["value_k2"]) == 3e-3
     md = run("select", catalog, "--budget", "0.01", "--format", "markdown").stdout
     assert md.count("**FAIL**") == 2 and md.count("**PASS**") == 1

@@ -136,7 +136,7 @@ def test_select_mixes_the_coefficient_vre_check_and_the_datasheet_checks(
     assert result.limits[0].name == "vre"
     frame = result.to_frame()
     assert frame["reason"].iloc[0] == cell["reason"]
-    assert list(frame["checks.vre.pass"]) == [False, spec_cell["checks"]["vre"]["pass"]]
+    assert list(frame["pass_vre"]) == [False, spec_cell["checks"]["vre"]["pass"]]
     # it passes on its datasheet, but lin's angular x1, x2 are correlated with x3 (the
     # default coherence 1): m31, m32, not on a datasheet, can decide it -> unverified
     assert (spec_cell["status"], spec_cell["unknown"]) == ("unverified", ["m31", "m32"])

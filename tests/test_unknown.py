@@ -123,7 +123,7 @@ def test_table_junit_csv_and_github_show_it(catalog: str) -> None:
     head = csv[0].split(",")
     row = dict(zip(head, next(r for r in csv if r.startswith("no-vre")).split(","),
                    strict=False))
-    assert (row["pass"], row["status"], row["unknown"]) == ("False", "unverified", "vre")
+    assert (row["passed"], row["status"], row["unknown"]) == ("False", "unverified", "vre")
     github = invoke(*args, "--format", "github").stdout
     assert "no-vre is unverified" in github and "Ask the vendor: VRE" in github
 

@@ -292,7 +292,7 @@ def to_csv(result: SelectionResult) -> str:
     their checks (``value_nonlinearity``… in %FS, ``value_vre``… per g²; empty on
     coefficient rows, whose coefficient columns are empty on spec rows).
     """
-    head = ["sensor", "profile", "pass", "sensor_pass", "rms", "margin"]
+    head = ["sensor", "profile", "passed", "sensor_pass", "rms", "margin"]
     for name in BOUNDED:
         head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
     with_specs = "specs" in result.sources
