@@ -40,3 +40,4 @@ def test_tables_and_report_show_it(tmp_path) -> None:
     invoke("report", "--sensor", "adis16460", "--profile", "uav-blade-pass-tone",
            "--budget", "10deg/h", "-o", str(target))
     assert "adis16460: worst case A1 = " in target.read_text(encoding="utf-8")
+

@@ -65,10 +65,10 @@ td.warn { outline: 2px solid #e0a800; outline-offset: -2px; }
   gap: 10px 18px; }
 figure { margin: 0; } figcaption { font-size: 12px; color: var(--muted); }
 svg.chart { width: 100%; height: auto; font-family: inherit; background: #fff; }
-svg .ct { font-size: 13px; font-weight: 600; } svg .tx { font-size: 10px; text-anchor: middle; }
-svg .ty { font-size: 10px; text-anchor: end; } svg .xl, svg .yl { font-size: 11px;
-  text-anchor: middle; } svg .lg { font-size: 11px; } svg .ml { font-size: 10px; fill: #b00; }
-svg .mr { font-size: 10px; fill: #b00; text-anchor: end; }
+svg .ct { font-size: 13px; font-weight: 600; } svg .tx { font-size: 11px; text-anchor: middle; }
+svg .ty { font-size: 11px; text-anchor: end; } svg .xl, svg .yl { font-size: 12px;
+  text-anchor: middle; } svg .lg { font-size: 11px; } svg .ml { font-size: 11px; fill: #b00; }
+svg .mr { font-size: 11px; fill: #b00; text-anchor: end; }
 svg .frame { fill: none; stroke: #999; } svg .grid { stroke: #e8e8e8; }
 svg .ref { stroke: #b00; stroke-width: 1.5; stroke-dasharray: 5 3; }
 svg .tone { stroke: #555; stroke-width: 1.2; stroke-dasharray: 2 2; }
@@ -275,9 +275,10 @@ def _warnings(study: TradeStudy) -> str:
     a = study.analysis
     if not a.warnings:
         return ""
-    items = "".join(f"<li><b>{_e(a.sensors[i])}</b> under <b>{_e(a.profiles[j])}</b>: "
-                    f"{_e(' '.join(messages))}</li>"
-                    for (i, j), messages in sorted(a.warnings.items()))
+    from gyrovib.render.analysis import cells_text, grouped_warnings
+
+    items = "".join(f"<li>{_e(message)} <b>({_e(cells_text(a, cells))})</b></li>"
+                    for message, cells in grouped_warnings(a))
     return ("<h3>Warnings</h3><p>Marked ⚠ in the matrix: a note below applies to that cell "
             "(the sensor saturates, so the static model does not hold there, or an "
             f"assumption was made for a datasheet sensor).</p><ul class=\"warnings\">{items}</ul>")
@@ -342,22 +343,49 @@ def sweep_chart(study: TradeStudy, j: int) -> str:
 
 def spectrum_charts(spectrum: Spectrum, unit: str) -> list[str]:
     charts = []
-    if spectrum.psd or spectrum.tones:
+    # phase-locked orders (docs/model.md section 10) are lines at n·f0, like tones
+    tones = [*spectrum.tones,
+             *((n * f0, amp) for f0, orders in spectrum.locked for n, amp in orders)]
+    if spectrum.psd or tones:
         series = [Series(f"PSD {axis}", list(f), list(g), color(k), dash(k))
                   for k, (axis, f, g) in enumerate(spectrum.psd)]
         markers = [Marker(f"{fmt(freq, 3)} Hz, a3 = {fmt(amp[2], 3)}", x=freq, style="tone",
                           row=k % 3)
-                   for k, (freq, amp) in enumerate(spectrum.tones)]
+                   for k, (freq, amp) in enumerate(tones)]
         if not series:  # tones only: their x3 amplitudes on the y axis, as dots
             nan = float("nan")
             series = [Series("tone amplitude x3",
-                             [v for t in spectrum.tones for v in (t[0], nan)],
-                             [v for t in spectrum.tones for v in (t[1][2], nan)], color(0))]
+                             [v for t in tones for v in (t[0], nan)],
+                             [v for t in tones for v in (t[1][2], nan)], color(0))]
             ylabel = f"amplitude ({unit})"
         else:
             ylabel = f"PSD ({unit})²/Hz"
         charts.append(LineChart(f"Spectrum: {spectrum.profile}", "frequency (Hz)", ylabel,
                                 series, xlog=True, ylog=True, markers=markers).svg())
+    if spectrum.rms is not None and not spectrum.psd:  # random given as RMS: no spectrum
+        charts.append(bar_chart(f"Spectrum: {spectrum.profile} (random given as RMS per axis)",
+                                f"σ ({unit}, log)", ["x1", "x2", "x3"], list(spectrum.rms),
+                                [color(k) for k in range(3)]))
+    if spectrum.linear_psd or spectrum.linear_tones:  # the linear vibration, own axes
+        lu = spectrum.linear_unit
+        series = [Series(f"PSD {axis}", list(f), list(g), color(k), dash(k))
+                  for k, (axis, f, g) in enumerate(spectrum.linear_psd)]
+        markers = [Marker(f"{fmt(freq, 3)} Hz, a3 = {fmt(amp[2], 3)} {lu}", x=freq,
+                          style="tone", row=k % 3)
+                   for k, (freq, amp) in enumerate(spectrum.linear_tones)]
+        if series:
+            charts.append(LineChart(f"Linear vibration: {spectrum.profile}", "frequency (Hz)",
+                                    f"PSD ({lu})²/Hz", series, xlog=True, ylog=True,
+                                    markers=markers).svg())
+        else:
+            nan = float("nan")
+            dots = [Series("tone amplitude a3",
+                           [v for t in spectrum.linear_tones for v in (t[0], nan)],
+                           [v for t in spectrum.linear_tones for v in (t[1][2], nan)],
+                           color(0))]
+            charts.append(LineChart(f"Linear vibration: {spectrum.profile}", "frequency (Hz)",
+                                    f"amplitude ({lu})", dots, xlog=True, ylog=True,
+                                    markers=markers).svg())
     if spectrum.mount is not None:
         f, nu = spectrum.mount
         charts.append(LineChart(f"Isolation mount ν(f): {spectrum.profile}", "frequency (Hz)",
@@ -379,6 +407,11 @@ def _spectrum_text(spectrum: Spectrum, unit: str) -> str:
         parts.append("random PSD on " + ", ".join(a for a, _, _ in spectrum.psd))
     if spectrum.mount is not None:
         parts.append("isolation mount")
+    if spectrum.locked:
+        parts.append("phase-locked harmonics: " + "; ".join(
+            f"f0 = {fmt(f0, 4)} Hz, orders " + ", ".join(
+                f"{n} (a3 = {fmt(amp[2], 3)} {unit})" for n, amp in orders)
+            for f0, orders in spectrum.locked))
     if spectrum.linear_rms is not None:
         parts.append("linear vibration, RMS at the sensor ("
                      + ", ".join(fmt(v, 3) for v in spectrum.linear_rms) + ") g")
