@@ -27,3 +27,21 @@ def test_the_report_describes_and_plots_every_profile(tmp_path) -> None:
     warnings = html.split('<ul class="warnings">')[1].split("</ul>")[0]
     items = warnings.split("<li>")[1:]
     assert len(items) == len(set(items)) <= 5
+
+
+def test_the_matrix_splits_to_fit_a_printed_page(tmp_path) -> None:
+    # 14 profiles: two pass/fail tables of at most 7 profile columns, each with the
+    # sensor and overall columns, on A4 landscape pages
+    target = tmp_path / "all.html"
+    invoke("report", "--budget", "10deg/h", "-o", str(target))
+    html = target.read_text(encoding="utf-8")
+    assert "@page { size: A4 landscape;" in html
+    matrices = html.split('<table class="matrix">')[1:]
+    assert len(matrices) == 2
+    profiles = []
+    for table in matrices:
+        head = table.split("</thead>")[0]
+        cells = [c.split("</th>")[0] for c in head.split("<th>")[1:]]
+        assert cells[:2] == ["sensor", "overall"] and len(cells) - 2 <= 7
+        profiles += cells[2:]
+    assert len(profiles) == 14 == len(set(profiles))

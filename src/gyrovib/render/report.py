@@ -33,6 +33,8 @@ from gyrovib.render.select import (
 from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
 
 PASS_FILL, FAIL_FILL, OPEN_FILL = "#2ca02c", "#d62728", "#7b5ea7"
+#: Profile columns per pass/fail table: more are split into further tables.
+MATRIX_PROFILES = 7
 #: Words and matrix classes of each status (unverified: its own colour, never "✓ ∞").
 STATUS_TEXT = {"pass": "✓ pass", "fail": "✗ fail", "unverified": "? unverified"}
 FORM_TAGS = {"datasheet": "datasheet (spec form): worst case",
@@ -77,7 +79,7 @@ nav ol { columns: 3; font-size: 13px; margin: 4px 0; }
 .scroll { overflow-x: auto; }
 table.matrix { font-size: 12px; } table.matrix th, table.matrix td { padding: 2px 4px; }
 ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-style: none; }
-@page { size: A4; margin: 12mm; }
+@page { size: A4 landscape; margin: 10mm; }
 @media print {
   body { max-width: none; padding: 0; font-size: 11px; }
   nav { display: none; }
@@ -86,6 +88,8 @@ ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-
   h2 { break-after: avoid; } h3 { break-after: avoid; }
   figure, table, .profile-head { break-inside: avoid; }
   .charts { grid-template-columns: 1fr 1fr; }
+  table.matrix { font-size: 10px; width: 100%; table-layout: fixed; }
+  table.matrix td, table.matrix th { overflow-wrap: anywhere; }
   section.profile { break-before: page; }
 }
 """
@@ -216,8 +220,18 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
             )
         rows.append(cells)
     # many profiles: a compact table that scrolls rather than widening the page
-    table = _table(head, rows, raw=True).replace("<table>", '<table class="matrix">', 1)
-    return f'<div class="scroll">{table}</div>'
+    # at most MATRIX_PROFILES profile columns per table, so that each fits a printed
+    # A4 landscape page: more profiles make more tables, the sensor columns repeated
+    tables = []
+    n_p = len(s.profiles)
+    for start in range(0, max(n_p, 1), MATRIX_PROFILES):
+        stop = min(start + MATRIX_PROFILES, n_p)
+        part_head = [*head[:2], *head[2 + start:2 + stop]]
+        part_rows = [[*row[:2], *row[2 + start:2 + stop]] for row in rows]
+        table = _table(part_head, part_rows, raw=True).replace(
+            "<table>", '<table class="matrix">', 1)
+        tables.append(f'<div class="scroll">{table}</div>')
+    return "".join(tables)
 
 
 def _tip(notes: Sequence[str]) -> str:
