@@ -45,3 +45,13 @@ def test_the_matrix_splits_to_fit_a_printed_page(tmp_path) -> None:
         assert cells[:2] == ["sensor", "overall"] and len(cells) - 2 <= 7
         profiles += cells[2:]
     assert len(profiles) == 14 == len(set(profiles))
+
+
+def test_every_term_has_its_own_colour() -> None:
+    # A1 and q3·Ω³ shared a colour (11 terms, 10 colours)
+    from gyrovib.render.report import term_names
+    from gyrovib.render.svg import color
+
+    names = term_names(linear=True, locked=True)
+    assert len(names) == 11
+    assert len({color(k) for k in range(len(names))}) == len(names)
