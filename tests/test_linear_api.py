@@ -386,16 +386,16 @@ def test_sweep_carries_the_g2_term(tmp_path: Path) -> None:
 
 def test_bundled_mems_parts_show_the_g2_term_under_the_new_profiles() -> None:
     # ADIS16460 vre 4e-4 deg/s/g² (data sheet) under its own test condition, 5 g rms on
-    # each of the three axes: Δ0(6) = 4e-4·3·25 = 0.03 deg/s (108 deg/h);
-    # ADXRS645 vre 6e-4 under 25 g rms per axis: 6e-4·3·625 = 1.125 deg/s.
+    # the tested axis, as the data sheet's test: Δ0(6) = 4e-4·25 = 0.01 deg/s (36 deg/h);
+    # ADXRS645 vre 6e-4 under 25 g rms on the tested axis: 6e-4·625 = 0.375 deg/s.
     # The PSD levels are rounded to 6 digits (1.26263e-2, 0.126263): rel 1e-5.
     result = analyze(load(), sensors=["adis16460", "adxrs645", "generic-tactical-fog"],
                      profiles=["adis16460-vre-test", "adxrs645-vre-test",
                                "hg4930-operating-random"])
     g2 = dict(zip(((s, p) for s in result.sensors for p in result.profiles),
                   result.error.extra_terms[..., 0].ravel().tolist(), strict=True))
-    assert g2[("adis16460", "adis16460-vre-test")] == pytest.approx(0.03, rel=1e-5)
-    assert g2[("adxrs645", "adxrs645-vre-test")] == pytest.approx(1.125, rel=1e-5)
+    assert g2[("adis16460", "adis16460-vre-test")] == pytest.approx(0.01, rel=1e-5)
+    assert g2[("adxrs645", "adxrs645-vre-test")] == pytest.approx(0.375, rel=1e-5)
     # HG4930 operating PSD 0.003 g²/Hz over 10–2000 Hz: σ² = 5.97 g² per axis
     assert g2[("adis16460", "hg4930-operating-random")] == pytest.approx(4e-4 * 3 * 5.97,
                                                                          rel=1e-12)

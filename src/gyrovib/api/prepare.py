@@ -78,7 +78,7 @@ def input_response(entry: SensorEntry) -> tuple[tuple[float, float], ...] | None
     """The sensor's response where it acts before the nonlinearity, or None.
 
     Only ``response: {at: input, ...}`` shapes the vibration the nonlinear
-    element sees (MODEL.md section 9); a bare table or ``at: output`` is an
+    element sees (docs/model.md section 9); a bare table or ``at: output`` is an
     output filter, applied after the error is rectified: it earns no credit.
     """
     s = entry.sensor
@@ -115,7 +115,7 @@ def response_groups(entries: Sequence[SensorEntry]) -> list[tuple[Table | None, 
 
 def _gain_tables(entry: ProfileEntry, response: Table | None) -> list[Table]:
     """The ν(f) tables between the vibration and the nonlinear element: the profile's
-    mount, then the sensor's response where it acts at the input (MODEL.md section 9)."""
+    mount, then the sensor's response where it acts at the input (docs/model.md section 9)."""
     tables = [] if entry.profile.mount is None else [as_table(entry.profile.mount)]
     return tables if response is None else [*tables, response]
 
@@ -147,7 +147,8 @@ def profile_vibration(entry: ProfileEntry, response: Table | None = None) -> Vib
 
 
 def profile_locked(entry: ProfileEntry, response: Table | None = None) -> tuple[LockedGroup, ...]:
-    """The profile's phase-locked harmonic groups at the sensor, in deg/s (MODEL.md section 10).
+    """The profile's phase-locked harmonic groups at the sensor, in deg/s (docs/model.md
+    section 10).
 
     Each order n of a group is scaled by the mount's and the (input-side)
     response's ν(n·f0), as an independent tone at that frequency would be;
@@ -174,7 +175,7 @@ def profile_locked(entry: ProfileEntry, response: Table | None = None) -> tuple[
 
 def vibration_swing(vibration: Vibration, locked: Sequence[LockedGroup] = (),
                     peak_factor: float = DEFAULT_PEAK_FACTOR) -> float:
-    """How far the vibration drives x3 from Ω_K3 (MODEL.md section 9), in its rate unit.
+    """How far the vibration drives x3 from Ω_K3 (docs/model.md section 9), in its rate unit.
 
     Σ tone amplitudes + Σ true peaks of the locked groups + κ·σ3; the
     saturation reach is |Ω_K3| plus this.
@@ -260,7 +261,7 @@ class Prepared(Frozen):
     ``coefficients`` (sensors, 11) in deg/s powers; ``rates`` Ω_K per
     profile, shape (profiles, 3); ``rate_given``: a rate override replaced
     the profiles' own. ``linear``: each profile's linear vibration in g (None
-    where it has none; MODEL.md section 8); ``g2``: the sensors' G_jk in deg/s
+    where it has none; docs/model.md section 8); ``g2``: the sensors' G_jk in deg/s
     per g², shape (sensors, 6).
     """
 

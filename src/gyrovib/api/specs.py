@@ -1,4 +1,4 @@
-"""Spec-form (datasheet) sensors: their worst case over the envelope (MODEL.md section 11).
+"""Spec-form (datasheet) sensors: their worst case over the envelope (docs/model.md section 11).
 
 A sensor written with ``specs:`` (range, nonlinearity, optional asymmetry and
 VRE) has no single conversion function. The commands route it here: its
@@ -365,15 +365,28 @@ def place_analysis(parts: dict[str, FloatArray], spec: SpecResults, *, numeric: 
         array[spec.index] = getattr(spec.error, name)
 
 
+NO_VRE_NOTE = ("spec-form sensor: the datasheet publishes no VRE, so the g² term of this "
+               "profile's linear vibration is left out (the figure is unknown, not zero: "
+               "`select` calls such a part unverified)")
+
+
 def with_cross_axis(warnings: dict[tuple[int, int], tuple[str, ...]],
-                    spec: SpecResults | None) -> dict[tuple[int, int], tuple[str, ...]]:
-    """``warnings`` plus the m31 = m32 = 0 note for spec sensors under cross-axis profiles."""
+                    spec: SpecResults | None,
+                    linear: Sequence[bool] = ()) -> dict[tuple[int, int], tuple[str, ...]]:
+    """``warnings`` plus the m31 = m32 = 0 note for spec sensors under cross-axis profiles,
+    and the no-VRE note for those without a VRE spec under the profiles with linear
+    vibration (``linear``, per profile)."""
     if spec is None:
         return warnings
     cross = spec.cross_axis.reshape(spec.cross_axis.shape[0], -1).any(axis=1)
-    for i in spec.index.tolist():
+    for k, i in enumerate(spec.index.tolist()):
         for j in np.nonzero(cross)[0].tolist():
             warnings[(int(i), int(j))] = (*warnings.get((int(i), int(j)), ()), CROSS_AXIS_NOTE)
+        if spec.figures.has_vre[k]:
+            continue
+        for j, shaken in enumerate(linear):
+            if shaken:
+                warnings[(int(i), j)] = (*warnings.get((int(i), j), ()), NO_VRE_NOTE)
     return warnings
 
 
@@ -389,7 +402,13 @@ def analysis_fields(n_s: int, n_p: int, spec: SpecResults | None,
     worst_x[spec.index] = coefficients_in(spec.coefficients, unit)
     bound = np.full((n_s, n_p), np.nan)
     bound[spec.index] = spec.error.rms / units.scale(unit)
-    return {"sources": tuple(sources), "worst_coefficients": worst_x, "rms_bound": bound}
+    published: list[tuple[str, ...]] = [()] * n_s
+    for k, i in enumerate(spec.index.tolist()):
+        published[i] = ("nonlinearity",
+                        *(("asymmetry",) if np.isfinite(spec.figures.asymmetry[k]) else ()),
+                        *(("vre",) if spec.figures.has_vre[k] else ()))
+    return {"sources": tuple(sources), "worst_coefficients": worst_x, "rms_bound": bound,
+            "published": tuple(published)}
 
 
 # ----------------------------------------------------------------- sweep

@@ -15,6 +15,7 @@ from gyrovib.cli.options import (
     selection_options,
 )
 from gyrovib.cli.recording import recording_options
+from gyrovib.cli.spec_options import assume_unknown_option
 
 DEFAULT_OUTPUT = "report.html"
 
@@ -24,10 +25,11 @@ DEFAULT_OUTPUT = "report.html"
 @selection_options
 @budget_options
 @peak_factor_option
-@click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
-              show_default=True,
+@click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
+              default="bounds", show_default=True,
               help="What a pass means: every coefficient within its bound, Δ_V(RMS) ≤ budget "
-                   "(eq. 17), or both.")
+                   "(eq. 17), |Δ_V| ≤ budget (worst), or bounds and rms (both).")
+@assume_unknown_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="The requirement the report states as met or not: at least one (any) or "
                    "every (all) sensor passes under every chosen profile.")
@@ -43,8 +45,8 @@ DEFAULT_OUTPUT = "report.html"
 @recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
-           peak_factor: float, criterion: str, require: str, rate_range: str | None,
-           output: str, recording: str | None, **rec: Any) -> None:
+           peak_factor: float, criterion: str, assume_unknown: str | None, require: str,
+           rate_range: str | None, output: str, recording: str | None, **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -74,7 +76,8 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
                                                       split["unit"], rec)
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
-        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
+        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,
+        assume_unknown=assume_unknown or "none")
     write_output(to_html(result, section), output)
     if output not in ("-", ""):
         say(f"gyrovib: wrote {output}")

@@ -23,7 +23,11 @@ from gyrovib.cli.options import (
     peak_factor_option,
     selection_options,
 )
-from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
+from gyrovib.cli.spec_options import (
+    assume_unknown_option,
+    parse_spec_weights,
+    spec_weights_option,
+)
 
 
 @click.command()
@@ -40,6 +44,7 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
                    "worst: |Δ_V| ≤ budget (a datasheet sensor over its envelope); both: "
                    "bounds and rms. A saturating sensor fails whatever the criterion.")
 @spec_weights_option
+@assume_unknown_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
@@ -49,7 +54,8 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
-           spec_weights: str | None, require: str, fmt: str, output: str | None) -> None:
+           spec_weights: str | None, assume_unknown: str | None, require: str, fmt: str,
+           output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its frequency response where it acts at its
@@ -58,7 +64,9 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     budget (eq. 17). A datasheet (spec-form) sensor is checked by its
     nonlinearity and VRE against the allowable figures for its range, and its
     margin is that of its worst case. A sensor that saturates under a profile
-    fails there.
+    fails there. A datasheet part whose verdict hangs on a figure its datasheet
+    does not publish (the VRE under linear vibration, m31/m32 under cross-axis
+    vibration) is unverified, and does not count as passing.
     Exit status 1 when the --require condition is not met.
     """
     from gyrovib import api
@@ -71,7 +79,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     split = budget_arguments(budget, unit, rate, allocation)
     result = api.select(catalog, sensors=sensors, profiles=profiles, method=method, **split,
                         criterion=criterion, require=require,
-                        spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor)
+                        spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor,
+                        assume_unknown=assume_unknown or "none")
     if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
         note_slow_table(2 * len(result.sensors))
         text = render.to_table(result, color=use_color(output), width=page_width(output),

@@ -1,10 +1,10 @@
-"""Datasheet sensors: the worst vibration error over their envelope (MODEL.md section 11).
+"""Datasheet sensors: the worst vibration error over their envelope (docs/model.md section 11).
 
 A spec-form sensor (range R, nonlinearity limit b, fit, measure, optional
 asymmetry spec |A1| ≤ a_max, optional VRE spec v) stands for every conversion
 function p(ω) = ½A1|ω| + k2ω² + k3ω³ + k4ω⁴ + k5ω⁵ whose residual from its
 reference line stays within b on [−R, R]. The vibration enters only through
-its multipliers (MODEL.md sections 4 and 10, k1 = 1): with x = (A1, k2…k5),
+its multipliers (docs/model.md sections 4 and 10, k1 = 1): with x = (A1, k2…k5),
 
     Δ_V(Ω) = cᵀx + Σ_jj G_jj⟨a_j²⟩,
     c = (g_A, M2, M3 + 3M2Ω, M4 + 4M3Ω + 6M2Ω², M5 + 5M4Ω + 10M3Ω² + 10M2Ω³)
@@ -48,7 +48,7 @@ def term_functionals(g_a: ArrayLike, m2: ArrayLike, m3: ArrayLike, m4: ArrayLike
     """The eight terms of Δ_V as linear functionals of x, shape (..., 8, 5).
 
     Row t, dotted with x = (A1, k2, k3, k4, k5), gives term TERMS[t]
-    (MODEL.md sections 4 and 10): ½A1·E(Ω) = A1·g_A, k2·M2, k3·M3, k4·M4,
+    (docs/model.md sections 4 and 10): ½A1·E(Ω) = A1·g_A, k2·M2, k3·M3, k4·M4,
     k5·M5, Δ(1)·Ω = (3k3M2 + 4k4M3 + 5k5M4)·Ω, Δ(2)·Ω² = (6k4M2 + 10k5M3)·Ω²,
     Δ(3)·Ω³ = 10k5M2·Ω³. Inputs broadcast together (profiles, or profiles ×
     rates); M_n in rate^n, g_A and Ω in rate. Their sum over rows is c.
@@ -176,7 +176,7 @@ class WorstCase(Frozen):
     ``line``: its reference line (intercept rate, slope 1), (N, P, 2);
     ``terms``: the per-term maxima max|term| over the envelope for TERMS and
     then the g² term, rate, (N, P, 9); ``rms_bound``: √(Σ terms²), rate,
-    (N, P) (MODEL.md section 11, eq. (16) per term); ``gap``: relative
+    (N, P) (docs/model.md section 11, eq. (16) per term); ``gap``: relative
     distance between the last grid optimum and ``nonlinearity`` (≤ 1e-7
     when the refinement converged; 0 for rms).
     """
@@ -196,7 +196,7 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
                measure: str | Sequence[str] = "max",
                asymmetry: ArrayLike | None = None,
                vre: ArrayLike | None = None) -> WorstCase:
-    """Worst |Δ_V| over each sensor's datasheet envelope (MODEL.md section 11).
+    """Worst |Δ_V| over each sensor's datasheet envelope (docs/model.md section 11).
 
     terms: (P, 8, 5) from :func:`term_functionals` (one row per profile or
     profile-rate); g2: (P,) S = Σ_j⟨a_j²⟩ in g². Per sensor (N,): range_ R
@@ -285,7 +285,7 @@ class SpecBounds(Frozen):
 def spec_bounds(budget: float, terms: ArrayLike, g2: ArrayLike, range_: float,
                 fit: str = "least-squares", measure: str = "max", of: str = "range",
                 weights: tuple[float, float] = (1.0, 1.0)) -> SpecBounds:
-    """NL_max = w_NL·Δ*/W(1) and VRE_max = w_V·Δ*/S (MODEL.md section 11).
+    """NL_max = w_NL·Δ*/W(1) and VRE_max = w_V·Δ*/S (docs/model.md section 11).
 
     budget Δ* (rate); terms (P, 8, 5) and g2 (P,) as in :func:`worst_case`;
     range_ R (rate). Δ* is split linearly between the envelope and the g²

@@ -1,4 +1,4 @@
-"""Phase-locked harmonics of one source (MODEL.md section 10).
+"""Phase-locked harmonics of one source (docs/model.md section 10).
 
 A locked group is ``x_i(θ) = Σ_n a_ni·sin(n·θ + φ_ni)`` per axis, θ = 2π·f0·t,
 periodic in θ with period 2π. Its phasors ``p_ni = a_ni·exp(j·φ_ni)`` (rate

@@ -1,4 +1,4 @@
-"""``phase: worst``: the worst case over the unknown phases of locked harmonics (MODEL.md 10).
+"""``phase: worst``: the worst case over the unknown phases of locked harmonics (docs/model.md 10).
 
 An order whose phase is unknown gets a common offset ψ_n on every axis
 (its per-axis phases keep their differences). The overall time origin is

@@ -217,7 +217,7 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
     """``E(Ω) = <|Ω + x3|> − |Ω|`` for tones of ``amplitudes`` plus Gaussian ``sigma``.
 
     ``omega`` any shape (returned flattened, at least 1-d), ``amplitudes`` (K,),
-    ``sigma`` ≥ 0, all in the same rate unit (MODEL.md section 4).
+    ``sigma`` ≥ 0, all in the same rate unit (docs/model.md section 4).
 
     * no tone, or one tone alone: the closed forms (folded normal, arcsine);
     * one tone on a Gaussian part, or two or three tones alone: the phase mean

@@ -57,7 +57,7 @@ def sweep(
     the exact method's worst polynomial at each rate.
     :attr:`SweepResult.saturated` flags the rates where a sensor saturates
     (|Ω_K3| + the vibration's swing at its nonlinear element, κ =
-    ``peak_factor``, above its range; MODEL.md section 9).
+    ``peak_factor``, above its range; docs/model.md section 9).
     """
     unit = units.canonical_unit(unit)
     omega = np.asarray(rates, dtype=float).reshape(-1)
