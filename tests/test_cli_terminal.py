@@ -300,7 +300,7 @@ def test_ascii_stream_gets_an_ascii_table(encoding: str) -> None:
     assert re.search(r"\| +x [0-9][0-9.e+-]* +\|", marks.stdout)  # ✗ of a failing cell
     assert re.search(r"\| +v [0-9][0-9.e+-]* +\|", marks.stdout)  # ✓ of a passing one
     # adis16460 (its datasheet range ±100 deg/s) saturates under manoeuvre-saturation
-    # (Ω_K3 = 96 deg/s + 3σ3 > 100 deg/s, MODEL.md section 9): x SAT, in ASCII too
+    # (Ω_K3 = 96 deg/s + 3σ3 > 100 deg/s, docs/model.md section 9): x SAT, in ASCII too
     assert re.search(r"\| +x SAT ", marks.stdout)
     csv = gyrovib("analyze", "--format", "markdown", env=clean_env(PYTHONIOENCODING="ascii"))
     assert csv.returncode == 0 and csv.stdout.isascii() and "Delta_V" in csv.stdout

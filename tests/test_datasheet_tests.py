@@ -3,7 +3,7 @@
 A data sheet's vibration rectification (VRE) is measured on a shaker, one axis
 at a time: the rectified error per g² of that one axis's vibration. The bundled
 test profiles apply the stated level to the tested axis alone, so a part with
-its datasheet VRE v errs by exactly v·σ² there (MODEL.md section 8: Δ0(6) =
+its datasheet VRE v errs by exactly v·σ² there (docs/model.md section 8: Δ0(6) =
 Σ_j G_jj·⟨a_j²⟩ with ⟨a_3²⟩ = σ², the others 0). The figures, from
 /work/shared/data/DATASHEETS.md (the project's record of the public data sheets):
 

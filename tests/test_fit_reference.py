@@ -1,6 +1,6 @@
-"""An independent second implementation of MODEL.md section 14, held against gyrovib.
+"""An independent second implementation of docs/model.md section 14, held against gyrovib.
 
-Everything below the imports up to the tests is written from MODEL.md
+Everything below the imports up to the tests is written from docs/model.md
 sections 2, 11 and 14 alone, with numpy and math (no gyrovib code), by other
 routes than the library's:
 
@@ -11,7 +11,7 @@ routes than the library's:
   in floating point); Cov(θ̂) = s²·(XᵀX)⁻¹, s² = RSS/(n − p);
 * eq. (2) by division by K1, the Jacobian written out entry by entry
   (∂(c·N/K1)/∂N = c/K1, ∂/∂K1 = −c·N/K1², c = 2 for A1);
-* the nonlinearity in % of R (MODEL.md section 11, ``of: range``): the
+* the nonlinearity in % of R (docs/model.md section 11, ``of: range``): the
   least-squares line over uniform ω ∈ [−R, R] from Gauss–Legendre moments on
   each half (exact for these piecewise polynomials), the endpoint line through
   p(±R), the largest deviation at ±R, 0 and the real roots (``numpy.roots``)
@@ -312,7 +312,7 @@ def test_wilson_interval_agrees_with_the_reference(k: int, n: int) -> None:
 
 
 def test_the_engine_g_of_a_tone_is_the_closed_form() -> None:
-    """g for the direct test (MODEL.md section 14) from the engine, against the
+    """g for the direct test (docs/model.md section 14) from the engine, against the
     closed-form mean over the tone's phase (module docstring)."""
     from gyrovib.core.analysis import profile_multipliers
     from gyrovib.core.lot import sensitivity
@@ -330,7 +330,7 @@ def test_the_engine_g_of_a_tone_is_the_closed_form() -> None:
 
 
 def test_a_lot_counts_the_coefficients_of_delta_v_not_the_bias() -> None:
-    """MODEL.md section 14: the lot is over c = (A1, k2, k3, k4, k5, m31, m32, G…), the
+    """docs/model.md section 14: the lot is over c = (A1, k2, k3, k4, k5, m31, m32, G…), the
     coefficients Δ_V is linear in; Σ is singular, and only its diagonal used, when
     n ≤ the number of them. The bias k0 (and m1, m2) does not rectify (section 11) and
     is not in c: six units at order 5 (c of 5) give a regular Σ of c and keep their
@@ -364,7 +364,7 @@ def test_a_lot_counts_the_coefficients_of_delta_v_not_the_bias() -> None:
 
 def test_the_fit_command_keeps_the_correlations_of_six_units(tmp_path: Path) -> None:
     """`gyrovib fit` on six units at order 5: the lot entry carries its correlations and
-    no warning (MODEL.md section 14, c without k0)."""
+    no warning (docs/model.md section 14, c without k0)."""
     import json
 
     from tests.conftest import invoke
@@ -388,7 +388,7 @@ def _gx100_01() -> tuple[np.ndarray, np.ndarray]:
 
 @pytest.mark.parametrize("factor", [1e300, 1e-300, 1e-310])
 def test_outputs_of_any_magnitude_give_the_same_coefficients(factor: float) -> None:
-    """Eq. (2) does not depend on the output unit (MODEL.md section 2): the output
+    """Eq. (2) does not depend on the output unit (docs/model.md section 2): the output
     column times 1e300 or 1e-300 gives the coefficients of the reference on those very
     numbers (s² = RSS/(n − p) of outputs near 1e300 overflows in double precision, and
     subnormal outputs lose their digits, unless the output is scaled first), and K1's

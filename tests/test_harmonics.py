@@ -1,6 +1,6 @@
-"""Phase-locked harmonics (MODEL.md section 10): moments, E(Ω), the error terms.
+"""Phase-locked harmonics (docs/model.md section 10): moments, E(Ω), the error terms.
 
-References: closed forms worked by hand in the comments (MODEL.md section 10's
+References: closed forms worked by hand in the comments (docs/model.md section 10's
 M3 for orders 1 and 2), and brute-force averages over one period computed here
 on fine uniform grids, with scipy's adaptive quadrature where the integrand has
 kinks — never gyrovib's own closed forms.
@@ -62,7 +62,7 @@ GROUP = locked_group(ORDERS, AMPS, PHASES)
 @given(a1=st.floats(0.01, 5.0), a2=st.floats(0.0, 5.0), p1=st.floats(-180, 180),
        p2=st.floats(-180, 180))
 def test_m3_of_orders_1_and_2(a1: float, a2: float, p1: float, p2: float) -> None:
-    """MODEL.md section 10: M3 = −¾·a1²·a2·sin(φ2 − 2φ1)."""
+    """docs/model.md section 10: M3 = −¾·a1²·a2·sin(φ2 − 2φ1)."""
     g = locked_group([1, 2], [[0, 0, a1], [0, 0, a2]], [[0, 0, p1], [0, 0, p2]])
     expected = -0.75 * a1**2 * a2 * math.sin(math.radians(p2 - 2 * p1))
     got = float(group_moments(g.orders, g.phasors).m3)
@@ -235,7 +235,7 @@ TONE = vibration_at_sensor([(13.0, (0.2, 0.1, 0.5), (0.0, 30.0, 0.0))])
 def test_error_terms_match_brute_force_of_eq_2(omega: float) -> None:
     """Δ_V with a locked group + a tone: closed form (section 10) = brute force on an exact grid.
 
-    Without A1 the grid of more than 5·n_max nodes per period is exact (MODEL.md 7, 10).
+    Without A1 the grid of more than 5·n_max nodes per period is exact (docs/model.md 7, 10).
     """
     mu = profile_multipliers(TONE, np.array(omega), locked=[GROUP])
     closed = vibration_error(POLY, mu)

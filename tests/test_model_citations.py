@@ -11,8 +11,7 @@ ROOT = Path(__file__).resolve().parent.parent
 MODEL = ROOT / "docs" / "model.md"
 #: Files of the catalogue format that another change replaces (pydantic models);
 #: their citations move with them.
-ELSEWHERE = {"src/gyrovib/catalog/spec.py", "src/gyrovib/catalog/validate.py",
-             "src/gyrovib/catalog/records.py"}
+ELSEWHERE: set[str] = set()
 CITATION = re.compile(r"model\.md,?\s+(?:sections?\s*|§\s*)?"
                       r"((?:\d+(?:\.\d+)?(?:\s*(?:,|and|–|-)\s*)?)+)")
 

@@ -81,7 +81,7 @@ def test_cells_are_the_formatted_values(index: int) -> None:
 
 
 def test_saturated_rows_are_marked() -> None:
-    # "small" (range 10 deg/h) saturates under the 20000 deg/h tone (MODEL.md section 9)
+    # "small" (range 10 deg/h) saturates under the 20000 deg/h tone (docs/model.md section 9)
     result = results()[0]
     assert result.saturated is not None and result.saturated[0, 0]
     lines = [ln for ln in render.to_table(result, width=400, detail=True).splitlines()

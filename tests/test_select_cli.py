@@ -70,7 +70,7 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert doc["budget"] == 0.01 and doc["criterion"] == "bounds" and doc["require"] == "any"
     assert [p["profile"] for p in doc["profiles"]] == ["tone", "noise"]
     assert set(doc["profiles"][0]) == {"profile", "rate", "bounds", "parts"}
-    # vre (MODEL.md section 8): null, these profiles have no linear vibration
+    # vre (docs/model.md section 8): null, these profiles have no linear vibration
     assert set(doc["profiles"][0]["bounds"]) == {"A1", "k2", "k3", "k4", "k5", "m31", "m32",
                                                  "vre"}
     assert doc["profiles"][0]["bounds"]["vre"] is None
@@ -110,7 +110,7 @@ def test_select_json_verdicts(catalog: str) -> None:
                                                          rel=1e-6)
     assert bad_tone["disagrees"] == ["rms", "worst"] and bad_noise["disagrees"] == []
     # k3 under Ω̄ = 0.5: bound finite; a coefficient the sensor does not have: value 0, pass.
-    # Its share is β1/2 = 0.2264554 (MODEL.md section 6): (β1/2)·Δ*/(|Ω̄|·3M2), |Ω̄|·3M2 = 3
+    # Its share is β1/2 = 0.2264554 (docs/model.md section 6): (β1/2)·Δ*/(|Ω̄|·3M2), |Ω̄|·3M2 = 3
     assert bad_tone["checks"]["k3"] == {"value": 0.0, "bound": pytest.approx(
         0.2264554 * BUDGET / 3, rel=1e-6), "pass": True}
 
@@ -185,7 +185,7 @@ sensors:
 @pytest.mark.parametrize("response", ["[[1, 0.1], [1000, 0.1]]",
                                       "{at: output, table: [[1, 0.1], [1000, 0.1]]}"])
 def test_output_response_earns_no_credit(tmp_path: Path, response: str) -> None:
-    # an output filter acts after the error is rectified (MODEL.md section 9): the
+    # an output filter acts after the error is rectified (docs/model.md section 9): the
     # sensor's bounds are the profile's own, 0.0022237 < 3e-3, so it fails.
     body = PROFILES + f"""
 sensors:

@@ -1,7 +1,7 @@
 """Datasheet (spec-form) sensors under linear vibration, through the command line.
 
 The bundled ADIS16460 and ADXRS645 are spec-form sensors with a VRE spec v
-(MODEL.md section 11); the bundled linear profiles (MODEL.md section 8) give
+(docs/model.md section 11); the bundled linear profiles (docs/model.md section 8) give
 Σ_j⟨a_j²⟩. Their worst case adds |v|·Σ_j⟨a_j²⟩ to the envelope's worst |Δ_V|
 (the VRE term takes the sign that makes |Δ_V| largest). Also: the merged
 ``select`` checks, where a coefficient sensor's effective-VRE check and a

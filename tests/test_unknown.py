@@ -3,7 +3,7 @@
 INTERFACE.md, "Trust and first use": a spec-form part that passes on its
 published figures, but whose verdict an unpublished one can change (the VRE
 under linear vibration; m31, m32 under cross-axis vibration correlated with
-x3, MODEL.md sections 8 and 11), is ``unverified``: not passing, not ranked,
+x3, docs/model.md sections 8 and 11), is ``unverified``: not passing, not ranked,
 with the figures to ask its vendor for. ``--assume-unknown zero`` restores
 the reading of old and says so.
 """
@@ -22,7 +22,7 @@ BUDGET = 0.01  # deg/s
 
 # Two datasheet parts (one without a VRE, one with) and a coefficient part under
 # 'shaker': linear random vibration only, σ = 1 g on each axis, Σ⟨a_j²⟩ = 3 g²
-# (MODEL.md section 8), no angular vibration (C31 = C32 = 0, nothing for the NL
+# (docs/model.md section 8), no angular vibration (C31 = C32 = 0, nothing for the NL
 # envelope either: the worst case on the published figures is the VRE's alone);
 # and 'tone': one angular tone a = (1, 0, 2) deg/s in phase, C31 = ½·1·2 = 1
 # (deg/s)², C32 = 0 (eq. (9) with cos 0 = 1).
@@ -80,7 +80,7 @@ def test_a_part_without_a_vre_under_linear_vibration_is_unverified(catalog: str)
     assert (parts["no-vre"]["pass"], parts["no-vre"]["status"]) == (False, "unverified")
     # the vendor question: the VRE that still passes. The worst case on the published
     # figures is 0 here (no angular vibration), so VRE_max = Δ*/Σ⟨a_j²⟩ = 0.01/3
-    # deg/s/g² (MODEL.md section 11, all of Δ* to the one part the profile excites).
+    # deg/s/g² (docs/model.md section 11, all of Δ* to the one part the profile excites).
     assert parts["no-vre"]["questions"] == [
         f"VRE (vibration rectification, deg/s/g²): at most {BUDGET / 3:.4g} passes under "
         "shaker"]

@@ -50,7 +50,7 @@ from gyrovib.cli.recording import recording_options
 @format_option("table", "json", "csv", "markdown")
 @output_option
 @click.option("--recording", metavar="RECORDING",
-              help="Δ_V,rec of every sensor on a recording (MODEL.md section 13), beside "
+              help="Δ_V,rec of every sensor on a recording (docs/model.md section 13), beside "
                    "the fitted profile's closed form; see `gyrovib profile` for its options.")
 @recording_options
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],

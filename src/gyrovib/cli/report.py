@@ -39,7 +39,7 @@ DEFAULT_OUTPUT = "report.html"
 @click.option("--output", "-o", default=DEFAULT_OUTPUT, show_default=True, metavar="PATH",
               help="Write the HTML here (atomically); '-' for standard output.")
 @click.option("--recording", metavar="RECORDING",
-              help="Add a recording (MODEL.md section 13): its PSD against the fitted "
+              help="Add a recording (docs/model.md section 13): its PSD against the fitted "
                    "profile, the honesty of the fit, Δ_V,rec beside the closed form; the "
                    "fitted profile joins the study's profiles.")
 @recording_options

@@ -1,6 +1,6 @@
 """Rate-table data to the coefficients of eq. (1) and (2), with their uncertainty.
 
-MODEL.md section 14. A unit is turned at known rates Ω about its sensitive
+docs/model.md section 14. A unit is turned at known rates Ω about its sensitive
 axis x3 (optionally with known cross rates ω1, ω2) and its mean output U is
 recorded. Eq. (1) is linear in its parameters θ:
 
@@ -55,7 +55,7 @@ from gyrovib.frozen import Frozen
 #: The highest power of Ω in eq. (1).
 MAX_ORDER = 5
 DEFAULT_ORDER = 5
-#: |t| below this is flagged "not significant" (MODEL.md section 14), never dropped.
+#: |t| below this is flagged "not significant" (docs/model.md section 14), never dropped.
 SIGNIFICANT_T = 2.0
 #: A scaled design matrix whose condition number exceeds this does not identify the model.
 MAX_CONDITION = 1e10
@@ -90,7 +90,7 @@ class Nonlinearity(Frozen):
     100·max|p − L|/R for L the least-squares line of p over uniform ω in [−R, R]
     ("best-fit straight line"), ``endpoint_max`` the same for the line through
     p(−R) and p(R) ("terminal-based"); ``range`` is R (the largest |Ω| tested),
-    in the rate unit. MODEL.md sections 11 and 14.
+    in the rate unit. docs/model.md sections 11 and 14.
     """
 
     least_squares_max: float
@@ -100,7 +100,7 @@ class Nonlinearity(Frozen):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class RateFit(Frozen):
-    """The fit of one unit (MODEL.md section 14).
+    """The fit of one unit (docs/model.md section 14).
 
     ``names``/``values``/``covariance``: the eq. (2) coefficients (rate units,
     kn in rate^(1−n), m3i in 1/rate; k1 = 1 exactly, not among them), their
@@ -153,7 +153,7 @@ class RateFit(Frozen):
 
     @property
     def significant(self) -> NDArray[np.bool_]:
-        """|t| ≥ 2 per coefficient (MODEL.md section 14: smaller is "not significant")."""
+        """|t| ≥ 2 per coefficient (docs/model.md section 14: smaller is "not significant")."""
         out: NDArray[np.bool_] = np.abs(self.t) >= SIGNIFICANT_T
         return out
 
@@ -277,7 +277,7 @@ def _design(rate: FloatArray, order: int, cross: FloatArray | None,
 def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDER,
                    cross: ArrayLike | None = None,
                    cross_axes: Sequence[int] | None = None) -> RateFit:
-    """Least-squares fit of eq. (1) to one unit's rate-table points (MODEL.md section 14).
+    """Least-squares fit of eq. (1) to one unit's rate-table points (docs/model.md section 14).
 
     ``rate``: Ω per point (n,), any rate unit; ``output``: mean output U (n,),
     any output unit; ``cross``: (n, k) applied cross rates in the rate unit about

@@ -1,6 +1,6 @@
 """The uncertainty of the vibration error and the yield of a production lot.
 
-MODEL.md section 14. For a given profile, Ω_K and sensor, every term of Δ_V
+docs/model.md section 14. For a given profile, Ω_K and sensor, every term of Δ_V
 is linear in the coefficients c = (A1, k2, k3, k4, k5, m31, m32, …) with
 k1 = 1 (eq. 13–15): Δ_V = gᵀc, g made of the section 4–10 multipliers
 (:func:`sensitivity` builds it from :func:`gyrovib.core.analysis.vibration_error`
@@ -37,7 +37,7 @@ from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 
-#: Monte-Carlo draws of the yield unless told otherwise (MODEL.md section 14).
+#: Monte-Carlo draws of the yield unless told otherwise (docs/model.md section 14).
 DEFAULT_DRAWS = 100_000
 #: Draws evaluated at once (memory: chunk × p floats).
 CHUNK = 20_000
@@ -88,7 +88,7 @@ def direct_yield(g: ArrayLike, mean: ArrayLike, covariance: ArrayLike,
     """The exact yield of the direct test, P(|Δ_V| ≤ Δ*) for Δ_V = gᵀc, c ~ N(μ, Σ).
 
     Δ_V ~ N(m, s²) with m = gᵀμ, s = √(gᵀΣg), so the yield is
-    Φ((Δ* − m)/s) − Φ((−Δ* − m)/s) (MODEL.md section 14); where s = 0 it is 1
+    Φ((Δ* − m)/s) − Φ((−Δ* − m)/s) (docs/model.md section 14); where s = 0 it is 1
     when |m| ≤ Δ*, else 0. ``g`` (..., p), ``mean`` (p,), Σ (p, p), ``budget``
     Δ* > 0 broadcast against g's leading shape; all in consistent units.
     """
@@ -171,7 +171,7 @@ def normal_factor(covariance: ArrayLike) -> FloatArray:
 def monte_carlo_yield(test: Callable[[FloatArray], ArrayLike], mean: ArrayLike,
                       covariance: ArrayLike, rng: np.random.Generator,
                       draws: int = DEFAULT_DRAWS, chunk: int = CHUNK) -> YieldEstimate:
-    """The yield of ``test`` over c ~ N(μ, Σ) by Monte Carlo (MODEL.md section 14).
+    """The yield of ``test`` over c ~ N(μ, Σ) by Monte Carlo (docs/model.md section 14).
 
     ``test`` takes a (k, p) array of coefficient draws and returns k booleans
     (pass), or (k, ...) for several tests at once (e.g. one per profile).
@@ -267,7 +267,7 @@ def _unit_rows(names: Sequence[str]) -> FloatArray:
 
 
 def sensitivity(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
-    """g with Δ_V = gᵀc for the coefficients ``names`` (k1 = 1; eq. 13–15 and MODEL.md
+    """g with Δ_V = gᵀc for the coefficients ``names`` (k1 = 1; eq. 13–15 and docs/model.md
     sections 8–10): g_i = Δ_V(e_i) − Δ_V(0), by the engine itself. Shape
     ``multipliers.omega.shape + (len(names),)``; rate units as the multipliers'."""
     rows = _unit_rows(names)
@@ -279,7 +279,7 @@ def sensitivity(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
 
 
 def term_matrix(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
-    """G with the terms of eq. (16) = G·c: the additive terms Δ0 (and those of MODEL.md
+    """G with the terms of eq. (16) = G·c: the additive terms Δ0 (and those of docs/model.md
     sections 8, 10) and the multiplicative terms Δ(q)·Ω^q, per coefficient of ``names``.
     Shape ``multipliers.omega.shape + (terms, len(names))``; Δ_V(RMS) = ‖G·c‖."""
     rows = _unit_rows(names)
@@ -355,7 +355,7 @@ def covariance_from(sigma: ArrayLike, correlation: ArrayLike) -> FloatArray:
 
 
 def rectifying_count(names: Sequence[str] | None, size: int) -> int:
-    """The number p of coefficients among ``names`` that Δ_V is linear in (MODEL.md
+    """The number p of coefficients among ``names`` that Δ_V is linear in (docs/model.md
     section 14: c = (A1, k2, k3, k4, k5, m31, m32); k0, m1, m2 do not rectify): the
     lot's Σ of them is singular when n ≤ p. Without names, all ``size``."""
     if names is None:
@@ -372,7 +372,7 @@ def diagonal_warning(units: int, p: int) -> str:
 
 def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int,
                    names: Sequence[str] | None = None) -> tuple[FloatArray, str | None]:
-    """The covariance of a lot of ``units`` units (MODEL.md section 14) and a warning:
+    """The covariance of a lot of ``units`` units (docs/model.md section 14) and a warning:
     with units ≤ p (:func:`rectifying_count` of ``names``, the coefficients σ is
     given for; all of them when None) only the diagonal σ² (and the warning of
     :func:`diagonal_warning`), else diag(σ)·R·diag(σ)."""
@@ -385,7 +385,7 @@ def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int,
 
 @dataclass(frozen=True, eq=False, repr=False)
 class LotStatistics(Frozen):
-    """A lot estimated from its units' coefficient vectors (MODEL.md section 14).
+    """A lot estimated from its units' coefficient vectors (docs/model.md section 14).
 
     ``mean`` μ, ``sigma`` (sample standard deviations, n − 1), ``correlation``
     (the identity when ``diagonal``), ``covariance`` (the one the yield uses:
@@ -406,7 +406,7 @@ def lot_statistics(coefficients: ArrayLike, names: Sequence[str] | None = None
     """μ and Σ of the rows c_u of ``coefficients`` (n, k), n ≥ 2: Σ with n − 1 in the
     denominator; with n ≤ p only its diagonal, with a warning. p counts the columns
     ``names`` that Δ_V is linear in (:func:`rectifying_count`: k0, m1, m2 excluded,
-    MODEL.md section 14), or all k when ``names`` is None."""
+    docs/model.md section 14), or all k when ``names`` is None."""
     c = np.asarray(coefficients, dtype=float)
     if c.ndim != 2 or c.shape[0] < 2:
         raise LotError("a lot needs the coefficients of at least two units")

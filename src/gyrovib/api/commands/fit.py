@@ -1,6 +1,6 @@
 """``gyrovib fit``: rate-table points to eq. (2) coefficients, per unit and per lot.
 
-MODEL.md section 14: one least-squares fit of eq. (1) per unit
+docs/model.md section 14: one least-squares fit of eq. (1) per unit
 (:func:`gyrovib.core.fit.fit_rate_table`), eq. (2) by division by K1 with the
 delta-method covariance; with two or more units the lot's mean and sample
 covariance (:func:`gyrovib.core.lot.lot_statistics`).
