@@ -259,10 +259,109 @@ def locked_abs_excess(omega: ArrayLike, orders: ArrayLike, coefficients: ArrayLi
     return out.reshape(w.shape)
 
 
-def _abs_excess(flat: FloatArray, n: NDArray[np.int64], p: ComplexArray) -> FloatArray:
-    """:func:`locked_abs_excess` at the rates ``flat`` (W,), the pieces integrated."""
-    roots = trig_roots(n, p, flat)
+def stationary_points(orders: ArrayLike, coefficients: ArrayLike) -> FloatArray:
+    """Sorted distinct θ in [0, 2π) where x3'(θ) = 0, x3 = Σ Im(p_n·e^{jnθ}) (``p`` not all 0).
+
+    The zeros of the derivative ``Σ Im(j·n·p_n·e^{jnθ})`` (:func:`trig_roots`,
+    one eigenvalue problem of degree 2·n_max): between two consecutive ones x3 is
+    monotone, so Ω + x3 has at most one zero there whatever Ω is. They do not
+    depend on the rate, so a sweep solves them once.
+    """
+    n = np.asarray(orders, dtype=np.int64)
+    p = np.asarray(coefficients, dtype=complex)
+    theta = trig_roots(n, 1j * n * p, np.zeros(1))[0]
+    theta = np.sort(theta[~np.isnan(theta)])
+    if theta.size > 1:
+        theta = theta[np.concatenate([[True], np.diff(theta) > 1e-13])]
+    if theta.size < 2:  # (a nonconstant periodic x3 has a maximum and a minimum)
+        theta = np.concatenate([theta, period_grid(int(n.max()), 16)])
+        theta = np.sort(np.mod(theta, 2.0 * math.pi))
+    out: FloatArray = theta
+    return out
+
+
+def _x3_at(nf: FloatArray, p: ComplexArray, theta: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """x3 and dx3/dθ at ``theta`` (any shape)."""
+    e = p * np.exp(1j * nf * theta[..., None])
+    return np.sum(e.imag, axis=-1), np.sum((1j * nf * e).imag, axis=-1)
+
+
+#: Most (offset × piece) brackets solved at a time by :func:`monotone_roots`.
+_ROOT_CHUNK = 1 << 16
+
+
+def monotone_roots(orders: ArrayLike, coefficients: ArrayLike, offset: ArrayLike,
+                   stationary: FloatArray | None = None) -> FloatArray:
+    """Zeros of ``c + x3(θ)`` for each offset c (W,), one per monotone piece: (W, P).
+
+    The pieces lie between consecutive :func:`stationary_points` (P of them,
+    the last one wrapping past 2π); a piece holds a zero when c + x3 changes
+    sign over it, found by Newton's method kept inside the bracket (bisection
+    where a Newton step would leave it) to the last bit. NaN where a piece has
+    none. Cost: one eigenvalue problem for the pieces, then O(W·P·N) per
+    iteration — no eigenvalue problem per rate, unlike :func:`trig_roots`.
+    """
+    n = np.asarray(orders, dtype=np.int64)
+    p = np.asarray(coefficients, dtype=complex)
+    c = np.atleast_1d(np.asarray(offset, dtype=float)).ravel()
+    t = stationary_points(n, p) if stationary is None else stationary
+    nf = n.astype(float)
+    ends = np.concatenate([t, t[:1] + 2.0 * math.pi])
+    v = _x3_at(nf, p, ends)[0]
+    out = np.full((c.size, t.size), np.nan)
+    fa = c[:, None] + v[None, :-1]
+    fb = c[:, None] + v[None, 1:]
+    has = (fa == 0.0) | ((fa < 0.0) != (fb < 0.0))
+    rows, cols = np.nonzero(has)
+    for start in range(0, rows.size, _ROOT_CHUNK):
+        r, k = rows[start:start + _ROOT_CHUNK], cols[start:start + _ROOT_CHUNK]
+        lo, hi = ends[k].copy(), ends[k + 1].copy()
+        cc = c[r]
+        f_lo = fa[r, k]
+        at_lo = f_lo == 0.0
+        x = 0.5 * (lo + hi)
+        for _ in range(80):
+            f, df = _x3_at(nf, p, x)
+            f = f + cc
+            same = (f < 0.0) == (f_lo < 0.0)
+            lo = np.where(same, x, lo)
+            hi = np.where(same, hi, x)
+            f_lo = np.where(same, f, f_lo)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                newton = x - f / df
+            inside = (newton > lo) & (newton < hi)
+            nxt = np.where(inside, newton, 0.5 * (lo + hi))
+            nxt = np.where(f == 0.0, x, nxt)
+            done = np.abs(nxt - x) <= 4e-16 * (1.0 + np.abs(x))
+            x = nxt
+            if done.all():
+                break
+        out[r, k] = np.where(at_lo, ends[k], np.mod(x, 2.0 * math.pi))
+    return out
+
+
+def _abs_excess(flat: FloatArray, n: NDArray[np.int64], p: ComplexArray,
+                stationary: FloatArray | None = None) -> FloatArray:
+    """:func:`locked_abs_excess` at the rates ``flat`` (W,), the pieces integrated.
+
+    The pieces run between the zeros of Ω + x3 and x3's stationary points (a
+    split where f does not change sign is harmless); rates are taken in
+    chunks so that a long sweep holds a bounded amount of memory.
+    """
+    t = stationary_points(n, p) if stationary is None else stationary
+    out: FloatArray = np.empty(flat.size)
+    chunk = max(1, _ROOT_CHUNK // (2 * t.size + 2))
+    for lo in range(0, flat.size, chunk):
+        part = flat[lo:lo + chunk]
+        out[lo:lo + chunk] = _abs_excess_chunk(part, n, p, t)
+    return out
+
+
+def _abs_excess_chunk(flat: FloatArray, n: NDArray[np.int64], p: ComplexArray,
+                      t: FloatArray) -> FloatArray:
+    roots = monotone_roots(n, p, flat, t)
     pts = np.concatenate([np.zeros((flat.size, 1)), np.where(np.isnan(roots), 2 * math.pi, roots),
+                          np.broadcast_to(t, (flat.size, t.size)),
                           np.full((flat.size, 1), 2 * math.pi)], axis=1)
     pts.sort(axis=1)
     nf = n.astype(float)
