@@ -28,7 +28,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core.statistics import rectified_excess
+from gyrovib.core.statistics import rectified_excess, stretched_rule
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
@@ -440,3 +440,75 @@ def locked_rectified_excess(
     outside = np.mean(e, axis=1)
     out: FloatArray = np.where(crossing, inside, outside).reshape(w.shape)
     return out
+
+
+#: Most pieces per rate of :func:`two_groups_excess` (the second group's period split
+#: where the first group's excess has a kink); beyond, the mean is taken on a grid.
+MAX_PAIR_PIECES = 512
+
+
+def two_groups_excess(omega: ArrayLike, first: LockedGroup, second: LockedGroup) -> FloatArray:
+    """``E(Ω) = <|Ω + x3(θ1) + y3(θ2)|> − |Ω|`` for two independent locked groups alone.
+
+    ``omega``: any shape (rate); returns the same shape. With E1 and E2 each
+    group's excess alone (:func:`locked_abs_excess`),
+
+        E(Ω) = <E1(Ω + y3(θ2))>_θ2 + E2(Ω)
+
+    (the mean of |Ω + y3| − |Ω| over θ2 is E2), both terms ≥ 0, so E keeps
+    its relative precision. E1(s) is smooth except where s = 0 (the kink of
+    −|s|) and where s = −x3(θ*) at a stationary point θ* of x3 (a (·)^{3/2}
+    edge); the second group's period is split where Ω + y3(θ2) reaches one of
+    those values (:func:`monotone_roots`) and on a uniform grid of 8·n_max
+    points, and each piece gets the stretched
+    Gauss-Legendre rule of :func:`gyrovib.core.statistics.stretched_rule`, which
+    converges geometrically across such end-point singularities (a uniform grid
+    over θ2 converges only algebraically: 256 nodes left 6e-6 relative).
+    Falls back to a 4096-node grid over θ2 when the pieces would exceed
+    :data:`MAX_PAIR_PIECES` per rate (high orders).
+    """
+    w = np.asarray(omega, dtype=float)
+    flat = w.ravel()
+    n1, p1 = _x3_coefficients(first)
+    n2, p2 = _x3_coefficients(second)
+    if n1.size == 0 or n2.size == 0:
+        n, p = (n2, p2) if n1.size == 0 else (n1, p1)
+        return locked_abs_excess(w, n, p) if n.size else np.zeros(w.shape)
+    t1 = stationary_points(n1, p1)
+    t2 = stationary_points(n2, p2)
+    values = _x3_at(n1.astype(float), p1, t1)[0]
+    targets = np.concatenate([[0.0], values])
+    second_alone = locked_abs_excess(flat, n2, p2)
+    if targets.size * t2.size > MAX_PAIR_PIECES:
+        m = 4096
+        theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
+        y3 = _x3_at(n2.astype(float), p2, theta)[0]
+        out = np.empty(flat.size)
+        step = max(1, (1 << 20) // m)
+        for lo in range(0, flat.size, step):
+            s = flat[lo:lo + step, None] + y3[None, :]
+            out[lo:lo + step] = locked_abs_excess(s, n1, p1).mean(axis=1)
+        return (out + second_alone).reshape(w.shape)
+    stretch, stretch_weight = stretched_rule()
+    # pieces no longer than 2π/(8·n_max): between the kinks the integrand is
+    # analytic but oscillates with y3, and one 24-node rule over a long piece
+    # left 3e-7; with these cuts the rule is converged to rounding
+    uniform = 2.0 * math.pi * np.arange(8 * int(n2.max()) + 1) / (8 * int(n2.max()))
+    out = np.empty(flat.size)
+    per_rate = (targets.size * t2.size + uniform.size) * stretch.size
+    step = max(1, (1 << 18) // per_rate)
+    for lo in range(0, flat.size, step):
+        part = flat[lo:lo + step]
+        offsets = (part[:, None] + targets[None, :]).ravel()
+        roots = monotone_roots(n2, p2, offsets, t2).reshape(part.size, -1)
+        cuts = np.concatenate([np.broadcast_to(uniform, (part.size, uniform.size)),
+                               np.where(np.isnan(roots), 2.0 * math.pi, roots)], axis=1)
+        cuts.sort(axis=1)
+        length = np.diff(cuts, axis=1)[..., None]  # (W, B, 1)
+        theta = cuts[:, :-1, None] + length * stretch  # (W, B, G)
+        weight = length * stretch_weight / (2.0 * math.pi)
+        s = part[:, None, None] + _x3_at(n2.astype(float), p2, theta)[0]
+        e1 = locked_abs_excess(s, n1, p1)
+        out[lo:lo + step] = np.sum(e1 * weight, axis=(1, 2))
+    result: FloatArray = (out + second_alone).reshape(w.shape)
+    return result

@@ -369,7 +369,7 @@ _GL24_W = (
 
 
 @functools.cache
-def _stretched_rule() -> tuple[FloatArray, FloatArray]:
+def stretched_rule() -> tuple[FloatArray, FloatArray]:
     """Gauss-Legendre nodes on [0, 1] mapped by θ = lo + L·(1 − cos πv)/2, which
     makes the (θ − θ*)^(3/2) behaviour at a kink smooth in v; with the Jacobian."""
     x, w = np.array(_GL24_X), np.array(_GL24_W)
@@ -388,7 +388,7 @@ def _stretched_pieces(
     half = math.pi / 2.0
     cuts = [np.arcsin(np.clip((t - c) / amplitude, -1.0, 1.0)) for t in targets]
     edges = [np.full_like(c, -half), *cuts, np.full_like(c, half)]
-    stretch, stretch_weight = _stretched_rule()
+    stretch, stretch_weight = stretched_rule()
     pieces = []
     for lo, hi in itertools.pairwise(edges):
         length = hi - lo
