@@ -329,7 +329,7 @@ def monotone_roots(orders: ArrayLike, coefficients: ArrayLike, offset: ArrayLike
             f_lo = np.where(same, f, f_lo)
             with np.errstate(divide="ignore", invalid="ignore"):
                 newton = x - f / df
-            inside = (newton > lo) & (newton < hi)
+            inside = (newton >= lo) & (newton <= hi)
             nxt = np.where(inside, newton, 0.5 * (lo + hi))
             nxt = np.where(f == 0.0, x, nxt)
             done = np.abs(nxt - x) <= 4e-16 * (1.0 + np.abs(x))
