@@ -304,3 +304,25 @@ def worst_phase_multipliers(
         c32=base.c32, omega=w.copy(), m3=shaped["m3"], m5=shaped["m5"],
         acceleration=base.acceleration,
     )
+
+
+#: Most objective-evaluation units one ``phase: worst`` search may cost
+#: (:func:`search_cost`): about 5 s on a 2-core machine shared with other work.
+MAX_SEARCH_COST = 4000.0
+
+
+def search_cost(dims: int, objectives: int, n_max: int) -> float:
+    """Estimated cost of :func:`maximise_on_torus` over ``dims`` offsets, in
+    evaluations of a profile's multipliers at one rate with small orders (~1.3 ms).
+
+    The coarse nodes, then per objective a few compass rounds of 2D moves and
+    about five Newton steps of 1 + 2D² differences (measured: four orders,
+    four objectives 722 evaluations; eight orders 2,916); an evaluation of
+    orders up to n_max solves an eigenvalue problem of degree 2·n_max, which
+    costs like (n_max/16)³ more.
+    """
+    if dims == 0:
+        return 0.0
+    per_objective = 8 * dims + 5 * (1 + 2 * dims * dims) + 40
+    evaluations = COARSE_NODES + objectives * per_objective
+    return float(evaluations) * (1.0 + (max(n_max, 1) / 16.0) ** 3)

@@ -1,0 +1,148 @@
+"""Cost bounded by the input's size (issue 26): what the format allows either
+runs quickly or is refused before any computation, at the offending key.
+
+The timed sizes (and the before/after figures) are in benchmarks/bench_hostile.py;
+here each case is a located exit 2 or a small but discriminating run. The
+limits are gyrovib's own constants (core/harmonics.py MAX_ORDER, MAX_GROUPS;
+core/phases.py MAX_SEARCH_COST), so a test fails if a refusal goes missing or
+lands on another line.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from pathlib import Path
+
+import pytest
+from click.testing import Result
+
+from tests.conftest import invoke
+
+SENSOR = """gyrovib: 1
+units: {rate: deg/s}
+sensors:
+  - id: s
+    range: 500
+    coefficients: {A1: 1.0e-3, k2: 2.0e-4, k3: 1.0e-5, k4: -3.0e-7, k5: 1.0e-8}
+"""
+HEAD = """gyrovib: 1
+units: {rate: deg/s}
+profiles:
+  - id: p
+    rate: [0, 0, 0.5]
+    harmonics:
+"""
+
+
+def one_group(orders: list[tuple[int, str]], amplitude: float = 1.0) -> str:
+    """A profile with one locked group (a mapping): ``(order, phase)`` per order;
+    the orders start on line 9 of the file."""
+    lines = [HEAD, "      fundamental: 20\n", "      orders:\n"]
+    for n, phase in orders:
+        lines.append(f"        - {{order: {n}, amplitude: [0, 0, {amplitude}], phase: {phase}}}\n")
+    return "".join(lines)
+
+
+def groups(count: int) -> str:
+    """``count`` locked groups of orders 1 and 2 (a list); group g's
+    ``fundamental`` value on line 7 + 4g, column 22."""
+    lines = [HEAD]
+    for g in range(count):
+        lines += [f"      - fundamental: {10 * g + 13}\n", "        orders:\n",
+                  "          - {order: 1, amplitude: [0, 0, 0.5], phase: [0, 0, 0]}\n",
+                  "          - {order: 2, amplitude: [0, 0, 0.3], phase: [0, 0, 30]}\n"]
+    return "".join(lines)
+
+
+def files(tmp_path: Path, profile: str) -> tuple[Path, Path]:
+    s = tmp_path / "s.yaml"
+    p = tmp_path / "p.yaml"
+    s.write_text(SENSOR, encoding="utf-8")
+    p.write_text(profile, encoding="utf-8")
+    return s, p
+
+
+def run(*args: object, within: float = 5.0) -> Result:
+    started = time.perf_counter()
+    result = invoke(*args)
+    elapsed = time.perf_counter() - started
+    assert elapsed < within, f"took {elapsed:.1f} s"
+    return result
+
+
+def refused_at(result: Result, path: Path, line: int, column: int, *words: str) -> None:
+    assert result.exit_code == 2, result.stderr
+    first = result.stderr.strip().splitlines()[0]
+    assert first.startswith(f"{path}:{line}:{column}: "), first
+    for word in words:
+        assert word in first, first
+
+
+COMMANDS = [("analyze",), ("select", "--budget", "1"), ("sweep", "--format", "csv"),
+            ("bounds", "--budget", "1")]
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=lambda c: c[0])
+@pytest.mark.parametrize("order", [1000, 100_000, 10**9, 10**20])
+def test_a_high_harmonic_order_is_refused_at_its_key(tmp_path: Path, command: tuple[str, ...],
+                                                     order: int) -> None:
+    # today: orders 1 and 1,000 run for minutes, 10^5 and 10^9 run out of memory
+    # (unlocated), 10^20 is an internal error (exit 3)
+    s, p = files(tmp_path, one_group([(1, "[0, 0, 0]"), (order, "[0, 0, 0]")]))
+    result = run(*command, s, p)
+    # line 10 is the second order; its `order:` value starts at column 19
+    refused_at(result, p, 10, 19, f"harmonic order {order}", "above 64")
+
+
+def test_order_64_runs_a_sweep_inside_the_swing_quickly(tmp_path: Path) -> None:
+    # every rate inside the swing: one eigenvalue problem of degree 128 per rate
+    # before (37.8 s for 401 rates); the group's stationary points once now
+    s, p = files(tmp_path, one_group([(1, "[0, 0, 0]"), (64, "[0, 0, 0]")]))
+    result = run("sweep", s, p, "--format", "csv", "--rate-range", "-3:3:41", within=4.0)
+    assert result.exit_code == 0, result.stderr
+    rows = result.stdout.strip().splitlines()[1:]
+    assert len(rows) == 41 and all(r.split(",")[3] not in ("", "nan") for r in rows)
+
+
+@pytest.mark.parametrize("count", [16, 64])
+def test_phase_worst_on_many_orders_is_refused_at_the_first_worst_phase(
+        tmp_path: Path, count: int) -> None:
+    # today: 16 orders reach 8.2 GB and "out of memory", 64 orders exit 3 (meshgrid's
+    # 32-dimension limit)
+    orders = [(n, "worst") for n in range(1, count + 1)]
+    s, p = files(tmp_path, one_group(orders, 0.1))
+    for command in COMMANDS[:2]:
+        result = run(*command, s, p)
+        # the first order (line 9), its `phase:` value at column 53
+        refused_at(result, p, 9, 53, f"{count - 1} unknown relative phases",
+                   "more than the 4,000")
+
+
+def test_phase_worst_default_sweep_is_refused_and_a_short_one_runs(tmp_path: Path) -> None:
+    # today a 5-rate sweep of four worst orders took 20.7 s; the default 401 rates
+    # would take an hour: refused, saying how many rates (the timed four-order
+    # select and 5-rate sweep are in benchmarks/bench_hostile.py)
+    s, p = files(tmp_path, one_group([(n, "worst") for n in range(1, 5)]))
+    refused_at(run("sweep", s, p), p, 9, 53, "at 401 rates")
+    s, p = files(tmp_path, one_group([(1, "[0, 0, 0]"), (2, "worst")]))
+    result = run("sweep", s, p, "--format", "csv", "--rate-range", "-3:3:3", within=3.0)
+    assert result.exit_code == 0, result.stderr
+    assert len(result.stdout.strip().splitlines()) == 4
+
+
+@pytest.mark.parametrize("count", [3, 4, 5])
+def test_more_than_two_locked_groups_are_refused_at_the_third(tmp_path: Path,
+                                                              count: int) -> None:
+    # today: 4 groups make sweep ignore SIGTERM, 5 end in an unlocated "out of memory"
+    s, p = files(tmp_path, groups(count))
+    for command in COMMANDS:
+        result = run(*command, s, p)
+        refused_at(result, p, 15, 22, f"{count} phase-locked groups", "more than 2")
+
+
+def test_two_groups_run(tmp_path: Path) -> None:
+    s, p = files(tmp_path, groups(2))
+    result = run("sweep", s, p, "--format", "csv", "--rate-range", "-1:1:21")
+    assert result.exit_code == 0, result.stderr
+    assert re.search(r"^s,p,-1\.0,", result.stdout, re.M)
