@@ -307,8 +307,8 @@ def worst_phase_multipliers(
 
 
 #: Most objective-evaluation units one ``phase: worst`` search may cost
-#: (:func:`search_cost`): about 5 s on a 2-core machine shared with other work.
-MAX_SEARCH_COST = 4000.0
+#: (:func:`search_cost`): 3-4 s on a quiet 2-core machine, under 10 s on a shared one.
+MAX_SEARCH_COST = 3000.0
 
 
 def search_cost(dims: int, objectives: int, n_max: int) -> float:
