@@ -129,7 +129,7 @@ def cases(tmp: Path) -> list[tuple[str, list[str]]]:
     two = write("two.yaml", TWO_PROFILES)
     out.append(("3,000 spec sensors x 2 select", ["select", big, two, "--budget", "1",
                                                   "--format", "csv"]))
-    out.append(("3,000 spec sensors x 2 report", ["report", big, two,
+    out.append(("3,000 spec sensors x 2 report", ["report", big, two, "--budget", "1",
                                                   "-o", str(tmp / "r.html")]))
     return out
 

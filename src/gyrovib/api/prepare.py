@@ -294,7 +294,8 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
                 f"{'s' if dims != 1 else ''} (phase: worst, orders up to {n_max}) at {rates} "
                 f"rate{'s' if rates != 1 else ''} for {sensors} sensor"
                 f"{'s' if sensors != 1 else ''} would take about {cost:,.0f} evaluations of "
-                f"the profile, more than the {MAX_SEARCH_COST:,.0f} (a few seconds) gyrovib allows; "
+                f"the profile, more than the {MAX_SEARCH_COST:,.0f} (a few seconds) gyrovib "
+                "allows; "
                 "give fewer orders phase: worst (their phases, if known), fewer rates, or "
                 "fewer sensors",
                 _harmonics_path(p, gi, "orders", oi, "phase"))
