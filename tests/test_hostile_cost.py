@@ -250,3 +250,82 @@ def test_a_long_sweep_is_refused_up_front_saying_how_many_rates_fit() -> None:
     assert result.exit_code == 2, result.stderr
     assert f"more than the {MAX_SWEEP_PROGRAMMES:,}" in result.stderr
     assert f"at most {MAX_SWEEP_PROGRAMMES // (4 * 14 * 2):,} rates" in result.stderr
+
+
+def spec_catalogue(count: int) -> str:
+    """``count`` datasheet sensors, every range different (100 + 0.37·i deg/s)."""
+    lines = ["gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n"]
+    for i in range(count):
+        lines.append(f"  - id: spec{i:05d}\n    specs:\n      range: {100 + 0.37 * i:.2f}\n"
+                     "      nonlinearity: {value: 0.1, unit: \"%FS\", fit: least-squares, "
+                     "measure: max, of: range}\n")
+    return "".join(lines)
+
+
+TWO_PROFILES = """gyrovib: 1
+units: {rate: deg/s}
+profiles:
+  - id: tone
+    rate: [0, 0, 0.5]
+    harmonic:
+      - {frequency: 95, amplitude: [1.2, 0.8, 2.5]}
+  - id: random
+    rate: [0, 0, 2]
+    random: {rms: [0.5, 0.5, 1.0]}
+"""
+
+
+def test_datasheet_bounds_of_many_ranges_in_one_call_equal_one_by_one() -> None:
+    # reference: core/envelope.py spec_bounds, one definition at a time (checked
+    # against scipy's linprog in tests/test_envelope_reference.py); the batch shares
+    # the programmes of neighbouring ranges (3,000 spec sensors: select past 30 s → 9 s)
+    import numpy as np
+
+    from gyrovib.core.envelope import spec_bounds, spec_bounds_many
+
+    rng = np.random.default_rng(4)
+    terms = rng.normal(size=(2, 8, 5)) * np.array([1.0, 0.3, 0.1, 0.03, 0.01])
+    g2 = np.array([0.0, 0.2])
+    ranges = [100.0 + 37.3 * i for i in range(12)]
+    fits = ["least-squares", "endpoint", "minimax"] * 4
+    measures = ["max"] * 12
+    ofs = ["range", "span", "rate"] * 4
+    nl, vre = spec_bounds_many(0.05, terms, g2, ranges, fits, measures, ofs)
+    for k in range(12):
+        one = spec_bounds(0.05, terms, g2, ranges[k], fits[k], measures[k], ofs[k])
+        assert nl[k] == pytest.approx(one.nonlinearity, rel=1e-12)
+        assert vre[k] == pytest.approx(one.vre, rel=1e-12)
+
+
+def test_select_of_datasheet_sensors_with_all_different_ranges(tmp_path: Path) -> None:
+    # 100 sensors × 2 profiles: 5.1 s before (one envelope call per range, each
+    # cold), 2.1 s now in a subprocess; in-process here, within 2 s
+    s = tmp_path / "s.yaml"
+    p = tmp_path / "p.yaml"
+    s.write_text(spec_catalogue(100), encoding="utf-8")
+    p.write_text(TWO_PROFILES, encoding="utf-8")
+    result = run("select", s, p, "--budget", "1", "--format", "csv", within=2.0)
+    assert result.exit_code in (0, 1), result.stderr
+    assert len(result.stdout.strip().splitlines()) == 1 + 100 * 2
+
+
+def test_a_report_over_many_sensors_charts_the_best_ranked(tmp_path: Path) -> None:
+    # 3,000 sensors: the report's sweep of every sensor held 2.9 million results
+    # (refused by the sweep's size check); its charts now draw the SWEEP_SENSORS best
+    import gyrovib
+    from gyrovib.api.study import SWEEP_SENSORS
+
+    s = tmp_path / "s.yaml"
+    p = tmp_path / "p.yaml"
+    lines = ["gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n"]
+    for i in range(SWEEP_SENSORS + 3):  # k2 decides the ranking: each a different one
+        lines.append(f"  - id: c{i:02d}\n    range: 500\n"
+                     f"    coefficients: {{A1: 1.0e-3, k2: {1e-4 * (1 + (7 * i) % 15):.1e}}}\n")
+    s.write_text("".join(lines), encoding="utf-8")
+    p.write_text(TWO_PROFILES, encoding="utf-8")
+    catalog = gyrovib.load([s, p])
+    from gyrovib.api.study import trade_study
+
+    study = trade_study(catalog, budget=1.0)
+    ranked = [study.selection.sensors[i] for i in study.selection.ranking[:SWEEP_SENSORS]]
+    assert list(study.sweep.sensors) == sorted(ranked, key=study.selection.sensors.index)
