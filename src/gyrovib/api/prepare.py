@@ -247,10 +247,11 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
     objectives per rate for synthesis (with ``phase_search``) and one per sensor
     for the per-sensor search of ``analyze`` and ``select``.
     """
-    from gyrovib.core.harmonics import MAX_GROUPS, MAX_ORDER
-    from gyrovib.core.phases import MAX_SEARCH_COST, search_cost
-
     problems: dict[int, Problem] = {}
+    if not any(p.profile.harmonics for p in entries):
+        return problems
+    from gyrovib.core.harmonics import MAX_GROUPS, MAX_ORDER
+
     for j, p in enumerate(entries):
         groups = p.profile.harmonics
         if not groups:
@@ -283,6 +284,8 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
                  if o.worst_phase]
         if not worst:
             continue
+        from gyrovib.core.phases import MAX_SEARCH_COST, search_cost  # only for phase: worst
+
         dims = sum(sum(o.worst_phase for o in h.orders)
                    - (1 if all(o.worst_phase for o in h.orders) else 0) for h in groups)
         n_max = max(o.order for h in groups for o in h.orders)
