@@ -51,11 +51,11 @@ def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: floa
                 weights: tuple[float, float] = (1.0, 1.0), rtol: float = 1e-9) -> SpecChecks:
     """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (docs/model.md section 11).
 
-    NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds` for
+    NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds_many` for
     the sensor's own range, fit, measure and ``of``, under its own response
-    (one programme per distinct datasheet definition and group).
+    (every distinct datasheet definition of a group in one call).
     """
-    from gyrovib.core.envelope import spec_bounds
+    from gyrovib.core.envelope import spec_bounds_many
 
     figs = spec.figures
     m_count, n_p = spec.index.size, len(prepared.profiles)
@@ -73,10 +73,14 @@ def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: floa
         for k in rows:
             keys.setdefault((float(figs.range[k]), figs.fit[k], figs.measure[k], figs.of[k]),
                             []).append(k)
-        for (r, fit, measure, of), members in keys.items():
-            sb = spec_bounds(budget, t, s, r, fit, measure, of, weights)
-            nl_bound[members] = sb.nonlinearity[None]
-            vre_bound[members] = sb.vre[None]
+        # every distinct definition in one call: neighbouring ranges share their work
+        defs = list(keys)
+        nl_max, vre_max = spec_bounds_many(
+            budget, t, s, [d[0] for d in defs], [d[1] for d in defs], [d[2] for d in defs],
+            [d[3] for d in defs], weights)
+        for d_index, members in enumerate(keys.values()):
+            nl_bound[members] = nl_max[d_index][None]
+            vre_bound[members] = vre_max[d_index][None]
     nl_value = np.broadcast_to(figs.percent[:, None], (m_count, n_p)).copy()
     vre_value = np.where(figs.has_vre, figs.vre, np.nan)[:, None] * np.ones((1, n_p))
     nl_pass = nl_value <= nl_bound * (1.0 + rtol)

@@ -27,6 +27,8 @@ from gyrovib.models import Allocation
 
 #: Points of the default rate sweep (odd: Ω_K3 = 0 is one of them).
 SWEEP_POINTS = 241
+#: Most sensors drawn in the report's rate-envelope charts (the best-ranked of the selection).
+SWEEP_SENSORS = 12
 #: The default sweep reaches this multiple of the largest |Ω_K3| + vibration peak.
 ENVELOPE_FACTOR = 1.5
 
@@ -222,8 +224,14 @@ def trade_study(
     if sweep_rates is None:
         half = envelope(catalog, profiles, rate)
         sweep_rates = api.rate_range(-half, half, SWEEP_POINTS)
-    swept = api.sweep(catalog, sweep_rates, sensors=sensors, profiles=profiles, unit=unit)
     s_entries, p_entries = api.select_entries(catalog, sensors, profiles)
+    # the rate-envelope charts are for comparing a few candidates: past
+    # SWEEP_SENSORS, only the best-ranked are swept (a line per sensor of 3,000
+    # is no chart, and their sweep held more than a sweep may)
+    swept_sensors: Sequence[str] = sensors
+    if len(s_entries) > SWEEP_SENSORS:
+        swept_sensors = [s_entries[i].sensor.id for i in selection.ranking[:SWEEP_SENSORS]]
+    swept = api.sweep(catalog, sweep_rates, sensors=swept_sensors, profiles=profiles, unit=unit)
     when = (created or _dt.datetime.now(_dt.UTC)).astimezone(_dt.UTC)
     return TradeStudy(
         selection=selection,

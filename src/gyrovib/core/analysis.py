@@ -48,6 +48,7 @@ from gyrovib.core.harmonics import (
     group_moments,
     group_signal,
     locked_rectified_excess,
+    two_groups_excess,
 )
 from gyrovib.core.statistics import (
     PAPER_RANDOM_ASYMMETRY,
@@ -216,6 +217,14 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
         [np.sum(np.asarray(x)) for x in parts] for parts in (p2, p3, p4, p5)))
     c31 = vibration.cross(1) + sum(float(mo.c31) for mo in moments)
     c32 = vibration.cross(2) + sum(float(mo.c32) for mo in moments)
+    if len(locked) == 2 and a.size == 0 and s3 <= 0:
+        # two groups alone: the second's period split at the first's kinks (1e-6 asked)
+        asym2 = 0.5 * two_groups_excess(w, locked[0], locked[1])
+        return Multipliers(
+            asymmetry=asym2, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
+            omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
+            acceleration=_acceleration(acceleration, w.shape),
+        )
     # E(Ω): the first group exactly (or against the others), any further group on a grid
     shift = np.zeros(1)
     for g in locked[1:]:

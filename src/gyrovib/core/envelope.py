@@ -147,10 +147,16 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     # hand the unique pairs over in the caller's order with the last axis (the term)
     # outermost: then neighbours are the same term at neighbouring profiles or rates,
     # whose optima are alike (support() polishes one from the other)
+    # (with more sensors than profiles × rates, the sensors are the inner axis instead:
+    # worst_case hands them sorted by envelope and range, so that neighbours are the
+    # same term and profile at the next range — 3,000 sensors of all-different
+    # ranges under 2 profiles were cold programmes, each neighbour another profile)
     rank = np.arange(key.shape[0])
     if len(shape) > 1:
-        rank[np.moveaxis(np.arange(key.shape[0]).reshape(shape), -1, 0).ravel()] = np.arange(
-            key.shape[0])
+        axes = list(range(len(shape)))
+        inner = [*axes[1:-1], 0] if len(shape) == 3 and shape[0] > shape[1] else axes[:-1]
+        rank[np.transpose(np.arange(key.shape[0]).reshape(shape), [axes[-1], *inner]).ravel()
+             ] = np.arange(key.shape[0])
     first = np.full(uniq.shape[0], key.shape[0])
     np.minimum.at(first, inv, rank)
     order = np.argsort(first, kind="stable")
@@ -235,7 +241,14 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
         ratio = np.where(b > 0, a_max * r / np.where(b > 0, b, 1.0), np.inf)
     c = t.sum(axis=1)                                            # (P, 5)
     d = np.concatenate([c[None, :, None, :], t[None, :, :, :]], axis=2) * scale[:, None, None, :]
-    h, y, line, gap = _solve(f[:, None, None], ms[:, None, None], ratio[:, None, None], d)
+    # sensors sorted by envelope (fit, measure, asymmetry ratio) and range: neighbours
+    # in _solve's order polish each other's programmes
+    order = np.lexsort((r, ratio, ms, f))
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    h, y, line, gap = _solve(f[order, None, None], ms[order, None, None],
+                             ratio[order, None, None], d[order])
+    h, y, line, gap = h[back], y[back], line[back], gap[back]
     bb = b[:, None]
     nonlin = bb * h[:, :, 0]
     coef = bb[..., None] * y[:, :, 0, :] * scale[:, None, :]
@@ -315,3 +328,40 @@ def spec_bounds(budget: float, terms: ArrayLike, g2: ArrayLike, range_: float,
     per = {"range": 100.0 / range_, "span": 100.0 / (2.0 * range_), "rate": 1.0}[of]
     return SpecBounds(nonlinearity=b_max * per, vre=vre_max, w1=w1,
                       share_nl=share_nl, share_vre=share_v)
+
+
+def spec_bounds_many(budget: float, terms: ArrayLike, g2: ArrayLike, ranges: ArrayLike,
+                     fits: Sequence[str], measures: Sequence[str], ofs: Sequence[str],
+                     weights: tuple[float, float] = (1.0, 1.0)
+                     ) -> tuple[FloatArray, FloatArray]:
+    """:func:`spec_bounds` for M datasheet definitions at once: (NL_max, VRE_max), (M, P).
+
+    One :func:`worst_case` over all M ranges (b = 1), so that the envelope
+    programmes of neighbouring ranges polish each other, instead of one call
+    per definition (3,000 sensors of all-different ranges: 3,000 calls, each
+    solved cold). Same splits and units as :func:`spec_bounds`.
+    """
+    if not (np.isfinite(budget) and budget > 0):
+        raise ModelError("the budget must be positive and finite")
+    w = np.asarray(weights, dtype=float)
+    if w.shape != (2,) or not (np.all(np.isfinite(w)) and np.all(w > 0)):
+        raise ModelError("the split weights must be two positive numbers")
+    t = np.asarray(terms, dtype=float)
+    s = np.broadcast_to(np.asarray(g2, dtype=float), t.shape[:1])
+    r = np.asarray(ranges, dtype=float).reshape(-1)
+    for of in ofs:
+        if of not in OF:
+            raise ModelError(f"nonlinearity is relative to one of {', '.join(OF)}, not {of!r}")
+    one = worst_case(t, np.zeros_like(s), r, np.ones(r.size), list(fits), list(measures))
+    w1 = one.nonlinearity                                          # (M, P)
+    on_nl = w1 > 0
+    on_v = np.broadcast_to(s > 0, w1.shape)
+    total = w[0] * on_nl + w[1] * on_v
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share_nl = np.where(on_nl, w[0] / total, 0.0)
+        share_v = np.where(on_v, w[1] / total, 0.0)
+        b_max = np.where(on_nl, share_nl * budget / w1, np.inf)
+        vre_max = np.where(on_v, share_v * budget / s[None, :], np.inf)
+    per = np.array([{"range": 100.0 / rk, "span": 100.0 / (2.0 * rk), "rate": 1.0}[of]
+                    for rk, of in zip(r.tolist(), ofs, strict=True)])
+    return b_max * per[:, None], vre_max
