@@ -1,4 +1,5 @@
-"""Recordings (docs/model.md section 13): Δ_V,rec, the fitted profile, reading and refusing input."""
+"""Recordings (docs/model.md section 13): Δ_V,rec, the fitted profile, reading and refusing
+input."""
 
 from __future__ import annotations
 

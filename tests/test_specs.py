@@ -1,4 +1,5 @@
-"""Datasheet (spec-form) sensors through the library and the command line (docs/model.md section 11).
+"""Datasheet (spec-form) sensors through the library and the command line (docs/model.md
+section 11).
 
 The engine (core/envelope.py) has its own analytic and brute-force tests
 (test_envelope.py); these check the wiring: that a spec-form sensor in a

@@ -249,12 +249,12 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
     for the per-sensor search of ``analyze`` and ``select``.
     """
     problems: dict[int, Problem] = {}
-    if not any(p.profile.harmonics for p in entries):
+    if not any(p.profile.harmonic_groups for p in entries):
         return problems
     from gyrovib.core.harmonics import MAX_GROUPS, MAX_ORDER
 
     for j, p in enumerate(entries):
-        groups = p.profile.harmonics
+        groups = p.profile.harmonic_groups
         if not groups:
             continue
         pid = p.profile.id
@@ -287,7 +287,7 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
             continue
         from gyrovib.core.phases import MAX_SEARCH_COST, search_cost  # only for phase: worst
 
-        dims = sum(sum(o.worst_phase for o in h.orders)
+        dims = sum(sum(bool(o.worst_phase) for o in h.orders)
                    - (1 if all(o.worst_phase for o in h.orders) else 0) for h in groups)
         n_max = max(o.order for h in groups for o in h.orders)
         cost = search_cost(dims, (4 * rates if phase_search else 0) + sensors, n_max)
