@@ -15,8 +15,8 @@ polynomial and the per-term maxima for the RMS bound) in two catalogues:
   engine's worst case: one programme per sensor, profile and term).
 
 The 8 profiles are Gaussian vibrations (σ 0.5–5 deg/s, exact multipliers of
-MODEL.md section 4) at carrier rates 0–20 deg/s, two of them with odd moments
-(a phase-locked pair, MODEL.md section 10). Reports the wall and CPU time
+docs/model.md section 4) at carrier rates 0–20 deg/s, two of them with odd moments
+(a phase-locked pair, docs/model.md section 10). Reports the wall and CPU time
 (best of ``--repeat``; on a shared machine the CPU time is the fairer figure)
 and the number of unique programmes solved.
 """
@@ -38,7 +38,7 @@ def profiles(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     sigma = rng.uniform(0.5, 5.0, 8)
     omega = rng.uniform(0.0, 20.0, 8)
     omega[0] = 0.0
-    # folded-normal mean minus |Ω| (MODEL.md section 4), halved: g_A
+    # folded-normal mean minus |Ω| (docs/model.md section 4), halved: g_A
     z = omega / (sigma * math.sqrt(2.0))
     erf = np.array([math.erf(v) for v in z])
     g_a = 0.5 * (sigma * math.sqrt(2 / math.pi) * np.exp(-z**2) + omega * erf - omega)

@@ -81,7 +81,7 @@ profiles:
 # The linear profile 'lin' (one list item, indented to sit under ``profiles:``), shared
 # by test_linear_api.py and test_specs_linear.py. Tones A = (1, 2, 3) g at 100 Hz with
 # phases (0, 90, 0)°, random σ = (1, 2, 0.5) g, ρ = (0.5, −0.2, 0): Σ⟨a_j²⟩ = 1.5 + 6 +
-# 4.75 = 12.25 g² (worked in test_linear_api.py, MODEL.md section 8).
+# 4.75 = 12.25 g² (worked in test_linear_api.py, docs/model.md section 8).
 #: Three sensors of different forms (coefficients with a range, cross-axis only,
 #: output coefficients with a response) under a tone and a random profile: the
 #: renderers' tests check every cell of their output against it.

@@ -205,7 +205,7 @@ def excess(omega: float, amplitudes: Sequence[float], sigma: float,
 
 # ------------------------------------------------- E(Ω) for many tones, two ways
 #
-# Independent of gyrovib's contour integral: MODEL.md section 4's real-axis
+# Independent of gyrovib's contour integral: docs/model.md section 4's real-axis
 # form by QUADPACK's Fourier-integral routine (QAWF), good where E is not tiny,
 # and the phase average of the folded-normal excess on a product grid of
 # phases (brute force of eq. (2) averaged over the tones' phases; spectral for
@@ -213,7 +213,7 @@ def excess(omega: float, amplitudes: Sequence[float], sigma: float,
 
 
 def excess_characteristic(omega: float, amplitudes: Sequence[float], sigma: float) -> float:
-    """E(Ω) = (2/π)∫₀^∞ cos(Ωt)·(1 − Π J0(a t)·exp(−σ²t²/2))/t² dt, Ω ≠ 0 (MODEL.md §4:
+    """E(Ω) = (2/π)∫₀^∞ cos(Ωt)·(1 − Π J0(a t)·exp(−σ²t²/2))/t² dt, Ω ≠ 0 (docs/model.md §4:
     ⟨|Ω + X|⟩ − |Ω| with the 1 − cos(Ωt) of |Ω| subtracted under the integral)."""
     from scipy import special
 

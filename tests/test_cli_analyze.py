@@ -51,7 +51,7 @@ def test_json_keys_and_values(run, catalog):
                         "multiplicative_coefficients", "additive", "multiplicative", "total",
                         "rms", "source", "saturated", "warnings"}  # INTERFACE.md, second round
     assert row["source"] == "coefficients"
-    # g2 = Δ0(6) of a linear vibration (MODEL.md section 8), then k3·M3 and k5·M5 of
+    # g2 = Δ0(6) of a linear vibration (docs/model.md section 8), then k3·M3 and k5·M5 of
     # locked harmonics (section 10): always present, 0 here (neither in this catalogue)
     assert list(row["additive_terms"]) == ["A1", "k2", "k4", "m31", "m32", "g2", "k3", "k5"]
     assert row["additive_terms"]["g2"] == 0.0

@@ -89,6 +89,18 @@ def test_ctrl_c_during_start_up_imports_exits_130_without_traceback(tmp_path: Pa
     assert err.strip() == "gyrovib: interrupted"
 
 
+@pytest.mark.parametrize(("sig", "code", "word"), [(signal.SIGTERM, 143, "terminated"),
+                                                  (signal.SIGHUP, 129, "hung up")])
+def test_sigterm_or_hangup_during_start_up_imports_exits_in_one_line(
+        tmp_path: Path, sig: int, code: int, word: str) -> None:
+    # sent as soon as main() starts importing the command line: before the command's
+    # own handlers exist, the default action would kill the process (exit -15 / -1)
+    status, err = _interrupt(["analyze"], sig, 0.0, tmp_path)
+    assert status == code, err
+    assert "Traceback" not in err
+    assert err.strip() == f"gyrovib: {word}"
+
+
 def test_sigterm_exits_143_and_leaves_no_temporary_file(tmp_path: Path) -> None:
     target = tmp_path / "result.json"
     target.write_text("previous result\n")
@@ -288,7 +300,7 @@ def test_ascii_stream_gets_an_ascii_table(encoding: str) -> None:
     assert re.search(r"\| +x [0-9][0-9.e+-]* +\|", marks.stdout)  # ✗ of a failing cell
     assert re.search(r"\| +v [0-9][0-9.e+-]* +\|", marks.stdout)  # ✓ of a passing one
     # adis16460 (its datasheet range ±100 deg/s) saturates under manoeuvre-saturation
-    # (Ω_K3 = 96 deg/s + 3σ3 > 100 deg/s, MODEL.md section 9): x SAT, in ASCII too
+    # (Ω_K3 = 96 deg/s + 3σ3 > 100 deg/s, docs/model.md section 9): x SAT, in ASCII too
     assert re.search(r"\| +x SAT ", marks.stdout)
     csv = gyrovib("analyze", "--format", "markdown", env=clean_env(PYTHONIOENCODING="ascii"))
     assert csv.returncode == 0 and csv.stdout.isascii() and "Delta_V" in csv.stdout

@@ -1,4 +1,4 @@
-"""The worst case over a datasheet envelope (MODEL.md section 11, core.envelope).
+"""The worst case over a datasheet envelope (docs/model.md section 11, core.envelope).
 
 Expected values come from closed forms worked by hand (the least-squares,
 endpoint and Chebyshev lines of |ω|, ω², ω³; V. Markov's coefficient bound for
@@ -25,7 +25,7 @@ from gyrovib.core.envelope import (
 )
 from gyrovib.errors import ModelError
 
-#: One random-vibration profile in deg/s: σ = 2 (M2 = 4, M4 = 3σ⁴ = 48, MODEL.md
+#: One random-vibration profile in deg/s: σ = 2 (M2 = 4, M4 = 3σ⁴ = 48, docs/model.md
 #: section 4), g_A = ½·E(Ω) at Ω = 0: ½·σ·√(2/π); plus a phase-locked pair
 #: giving odd moments (M3, M5 made up, only their linearity matters here).
 SIGMA = 2.0
@@ -137,7 +137,7 @@ def test_minimax_odd_coefficients_obey_markov(k: int, bound: float) -> None:
 
 def test_pure_asymmetry_spec_caps_a1() -> None:
     # With |A1| ≤ a_max the A1 term's worst is g_A·a_max once a_max is below the
-    # envelope's own limit (≈ 29·b/R, MODEL.md section 11).
+    # envelope's own limit (≈ 29·b/R, docs/model.md section 11).
     r, b = 100.0, 0.1
     wc = worst_case(only(0), 0.0, [r], [b], asymmetry=[1e-3])
     assert wc.nonlinearity[0, 0] == pytest.approx(1e-3, rel=1e-9)
@@ -207,7 +207,7 @@ def test_symmetry_and_vre_term() -> None:
 @pytest.mark.parametrize("fit", ["least-squares", "minimax", "endpoint"])
 def test_mirror_rate_mirrors_the_worst_polynomial(fit: str) -> None:
     # Without odd moments Δ_V(−Ω) is Δ_V(Ω) of the mirrored sensor p(−ω): k3, k5 and the
-    # line's slope change sign (MODEL.md section 4: Δ(1), Δ(3) odd in Ω, Δ(2) even).
+    # line's slope change sign (docs/model.md section 4: Δ(1), Δ(3) odd in Ω, Δ(2) even).
     t = np.concatenate([profile(0.9), profile(-0.9)])
     wc = worst_case(t, 0.0, [2.0], [0.01], fit)
     assert wc.total[0, 0] == pytest.approx(wc.total[0, 1], rel=1e-12)
@@ -315,7 +315,7 @@ def test_rms_with_minimax_is_refused() -> None:
 @pytest.mark.parametrize(("of", "measure"), [("range", "max"), ("span", "rms"),
                                              ("rate", "max")])
 def test_nl_max_times_w1_is_the_share(of: str, measure: str) -> None:
-    # S = Σ⟨a_j²⟩ = 0 (no linear vibration) and 9 g². MODEL.md section 11 splits Δ*
+    # S = Σ⟨a_j²⟩ = 0 (no linear vibration) and 9 g². docs/model.md section 11 splits Δ*
     # between envelope and g² term in the ratio (1, 1) over the parts the profile
     # excites: profile 0 gives the envelope all of Δ* (share 1, VRE_max = +inf),
     # profile 1 half each (share ½, VRE_max = ½·Δ*/S = ½·0.01/9).
@@ -337,7 +337,7 @@ def test_nl_max_times_w1_is_the_share(of: str, measure: str) -> None:
 
 def test_nonlinearity_limit() -> None:
     # 0.1 %FS of 300 deg/s = 0.3 deg/s; of the span 600 deg/s: 0.6 deg/s;
-    # an absolute rate is the limit itself, 0.25 deg/s (MODEL.md section 11, b)
+    # an absolute rate is the limit itself, 0.25 deg/s (docs/model.md section 11, b)
     assert nonlinearity_limit(0.1, 300.0, "range") == pytest.approx(0.3)
     assert nonlinearity_limit(0.1, 300.0, "span") == pytest.approx(0.6)
     assert nonlinearity_limit(0.25, 300.0, "rate") == pytest.approx(0.25)
@@ -351,7 +351,7 @@ def test_nonlinearity_limit() -> None:
        fit=st.sampled_from(["least-squares", "minimax", "endpoint"]),
        measure=st.sampled_from(["max", "rms"]))
 def test_unit_change_changes_nothing(s: float, fit: str, measure: str) -> None:
-    # One rate unit U = s deg/s (MODEL.md section 2): rates divide by s, M_n by s^n,
+    # One rate unit U = s deg/s (docs/model.md section 2): rates divide by s, M_n by s^n,
     # kn multiply by s^(n−1), A1 and S stay, a VRE in rate/g² divides by s.
     if fit == "minimax" and measure == "rms":
         return

@@ -1,4 +1,4 @@
-"""The envelope's support function against an independent fine-grid LP (MODEL.md section 11).
+"""The envelope's support function against an independent fine-grid LP (docs/model.md section 11).
 
 Reference (built here, sharing no code with gyrovib.core): the residual basis
 from its definitions — the least-squares line of each φ_i = (½|u|, u², u³, u⁴,
@@ -326,7 +326,7 @@ def test_grid_answer_respects_the_cut() -> None:
 @pytest.mark.parametrize("scale", [1e-200, 1e-12, 1e20, 1e200])
 @pytest.mark.parametrize("measure", [0, 1])
 def test_support_is_positively_homogeneous_at_any_norm(scale: float, measure: int) -> None:
-    # h(c·d) = c·h(d) for c > 0 (a support function; MODEL.md section 11: the worst case is
+    # h(c·d) = c·h(d) for c > 0 (a support function; docs/model.md section 11: the worst case is
     # proportional to the functional), with the same maximiser; support() is public and
     # takes directions of any size, e.g. cᵀ·(b/R^i) in a caller's own units
     d = np.array([[0.3, -1.0, 0.5, 0.2, 0.7], [0.0, 0.0, 1.0, 0.0, -0.4],

@@ -1,10 +1,10 @@
-"""The rate-table fit of MODEL.md section 14 (gyrovib.core.fit).
+"""The rate-table fit of docs/model.md section 14 (gyrovib.core.fit).
 
 Where the expected numbers come from: the data are made from stated eq. (1)
 coefficients, so the fit must give them back (noise-free) or scatter around
 them as its own covariance says (a Monte-Carlo of repeated fits); the
 nonlinearities are closed forms worked by hand below and a dense grid; the
-unit invariances follow from eq. (2)'s definition (MODEL.md section 2).
+unit invariances follow from eq. (2)'s definition (docs/model.md section 2).
 """
 
 from __future__ import annotations
@@ -122,7 +122,7 @@ def test_t_values_and_the_significance_flag() -> None:
 
 @pytest.mark.parametrize(("coefficients", "least_squares", "endpoint"), [
     # ½A1|u| alone: LS line a = A1/4, residual ½A1(|u| − ½), max A1/4; endpoint line at
-    # A1/2, max at u = 0 of A1/2 (MODEL.md section 11: "up to A1·R/4")
+    # A1/2, max at u = 0 of A1/2 (docs/model.md section 11: "up to A1·R/4")
     ({"A1": 4e-3}, 25 * 4e-3, 50 * 4e-3),
     # k2·ω²: q = u + k2R·u²; LS: k2R(u² − 1/3), max 2k2R/3; endpoint: k2R(u² − 1), max k2R
     ({"k2": 1e-5}, 100 * 2 / 3 * 1e-5 * 200, 100 * 1e-5 * 200),
@@ -254,7 +254,7 @@ RATE_UNITS = st.sampled_from(["deg/h", "rad/s", "rpm", "deg/s"])
 def test_eq2_coefficients_do_not_depend_on_the_units(output_scale: float, rate_unit: str,
                                                       seed: int) -> None:
     """Rescaling the output (mV ↔ V) changes no eq. (2) coefficient; rewriting the rates
-    in another unit changes each only by its unit factor (MODEL.md section 2):
+    in another unit changes each only by its unit factor (docs/model.md section 2):
     kn[U] = kn[deg/s]·s^(n−1), so the fit in U, converted back, is the fit in deg/s."""
     rng = np.random.default_rng(seed)
     w = np.repeat(LEVELS, 2)

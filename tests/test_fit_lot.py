@@ -1,4 +1,4 @@
-"""Uncertainty of the vibration error and the yield of a lot (MODEL.md section 14,
+"""Uncertainty of the vibration error and the yield of a lot (docs/model.md section 14,
 gyrovib.core.lot).
 
 Sources of the expected numbers: g is built by the analysis engine itself from

@@ -1,5 +1,5 @@
 """The second-round catalogue fields (INTERFACE.md, "Additions of the second round";
-MODEL.md sections 8-11): parsed values, and every refusal located FILE:LINE:COL.
+docs/model.md sections 8-11): parsed values, and every refusal located FILE:LINE:COL.
 
 Every expected place is that of a token of the text (its last occurrence);
 every broken file is refused by the JSON Schema too, except for the rules a

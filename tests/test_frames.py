@@ -16,10 +16,12 @@ import subprocess
 import sys
 from typing import Any
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
 import gyrovib
+from gyrovib.api.frames import column_name
 from gyrovib.cli.main import cli
 
 pd = pytest.importorskip("pandas", reason="to_frame needs the pandas extra")
@@ -42,10 +44,16 @@ def same(frame_value: Any, json_value: Any) -> bool:
     return frame_value == json_value
 
 
-def check_row(frame_row: Any, expected: dict[str, Any]) -> None:
-    for column, value in expected.items():
+def check_row(frame_row: Any, expected: dict[str, Any], kind: str) -> None:
+    """Each JSON value (key path → value) in its column (named as the CSV names it)."""
+    for path, value in expected.items():
+        column = column_name(kind, path)
         got = frame_row[column]
-        assert same(got, value), f"{column}: frame {got!r} != JSON {value!r}"
+        assert same(got, value), f"{column} ({path}): frame {got!r} != JSON {value!r}"
+
+
+def columns(kind: str, paths: Any) -> set[str]:
+    return {column_name(kind, p) for p in paths}
 
 
 def flatten(prefix: str, value: Any) -> dict[str, Any]:
@@ -69,9 +77,10 @@ def test_analyze_frame_equals_json(unit):
     for k, row in enumerate(rows):
         expected = flatten("", row)
         expected["warnings"] = row["warnings"]
-        check_row(frame.iloc[k], expected)
+        check_row(frame.iloc[k], expected, "analyze")
     # a spec-form row adds its envelope: the frame has the union of the rows' keys
-    assert set(frame.columns) == set().union(*(flatten("", row) for row in rows))
+    assert set(frame.columns) == columns("analyze", set().union(*(flatten("", row)
+                                                                  for row in rows)))
     assert frame.attrs["method"] == document["method"] and frame.attrs["unit"] == unit
 
 
@@ -81,7 +90,7 @@ def test_analyze_numeric_frame_has_stderr_samples_and_seed():
     document = cli_json("analyze", *args)
     frame = gyrovib.analyze(sensors="adxrs645", profiles="engine-harmonics", method="numeric",
                             samples=20000, seed=3).to_frame()
-    check_row(frame.iloc[0], flatten("", document["results"][0]))
+    check_row(frame.iloc[0], flatten("", document["results"][0]), "analyze")
     assert (frame.attrs["samples"], frame.attrs["seed"]) == (document["samples"],
                                                              document["seed"])
 
@@ -91,11 +100,11 @@ def test_bounds_frame_equals_json():
     frame = gyrovib.bounds(budget="10deg/h", unit="deg/h").to_frame()
     assert len(frame) == len(document["profiles"]) == 14
     for k, row in enumerate(document["profiles"]):
-        check_row(frame.iloc[k], flatten("", row))
+        check_row(frame.iloc[k], flatten("", row), "bounds")
     # An unconstrained bound (JSON null) is +inf: k3 of a still profile (Ω_K3 = 0 →
     # no Δ(1)·Ω term, eq. 25) is the bundled flat-random-hover's.
     hover = frame.set_index("profile").loc["flat-random-hover"]
-    assert hover["bounds.k3"] == math.inf
+    assert hover["k3"] == math.inf
     assert frame.attrs["budget"] == document["budget"]
 
 
@@ -114,9 +123,10 @@ def test_select_frame_equals_json():
             expected.update(flatten("", {"rate": entry["rate"]}))
             expected.update(flatten("profile_bounds", entry["bounds"]))
             expected.update(flatten("profile_parts", entry["parts"]))
-            check_row(frame.iloc[k], expected)
+            check_row(frame.iloc[k], expected, "select")
             k += 1
     assert k == len(frame) == 9 * 14  # 9 sensors × 14 profiles
+    assert "passed" in frame.columns  # the JSON's pass: a keyword df.query cannot use
     assert frame.attrs["criterion"] == "both" and frame.attrs["require"] == document["require"]
 
 
@@ -135,10 +145,10 @@ def test_sweep_frame_equals_json():
                 for name in ("total", "rms"):
                     # paper null: the paper's formulas do not cover engine-harmonics (3 tones)
                     expected[f"{method}.{name}"] = None if values is None else values[name][r]
-            check_row(frame.iloc[k], expected)
+            check_row(frame.iloc[k], expected, "sweep")
             k += 1
     assert k == len(frame) == 9 * 2 * 5
-    assert frame["paper.rms"][frame["profile"] == "engine-harmonics"].isna().all()
+    assert frame["paper_rms"][frame["profile"] == "engine-harmonics"].isna().all()
 
 
 def test_missing_pandas_names_the_extra(monkeypatch):
@@ -193,5 +203,47 @@ def test_bounds_range_frame_equals_json():
                            nl_fit="minimax").to_frame()
     for k, row in enumerate(document["profiles"]):
         assert "spec_bounds" in row
-        check_row(frame.iloc[k], flatten("", row))
-    assert set(frame.columns) == set(flatten("", document["profiles"][0]))
+        check_row(frame.iloc[k], flatten("", row), "bounds")
+    assert set(frame.columns) == columns("bounds", flatten("", document["profiles"][0]))
+
+
+@pytest.mark.parametrize("command", [
+    ("analyze", "--profile", "cruise-hard-mounted", "--profile", "engine-harmonics"),
+    ("select", "--budget", "10deg/h", "--profile", "cruise-hard-mounted"),
+    ("bounds", "--budget", "10deg/h", "--range", "100"),
+    ("sweep", "--rate-range", "-10:10:3", "--profile", "engine-harmonics"),
+])
+def test_csv_columns_are_frame_columns(command: tuple[str, ...]) -> None:
+    # INTERFACE.md ("Trust and first use"): DataFrame and CSV name their columns alike;
+    # every CSV column is a frame column holding the same values, row for row
+    import io
+
+    done = CliRunner().invoke(cli, [*command, "--format", "csv"], catch_exceptions=False)
+    assert done.exit_code in (0, 1), done.output
+    table = pd.read_csv(io.StringIO(done.stdout), keep_default_na=False)
+    kind = command[0]
+    args = dict(zip(command[1::2], command[2::2], strict=False))
+    if kind == "analyze":
+        frame = gyrovib.analyze(profiles=["cruise-hard-mounted", "engine-harmonics"]).to_frame()
+    elif kind == "select":
+        frame = gyrovib.select(budget="10deg/h", profiles="cruise-hard-mounted").to_frame()
+    elif kind == "bounds":
+        frame = gyrovib.bounds(budget="10deg/h", range_=100).to_frame()
+    else:
+        frame = gyrovib.sweep(rates=(-10, 10), points=3, profiles="engine-harmonics").to_frame()
+    assert args  # the command's options were read
+    missing = [c for c in table.columns if c not in frame.columns]
+    assert not missing, missing
+    assert len(table) == len(frame)
+    for column in table.columns:
+        for got, want in zip(frame[column], table[column], strict=True):
+            if isinstance(got, (bool, np.bool_)):
+                assert str(bool(got)).lower() == str(want).lower(), column
+            elif isinstance(got, (float, np.floating)):
+                assert (math.isnan(got) and want in ("", "nan")) or got == float(want), column
+            elif isinstance(got, (list, tuple)):
+                assert " ".join(map(str, got)) == want or "; ".join(map(str, got)) == want
+            elif got is None:
+                assert want == "", column
+            else:
+                assert str(got) == str(want), column

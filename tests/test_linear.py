@@ -1,6 +1,6 @@
-"""Linear vibration and the g² term Δ0(6) (MODEL.md section 8).
+"""Linear vibration and the g² term Δ0(6) (docs/model.md section 8).
 
-Expected values are worked by hand from MODEL.md section 8 in the comments, or
+Expected values are worked by hand from docs/model.md section 8 in the comments, or
 come from the brute-force quadrature of gyrovib.core.numeric.linear_average
 (averaging Σ G_jk·a_j·a_k over the vibration itself).
 """
@@ -36,7 +36,7 @@ from gyrovib.errors import ModelError
 G0 = 9.80665  # m/s² per g
 
 # Tones A = (1, 2, 3) g with phases (0, 90, 0)°, random σ = (1, 2, 0.5) g with
-# ρ12 = 0.5, ρ13 = −0.2, ρ23 = 0 (MODEL.md section 8):
+# ρ12 = 0.5, ρ13 = −0.2, ρ23 = 0 (docs/model.md section 8):
 #   ⟨a1²⟩ = ½·1² + 1² = 1.5        ⟨a2²⟩ = ½·2² + 2² = 6        ⟨a3²⟩ = ½·3² + 0.5² = 4.75
 #   ⟨a1a2⟩ = ½·1·2·cos(−90°) + 0.5·1·2 = 1
 #   ⟨a1a3⟩ = ½·1·3·cos(0) − 0.2·1·0.5 = 1.4
@@ -84,7 +84,7 @@ def test_batched_profiles_broadcast() -> None:
 
 
 def test_adis16460_scale_of_the_effect() -> None:
-    # MODEL.md section 8: VRE 0.0004 °/s/g² under 3 g rms per axis, independent axes:
+    # docs/model.md section 8: VRE 0.0004 °/s/g² under 3 g rms per axis, independent axes:
     # 0.0004·27 = 0.0108 °/s ≈ 39 °/h
     moments = acceleration_moments(np.zeros((0, 3)), np.zeros((0, 3)), (3.0, 3.0, 3.0))
     got = g2_term([[4e-4, 4e-4, 4e-4, 0, 0, 0]], moments)[0]
@@ -120,7 +120,7 @@ def test_brute_force_quadrature_matches_closed_form() -> None:
 )
 def test_closed_form_equals_brute_force(amps: list, phase: float, sigma: list, rho: float,
                                         g: list) -> None:
-    """Δ0(6) of MODEL.md section 8 = the average of Σ G_jk a_j a_k over the vibration."""
+    """Δ0(6) of docs/model.md section 8 = the average of Σ G_jk a_j a_k over the vibration."""
     a = np.array(amps, dtype=float).reshape(-1, 3)
     ph = np.zeros_like(a)
     ph[:, 1] = phase

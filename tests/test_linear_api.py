@@ -1,7 +1,7 @@
-"""Linear vibration wired end to end: catalogue → api → JSON/tables (MODEL.md section 8).
+"""Linear vibration wired end to end: catalogue → api → JSON/tables (docs/model.md section 8).
 
 Every expected Δ0(6) = Σ G_jk·⟨a_j·a_k⟩ is worked by hand in the comments from
-MODEL.md section 8 (⟨a_j²⟩ = Σ A_j²/2 + σ_j², ⟨a_j·a_k⟩ = Σ ½A_jA_k·cos(φ_j − φ_k)
+docs/model.md section 8 (⟨a_j²⟩ = Σ A_j²/2 + σ_j², ⟨a_j·a_k⟩ = Σ ½A_jA_k·cos(φ_j − φ_k)
 + ρ_jk·σ_jσ_k, σ² = ∫ν²·S df), or compared with the brute force of
 gyrovib.core.numeric (the numeric method), or with the same catalogue written
 in other units.
@@ -260,7 +260,7 @@ profiles:
 def test_bounds_gives_the_vre_bound_by_hand(tmp_path: Path) -> None:
     # default allocation r = 1.5: c_A = 1.5/√3.25 = 0.832050; with w6 = 1 appended,
     # ‖w‖ = √(1 + 1 + 1 + 0.25 + 0.25 + 1) = √4.5, α6 = c_A/√4.5 = 0.392232;
-    # vre = α6·Δ*/Σ⟨a_j²⟩ = 0.392232·0.01/12.25 = 3.20190e-4 deg/s/g² (MODEL.md section 8)
+    # vre = α6·Δ*/Σ⟨a_j²⟩ = 0.392232·0.01/12.25 = 3.20190e-4 deg/s/g² (docs/model.md section 8)
     alpha6 = (1.5 / math.sqrt(3.25)) / math.sqrt(4.5)
     doc = cli_json("bounds", write(tmp_path, TONES_AND_RANDOM), "--budget", "0.01")
     by_id = {p["profile"]: p for p in doc["profiles"]}
@@ -280,7 +280,7 @@ def test_bounds_gives_the_vre_bound_by_hand(tmp_path: Path) -> None:
 
 
 def test_a_catalogue_allocation_of_six_weights_sets_the_vre_share(tmp_path: Path) -> None:
-    # α_p = w_p·c_A/‖w‖ (eq. 21; MODEL.md section 8 adds w6 for the g² term):
+    # α_p = w_p·c_A/‖w‖ (eq. 21; docs/model.md section 8 adds w6 for the g² term):
     # r = 1.5 -> c_A = 1.5/√3.25; w = (1, 1, 1, 0.5, 0.5, 2) -> ‖w‖ = √(3.5 + 4) = √7.5,
     # α6 = 2·c_A/√7.5 = 0.607625; vre = α6·Δ*/Σ⟨a_j²⟩ with Σ⟨a_j²⟩ = 12.25 g² (above)
     c_a = 1.5 / math.sqrt(3.25)
@@ -386,16 +386,16 @@ def test_sweep_carries_the_g2_term(tmp_path: Path) -> None:
 
 def test_bundled_mems_parts_show_the_g2_term_under_the_new_profiles() -> None:
     # ADIS16460 vre 4e-4 deg/s/g² (data sheet) under its own test condition, 5 g rms on
-    # each of the three axes: Δ0(6) = 4e-4·3·25 = 0.03 deg/s (108 deg/h);
-    # ADXRS645 vre 6e-4 under 25 g rms per axis: 6e-4·3·625 = 1.125 deg/s.
+    # the tested axis, as the data sheet's test: Δ0(6) = 4e-4·25 = 0.01 deg/s (36 deg/h);
+    # ADXRS645 vre 6e-4 under 25 g rms on the tested axis: 6e-4·625 = 0.375 deg/s.
     # The PSD levels are rounded to 6 digits (1.26263e-2, 0.126263): rel 1e-5.
     result = analyze(load(), sensors=["adis16460", "adxrs645", "generic-tactical-fog"],
                      profiles=["adis16460-vre-test", "adxrs645-vre-test",
                                "hg4930-operating-random"])
     g2 = dict(zip(((s, p) for s in result.sensors for p in result.profiles),
                   result.error.extra_terms[..., 0].ravel().tolist(), strict=True))
-    assert g2[("adis16460", "adis16460-vre-test")] == pytest.approx(0.03, rel=1e-5)
-    assert g2[("adxrs645", "adxrs645-vre-test")] == pytest.approx(1.125, rel=1e-5)
+    assert g2[("adis16460", "adis16460-vre-test")] == pytest.approx(0.01, rel=1e-5)
+    assert g2[("adxrs645", "adxrs645-vre-test")] == pytest.approx(0.375, rel=1e-5)
     # HG4930 operating PSD 0.003 g²/Hz over 10–2000 Hz: σ² = 5.97 g² per axis
     assert g2[("adis16460", "hg4930-operating-random")] == pytest.approx(4e-4 * 3 * 5.97,
                                                                          rel=1e-12)
@@ -407,7 +407,7 @@ def test_bundled_mems_parts_show_the_g2_term_under_the_new_profiles() -> None:
 def test_bundled_isolation_mount_cuts_the_g2_term() -> None:
     # The same HG4930 PSD through the 50 Hz isolator of 'cruise-isolated': the
     # g² term falls by ∫ν²S df / ∫S df; that ratio is the mean square after the mount over
-    # the one before, whatever the part (MODEL.md section 8)
+    # the one before, whatever the part (docs/model.md section 8)
     result = analyze(load(), sensors=["adis16460"],
                      profiles=["cruise-hard-mounted", "cruise-isolated"])
     hard, isolated = result.error.extra_terms[0, :, 0]

@@ -1,4 +1,4 @@
-"""Phase-locked harmonics through the library and the CLI (MODEL.md section 10).
+"""Phase-locked harmonics through the library and the CLI (docs/model.md section 10).
 
 The closed forms of core/harmonics.py are checked against brute force in
 test_harmonics.py; here the wiring is: the catalogue's ``harmonics:`` groups
@@ -21,7 +21,7 @@ import gyrovib
 from tests.conftest import invoke as run
 
 # orders 1 and 2 on x3 only, a1 = 2, a2 = 1 deg/s, φ1 = 0, φ2 = 90°:
-# M3 = −¾·a1²·a2·sin(φ2 − 2φ1) = −¾·4·1·1 = −3 (deg/s)³ (MODEL.md section 10)
+# M3 = −¾·a1²·a2·sin(φ2 − 2φ1) = −¾·4·1·1 = −3 (deg/s)³ (docs/model.md section 10)
 GROUP = """\
     harmonics:
       fundamental: 20
@@ -120,7 +120,7 @@ def test_worst_phase_is_searched_and_reported(tmp_path: Path) -> None:
 
 def test_datasheet_part_under_unknown_phases_bounds_every_phase(tmp_path: Path) -> None:
     # a spec-form part's worst case under `phase: worst` takes each multiplier at its
-    # largest over the phases (MODEL.md sections 10, 11), so it is at least its worst
+    # largest over the phases (docs/model.md sections 10, 11), so it is at least its worst
     # case at any written phase of order 2 (here 0°, 45°, …, 315° on all axes)
     part = """
     sensors:
@@ -180,7 +180,7 @@ def test_bundled_rotor_shows_the_k3_term() -> None:
 
 
 def test_k3_and_k5_at_their_bounds_stay_within_budget(tmp_path: Path) -> None:
-    # MODEL.md section 6: k3 and the linear k5 add linearly in Δ(1), so each gets β1/2;
+    # docs/model.md section 6: k3 and the linear k5 add linearly in Δ(1), so each gets β1/2;
     # with both at their bounds and of the same sign Δ(1)·Ω̄ = β1·Δ* and the RSS of all
     # shares is at most 1, so Δ_V(RMS) ≤ Δ* (the old β1/√2 each reached 1.098·Δ*).
     profile = """
@@ -215,7 +215,7 @@ def test_select_worst_maximises_the_error_over_unknown_phases(tmp_path: Path) ->
     """``select --criterion worst`` tests the worst |Δ_V| over ``phase: worst`` orders.
 
     INTERFACE.md (second round): ``worst`` is the direct test |Δ_V| ≤ Δ*;
-    MODEL.md section 10: under unknown phases the analysis maximises |Δ_V|.
+    docs/model.md section 10: under unknown phases the analysis maximises |Δ_V|.
     By hand (section 10): k3 = 1e-6, orders 1, 2 on x3 with a1 = 0.5, a2 = 0.3,
     Ω = −20 deg/s: M2 = (0.25 + 0.09)/2 = 0.17, |M3| ≤ ¾·0.25·0.3 = 0.05625, so
     Δ_V = k3·M3 + 3·k3·M2·Ω = k3·M3 − 1.02e-5, worst at M3 = −0.05625:
@@ -247,11 +247,11 @@ def test_select_worst_maximises_the_error_over_unknown_phases(tmp_path: Path) ->
 
 
 def test_bounds_table_prints_the_shares_of_section_10(tmp_path: Path) -> None:
-    """The table's share column follows MODEL.md section 10 where M3, M5 ≠ 0.
+    """The table's share column follows docs/model.md section 10 where M3, M5 ≠ 0.
 
     Orders 1, 2 with φ2 = 90° give M3 ≠ 0 and M5 ≠ 0, so k3 and k5 gain
     additive shares (w = 1 each): with w = (1, 1, 1, ½, ½, 1, 1), c_A = 0.832
-    (MODEL.md section 6), α = c_A/‖w‖ = 0.8321/√5.5 = 0.3548 (0.4447 without);
+    (docs/model.md section 6), α = c_A/‖w‖ = 0.8321/√5.5 = 0.3548 (0.4447 without);
     Δ(1) is split three ways, β1/3 = 0.4529/3 = 0.151, and Δ(2) two ways,
     β2/2 = 0.2265/2 = 0.1132.
     """
@@ -269,7 +269,7 @@ def test_bounds_table_prints_the_shares_of_section_10(tmp_path: Path) -> None:
 
 
 def test_bounds_table_names_the_binding_section_10_part(tmp_path: Path) -> None:
-    # MODEL.md section 10: each bound is the least of its parts; the table's
+    # docs/model.md section 10: each bound is the least of its parts; the table's
     # candidates line must list the section-10 parts and name the least, as the JSON
     # parts give it (orders 1 and 2 with φ2 − 2φ1 = 90°: M3 ≠ 0, so k3 has two parts)
     path = tmp_path / "rotor.yaml"

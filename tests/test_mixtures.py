@@ -1,9 +1,9 @@
-"""E(Ω) for mixtures of many tones, with and without a Gaussian part (MODEL.md §4).
+"""E(Ω) for mixtures of many tones, with and without a Gaussian part (docs/model.md §4).
 
 gyrovib computes these by one contour integral of the moment generating
 function (core/mixtures.py: _contour_excess). Every expected value here comes
 from tests/reference.py by another route: QUADPACK's Fourier integral of
-MODEL.md's real-axis formula, the brute-force phase average of the
+docs/model.md's real-axis formula, the brute-force phase average of the
 folded-normal excess, or nested adaptive quadrature over the phases.
 """
 
@@ -28,7 +28,7 @@ amplitude = st.floats(0.05, 2.0)
 @given(amps=st.lists(amplitude, min_size=3, max_size=10), sigma=st.floats(0.1, 2.0),
        where=st.floats(0.02, 0.7))
 def test_tones_on_random_equal_the_characteristic_integral(amps, sigma, where):
-    # Ω inside the peak (where E is not tiny): MODEL.md's
+    # Ω inside the peak (where E is not tiny): docs/model.md's
     # (2/π)∫cos(Ωt)(1 − ΠJ0·e^{−σ²t²/2})/t² dt by QAWF, whose error is absolute
     # (~1e-11 of the scale: the oscillating integrand cancels); the tail is
     # checked against the brute force below
@@ -87,7 +87,7 @@ def test_four_tones_alone_equal_nested_quadrature(omega, amps):
 @settings(max_examples=20, deadline=None)
 @given(amps=st.lists(amplitude, min_size=2, max_size=64), beyond=st.floats(1.0, 100.0))
 def test_tones_alone_rectify_nothing_beyond_their_reach(amps, beyond):
-    # |Ω| ≥ Σa: Ω + x3 never changes sign, so E is exactly 0 (MODEL.md §4)
+    # |Ω| ≥ Σa: Ω + x3 never changes sign, so E is exactly 0 (docs/model.md §4)
     omega = beyond * math.fsum(amps)
     assert rectified_excess([omega, -omega], amps, 0.0).tolist() == [0.0, 0.0]
 

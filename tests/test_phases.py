@@ -1,6 +1,6 @@
-"""``phase: worst`` (MODEL.md section 10): the worst case over unknown relative phases.
+"""``phase: worst`` (docs/model.md section 10): the worst case over unknown relative phases.
 
-References: the closed form M3 = −¾·a1²·a2·sin(φ2 − 2φ1) of MODEL.md section 10
+References: the closed form M3 = −¾·a1²·a2·sin(φ2 − 2φ1) of docs/model.md section 10
 (so max |M3| = ¾·a1²·a2), and the error at phases drawn at random, which the
 worst case must never fall below.
 """
@@ -42,7 +42,7 @@ def test_time_origin_fixes_one_offset() -> None:
 
 
 def test_worst_k3_term_is_three_quarters_a1_squared_a2() -> None:
-    # Ω = 0 and only k3: Δ_V = k3·M3, max over phases |M3| = ¾·a1²·a2 = 0.54 (MODEL.md 10)
+    # Ω = 0 and only k3: Δ_V = k3·M3, max over phases |M3| = ¾·a1²·a2 = 0.54 (docs/model.md 10)
     g = locked_group([1, 2], [[0, 0, A1], [0, 0, A2]], [[0, 0, 10.0], [0, 0, 0.0]],
                      worst=[True, True])
     c = rows({"k3": 2e-3}, {"k3": -1e-3})

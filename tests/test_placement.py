@@ -1,4 +1,4 @@
-"""Placements (MODEL.md section 12): signed permutations of the axes, checked by hand."""
+"""Placements (docs/model.md section 12): signed permutations of the axes, checked by hand."""
 
 from __future__ import annotations
 
@@ -57,7 +57,7 @@ def test_flipped_axis_by_hand() -> None:
 
 
 def test_omitted_rho12_is_the_product() -> None:
-    # MODEL.md section 12: an omitted ρ12 is ρ31·ρ32.
+    # docs/model.md section 12: an omitted ρ12 is ρ31·ρ32.
     p = pl.parse("x1=+Y,x2=+Z,x3=+X")
     assert isinstance(p, pl.Placement)
     assert p.rate_coherence(0.6, 0.5)[0] == pytest.approx(0.3)

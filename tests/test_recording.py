@@ -1,4 +1,5 @@
-"""Recordings (MODEL.md section 13): Δ_V,rec, the fitted profile, reading and refusing input."""
+"""Recordings (docs/model.md section 13): Δ_V,rec, the fitted profile, reading and refusing
+input."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ scipy_signal = pytest.importorskip("scipy.signal")
 DATA = Path(__file__).parent / "data"
 ULOG = DATA / "px4-sample.ulg"
 
-#: A coefficient-form sensor with every term of eq. (2) and of MODEL.md section 8
+#: A coefficient-form sensor with every term of eq. (2) and of docs/model.md section 8
 #: (values chosen so that each term contributes at the rates used below).
 SENSOR = """\
 gyrovib: 1
@@ -69,7 +70,7 @@ def _eq2(c: dict[str, float], w: np.ndarray) -> np.ndarray:
 
 
 def test_recorded_error_matches_the_definition(tmp_path: Path) -> None:
-    """Δ_V,rec of MODEL.md section 13, evaluated here sample by sample with scipy's own
+    """Δ_V,rec of docs/model.md section 13, evaluated here sample by sample with scipy's own
     butter/sosfiltfilt, over two segments split by a gap, with accelerations in m/s²."""
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
@@ -132,7 +133,7 @@ def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:
     for tone, (f, amp, phase) in zip(profile.harmonic, TONES, strict=True):
         assert tone.frequency == pytest.approx(f, rel=5e-3)
         assert np.asarray(tone.amplitude) == pytest.approx(np.asarray(amp), rel=0.03)
-        # phases relative to the largest axis (x3), as MODEL.md section 13 writes them
+        # phases relative to the largest axis (x3), as docs/model.md section 13 writes them
         relative = (np.asarray(phase) - phase[2] - np.asarray(tone.phase) + 180) % 360 - 180
         assert np.abs(relative) == pytest.approx(np.zeros(3), abs=3.0)
     from gyrovib.core.transmissibility import as_table, psd_variance
@@ -282,7 +283,7 @@ def test_ulog_end_to_end(tmp_path: Path) -> None:
 
 
 def test_input_response_is_a_zero_phase_gain(tmp_path: Path) -> None:
-    """A sensor whose response acts at the input sees ν·x (MODEL.md section 13): checked
+    """A sensor whose response acts at the input sees ν·x (docs/model.md section 13): checked
     against the gain applied here bin by bin (log-log interpolation written out)."""
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
@@ -313,7 +314,7 @@ def test_input_response_is_a_zero_phase_gain(tmp_path: Path) -> None:
 
 def test_spec_form_worst_case_scales_with_the_nonlinearity(tmp_path: Path) -> None:
     """The worst Δ_V,rec over a datasheet envelope is proportional to the limit b
-    (MODEL.md section 11): doubling NL doubles it; with no VRE nothing else adds."""
+    (docs/model.md section 11): doubling NL doubles it; with no VRE nothing else adds."""
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
     from gyrovib.api.recordings import read_recording

@@ -40,11 +40,14 @@ def expected_rows(result: api.AnalysisResult, j: int) -> list[list[str]]:
     odd = bool(result.locked[j]) if result.locked else False
     rows = []
     for i in range(len(result.sensors)):
-        cells = [fmt(x) for x in render._terms(result, i, j, odd)]
-        cells += [fmt(e.additive[i, j]), fmt(e.multiplicative[i, j]), fmt(e.total[i, j])]
+        values = [*render._terms(result, i, j, odd), float(e.additive[i, j]),
+                  float(e.multiplicative[i, j]), float(e.total[i, j]), float(e.rms[i, j])]
+        # a value below 1e-12 of the row's largest finite one is rounding noise: "0"
+        scale = max((abs(v) for v in values if math.isfinite(v)), default=0.0)
+        cells = ["0" if math.isfinite(v) and abs(v) < 1e-12 * scale else fmt(v)
+                 for v in values]
         if result.stderr is not None:
-            cells.append(fmt(result.stderr[i, j], 2))
-        cells.append(fmt(e.rms[i, j]))
+            cells.insert(-1, fmt(result.stderr[i, j], 2))
         rows.append(cells)
     return rows
 
@@ -70,7 +73,7 @@ def results() -> list[api.AnalysisResult]:
 @pytest.mark.parametrize("index", [0, 1, 2], ids=["exact", "numeric", "bundled"])
 def test_cells_are_the_formatted_values(index: int) -> None:
     result = results()[index]
-    text = render.to_table(result, width=400)
+    text = render.to_table(result, width=400, detail=True)
     found = table_rows(text)
     assert len(found) == len(result.profiles)
     for j in range(len(result.profiles)):
@@ -78,10 +81,11 @@ def test_cells_are_the_formatted_values(index: int) -> None:
 
 
 def test_saturated_rows_are_marked() -> None:
-    # "small" (range 10 deg/h) saturates under the 20000 deg/h tone (MODEL.md section 9)
+    # "small" (range 10 deg/h) saturates under the 20000 deg/h tone (docs/model.md section 9)
     result = results()[0]
     assert result.saturated is not None and result.saturated[0, 0]
-    lines = [ln for ln in render.to_table(result, width=400).splitlines() if ln.startswith("│")]
+    lines = [ln for ln in render.to_table(result, width=400, detail=True).splitlines()
+             if ln.startswith("│")]
     marked = [ln.split("│")[1].strip() for ln in lines if render.SATURATED_MARK in ln]
     expected = [s for j in range(len(result.profiles)) for i, s in enumerate(result.sensors)
                 if result.saturated[i, j]]
@@ -94,7 +98,7 @@ def test_nan_and_infinite_values_print_as_fmt_writes_them() -> None:
     total = np.array(e.total)
     total[0, 0], total[1, 0] = np.nan, -np.inf
     odd = dataclasses.replace(result, error=dataclasses.replace(e, total=total))
-    found = table_rows(render.to_table(odd, width=400))
+    found = table_rows(render.to_table(odd, width=400, detail=True))
     assert found[0][0][-2] == "nan" and found[0][1][-2] == "-∞"
 
 

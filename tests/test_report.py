@@ -84,7 +84,7 @@ def test_report_is_self_contained_and_escaped(catalog_file, tmp_path):
     assert hashlib.sha256(catalog_file.read_bytes()).hexdigest() in html
     assert "Requirement NOT met" in html and "@media print" in html
     # "awful" saturates (range 1 < 0.5 + 2.0 under the tone, and under the noise): that
-    # limits it first (MODEL.md section 9: a saturating sensor fails whatever the criterion).
+    # limits it first (docs/model.md section 9: a saturating sensor fails whatever the criterion).
     assert re.search(r"its range under (tone|noise): saturated:", html)
     assert "exceeds the sensor&#x27;s range" in html
     assert 'class="num fail warn" title="' in html  # the saturated cell is marked ⚠
@@ -135,7 +135,7 @@ def test_terms_of_eq16_add_up_to_the_rms(catalog_file):
 
 def test_breakdown_of_locked_harmonics_and_linear_vibration_adds_up_to_the_rms(bundled_study):
     """The bundled catalogues have a linear vibration and phase-locked harmonics
-    (rotor-harmonics): the breakdown gains g2 = Δ0(6) (MODEL.md section 8) and k3·M3,
+    (rotor-harmonics): the breakdown gains g2 = Δ0(6) (docs/model.md section 8) and k3·M3,
     k5·M5 (section 10), and eq. (16)'s squares again sum to Δ_V(RMS)² for every sensor
     given by coefficients (a datasheet sensor's RMS is its envelope's worst case)."""
     study = bundled_study

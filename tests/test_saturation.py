@@ -1,4 +1,4 @@
-"""Saturation reach (MODEL.md section 9): |Ω_K3| + Σ a3 + Σ locked peaks + κ·σ3 against R."""
+"""Saturation reach (docs/model.md section 9): |Ω_K3| + Σ a3 + Σ locked peaks + κ·σ3 against R."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Saturation through `analyze` and `select` (MODEL.md section 9, INTERFACE.md second round).
+"""Saturation through `analyze` and `select` (docs/model.md section 9, INTERFACE.md second round).
 
 The reach at the nonlinear element is |Ω_K3| + Σ tone amplitudes + κ·σ3. The
 profile below has Ω_K3 = 10 deg/s, one 100 Hz tone of a3 = 5 deg/s and a
@@ -123,7 +123,7 @@ def test_require_all_counts_a_saturating_part_as_failing(tmp_path: Path) -> None
 def test_input_response_keeps_a_part_out_of_saturation(tmp_path: Path) -> None:
     # a 100 Hz tone of 50 deg/s at Ω = 0 against R = 30: as an output filter (bare
     # table or at: output) the response does not act on the element, reach 50 > 30;
-    # at the input its gain 0.1 leaves a3 = 5 deg/s, reach 5 < 30 (MODEL.md section 9).
+    # at the input its gain 0.1 leaves a3 = 5 deg/s, reach 5 < 30 (docs/model.md section 9).
     profile = """
     profiles:
       - id: big
@@ -200,7 +200,7 @@ def test_saturation_does_not_depend_on_the_file_unit(rate: float, amplitude: flo
 @pytest.mark.parametrize("criterion", ["bounds", "rms", "worst", "both"])
 def test_saturating_datasheet_part_never_ranks_as_passing(tmp_path: Path,
                                                           criterion: str) -> None:
-    # a spec-form (datasheet) part saturates against its specs.range (MODEL.md sections 9,
+    # a spec-form (datasheet) part saturates against its specs.range (docs/model.md sections 9,
     # 11): R = 12 deg/s < reach 21 deg/s. Its nonlinearity, 1e-9 %FS of 12 deg/s, makes
     # its worst case ~1e-9 deg/s, far inside Δ* = 0.01, so only saturation can fail it.
     path = catalog(tmp_path, {"ok": 100.0}, extra=(

@@ -65,12 +65,12 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert result.exit_code == 0, result.stderr          # "good" passes: any is met
     doc = strict_json(result.stdout)
     assert set(doc) == {"tool", "version", "method", "unit", "budget", "profiles",
-                        "criterion", "require", "sensors"}
+                        "criterion", "require", "assume_unknown", "sensors"}
     assert doc["tool"] == "gyrovib" and doc["method"] == "exact" and doc["unit"] == "deg/s"
     assert doc["budget"] == 0.01 and doc["criterion"] == "bounds" and doc["require"] == "any"
     assert [p["profile"] for p in doc["profiles"]] == ["tone", "noise"]
     assert set(doc["profiles"][0]) == {"profile", "rate", "bounds", "parts"}
-    # vre (MODEL.md section 8): null, these profiles have no linear vibration
+    # vre (docs/model.md section 8): null, these profiles have no linear vibration
     assert set(doc["profiles"][0]["bounds"]) == {"A1", "k2", "k3", "k4", "k5", "m31", "m32",
                                                  "vre"}
     assert doc["profiles"][0]["bounds"]["vre"] is None
@@ -83,8 +83,12 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert sensors["awful"]["pass"] is False
     bad_tone, bad_noise = sensors["bad"]["profiles"]
     # total (|Δ_V|), saturated and reason: INTERFACE.md, second round
-    assert set(bad_tone) == {"profile", "pass", "rms", "margin", "checks", "total", "saturated",
+    assert set(bad_tone) == {"profile", "pass", "status", "unknown", "rms", "margin",
+                             "criterion_margin", "disagrees", "checks", "total", "saturated",
                              "reason"}
+    # a coefficient-form part states its coefficients: nothing unknown (INTERFACE.md, trust)
+    assert (bad_tone["status"], bad_noise["status"], bad_tone["unknown"]) == ("fail", "pass", [])
+    assert (sensors["bad"]["status"], sensors["good"]["status"]) == ("fail", "pass")
     assert sensors["bad"]["source"] == "coefficients"
     assert bad_tone["saturated"] is False and "exceeds its bound" in bad_tone["reason"]
     assert bad_tone["pass"] is False and bad_noise["pass"] is True
@@ -99,8 +103,14 @@ def test_select_json_verdicts(catalog: str) -> None:
     # rms = k2·M2 = 3e-3·2 = 6e-3, margin = 0.01/6e-3 = 1.6667
     assert bad_tone["rms"] == pytest.approx(6e-3, rel=1e-12)
     assert bad_tone["margin"] == pytest.approx(0.01 / 6e-3, rel=1e-12)
+    # The cell is decided by the bounds (the criterion): its margin is the least
+    # bound/value, k2's 0.4447496·0.01/2 / 3e-3 = 0.7412 (< 1: it fails), and the direct
+    # tests Δ_V(RMS) = |Δ_V| = 6e-3 ≤ 0.01 would pass it: they disagree, and say so.
+    assert bad_tone["criterion_margin"] == pytest.approx(0.4447496 * BUDGET / 2 / 3e-3,
+                                                         rel=1e-6)
+    assert bad_tone["disagrees"] == ["rms", "worst"] and bad_noise["disagrees"] == []
     # k3 under Ω̄ = 0.5: bound finite; a coefficient the sensor does not have: value 0, pass.
-    # Its share is β1/2 = 0.2264554 (MODEL.md section 6): (β1/2)·Δ*/(|Ω̄|·3M2), |Ω̄|·3M2 = 3
+    # Its share is β1/2 = 0.2264554 (docs/model.md section 6): (β1/2)·Δ*/(|Ω̄|·3M2), |Ω̄|·3M2 = 3
     assert bad_tone["checks"]["k3"] == {"value": 0.0, "bound": pytest.approx(
         0.2264554 * BUDGET / 3, rel=1e-6), "pass": True}
 
@@ -175,7 +185,7 @@ sensors:
 @pytest.mark.parametrize("response", ["[[1, 0.1], [1000, 0.1]]",
                                       "{at: output, table: [[1, 0.1], [1000, 0.1]]}"])
 def test_output_response_earns_no_credit(tmp_path: Path, response: str) -> None:
-    # an output filter acts after the error is rectified (MODEL.md section 9): the
+    # an output filter acts after the error is rectified (docs/model.md section 9): the
     # sensor's bounds are the profile's own, 0.0022237 < 3e-3, so it fails.
     body = PROFILES + f"""
 sensors:
@@ -246,7 +256,8 @@ def test_csv_and_markdown(catalog: str) -> None:
     rows = list(csv.DictReader(io.StringIO(text)))
     assert len(rows) == 6
     bad_tone = next(r for r in rows if r["sensor"] == "bad" and r["profile"] == "tone")
-    assert bad_tone["pass"] == "False" and bad_tone["pass_k2"] == "False"
+    # the verdict column is "passed" (as in the DataFrame; "pass" is a Python keyword)
+    assert bad_tone["passed"] == "False" and bad_tone["pass_k2"] == "False"
     assert float(bad_tone["value_k2"]) == 3e-3
     md = run("select", catalog, "--budget", "0.01", "--format", "markdown").stdout
     assert md.count("**FAIL**") == 2 and md.count("**PASS**") == 1
@@ -261,7 +272,8 @@ def test_bounds_table_one_per_profile(catalog: str) -> None:
     assert result.exit_code == 0
     out = result.stdout
     assert out.count("Δ* = 0.01 deg/s") == 2 and "tone  (Ω_K3 = 0" in out and "noise  (" in out
-    assert "∞" in out and "inf" not in out and "nan" not in out
+    # an unconstrained bound (k3 at Ω̄ = 0) reads "unbounded", never inf or a huge number
+    assert "unbounded" in out and "inf" not in out and "nan" not in out
 
 
 def test_output_file(catalog: str, tmp_path: Path) -> None:

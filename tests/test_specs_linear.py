@@ -1,7 +1,7 @@
 """Datasheet (spec-form) sensors under linear vibration, through the command line.
 
 The bundled ADIS16460 and ADXRS645 are spec-form sensors with a VRE spec v
-(MODEL.md section 11); the bundled linear profiles (MODEL.md section 8) give
+(docs/model.md section 11); the bundled linear profiles (docs/model.md section 8) give
 Σ_j⟨a_j²⟩. Their worst case adds |v|·Σ_j⟨a_j²⟩ to the envelope's worst |Δ_V|
 (the VRE term takes the sign that makes |Δ_V| largest). Also: the merged
 ``select`` checks, where a coefficient sensor's effective-VRE check and a
@@ -23,10 +23,12 @@ from tests.conftest import LINEAR_PROFILE
 from tests.conftest import invoke as run
 
 # Flat PSDs of the bundled profiles (their comments in profiles.gyrovib.yaml):
-#   adis16460-vre-test: 1.26263e-2 g²/Hz over 20–2000 Hz -> 24.99999 g² per axis (5 g rms),
-#   hg4930-operating-random: 3.0e-3 g²/Hz over 10–2000 Hz -> 5.97 g² per axis,
-# on each of the three axes.
+#   adis16460-vre-test: 1.26263e-2 g²/Hz over 20–2000 Hz -> 24.99999 g² (5 g rms) on the
+#     tested axis x3 alone (the data sheet's one-axis test): Σ⟨a_j²⟩ = 1 × σ²;
+#   hg4930-operating-random: 3.0e-3 g²/Hz over 10–2000 Hz -> 5.97 g² on each of the three
+#     axes: Σ⟨a_j²⟩ = 3 × σ².
 SIGMA2 = {"adis16460-vre-test": 1.26263e-2 * 1980.0, "hg4930-operating-random": 3.0e-3 * 1990.0}
+AXES = {"adis16460-vre-test": 1, "hg4930-operating-random": 3}
 # VRE specs of the bundled data sheets (sensors.gyrovib.yaml): deg/s per g².
 VRE = {"adis16460": 4.0e-4, "adxrs645": 6.0e-4}
 
@@ -39,21 +41,21 @@ def cli_json(*args: str) -> dict[str, Any]:
 
 def test_bundled_datasheet_vre_term_through_the_cli() -> None:
     # Pure linear profiles at Ω = 0 without angular vibration: the envelope part is 0,
-    # so worst |Δ_V| = Δ0 g² = |v|·3·σ², and the RMS bound is that one term.
-    # ADIS16460 at its own condition: 4e-4·3·25 = 0.03 deg/s (= 108 deg/h);
-    # under HG4930's PSD: 4e-4·3·5.97 = 7.164e-3 deg/s; ADXRS645 (6e-4): 0.045 and
-    # 1.0746e-2 deg/s.
+    # so worst |Δ_V| = Δ0 g² = |v|·Σ⟨a_j²⟩, and the RMS bound is that one term.
+    # ADIS16460 at its own condition (one axis): 4e-4·25 = 0.01 deg/s (= 36 deg/h), the
+    # data sheet's VRE × level²; under HG4930's PSD: 4e-4·3·5.97 = 7.164e-3 deg/s;
+    # ADXRS645 (6e-4): 0.015 and 1.0746e-2 deg/s.
     doc = cli_json("analyze", "--sensor", "adis16460", "--sensor", "adxrs645",
                    "--profile", "adis16460-vre-test", "--profile", "hg4930-operating-random")
     assert len(doc["results"]) == 4
     for row in doc["results"]:
-        expected = VRE[row["sensor"]] * 3 * SIGMA2[row["profile"]]
+        expected = VRE[row["sensor"]] * AXES[row["profile"]] * SIGMA2[row["profile"]]
         assert row["source"] == "specs"
         assert row["additive_terms"]["g2"] == pytest.approx(expected, rel=1e-12)
         assert row["total"] == pytest.approx(expected, rel=1e-12)
         assert row["envelope"]["rms_bound"] == pytest.approx(expected, rel=1e-12)
     by_hand = {(r["sensor"], r["profile"]): r["total"] for r in doc["results"]}
-    assert by_hand[("adis16460", "adis16460-vre-test")] == pytest.approx(0.03, rel=1e-5)
+    assert by_hand[("adis16460", "adis16460-vre-test")] == pytest.approx(0.01, rel=1e-5)
     assert by_hand[("adis16460", "hg4930-operating-random")] == pytest.approx(7.164e-3,
                                                                               rel=1e-12)
 
@@ -134,5 +136,13 @@ def test_select_mixes_the_coefficient_vre_check_and_the_datasheet_checks(
     assert result.limits[0].name == "vre"
     frame = result.to_frame()
     assert frame["reason"].iloc[0] == cell["reason"]
-    assert spec_cell["reason"] is None and frame["reason"].isna().iloc[1]  # it passes
-    assert list(frame["checks.vre.pass"]) == [False, spec_cell["checks"]["vre"]["pass"]]
+    assert list(frame["pass_vre"]) == [False, spec_cell["checks"]["vre"]["pass"]]
+    # it passes on its datasheet, but lin's angular x1, x2 are correlated with x3 (the
+    # default coherence 1): m31, m32, not on a datasheet, can decide it -> unverified
+    assert (spec_cell["status"], spec_cell["unknown"]) == ("unverified", ["m31", "m32"])
+    assert spec_cell["pass"] is False and frame["status"].iloc[1] == "unverified"
+    assert spec_cell["reason"].startswith("unverified: passes on its published figures, "
+                                          "but m31 not published")
+    assert frame["reason"].iloc[1] == spec_cell["reason"]
+    zero = gyrovib.select(str(path), budget=0.01, assume_unknown="zero").to_frame()
+    assert zero["reason"].isna().iloc[1] and zero["status"].iloc[1] == "pass"  # it passes

@@ -205,7 +205,7 @@ def test_a_sweep_refused_by_the_exact_method_is_an_error_at_the_profile(
 
 
 def test_a_sweep_the_paper_refuses_keeps_its_exact_values() -> None:
-    # several tones alone: the paper's formulas do not cover them (MODEL.md), the
+    # several tones alone: the paper's formulas do not cover them (docs/model.md), the
     # exact method does; the paper column is empty, nothing is an error
     catalog = merge([parse_catalog(SWEEP, "sweep.yaml")])
     result = api.sweep(catalog, api.rate_range(-1.0, 1.0, 5), profiles=["tone"])

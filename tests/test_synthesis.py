@@ -33,7 +33,7 @@ BUDGET = 0.01  # Δ* in deg/s throughout
 #   α4,5 = ½·0.4447496 = 0.2223748                                             (eq. 21)
 # ‖v‖ = √(1+¼+¼) = √1.5 = 1.2247449; β1 = 0.5547002/1.2247449 = 0.4529108,
 #   β2,3 = 0.2264554                                                          (eq. 24)
-# k3 and k5-linear: β1/2 = 0.2264554 (MODEL.md section 6: they add linearly inside Δ(1);
+# k3 and k5-linear: β1/2 = 0.2264554 (docs/model.md section 6: they add linearly inside Δ(1);
 #   the paper prints 0.35 ≈ β1/√2, which can overrun the share by √2)
 C_A, C_M = 0.8320503, 0.5547002
 ALPHA = (0.4447496, 0.4447496, 0.4447496, 0.2223748, 0.2223748)
@@ -72,7 +72,7 @@ def test_custom_allocation_constants() -> None:
     assert c.alpha[0] == pytest.approx(0.6708204, rel=1e-6)
     assert c.alpha[1] == pytest.approx(0.3354102, rel=1e-6)
     assert c.beta == pytest.approx([0.1825742] * 3, rel=1e-6)
-    assert c.k3 == pytest.approx(0.1825742 / 2, rel=1e-6)       # β1/2, MODEL.md section 6
+    assert c.k3 == pytest.approx(0.1825742 / 2, rel=1e-6)       # β1/2, docs/model.md section 6
 
 
 @pytest.mark.parametrize("bad", [
@@ -312,7 +312,7 @@ def test_a_coefficient_at_its_bound_uses_exactly_its_share(
         beta = [vq * (1 / math.sqrt(5)) / math.sqrt(14) for vq in CUSTOM[6:]]
         assert c.alpha == pytest.approx(alpha, rel=1e-12)
         assert c.beta == pytest.approx(beta, rel=1e-12)
-        assert c.k3 == pytest.approx(beta[0] / 2, rel=1e-12)  # MODEL.md section 6
+        assert c.k3 == pytest.approx(beta[0] / 2, rel=1e-12)  # docs/model.md section 6
     if where == "additive":
         used = float(err.additive_terms[0, 0, index])
         share = float(c.alpha[index])
@@ -363,7 +363,7 @@ def test_within_bounds_keeps_rms_within_budget(a: float, sigma: float, omega: fl
     """Every coefficient at its bound, any signs: Δ_V(RMS) ≤ Δ* (eq. 17).
 
     k3 and the linear k5 each get β1/2 of Δ* and add linearly inside Δ(1), so even with
-    both at their bounds and of one sign |Δ(1)Ω̄| ≤ β1·Δ* (MODEL.md section 6).
+    both at their bounds and of one sign |Δ(1)Ω̄| ≤ β1·Δ* (docs/model.md section 6).
     """
     from gyrovib.core.analysis import COLUMN, profile_multipliers
     from gyrovib.core.statistics import vibration_at_sensor
@@ -384,7 +384,7 @@ def test_within_bounds_keeps_rms_within_budget(a: float, sigma: float, omega: fl
 
 
 def test_k3_and_k5_at_their_bounds_with_one_sign_stay_within_budget() -> None:
-    """The case that overran by 1.098 with β1/√2 each: now Δ_V(RMS) ≤ Δ* (MODEL.md section 6).
+    """The case that overran by 1.098 with β1/√2 each: now Δ_V(RMS) ≤ Δ* (docs/model.md section 6).
 
     Tone a3 = 2 deg/s (M2 = 2, M4 = 6), Ω̄ = 0.5: k3 = (β1/2)Δ*/(|Ω̄|·3M2) and
     k5 = (β1/2)Δ*/(|Ω̄|·5M4) (k5's linear part binds: 0.000150970 < 0.000905822), both

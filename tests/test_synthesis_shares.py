@@ -1,6 +1,6 @@
-"""Shares of MODEL.md sections 8 and 10 in the synthesis: vre, k3·M3, k5·M5, split β's.
+"""Shares of docs/model.md sections 8 and 10 in the synthesis: vre, k3·M3, k5·M5, split β's.
 
-Every expected number is worked by hand in the comments from MODEL.md sections 6,
+Every expected number is worked by hand in the comments from docs/model.md sections 6,
 8 and 10 (c_A = 0.8320503, c_M = 0.5547002, β = 0.4529108 | 0.2264554 as in
 tests/test_synthesis.py).
 """
@@ -32,7 +32,7 @@ from gyrovib.core.synthesis import (
 )
 
 BUDGET = 0.01
-# MODEL.md section 6, eq. (20) with r = 1.5: c_A = r/√(1+r²) = 1.5/√3.25 = 0.8320503,
+# docs/model.md section 6, eq. (20) with r = 1.5: c_A = r/√(1+r²) = 1.5/√3.25 = 0.8320503,
 # c_M = 1/√3.25 = 0.5547002; eq. (24): β_q = v_q·c_M/‖v‖ with v = (1, ½, ½), ‖v‖ = √1.5:
 # β1 = 0.5547002/1.2247449 = 0.4529108, β2 = β3 = 0.2264554 (as in test_synthesis.py).
 C_A = 0.8320503
@@ -81,7 +81,7 @@ def test_odd_moment_bounds_by_hand() -> None:
 
 
 def test_symmetric_profiles_keep_the_section_6_shares() -> None:
-    # M3 = 0, M5 = 0: no k3/k5 additive share, β1/2 for k3 and k5 (MODEL.md section 6)
+    # M3 = 0, M5 = 0: no k3/k5 additive share, β1/2 for k3 and k5 (docs/model.md section 6)
     sym = Multipliers(asymmetry=one(0.3), m2=one(2.0), m4=one(6.0), c31=one(1.0),
                       c32=one(0.5), omega=one(0.5), m3=one(0.0), m5=one(0.0))
     b = coefficient_bounds(sym, BUDGET, allocation_constants())
@@ -147,7 +147,7 @@ def test_every_coefficient_at_its_bound_keeps_rms_within_budget(
     """Locked group + tone + random + linear vibration, all at their bounds: Δ_V(RMS) ≤ Δ*.
 
     The shares of sections 6, 8 and 10 satisfy Σα² + Σβ² = 1 over what the profile has,
-    and each share splits Δ(1), Δ(2) equally among its coefficients (MODEL.md 10).
+    and each share splits Δ(1), Δ(2) equally among its coefficients (docs/model.md 10).
     """
     g = locked_group([1, 2, 3], [[0.3 * a1, 0, a1], [0, 0.2 * a2, a2], [0, 0, a3]],
                      [[0, 0, 0], [0, 0, p2], [0, 30, p3]])

@@ -207,7 +207,7 @@ def _spec_weights(value: object) -> tuple[float, float]:
             _number("spec_weights", items[1], positive=True))
 
 
-def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
+def load(*paths: str | Path | Sequence[str | Path], bundled: str | None = None) -> Catalog:
     """Load and merge catalogue files.
 
     Parameters
@@ -215,6 +215,9 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
     *paths : str or pathlib.Path, or sequences of them
         Catalogue files (YAML); several are merged, an id used twice is an
         error. None at all: the catalogues bundled with gyrovib.
+    bundled : {'sensors', 'profiles', 'all'}, optional
+        Add these bundled catalogues to ``paths`` (as ``--bundled``): e.g.
+        ``gyrovib.load("my-profiles.yaml", bundled="sensors")``.
 
     Returns
     -------
@@ -234,11 +237,13 @@ def load(*paths: str | Path | Sequence[str | Path]) -> Catalog:
     >>> import gyrovib
     >>> catalog = gyrovib.load()
     >>> [e.sensor.id for e in catalog.sensors][:2]
-    ['adxrs645', 'generic-rate-mems']
+    ['adxrs645', 'adis16460']
     """
     from gyrovib import api
 
-    return api.load(_paths(paths))
+    if bundled is not None:
+        bundled = _text("bundled", bundled, ("sensors", "profiles", "all"))
+    return api.load(_paths(paths), bundled=bundled)
 
 
 def _catalog(catalog: CatalogLike) -> Catalog:
@@ -307,7 +312,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
     samples, seed : int
         ``method='numeric'`` only: evaluations per sensor × profile, seed.
     peak_factor : float
-        κ of the saturation check (MODEL.md section 9), default 3.
+        κ of the saturation check (docs/model.md section 9), default 3.
 
     Returns
     -------
@@ -360,11 +365,11 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
         Output unit; default the unit a budget string carries, else deg/s.
     allocation : sequence of float, optional
         r alone, or r, w1..w5, v1..v3, or r, w1..w6, v1..v3 with w6 the weight of
-        the g² term (eq. 18, 21, 24; MODEL.md section 8).
+        the g² term (eq. 18, 21, 24; docs/model.md section 8).
     range_ : number or str, optional
         R of a datasheet part (in ``unit``, or with a unit): adds ``spec_bounds``,
         the allowable nonlinearity in %FS (read as ``nl_fit``, ``nl_measure``,
-        of R or of the span 2R as ``nl_of``) and VRE (MODEL.md section 11).
+        of R or of the span 2R as ``nl_of``) and VRE (docs/model.md section 11).
     spec_weights : (float, float)
         Split of Δ* between the nonlinearity envelope and the VRE term.
 
@@ -395,7 +400,8 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
            unit: str | None = None, criterion: str = "bounds", require: str = "any",
            allocation: Sequence[float] | None = None,
            spec_weights: tuple[float, float] = (1.0, 1.0),
-           peak_factor: float = 3.0, yield_target: float | None = None, seed: int = 0,
+           peak_factor: float = 3.0, assume_unknown: str = "none",
+           yield_target: float | None = None, seed: int = 0,
            draws: int = 100_000) -> SelectionResult:
     """Which sensors meet the budget: bound checks and eq. (17), ranked by margin.
 
@@ -424,7 +430,12 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     spec_weights : (float, float)
         As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
     peak_factor : float
-        κ of the saturation check (MODEL.md section 9), default 3.
+        κ of the saturation check (docs/model.md section 9), default 3.
+    assume_unknown : {'none', 'zero'}
+        A figure a datasheet does not publish (the VRE, m31, m32) is unknown:
+        where it can decide a part's verdict the part is ``unverified``
+        (``status``), not passing, with ``questions`` for its vendor.
+        ``'zero'`` takes such figures as 0 instead.
     yield_target : float, optional
         Y, 0 < Y < 1: a production lot (``lot:``) passes a profile when the
         probability that a part drawn from it passes is at least Y (docs/model.md
@@ -453,6 +464,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
         "require": _text("require", require, api.REQUIREMENTS),
         "allocation": _allocation(allocation), "spec_weights": _spec_weights(spec_weights),
         "peak_factor": _number("peak_factor", peak_factor, nonnegative=True),
+        "assume_unknown": _text("assume_unknown", assume_unknown, ("none", "zero")),
         "yield_target": None if yield_target is None else _number("yield_target", yield_target),
         "seed": _integer("seed", seed, 0), "draws": _integer("draws", draws, 1)}
     return api.select(_catalog(catalog), unit=unit, **arguments)

@@ -129,7 +129,7 @@ def acceleration(unit: str) -> float:
 
     An acceleration ``a`` in ``unit`` is ``a·acceleration(unit)`` g; a PSD in
     unit²/Hz takes the square, and a g²-sensitivity (rate per unit²) the
-    inverse square (MODEL.md section 8).
+    inverse square (docs/model.md section 8).
     """
     try:
         return ACCELERATION_UNITS[unit.strip()]

@@ -10,7 +10,7 @@ module                          what it holds
 =============================  ===============================================
 :mod:`gyrovib.api.entries`      ``load``, choosing entries, their file lines
 :mod:`gyrovib.api.convert`      unit conversions (deg/s in, output unit out)
-:mod:`gyrovib.api.linear`       linear vibration (g) and g²-sensitivities (MODEL.md 8)
+:mod:`gyrovib.api.linear`       linear vibration (g) and g²-sensitivities (docs/model.md 8)
 :mod:`gyrovib.api.prepare`      the one pipeline and its overflow checks
 :mod:`gyrovib.api.results`      the immutable result types
 :mod:`gyrovib.api.commands`     one module per command

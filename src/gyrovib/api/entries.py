@@ -7,6 +7,7 @@ messages and annotations.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -26,15 +27,36 @@ if TYPE_CHECKING:
 Location = tuple[str | None, int | None]
 
 
-def load(paths: Sequence[str | Path] = (), *, sensors: bool = True) -> Catalog:
+#: What ``bundled`` may add: the bundled file(s) of each choice, by name.
+BUNDLED_CHOICES = ("sensors", "profiles", "all")
+
+
+def bundled_choice(which: str) -> list[str]:
+    """The bundled catalogue files of ``which``: ``sensors``, ``profiles`` or ``all``."""
+    if which not in BUNDLED_CHOICES:
+        raise OptionError(f"unknown bundled catalogue {which!r}; use one of "
+                          f"{', '.join(BUNDLED_CHOICES)}")
+    found = bundled_files()
+    if which == "all":
+        return found
+    return [f for f in found if os.path.basename(f).startswith(which + ".")]
+
+
+def load(paths: Sequence[str | Path] = (), *, sensors: bool = True,
+         bundled: str | None = None) -> Catalog:
     """Load and merge catalogue files; no paths means the bundled catalogues.
 
-    ``sensors=False``: the profiles only. The ``sensors:`` sections are read
-    past by the YAML parser, neither built nor validated: a library shortcut
-    for profiles alone. No command uses it; every command validates each file
-    whole.
+    ``bundled`` (``"sensors"``, ``"profiles"`` or ``"all"``) adds those bundled
+    catalogues after ``paths`` (e.g. your own profiles with the bundled
+    sensors; ids must stay unique across the files). ``sensors=False``: the
+    profiles only. The ``sensors:`` sections are read past by the YAML parser,
+    neither built nor validated: a library shortcut for profiles alone. No
+    command uses it; every command validates each file whole.
     """
-    return load_catalog(list(paths) if paths else bundled_files(),
+    files = [str(p) for p in paths]
+    if bundled is not None:
+        files += [f for f in bundled_choice(bundled) if f not in files]
+    return load_catalog(files if files else bundled_files(),
                         skip=() if sensors else ("sensors",))
 
 
@@ -51,8 +73,9 @@ def select_entries(
     if missing:
         files = ", ".join(s.name for s in catalog.sources) or "the catalogue"
         raise OptionError(
-            f"no {' and no '.join(missing)} in {files}: give a file that has them too "
-            "(or no FILE at all for the bundled catalogues)"
+            f"no {' and no '.join(missing)} in {files}: give a file that has them too, "
+            f"or add the bundled ones (--bundled {missing[0] if len(missing) == 1 else 'all'}), "
+            "or no FILE at all for the bundled catalogues"
         )
     s_ids = [e.sensor.id for e in catalog.sensors]
     p_ids = [e.profile.id for e in catalog.profiles]

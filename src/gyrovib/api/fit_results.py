@@ -1,4 +1,4 @@
-"""The immutable result of ``gyrovib fit`` (MODEL.md section 14).
+"""The immutable result of ``gyrovib fit`` (docs/model.md section 14).
 
 In a module of its own so that no other command defines its classes.
 """

@@ -1,9 +1,12 @@
 """Results as tidy pandas DataFrames (optional extra ``gyrovib[pandas]``).
 
 Each function takes a result of :mod:`gyrovib.api` and returns one row per
-observation, with the columns named as the keys of the command's
-``--format json`` output (docs/output.md); nested keys are flattened with a
-dot (``additive_terms.k2``, ``checks.k3.bound``, ``exact.rms``):
+observation, with the columns of the command's ``--format csv`` (the same
+names, docs/output.md); what only the JSON has is added, its nested keys
+joined with ``_``. :func:`column_name` maps a JSON key path to its column
+(``additive_terms.k2`` → ``additive_k2``, ``checks.k3.bound`` → ``bound_k3``,
+``exact.rms`` → ``exact_rms``, ``pass`` → ``passed``: a Python keyword
+cannot be used in ``DataFrame.query``):
 
 ==========================  =================================================
 result                      one row per
@@ -14,9 +17,10 @@ result                      one row per
 ``SweepResult``             sensor × profile × rate (``sweep``)
 ==========================  =================================================
 
-The JSON ``rate`` list Ω_K is split into ``rate.x1``, ``rate.x2``,
-``rate.x3``. Where the JSON writes ``null`` for an unbounded number (a bound
-or a margin that is +inf), the frame keeps the float: ``inf``; the paper's
+The JSON ``rate`` list Ω_K is split into ``rate_x1``, ``rate_x2``,
+``rate_x3`` (a sweep's rate is ``rate_x3``). Where the JSON writes ``null``
+for an unbounded number (a bound or a margin that is +inf), the frame keeps
+the float: ``inf``; the paper's
 values for a profile the paper's formulas do not cover are ``NaN``. The
 JSON's document-level fields (tool, version, method, unit, budget, ...) are
 in ``frame.attrs``. Term names are taken from the result's term tuples, so a
@@ -52,6 +56,33 @@ def _pandas() -> Any:
     except ImportError:
         raise MissingDependency(MISSING_PANDAS) from None
     return pandas
+
+
+def column_name(kind: str, path: str) -> str:
+    """The column of the JSON key path ``path`` (dots between keys) in the frame and the
+    CSV of command ``kind`` (``analyze``, ``bounds``, ``select``, ``sweep``)."""
+    parts = path.split(".")
+    if path == "pass":
+        return "passed"
+    if parts[0] == "rate" and len(parts) == 2:
+        return f"rate_{parts[1]}"
+    if kind == "sweep" and path == "rate":
+        return "rate_x3"
+    if kind == "analyze" and len(parts) == 2 and parts[0] in ("additive_terms",
+                                                               "multiplicative_coefficients"):
+        return f"{parts[0].split('_')[0]}_{parts[1]}"
+    if kind == "bounds" and len(parts) == 2 and parts[0] in ("bounds", "parts"):
+        return parts[1]
+    if kind == "bounds" and parts[0] == "spec_bounds":
+        rest = parts[1:-1] if parts[-1] == "value" else parts[1:]
+        return "spec_" + "_".join(rest)
+    if kind == "select" and len(parts) == 3 and parts[0] == "checks":
+        return f"{parts[2]}_{parts[1]}"
+    return "_".join(parts)
+
+
+def _named(kind: str, columns: dict[str, Any]) -> dict[str, Any]:
+    return {column_name(kind, key): value for key, value in columns.items()}
 
 
 def _frame(columns: dict[str, Any], attrs: dict[str, Any]) -> Any:
@@ -113,7 +144,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
     if result.samples is not None:
         attrs.update(samples=result.samples, seed=result.seed)
-    return _frame(columns, attrs)
+    return _frame(_named("analyze", columns), attrs)
 
 
 def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
@@ -122,7 +153,7 @@ def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
     from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 
     out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
-    # the VRE bound (MODEL.md section 8): JSON null, here inf, without linear vibration
+    # the VRE bound (docs/model.md section 8): JSON null, here inf, without linear vibration
     vre = np.full(len(rows), np.inf) if bounds.vre is None else np.asarray(bounds.vre)[rows]
     out["bounds.vre"] = vre
     present = PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
@@ -152,17 +183,20 @@ def bounds_frame(result: BoundsResult) -> Any:
             "spec_bounds.nonlinearity.range": [sb.range] * n,
             "spec_bounds.vre": np.asarray(sb.vre)[rows],
         })
-    return _frame(columns, {"method": result.method, "unit": result.unit,
-                            "budget": result.budget})
+    return _frame(_named("bounds", columns), {"method": result.method, "unit": result.unit,
+                                              "budget": result.budget})
 
 
 def selection_frame(result: SelectionResult) -> Any:
     """``select``: one row per sensor × profile.
 
-    ``pass``, ``rms``, ``margin`` and ``checks.<coefficient>.value|bound|pass``
-    are the JSON's per-profile cell; ``sensor_pass`` is the sensor's overall
-    ``pass``; ``rate.*`` and ``profile_bounds.*`` are the profile's entry of the
-    JSON's ``profiles`` list (its bounds for ν_sensor = 1).
+    ``passed`` (the JSON's ``pass``: ``df.query("not passed")`` works),
+    ``status`` (pass, fail, unverified), ``unknown``, ``rms``, ``margin`` and
+    ``value_<coefficient>``, ``bound_…``, ``pass_…`` (the JSON's
+    ``checks.<coefficient>.value|bound|pass``) are the JSON's per-profile cell;
+    ``sensor_pass`` and ``sensor_status`` are the sensor's overall ``pass`` and
+    ``status``; ``rate_*`` and ``profile_bounds_*`` are the profile's entry of
+    the JSON's ``profiles`` list (its bounds for ν_sensor = 1).
     """
     import numpy as np
 
@@ -174,7 +208,16 @@ def selection_frame(result: SelectionResult) -> Any:
         "sensor": [result.sensors[i] for i in s_idx],
         "profile": [result.profiles[j] for j in p_idx],
         "sensor_pass": np.asarray(result.sensor_pass, dtype=bool)[s_idx],
+        "sensor_status": [result.sensor_status(int(i)) for i in s_idx],
+        # "passed", not the JSON's "pass": a Python keyword breaks df.query("not pass")
         "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
+        "status": [result.status(int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
+        "unknown": [list(result.unknown.get((int(i), int(j)), ()))
+                    for i, j in zip(s_idx, p_idx, strict=True)],
+        "criterion_margin": (np.asarray(result.margin) if result.criterion_margin is None
+                             else np.asarray(result.criterion_margin)).reshape(-1),
+        "disagrees": [list(result.disagrees.get((int(i), int(j)), ()))
+                      for i, j in zip(s_idx, p_idx, strict=True)],
         "rms": np.asarray(result.rms).reshape(-1),
         "margin": np.asarray(result.margin).reshape(-1),
         "saturated": np.asarray(result.saturated, dtype=bool).reshape(-1),
@@ -183,11 +226,15 @@ def selection_frame(result: SelectionResult) -> Any:
     values = np.asarray(result.values).reshape(n_s * n_p, -1)
     bounds = np.asarray(result.bounds).reshape(n_s * n_p, -1)
     checks = np.asarray(result.check_pass, dtype=bool).reshape(n_s * n_p, -1)
+    spec_rows = np.array([result.source(int(i)) == "specs" for i in s_idx], dtype=bool)
     for b, name in enumerate(BOUNDED):
-        columns[f"checks.{name}.value"] = values[:, b]
-        columns[f"checks.{name}.bound"] = bounds[:, b]
-        columns[f"checks.{name}.pass"] = checks[:, b]
-    if result.vre_pass is not None:  # the VRE check, MODEL.md section 8
+        # a spec-form row has no coefficient checks (JSON: none; CSV: empty): NaN, None
+        columns[f"checks.{name}.value"] = np.where(spec_rows, np.nan, values[:, b])
+        columns[f"checks.{name}.bound"] = np.where(spec_rows, np.nan, bounds[:, b])
+        columns[f"checks.{name}.pass"] = (checks[:, b] if not spec_rows.any() else
+                                          [None if sp else bool(c) for sp, c in
+                                           zip(spec_rows, checks[:, b], strict=True)])
+    if result.vre_pass is not None:  # the VRE check, docs/model.md section 8
         columns["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
         columns["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
         columns["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
@@ -198,9 +245,11 @@ def selection_frame(result: SelectionResult) -> Any:
                                                                           strict=True)]
     if result.nl_value is not None:  # datasheet (spec-form) sensors: NaN on coefficient rows
         for key, array in (("nonlinearity.value", result.nl_value),
-                           ("nonlinearity.bound", result.nl_bound),
-                           ("nonlinearity.pass", result.nl_pass)):
+                           ("nonlinearity.bound", result.nl_bound)):
             columns[f"checks.{key}"] = np.asarray(array).reshape(-1)
+        columns["checks.nonlinearity.pass"] = [
+            bool(v) if sp else None for sp, v in
+            zip(spec_rows, np.asarray(result.nl_pass).reshape(-1), strict=True)]
         columns["checks.nonlinearity.unit"] = ["%FS" if result.source(int(i)) == "specs"
                                                else None for i in s_idx]
     if result.yields is not None:  # --yield (docs/model.md section 14): NaN off the lots
@@ -218,7 +267,7 @@ def selection_frame(result: SelectionResult) -> Any:
              "requirement_met": result.requirement_met}
     if result.yields is not None:
         attrs.update({"yield": result.yields.target, "seed": result.yields.seed})
-    return _frame(columns, attrs)
+    return _frame(_named("select", columns), attrs)
 
 
 def _reason(result: SelectionResult, i: int, j: int) -> str | None:
@@ -246,7 +295,7 @@ def sweep_frame(result: SweepResult) -> Any:
         for name in ("total", "rms"):
             columns[f"{method}.{name}"] = np.asarray(getattr(err, name))[s_idx, p_idx, r_idx]
     columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx, r_idx]
-    return _frame(columns, {"method": "exact", "unit": result.unit,
+    return _frame(_named("sweep", columns), {"method": "exact", "unit": result.unit,
                             "methods": ["exact", "paper"],
                             "paper_refused": dict(result.paper_refused)})
 

@@ -1,4 +1,4 @@
-"""Linear vibration of a profile and the sensors' g²-sensitivities, in g (MODEL.md section 8).
+"""Linear vibration of a profile and the sensors' g²-sensitivities, in g (docs/model.md section 8).
 
 The catalogue gives a profile's ``acceleration:`` block in its file's
 ``units.acceleration`` (g or m/s²) and a sensor's ``g2_sensitivity`` / ``vre``
@@ -11,7 +11,7 @@ it has one, else the profile's): a tone's amplitude is scaled by ν(f), a PSD
 by ν(f)² and integrated exactly on log-log axes, as for rate PSDs
 (:func:`~gyrovib.core.transmissibility.psd_variance`); an ``rms`` is the value
 at the sensor. The sensor's own response never applies: the rectification
-happens in the sensing element (MODEL.md section 8).
+happens in the sensing element (docs/model.md section 8).
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ def profile_linear(entry: ProfileEntry) -> LinearVibration | None:
     """The profile's linear vibration at the sensor's axes in g, or None if it has none.
 
     Tones of one frequency add as phasors (as rate tones do), so the tones
-    handed on have distinct frequencies, which MODEL.md section 8 assumes.
+    handed on have distinct frequencies, which docs/model.md section 8 assumes.
     """
     block = entry.profile.acceleration
     if block is None:

@@ -52,7 +52,7 @@ class SweepResult(_SensorsByProfiles):
     nl_limit: FloatArray | None = None
     nl_range: FloatArray | None = None
     nl_fit: tuple[str, ...] = ()
-    #: (sensors, profiles, rates): the sensor saturates at that Ω_K3 (MODEL.md section 9).
+    #: (sensors, profiles, rates): the sensor saturates at that Ω_K3 (docs/model.md section 9).
     saturated: NDArray[np.bool_] | None = None
     #: κ of the saturation reach.
     peak_factor: float = 3.0
@@ -137,7 +137,7 @@ class SelectionResult(_SensorsByProfiles):
     requirement_met: bool
     allocation: AllocationConstants
     #: The ``vre`` check, (sensor, profile), in :attr:`unit` per g². A coefficient
-    #: sensor (MODEL.md section 8): its effective VRE |Δ0(6)|/Σ⟨a_j²⟩ (0 where the
+    #: sensor (docs/model.md section 8): its effective VRE |Δ0(6)|/Σ⟨a_j²⟩ (0 where the
     #: profile has no linear vibration), its bound (+inf there) and whether it is
     #: within it (part of ``bounds_pass``). A spec-form sensor (section 11): its
     #: datasheet VRE (NaN: no VRE spec, taken as 0) against the allowable VRE.
@@ -148,13 +148,13 @@ class SelectionResult(_SensorsByProfiles):
     total: FloatArray | None = None
     #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
     sources: tuple[str, ...] = ()
-    #: Spec-form sensors against their spec bounds (MODEL.md section 11), (sensors,
+    #: Spec-form sensors against their spec bounds (docs/model.md section 11), (sensors,
     #: profiles), NaN (pass True) on coefficient rows: the nonlinearity and its
     #: allowable value in %FS (the sensor's own range or span).
     nl_value: FloatArray | None = None
     nl_bound: FloatArray | None = None
     nl_pass: NDArray[np.bool_] | None = None
-    #: (sensors, profiles): saturates there (MODEL.md section 9), which fails it.
+    #: (sensors, profiles): saturates there (docs/model.md section 9), which fails it.
     saturated: NDArray[np.bool_] | None = None
     #: (sensor, profile) → why it fails there beyond the criterion (one line).
     reasons: Mapping[tuple[int, int], str] = field(default_factory=dict)
@@ -162,6 +162,30 @@ class SelectionResult(_SensorsByProfiles):
     peak_factor: float = 3.0
     #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
     coefficient_unit: str | None = None
+    #: (sensors, profiles): the sensor would pass there on its published figures, but
+    #: an unpublished one (``unknown``) can change the verdict: neither passed
+    #: (``passed`` is False there) nor ranked on it. None: nowhere.
+    unverified: NDArray[np.bool_] | None = None
+    #: (sensors, profiles): the margin of the test that decides the cell under
+    #: :attr:`criterion` (``bounds``: the least bound/value ratio of the checks,
+    #: a datasheet part's NL and VRE against their allowable figures; ``rms``:
+    #: Δ*/Δ_V(RMS); ``worst``: Δ*/|Δ_V|; ``both``: the smaller of bounds and rms),
+    #: above 1 where that test passes; +inf: nothing to bound. ``margin`` keeps
+    #: Δ*/Δ_V(RMS) (a datasheet part: Δ*/worst |Δ_V|) whatever the criterion.
+    criterion_margin: FloatArray | None = None
+    #: (sensor, profile) → the tests among ``bounds``, ``rms``, ``worst`` not deciding
+    #: the cell whose verdict differs from the cell's (on the published figures).
+    disagrees: Mapping[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
+    #: (sensor, profile) → the unpublished figures that can matter there
+    #: (``"vre"``, ``"m31"``, ``"m32"``; docs/model.md section 11), also under
+    #: ``assume_unknown="zero"``, where they are taken as 0.
+    unknown: Mapping[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
+    #: Per sensor with unknown figures: the questions for the vendor (the
+    #: figures that would decide it, with the value that would pass).
+    questions: Mapping[int, tuple[str, ...]] = field(default_factory=dict)
+    #: ``"none"`` (an unknown figure leaves the verdict open) or ``"zero"``
+    #: (``--assume-unknown zero``: taken as 0, as stated in the output).
+    assume_unknown: str = "none"
     #: ``--yield``: the lots' yields (docs/model.md section 14), by which lots are judged;
     #: None without --yield or without lots.
     yields: LotYields | None = None
@@ -172,3 +196,27 @@ class SelectionResult(_SensorsByProfiles):
     def has_linear(self) -> bool:
         """Whether some profile has a linear vibration (so the ``vre`` check can bind)."""
         return self.profile_bounds.vre is not None
+
+    def is_unverified(self, i: int, j: int) -> bool:
+        """Whether sensor ``i``'s verdict under profile ``j`` hangs on an unknown figure."""
+        return bool(self.unverified is not None and self.unverified[i, j])
+
+    def status(self, i: int, j: int) -> str:
+        """``"pass"``, ``"fail"`` or ``"unverified"`` of sensor ``i`` under profile ``j``."""
+        if self.passed[i, j]:
+            return "pass"
+        return "unverified" if self.is_unverified(i, j) else "fail"
+
+    def sensor_status(self, i: int) -> str:
+        """Sensor ``i`` over every profile: ``fail`` if it fails one, else ``unverified``
+        if one is unverified, else ``pass``."""
+        found = {self.status(i, j) for j in range(len(self.profiles))}
+        for status in ("fail", "unverified"):
+            if status in found:
+                return status
+        return "pass"
+
+    def sensor_unknown(self, i: int) -> tuple[str, ...]:
+        """The unknown figures of sensor ``i`` that matter under some profile, in order."""
+        found = {n for (k, _), names in self.unknown.items() if k == i for n in names}
+        return tuple(n for n in ("vre", "m31", "m32") if n in found)

@@ -19,7 +19,7 @@ import functools
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import ParamSpec, TypeVar
+from typing import Any, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -78,7 +78,7 @@ def input_response(entry: SensorEntry) -> tuple[tuple[float, float], ...] | None
     """The sensor's response where it acts before the nonlinearity, or None.
 
     Only ``response: {at: input, ...}`` shapes the vibration the nonlinear
-    element sees (MODEL.md section 9); a bare table or ``at: output`` is an
+    element sees (docs/model.md section 9); a bare table or ``at: output`` is an
     output filter, applied after the error is rectified: it earns no credit.
     """
     s = entry.sensor
@@ -115,7 +115,7 @@ def response_groups(entries: Sequence[SensorEntry]) -> list[tuple[Table | None, 
 
 def _gain_tables(entry: ProfileEntry, response: Table | None) -> list[Table]:
     """The ν(f) tables between the vibration and the nonlinear element: the profile's
-    mount, then the sensor's response where it acts at the input (MODEL.md section 9)."""
+    mount, then the sensor's response where it acts at the input (docs/model.md section 9)."""
     tables = [] if entry.profile.mount is None else [as_table(entry.profile.mount)]
     return tables if response is None else [*tables, response]
 
@@ -147,7 +147,8 @@ def profile_vibration(entry: ProfileEntry, response: Table | None = None) -> Vib
 
 
 def profile_locked(entry: ProfileEntry, response: Table | None = None) -> tuple[LockedGroup, ...]:
-    """The profile's phase-locked harmonic groups at the sensor, in deg/s (MODEL.md section 10).
+    """The profile's phase-locked harmonic groups at the sensor, in deg/s (docs/model.md
+    section 10).
 
     Each order n of a group is scaled by the mount's and the (input-side)
     response's ν(n·f0), as an independent tone at that frequency would be;
@@ -174,7 +175,7 @@ def profile_locked(entry: ProfileEntry, response: Table | None = None) -> tuple[
 
 def vibration_swing(vibration: Vibration, locked: Sequence[LockedGroup] = (),
                     peak_factor: float = DEFAULT_PEAK_FACTOR) -> float:
-    """How far the vibration drives x3 from Ω_K3 (MODEL.md section 9), in its rate unit.
+    """How far the vibration drives x3 from Ω_K3 (docs/model.md section 9), in its rate unit.
 
     Σ tone amplitudes + Σ true peaks of the locked groups + κ·σ3; the
     saturation reach is |Ω_K3| plus this.
@@ -224,6 +225,87 @@ def refusal_problem(profile: ProfileEntry, method: str, reason: str) -> Problem:
     return profile_problem(profile, f"profile {profile.profile.id!r}: {reason}{advice}")
 
 
+def _harmonics_path(profile: ProfileEntry, group: int, *tail: Any) -> tuple[Any, ...]:
+    """The path of ``tail`` inside locked group ``group`` of a profile: ``harmonics``
+    is one mapping or a list of them in the file."""
+    base: tuple[Any, ...] = ("profiles", profile.index, "harmonics")
+    # (a path that leaves the document stops at the deepest node reached: a list's
+    # first item is placed apart from the list itself, a mapping's "0" is not found)
+    if profile.source.locate((*base, group)) != profile.source.locate(base):
+        return (*base, group, *tail)
+    return base + tuple(tail)
+
+
+def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
+                  phase_search: bool) -> dict[int, Problem]:
+    """Profiles whose locked harmonics would cost more than the input's size warrants.
+
+    Refused before any computation, each at the offending key: an order above
+    :data:`~gyrovib.core.harmonics.MAX_ORDER`, more than
+    :data:`~gyrovib.core.harmonics.MAX_GROUPS` groups, and a ``phase: worst``
+    search (with ``phase_search``, over ``rates`` rates and ``sensors`` sensors)
+    estimated above :data:`~gyrovib.core.phases.MAX_SEARCH_COST` — four
+    objectives per rate for synthesis (with ``phase_search``) and one per sensor
+    for the per-sensor search of ``analyze`` and ``select``.
+    """
+    problems: dict[int, Problem] = {}
+    if not any(p.profile.harmonic_groups for p in entries):
+        return problems
+    from gyrovib.core.harmonics import MAX_GROUPS, MAX_ORDER
+
+    for j, p in enumerate(entries):
+        groups = p.profile.harmonic_groups
+        if not groups:
+            continue
+        pid = p.profile.id
+        for gi, h in enumerate(groups):
+            for oi, o in enumerate(h.orders):
+                if o.order > MAX_ORDER:
+                    problems[j] = p.source.problem(
+                        f"profile {pid!r}: harmonic order {o.order} is above {MAX_ORDER}, the "
+                        "highest gyrovib computes (E(Ω) needs the stationary points of the "
+                        f"group's signal, an eigenvalue problem of size 2·order, and 2·{o.order} "
+                        "would take minutes or more memory than there is); give such a high "
+                        "harmonic as an independent tone under 'harmonic' instead",
+                        _harmonics_path(p, gi, "orders", oi, "order"))
+                    break
+            if j in problems:
+                break
+        if j in problems:
+            continue
+        if len(groups) > MAX_GROUPS:
+            problems[j] = p.source.problem(
+                f"profile {pid!r}: {len(groups)} phase-locked groups, more than {MAX_GROUPS}, "
+                "the most gyrovib averages E(Ω) over (the joint phases of the groups beyond "
+                f"the first take 256^(groups − 1) nodes per rate: 256^{len(groups) - 1} here); "
+                "give the smaller groups' orders as independent tones under 'harmonic'",
+                _harmonics_path(p, MAX_GROUPS, "fundamental"))
+            continue
+        worst = [(gi, oi) for gi, h in enumerate(groups) for oi, o in enumerate(h.orders)
+                 if o.worst_phase]
+        if not worst:
+            continue
+        from gyrovib.core.phases import MAX_SEARCH_COST, search_cost  # only for phase: worst
+
+        dims = sum(sum(bool(o.worst_phase) for o in h.orders)
+                   - (1 if all(o.worst_phase for o in h.orders) else 0) for h in groups)
+        n_max = max(o.order for h in groups for o in h.orders)
+        cost = search_cost(dims, (4 * rates if phase_search else 0) + sensors, n_max)
+        if cost > MAX_SEARCH_COST:
+            gi, oi = worst[0]
+            problems[j] = p.source.problem(
+                f"profile {pid!r}: the search over {dims} unknown relative phase"
+                f"{'s' if dims != 1 else ''} (phase: worst, orders up to {n_max}) at {rates} "
+                f"rate{'s' if rates != 1 else ''} for {sensors} sensor"
+                f"{'s' if sensors != 1 else ''} would take about {cost:,.0f} evaluations of "
+                f"the profile, more than the {MAX_SEARCH_COST:,.0f} (a few seconds) gyrovib "
+                "allows; "
+                "give fewer orders phase: worst (their phases, if known), fewer rates, or "
+                "fewer sensors",
+                _harmonics_path(p, gi, "orders", oi, "phase"))
+    return problems
+
+
 # ----------------------------------------------------------------- the pipeline
 
 
@@ -260,7 +342,7 @@ class Prepared(Frozen):
     ``coefficients`` (sensors, 11) in deg/s powers; ``rates`` Ω_K per
     profile, shape (profiles, 3); ``rate_given``: a rate override replaced
     the profiles' own. ``linear``: each profile's linear vibration in g (None
-    where it has none; MODEL.md section 8); ``g2``: the sensors' G_jk in deg/s
+    where it has none; docs/model.md section 8); ``g2``: the sensors' G_jk in deg/s
     per g², shape (sensors, 6).
     """
 
@@ -313,7 +395,12 @@ def prepare(
     s_entries, p_entries = select_entries(catalog, sensors, profiles, need=need)
     tolerated = (set(methods if tolerate_refusals else ()) if isinstance(tolerate_refusals, bool)
                  else set(tolerate_refusals))
-    problems: dict[int, Problem] = {}
+    n_rates = 1 if omega is None else int(np.size(omega))
+    problems: dict[int, Problem] = cost_problems(p_entries, n_rates, len(s_entries),
+                                                 phase_search)
+    if problems:
+        raise ModelError([problems[j] for j in sorted(problems)],
+                         reason=next(iter(problems.values())).message)
     refusal: tuple[int, str] | None = None  # the first refused profile, and why
     coefficients = coefficient_matrix(s_entries)
     _check_sensors(coefficients, s_entries)

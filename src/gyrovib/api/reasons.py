@@ -43,7 +43,8 @@ def in_table_unit(result: Any, name: str, value: float) -> float:
 
 
 def saturation_reason(reach: float, range_: float, peak_factor: float, unit: str) -> str:
-    """Why a saturating sensor fails (MODEL.md section 9); ``reach``, ``range_`` in ``unit``."""
+    """Why a saturating sensor fails (docs/model.md section 9); ``reach``, ``range_`` in
+    ``unit``."""
     return (f"saturated: |Ω_K3| + Σ tone amplitudes + locked peaks + {peak_factor:g}σ3 = "
             f"{reach:.6g} {unit} exceeds the range {range_:.6g} {unit}")
 
@@ -67,6 +68,8 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     Δ_V(RMS) as 0; otherwise in :attr:`~SelectionResult.unit` (JSON, frames).
     """
     reasons: list[str] = []
+    if result.is_unverified(i, j):
+        reasons.append(unverified_reason(result, i, j))
     if (i, j) in result.reasons:
         reasons.append(result.reasons[(i, j)])
     if result.yields is not None and result.yields.is_lot(i):  # judged by its yield
@@ -101,8 +104,19 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     return reasons
 
 
+def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
+    """Why sensor ``i`` is unverified under profile ``j``: the unpublished figures that can
+    decide it (docs/model.md section 11), e.g. ``unverified: VRE not published (…)``."""
+    from gyrovib.api.spec_bounds import UNKNOWN_WORDS
+
+    names = result.unknown.get((i, j), ())
+    return ("unverified: passes on its published figures, but "
+            + "; ".join(UNKNOWN_WORDS[n] for n in names)
+            + " -- ask the vendor, or --assume-unknown zero to take it as 0")
+
+
 def _vre_failure(result: SelectionResult, i: int, j: int) -> str:
-    """A coefficient sensor's effective VRE above its bound (MODEL.md section 8)."""
+    """A coefficient sensor's effective VRE above its bound (docs/model.md section 8)."""
     assert result.vre_value is not None and result.vre_bound is not None
     unit = f"{result.unit}/g^2"
     return (f"effective VRE |Δ0(6)|/Σ⟨a_j²⟩ = {fmt(result.vre_value[i, j])} {unit} exceeds "
@@ -110,7 +124,7 @@ def _vre_failure(result: SelectionResult, i: int, j: int) -> str:
 
 
 def _spec_failures(result: SelectionResult, i: int, j: int) -> list[str]:
-    """A datasheet sensor's figures above their spec bounds (MODEL.md section 11)."""
+    """A datasheet sensor's figures above their spec bounds (docs/model.md section 11)."""
     out: list[str] = []
     assert result.nl_pass is not None and result.nl_value is not None
     assert result.nl_bound is not None and result.vre_pass is not None
@@ -118,7 +132,7 @@ def _spec_failures(result: SelectionResult, i: int, j: int) -> list[str]:
     if not result.nl_pass[i, j]:
         out.append(f"datasheet nonlinearity {fmt(result.nl_value[i, j])} %FS exceeds the "
                    f"allowable {fmt(result.nl_bound[i, j])} %FS")
-    if not result.vre_pass[i, j]:
+    if not result.vre_pass[i, j] and not np.isnan(result.vre_value[i, j]):
         out.append(f"datasheet VRE {fmt(result.vre_value[i, j])} {result.unit}/g² exceeds the "
                    f"allowable {fmt(result.vre_bound[i, j])} {result.unit}/g²")
     return out

@@ -2,7 +2,7 @@
 
 The text is data for the catalogue loader (``gyrovib validate`` accepts it),
 so it is built here, beside the fit, and not by a renderer. The carrier
-histogram — the fitted mission of MODEL.md section 13 — is written as a
+histogram — the fitted mission of docs/model.md section 13 — is written as a
 comment block: the catalogue format of this version has no missions yet.
 """
 
@@ -62,7 +62,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
     """The catalogue text of ``fit``'s profile: provenance and mission as comments."""
     base = os.path.basename(fit.file)
     lines = [
-        "# Fitted by `gyrovib profile` from a recording (MODEL.md section 13).",
+        "# Fitted by `gyrovib profile` from a recording (docs/model.md section 13).",
         f"# file: {base}",
         f"# sha256: {fit.sha256}",
         f"# samples: {fit.samples}; fs: {_num(fit.fs)} Hz; crossover f_c: {_num(fit.crossover)}"
@@ -76,7 +76,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
     c = fit.angular.coherence
     lines.append(f"# Coherence of the random part: rho31 = {_num(c[0])}, rho32 = {_num(c[1])}, "
                  f"rho12 = {_num(c[2])} (the format holds rho31, rho32).")
-    lines.append("# Fitted mission (carrier histogram of Omega_K3, MODEL.md sections 12-13),")
+    lines.append("# Fitted mission (carrier histogram of Omega_K3, docs/model.md sections 12-13),")
     lines.append("# a comment until the catalogue format has missions:")
     lines.append("#   mission:")
     lines.append(f"#     id: {fit.profile_id}-mission")

@@ -1,4 +1,4 @@
-"""Reading recordings: CSV, NumPy ``.npy``/``.npz`` and PX4 ULog (MODEL.md section 13).
+"""Reading recordings: CSV, NumPy ``.npy``/``.npz`` and PX4 ULog (docs/model.md section 13).
 
 A recording is read into preallocated float arrays: the angular rate (n, 3)
 in deg/s and, where recorded, the specific force (n, 3) in g, with the sample
@@ -34,7 +34,7 @@ ULOG_RATE = ("gyro_rad[0]", "gyro_rad[1]", "gyro_rad[2]")
 ULOG_ACCEL = ("accelerometer_m_s2[0]", "accelerometer_m_s2[1]", "accelerometer_m_s2[2]")
 #: Lines of a CSV parsed at once.
 CSV_BLOCK = 200_000
-#: A gap is an interval longer than this many median intervals (MODEL.md section 13).
+#: A gap is an interval longer than this many median intervals (docs/model.md section 13).
 GAP_FACTOR = 1.5
 AXES = ("X", "Y", "Z")
 
@@ -432,7 +432,7 @@ PADDING = 15
 
 
 def iter_segments(recording: Recording, crossover: float) -> Iterator[tuple[int, int]]:
-    """The segments kept for crossover f_c: those at least 4/f_c long (MODEL.md section 13)
+    """The segments kept for crossover f_c: those at least 4/f_c long (docs/model.md section 13)
     and longer than the filter's padding."""
     for lo, hi in recording.segments.tolist():
         if (hi - lo) / recording.fs >= 4.0 / crossover and hi - lo > PADDING:

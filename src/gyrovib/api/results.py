@@ -34,7 +34,7 @@ if TYPE_CHECKING:
     from gyrovib.api.other_results import SweepResult as SweepResult
 
 #: The keys of ``additive_terms`` in JSON, CSV, tables and frames, in this order:
-#: Δ0(1..5) (eq. 14/15), g2 = Δ0(6) (MODEL.md section 8), k3 and k5 (section 10).
+#: Δ0(1..5) (eq. 14/15), g2 = Δ0(6) (docs/model.md section 8), k3 and k5 (section 10).
 JSON_TERMS: tuple[str, ...] = (*ADDITIVE_TERMS, *EXTRA_TERMS)
 
 
@@ -131,21 +131,27 @@ class AnalysisResult(_SensorsByProfiles):
     linear: tuple[bool, ...] = ()
     #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
     sources: tuple[str, ...] = ()
-    #: Spec-form sensors (MODEL.md section 11): the worst polynomial (A1, k2…k5) in
+    #: Spec-form sensors (docs/model.md section 11): the worst polynomial (A1, k2…k5) in
     #: :attr:`unit` powers, (sensors, profiles, 5), and the per-term RMS bound
     #: (sensors, profiles); NaN on coefficient-form rows; None without spec sensors.
     worst_coefficients: FloatArray | None = None
     rms_bound: FloatArray | None = None
-    #: (sensors, profiles): the saturation reach exceeds the sensor's range (MODEL.md 9).
+    #: Per sensor, the datasheet figures a spec-form sensor publishes ("nonlinearity",
+    #: "asymmetry", "vre"); () for a coefficient-form sensor (or no spec sensors).
+    published: tuple[tuple[str, ...], ...] = ()
+    #: (sensors, profiles): the saturation reach exceeds the sensor's range (docs/model.md 9).
     saturated: NDArray[np.bool_] | None = None
     #: κ of the saturation reach.
     peak_factor: float = 3.0
-    #: per profile: whether it has phase-locked harmonic groups (MODEL.md 10).
+    #: per profile: whether it has phase-locked harmonic groups (docs/model.md 10).
     locked: tuple[bool, ...] = ()
     #: (sensor, profile) → per locked group, {order: phase found (deg)} of the
     #: orders written ``phase: worst``; only for such profiles.
     worst_phases: Mapping[tuple[int, int], tuple[dict[str, float], ...]] = field(
         default_factory=dict)
+    #: The rate unit of the profiles' files (None: they differ): tables write the
+    #: vehicle's rates in it, the errors in :attr:`unit` (JSON: all in :attr:`unit`).
+    rate_unit: str | None = None
     #: (sensors, profiles): u(Δ_V) = √(gᵀΣg) (k = 1) in :attr:`unit` of sensors with
     #: ``uncertainty`` or ``lot`` (docs/model.md section 14), NaN for the others (and where
     #: phases are searched); None when no sensor has one.
@@ -157,7 +163,7 @@ class AnalysisResult(_SensorsByProfiles):
 
     @property
     def has_linear(self) -> bool:
-        """Whether any profile has a linear vibration (the g² term, MODEL.md section 8)."""
+        """Whether any profile has a linear vibration (the g² term, docs/model.md section 8)."""
         return any(self.linear)
 
     def is_lot(self, i: int) -> bool:

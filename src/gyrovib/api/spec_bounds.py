@@ -1,6 +1,6 @@
 """The datasheet checks of ``select`` and the allowable figures of ``bounds --range``.
 
-Spec-form sensors (MODEL.md section 11) against their spec bounds, and the
+Spec-form sensors (docs/model.md section 11) against their spec bounds, and the
 bounds themselves. Apart from :mod:`gyrovib.api.specs` (which still gives
 their names) so that ``analyze`` does not define their classes.
 """
@@ -49,13 +49,13 @@ class SpecChecks(Frozen):
 
 def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: float,
                 weights: tuple[float, float] = (1.0, 1.0), rtol: float = 1e-9) -> SpecChecks:
-    """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (MODEL.md section 11).
+    """NL ≤ NL_max and VRE ≤ VRE_max for every spec sensor × profile (docs/model.md section 11).
 
-    NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds` for
+    NL_max = w_NL·Δ*/W(1) comes from :func:`gyrovib.core.envelope.spec_bounds_many` for
     the sensor's own range, fit, measure and ``of``, under its own response
-    (one programme per distinct datasheet definition and group).
+    (every distinct datasheet definition of a group in one call).
     """
-    from gyrovib.core.envelope import spec_bounds
+    from gyrovib.core.envelope import spec_bounds_many
 
     figs = spec.figures
     m_count, n_p = spec.index.size, len(prepared.profiles)
@@ -73,15 +73,82 @@ def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: floa
         for k in rows:
             keys.setdefault((float(figs.range[k]), figs.fit[k], figs.measure[k], figs.of[k]),
                             []).append(k)
-        for (r, fit, measure, of), members in keys.items():
-            sb = spec_bounds(budget, t, s, r, fit, measure, of, weights)
-            nl_bound[members] = sb.nonlinearity[None]
-            vre_bound[members] = sb.vre[None]
+        # every distinct definition in one call: neighbouring ranges share their work
+        defs = list(keys)
+        nl_max, vre_max = spec_bounds_many(
+            budget, t, s, [d[0] for d in defs], [d[1] for d in defs], [d[2] for d in defs],
+            [d[3] for d in defs], weights)
+        for d_index, members in enumerate(keys.values()):
+            nl_bound[members] = nl_max[d_index][None]
+            vre_bound[members] = vre_max[d_index][None]
     nl_value = np.broadcast_to(figs.percent[:, None], (m_count, n_p)).copy()
     vre_value = np.where(figs.has_vre, figs.vre, np.nan)[:, None] * np.ones((1, n_p))
     nl_pass = nl_value <= nl_bound * (1.0 + rtol)
     vre_pass = np.nan_to_num(vre_value) <= vre_bound * (1.0 + rtol)
     return SpecChecks(nl_value, nl_bound, nl_pass, vre_value, vre_bound, vre_pass)
+
+
+#: The figures a datasheet may leave unpublished, in the order they are reported.
+UNKNOWN_FIGURES: tuple[str, ...] = ("vre", "m31", "m32")
+#: Why each unknown figure can matter, as a reason names it.
+UNKNOWN_WORDS = {
+    "vre": "VRE not published (the profile has linear vibration, so its g² term "
+           "G_jj·⟨a_j²⟩ can rectify; docs/model.md section 8)",
+    "m31": "m31 not published (the profile has cross-axis vibration x1 correlated with "
+           "x3, so m31·C31 can rectify; docs/model.md section 11)",
+    "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
+           "x3, so m32·C32 can rectify; docs/model.md section 11)",
+}
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class UnknownFigures(Frozen):
+    """Where a spec sensor's unpublished figure can matter, (M, P) (docs/model.md section 11).
+
+    ``vre``: no VRE spec and the profile has linear vibration (Σ⟨a_j²⟩ > 0);
+    ``m31``, ``m32``: datasheets never give them, and the profile's C31 (C32)
+    ≠ 0. ``mean_square`` Σ_j⟨a_j²⟩ (g², per profile); ``c31``, ``c32`` the
+    multipliers (deg/s², (M, P)): what the unknown figure multiplies.
+    """
+
+    vre: NDArray[np.bool_]
+    m31: NDArray[np.bool_]
+    m32: NDArray[np.bool_]
+    mean_square: FloatArray
+    c31: FloatArray
+    c32: FloatArray
+
+    def names(self, k: int, j: int) -> tuple[str, ...]:
+        """The unknown figures of spec sensor ``k`` that can matter under profile ``j``."""
+        return tuple(n for n in UNKNOWN_FIGURES if bool(getattr(self, n)[k, j]))
+
+
+def unknown_figures(prepared: Prepared, spec: SpecResults, method: str) -> UnknownFigures:
+    """Which unpublished figures of each spec sensor can change its verdict, per profile.
+
+    An unpublished figure is unknown, not zero: the VRE where the profile has
+    linear vibration, m31 (m32) where its x1 (x2) vibration is correlated
+    with x3 (C31, C32 ≠ 0, the terms m3i·C3i of eq. (2) then rectify).
+    """
+    from gyrovib.core.linear import mean_square
+
+    m_count, n_p = spec.index.size, len(prepared.profiles)
+    msq = np.array([0.0 if v is None else float(mean_square(v.moments()))
+                    for v in prepared.linear] if prepared.linear else [0.0] * n_p,
+                   dtype=float).reshape(n_p)
+    c31 = np.zeros((m_count, n_p))
+    c32 = np.zeros((m_count, n_p))
+    position = {int(i): k for k, i in enumerate(spec.index.tolist())}
+    for group in prepared.groups:
+        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
+        if not rows or not n_p:
+            continue
+        m = multipliers_of(group, prepared, method)
+        c31[rows] = np.broadcast_to(np.asarray(m.c31, dtype=float), (n_p,))[None]
+        c32[rows] = np.broadcast_to(np.asarray(m.c32, dtype=float), (n_p,))[None]
+    vre = (~spec.figures.has_vre)[:, None] & (msq > 0)[None, :]
+    return UnknownFigures(vre=vre, m31=c31 != 0, m32=c32 != 0, mean_square=msq,
+                          c31=c31, c32=c32)
 
 
 def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecChecks | None,
@@ -91,7 +158,7 @@ def selection_fields(n_s: int, n_p: int, spec: SpecResults | None, checks: SpecC
 
     ``total`` (|Δ_V|, the worst case for spec sensors) always; ``vre`` the
     coefficient sensors' VRE check (effective VRE and its bound in deg/s per g²,
-    pass; MODEL.md section 8), whose spec-form rows are replaced by the datasheet
+    pass; docs/model.md section 8), whose spec-form rows are replaced by the datasheet
     VRE against its allowable value (section 11); ``sources`` and the
     nonlinearity check (NaN on coefficient rows) only with spec sensors.
     """
@@ -136,7 +203,7 @@ class DatasheetBounds(Frozen):
     output unit; ``fit``, ``measure``, ``of``: the definition the NL is read
     with; ``weights``: the NL:VRE split; ``w1``: W(1), the worst case for a
     limit b = 1 (rate per rate); ``share_nl``, ``share_vre``: the fractions
-    of Δ* (MODEL.md section 11: NL_max·W(1) = share_nl·Δ*).
+    of Δ* (docs/model.md section 11: NL_max·W(1) = share_nl·Δ*).
     """
 
     range: float

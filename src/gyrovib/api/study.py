@@ -27,6 +27,8 @@ from gyrovib.models import Allocation
 
 #: Points of the default rate sweep (odd: Ω_K3 = 0 is one of them).
 SWEEP_POINTS = 241
+#: Most sensors drawn in the report's rate-envelope charts (the best-ranked of the selection).
+SWEEP_SENSORS = 12
 #: The default sweep reaches this multiple of the largest |Ω_K3| + vibration peak.
 ENVELOPE_FACTOR = 1.5
 
@@ -48,7 +50,7 @@ class Spectrum:
     (frequency Hz, amplitudes about x1, x2, x3); ``rms``: the random part given
     as σ per axis instead of a PSD; ``mount``: the isolation mount's ν(f);
     ``linear_rms``: the RMS per axis of the linear vibration at the sensor, in g
-    (through its mount; MODEL.md section 8), or None without one.
+    (through its mount; docs/model.md section 8), or None without one.
     """
 
     profile: str
@@ -59,6 +61,15 @@ class Spectrum:
     rms: tuple[float, float, float] | None
     mount: tuple[tuple[float, ...], tuple[float, ...]] | None
     linear_rms: tuple[float, float, float] | None = None
+    #: Phase-locked harmonic groups (docs/model.md section 10): (f0 Hz, ((order n,
+    #: amplitudes about x1, x2, x3 in the study's rate unit), ...)) per group.
+    locked: tuple[tuple[float, tuple[tuple[int, tuple[float, float, float]], ...]], ...] = ()
+    #: The linear vibration's PSD as the catalogue gives it, per axis (axis,
+    #: frequencies Hz, PSD in ``linear_unit``²/Hz), and its tones (frequency,
+    #: amplitudes about x1, x2, x3 in ``linear_unit``).
+    linear_psd: tuple[tuple[str, tuple[float, ...], tuple[float, ...]], ...] = ()
+    linear_tones: tuple[tuple[float, tuple[float, float, float]], ...] = ()
+    linear_unit: str = "g"
 
 
 @dataclass(frozen=True)
@@ -76,6 +87,9 @@ class TradeStudy:
     sensor_forms: tuple[str, ...]
     version: str
     created: str
+    #: The unit of the vehicle's rates, tones and PSDs in :attr:`spectra` and the
+    #: report (the profiles' own; the errors stay in the selection's unit).
+    rate_unit: str = ""
 
 
 def file_digest(name: str, text: str) -> InputFile:
@@ -125,8 +139,30 @@ def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
     if linear is not None:
         x, y, z = (math.sqrt(max(float(v), 0.0)) for v in linear.moments()[:3])
         linear_rms = (x, y, z)
+    locked = tuple(
+        (float(group.fundamental),
+         tuple((int(o.order), (float(o.amplitude[0]) * f, float(o.amplitude[1]) * f,
+                               float(o.amplitude[2]) * f)) for o in group.orders))
+        for group in (getattr(p, "harmonics", None) or ()))
+    linear_psd: list[tuple[str, tuple[float, ...], tuple[float, ...]]] = []
+    linear_tones: tuple[tuple[float, tuple[float, float, float]], ...] = ()
+    block = getattr(p, "acceleration", None)
+    if block is not None:
+        random = getattr(block, "random", None)
+        table_of = getattr(random, "psd", None) if random is not None else None
+        for axis in ("x1", "x2", "x3"):
+            table = getattr(table_of, axis, None) if table_of is not None else None
+            if table is not None:
+                linear_psd.append((axis, tuple(float(a) for a, _ in table),
+                                   tuple(float(b) for _, b in table)))
+        linear_tones = tuple((float(t.frequency), (float(t.amplitude[0]),
+                                                   float(t.amplitude[1]),
+                                                   float(t.amplitude[2])))
+                             for t in (getattr(block, "harmonic", None) or ()))
     return Spectrum(profile=p.id, name=p.name, notes=p.notes, psd=tuple(psd), tones=tones,
-                    rms=rms, mount=mount, linear_rms=linear_rms)
+                    rms=rms, mount=mount, linear_rms=linear_rms, locked=locked,
+                    linear_psd=tuple(linear_psd), linear_tones=linear_tones,
+                    linear_unit=str(entry.acceleration_unit))
 
 
 def sensor_form(sensor: object) -> str:
@@ -171,6 +207,7 @@ def trade_study(
     sweep_rates: Sequence[float] | FloatArray | None = None,
     created: _dt.datetime | None = None,
     peak_factor: float = 3.0,
+    assume_unknown: str = "none",
     yield_target: float | None = None,
     seed: int = 0,
     draws: int = 100_000,
@@ -179,7 +216,8 @@ def trade_study(
 
     ``sweep_rates`` default: :data:`SWEEP_POINTS` rates over ±:func:`envelope`.
     ``created`` (default: now, UTC) is stamped on the study. ``peak_factor``:
-    κ of the saturation check (MODEL.md section 9) of the selection and analysis.
+    κ of the saturation check (docs/model.md section 9) of the selection and analysis;
+    ``assume_unknown``: as :func:`gyrovib.api.select`;
     ``yield_target``, ``seed``, ``draws``: production lots judged by their yield
     (:func:`gyrovib.api.select`, docs/model.md section 14).
     """
@@ -187,23 +225,33 @@ def trade_study(
     selection = api.select(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, budget=budget, unit=unit, criterion=criterion,
                            require=require, allocation=allocation, peak_factor=peak_factor,
-                           yield_target=yield_target, seed=seed, draws=draws)
+                           assume_unknown=assume_unknown, yield_target=yield_target,
+                           seed=seed, draws=draws)
     analysis = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
                            rate=rate, unit=unit, peak_factor=peak_factor)
     if sweep_rates is None:
         half = envelope(catalog, profiles, rate)
         sweep_rates = api.rate_range(-half, half, SWEEP_POINTS)
-    swept = api.sweep(catalog, sweep_rates, sensors=sensors, profiles=profiles, unit=unit)
     s_entries, p_entries = api.select_entries(catalog, sensors, profiles)
+    # the rate-envelope charts are for comparing a few candidates: past
+    # SWEEP_SENSORS, only the best-ranked are swept (a line per sensor of 3,000
+    # is no chart, and their sweep held more than a sweep may)
+    swept_sensors: Sequence[str] = sensors
+    if len(s_entries) > SWEEP_SENSORS:
+        swept_sensors = [s_entries[i].sensor.id for i in selection.ranking[:SWEEP_SENSORS]]
+    swept = api.sweep(catalog, sweep_rates, sensors=swept_sensors, profiles=profiles, unit=unit)
     when = (created or _dt.datetime.now(_dt.UTC)).astimezone(_dt.UTC)
     return TradeStudy(
         selection=selection,
         analysis=analysis,
         sweep=swept,
-        spectra=tuple(spectrum(p, unit) for p in p_entries),
+        spectra=tuple(spectrum(p, analysis.rate_unit or unit) for p in p_entries),
         files=tuple(file_digest(s.name, s.text) for s in catalog.sources),
-        sensor_names=tuple(e.sensor.name for e in s_entries),
+        # a sensor without a name is called by its part number, when it has one
+        sensor_names=tuple(e.sensor.name or getattr(e.sensor, "part", None)
+                           for e in s_entries),
         sensor_forms=tuple(sensor_form(e.sensor) for e in s_entries),
         version=__version__,
         created=when.strftime("%Y-%m-%d %H:%M:%S UTC"),
+        rate_unit=analysis.rate_unit or unit,
     )

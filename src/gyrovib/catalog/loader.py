@@ -320,6 +320,12 @@ class Catalog(Frozen):
     def sensor_line(self, entry: SensorEntry) -> tuple[int, int] | None:
         return entry.source.locate((SECTIONS[0][0], entry.index, ID_KEY))
 
+    def __repr__(self) -> str:
+        """One line: how many sensors and profiles, from which files (not their contents)."""
+        files = ", ".join(os.path.basename(s.name) for s in self.sources)
+        return (f"Catalog({len(self.sensors)} sensors, {len(self.profiles)} profiles"
+                + (f" from {files}" if files else "") + ")")
+
 
 def _unique(sources: Sequence[CatalogSource], section: str, problems: list[Problem],
             reported_within: frozenset[int] = frozenset()

@@ -44,15 +44,19 @@ from gyrovib.cli.recording import recording_options
 @rate_option
 @unit_option
 @peak_factor_option
+@click.option("--detail/--matrix", "detail", default=None,
+              help="Tables: one table per profile with every term of eq. (13) (the default "
+                   "with one or two profiles), or one compact matrix of the errors and their "
+                   "dominant terms (the default with more).")
 @format_option("table", "json", "csv", "markdown")
 @output_option
 @click.option("--recording", metavar="RECORDING",
-              help="Δ_V,rec of every sensor on a recording (MODEL.md section 13), beside "
+              help="Δ_V,rec of every sensor on a recording (docs/model.md section 13), beside "
                    "the fitted profile's closed form; see `gyrovib profile` for its options.")
 @recording_options
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
             method: str, samples: int, seed: int, rate: str | None, unit: str,
-            peak_factor: float, fmt: str,
+            peak_factor: float, detail: bool | None, fmt: str,
             output: str | None, recording: str | None, **rec: Any) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 
@@ -88,7 +92,7 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     if fmt == "table":
         note_slow_table(len(result.sensors) * len(result.profiles))
         write_output(render.to_table(result, color=use_color(output), width=page_width(output),
-                                     ascii=plain_ascii(output)), output)
+                                     ascii=plain_ascii(output), detail=detail), output)
         return
     renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

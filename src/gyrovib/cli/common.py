@@ -189,6 +189,7 @@ def _no_pydantic_plugins() -> None:
 def load_catalog(files: tuple[str, ...]) -> Any:
     """The merged catalogue of ``files``, or the bundled catalogues when none are given.
 
+    The command's ``--bundled`` choice adds bundled catalogues to ``files``.
     ``-`` stands for standard input, named ``<stdin>`` in messages. Every file
     is validated whole, whatever the command uses of it: what ``validate``
     refuses, every command refuses at the same place.
@@ -196,9 +197,23 @@ def load_catalog(files: tuple[str, ...]) -> Any:
     from gyrovib.api import load
 
     _no_pydantic_plugins()
+    bundled = _bundled()
     if STDIN not in files:
-        return load(files)
+        return load(files, bundled=bundled)
+    if bundled is not None:
+        from gyrovib.api.entries import bundled_choice
+
+        files = (*files, *bundled_choice(bundled))
     return _load_with_stdin(files)
+
+
+def _bundled() -> str | None:
+    """The command's ``--bundled`` choice (:func:`gyrovib.cli.options.bundled_option`)."""
+    from gyrovib.cli.options import BUNDLED_KEY
+
+    ctx = click.get_current_context(silent=True)
+    found = None if ctx is None else ctx.meta.get(BUNDLED_KEY)
+    return found if isinstance(found, str) else None
 
 
 def _read_stdin() -> str:

@@ -1,4 +1,4 @@
-"""`gyrovib fit`: rate-table data to coefficient-form sensors (MODEL.md section 14)."""
+"""`gyrovib fit`: rate-table data to coefficient-form sensors (docs/model.md section 14)."""
 
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
     Per unit, the least-squares fit of eq. (1) and the coefficients of eq. (2)
     with their standard uncertainties, correlations and t values, the residual
     rms and the fitted curve's nonlinearity (%FS); with two or more units, the
-    lot's mean and spread (MODEL.md section 14).
+    lot's mean and spread (docs/model.md section 14).
 
     TABLE is a CSV file ('-': standard input) with a header row: unit (optional),
     rate, output, and optionally rate_x1, rate_x2 (cross rates). Lines starting

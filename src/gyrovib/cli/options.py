@@ -21,8 +21,26 @@ UNIT_CHOICES = tuple(units.RATE_UNITS)
 SAMPLES_MAX = MAX_SAMPLES
 
 
+#: Where ``--bundled`` leaves its choice for :func:`gyrovib.cli.common.load_catalog`.
+BUNDLED_KEY = "gyrovib.bundled"
+
+
+def _keep_bundled(ctx: click.Context, param: click.Parameter, value: str | None) -> None:
+    if value is not None:
+        ctx.meta[BUNDLED_KEY] = value
+
+
+def bundled_option(f: F) -> F:
+    return click.option(
+        "--bundled", type=click.Choice(["sensors", "profiles", "all"]), default=None,
+        expose_value=False, callback=_keep_bundled, is_eager=True,
+        help="Add the bundled catalogues (the public sensors, the example profiles, or "
+             "both) to the files given: e.g. your own profiles with --bundled sensors. "
+             "`gyrovib catalog export DIR` writes them out for editing.")(f)
+
+
 def files_argument(f: F) -> F:
-    return click.argument("files", nargs=-1, metavar="[FILE]...")(f)
+    return bundled_option(click.argument("files", nargs=-1, metavar="[FILE]...")(f))
 
 
 def selection_options(f: F) -> F:
@@ -61,7 +79,7 @@ def peak_factor_option(f: F) -> F:
     return click.option(
         "--peak-factor", "peak_factor", type=click.FloatRange(min=0.0), default=3.0,
         show_default=True, metavar="K",
-        help="κ of the saturation check (MODEL.md section 9): a sensor saturates when "
+        help="κ of the saturation check (docs/model.md section 9): a sensor saturates when "
              "|Ω_K3| + Σ tone amplitudes + locked-harmonic peaks + κ·σ3, at its nonlinear "
              "element, exceeds its range.",
     )(f)
@@ -151,7 +169,7 @@ def allocation_option(f: F) -> F:
 
 def parse_allocation(text: str | None) -> list[float] | None:
     """``--allocation`` → r alone, the 9 numbers r, w1..w5, v1..v3 or the 10 numbers
-    r, w1..w6, v1..v3 (w6: the g² term, MODEL.md section 8), positive and finite."""
+    r, w1..w6, v1..v3 (w6: the g² term, docs/model.md section 8), positive and finite."""
     if text is None:
         return None
     pieces = [p.strip() for p in text.split(",")]

@@ -1,4 +1,4 @@
-"""`gyrovib profile`: fit a catalogue profile to a recording (MODEL.md section 13)."""
+"""`gyrovib profile`: fit a catalogue profile to a recording (docs/model.md section 13)."""
 
 from __future__ import annotations
 

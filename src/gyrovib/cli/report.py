@@ -15,6 +15,7 @@ from gyrovib.cli.options import (
     selection_options,
 )
 from gyrovib.cli.recording import recording_options
+from gyrovib.cli.spec_options import assume_unknown_option
 from gyrovib.cli.yield_options import yield_options
 
 DEFAULT_OUTPUT = "report.html"
@@ -25,10 +26,11 @@ DEFAULT_OUTPUT = "report.html"
 @selection_options
 @budget_options
 @peak_factor_option
-@click.option("--criterion", type=click.Choice(["bounds", "rms", "both"]), default="bounds",
-              show_default=True,
+@click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
+              default="bounds", show_default=True,
               help="What a pass means: every coefficient within its bound, Δ_V(RMS) ≤ budget "
-                   "(eq. 17), or both.")
+                   "(eq. 17), |Δ_V| ≤ budget (worst), or bounds and rms (both).")
+@assume_unknown_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="The requirement the report states as met or not: at least one (any) or "
                    "every (all) sensor passes under every chosen profile.")
@@ -39,15 +41,15 @@ DEFAULT_OUTPUT = "report.html"
 @click.option("--output", "-o", default=DEFAULT_OUTPUT, show_default=True, metavar="PATH",
               help="Write the HTML here (atomically); '-' for standard output.")
 @click.option("--recording", metavar="RECORDING",
-              help="Add a recording (MODEL.md section 13): its PSD against the fitted "
+              help="Add a recording (docs/model.md section 13): its PSD against the fitted "
                    "profile, the honesty of the fit, Δ_V,rec beside the closed form; the "
                    "fitted profile joins the study's profiles.")
 @recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
-           peak_factor: float, criterion: str, require: str, rate_range: str | None,
-           yield_target: float | None, seed: int, draws: int, output: str,
-           recording: str | None, **rec: Any) -> None:
+           peak_factor: float, criterion: str, assume_unknown: str | None, require: str,
+           rate_range: str | None, yield_target: float | None, seed: int, draws: int,
+           output: str, recording: str | None, **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -78,7 +80,8 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,
-        yield_target=yield_target, seed=seed, draws=draws)
+        assume_unknown=assume_unknown or "none", yield_target=yield_target, seed=seed,
+        draws=draws)
     write_output(to_html(result, section), output)
     if output not in ("-", ""):
         say(f"gyrovib: wrote {output}")

@@ -24,7 +24,11 @@ from gyrovib.cli.options import (
     peak_factor_option,
     selection_options,
 )
-from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
+from gyrovib.cli.spec_options import (
+    assume_unknown_option,
+    parse_spec_weights,
+    spec_weights_option,
+)
 from gyrovib.cli.yield_options import yield_options
 
 
@@ -42,6 +46,7 @@ from gyrovib.cli.yield_options import yield_options
                    "worst: |Δ_V| ≤ budget (a datasheet sensor over its envelope); both: "
                    "bounds and rms. A saturating sensor fails whatever the criterion.")
 @spec_weights_option
+@assume_unknown_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
@@ -52,8 +57,9 @@ from gyrovib.cli.yield_options import yield_options
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
-           spec_weights: str | None, require: str, yield_target: float | None, seed: int,
-           draws: int, fmt: str, output: str | None) -> None:
+           spec_weights: str | None, assume_unknown: str | None, require: str,
+           yield_target: float | None, seed: int, draws: int, fmt: str,
+           output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its frequency response where it acts at its
@@ -62,7 +68,10 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     budget (eq. 17). A datasheet (spec-form) sensor is checked by its
     nonlinearity and VRE against the allowable figures for its range, and its
     margin is that of its worst case. A sensor that saturates under a profile
-    fails there. With --yield Y a production lot (`lot:`) passes a profile when the
+    fails there. A datasheet part whose verdict hangs on a figure its datasheet
+    does not publish (the VRE under linear vibration, m31/m32 under cross-axis
+    vibration) is unverified, and does not count as passing.
+    With --yield Y a production lot (`lot:`) passes a profile when the
     probability that a part drawn from it passes is at least Y (docs/model.md section 14).
     Exit status 1 when the --require condition is not met.
     """
@@ -77,7 +86,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     result = api.select(catalog, sensors=sensors, profiles=profiles, method=method, **split,
                         criterion=criterion, require=require,
                         spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor,
-                        yield_target=yield_target, seed=seed, draws=draws)
+                        assume_unknown=assume_unknown or "none", yield_target=yield_target,
+                        seed=seed, draws=draws)
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
     if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it

@@ -27,6 +27,16 @@ def spec_weights_option(f: F) -> F:
     )(f)
 
 
+def assume_unknown_option(f: F) -> F:
+    return click.option(
+        "--assume-unknown", "assume_unknown", type=click.Choice(["zero"]), default=None,
+        help="Take a figure a datasheet does not publish (VRE, m31, m32) as 0 where it can "
+             "matter. By default it is unknown: a part that passes on its published figures "
+             "but hangs on an unpublished one is 'unverified' (not passing), with the "
+             "questions for its vendor; the output says when the assumption was made.",
+    )(f)
+
+
 def parse_spec_weights(text: str | None) -> tuple[float, float]:
     """``--spec-weights NL,VRE`` → two positive finite weights (default (1, 1))."""
     if text is None:

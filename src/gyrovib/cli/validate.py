@@ -5,10 +5,12 @@ from __future__ import annotations
 import click
 
 from gyrovib.cli.common import github_errors, load_catalog, say
+from gyrovib.cli.options import bundled_option
 
 
 @click.command()
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
+@bundled_option
 @click.option("--format", "fmt", type=click.Choice(["text", "github"]), default="text",
               show_default=True,
               help="text: FILE:LINE:COL: message on standard error; github: also "
@@ -21,5 +23,5 @@ def validate(files: tuple[str, ...], fmt: str) -> None:
     """
     github_errors(fmt == "github")
     catalog = load_catalog(files)
-    say(f"{len(files)} file(s) valid: {len(catalog.sensors)} sensor(s), "
+    say(f"{len(catalog.sources)} file(s) valid: {len(catalog.sensors)} sensor(s), "
         f"{len(catalog.profiles)} profile(s)")

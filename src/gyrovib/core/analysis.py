@@ -19,7 +19,7 @@ so that (eq. 14, 15)
 
 and (eq. 13, 16) Δ_V = ΣΔ0 + Σ Δ(q)·Ω^q, Δ_V(RMS) = √(ΣΔ0² + Σ(Δ(q)·Ω^q)²).
 
-Two optional multipliers extend this (MODEL.md sections 8 and 10): the
+Two optional multipliers extend this (docs/model.md sections 8 and 10): the
 second moments of a linear vibration ⟨a_j·a_k⟩ (g², order
 :data:`~gyrovib.core.linear.G2_TERMS`), which with the sensors' G (rate/g²)
 give Δ0(6) = ΣG_jk·⟨a_j·a_k⟩; and the odd moments M3 = <x3³>, M5 = <x3⁵> of
@@ -48,6 +48,7 @@ from gyrovib.core.harmonics import (
     group_moments,
     group_signal,
     locked_rectified_excess,
+    two_groups_excess,
 )
 from gyrovib.core.statistics import (
     PAPER_RANDOM_ASYMMETRY,
@@ -66,7 +67,7 @@ COLUMN: dict[str, int] = {name: i for i, name in enumerate(COEFFICIENTS)}
 BOUNDED: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
 #: Names of the additive terms Δ0(1..5): the coefficient each is proportional to.
 ADDITIVE_TERMS: tuple[str, ...] = ("A1", "k2", "k4", "m31", "m32")
-#: Names of the additive terms of MODEL.md sections 8 and 10: Δ0(6) = ΣG_jk·⟨a_j a_k⟩
+#: Names of the additive terms of docs/model.md sections 8 and 10: Δ0(6) = ΣG_jk·⟨a_j a_k⟩
 #: (``g2``), k3·M3 (``k3``) and k5·M5 (``k5``), in ``VibrationError.extra_terms``.
 EXTRA_TERMS: tuple[str, ...] = ("g2", "k3", "k5")
 #: Names of the multiplicative coefficients Δ(1..3).
@@ -83,8 +84,8 @@ class Multipliers(Frozen):
     ``asymmetry`` g_A = ½E(Ω) (rate), ``m2``, ``m4`` (rate², rate⁴), ``c31``,
     ``c32`` (rate²), ``omega`` Ω_K3 (rate). Optional (None: absent):
     ``m3``, ``m5`` (rate³, rate⁵), the odd moments of locked harmonics
-    (MODEL.md section 10); ``acceleration`` (shape + (6,), g²), the second
-    moments ⟨a_j·a_k⟩ of a linear vibration (MODEL.md section 8), order
+    (docs/model.md section 10); ``acceleration`` (shape + (6,), g²), the second
+    moments ⟨a_j·a_k⟩ of a linear vibration (docs/model.md section 8), order
     :data:`gyrovib.core.linear.G2_TERMS`.
     """
 
@@ -114,11 +115,11 @@ def paper_kind(vibration: Vibration, *, linear: bool = False, locked: bool = Fal
 
     Raises :class:`ModelError` for any other profile, and for a profile with
     a linear vibration (``linear``) or phase-locked harmonics (``locked``),
-    which the paper's model does not have (MODEL.md sections 8 and 10).
+    which the paper's model does not have (docs/model.md sections 8 and 10).
     """
     if linear or locked:
-        what = " or ".join(w for w, on in (("linear vibration (MODEL.md section 8)", linear),
-                                           ("phase-locked harmonics (MODEL.md section 10)",
+        what = " or ".join(w for w, on in (("linear vibration (docs/model.md section 8)", linear),
+                                           ("phase-locked harmonics (docs/model.md section 10)",
                                             locked)) if on)
         raise ModelError(
             f"the paper's model covers angular vibration by one harmonic tone or a random "
@@ -147,7 +148,7 @@ def profile_multipliers(
 ) -> Multipliers:
     """Multipliers of one vibration at the rates ``omega`` (any shape).
 
-    ``locked``: phase-locked harmonic groups (MODEL.md section 10), each
+    ``locked``: phase-locked harmonic groups (docs/model.md section 10), each
     independent of the tones, the Gaussian part and the other groups; their
     moments combine by cumulants and E(Ω) is averaged over their periods.
     ``acceleration``: the six second moments ⟨a_j·a_k⟩ (g²) of a linear
@@ -216,6 +217,14 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
         [np.sum(np.asarray(x)) for x in parts] for parts in (p2, p3, p4, p5)))
     c31 = vibration.cross(1) + sum(float(mo.c31) for mo in moments)
     c32 = vibration.cross(2) + sum(float(mo.c32) for mo in moments)
+    if len(locked) == 2 and a.size == 0 and s3 <= 0:
+        # two groups alone: the second's period split at the first's kinks (1e-6 asked)
+        asym2 = 0.5 * two_groups_excess(w, locked[0], locked[1])
+        return Multipliers(
+            asymmetry=asym2, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
+            omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
+            acceleration=_acceleration(acceleration, w.shape),
+        )
     # E(Ω): the first group exactly (or against the others), any further group on a grid
     shift = np.zeros(1)
     for g in locked[1:]:
@@ -291,7 +300,7 @@ def vibration_error(
 
     ``g2_sensitivity``: (sensors, 6) G_jk in rate/g² (order
     :data:`gyrovib.core.linear.G2_TERMS`), used where the multipliers carry
-    a linear vibration (None: G = 0). With odd moments (MODEL.md section 10)
+    a linear vibration (None: G = 0). With odd moments (docs/model.md section 10)
     Δ0 gains k3·M3 and k5·M5, Δ(1) gains 4k4·M3 and Δ(2) 10k5·M3.
     The result has shape ``(sensors,) + multipliers.omega.shape``.
     """

@@ -1,10 +1,10 @@
-"""Datasheet sensors: the worst vibration error over their envelope (MODEL.md section 11).
+"""Datasheet sensors: the worst vibration error over their envelope (docs/model.md section 11).
 
 A spec-form sensor (range R, nonlinearity limit b, fit, measure, optional
 asymmetry spec |A1| ≤ a_max, optional VRE spec v) stands for every conversion
 function p(ω) = ½A1|ω| + k2ω² + k3ω³ + k4ω⁴ + k5ω⁵ whose residual from its
 reference line stays within b on [−R, R]. The vibration enters only through
-its multipliers (MODEL.md sections 4 and 10, k1 = 1): with x = (A1, k2…k5),
+its multipliers (docs/model.md sections 4 and 10, k1 = 1): with x = (A1, k2…k5),
 
     Δ_V(Ω) = cᵀx + Σ_jj G_jj⟨a_j²⟩,
     c = (g_A, M2, M3 + 3M2Ω, M4 + 4M3Ω + 6M2Ω², M5 + 5M4Ω + 10M3Ω² + 10M2Ω³)
@@ -48,7 +48,7 @@ def term_functionals(g_a: ArrayLike, m2: ArrayLike, m3: ArrayLike, m4: ArrayLike
     """The eight terms of Δ_V as linear functionals of x, shape (..., 8, 5).
 
     Row t, dotted with x = (A1, k2, k3, k4, k5), gives term TERMS[t]
-    (MODEL.md sections 4 and 10): ½A1·E(Ω) = A1·g_A, k2·M2, k3·M3, k4·M4,
+    (docs/model.md sections 4 and 10): ½A1·E(Ω) = A1·g_A, k2·M2, k3·M3, k4·M4,
     k5·M5, Δ(1)·Ω = (3k3M2 + 4k4M3 + 5k5M4)·Ω, Δ(2)·Ω² = (6k4M2 + 10k5M3)·Ω²,
     Δ(3)·Ω³ = 10k5M2·Ω³. Inputs broadcast together (profiles, or profiles ×
     rates); M_n in rate^n, g_A and Ω in rate. Their sum over rows is c.
@@ -147,10 +147,16 @@ def _solve(fit: np.ndarray, measure: np.ndarray, a: np.ndarray,
     # hand the unique pairs over in the caller's order with the last axis (the term)
     # outermost: then neighbours are the same term at neighbouring profiles or rates,
     # whose optima are alike (support() polishes one from the other)
+    # (with more sensors than profiles × rates, the sensors are the inner axis instead:
+    # worst_case hands them sorted by envelope and range, so that neighbours are the
+    # same term and profile at the next range — 3,000 sensors of all-different
+    # ranges under 2 profiles were cold programmes, each neighbour another profile)
     rank = np.arange(key.shape[0])
     if len(shape) > 1:
-        rank[np.moveaxis(np.arange(key.shape[0]).reshape(shape), -1, 0).ravel()] = np.arange(
-            key.shape[0])
+        axes = list(range(len(shape)))
+        inner = [*axes[1:-1], 0] if len(shape) == 3 and shape[0] > shape[1] else axes[:-1]
+        rank[np.transpose(np.arange(key.shape[0]).reshape(shape), [axes[-1], *inner]).ravel()
+             ] = np.arange(key.shape[0])
     first = np.full(uniq.shape[0], key.shape[0])
     np.minimum.at(first, inv, rank)
     order = np.argsort(first, kind="stable")
@@ -176,7 +182,7 @@ class WorstCase(Frozen):
     ``line``: its reference line (intercept rate, slope 1), (N, P, 2);
     ``terms``: the per-term maxima max|term| over the envelope for TERMS and
     then the g² term, rate, (N, P, 9); ``rms_bound``: √(Σ terms²), rate,
-    (N, P) (MODEL.md section 11, eq. (16) per term); ``gap``: relative
+    (N, P) (docs/model.md section 11, eq. (16) per term); ``gap``: relative
     distance between the last grid optimum and ``nonlinearity`` (≤ 1e-7
     when the refinement converged; 0 for rms).
     """
@@ -196,7 +202,7 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
                measure: str | Sequence[str] = "max",
                asymmetry: ArrayLike | None = None,
                vre: ArrayLike | None = None) -> WorstCase:
-    """Worst |Δ_V| over each sensor's datasheet envelope (MODEL.md section 11).
+    """Worst |Δ_V| over each sensor's datasheet envelope (docs/model.md section 11).
 
     terms: (P, 8, 5) from :func:`term_functionals` (one row per profile or
     profile-rate); g2: (P,) S = Σ_j⟨a_j²⟩ in g². Per sensor (N,): range_ R
@@ -235,7 +241,14 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
         ratio = np.where(b > 0, a_max * r / np.where(b > 0, b, 1.0), np.inf)
     c = t.sum(axis=1)                                            # (P, 5)
     d = np.concatenate([c[None, :, None, :], t[None, :, :, :]], axis=2) * scale[:, None, None, :]
-    h, y, line, gap = _solve(f[:, None, None], ms[:, None, None], ratio[:, None, None], d)
+    # sensors sorted by envelope (fit, measure, asymmetry ratio) and range: neighbours
+    # in _solve's order polish each other's programmes
+    order = np.lexsort((r, ratio, ms, f))
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    h, y, line, gap = _solve(f[order, None, None], ms[order, None, None],
+                             ratio[order, None, None], d[order])
+    h, y, line, gap = h[back], y[back], line[back], gap[back]
     bb = b[:, None]
     nonlin = bb * h[:, :, 0]
     coef = bb[..., None] * y[:, :, 0, :] * scale[:, None, :]
@@ -285,7 +298,7 @@ class SpecBounds(Frozen):
 def spec_bounds(budget: float, terms: ArrayLike, g2: ArrayLike, range_: float,
                 fit: str = "least-squares", measure: str = "max", of: str = "range",
                 weights: tuple[float, float] = (1.0, 1.0)) -> SpecBounds:
-    """NL_max = w_NL·Δ*/W(1) and VRE_max = w_V·Δ*/S (MODEL.md section 11).
+    """NL_max = w_NL·Δ*/W(1) and VRE_max = w_V·Δ*/S (docs/model.md section 11).
 
     budget Δ* (rate); terms (P, 8, 5) and g2 (P,) as in :func:`worst_case`;
     range_ R (rate). Δ* is split linearly between the envelope and the g²
@@ -315,3 +328,40 @@ def spec_bounds(budget: float, terms: ArrayLike, g2: ArrayLike, range_: float,
     per = {"range": 100.0 / range_, "span": 100.0 / (2.0 * range_), "rate": 1.0}[of]
     return SpecBounds(nonlinearity=b_max * per, vre=vre_max, w1=w1,
                       share_nl=share_nl, share_vre=share_v)
+
+
+def spec_bounds_many(budget: float, terms: ArrayLike, g2: ArrayLike, ranges: ArrayLike,
+                     fits: Sequence[str], measures: Sequence[str], ofs: Sequence[str],
+                     weights: tuple[float, float] = (1.0, 1.0)
+                     ) -> tuple[FloatArray, FloatArray]:
+    """:func:`spec_bounds` for M datasheet definitions at once: (NL_max, VRE_max), (M, P).
+
+    One :func:`worst_case` over all M ranges (b = 1), so that the envelope
+    programmes of neighbouring ranges polish each other, instead of one call
+    per definition (3,000 sensors of all-different ranges: 3,000 calls, each
+    solved cold). Same splits and units as :func:`spec_bounds`.
+    """
+    if not (np.isfinite(budget) and budget > 0):
+        raise ModelError("the budget must be positive and finite")
+    w = np.asarray(weights, dtype=float)
+    if w.shape != (2,) or not (np.all(np.isfinite(w)) and np.all(w > 0)):
+        raise ModelError("the split weights must be two positive numbers")
+    t = np.asarray(terms, dtype=float)
+    s = np.broadcast_to(np.asarray(g2, dtype=float), t.shape[:1])
+    r = np.asarray(ranges, dtype=float).reshape(-1)
+    for of in ofs:
+        if of not in OF:
+            raise ModelError(f"nonlinearity is relative to one of {', '.join(OF)}, not {of!r}")
+    one = worst_case(t, np.zeros_like(s), r, np.ones(r.size), list(fits), list(measures))
+    w1 = one.nonlinearity                                          # (M, P)
+    on_nl = w1 > 0
+    on_v = np.broadcast_to(s > 0, w1.shape)
+    total = w[0] * on_nl + w[1] * on_v
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share_nl = np.where(on_nl, w[0] / total, 0.0)
+        share_v = np.where(on_v, w[1] / total, 0.0)
+        b_max = np.where(on_nl, share_nl * budget / w1, np.inf)
+        vre_max = np.where(on_v, share_v * budget / s[None, :], np.inf)
+    per = np.array([{"range": 100.0 / rk, "span": 100.0 / (2.0 * rk), "rate": 1.0}[of]
+                    for rk, of in zip(r.tolist(), ofs, strict=True)])
+    return b_max * per[:, None], vre_max

@@ -1,4 +1,4 @@
-"""The normalised datasheet envelope: coordinates, basis and residual (MODEL.md section 11).
+"""The normalised datasheet envelope: coordinates, basis and residual (docs/model.md section 11).
 
 On the normalised range u = ω/R ∈ [−1, 1] and with the coefficients in units
 of the nonlinearity limit b,

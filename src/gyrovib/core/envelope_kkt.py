@@ -1,4 +1,4 @@
-"""The envelope's worst case to machine precision from a grid optimum (MODEL.md section 11).
+"""The envelope's worst case to machine precision from a grid optimum (docs/model.md section 11).
 
 The max-measure envelope is a semi-infinite LP in the coordinates of
 :mod:`gyrovib.core.envelope_basis`: maximise d̃ᵀỹ subject to |ψ̃(u)ᵀỹ| ≤ 1 for

@@ -1,4 +1,4 @@
-"""The datasheet envelope's support function (MODEL.md section 11).
+"""The datasheet envelope's support function (docs/model.md section 11).
 
 The normalised envelope E and its coordinates are defined in
 :mod:`gyrovib.core.envelope_basis`. E is compact and symmetric, so its support

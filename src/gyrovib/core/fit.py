@@ -1,6 +1,6 @@
 """Rate-table data to the coefficients of eq. (1) and (2), with their uncertainty.
 
-MODEL.md section 14. A unit is turned at known rates Ω about its sensitive
+docs/model.md section 14. A unit is turned at known rates Ω about its sensitive
 axis x3 (optionally with known cross rates ω1, ω2) and its mean output U is
 recorded. Eq. (1) is linear in its parameters θ:
 
@@ -13,7 +13,13 @@ K1·Ω + h·|Ω|). Ordinary least squares gives θ̂ and
 
 computed on a scaled design matrix: Ω divided by the largest |Ω| (and ωi by
 the largest |ωi|), then every column divided by its Euclidean norm, solved by
-a QR factorisation; the scales are undone on θ̂ and its covariance.
+a QR factorisation; the scales are undone on θ̂ and its covariance. The
+output is divided by a power of two near its largest |U| first (exact), so
+that RSS and s² neither overflow (outputs near 1e300) nor underflow (near
+1e-300, which would give σ = 0); eq. (2) does not depend on that scale.
+Rates so large or small that R^(±n) leaves 1e±100 (the variance of kn scales
+as R^(2−2n)) are refused, as are results that are not finite or whose
+variance underflowed.
 
 Eq. (2) follows by division by K1: k0 = K0/K1, A1 = 2h/K1, kn = Kn/K1,
 mi = Mi/K1, m3i = M3i/K1 (k1 = 1 exactly), with the delta-method covariance
@@ -35,6 +41,7 @@ and as many distinct nonzero levels as the odd part K1Ω + K3Ω³ + K5Ω⁵ has
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -48,7 +55,7 @@ from gyrovib.frozen import Frozen
 #: The highest power of Ω in eq. (1).
 MAX_ORDER = 5
 DEFAULT_ORDER = 5
-#: |t| below this is flagged "not significant" (MODEL.md section 14), never dropped.
+#: |t| below this is flagged "not significant" (docs/model.md section 14), never dropped.
 SIGNIFICANT_T = 2.0
 #: A scaled design matrix whose condition number exceeds this does not identify the model.
 MAX_CONDITION = 1e10
@@ -83,7 +90,7 @@ class Nonlinearity(Frozen):
     100·max|p − L|/R for L the least-squares line of p over uniform ω in [−R, R]
     ("best-fit straight line"), ``endpoint_max`` the same for the line through
     p(−R) and p(R) ("terminal-based"); ``range`` is R (the largest |Ω| tested),
-    in the rate unit. MODEL.md sections 11 and 14.
+    in the rate unit. docs/model.md sections 11 and 14.
     """
 
     least_squares_max: float
@@ -93,14 +100,16 @@ class Nonlinearity(Frozen):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class RateFit(Frozen):
-    """The fit of one unit (MODEL.md section 14).
+    """The fit of one unit (docs/model.md section 14).
 
     ``names``/``values``/``covariance``: the eq. (2) coefficients (rate units,
     kn in rate^(1−n), m3i in 1/rate; k1 = 1 exactly, not among them), their
     covariance; ``sigma`` the standard uncertainties, ``correlation`` the
     correlation matrix (NaN where a σ is 0), ``t`` = value/σ.
     ``raw_names``/``raw_values``/``raw_covariance``: θ of eq. (1) in output
-    units (K1 in output per rate, h = ½K1·A1). ``residuals`` = U − Û per point
+    units (K1 in output per rate, h = ½K1·A1); ``raw_sigma`` their standard
+    uncertainties (finite even where a variance of outputs near 1e300 would not
+    be). ``residuals`` = U − Û per point
     (output units), at the rates ``rates``; ``residual_rms`` = √(RSS/n);
     ``residual_sigma`` s = √(RSS/(n−p)).
     """
@@ -118,6 +127,7 @@ class RateFit(Frozen):
     residual_sigma: float
     nonlinearity: Nonlinearity
     points: int
+    raw_sigma: FloatArray
 
     @property
     def sigma(self) -> FloatArray:
@@ -143,7 +153,7 @@ class RateFit(Frozen):
 
     @property
     def significant(self) -> NDArray[np.bool_]:
-        """|t| ≥ 2 per coefficient (MODEL.md section 14: smaller is "not significant")."""
+        """|t| ≥ 2 per coefficient (docs/model.md section 14: smaller is "not significant")."""
         out: NDArray[np.bool_] = np.abs(self.t) >= SIGNIFICANT_T
         return out
 
@@ -155,7 +165,7 @@ class RateFit(Frozen):
     @property
     def scale_factor_sigma(self) -> float:
         """Standard uncertainty of K1."""
-        return float(np.sqrt(max(self.raw_covariance[1, 1], 0.0)))
+        return float(self.raw_sigma[1])
 
     def value(self, name: str) -> float:
         """One eq. (2) coefficient by name."""
@@ -207,11 +217,38 @@ def check_identifiable(rate: FloatArray, order: int, p: int) -> None:
         raise IdentificationError("; ".join(problems))
 
 
+#: Each scale undone on θ (R^−n, 1/max|ωi|, …) must stay within 10^±this, so that
+#: its square times a variance as small as round-off (1e-32 of the output's square)
+#: stays a normal double (about 1e±308): at R = 1e30 and order 5 the variance of
+#: k5 of a near noise-free table underflowed to σ = 0.
+MAX_DECADES = 100.0
+
+
+def _check_magnitude(scale: float, order: int, column: str) -> None:
+    """Raise :class:`IdentificationError` when ``scale``^±``order`` leaves 10^±
+    :data:`MAX_DECADES`: the coefficient of the ``order``-th power of ``column``
+    and its variance would not be double-precision numbers."""
+    decades = -math.log10(scale) * order
+    if abs(decades) <= MAX_DECADES:
+        return
+    if column == "rate":
+        scaling = (f"at order {order} the fitted coefficients scale as its powers up to "
+                   f"{order} (10^{decades:.0f})")
+        remedy = "are the rates in the stated rate unit? (or fit a lower order)"
+    else:
+        scaling = f"the cross-axis coefficients scale as its inverse (10^{decades:.0f})"
+        remedy = "are the cross rates in the stated rate unit?"
+    raise IdentificationError(
+        f"the largest |{column}| is {scale:.3g}: {scaling} and their variances as the "
+        f"square of that, beyond double precision (about 1e±308); {remedy}")
+
+
 def _design(rate: FloatArray, order: int, cross: FloatArray | None,
             axes: tuple[int, ...]) -> tuple[FloatArray, FloatArray]:
     """The scaled design matrix (columns of unit norm) and the factor undoing each
     column's scaling (θ_j = β_j·factor_j); ``cross`` (n, len(axes)) holds ω_i, i in ``axes``."""
     scale = float(np.max(np.abs(rate)))
+    _check_magnitude(scale, order, "rate")
     x = rate / scale
     columns = [np.ones_like(x), x, np.abs(x), *(x**k for k in range(2, order + 1))]
     unscale = [1.0, 1.0 / scale, 1.0 / scale, *(scale ** (-k) for k in range(2, order + 1))]
@@ -222,6 +259,9 @@ def _design(rate: FloatArray, order: int, cross: FloatArray | None,
             raise IdentificationError(
                 f"{', '.join(missing)} is zero in every row: the cross-axis terms need runs "
                 "with a cross rate; drop the column or add such runs")
+        for i, s in zip(axes, cross_scale, strict=True):
+            _check_magnitude(float(s), 1, f"rate_x{i}")
+            _check_magnitude(scale * float(s), 1, f"rate|·|rate_x{i}")
         y = cross / cross_scale
         columns += [y[:, i] for i in range(y.shape[1])]
         unscale += [1.0 / float(s) for s in cross_scale]
@@ -237,7 +277,7 @@ def _design(rate: FloatArray, order: int, cross: FloatArray | None,
 def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDER,
                    cross: ArrayLike | None = None,
                    cross_axes: Sequence[int] | None = None) -> RateFit:
-    """Least-squares fit of eq. (1) to one unit's rate-table points (MODEL.md section 14).
+    """Least-squares fit of eq. (1) to one unit's rate-table points (docs/model.md section 14).
 
     ``rate``: Ω per point (n,), any rate unit; ``output``: mean output U (n,),
     any output unit; ``cross``: (n, k) applied cross rates in the rate unit about
@@ -269,31 +309,47 @@ def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDE
     check_identifiable(omega, order, p)
     design, factor = _design(omega, order, w, axes)
     _check_rank(design, names_raw)
+    # the output over a power of two near its largest |U| (exact): RSS neither
+    # overflows nor underflows; eq. (2) is a ratio and does not see the scale
+    top = float(np.max(np.abs(u)))
+    out_scale = math.ldexp(1.0, math.frexp(top)[1] - 1) if top > 0 else 1.0
+    v = u / out_scale
     q, r = np.linalg.qr(design)
-    beta = np.linalg.solve(r, q.T @ u)
-    residuals = u - design @ beta
+    beta = np.linalg.solve(r, q.T @ v)
+    scaled_residuals = v - design @ beta
     n = omega.size
-    rss = float(residuals @ residuals)
+    rss = float(scaled_residuals @ scaled_residuals)
     s2 = rss / (n - p)
     r_inv = np.linalg.solve(r, np.eye(p))
     cov_beta = s2 * (r_inv @ r_inv.T)
     theta = beta * factor
     cov_theta = cov_beta * np.outer(factor, factor)
-    values, covariance = to_rate_form(theta, cov_theta, order, axes)
+    values, covariance = to_rate_form(theta, cov_theta, order, axes, out_scale)
+    lost = s2 > 0 and bool(np.any(np.diag(covariance) < np.finfo(float).tiny))
+    if lost or not (np.all(np.isfinite(values)) and np.all(np.isfinite(covariance))):
+        raise IdentificationError(
+            "the coefficients or their variances are not finite double-precision numbers "
+            "(rates or outputs of extreme magnitude); are the columns in the stated "
+            "units?")
+    with np.errstate(over="ignore"):
+        raw_values = theta * out_scale
+        raw_covariance = cov_theta * out_scale * out_scale  # inf beyond ~1e154
+        raw_sigma = np.sqrt(np.clip(np.diag(cov_theta), 0.0, None)) * out_scale
     return RateFit(
         order=order,
         names=rate_names(order, axes),
         values=values,
         covariance=covariance,
         raw_names=names_raw,
-        raw_values=theta,
-        raw_covariance=cov_theta,
+        raw_values=raw_values,
+        raw_covariance=raw_covariance,
         rates=omega,
-        residuals=residuals,
-        residual_rms=float(np.sqrt(rss / n)),
-        residual_sigma=float(np.sqrt(s2)),
+        residuals=scaled_residuals * out_scale,
+        residual_rms=float(np.sqrt(rss / n)) * out_scale,
+        residual_sigma=float(np.sqrt(s2)) * out_scale,
         nonlinearity=nonlinearity(values, rate_names(order, axes), float(np.max(np.abs(omega)))),
         points=n,
+        raw_sigma=raw_sigma,
     )
 
 
@@ -316,15 +372,19 @@ def _check_rank(design: FloatArray, names: tuple[str, ...]) -> None:
 
 
 def to_rate_form(theta: FloatArray, cov_theta: FloatArray, order: int,
-                 axes: Sequence[int] = ()) -> tuple[FloatArray, FloatArray]:
+                 axes: Sequence[int] = (), output_scale: float = 1.0
+                 ) -> tuple[FloatArray, FloatArray]:
     """Eq. (1) parameters θ (:func:`raw_names` order) to the eq. (2) coefficients
-    (:func:`rate_names` order) by division by K1, with the covariance J·Cov(θ)·Jᵀ."""
+    (:func:`rate_names` order) by division by K1, with the covariance J·Cov(θ)·Jᵀ.
+    θ may be in output units over ``output_scale`` (only the message of a K1 that
+    is not significant uses it: eq. (2) does not depend on it)."""
     k1 = float(theta[1])
     sigma_k1 = float(np.sqrt(max(cov_theta[1, 1], 0.0)))
     if k1 == 0.0 or not np.isfinite(k1) or abs(k1) < SIGNIFICANT_T * sigma_k1:
         raise IdentificationError(
-            f"the output does not follow the rate (K1 = {k1:.4g} ± {sigma_k1:.3g}): eq. (2) "
-            "divides by K1; check the rate and output columns")
+            f"the output does not follow the rate (K1 = {k1 * output_scale:.4g} ± "
+            f"{sigma_k1 * output_scale:.3g}): eq. (2) divides by K1; check the rate and "
+            "output columns")
     numerators = [0, *range(2, theta.size)]  # K0, h, K2..KN, M…: all but K1
     factors = np.ones(len(numerators))
     factors[1] = 2.0  # A1 = 2h/K1
@@ -382,7 +442,8 @@ def nonlinearity(values: ArrayLike, names: Sequence[str], span: float) -> Nonlin
     poly[0] = coefficient.get("k0", 0.0) / span
     poly[1] = 1.0
     for k in range(2, MAX_ORDER + 1):
-        poly[k] = coefficient.get(f"k{k}", 0.0) * span ** (k - 1)
+        if f"k{k}" in coefficient:  # R^(k−1) of an absent term may overflow (R ~ 1e100)
+            poly[k] = coefficient[f"k{k}"] * span ** (k - 1)
     kink = 0.5 * coefficient.get("A1", 0.0)
     ls = _moment_line(poly, kink)
     q_plus = float(np.sum(poly)) + kink

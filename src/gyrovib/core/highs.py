@@ -1,6 +1,6 @@
 """Linear programmes solved by HiGHS through its own Python bindings, ``highspy``.
 
-The datasheet worst case (MODEL.md section 11) is a semi-infinite LP solved on
+The datasheet worst case (docs/model.md section 11) is a semi-infinite LP solved on
 refined grids; each grid LP goes to HiGHS. ``highspy`` is the HiGHS team's own
 binding of the same solver scipy vendors for ``linprog(method="highs")``; it
 is used directly because importing it takes ~15 ms where importing

@@ -1,4 +1,4 @@
-"""Linear vibration and the g² rectification term Δ0(6) (MODEL.md section 8).
+"""Linear vibration and the g² rectification term Δ0(6) (docs/model.md section 8).
 
 The specific force along the sensor axes, ``a_j(t)`` (j = 1, 2, 3, unit g),
 is a sum of tones of distinct frequencies (per-axis amplitude A_j and phase
@@ -37,7 +37,7 @@ def acceleration_moments(
     sigma: ArrayLike,
     coherence: ArrayLike = (0.0, 0.0, 0.0),
 ) -> FloatArray:
-    """The six second moments ⟨a_j·a_k⟩ of a linear vibration (MODEL.md section 8).
+    """The six second moments ⟨a_j·a_k⟩ of a linear vibration (docs/model.md section 8).
 
     ``amplitudes``: (..., K, 3) tone amplitudes per axis in g (K may be 0);
     ``phases``: (..., K, 3) in degrees; ``sigma``: (..., 3) Gaussian RMS per
@@ -71,7 +71,7 @@ def acceleration_moments(
 
 
 def g2_term(sensitivity: ArrayLike, moments: ArrayLike) -> FloatArray:
-    """Δ0(6) = Σ G_jk·⟨a_j·a_k⟩ for every sensor × profile (MODEL.md section 8).
+    """Δ0(6) = Σ G_jk·⟨a_j·a_k⟩ for every sensor × profile (docs/model.md section 8).
 
     ``sensitivity``: (sensors, 6) G in rate/g², order :data:`G2_TERMS`;
     ``moments``: (..., 6) in g² from :func:`acceleration_moments` (profiles,
@@ -104,7 +104,7 @@ def effective_vre(sensitivity: ArrayLike, moments: ArrayLike) -> FloatArray:
 
 @dataclass(frozen=True, eq=False, repr=False)
 class LinearVibration(Frozen):
-    """A linear vibration at the sensor's axes, in g (MODEL.md section 8).
+    """A linear vibration at the sensor's axes, in g (docs/model.md section 8).
 
     ``amplitudes`` (K, 3) and ``phases`` (K, 3, degrees) of tones of distinct
     frequencies; ``sigma`` (3,) Gaussian RMS per axis; ``coherence`` (3,)

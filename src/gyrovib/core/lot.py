@@ -1,6 +1,6 @@
 """The uncertainty of the vibration error and the yield of a production lot.
 
-MODEL.md section 14. For a given profile, Ω_K and sensor, every term of Δ_V
+docs/model.md section 14. For a given profile, Ω_K and sensor, every term of Δ_V
 is linear in the coefficients c = (A1, k2, k3, k4, k5, m31, m32, …) with
 k1 = 1 (eq. 13–15): Δ_V = gᵀc, g made of the section 4–10 multipliers
 (:func:`sensitivity` builds it from :func:`gyrovib.core.analysis.vibration_error`
@@ -9,10 +9,11 @@ on the unit vectors, so it is the engine's own). Hence, exactly,
     u(Δ_V) = √(gᵀ·Σ·g)                                          (:func:`dispersion`)
 
 A lot: the coefficient vectors c_u of n units give the mean μ and the sample
-covariance Σ (n − 1 in the denominator); with n ≤ p (p coefficients) Σ is
-singular and only its diagonal is used, with a warning (:func:`lot_statistics`,
-:func:`lot_covariance`). A part drawn from the lot is c ~ N(μ, Σ); its
-**yield**, the probability that it meets the budget Δ*:
+covariance Σ (n − 1 in the denominator); with n ≤ p, p the number of
+coefficients Δ_V is linear in (A1, k2…k5, m31, m32: not the bias k0 nor m1, m2,
+which do not rectify), Σ of them is singular and only its diagonal is used,
+with a warning (:func:`lot_statistics`, :func:`lot_covariance`). A part drawn
+from the lot is c ~ N(μ, Σ); its **yield**, the probability that it meets the budget Δ*:
 
 * the direct test, exactly (:func:`direct_yield`): Δ_V ~ N(m, s²), m = gᵀμ,
   s² = gᵀΣg, P(|Δ_V| ≤ Δ*) = Φ((Δ* − m)/s) − Φ((−Δ* − m)/s);
@@ -31,12 +32,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core.analysis import COEFFICIENTS, Multipliers, vibration_error
+from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, Multipliers, vibration_error
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 
-#: Monte-Carlo draws of the yield unless told otherwise (MODEL.md section 14).
+#: Monte-Carlo draws of the yield unless told otherwise (docs/model.md section 14).
 DEFAULT_DRAWS = 100_000
 #: Draws evaluated at once (memory: chunk × p floats).
 CHUNK = 20_000
@@ -87,7 +88,7 @@ def direct_yield(g: ArrayLike, mean: ArrayLike, covariance: ArrayLike,
     """The exact yield of the direct test, P(|Δ_V| ≤ Δ*) for Δ_V = gᵀc, c ~ N(μ, Σ).
 
     Δ_V ~ N(m, s²) with m = gᵀμ, s = √(gᵀΣg), so the yield is
-    Φ((Δ* − m)/s) − Φ((−Δ* − m)/s) (MODEL.md section 14); where s = 0 it is 1
+    Φ((Δ* − m)/s) − Φ((−Δ* − m)/s) (docs/model.md section 14); where s = 0 it is 1
     when |m| ≤ Δ*, else 0. ``g`` (..., p), ``mean`` (p,), Σ (p, p), ``budget``
     Δ* > 0 broadcast against g's leading shape; all in consistent units.
     """
@@ -170,7 +171,7 @@ def normal_factor(covariance: ArrayLike) -> FloatArray:
 def monte_carlo_yield(test: Callable[[FloatArray], ArrayLike], mean: ArrayLike,
                       covariance: ArrayLike, rng: np.random.Generator,
                       draws: int = DEFAULT_DRAWS, chunk: int = CHUNK) -> YieldEstimate:
-    """The yield of ``test`` over c ~ N(μ, Σ) by Monte Carlo (MODEL.md section 14).
+    """The yield of ``test`` over c ~ N(μ, Σ) by Monte Carlo (docs/model.md section 14).
 
     ``test`` takes a (k, p) array of coefficient draws and returns k booleans
     (pass), or (k, ...) for several tests at once (e.g. one per profile).
@@ -266,7 +267,7 @@ def _unit_rows(names: Sequence[str]) -> FloatArray:
 
 
 def sensitivity(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
-    """g with Δ_V = gᵀc for the coefficients ``names`` (k1 = 1; eq. 13–15 and MODEL.md
+    """g with Δ_V = gᵀc for the coefficients ``names`` (k1 = 1; eq. 13–15 and docs/model.md
     sections 8–10): g_i = Δ_V(e_i) − Δ_V(0), by the engine itself. Shape
     ``multipliers.omega.shape + (len(names),)``; rate units as the multipliers'."""
     rows = _unit_rows(names)
@@ -278,7 +279,7 @@ def sensitivity(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
 
 
 def term_matrix(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
-    """G with the terms of eq. (16) = G·c: the additive terms Δ0 (and those of MODEL.md
+    """G with the terms of eq. (16) = G·c: the additive terms Δ0 (and those of docs/model.md
     sections 8, 10) and the multiplicative terms Δ(q)·Ω^q, per coefficient of ``names``.
     Shape ``multipliers.omega.shape + (terms, len(names))``; Δ_V(RMS) = ‖G·c‖."""
     rows = _unit_rows(names)
@@ -353,6 +354,15 @@ def covariance_from(sigma: ArrayLike, correlation: ArrayLike) -> FloatArray:
     return out
 
 
+def rectifying_count(names: Sequence[str] | None, size: int) -> int:
+    """The number p of coefficients among ``names`` that Δ_V is linear in (docs/model.md
+    section 14: c = (A1, k2, k3, k4, k5, m31, m32); k0, m1, m2 do not rectify): the
+    lot's Σ of them is singular when n ≤ p. Without names, all ``size``."""
+    if names is None:
+        return size
+    return sum(1 for n in names if n in BOUNDED)
+
+
 def diagonal_warning(units: int, p: int) -> str:
     """The warning of a lot too small for its covariance (n ≤ p)."""
     return (f"a lot of {units} unit{'s' if units != 1 else ''} cannot estimate the "
@@ -360,20 +370,22 @@ def diagonal_warning(units: int, p: int) -> str:
             "only the standard deviations are used, correlations taken as 0")
 
 
-def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int
-                   ) -> tuple[FloatArray, str | None]:
-    """The covariance of a lot of ``units`` units (MODEL.md section 14) and a warning:
-    with units ≤ p only the diagonal σ² (and the warning of :func:`diagonal_warning`),
-    else diag(σ)·R·diag(σ)."""
+def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int,
+                   names: Sequence[str] | None = None) -> tuple[FloatArray, str | None]:
+    """The covariance of a lot of ``units`` units (docs/model.md section 14) and a warning:
+    with units ≤ p (:func:`rectifying_count` of ``names``, the coefficients σ is
+    given for; all of them when None) only the diagonal σ² (and the warning of
+    :func:`diagonal_warning`), else diag(σ)·R·diag(σ)."""
     s = np.asarray(sigma, dtype=float)
-    if units <= s.size:
-        return covariance_from(s, np.eye(s.size)), diagonal_warning(units, s.size)
+    p = rectifying_count(names, s.size)
+    if units <= p:
+        return covariance_from(s, np.eye(s.size)), diagonal_warning(units, p)
     return covariance_from(s, correlation), None
 
 
 @dataclass(frozen=True, eq=False, repr=False)
 class LotStatistics(Frozen):
-    """A lot estimated from its units' coefficient vectors (MODEL.md section 14).
+    """A lot estimated from its units' coefficient vectors (docs/model.md section 14).
 
     ``mean`` μ, ``sigma`` (sample standard deviations, n − 1), ``correlation``
     (the identity when ``diagonal``), ``covariance`` (the one the yield uses:
@@ -389,19 +401,25 @@ class LotStatistics(Frozen):
     warning: str | None
 
 
-def lot_statistics(coefficients: ArrayLike) -> LotStatistics:
-    """μ and Σ of the rows c_u of ``coefficients`` (n, p), n ≥ 2: Σ with n − 1 in the
-    denominator; with n ≤ p only its diagonal, with a warning."""
+def lot_statistics(coefficients: ArrayLike, names: Sequence[str] | None = None
+                   ) -> LotStatistics:
+    """μ and Σ of the rows c_u of ``coefficients`` (n, k), n ≥ 2: Σ with n − 1 in the
+    denominator; with n ≤ p only its diagonal, with a warning. p counts the columns
+    ``names`` that Δ_V is linear in (:func:`rectifying_count`: k0, m1, m2 excluded,
+    docs/model.md section 14), or all k when ``names`` is None."""
     c = np.asarray(coefficients, dtype=float)
     if c.ndim != 2 or c.shape[0] < 2:
         raise LotError("a lot needs the coefficients of at least two units")
-    n, p = c.shape
+    if names is not None and len(names) != c.shape[1]:
+        raise ValueError("one name per column of coefficients")
+    n, k = c.shape
+    p = rectifying_count(names, k)
     mean = c.mean(axis=0)
     full = np.atleast_2d(np.cov(c, rowvar=False, ddof=1))
     sigma = np.sqrt(np.clip(np.diag(full), 0.0, None))
     diagonal = n <= p
     if diagonal:
-        correlation = np.eye(p)
+        correlation = np.eye(k)
     else:
         with np.errstate(divide="ignore", invalid="ignore"):
             correlation = full / np.outer(sigma, sigma)

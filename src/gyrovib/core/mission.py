@@ -1,4 +1,4 @@
-"""A mission: segments of a flight, each under its own profile and carrier rate (MODEL.md §12).
+"""A mission: segments of a flight, each under its own profile and carrier rate (docs/model.md §12).
 
 Given each segment's vibration error Δ_V,s and RMS error Δ_V(RMS),s (the
 section 4–11 results) and its duration T_s (s):
@@ -67,7 +67,7 @@ def weights(durations: ArrayLike) -> FloatArray:
 
 def totals(durations: ArrayLike, total: ArrayLike, rms: ArrayLike,
            angle_factor: float = 1.0) -> MissionTotals:
-    """The mission's aggregates of MODEL.md §12 (segment axis last).
+    """The mission's aggregates of docs/model.md §12 (segment axis last).
 
     ``total``, ``rms``: (..., S) in a rate unit; ``angle_factor`` turns
     rate × seconds into the angle unit (:data:`ANGLE_UNITS`).

@@ -1,6 +1,6 @@
 """The rectified mean of a mixture of tones and a Gaussian part by one contour integral.
 
-``E(Ω) = <|Ω + x3|> − |Ω|`` (MODEL.md section 4) for two or more tones with a
+``E(Ω) = <|Ω + x3|> − |Ω|`` (docs/model.md section 4) for two or more tones with a
 Gaussian part, or four or more tones alone: the inverse Laplace transform of
 the moment generating function ``M(s) = e^{σ²s²/2}·Π I0(a_k·s)`` on a line
 ``Re s = α`` through the saddle point (:func:`_contour_excess`), with the
@@ -26,7 +26,7 @@ _MAX_CONTOUR_VALUES = 1 << 23
 #: Relative tolerances of the contour quadrature with a Gaussian part and for
 #: tones alone: of the trapezoidal rule (cheap: h shrinks with log(1/tol)), and
 #: of truncating the tones' algebraic tail (nodes grow like tol^(-1/(K/2+1))).
-#: MODEL.md section 4 asks 1e-9 and 1e-6; the tests hold 1e-9 and 1e-7.
+#: docs/model.md section 4 asks 1e-9 and 1e-6; the tests hold 1e-9 and 1e-7.
 _CONTOUR_TOL_RANDOM = 1e-13
 _TRUNCATION_TOL_RANDOM = 1e-11
 _CONTOUR_TOL_TONES = 1e-10
@@ -213,8 +213,8 @@ def _contour_excess(w: FloatArray, a: FloatArray, sigma: float) -> FloatArray:
 
     for any α > 0, with the moment generating function
     ``M(s) = <e^{sX}> = e^{σ²s²/2}·Π I0(a_k·s)`` (I0(a·s) = J0(i·a·s): the
-    characteristic function of MODEL.md section 4 turned by 90°). On α = 0
-    this is the integral ``(2/π)∫(1 − Re φ(t))/t² dt`` of MODEL.md; moving
+    characteristic function of docs/model.md section 4 turned by 90°). On α = 0
+    this is the integral ``(2/π)∫(1 − Re φ(t))/t² dt`` of docs/model.md; moving
     the line to the saddle point α* of ``|M(α)e^{−αw}/α²|`` removes the
     oscillation that makes that form lose all relative precision where E is
     small: the integrand is then a non-oscillating bump whose height is the

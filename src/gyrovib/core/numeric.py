@@ -45,14 +45,14 @@ number of points at which eq. (2) is evaluated per sensor):
 ``none``
     No vibration reaches x1..x3: the error is 0 exactly.
 
-Phase-locked harmonic groups (MODEL.md section 10) are one more phase
+Phase-locked harmonic groups (docs/model.md section 10) are one more phase
 dimension each, ``x_i = Σ_n |p_ni|·sin(n·θ_g + arg p_ni)``: on the grid with
 more than 5·n_max nodes (exact for the polynomial part), in Monte Carlo with
 a uniform θ_g shared by both members of an antithetic pair (only the
 independent tones and the Gaussian part are negated: a locked waveform need
 not be symmetric).
 
-A linear vibration (MODEL.md section 8) adds ``Σ_{j≤k} G_jk·a_j·a_k`` to
+A linear vibration (docs/model.md section 8) adds ``Σ_{j≤k} G_jk·a_j·a_k`` to
 eq. (2); it is independent of the angular vibration, so its average is taken
 on its own: over a product grid of 4 phases per tone (exact for a quadratic)
 and the 3-point Gauss–Hermite rule per axis of the correlated Gaussian part
@@ -284,7 +284,7 @@ def simulate(
     ``progress`` is called with the number of points evaluated after each block.
     ``locked``: phase-locked harmonic groups (rate units at the sensor);
     ``linear`` with ``g2_sensitivity`` (sensors, 6) in rate/g²: the g² term of
-    a linear vibration (MODEL.md section 8).
+    a linear vibration (docs/model.md section 8).
     """
     estimate = _angular(coefficients, vibration, rate, samples, rng, progress, list(locked))
     if linear is None:

@@ -1,4 +1,4 @@
-"""How a sensor sits in the vehicle: signed permutations of the axes (MODEL.md section 12).
+"""How a sensor sits in the vehicle: signed permutations of the axes (docs/model.md section 12).
 
 Profiles, missions and recordings are written in vehicle axes X, Y, Z (a
 profile's axes 1, 2, 3 are X, Y, Z). A :class:`Placement` says, for each sensor
@@ -114,7 +114,7 @@ class Placement:
                        ) -> tuple[float, float, float]:
         """A rate profile's coherences (ρ31, ρ32, ρ12) in sensor axes.
 
-        ``ρ12`` omitted is ``ρ31·ρ32`` (one common source), MODEL.md section 12.
+        ``ρ12`` omitted is ``ρ31·ρ32`` (one common source), docs/model.md section 12.
         """
         r12 = rho31 * rho32 if rho12 is None else rho12
         r = self.correlation(rate_correlation(rho31, rho32, r12))

@@ -1,4 +1,4 @@
-"""Recordings: carrier rate and vibration from a time series (MODEL.md section 13).
+"""Recordings: carrier rate and vibration from a time series (docs/model.md section 13).
 
 Pure numpy; ``scipy.signal`` (the Butterworth split, Welch spectra) and
 ``scipy.ndimage`` (the running median) are imported inside the functions
@@ -26,7 +26,7 @@ FILTER_ORDER = 4
 MEDIAN_HALF_WIDTH = 20
 #: Half-width (bins) of a line's main lobe under the Hann window (its power is summed there).
 LOBE_HALF_WIDTH = 3
-#: Lines within this fraction of n·f0 are order n of f0 (MODEL.md section 13).
+#: Lines within this fraction of n·f0 are order n of f0 (docs/model.md section 13).
 HARMONIC_TOLERANCE = 0.01
 #: At most this many histogram bins of Ω_K3 make the fitted mission.
 MISSION_BINS = 16
@@ -40,7 +40,7 @@ _CHUNK = 1 << 20
 def gap_segments(time: ArrayLike, factor: float = 1.5) -> tuple[NDArray[np.intp], float]:
     """Split sample times at gaps: ``(bounds, median interval)``.
 
-    A gap is an interval longer than ``factor`` median intervals (MODEL.md
+    A gap is an interval longer than ``factor`` median intervals (docs/model.md
     section 13). ``bounds`` is (S, 2): start and stop indices of each
     contiguous segment. Times must increase strictly (checked by the caller).
     """
@@ -55,7 +55,7 @@ def gap_segments(time: ArrayLike, factor: float = 1.5) -> tuple[NDArray[np.intp]
 
 
 def lowpass(signal: ArrayLike, fs: float, crossover: float) -> FloatArray:
-    """Zero-phase 4th-order Butterworth low-pass of each column (MODEL.md section 13).
+    """Zero-phase 4th-order Butterworth low-pass of each column (docs/model.md section 13).
 
     ``butter(4, f_c, fs=fs, output="sos")`` applied forward and backward with
     ``sosfiltfilt`` and its default padding, along axis 0, one column at a
@@ -79,7 +79,7 @@ def lowpass(signal: ArrayLike, fs: float, crossover: float) -> FloatArray:
 
 def zero_phase_gain(x: ArrayLike, fs: float, table: Table) -> FloatArray:
     """x filtered by a zero-phase gain ν(f): the FFT of each column times the table's
-    gain at each bin (log-log interpolated, held past its ends; MODEL.md sections 3, 13)."""
+    gain at each bin (log-log interpolated, held past its ends; docs/model.md sections 3, 13)."""
     v = np.asarray(x, dtype=float)
     n = v.shape[0]
     f = np.fft.rfftfreq(n, 1.0 / fs)
@@ -94,7 +94,7 @@ def zero_phase_gain(x: ArrayLike, fs: float, table: Table) -> FloatArray:
 
 
 def recorded_moments(rate: ArrayLike, carrier: ArrayLike) -> FloatArray:
-    """The sums behind Δ_V,rec (MODEL.md section 13), over the samples given.
+    """The sums behind Δ_V,rec (docs/model.md section 13), over the samples given.
 
     With ω = ``rate`` and Ω_K = ``carrier`` (n, 3) in one rate unit, returns
     the sums (not yet divided by n) of
@@ -137,7 +137,7 @@ def recorded_g2_moments(accel: ArrayLike, lowpassed: ArrayLike) -> FloatArray:
 def recorded_error(coefficients: ArrayLike, moments: ArrayLike, g2: ArrayLike | None = None,
                    g2_moments: ArrayLike | None = None) -> tuple[FloatArray, FloatArray,
                                                                  FloatArray]:
-    """Δ_V,rec of every sensor from mean moments (MODEL.md section 13), vectorised.
+    """Δ_V,rec of every sensor from mean moments (docs/model.md section 13), vectorised.
 
     ``coefficients`` (N, 11) in the order of core.analysis.COEFFICIENTS;
     ``moments`` (7,) or (N, 7): the means of :func:`recorded_moments`
@@ -238,7 +238,7 @@ class Line(Frozen):
 
 def find_lines(f: FloatArray, spectra: NDArray[np.complex128], threshold_db: float,
                fmin: float = 0.0) -> tuple[tuple[Line, ...], FloatArray]:
-    """Spectral lines above the running median (MODEL.md section 13).
+    """Spectral lines above the running median (docs/model.md section 13).
 
     A bin whose PSD exceeds the running median by ``threshold_db`` on any axis
     starts a line; its lobe is the peak ± :data:`LOBE_HALF_WIDTH` bins. Per
@@ -284,7 +284,7 @@ def find_lines(f: FloatArray, spectra: NDArray[np.complex128], threshold_db: flo
 def harmonic_groups(frequencies: ArrayLike,
                     tolerance: float = HARMONIC_TOLERANCE) -> list[tuple[float, list[int],
                                                                          list[int]]]:
-    """Lines that are integer multiples of a common fundamental (MODEL.md section 13).
+    """Lines that are integer multiples of a common fundamental (docs/model.md section 13).
 
     Ascending: each line not yet grouped is tried as a fundamental f0; every
     later ungrouped line within ``tolerance``·f of n·f0 (n ≥ 2, one line per
@@ -314,7 +314,7 @@ def harmonic_groups(frequencies: ArrayLike,
 
 def fit_breakpoints(f: FloatArray, psd: FloatArray, count: int,
                     tolerance: float = 0.01) -> tuple[FloatArray, FloatArray]:
-    """At most ``count`` log-log breakpoints (f, S) for a measured PSD (MODEL.md section 13).
+    """At most ``count`` log-log breakpoints (f, S) for a measured PSD (docs/model.md section 13).
 
     Breakpoints are added greedily where the log error of the current fit is
     largest (starting from the band's ends); the levels are the least-squares
@@ -394,7 +394,7 @@ def central_moments(sums: ArrayLike, n: int) -> tuple[FloatArray, FloatArray, Fl
 def carrier_histogram(carrier3: ArrayLike, bins: int = MISSION_BINS,
                       ) -> tuple[FloatArray, FloatArray]:
     """The histogram of Ω_K3 in at most ``bins`` bins: (mean rate, sample count) of the
-    bins that hold samples (MODEL.md section 13's fitted mission)."""
+    bins that hold samples (docs/model.md section 13's fitted mission)."""
     c = np.asarray(carrier3, dtype=float)
     lo, hi = float(c.min()), float(c.max())
     if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):  # a constant carrier, up to rounding

@@ -1,4 +1,4 @@
-"""Saturation: how far the nonlinear element is driven (MODEL.md section 9).
+"""Saturation: how far the nonlinear element is driven (docs/model.md section 9).
 
     reach = |Ω_K3| + Σ_tones a3 + Σ_groups max_t |x3,group(t)| + κ·σ3
 
@@ -23,7 +23,7 @@ from gyrovib.core.transmissibility import FloatArray
 
 BoolArray = NDArray[np.bool_]
 
-#: κ of MODEL.md section 9 (the CLI's peak factor), default 3.
+#: κ of docs/model.md section 9 (the CLI's peak factor), default 3.
 DEFAULT_PEAK_FACTOR = 3.0
 
 

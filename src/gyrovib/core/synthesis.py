@@ -8,7 +8,7 @@ The budget is split by fixed ratios (docs/model.md):
   the ratio ``w``: ``α_p = w_p·c_A/‖w‖``;
 * eq. (24): the multiplicative terms Δ(1)·Ω̄, Δ(2)·Ω̄², Δ(3)·Ω̄³ get shares in
   the ratio ``v``: ``β_q = v_q·c_M/‖v‖``; Δ(1) holds k3 and k5, whose
-  contributions add linearly, so each gets ``β_1/2`` (MODEL.md section 6; the
+  contributions add linearly, so each gets ``β_1/2`` (docs/model.md section 6; the
   paper prints 0.35 ≈ β_1/√2, which can overrun the share by √2).
 
 so that ``Σ α_p² + Σ β_q² = c_A² + c_M² = 1``: when every term uses exactly
@@ -23,7 +23,7 @@ Each share divided by the term's multiplier (:class:`~gyrovib.core.analysis.Mult
     |k4|_M ≤ β_2·Δ*/(Ω̄²·6M2)             |k5|_M2 ≤ β_3·Δ*/(|Ω̄|³·10M2)
     |k4| ≤ min(|k4|_A, |k4|_M)           |k5| ≤ min(|k5|_M1, |k5|_M2)
 
-Linear vibration (MODEL.md section 8) appends an additive share w6 = 1 for
+Linear vibration (docs/model.md section 8) appends an additive share w6 = 1 for
 Δ0(6), bounding the effective VRE: ``vre = α_6·Δ*/Σ_j⟨a_j²⟩``. Odd moments
 (section 10) append additive shares of weight 1 for k3·M3 and k5·M5 (where
 M3 ≠ 0, resp. M5 ≠ 0), and split each multiplicative share equally among
@@ -61,10 +61,10 @@ from gyrovib.frozen import Frozen
 
 #: The two candidates behind the k4 and k5 bounds.
 PARTS: tuple[str, ...] = ("k4_additive", "k4_multiplicative", "k5_linear", "k5_cubic")
-#: The parts that odd moments add (MODEL.md section 10; finite only where M3, M5 ≠ 0).
+#: The parts that odd moments add (docs/model.md section 10; finite only where M3, M5 ≠ 0).
 ODD_PARTS: tuple[str, ...] = ("k3_additive", "k3_linear", "k4_linear", "k5_additive",
                               "k5_quadratic")
-#: Weights of the shares appended for Δ0(6) (g2), k3·M3 and k5·M5 (MODEL.md 8, 10).
+#: Weights of the shares appended for Δ0(6) (g2), k3·M3 and k5·M5 (docs/model.md 8, 10).
 DEFAULT_EXTRA_W: tuple[float, ...] = (1.0, 1.0, 1.0)
 
 #: The paper's allocation: r of eq. (18), w of eq. (21), v of eq. (24).
@@ -83,7 +83,7 @@ class AllocationConstants(Frozen):
     where x3 is symmetric (β_1/2 exact, 0.35 paper);
     ``c_additive``, ``c_multiplicative``: c_A and c_M of eq. (20);
     ``weights``: w_1..w_5 behind α; ``extra_weights``: the weights of the
-    shares appended for g2 (w6), k3·M3 and k5·M5 (MODEL.md sections 8, 10).
+    shares appended for g2 (w6), k3·M3 and k5·M5 (docs/model.md sections 8, 10).
     """
 
     alpha: FloatArray
@@ -114,7 +114,7 @@ def allocation_constants(
 
     ``c_A = r/√(1+r²)``, ``c_M = 1/√(1+r²)``, ``α_p = w_p·c_A/‖w‖``,
     ``β_q = v_q·c_M/‖v‖``; k3 and the linear k5 each get ``β_1/2``
-    (MODEL.md section 6). The defaults (r = 1.5, w = (1, 1, 1, ½, ½),
+    (docs/model.md section 6). The defaults (r = 1.5, w = (1, 1, 1, ½, ½),
     v = (1, ½, ½)) give c_A = 0.8321, c_M = 0.5547, α = 0.4447 | 0.2224,
     β = 0.4529 | 0.2265 and 0.2265 for k3 and k5. ``w`` may carry a sixth
     weight, w6 for the g2 term (default 1), used only for profiles with
@@ -223,7 +223,7 @@ def coefficient_bounds(
     for ``paper`` g_A = 0.673·a | 0.5·σ, M2 = 0.5a² | σ², M4 = 0.375a⁴ | σ⁴,
     so that 3M2, 5M4, 6M2, 10M2 are the paper's 1.5a² | 3σ², 1.875a⁴ | 5σ⁴,
     3a² | 6σ², 5a² | 10σ². With linear vibration or odd moments in the
-    multipliers, the shares of MODEL.md sections 8 and 10 (module docstring).
+    multipliers, the shares of docs/model.md sections 8 and 10 (module docstring).
     """
     mu = multipliers
     d = np.asarray(budget, dtype=float)

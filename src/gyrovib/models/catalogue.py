@@ -42,12 +42,12 @@ class Allocation(Model):
     """How the budget is split (eq. 18, 21, 24): ratio r and share weights w, v."""
 
     r: Weight = Field(1.5, description="Ratio r of eq. (18); > 0.")
-    #: w1..w5, or w1..w6 with w6 the weight of the g² term (MODEL.md section 8).
+    #: w1..w5, or w1..w6 with w6 the weight of the g² term (docs/model.md section 8).
     w: Annotated[tuple[Weight, ...], Field(min_length=5, max_length=6)] = Field(
         (1.0, 1.0, 1.0, 0.5, 0.5),
         description="Share weights w of the five additive terms (A1, k2, k4, "
         "m31, m32), and optionally a sixth, w6, of the g² term of a profile with "
-        "linear vibration (MODEL.md section 8; default 1); each > 0.")
+        "linear vibration (docs/model.md section 8; default 1); each > 0.")
     v: tuple[Weight, Weight, Weight] = Field(
         (1.0, 0.5, 0.5), description="Share weights v of the three multiplicative terms; "
         "each > 0.")

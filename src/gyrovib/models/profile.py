@@ -242,10 +242,10 @@ class Profile(Model):
     mount: Table | None = Field(
         None, description="Isolation-mount transmissibility ν(f): [[f Hz, gain], ...].")
     harmonics: HarmonicsForm | None = Field(
-        None, description="Phase-locked harmonics of one source (MODEL.md section 10): "
+        None, description="Phase-locked harmonics of one source (docs/model.md section 10): "
         "one group, or a list of groups.")
     acceleration: Acceleration | None = Field(
-        None, description="Linear vibration at the sensor's axes (MODEL.md section 8).")
+        None, description="Linear vibration at the sensor's axes (docs/model.md section 8).")
 
     @model_validator(mode="after")
     def _groups_listed(self) -> "Profile":

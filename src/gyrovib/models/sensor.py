@@ -173,7 +173,7 @@ class Asymmetry(Model):
 
 
 class Specs(Model):
-    """A sensor given by its datasheet (MODEL.md section 11).
+    """A sensor given by its datasheet (docs/model.md section 11).
 
     ``range``: R in the file's rate unit; ``nonlinearity``: its ``value`` in its own
     ``unit`` (``"%FS"`` of R or of the span 2R as ``of`` says, or an absolute rate in
@@ -197,7 +197,7 @@ class Specs(Model):
 
 
 class Response(Model):
-    """A sensor's own response with the place where it acts (MODEL.md section 9)."""
+    """A sensor's own response with the place where it acts (docs/model.md section 9)."""
 
     at: Annotated[Literal["output", "input"], Named("response position")] = Field(
         "output", description="output (default): after the nonlinearity, no credit against "
@@ -255,13 +255,13 @@ class Sensor(Model):
         "Give this or coefficients.")
     specs: Specs | None = Field(
         None, description="Datasheet specifications instead of coefficients: the worst "
-        "conversion function they allow is used (MODEL.md section 11).")
+        "conversion function they allow is used (docs/model.md section 11).")
     response: ResponseForm | None = Field(
         None, description="The sensor's own transmissibility ν(f): a table "
         "[[f Hz, gain], ...] (acting at the output), or {at, table}.")
     g2_sensitivity: G2Sensitivity | None = Field(
         None, description="Acceleration-squared sensitivity G_jk, rate per g² "
-        "(MODEL.md section 8); an omitted term is 0.", json_schema_extra=in_unit("rate/g^2"))
+        "(docs/model.md section 8); an omitted term is 0.", json_schema_extra=in_unit("rate/g^2"))
     vre: Number | None = Field(
         None, description="Shorthand for g2_sensitivity with G11 = G22 = G33 = vre "
         "(rate per g², signed) and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
@@ -292,7 +292,7 @@ class Sensor(Model):
 
     @property
     def response_at(self) -> str:
-        """Where the response acts: ``"output"`` (no credit) or ``"input"`` (MODEL.md 9)."""
+        """Where the response acts: ``"output"`` (no credit) or ``"input"`` (docs/model.md 9)."""
         if isinstance(self.response, Response):
             return self.response.at
         return str(Response.model_fields["at"].default)

@@ -9,6 +9,7 @@ import numpy as np
 
 from gyrovib.api import AnalysisResult
 from gyrovib.api.results import JSON_TERMS as _JSON_TERMS
+from gyrovib.api.specs import NO_VRE_NOTE
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
@@ -16,11 +17,11 @@ _ADDITIVE_LABELS = ("Δ0 A1", "Δ0 k2", "Δ0 k4", "Δ0 m31", "Δ0 m32")
 #: The JSON keys of ``additive_terms`` (Δ0(1..5), g2 = Δ0(6), k3, k5): one order for
 #: JSON, CSV, tables and frames.
 JSON_TERMS = _JSON_TERMS
-#: The odd-moment terms of locked harmonics (MODEL.md section 10), k3·M3 and k5·M5:
+#: The odd-moment terms of locked harmonics (docs/model.md section 10), k3·M3 and k5·M5:
 #: always in JSON (0 where x3 is symmetric), in tables only where a profile has them.
 ODD_TERMS: tuple[str, ...] = ("k3", "k5")
 _LABELS = dict(zip(JSON_TERMS, (*_ADDITIVE_LABELS, "Δ0 g²", "Δ0 k3", "Δ0 k5"), strict=True))
-#: The mark of a saturating sensor in tables (MODEL.md section 9).
+#: The mark of a saturating sensor in tables (docs/model.md section 9).
 SATURATED_MARK = "SAT"
 
 
@@ -54,7 +55,7 @@ def _saturated(result: AnalysisResult, i: int, j: int) -> bool:
 def _saturation_note(result: AnalysisResult) -> str:
     return (f"{SATURATED_MARK}: saturated, |Ω_K3| + Σ tone amplitudes + locked peaks + "
             f"{result.peak_factor:g}σ at the nonlinear element exceeds the sensor's range "
-            "(MODEL.md section 9): the error shown does not hold.")
+            "(docs/model.md section 9): the error shown does not hold.")
 
 
 def _u(result: AnalysisResult, i: int, j: int) -> float | None:
@@ -131,7 +132,7 @@ _COEFFICIENT_SOURCE = '"coefficients"'  # json.dumps("coefficients")
 
 
 def _source_fields(result: AnalysisResult, i: int, j: int) -> dict[str, Any]:
-    """``source``, and for a spec-form sensor its ``envelope`` (MODEL.md section 11)."""
+    """``source``, and for a spec-form sensor its ``envelope`` (docs/model.md section 11)."""
     source = result.source(i)
     out: dict[str, Any] = {"source": source}
     if source == "specs" and result.worst_coefficients is not None:
@@ -284,13 +285,13 @@ def to_markdown(result: AnalysisResult) -> str:
             *(["u(Δ_V)"] if result.uncertainty is not None else []), "Δ_V(RMS)",
             "saturated"]
     rows: list[list[str]] = []
-    notes: list[str] = []
+    groups = grouped_warnings(result)
+    number_of = {message: k for k, (message, _) in enumerate(groups, 1)}
+    notes = [f"{message} ({cells_text(result, cells)})" for message, cells in groups]
     for i, j in _rows(result):
         mark = ""
         if (i, j) in result.warnings:
-            notes.extend(f"{result.sensors[i]} / {result.profiles[j]}: {w}"
-                         for w in result.warnings[(i, j)])
-            mark = f" ⚠{len(notes)}"
+            mark = " ⚠" + ",".join(str(number_of[w]) for w in result.warnings[(i, j)])
         rows.append([_lot_name(result, i) + mark, result.profiles[j], fmt(result.rates[j, 2]),
                      *(fmt(x) for x in _terms(result, i, j, odd)), fmt(e.additive[i, j]),
                      fmt(e.multiplicative[i, j]), fmt(e.total[i, j]),
@@ -311,15 +312,143 @@ def to_markdown(result: AnalysisResult) -> str:
     return text
 
 
+#: Below this fraction of a row's largest value, a number is rounding noise: shown as 0.
+NEGLIGIBLE_IN_ROW = 1e-12
+#: Short names of the terms of eq. (13) for the "dominant term" of the matrix: the
+#: additive terms (JSON order), then Δ(1)·Ω, Δ(2)·Ω², Δ(3)·Ω³.
+_DOMINANT = {"A1": "A1", "k2": "k2", "k4": "k4", "m31": "m31", "m32": "m32", "g2": "g²",
+             "k3": "k3·M3", "k5": "k5·M5"}
+_MULTIPLICATIVE = ("Δ(1)·Ω", "Δ(2)·Ω²", "Δ(3)·Ω³")
+
+
+def row_cells(values: list[float], digits: int = 4) -> list[str]:
+    """A table row's numbers, those below :data:`NEGLIGIBLE_IN_ROW` of its largest as 0."""
+    finite = [abs(v) for v in values if v == v and abs(v) != float("inf")]
+    scale = max(finite, default=0.0)
+    return ["0" if v == v and scale > 0 and abs(v) < NEGLIGIBLE_IN_ROW * scale
+            else fmt(v, digits) for v in values]
+
+
+def dominant_term(result: AnalysisResult, i: int, j: int) -> str:
+    """The term of eq. (13) with the largest magnitude for sensor ``i`` under profile ``j``
+    ("" when there is no error)."""
+    e = result.error
+    values = _all_terms(result, i, j)
+    names = [_DOMINANT[t] for t in JSON_TERMS]
+    omega = float(result.rates[j, 2])
+    qs = [float(q) for q in e.multiplicative_coefficients[i, j]]
+    values += [q * omega ** (k + 1) for k, q in enumerate(qs)]
+    names += list(_MULTIPLICATIVE)
+    magnitudes = [abs(v) for v in values]
+    k = int(np.argmax(magnitudes))
+    return names[k] if magnitudes[k] > 0 else ""
+
+
+#: Which worst-polynomial coefficients make each dominant term.
+_MADE_OF = {"A1": ("A1",), "k2": ("k2",), "k4": ("k4",), "k3·M3": ("k3",), "k5·M5": ("k5",),
+            "Δ(1)·Ω": ("k3", "k5"), "Δ(2)·Ω²": ("k4",), "Δ(3)·Ω³": ("k5",)}
+_WORST = ("A1", "k2", "k3", "k4", "k5")
+
+
+def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:
+    """Why a datasheet part's worst case is what it is, in one line (None for other rows).
+
+    The coefficients of the worst polynomial behind its dominant term (e.g.
+    ``A1 = -0.14``), and the datasheet figure that would shrink the error most:
+    a smaller VRE where the g² term dominates, an asymmetry figure where the
+    asymmetry dominates and none is published, otherwise a smaller
+    nonlinearity (the envelope's worst case is proportional to it).
+    """
+    if result.source(i) != "specs" or result.worst_coefficients is None:
+        return None
+    term = dominant_term(result, i, j)
+    if not term:
+        return None
+    from gyrovib.api.reasons import coefficient_unit
+
+    x = dict(zip(_WORST, (float(v) for v in result.worst_coefficients[i, j]), strict=True))
+    shown = [f"{name} = {fmt(x[name], 2)}"
+             + (f" (a {fmt(abs(x[name]) * 100, 2)} % scale-factor asymmetry)" if name == "A1"
+                else f" {coefficient_unit(name, result.unit)}")
+             for name in _MADE_OF.get(term, ())]
+    published = result.published[i] if result.published else ()
+    if term == "g²":
+        ask = "a smaller VRE"
+    elif term == "A1" and "asymmetry" not in published:
+        ask = "an asymmetry figure (a published bound on |A1| cuts the worst case)"
+    else:
+        ask = "a smaller nonlinearity (the worst case is proportional to it)"
+    what = f"worst case {', '.join(shown)}, its {term} term dominating" if shown else (
+        f"worst case dominated by its {term} term")
+    return f"{result.sensors[i]}: {what}; the datasheet figure that would shrink it most: {ask}"
+
+
+def rate_in_table_unit(result: AnalysisResult, value: float) -> tuple[float, str]:
+    """A vehicle rate of ``result`` (in its :attr:`unit`) in the catalogue's rate unit."""
+    from gyrovib import units
+
+    target = getattr(result, "rate_unit", None) or result.unit
+    if target == result.unit:
+        return float(value), result.unit
+    return float(value) * units.scale(result.unit) / units.scale(target), target
+
+
+def grouped_warnings(result: AnalysisResult) -> list[tuple[str, list[tuple[int, int]]]]:
+    """Each distinct warning once, with the (sensor, profile) cells it applies to, in the
+    order they first appear (profile by profile, sensor by sensor)."""
+    found: dict[str, list[tuple[int, int]]] = {}
+    for j in range(len(result.profiles)):
+        for i in range(len(result.sensors)):
+            for message in result.warnings.get((i, j), ()):
+                found.setdefault(message, []).append((i, j))
+    return list(found.items())
+
+
+def cells_text(result: AnalysisResult, cells: list[tuple[int, int]]) -> str:
+    """Where a warning applies, compactly: sensors sharing their profiles named together."""
+    by_sensor: dict[int, list[int]] = {}
+    for i, j in cells:
+        by_sensor.setdefault(i, []).append(j)
+    groups: dict[tuple[int, ...], list[int]] = {}
+    for i, found in by_sensor.items():
+        groups.setdefault(tuple(found), []).append(i)
+    every = tuple(range(len(result.profiles)))
+    parts = []
+    for profiles, sensors in groups.items():
+        where = ("every profile" if profiles == every and len(every) > 1
+                 else ", ".join(result.profiles[j] for j in profiles))
+        parts.append(f"{', '.join(result.sensors[i] for i in sensors)} under {where}")
+    return "; ".join(parts)
+
+
+def next_step(result: AnalysisResult) -> str:
+    """The one line that says what to run next after the matrix."""
+    return ("Next: `gyrovib select --budget B` (e.g. 10deg/h) checks every sensor against "
+            "your budget; `--detail`, or one or two `--profile ID`, shows each term.")
+
+
 def to_table(result: AnalysisResult, width: int | None = None, color: bool = False,
-             ascii: bool = False) -> str:
-    """One table per profile, sensors as rows, warnings below."""
+             ascii: bool = False, detail: bool | None = None) -> str:
+    """The error of every sensor under every profile, in words fit for a terminal.
+
+    ``detail`` (default: with one or two profiles) gives one table per profile,
+    sensors as rows and every term of eq. (13) as a column; otherwise one
+    compact matrix, a row per profile and a column per sensor, each cell the
+    error and its dominant term, then one line on what to run next. Warnings
+    are printed once each, with the cells they apply to.
+    """
+    if detail is None:
+        detail = len(result.profiles) <= 2
+    if not detail:
+        return _matrix(result, width=width, color=color, ascii=ascii)
     from gyrovib.render.common import Table, Text
 
     e = result.error
     extra = getattr(result, "stderr", None)
     out: list[Any] = []
     notes: list[str] = []
+    groups = grouped_warnings(result)
+    number_of = {message: k for k, (message, _) in enumerate(groups, 1)}
     any_saturated = False
     # nested lists of Python floats: indexing them per row is ~10x cheaper than numpy's
     additive_terms, extra_terms = e.additive_terms.tolist(), e.extra_terms.tolist()
@@ -328,9 +457,9 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
     stderr = None if extra is None else extra.tolist()
     saturated = None if result.saturated is None else result.saturated.tolist()
     for j, profile in enumerate(result.profiles):
-        omega = result.rates[j, 2]
+        omega, rate_unit = rate_in_table_unit(result, result.rates[j, 2])
         table = Table(
-            title=f"{profile}  (Ω_K3 = {fmt(omega)} {result.unit}, method {result.method})",
+            title=f"{profile}  (Ω_K3 = {fmt(omega)} {rate_unit}, method {result.method})",
             title_justify="left", header_style="bold",
         )
         table.add_column("sensor", no_wrap=True)
@@ -348,8 +477,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
         for i, sensor in enumerate(result.sensors):
             name = Text(_lot_name(result, i))
             if (i, j) in result.warnings:
-                notes.extend(f"{sensor} / {profile}: {w}" for w in result.warnings[(i, j)])
-                name.append(f" ⚠{len(notes)}", style="yellow")
+                marks = ",".join(str(number_of[w]) for w in result.warnings[(i, j)])
+                name.append(f" ⚠{marks}", style="yellow")
             if saturated is not None and saturated[i][j]:
                 name.append(f" {SATURATED_MARK}", style="bold red")
                 any_saturated = True
@@ -357,20 +486,25 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
                 phases = "; ".join(", ".join(f"order {n} at {v:.4g}°" for n, v in g.items())
                                    for g in result.worst_phases[(i, j)] if g)
                 notes.append(f"{sensor} / {profile}: worst phases {phases}")
-                name.append(f" ⚠{len(notes)}", style="yellow")
+                name.append(f" ⚠{len(groups) + len(notes)}", style="yellow")
             values = [*additive_terms[i][j], *extra_terms[i][j]]
-            table.add_row(name, *[fmt(values[k]) for k in shown],
-                          fmt(additive[i][j]), fmt(multiplicative[i][j]), fmt(total[i][j]),
+            numbers = row_cells([*(values[k] for k in shown), additive[i][j],
+                                 multiplicative[i][j], total[i][j], rms[i][j]])
+            table.add_row(name, *numbers[:-1],
                           *([fmt(stderr[i][j], 2)] if stderr is not None else []),
                           *([_u_text(result, i, j)] if result.uncertainty is not None else []),
-                          fmt(rms[i][j]))
+                          numbers[-1])
         out.append(table)
-    legend = (f"All values in {result.unit}. Δ0 = additive terms of eq. (14)/(15); Δ_VA their "
+        for i in range(len(result.sensors)):
+            why = worst_case_text(result, i, j)
+            if why is not None:
+                out.append(Text(why, style="dim"))
+    legend = (f"Errors in {result.unit}. Δ0 = additive terms of eq. (14)/(15); Δ_VA their "
               "sum; Δ_VM = Δ(1)·Ω + Δ(2)·Ω² + Δ(3)·Ω³; Δ_V = Δ_VA + Δ_VM (eq. 13); "
-              "Δ_V(RMS) of eq. (16).")
+              "Δ_V(RMS) of eq. (16); below 1e-12 of its row's largest a value is shown as 0.")
     if result.has_linear:
         legend += (" Δ0 g² = Δ0(6) = Σ G_jk·⟨a_j·a_k⟩, the rectification of the linear "
-                   "vibration by the g²-sensitivity (VRE), MODEL.md section 8.")
+                   "vibration by the g²-sensitivity (VRE), docs/model.md section 8.")
     out.append(Text(legend, style="dim"))
     if "specs" in result.sources:
         out.append(Text(_SPECS_NOTE, style="dim"))
@@ -380,8 +514,65 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
         out.append(Text(_saturation_note(result), style="red"))
     if extra is not None:
         out.append(Text(_numeric_note(result), style="dim"))
-    for k, note in enumerate(notes, 1):
+    for k, (message, cells) in enumerate(groups, 1):
+        out.append(Text(f"⚠{k} {message} ({cells_text(result, cells)})", style="yellow"))
+    for k, note in enumerate(notes, len(groups) + 1):
         out.append(Text(f"⚠{k} {note}", style="yellow"))
+    return rich_text(out, width=width, color=color, ascii=ascii)
+
+
+def _matrix(result: AnalysisResult, width: int | None = None, color: bool = False,
+            ascii: bool = False) -> str:
+    """The compact form: a row per profile, a column per sensor, each cell the error
+    (Δ_V(RMS); a datasheet part's worst |Δ_V|) and its dominant term."""
+    from gyrovib.render.common import Table, Text
+
+    e = result.error
+    groups = grouped_warnings(result)
+    number_of = {message: k for k, (message, _) in enumerate(groups, 1)}
+    spec = "specs" in result.sources
+    table = Table(title=f"Vibration error in {result.unit}, method {result.method}: "
+                        "Δ_V(RMS)" + (" (a datasheet part: its worst |Δ_V|)" if spec else "")
+                        + " and the term that dominates it",
+                  title_justify="left", header_style="bold")
+    table.add_column("profile", no_wrap=True)
+    for sensor in result.sensors:
+        table.add_column(sensor, justify="right", overflow="fold")
+    for j, profile in enumerate(result.profiles):
+        cells: list[Any] = []
+        for i in range(len(result.sensors)):
+            value = e.total[i, j] if result.source(i) == "specs" else e.rms[i, j]
+            # a term left out because its figure is unknown: the value is a lower bound
+            at_least = "≥" if any(w == NO_VRE_NOTE for w in result.warnings.get((i, j), ())) \
+                else ""
+            text = Text(f"{at_least}{fmt(abs(float(value)), 3)} "
+                        f"{dominant_term(result, i, j)}".rstrip())
+            if (i, j) in result.warnings:
+                marks = ",".join(str(number_of[w]) for w in result.warnings[(i, j)])
+                text.append(f" ⚠{marks}", style="yellow")
+            if _saturated(result, i, j):
+                text.append(f" {SATURATED_MARK}", style="bold red")
+            cells.append(text)
+        cells_profile = Text(profile)
+        cells_profile.append(f" ({fmt(rate_in_table_unit(result, result.rates[j, 2])[0], 3)})",
+                             style="dim")
+        table.add_row(cells_profile, *cells)
+    _, rate_unit = rate_in_table_unit(result, 0.0)
+    out: list[Any] = [table]
+    legend = (f"Each row: a profile with its Ω_K3 in {rate_unit}. Dominant term: the term of "
+              "eq. (13) of largest magnitude (A1, k2, k4, m31, m32, g² = the linear "
+              "vibration's VRE term, k3·M3, k5·M5, or Δ(q)·Ω^q).")
+    if spec:
+        legend += " " + _SPECS_NOTE
+    if any(NO_VRE_NOTE in ws for ws in result.warnings.values()):
+        legend += (" ≥: at least this much; a term whose datasheet figure is not published "
+                   "is left out.")
+    out.append(Text(legend, style="dim"))
+    if result.saturated is not None and result.saturated.any():
+        out.append(Text(_saturation_note(result), style="red"))
+    for k, (message, cells_of) in enumerate(groups, 1):
+        out.append(Text(f"⚠{k} {message} ({cells_text(result, cells_of)})", style="yellow"))
+    out.append(Text(next_step(result), style="bold"))
     return rich_text(out, width=width, color=color, ascii=ascii)
 
 

@@ -21,7 +21,7 @@ from gyrovib.core.synthesis import (
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 
-#: Unit of the VRE bound in an output rate unit (rate per g², MODEL.md section 8).
+#: Unit of the VRE bound in an output rate unit (rate per g², docs/model.md section 8).
 def vre_unit(unit: str) -> str:
     """``deg/s/g^2`` for ``deg/s``: the unit of a VRE (rate per g²)."""
     return f"{unit}/g^2"
@@ -37,7 +37,7 @@ def bounds_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
 
 def part_names(bounds: CoefficientBounds) -> tuple[str, ...]:
     """The candidates the bounds carry: the k4/k5 ones, and those of locked harmonics
-    (:data:`~gyrovib.core.synthesis.ODD_PARTS`, MODEL.md section 10) where they exist."""
+    (:data:`~gyrovib.core.synthesis.ODD_PARTS`, docs/model.md section 10) where they exist."""
     return PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
 
 
@@ -103,18 +103,24 @@ def _spec_rows(result: BoundsResult, j: int) -> list[list[str]]:
     sb = result.spec_bounds
     assert sb is not None
     total = sb.weights[0] * (sb.share_nl[j] > 0) + sb.weights[1] * (sb.share_vre[j] > 0)
-    return [["nonlinearity", fmt(sb.nonlinearity[j]), f"%FS of {'2R' if sb.of == 'span' else 'R'}",
+    return [["nonlinearity", bound_text("nonlinearity", sb.nonlinearity[j]),
+             f"%FS of {'2R' if sb.of == 'span' else 'R'}",
              f"{fmt(sb.share_nl[j], 3)}" if total else "0",
              f"{sb.fit}, {sb.measure}; R = {fmt(sb.range)} {result.unit}"],
-            ["VRE", fmt(sb.vre[j]), f"{result.unit}/g²", fmt(sb.share_vre[j], 3),
-             "|G_jj| of the datasheet"]]
+            ["VRE", bound_text("VRE", sb.vre[j]), f"{result.unit}/g²", fmt(sb.share_vre[j], 3),
+             "|G_jj| of the datasheet: the VRE to ask for"]]
 
 
 _SPEC_HEAD = ["datasheet figure", "allowable", "unit", "share of Δ*", "read as"]
 
-_SPEC_LEGEND = ("Datasheet bounds (MODEL.md section 11): a part of range R whose nonlinearity "
+_SPEC_LEGEND = ("Datasheet bounds (docs/model.md section 11): a part of range R whose nonlinearity "
                 "(so read) and VRE are within these meets the budget whatever its polynomial "
-                "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). ∞ = the profile does not excite it.")
+                "(NL_max·W(1) + VRE_max·Σ⟨a²⟩ = Δ*). unbounded = the profile does not excite it. "
+                "For a purchase spec, ask for these two figures. The coefficient allocation "
+                "above has its own VRE bound (share α6 of the additive terms, for a "
+                "coefficient-form sensor's effective VRE |Δ0(6)|/Σ⟨a_j²⟩ beside its other "
+                "coefficients; `bounds.vre` in --format json, or this command without "
+                "--range); it is not the datasheet figure, and is not repeated here.")
 
 
 def shares(constants: AllocationConstants, linear: bool = False, m3: bool = False,
@@ -122,9 +128,9 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
     """The share of Δ* behind each bound, as printed in the tables.
 
     ``linear``: for a profile with linear vibration, whose additive shares
-    include α6 for the g² term (MODEL.md section 8), so that α1..α5 shrink.
+    include α6 for the g² term (docs/model.md section 8), so that α1..α5 shrink.
     ``m3`` / ``m5``: a profile whose phase-locked harmonics give M3 ≠ 0 /
-    M5 ≠ 0 (MODEL.md section 10): k3 / k5 gain additive shares, and with M3 ≠ 0
+    M5 ≠ 0 (docs/model.md section 10): k3 / k5 gain additive shares, and with M3 ≠ 0
     Δ(1) is split between k3, k4, k5 (β1/3 each) and Δ(2) between k4, k5 (β2/2).
     """
     a, b = constants.alpha, constants.beta
@@ -153,7 +159,7 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
             **extra,
         }
     # the exact method splits β1 equally between k3 and the linear k5 (they add
-    # linearly in Δ(1), MODEL.md section 6); the paper prints its own 0.35
+    # linearly in Δ(1), docs/model.md section 6); the paper prints its own 0.35
     half = abs(constants.k3 - float(b[0]) / 2.0) <= 1e-12 * float(b[0])
     k3 = f"β1/2 = {constants.k3:.4g}" if half else f"{constants.k3:.4g} (paper)"
     k5 = (f"β1/2 = {constants.k5_linear:.4g}" if half
@@ -170,7 +176,7 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
     }
 
 
-#: The parts whose least is each coefficient's bound (MODEL.md sections 6 and 10):
+#: The parts whose least is each coefficient's bound (docs/model.md sections 6 and 10):
 #: label and attribute of :class:`~gyrovib.core.synthesis.CoefficientBounds`. The
 #: section-10 parts exist only with odd moments (None, or not finite, otherwise).
 _CANDIDATES = {
@@ -202,6 +208,20 @@ def _which(bounds: Any, j: int, name: str) -> str:
             + f": {binding} binds")
 
 
+#: |A1| < 2 for any rate sensor: its scale factors k1(1 ± A1/2) keep their sign.
+A1_LIMIT = 2.0
+UNBOUNDED = "unbounded"
+
+
+def bound_text(name: str, value: float) -> str:
+    """A coefficient's bound as a table writes it: ``unbounded`` where it constrains
+    nothing (+inf: the coefficient does not act; A1: no |A1| < 2 uses up its share)."""
+    v = float(value)
+    if v == float("inf") or (name == "A1" and v >= A1_LIMIT):
+        return UNBOUNDED
+    return fmt(v)
+
+
 def has_vre(bounds: CoefficientBounds, j: int) -> bool:
     """Whether profile ``j`` has a linear vibration to bound (a finite VRE bound)."""
     return bounds.vre is not None and bool(np.isfinite(bounds.vre[j]))
@@ -214,10 +234,10 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     share = shares(result.allocation, linear=linear, m3=m3, m5=m5)
     unit = table_unit(result)
     converted = _Converted(result)
-    rows = [[name, fmt(in_table_unit(result, name, getattr(result.bounds, name)[j])),
+    rows = [[name, bound_text(name, in_table_unit(result, name, getattr(result.bounds, name)[j])),
              coefficient_unit(name, unit), share[name], _which(converted, j, name)]
             for name in BOUNDED]
-    if linear:
+    if linear and result.spec_bounds is None:  # with --range: the datasheet VRE alone
         assert result.bounds.vre is not None
         rows.append(["vre", fmt(result.bounds.vre[j]), vre_unit(result.unit), share["vre"],
                      "|Δ0(6)|/Σ⟨a_j²⟩"])
@@ -241,7 +261,12 @@ _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
 
 
 def _title(result: BoundsResult, j: int) -> str:
-    return (f"{result.profiles[j]}  (Ω_K3 = {fmt(result.rates[j, 2])} {result.unit}, "
+    """The profile, its Ω_K3 in the catalogue's rate unit and Δ* in the output unit."""
+    from gyrovib import units
+
+    rate_unit = table_unit(result)
+    omega = float(result.rates[j, 2]) * units.scale(result.unit) / units.scale(rate_unit)
+    return (f"{result.profiles[j]}  (Ω_K3 = {fmt(omega)} {rate_unit}, "
             f"Δ* = {fmt(result.budget)} {result.unit}, method {result.method})")
 
 
@@ -255,11 +280,13 @@ def unit_note(result: Any) -> str:
 
 
 _LEGEND = ("A sensor whose every |coefficient| is at most its bound meets the budget "
-           "(eq. 17) under this allocation: sufficient, not necessary. ∞ = unconstrained "
-           "(the coefficient does not act under this profile). k1 = 1; the sensor's own "
+           "(eq. 17) under this allocation: sufficient, not necessary. unbounded = "
+           "unconstrained (the coefficient does not act under this profile; for A1, no "
+           "|A1| < 2, the most a rate sensor can have, uses up its share). k1 = 1; the "
+           "sensor's own "
            "response is taken as 1 (see `gyrovib select`).")
 _VRE_LEGEND = (" vre bounds the effective vibration rectification |Δ0(6)|/Σ⟨a_j²⟩ of the "
-               "linear vibration, per g² (MODEL.md section 8); for a datasheet VRE v "
+               "linear vibration, per g² (docs/model.md section 8); for a datasheet VRE v "
                "(G11 = G22 = G33 = v) it is a bound on |v|.")
 
 

@@ -1,4 +1,4 @@
-"""Renderers of :class:`gyrovib.api.FitResult` (``gyrovib fit``, MODEL.md section 14):
+"""Renderers of :class:`gyrovib.api.FitResult` (``gyrovib fit``, docs/model.md section 14):
 table, JSON, CSV, Markdown, the catalogue YAML of ``-o`` and the residual plot."""
 
 from __future__ import annotations
@@ -109,7 +109,7 @@ def _legend(result: FitResult) -> str:
             f"{result.unit} powers, with standard uncertainties σ (delta method) and "
             "t = value/σ; a term with |t| < 2 is kept, flagged. Nonlinearity: the fitted "
             "curve's largest deviation from its least-squares line and from its endpoint "
-            f"line, in % of the largest |rate| tested (MODEL.md section 14). Fit of order "
+            f"line, in % of the largest |rate| tested (docs/model.md section 14). Fit of order "
             f"{result.order}.")
 
 
@@ -211,7 +211,7 @@ def to_catalog(result: FitResult) -> str:
         f"# Written by gyrovib {__version__} fit from {result.file}: least squares of eq. (1),",
         f"# order {result.order}, {sum(f.points for f in result.fits)} points; eq. (2) "
         "coefficients (k1 = 1) with standard uncertainties",
-        "# and correlations (MODEL.md section 14).",
+        "# and correlations (docs/model.md section 14).",
         "gyrovib: 1",
         "units:",
         f"  rate: {result.unit}",

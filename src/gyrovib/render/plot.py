@@ -95,7 +95,7 @@ def envelope_png(result: SweepResult, *, dpi: int = 100) -> bytes | None:
     One panel per spec-form sensor × profile: the residual r(ω) of the
     polynomial attaining the worst |Δ_V| (at the swept rate where it is
     largest) from its reference line, over the sensor's range [−R, R], with the
-    band ±b the datasheet allows (MODEL.md section 11). None when the sweep has
+    band ±b the datasheet allows (docs/model.md section 11). None when the sweep has
     no spec-form sensor.
     """
     import numpy as np

@@ -1,4 +1,4 @@
-"""Renderers of recordings (MODEL.md section 13): the honesty table of a fit, and
+"""Renderers of recordings (docs/model.md section 13): the honesty table of a fit, and
 ``analyze --recording`` as table, JSON, CSV and markdown (keys: INTERFACE.md)."""
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
 
 
 def honesty_table(fit: RecordingFit) -> str:
-    """The honesty of the fit (MODEL.md section 13), one row per axis, as plain text."""
+    """The honesty of the fit (docs/model.md section 13), one row per axis, as plain text."""
     lines = [f"recording {os.path.basename(fit.file)}: {fit.samples} samples, "
              f"fs {fit.fs:.6g} Hz, f_c {fit.crossover:g} Hz, {fit.segments} segment(s), "
              f"{fit.duration:.6g} s analysed",
@@ -238,7 +238,7 @@ def report_section(result: RecordingAnalysis) -> str:
         f"analysed. Its fitted profile <code>{escape(fit.profile_id)}</code> is among the "
         "profiles below.</p>"
         f"<h3>Recorded error Δ_V,rec and the fitted mission's closed form ({result.unit})</h3>"
-        f"{compare}<p>Δ_V,rec is eq. (2) averaged over the recorded samples (MODEL.md section "
+        f"{compare}<p>Δ_V,rec is eq. (2) averaged over the recorded samples (docs/model.md section "
         "13); the ratio fitted/recorded outside [0.8, 1.25] means the recording is not "
         "Gaussian-plus-tones or not stationary, and Δ_V,rec is the number to trust.</p>"
         f"<h3>Honesty of the fit</h3>{honesty}"

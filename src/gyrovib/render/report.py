@@ -23,13 +23,24 @@ from gyrovib.api.study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares
 from gyrovib.render.common import fmt
-from gyrovib.render.select import limit_text
+from gyrovib.render.select import (
+    CELL_MARGIN,
+    DISAGREE_MARK,
+    assumption_note,
+    cell_margin,
+    limit_text,
+    ranking_margin,
+)
 from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
 
 if TYPE_CHECKING:
     from gyrovib.api.yields import LotYields
 
-PASS_FILL, FAIL_FILL = "#2ca02c", "#d62728"
+PASS_FILL, FAIL_FILL, OPEN_FILL = "#2ca02c", "#d62728", "#7b5ea7"
+#: Profile columns per pass/fail table: more are split into further tables.
+MATRIX_PROFILES = 7
+#: Words and matrix classes of each status (unverified: its own colour, never "✓ ∞").
+STATUS_TEXT = {"pass": "✓ pass", "fail": "✗ fail", "unverified": "? unverified"}
 FORM_TAGS = {"datasheet": "datasheet (spec form): worst case",
              "output coefficients": "from output coefficients (eq. 1)",
              "lot": "production lot: analysed at its mean"}
@@ -37,7 +48,7 @@ SUPERSCRIPT = {1: "", 2: "²", 3: "³", 4: "⁴", 5: "⁵"}
 
 CSS = """
 :root { --ink: #1a1a1a; --muted: #666; --line: #d0d0d0; --pass: #e3f4e1; --fail: #fbe3e1;
-  --warn: #fff4d6; }
+  --warn: #fff4d6; --open: #ebe4f7; }
 * { box-sizing: border-box; }
 body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif;
   color: var(--ink); margin: 0 auto; max-width: 1180px; padding: 24px; }
@@ -52,6 +63,7 @@ th, td { border: 1px solid var(--line); padding: 3px 7px; text-align: left;
   vertical-align: top; }
 th { background: #f3f3f3; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
 td.pass { background: var(--pass); } td.fail { background: var(--fail); }
+td.unverified { background: var(--open); }
 td.warn { outline: 2px solid #e0a800; outline-offset: -2px; }
 .small { font-size: 11px; color: var(--muted); } code, .hash { font-family: ui-monospace,
   "SFMono-Regular", Menlo, Consolas, monospace; font-size: 12px; }
@@ -60,10 +72,10 @@ td.warn { outline: 2px solid #e0a800; outline-offset: -2px; }
   gap: 10px 18px; }
 figure { margin: 0; } figcaption { font-size: 12px; color: var(--muted); }
 svg.chart { width: 100%; height: auto; font-family: inherit; background: #fff; }
-svg .ct { font-size: 13px; font-weight: 600; } svg .tx { font-size: 10px; text-anchor: middle; }
-svg .ty { font-size: 10px; text-anchor: end; } svg .xl, svg .yl { font-size: 11px;
-  text-anchor: middle; } svg .lg { font-size: 11px; } svg .ml { font-size: 10px; fill: #b00; }
-svg .mr { font-size: 10px; fill: #b00; text-anchor: end; }
+svg .ct { font-size: 13px; font-weight: 600; } svg .tx { font-size: 11px; text-anchor: middle; }
+svg .ty { font-size: 11px; text-anchor: end; } svg .xl, svg .yl { font-size: 12px;
+  text-anchor: middle; } svg .lg { font-size: 11px; } svg .ml { font-size: 11px; fill: #b00; }
+svg .mr { font-size: 11px; fill: #b00; text-anchor: end; }
 svg .frame { fill: none; stroke: #999; } svg .grid { stroke: #e8e8e8; }
 svg .ref { stroke: #b00; stroke-width: 1.5; stroke-dasharray: 5 3; }
 svg .tone { stroke: #555; stroke-width: 1.2; stroke-dasharray: 2 2; }
@@ -72,7 +84,7 @@ nav ol { columns: 3; font-size: 13px; margin: 4px 0; }
 .scroll { overflow-x: auto; }
 table.matrix { font-size: 12px; } table.matrix th, table.matrix td { padding: 2px 4px; }
 ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-style: none; }
-@page { size: A4; margin: 12mm; }
+@page { size: A4 landscape; margin: 10mm; }
 @media print {
   body { max-width: none; padding: 0; font-size: 11px; }
   nav { display: none; }
@@ -81,6 +93,8 @@ ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-
   h2 { break-after: avoid; } h3 { break-after: avoid; }
   figure, table, .profile-head { break-inside: avoid; }
   .charts { grid-template-columns: 1fr 1fr; }
+  table.matrix { font-size: 10px; width: 100%; table-layout: fixed; }
+  table.matrix td, table.matrix th { overflow-wrap: anywhere; }
   section.profile { break-before: page; }
 }
 """
@@ -102,9 +116,9 @@ def _table(head: Sequence[str], rows: Iterable[Sequence[str]], raw: bool = False
 def term_names(linear: bool = False, locked: bool = False) -> list[str]:
     """Labels of the terms of eq. (16): the additive Δ0 terms, then Δ(q)·Ω^q.
 
-    ``linear``: Δ0(6), the g² term of a linear vibration (MODEL.md section 8),
+    ``linear``: Δ0(6), the g² term of a linear vibration (docs/model.md section 8),
     follows the additive terms; ``locked``: then k3·M3 and k5·M5, the odd-moment
-    terms of phase-locked harmonics (MODEL.md section 10).
+    terms of phase-locked harmonics (docs/model.md section 10).
     """
     powers = [int(q[1:]) if q[1:].isdigit() else k + 1
               for k, q in enumerate(MULTIPLICATIVE_TERMS)]
@@ -163,7 +177,7 @@ def _inputs(study: TradeStudy) -> str:
         ["requirement", f"{s.require}: " + ("at least one sensor" if s.require == "any"
                                               else "every sensor") + " passes everywhere"],
         ["allocation (shares of Δ*)", "; ".join(f"{k}: {v}" for k, v in share.items())],
-        *([["… under a linear vibration (g² term, MODEL.md section 8)",
+        *([["… under a linear vibration (g² term, docs/model.md section 8)",
             "; ".join(f"{k}: {v}" for k, v in shares(s.allocation, linear=True).items())]]
           if s.has_linear else []),
         *([["production lots", _yield_input(s.yields)]] if s.yields is not None else []),
@@ -186,31 +200,57 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
     head = ["sensor", "overall", *s.profiles]
     rows = []
     for i, sensor in enumerate(s.sensors):
-        overall = "pass" if s.sensor_pass[i] else "fail"
+        overall = s.sensor_status(i)
         form = study.sensor_forms[i]
         tag = f'<br><span class="small">{_e(FORM_TAGS.get(form, form))}</span>' if (
             form != "coefficients") else ""
         cells = [f"<td><b>{_e(sensor)}</b>{tag}</td>",
-                 f'<td class="{overall}">{"✓ pass" if s.sensor_pass[i] else "✗ fail"}</td>']
+                 f'<td class="{overall}">{STATUS_TEXT[overall]}</td>']
         for j in range(len(s.profiles)):
             ok = bool(s.passed[i, j])
+            status = s.status(i, j)
             notes = warnings.get((i, j), ())
-            klass = ("pass" if ok else "fail") + (" warn" if notes else "")
-            tip = f' title="{_e(" ".join(notes))}"' if notes else ""
+            klass = status + (" warn" if notes else "")
+            if status == "unverified":  # no margin: it hangs on figures not published
+                unknown = ", ".join("VRE" if n == "vre" else n
+                                    for n in s.unknown.get((i, j), ()))
+                cells.append(f'<td class="{klass}"{_tip(notes)}>? unverified<br>'
+                             f'<span class="small">{_e(unknown)} unknown</span></td>')
+                continue
+            tip = _tip(notes)
             mark = " ⚠" if notes else ""
             saturates = ('<br><span class="small"><b>saturates</b></span>'
                          if s.saturated is not None and s.saturated[i, j] else "")
+            other = s.disagrees.get((i, j))
+            disagree = (f' <span class="small">{DISAGREE_MARK}{_e(",".join(other))}</span>'
+                        if other else "")
             shown = (f"yield {fmt(float(s.yields.value[i, j]), 4)}"
-                     if s.yields is not None and s.yields.is_lot(i) else fmt(s.margin[i, j], 3))
+                     if s.yields is not None and s.yields.is_lot(i)
+                     else fmt(cell_margin(s, i, j), 3))
             cells.append(
-                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} {_e(shown)}'
+                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} '
+                f'{_e(shown)}{disagree}'
                 f'{mark}<br><span class="small">{_e(_dominant(squares[i, j], names))}</span>'
                 f'{_uncertainty(study, i, j)}{saturates}</td>'
             )
         rows.append(cells)
     # many profiles: a compact table that scrolls rather than widening the page
-    table = _table(head, rows, raw=True).replace("<table>", '<table class="matrix">', 1)
-    return f'<div class="scroll">{table}</div>'
+    # at most MATRIX_PROFILES profile columns per table, so that each fits a printed
+    # A4 landscape page: more profiles make more tables, the sensor columns repeated
+    tables = []
+    n_p = len(s.profiles)
+    for start in range(0, max(n_p, 1), MATRIX_PROFILES):
+        stop = min(start + MATRIX_PROFILES, n_p)
+        part_head = [*head[:2], *head[2 + start:2 + stop]]
+        part_rows = [[*row[:2], *row[2 + start:2 + stop]] for row in rows]
+        table = _table(part_head, part_rows, raw=True).replace(
+            "<table>", '<table class="matrix">', 1)
+        tables.append(f'<div class="scroll">{table}</div>')
+    return "".join(tables)
+
+
+def _tip(notes: Sequence[str]) -> str:
+    return f' title="{_e(" ".join(notes))}"' if notes else ""
 
 
 def _uncertainty(study: TradeStudy, i: int, j: int) -> str:
@@ -237,15 +277,15 @@ def _ranking(study: TradeStudy) -> str:
                      fmt(s.worst_margin[i], 3),
                      s.profiles[j] if len(s.profiles) else "",
                      f"{fmt(s.rms[i, j])} {s.unit}" if len(s.profiles) else ""])
-    return _table(["rank", "sensor", "name", "given as", "worst margin Δ*/Δ_V(RMS)",
+    return _table(["rank", "sensor", "name", "given as", f"worst margin {ranking_margin(s)}",
                    "under profile", "Δ_V(RMS) there"], rows)
 
 
 def _failing(study: TradeStudy) -> str:
     s = study.selection
-    failing = [i for i in range(len(s.sensors)) if not s.sensor_pass[i]]
+    failing = [i for i in range(len(s.sensors)) if s.sensor_status(i) == "fail"]
     if not failing:
-        return "<p>Every sensor passes under every profile.</p>"
+        return "<p>No sensor fails on its published figures.</p>"
     rows = [[s.sensors[i], limit_text(s, i),
              str(sum(1 for j in range(len(s.profiles)) if not s.passed[i, j]))]
             for i in failing]
@@ -253,13 +293,32 @@ def _failing(study: TradeStudy) -> str:
                    "profiles failed"], rows)
 
 
+def _questions(study: TradeStudy) -> str:
+    """Unverified sensors: the figures their vendor should be asked for."""
+    s = study.selection
+    note = assumption_note(s)
+    open_ = [i for i in s.ranking if s.sensor_status(i) == "unverified"]
+    if not open_:
+        return f"<p>{_e(note)}</p>" if note else ""
+    items = "".join(
+        f"<li><b>{_e(s.sensors[i])}</b><ul>"
+        + "".join(f"<li>{_e(q)}</li>" for q in s.questions.get(i, ()))
+        + "</ul></li>" for i in open_)
+    return ("<h2>Unverified sensors: questions for the vendor</h2>"
+            "<p>These pass on their published figures, but their datasheets leave out a "
+            "figure that can decide the verdict under a chosen profile (unknown, not zero; "
+            "docs/model.md section 11). Each line is a figure to ask for, with the largest value "
+            f'that would still pass.</p><ul class="questions">{items}</ul>')
+
+
 def _warnings(study: TradeStudy) -> str:
     a = study.analysis
     if not a.warnings:
         return ""
-    items = "".join(f"<li><b>{_e(a.sensors[i])}</b> under <b>{_e(a.profiles[j])}</b>: "
-                    f"{_e(' '.join(messages))}</li>"
-                    for (i, j), messages in sorted(a.warnings.items()))
+    from gyrovib.render.analysis import cells_text, grouped_warnings
+
+    items = "".join(f"<li>{_e(message)} <b>({_e(cells_text(a, cells))})</b></li>"
+                    for message, cells in grouped_warnings(a))
     return ("<h3>Warnings</h3><p>Marked ⚠ in the matrix: a note below applies to that cell "
             "(the sensor saturates, so the static model does not hold there, or an "
             f"assumption was made for a datasheet sensor).</p><ul class=\"warnings\">{items}</ul>")
@@ -268,20 +327,32 @@ def _warnings(study: TradeStudy) -> str:
 # ----------------------------------------------------------------- charts
 
 
+def _fill(status: str) -> str:
+    return {"pass": PASS_FILL, "fail": FAIL_FILL}.get(status, OPEN_FILL)
+
+
 def margins_chart(study: TradeStudy, j: int) -> str:
     s = study.selection
-    fills = [PASS_FILL if s.passed[i, j] else FAIL_FILL for i in range(len(s.sensors))]
+    fills = [_fill(s.status(i, j)) for i in range(len(s.sensors))]
+    if s.criterion == "worst" and s.total is not None:  # what the verdict compares
+        return bar_chart(f"|Δ_V| against the budget: {s.profiles[j]}",
+                         f"|Δ_V| ({s.unit}, log; a datasheet part: its worst case); green: "
+                         "passes, red: fails, purple: unverified",
+                         s.sensors, [float(v) for v in s.total[:, j]], fills,
+                         Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
     return bar_chart(f"Δ_V(RMS) against the budget: {s.profiles[j]}",
-                     f"Δ_V(RMS) ({s.unit}, log); green: passes the criterion, red: fails",
+                     f"Δ_V(RMS) ({s.unit}, log); green: passes the criterion, red: fails, "
+                     "purple: unverified (on its published figures only)",
                      s.sensors, [float(v) for v in s.rms[:, j]], fills,
                      Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
 
 
 def worst_margin_chart(study: TradeStudy) -> str:
     s = study.selection
-    fills = [PASS_FILL if s.sensor_pass[i] else FAIL_FILL for i in range(len(s.sensors))]
-    return bar_chart("Worst margin Δ*/Δ_V(RMS) over the profiles, per sensor",
-                     "margin (log); green: passes under every profile, red: fails somewhere",
+    fills = [_fill(s.sensor_status(i)) for i in range(len(s.sensors))]
+    return bar_chart(f"Worst margin {ranking_margin(s)} over the profiles, per sensor",
+                     "margin (log); green: passes under every profile, red: fails somewhere, "
+                     "purple: unverified",
                      s.sensors, [float(v) for v in s.worst_margin], fills,
                      Marker("margin 1", x=1.0))
 
@@ -312,22 +383,49 @@ def sweep_chart(study: TradeStudy, j: int) -> str:
 
 def spectrum_charts(spectrum: Spectrum, unit: str) -> list[str]:
     charts = []
-    if spectrum.psd or spectrum.tones:
+    # phase-locked orders (docs/model.md section 10) are lines at n·f0, like tones
+    tones = [*spectrum.tones,
+             *((n * f0, amp) for f0, orders in spectrum.locked for n, amp in orders)]
+    if spectrum.psd or tones:
         series = [Series(f"PSD {axis}", list(f), list(g), color(k), dash(k))
                   for k, (axis, f, g) in enumerate(spectrum.psd)]
         markers = [Marker(f"{fmt(freq, 3)} Hz, a3 = {fmt(amp[2], 3)}", x=freq, style="tone",
                           row=k % 3)
-                   for k, (freq, amp) in enumerate(spectrum.tones)]
+                   for k, (freq, amp) in enumerate(tones)]
         if not series:  # tones only: their x3 amplitudes on the y axis, as dots
             nan = float("nan")
             series = [Series("tone amplitude x3",
-                             [v for t in spectrum.tones for v in (t[0], nan)],
-                             [v for t in spectrum.tones for v in (t[1][2], nan)], color(0))]
+                             [v for t in tones for v in (t[0], nan)],
+                             [v for t in tones for v in (t[1][2], nan)], color(0))]
             ylabel = f"amplitude ({unit})"
         else:
             ylabel = f"PSD ({unit})²/Hz"
         charts.append(LineChart(f"Spectrum: {spectrum.profile}", "frequency (Hz)", ylabel,
                                 series, xlog=True, ylog=True, markers=markers).svg())
+    if spectrum.rms is not None and not spectrum.psd:  # random given as RMS: no spectrum
+        charts.append(bar_chart(f"Spectrum: {spectrum.profile} (random given as RMS per axis)",
+                                f"σ ({unit}, log)", ["x1", "x2", "x3"], list(spectrum.rms),
+                                [color(k) for k in range(3)]))
+    if spectrum.linear_psd or spectrum.linear_tones:  # the linear vibration, own axes
+        lu = spectrum.linear_unit
+        series = [Series(f"PSD {axis}", list(f), list(g), color(k), dash(k))
+                  for k, (axis, f, g) in enumerate(spectrum.linear_psd)]
+        markers = [Marker(f"{fmt(freq, 3)} Hz, a3 = {fmt(amp[2], 3)} {lu}", x=freq,
+                          style="tone", row=k % 3)
+                   for k, (freq, amp) in enumerate(spectrum.linear_tones)]
+        if series:
+            charts.append(LineChart(f"Linear vibration: {spectrum.profile}", "frequency (Hz)",
+                                    f"PSD ({lu})²/Hz", series, xlog=True, ylog=True,
+                                    markers=markers).svg())
+        else:
+            nan = float("nan")
+            dots = [Series("tone amplitude a3",
+                           [v for t in spectrum.linear_tones for v in (t[0], nan)],
+                           [v for t in spectrum.linear_tones for v in (t[1][2], nan)],
+                           color(0))]
+            charts.append(LineChart(f"Linear vibration: {spectrum.profile}", "frequency (Hz)",
+                                    f"amplitude ({lu})", dots, xlog=True, ylog=True,
+                                    markers=markers).svg())
     if spectrum.mount is not None:
         f, nu = spectrum.mount
         charts.append(LineChart(f"Isolation mount ν(f): {spectrum.profile}", "frequency (Hz)",
@@ -349,6 +447,11 @@ def _spectrum_text(spectrum: Spectrum, unit: str) -> str:
         parts.append("random PSD on " + ", ".join(a for a, _, _ in spectrum.psd))
     if spectrum.mount is not None:
         parts.append("isolation mount")
+    if spectrum.locked:
+        parts.append("phase-locked harmonics: " + "; ".join(
+            f"f0 = {fmt(f0, 4)} Hz, orders " + ", ".join(
+                f"{n} (a3 = {fmt(amp[2], 3)} {unit})" for n, amp in orders)
+            for f0, orders in spectrum.locked))
     if spectrum.linear_rms is not None:
         parts.append("linear vibration, RMS at the sensor ("
                      + ", ".join(fmt(v, 3) for v in spectrum.linear_rms) + ") g")
@@ -364,21 +467,32 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
                      names: Sequence[str]) -> str:
     s = study.selection
     spectrum = study.spectra[j]
-    rate = ", ".join(fmt(v, 4) for v in s.rates[j])
+    rate_unit = study.rate_unit or s.unit  # the vehicle in its own unit, errors in Δ*'s
+    from gyrovib import units
+
+    to_rate = units.scale(s.unit) / units.scale(rate_unit)
+    rate = ", ".join(fmt(float(v) * to_rate, 4) for v in s.rates[j])
     title = spectrum.profile + (f" — {spectrum.name}" if spectrum.name else "")
     notes = f'<p class="notes">{_e(spectrum.notes)}</p>' if spectrum.notes else ""
+    from gyrovib.render.analysis import worst_case_text
+
+    why = [w for w in (worst_case_text(study.analysis, i, j)
+                       for i in range(len(study.analysis.sensors))) if w]
+    if why:  # the datasheet parts' worst cases, explained
+        notes += ('<ul class="small worst">' + "".join(f"<li>{_e(w)}</li>" for w in why)
+                  + "</ul>")
     figures = [
         _figure(margins_chart(study, j)),
         _figure(breakdown_chart(study, j, squares, names),
                 "Which coefficient dominates: each term's share of Δ_V(RMS)²."),
         _figure(sweep_chart(study, j), "Ω_K1, Ω_K2 stay the profile's; the dotted line marks "
                                        "the profile's own Ω_K3."),
-        *(_figure(c) for c in spectrum_charts(spectrum, s.unit)),
+        *(_figure(c) for c in spectrum_charts(spectrum, rate_unit)),
     ]
     return (f'<section class="profile" id="p{j}"><div class="profile-head">'
             f"<h3>{_e(title)}</h3>{notes}"
-            f'<p class="sub">Ω_K = ({_e(rate)}) {_e(s.unit)}; '
-            f"{_e(_spectrum_text(spectrum, s.unit))}</p></div>"
+            f'<p class="sub">Ω_K = ({_e(rate)}) {_e(rate_unit)}; '
+            f"{_e(_spectrum_text(spectrum, rate_unit))}</p></div>"
             f"<div class=\"charts\">{''.join(figures)}</div></section>")
 
 
@@ -391,9 +505,12 @@ def to_html(study: TradeStudy, recording: str = "") -> str:
     squares = term_squares(study)
     met = s.requirement_met
     n_pass = int(np.sum(s.sensor_pass))
+    n_open = sum(1 for i in range(len(s.sensors)) if s.sensor_status(i) == "unverified")
     verdict = (f'<span class="verdict {"met" if met else "not"}">Requirement '
                f'{"met" if met else "NOT met"}</span> {n_pass} of {len(s.sensors)} sensor(s) '
-               f"pass under every profile.")
+               f"pass under every profile"
+               + (f", {n_open} unverified (see the questions for the vendor)" if n_open
+                  else "") + ".")
     toc = "".join(f'<li><a href="#p{j}">{_e(p)}</a></li>' for j, p in enumerate(s.profiles))
     title = f"gyrovib trade study: Δ* = {fmt(s.budget)} {s.unit}"
     body = [
@@ -404,12 +521,18 @@ def to_html(study: TradeStudy, recording: str = "") -> str:
         f'<nav><b>Profiles</b><ol>{toc}</ol></nav>',
         "<h2>Inputs</h2>", _inputs(study),
         "<h2>Pass/fail matrix</h2>",
-        "<p>Each cell: ✓ pass / ✗ fail under the criterion, the margin Δ*/Δ_V(RMS) (above 1: "
-        "the RMS error is within the budget) and the term that dominates Δ_V(RMS)².</p>",
+        f"<p>Each cell: ✓ pass / ✗ fail under the criterion, the margin of the test that "
+        f"decides it, {_e(CELL_MARGIN[s.criterion])} (above 1: within), "
+        f"{DISAGREE_MARK} and the names of the other tests (rms: Δ_V(RMS) ≤ Δ*; worst: "
+        "|Δ_V| ≤ Δ*; bounds: every coefficient or datasheet figure within its bound) that "
+        "would decide it otherwise, and the term that dominates Δ_V(RMS)²; "
+        "? unverified: passes on its published figures, but a figure its datasheet does "
+        "not publish (named) can change the verdict.</p>",
         _matrix(study, squares, names),
         f'<div class="charts">{_figure(worst_margin_chart(study))}</div>', _warnings(study),
         "<h2>Passing sensors, ranked</h2>", _ranking(study),
         "<h2>Failing sensors: what limits them</h2>", _failing(study),
+        _questions(study),
         recording,
         "<h2>Profiles</h2>",
         *(_profile_section(study, j, squares, names) for j in range(len(s.profiles))),

@@ -50,7 +50,7 @@ def _vre(result: SelectionResult, i: int, j: int) -> tuple[float, float]:
 
 
 def _vre_text(result: SelectionResult, i: int, j: int, relation: str) -> str:
-    """The VRE check of sensor ``i`` under profile ``j`` in words (MODEL.md section 8)."""
+    """The VRE check of sensor ``i`` under profile ``j`` in words (docs/model.md section 8)."""
     value, bound = _vre(result, i, j)
     unit = vre_unit(result.unit)
     return (f"effective VRE |Δ0(6)|/Σ⟨a_j²⟩ = {fmt(value)} {unit} {relation} "
@@ -123,8 +123,14 @@ def _summary(result: SelectionResult) -> str:
     n_pass = int(result.sensor_pass.sum())
     verdict = "met" if result.requirement_met else "NOT met"
     need = "at least one sensor" if result.require == "any" else "every sensor"
+    n_open = sum(1 for i in range(len(result.sensors))
+                 if result.sensor_status(i) == "unverified")
+    tail = (f", {n_open} unverified (an unpublished figure can decide them: ask the vendor)"
+            if n_open else "")
+    note = assumption_note(result)
     return (f"Requirement ({result.require}: {need} passes under every profile): {verdict}; "
-            f"{n_pass} of {len(result.sensors)} sensor(s) pass.")
+            f"{n_pass} of {len(result.sensors)} sensor(s) pass{tail}."
+            + (" " + note if note else ""))
 
 
 def _heading(result: SelectionResult) -> str:
@@ -140,30 +146,38 @@ BOUNDS_NOTE = ("The bounds are sufficient, not necessary: a sensor within every 
 
 def _legend(result: SelectionResult) -> str:
     share = shares(result.allocation)
-    judged = "Δ*/|Δ_V|" if result.criterion == "worst" else "Δ*/Δ_V(RMS)"
-    spec = (" A datasheet (spec-form) sensor's margin is Δ*/its worst |Δ_V| over the "
-            "envelope; under bounds its nonlinearity and VRE are checked against the "
-            "allowable figures for its own range and NL definition."
-            if "specs" in result.sources else "")
-    text = (f"Cells: ✓ pass / ✗ fail under the criterion, with the margin {judged} "
-            "(> 1: the error is within the budget; ∞: no error at all)." + spec + " Each sensor's "
+    judged = CELL_MARGIN[result.criterion]
+    spec = (" Under bounds a datasheet (spec-form) sensor's nonlinearity and VRE are "
+            "checked against the allowable figures for its own range and NL definition."
+            if "specs" in result.sources and result.criterion in ("bounds", "both") else "")
+    text = (f"Cells: ✓ pass / ✗ fail under the criterion, with the margin of the test that "
+            f"decides it, {judged} (> 1: within; ∞: nothing to bound).{spec} "
+            f"{DISAGREE_MARK}rms, {DISAGREE_MARK}worst, {DISAGREE_MARK}bounds: that other "
+            "test would decide the cell otherwise (rms: Δ_V(RMS) ≤ Δ*; worst: |Δ_V| ≤ Δ*; "
+            "bounds: every coefficient, or datasheet figure, within its bound). Ranked by "
+            f"the worst margin {ranking_margin(result)} over the profiles. Each sensor's "
             "bounds include its own frequency response where it acts at the input "
             "(`at: input`); an output filter earns no credit. Shares of Δ*: "
             + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE
             + unit_note(result))
-    if result.has_linear:  # MODEL.md section 8: α6 joins the additive shares
+    if result.has_linear:  # docs/model.md section 8: α6 joins the additive shares
         linear = shares(result.allocation, linear=True)
         text += (" Under a profile with linear vibration the additive shares make room for "
                  "the g² term: " + ", ".join(f"{k} {linear[k]}" for k in
                                              ("A1", "k2", "k4", "m31", "m32", "vre"))
                  + "; the vre check compares each sensor's effective VRE "
                  "|Δ0(6)|/Σ⟨a_j²⟩ with its bound.")
+    if result.unknown:
+        text += (f" {UNVERIFIED_MARK} unverified: the sensor passes on its published figures, "
+                 "but a figure its datasheet does not publish (named) can change the verdict "
+                 "there; it is counted as not passing and not ranked (--assume-unknown zero "
+                 "takes such figures as 0).")
     if result.yields is not None:
         text += " " + _yield_legend(result)
     if result.saturated is not None and result.saturated.any():
         text += (f" {SATURATED_MARK}: the sensor saturates (|Ω_K3| + Σ tone amplitudes + "
                  f"locked peaks + {result.peak_factor:g}σ3 at its nonlinear element exceeds "
-                 "its range, MODEL.md section 9) and fails whatever the criterion.")
+                 "its range, docs/model.md section 9) and fails whatever the criterion.")
     return text
 
 
@@ -210,6 +224,7 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
     document["criterion"] = result.criterion
     document["require"] = result.require
+    document["assume_unknown"] = result.assume_unknown
     if result.yields is not None:
         document["yield"] = {"target": result.yields.target, "seed": result.yields.seed}
     document["sensors"] = _SLOT
@@ -250,7 +265,11 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
                 checks["vre"] = {"value": number(value), "bound": number(bound),
                                  "pass": bool(result.vre_pass[i, j])}
             cell = {"profile": profile, "pass": bool(result.passed[i, j]),
+                    "status": result.status(i, j),
+                    "unknown": list(result.unknown.get((i, j), ())),
                     "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
+                    "criterion_margin": number(cell_margin(result, i, j)),
+                    "disagrees": list(result.disagrees.get((i, j), ())),
                     "checks": checks}
             if result.total is not None:
                 cell["total"] = number(result.total[i, j])
@@ -260,7 +279,11 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
             cell["reason"] = reason(result, i, j)
             cells.append(cell)
         sensors.append({"sensor": sensor, "source": result.source(i),
-                        "pass": bool(result.sensor_pass[i]), "profiles": cells})
+                        "pass": bool(result.sensor_pass[i]),
+                        "status": result.sensor_status(i),
+                        "unknown": list(result.sensor_unknown(i)),
+                        "questions": list(result.questions.get(i, ())),
+                        "profiles": cells})
     return sensors
 
 
@@ -301,7 +324,7 @@ def to_csv(result: SelectionResult) -> str:
     their checks (``value_nonlinearity``… in %FS, ``value_vre``… per g²; empty on
     coefficient rows, whose coefficient columns are empty on spec rows).
     """
-    head = ["sensor", "profile", "pass", "sensor_pass", "rms", "margin"]
+    head = ["sensor", "profile", "passed", "sensor_pass", "rms", "margin"]
     for name in BOUNDED:
         head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
     with_specs = "specs" in result.sources
@@ -315,7 +338,7 @@ def to_csv(result: SelectionResult) -> str:
     if y is not None:
         head += ["yield_value", "yield_method", "yield_interval_low", "yield_interval_high",
                  "yield_draws"]
-    head += ["saturated", "reason"]
+    head += ["saturated", "status", "unknown", "criterion_margin", "disagrees", "reason"]
 
     def rows() -> Iterator[list[Any]]:
         for i, sensor in enumerate(result.sensors):
@@ -347,7 +370,9 @@ def to_csv(result: SelectionResult) -> str:
                              *(["", ""] if y.method == "exact"
                                else [float(y.low[i, j]), float(y.high[i, j])]), y.draws]
                             if y.is_lot(i) else [""] * 5)
-                row += [_sat(result, i, j), reason(result, i, j) or ""]
+                row += [_sat(result, i, j), result.status(i, j),
+                        " ".join(result.unknown.get((i, j), ())), cell_margin(result, i, j),
+                        " ".join(result.disagrees.get((i, j), ())), reason(result, i, j) or ""]
                 yield row
 
     return csv_text(head, rows())
@@ -356,12 +381,81 @@ def to_csv(result: SelectionResult) -> str:
 # ------------------------------------------------------------------ human
 
 
+#: The mark of a cell whose verdict hangs on an unpublished figure.
+UNVERIFIED_MARK = "?"
+#: Words of each status, as tables write a sensor's verdict.
+VERDICT = {"pass": "PASS", "fail": "FAIL", "unverified": "UNVERIFIED"}
+#: rich styles of each status.
+STYLE = {"pass": "green", "fail": "bold red", "unverified": "bold yellow"}
+
+
 def _cell(result: SelectionResult, i: int, j: int) -> str:
+    if result.is_unverified(i, j):  # no margin: it hangs on the unknown figures
+        return f"{UNVERIFIED_MARK} {' '.join(_unknown_names(result, i, j))} unknown"
     mark = "✓" if result.passed[i, j] else "✗"
     sat = f" {SATURATED_MARK}" if _sat(result, i, j) else ""
     if result.yields is not None and result.yields.is_lot(i):
         return f"{mark}{sat} yield {fmt(float(result.yields.value[i, j]), 4)}"
-    return f"{mark}{sat} {_margin(result.margin[i, j])}"
+    assumed = "*" if result.unknown.get((i, j)) and result.passed[i, j] else ""
+    other = result.disagrees.get((i, j))
+    disagree = f" {DISAGREE_MARK}{','.join(other)}" if other else ""
+    return f"{mark}{sat} {_margin(cell_margin(result, i, j))}{assumed}{disagree}"
+
+
+def cell_margin(result: SelectionResult, i: int, j: int) -> float:
+    """The margin a cell shows: that of the test deciding it (:attr:`criterion_margin`)."""
+    if result.criterion_margin is None:
+        return float(result.margin[i, j])
+    return float(result.criterion_margin[i, j])
+
+
+#: What each criterion's cell margin is.
+CELL_MARGIN = {
+    "bounds": "the least bound/value over the sensor's checks (a datasheet part: allowable "
+              "NL/its NL and allowable VRE/its VRE)",
+    "rms": "Δ*/Δ_V(RMS)",
+    "worst": "Δ*/|Δ_V| (a datasheet part: over its envelope)",
+    "both": "the smaller of the bounds margin (least bound/value) and Δ*/Δ_V(RMS)",
+}
+#: What the ranking's margin is: Δ*/Δ_V(RMS) (Δ*/|Δ_V| under ``worst``); a
+#: datasheet part's is Δ*/its worst |Δ_V| over the envelope.
+#: The mark of a cell that another test would decide otherwise, before their names.
+DISAGREE_MARK = "≠"
+
+
+def ranking_margin(result: SelectionResult) -> str:
+    """The margin :attr:`~SelectionResult.ranking` orders by, in words."""
+    base = "Δ*/|Δ_V|" if result.criterion == "worst" else "Δ*/Δ_V(RMS)"
+    if "specs" in result.sources and result.criterion != "worst":
+        return base + " (a spec-form part: Δ*/its worst |Δ_V|)"
+    return base
+
+
+def _unknown_names(result: SelectionResult, i: int, j: int) -> list[str]:
+    """The unknown figures of a cell as written: VRE, m31, m32."""
+    return [n.upper() if n == "vre" else n for n in result.unknown.get((i, j), ())]
+
+
+def _unverified(result: SelectionResult) -> list[list[str]]:
+    """Unverified sensors and the questions for their vendor."""
+    return [[result.sensors[i], " | ".join(result.questions.get(i, ()))
+             or "the unknown figures " + ", ".join(result.sensor_unknown(i))]
+            for i in result.ranking if result.sensor_status(i) == "unverified"]
+
+
+def assumption_note(result: SelectionResult) -> str:
+    """What ``--assume-unknown zero`` took as 0, in one sentence ("" when nothing)."""
+    if result.assume_unknown != "zero" or not result.unknown:
+        return ""
+    order = ("vre", "m31", "m32")
+    cells = sorted({(result.sensors[i], n) for (i, _), names in result.unknown.items()
+                    for n in names}, key=lambda c: (c[0], order.index(c[1])))
+    by_sensor: dict[str, list[str]] = {}
+    for sensor, name in cells:
+        by_sensor.setdefault(sensor, []).append("VRE" if name == "vre" else name)
+    return ("Assumed (--assume-unknown zero): unpublished figures taken as 0 -- "
+            + "; ".join(f"{s}: {', '.join(n)}" for s, n in by_sensor.items())
+            + "; cells marked * pass only under that assumption.")
 
 
 def _passing(result: SelectionResult) -> list[list[str]]:
@@ -377,7 +471,7 @@ def _failing(result: SelectionResult) -> list[list[str]]:
     """Failing sensors and what limits each; with datasheet sensors, ranked by worst margin."""
     order = result.ranking if "specs" in result.sources else range(len(result.sensors))
     return [[result.sensors[i], limit_text(result, i)]
-            for i in order if not result.sensor_pass[i]]
+            for i in order if result.sensor_status(i) == "fail"]
 
 
 def to_markdown(result: SelectionResult) -> str:
@@ -385,17 +479,22 @@ def to_markdown(result: SelectionResult) -> str:
     text = [_heading(result) + "\n"]
     head = ["sensor", *result.profiles, "verdict"]
     rows = [[result.sensors[i], *(_cell(result, i, j) for j in range(len(result.profiles))),
-             "**PASS**" if result.sensor_pass[i] else "**FAIL**"]
+             f"**{VERDICT[result.sensor_status(i)]}**"]
             for i in range(len(result.sensors))]
     text.append(markdown_table(head, rows))
     passing = _passing(result)
     if passing:
-        text.append("Passing sensors, ranked by worst margin:\n\n"
+        text.append(f"Passing sensors, ranked by worst margin {ranking_margin(result)}:\n\n"
                     + markdown_table(["rank", "sensor", "worst margin", "under"], passing))
     failing = _failing(result)
     if failing:
         text.append("Failing sensors, and what limits each:\n\n"
                     + markdown_table(["sensor", "limited by"], failing))
+    unverified = _unverified(result)
+    if unverified:
+        text.append("Unverified sensors: questions for the vendor (the figures that would "
+                    "decide each):\n\n"
+                    + markdown_table(["sensor", "ask for"], unverified))
     text.append(_summary(result) + "\n\n" + _legend(result) + "\n")
     return "\n".join(text)
 
@@ -413,15 +512,15 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
         matrix.add_column(profile, justify="center", overflow="fold", min_width=8)
     matrix.add_column("verdict", justify="center", no_wrap=True, min_width=7)
     for i, sensor in enumerate(result.sensors):
-        cells = [Text(_cell(result, i, j), style="green" if result.passed[i, j] else "bold red")
+        cells = [Text(_cell(result, i, j), style=STYLE[result.status(i, j)])
                  for j in range(len(result.profiles))]
-        verdict = (Text("PASS", style="bold green") if result.sensor_pass[i]
-                   else Text("FAIL", style="bold red"))
+        status = result.sensor_status(i)
+        verdict = Text(VERDICT[status], style="bold " + STYLE[status].split()[-1])
         matrix.add_row(sensor, *cells, verdict)
     out.append(matrix)
     passing = _passing(result)
     if passing:
-        ranked = Table(title="Passing sensors, ranked by worst margin Δ*/Δ_V(RMS)",
+        ranked = Table(title=f"Passing sensors, ranked by worst margin {ranking_margin(result)}",
                        title_justify="left", header_style="bold")
         for label, justify in (("rank", "right"), ("sensor", "left"),
                                ("worst margin", "right"), ("under", "left")):
@@ -438,6 +537,15 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
         for row in failing:
             limited.add_row(*row)
         out.append(limited)
+    unverified = _unverified(result)
+    if unverified:
+        asked = Table(title="Unverified sensors: questions for the vendor (the figures that "
+                            "would decide each)", title_justify="left", header_style="bold")
+        asked.add_column("sensor", no_wrap=True, style="yellow")
+        asked.add_column("ask for")
+        for row in unverified:
+            asked.add_row(*row)
+        out.append(asked)
     out.append(Text(_summary(result), style="bold green" if result.requirement_met
                     else "bold red"))
     out.append(Text(_legend(result), style="dim"))
@@ -452,7 +560,7 @@ def to_junit(result: SelectionResult) -> str:
     import xml.etree.ElementTree as ET
 
     n_cases = len(result.sensors) * len(result.profiles)
-    n_fail = int((~result.passed.astype(bool)).sum())
+    n_fail = int((~result.passed.astype(bool)).sum())  # an unverified case fails too
     suites = ET.Element("testsuites", name="gyrovib select", tests=str(n_cases),
                         failures=str(n_fail), errors="0")
     suite = ET.SubElement(
@@ -465,12 +573,19 @@ def to_junit(result: SelectionResult) -> str:
         for j, profile in enumerate(result.profiles):
             case = ET.SubElement(suite, "testcase", classname=sensor, name=profile, time="0")
             out = ET.SubElement(case, "system-out")
-            out.text = (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}, "
-                        f"margin {_margin(result.margin[i, j])}")
+            names = ", ".join(_unknown_names(result, i, j))
+            if result.is_unverified(i, j):
+                out.text = (f"unverified ({names} unknown); on the published figures "
+                            f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}")
+            else:
+                out.text = (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}, "
+                            f"margin {_margin(result.margin[i, j])}"
+                            + (f" (assumed {names} = 0: --assume-unknown zero)" if names
+                               else ""))
             if not result.passed[i, j]:
                 reasons = failures(result, i, j)
-                failure = ET.Element("failure", message="; ".join(reasons),
-                                     type="BudgetExceeded")
+                kind = "Unverified" if result.is_unverified(i, j) else "BudgetExceeded"
+                failure = ET.Element("failure", message="; ".join(reasons), type=kind)
                 failure.text = "\n".join(reasons)
                 case.insert(0, failure)
     ET.indent(suites)
@@ -503,6 +618,13 @@ def to_github(
             continue
         reasons = [f"{result.profiles[j]}: {'; '.join(failures(result, i, j))}"
                    for j in range(len(result.profiles)) if not result.passed[i, j]]
+        if result.sensor_status(i) == "unverified":
+            asks = "; ".join(result.questions.get(i, ()))
+            items.append((file, line, f"{sensor} is unverified",
+                          f"{sensor} passes Δ* = {fmt(result.budget)} {result.unit} on its "
+                          "published figures, but an unpublished one can decide it. Ask the "
+                          f"vendor: {asks}. " + " | ".join(reasons), "error"))
+            continue
         items.append((file, line, f"{sensor} fails the budget",
                       f"{sensor} fails Δ* = {fmt(result.budget)} {result.unit} "
                       f"({_CRITERION[result.criterion]}). Limited by {limit_text(result, i)}. "

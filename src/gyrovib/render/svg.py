@@ -21,8 +21,11 @@ from dataclasses import dataclass, field
 from html import escape
 
 #: Ten distinguishable colours (the "tab10" cycle); more series reuse them dashed.
+#: Distinct colours: at least as many as the terms of eq. (16) a report can show
+#: (5 additive, g², k3·M3, k5·M5, 3 multiplicative), so no two terms share one.
 PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf")
+           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf",
+           "#393b79", "#637939", "#843c39")
 DASHES = ("", "6 3", "2 2", "8 3 2 3")
 
 WIDTH, HEIGHT = 720, 280

@@ -132,7 +132,7 @@ def to_table(result: SweepResult, budget: float | None = None, width: int | None
     out.append(Text(legend, style="dim"))
     if any_saturated:
         out.append(Text(f"SAT: the sensor saturates at that rate (|Ω_K3| + Σ tone amplitudes + "
-                        f"locked peaks + {result.peak_factor:g}σ3 exceeds its range, MODEL.md "
+                        f"locked peaks + {result.peak_factor:g}σ3 exceeds its range, docs/model.md "
                         "section 9): the values there do not hold.", style="red"))
     for profile, why in result.paper_refused.items():
         out.append(Text(f"paper: no values for {profile}: {why}", style="dim"))

@@ -102,7 +102,7 @@ def analyze(
     polynomial (found with the exact multipliers) is averaged by brute force,
     and ``rms`` stays the per-term bound.
 
-    Phase-locked harmonics (MODEL.md section 10) add the terms k3·M3 and k5·M5
+    Phase-locked harmonics (docs/model.md section 10) add the terms k3·M3 and k5·M5
     (``error.extra_terms``); a profile with ``phase: worst`` orders is
     evaluated at the phases that maximise |Δ_V| for each sensor
     (:attr:`AnalysisResult.worst_phases`; a spec-form sensor's worst case there
@@ -110,7 +110,7 @@ def analyze(
     :attr:`AnalysisResult.saturated`
     flags where |Ω_K3| + Σ tone amplitudes + Σ locked peaks + κσ3 at the
     nonlinear element exceeds the sensor's range (κ = ``peak_factor``,
-    MODEL.md section 9).
+    docs/model.md section 9).
     """
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
@@ -156,7 +156,8 @@ def analyze(
             specs.place_analysis(parts, spec, numeric=numeric)
             # a spec-form row is the worst case over its envelope, not a polynomial's phases
             worst = {k: v for k, v in worst.items() if k[0] not in set(spec.index.tolist())}
-        warnings = specs.with_cross_axis(_saturation(prepared, unit), spec)
+        warnings = specs.with_cross_axis(_saturation(prepared, unit), spec,
+                                         [v is not None for v in prepared.linear])
         saturated = _saturated(prepared)
         error = to_unit(VibrationError(**parts), unit)
         out_scale = units.scale(unit)
@@ -182,8 +183,15 @@ def analyze(
         peak_factor=peak_factor,
         locked=locked,
         worst_phases=worst,
+        rate_unit=_shared_unit([p.unit for p in prepared.profiles]),
         **spread,
     )
+
+
+def _shared_unit(file_units: Sequence[str]) -> str | None:
+    """The rate unit the profiles' files share (canonical), or None when they differ."""
+    found = {units.canonical_unit(u) for u in file_units}
+    return found.pop() if len(found) == 1 else None
 
 
 def _refuse_unknown_phases(prepared: Prepared) -> None:
@@ -202,7 +210,7 @@ def _refuse_unknown_phases(prepared: Prepared) -> None:
 def _spec_prepared(prepared: Prepared, catalog: Catalog, sensors: Sequence[str],
                    profiles: Sequence[str], rate: Sequence[float] | None, method: str,
                    peak_factor: float) -> Prepared:
-    """The preparation behind spec-form sensors' worst case (MODEL.md sections 10, 11).
+    """The preparation behind spec-form sensors' worst case (docs/model.md sections 10, 11).
 
     With ``phase: worst`` orders, their worst case takes each multiplier at its
     largest over the unknown phases (which bounds every phase's share), as
@@ -312,9 +320,9 @@ def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, 
               ) -> tuple[VibrationError, FloatArray]:
     """Brute force for one profile and one group of sensors (deg/s).
 
-    ``locked``: the profile's phase-locked groups (MODEL.md section 10).
+    ``locked``: the profile's phase-locked groups (docs/model.md section 10).
     ``linear`` (g) with ``g2`` (deg/s per g²): the profile's linear vibration,
-    whose g² term the brute force averages too (MODEL.md section 8).
+    whose g² term the brute force averages too (docs/model.md section 8).
     """
     from gyrovib.core.numeric import simulate
 

@@ -48,7 +48,7 @@ def resolve_allocation(
 
     ``allocation`` (an :class:`Allocation`, or 1 number r, or 9 numbers
     r, w1..w5, v1..v3, or 10 numbers r, w1..w6, v1..v3 with w6 the weight of
-    the g² term of profiles with linear vibration, MODEL.md section 8) wins
+    the g² term of profiles with linear vibration, docs/model.md section 8) wins
     over the catalogue's ``allocation:`` section; the
     paper's r = 1.5, w = (1, 1, 1, ½, ½), v = (1, ½, ½) is the default.
     ``exact`` derives the shares (eq. 20, 21, 24); ``paper`` uses the printed
@@ -108,7 +108,7 @@ def resolve_allocation(
 
 
 def check_vre_bound(vre: FloatArray | None, prepared: Prepared) -> None:
-    """Refuse a VRE bound (MODEL.md section 8) that left floating-point range.
+    """Refuse a VRE bound (docs/model.md section 8) that left floating-point range.
 
     Like :func:`~gyrovib.api.prepare.check_bounds`: +inf (no linear
     vibration) or a positive normal number; anything else comes from an
@@ -154,9 +154,9 @@ def bounds(
     overflows (is 0 or subnormal where the profile constrains it) is refused.
     With linear vibration in some profile, ``bounds.vre`` bounds the effective
     VRE |Δ0(6)|/Σ⟨a_j²⟩ in ``unit`` per g² (+inf for the profiles without;
-    None when no profile has any), MODEL.md section 8.
+    None when no profile has any), docs/model.md section 8.
 
-    ``range_`` R (deg/s) adds the datasheet bounds (MODEL.md section 11): the
+    ``range_`` R (deg/s) adds the datasheet bounds (docs/model.md section 11): the
     allowable nonlinearity in %FS of R (or of the span 2R, ``nl_of``) read as
     ``nl_fit``/``nl_measure``, and the allowable VRE, from the split
     ``spec_weights`` (NL:VRE) of Δ* (:attr:`BoundsResult.spec_bounds`).

@@ -1,6 +1,6 @@
 """``gyrovib fit``: rate-table points to eq. (2) coefficients, per unit and per lot.
 
-MODEL.md section 14: one least-squares fit of eq. (1) per unit
+docs/model.md section 14: one least-squares fit of eq. (1) per unit
 (:func:`gyrovib.core.fit.fit_rate_table`), eq. (2) by division by K1 with the
 delta-method covariance; with two or more units the lot's mean and sample
 covariance (:func:`gyrovib.core.lot.lot_statistics`).
@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from gyrovib.api.fit_results import FitResult
-from gyrovib.api.ratetable import RateTable, read_rate_table
+from gyrovib.api.ratetable import MAX_PROBLEMS, RateTable, read_rate_table
 from gyrovib.core.fit import DEFAULT_ORDER, MAX_ORDER, IdentificationError, RateFit, fit_rate_table
 from gyrovib.core.lot import lot_statistics
 from gyrovib.errors import OptionError, Problem
@@ -36,18 +36,28 @@ def fit(table: RateTable | str | Path, order: int = DEFAULT_ORDER, *, rate_unit:
         table = read_rate_table(table, rate_unit, output_unit)
     fits: list[RateFit] = []
     problems: list[Problem] = []
+    more = 0  # units refused beyond the first MAX_PROBLEMS, counted, not listed
     for k, unit in enumerate(table.units):
         line = int(table.lines[k][0])
         try:
             fits.append(fit_rate_table(table.rate[k], table.output[k], int(order),
                                        table.cross[k], table.cross_axes))
         except IdentificationError as exc:
-            who = f"unit {unit!r} ({table.rate[k].size} points): " if table.unit_column else ""
+            if len(problems) >= MAX_PROBLEMS:
+                more += 1
+                continue
+            size = table.rate[k].size
+            who = (f"unit {unit!r} ({size} point{'s' if size != 1 else ''}): "
+                   if table.unit_column else "")
             problems.append(Problem(f"{who}{exc.reason}", table.file, line, None))
+    if more:
+        problems.append(Problem(f"... and {more} more unit{'s' if more != 1 else ''} that "
+                                "cannot be fitted", table.file))
     if problems:
         raise IdentificationError(problems)
     names = fits[0].names
-    lot = lot_statistics(np.array([f.values for f in fits])) if len(fits) >= 2 else None
+    lot = (lot_statistics(np.array([f.values for f in fits]), names) if len(fits) >= 2
+           else None)
     warnings = (lot.warning,) if lot is not None and lot.warning else ()
     return FitResult(
         file=table.file,

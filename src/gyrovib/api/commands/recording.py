@@ -1,4 +1,4 @@
-"""Recordings (MODEL.md section 13): the recorded error Δ_V,rec and the fitted profile.
+"""Recordings (docs/model.md section 13): the recorded error Δ_V,rec and the fitted profile.
 
 :func:`fit_recording` splits a recording at the crossover, fits a catalogue
 profile to its vibration (tones, phase-locked harmonics, a log-log PSD,
@@ -131,7 +131,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                   breakpoints: int = DEFAULT_BREAKPOINTS, independent_tones: bool = False,
                   profile_id: str | None = None,
                   responses: Sequence[Table] = ()) -> RecordingFit:
-    """Split, measure and fit a recording (MODEL.md section 13).
+    """Split, measure and fit a recording (docs/model.md section 13).
 
     ``responses``: input-side sensor responses for which Δ_V,rec moments are
     wanted besides the plain ones (``moments[None]``); each gets
@@ -150,7 +150,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     dropped = len(recording.segments) - len(kept)
     if dropped:
         warnings.append(f"{dropped} segment(s) shorter than 4/f_c = {4 / crossover:g} s "
-                        "dropped (MODEL.md section 13)")
+                        "dropped (docs/model.md section 13)")
     if not kept:
         longest = int(np.max(recording.segments[:, 1] - recording.segments[:, 0]))
         raise RecordingError(Problem(
@@ -382,15 +382,15 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
                       tone_threshold: float = DEFAULT_THRESHOLD,
                       breakpoints: int = DEFAULT_BREAKPOINTS, independent_tones: bool = False,
                       profile_id: str | None = None) -> RecordingAnalysis:
-    """Δ_V,rec (MODEL.md section 13) of every chosen sensor, and the fitted mission's
+    """Δ_V,rec (docs/model.md section 13) of every chosen sensor, and the fitted mission's
     closed form beside it.
 
     Coefficient-form sensors: the definition itself, vectorised; sensors whose
     response acts at the input see ν·x (a zero-phase gain). Spec-form
     sensors: the worst Δ_V,rec over their datasheet envelope (it is linear in
-    the coefficients, MODEL.md section 11). The closed form evaluates the
+    the coefficients, docs/model.md section 11). The closed form evaluates the
     fitted profile at each histogram bin of Ω_K3 and weights the bins by
-    their time (MODEL.md section 12's mean error Δ̄_V).
+    their time (docs/model.md section 12's mean error Δ̄_V).
     """
     from gyrovib.api.convert import coefficient_matrix, sensor_ranges
     from gyrovib.api.entries import select_entries
@@ -455,7 +455,7 @@ def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: Flo
                    fit: RecordingFit, total: FloatArray, terms: FloatArray,
                    g2_part: FloatArray, figures: Any) -> tuple[FloatArray, FloatArray,
                                                                FloatArray]:
-    """Spec-form rows: worst Δ_V,rec over the envelope (MODEL.md sections 11, 13).
+    """Spec-form rows: worst Δ_V,rec over the envelope (docs/model.md sections 11, 13).
 
     Δ_V,rec = cᵀx + Σ G_jj⟨a_j² − A_j²⟩ with c = (½⟨|ω3|−|Ω3|⟩, ⟨ω3ⁿ−Ω3ⁿ⟩),
     k1 = 1 and m31 = m32 = 0 (datasheets do not give them); each row of c is
@@ -489,7 +489,7 @@ def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str],
     histogram: Δ̄ = Σ T_b·Δ_V(Ω_b)/ΣT, and √(Σ T_b·Δ_V(RMS)_b²/ΣT), deg/s.
 
     A spec-form sensor's Δ̄ is the worst case over its envelope of the whole
-    mission — one conversion function for every bin (MODEL.md section 12):
+    mission — one conversion function for every bin (docs/model.md section 12):
     its term functionals are time-weighted first, then maximised once.
     """
     from gyrovib.api.commands.analyze import analyze

@@ -40,6 +40,9 @@ from gyrovib.models import Allocation
 
 CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")
+#: What an unpublished datasheet figure is taken as: ``none`` (nothing: the
+#: verdict stays open, ``unverified``) or ``zero`` (the reading of old).
+ASSUMPTIONS = ("none", "zero")
 #: Relative slack of every ≤ comparison: a value at its bound, up to rounding
 #: (e.g. a bound printed in deg/h and read back), passes.
 PASS_RTOL = 1e-9
@@ -118,6 +121,7 @@ def select(
     allocation: Allocation | Sequence[float] | None = None,
     spec_weights: tuple[float, float] = (1.0, 1.0),
     peak_factor: float = DEFAULT_PEAK_FACTOR,
+    assume_unknown: str = "none",
     yield_target: float | None = None,
     seed: int = DEFAULT_SEED,
     draws: int = DEFAULT_DRAWS,
@@ -128,23 +132,31 @@ def select(
     written ``at: input`` (an output filter earns no credit; computed once
     per distinct response). ``criterion``: ``bounds`` (every |coefficient| at
     most its bound, and the effective VRE |Δ0(6)|/Σ⟨a_j²⟩ at most the ``vre``
-    bound where a profile has linear vibration, MODEL.md section 8), ``rms``
+    bound where a profile has linear vibration, docs/model.md section 8), ``rms``
     (Δ_V(RMS) ≤ Δ*, eq. 17, with Δ0(6) in it) or ``both``. A sensor
     passes when it passes under every chosen profile; ``require`` ``any``
     (at least one sensor passes) or ``all`` decides :attr:`requirement_met`.
     ``budget`` and ``rate`` are in deg/s; ``unit`` is the output unit.
 
-    ``worst``: the direct test |Δ_V| ≤ Δ*. A spec-form sensor (MODEL.md
+    ``worst``: the direct test |Δ_V| ≤ Δ*. A spec-form sensor (docs/model.md
     section 11) is judged by its datasheet: under ``bounds`` its nonlinearity
     (%FS) and VRE against the spec bounds of its own range, fit and measure
     (Δ* split ``spec_weights`` = NL:VRE), under ``rms`` its per-term RMS
     bound, under ``worst`` its worst |Δ_V| over the envelope; its margin is
     always Δ*/worst |Δ_V| (and every sensor's is Δ*/|Δ_V| under ``worst``).
 
-    A sensor that saturates under a profile (MODEL.md section 9: |Ω_K3| +
+    A sensor that saturates under a profile (docs/model.md section 9: |Ω_K3| +
     Σ tone amplitudes + locked peaks + κσ3 at its nonlinear element above its
     range, κ = ``peak_factor``) fails there whatever the criterion: the
     static model behind both tests does not hold (:attr:`SelectionResult.reasons`).
+
+    An unpublished datasheet figure is unknown, not zero (docs/model.md section 11):
+    where a spec-form sensor passes on its published figures but one it lacks
+    can matter under the profile (the VRE under linear vibration; m31, m32
+    under cross-axis vibration correlated with x3), it is ``unverified`` there:
+    not passed, not ranked, with the figures that would decide it
+    (:attr:`SelectionResult.questions`). ``assume_unknown="zero"`` takes them
+    as 0 instead, and the result records that it did.
 
     ``yield_target`` Y (0 < Y < 1): a production lot (``lot:``) passes a profile when
     the yield of a part drawn from it is at least Y (docs/model.md section 14,
@@ -158,6 +170,9 @@ def select(
         raise OptionError(f"unknown criterion {criterion!r}; use one of {', '.join(CRITERIA)}")
     if require not in REQUIREMENTS:
         raise OptionError(f"unknown requirement {require!r}; use one of {', '.join(REQUIREMENTS)}")
+    if assume_unknown not in ASSUMPTIONS:
+        raise OptionError(f"unknown assumption {assume_unknown!r}; use one of "
+                          f"{', '.join(ASSUMPTIONS)}")
     unit = units.canonical_unit(unit)
     constants = resolve_allocation(catalog, method, allocation)
     alone = bounds(catalog, profiles=profiles, method=method, rate=rate, budget=budget,
@@ -210,21 +225,35 @@ def select(
             bounds_pass[spec.index] = own.nl_pass & own.vre_pass
         rms_pass = _at_most(rms, budget)
         worst_pass = _at_most(total, budget)
-        # saturation fails a sensor whatever the criterion (MODEL.md section 9)
+        # saturation fails a sensor whatever the criterion (docs/model.md section 9)
         passed = {"bounds": bounds_pass, "rms": rms_pass, "worst": worst_pass,
                   "both": bounds_pass & rms_pass}[criterion] & ~saturated
+        unknown, questions = _unknowns(prepared, spec, own, method, criterion, passed,
+                                       budget, rms, total, unit)
+        unverified = np.zeros(passed.shape, dtype=bool)
+        if assume_unknown != "zero":
+            for (i, j) in unknown:
+                if passed[i, j]:
+                    unverified[i, j] = True
+                    passed[i, j] = False
+
         yields = None if yield_target is None else lot_yields(
             prepared, method, criterion, budget, limits_deg, vre_pass, yield_target,
             seed=seed, draws=draws, rtol=PASS_RTOL)
         if yields is not None:
             passed = judge(yields, passed, saturated)
         sensor_pass = np.all(passed, axis=1)
+        # a sensor that fails somewhere on its published figures (not only unverified)
+        fails = np.any(~passed & ~unverified, axis=1)
+        open_ = ~sensor_pass & ~fails
         judged = rms.copy() if criterion != "worst" else total.copy()
         if spec is not None:
             judged[spec.index] = total[spec.index]
         margin = np.where(judged > 0, budget / np.where(judged > 0, judged, 1.0), np.inf)
         worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
-        ranking = tuple(int(i) for i in sorted(range(n_s), key=lambda i: (-worst[i], i)))
+        # an unverified sensor is not ranked on its margin: it follows the others
+        ranking = tuple(int(i) for i in sorted(range(n_s),
+                                               key=lambda i: (bool(open_[i]), -worst[i], i)))
         ratios = np.concatenate([_ratio(values_deg, limits_deg),
                                  _ratio(vre_deg, vre_bound_deg)[..., None]], axis=-1)
         spec_ratios = None
@@ -233,12 +262,32 @@ def select(
                 int(i): {"nonlinearity": _ratio(own.nl_value[k], own.nl_bound[k]),
                          "vre": _ratio(np.nan_to_num(own.vre_value[k]), own.vre_bound[k])}
                 for k, i in enumerate(spec.index.tolist())}
-        limits = _limits(criterion, np.nonzero(~sensor_pass)[0], ratios, rms, budget, total,
+        limits = _limits(criterion, np.nonzero(fails)[0], ratios, rms, budget, total,
                          spec_ratios, saturated, reach / ranges[:, None])
+        # the margin of the test that decides each cell, and the tests that disagree
+        largest = ratios.max(axis=-1) if n_p else np.zeros((n_s, 0))
+        for i, found in (spec_ratios or {}).items():
+            largest[i] = np.maximum(found["nonlinearity"], found["vre"])
+        bounds_margin = np.where(largest > 0, 1.0 / np.where(largest > 0, largest, 1.0),
+                                 np.inf)
+        direct = {"rms": _inverse(rms, budget), "worst": _inverse(total, budget)}
+        criterion_margin = {"bounds": bounds_margin, "rms": direct["rms"],
+                            "worst": direct["worst"],
+                            "both": np.minimum(bounds_margin, direct["rms"])}[criterion]
+        disagrees = _disagreements(criterion, passed | unverified, saturated,
+                                   {"bounds": bounds_pass, "rms": rms_pass,
+                                    "worst": worst_pass})
         reasons = saturation_reasons(saturated, reach, ranges, peak_factor, unit)
         if yields is not None:
             limits = yield_limits(yields, limits, sensor_pass, saturated)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
+    fields = spec_bounds.selection_fields(n_s, n_p, spec, own, total, unit,
+                                          (vre_deg, vre_bound_deg, vre_pass))
+    if assume_unknown != "zero" and any("vre" in names for names in unknown.values()):
+        shown = np.array(fields["vre_pass"], dtype=bool)  # not shown to pass: not known
+        for (i, j), names in unknown.items():
+            shown[i, j] &= "vre" not in names
+        fields["vre_pass"] = shown
     s = units.scale(unit)
     return SelectionResult(
         method=method,
@@ -264,11 +313,16 @@ def select(
         limits=limits,
         requirement_met=met,
         allocation=constants,
-        **spec_bounds.selection_fields(n_s, n_p, spec, own, total, unit,
-                                 (vre_deg, vre_bound_deg, vre_pass)),
+        **fields,
         saturated=saturated,
         reasons=reasons,
         peak_factor=peak_factor,
+        unverified=unverified,
+        criterion_margin=criterion_margin,
+        disagrees=disagrees,
+        unknown=unknown,
+        questions=questions,
+        assume_unknown=assume_unknown,
         coefficient_unit=catalog_unit([e.unit for e in prepared.sensors])
         or alone.coefficient_unit,
         yields=yields,
@@ -276,8 +330,101 @@ def select(
     )
 
 
+def _inverse(value: FloatArray, budget: float) -> FloatArray:
+    """Δ*/value, +inf where the value is 0."""
+    out: FloatArray = np.where(value > 0, budget / np.where(value > 0, value, 1.0), np.inf)
+    return out
+
+
+#: The tests a cell can be judged by, in the order ``disagrees`` names them.
+TESTS = ("bounds", "rms", "worst")
+#: The tests each criterion is decided by.
+DECIDED_BY = {"bounds": ("bounds",), "rms": ("rms",), "worst": ("worst",),
+              "both": ("bounds", "rms")}
+
+
+def _disagreements(criterion: str, verdict: NDArray[np.bool_], saturated: NDArray[np.bool_],
+                   tests: dict[str, NDArray[np.bool_]]) -> dict[tuple[int, int], tuple[str, ...]]:
+    """Per (sensor, profile): the tests, other than the criterion's, that would decide
+    otherwise than ``verdict`` (the verdict on the published figures). A saturated cell
+    fails every test (docs/model.md section 9): none disagrees there."""
+    others = [t for t in TESTS if t not in DECIDED_BY[criterion]]
+    out: dict[tuple[int, int], tuple[str, ...]] = {}
+    for i, j in np.argwhere(~saturated).tolist():
+        names = tuple(t for t in others if bool(tests[t][i, j]) != bool(verdict[i, j]))
+        if names:
+            out[(int(i), int(j))] = names
+    return out
+
+
+def _unknowns(prepared: Prepared, spec: specs.SpecResults | None,
+              own: spec_bounds.SpecChecks | None, method: str, criterion: str,
+              passed: NDArray[np.bool_], budget: float, rms: FloatArray, total: FloatArray,
+              unit: str) -> tuple[dict[tuple[int, int], tuple[str, ...]],
+                                  dict[int, tuple[str, ...]]]:
+    """The unknown figures per (sensor, profile), and per sensor the questions for its vendor.
+
+    A question names the figure and the largest value of it that would still
+    pass where the sensor passes on its published figures (``passed``, before
+    the unknowns count), under the criterion: the allowable VRE of the spec
+    bounds under ``bounds``; otherwise what is left of Δ* beside the worst
+    case (|Δ_V| for ``worst``, in quadrature beside the RMS bound for
+    ``rms``), over Σ⟨a_j²⟩ for the VRE or |C3i| for m3i (the other unknown
+    figures taken as 0). ``budget``, ``rms``, ``total`` in deg/s.
+    """
+    unknown: dict[tuple[int, int], tuple[str, ...]] = {}
+    questions: dict[int, tuple[str, ...]] = {}
+    if spec is None or own is None:
+        return unknown, questions
+    figs = spec_bounds.unknown_figures(prepared, spec, method)
+    s = units.scale(unit)
+    # m31, m32 in the catalogue's rate unit, as coefficients are written in tables
+    rate_unit = catalog_unit([e.unit for e in prepared.sensors]) or unit
+    factors = bound_factors(rate_unit)
+    for k, i in enumerate(spec.index.tolist()):
+        limits: dict[str, tuple[float, int]] = {}
+        for j in range(len(prepared.profiles)):
+            names = figs.names(k, j)
+            if not names:
+                continue
+            unknown[(i, j)] = names
+            if not passed[i, j]:
+                continue  # it fails there on its published figures alone
+            left_worst = max(budget - float(total[i, j]), 0.0)
+            left_rms = float(np.sqrt(max(budget**2 - float(rms[i, j]) ** 2, 0.0)))
+            left = {"bounds": left_worst, "worst": left_worst, "rms": left_rms,
+                    "both": min(left_worst, left_rms)}[criterion]
+            for name in names:
+                if name == "vre":
+                    value = left / float(figs.mean_square[j]) / s
+                    if criterion in ("bounds", "both"):
+                        value = min(value, float(own.vre_bound[k, j]) / s)
+                else:
+                    c = abs(float(getattr(figs, "c" + name[1:])[k, j]))
+                    value = left / c * factors[name]
+                if name not in limits or value < limits[name][0]:
+                    limits[name] = (value, j)
+        asks = []
+        for name in spec_bounds.UNKNOWN_FIGURES:
+            if name not in limits:
+                continue
+            value, j = limits[name]
+            profile = prepared.profiles[j].profile.id
+            if name == "vre":
+                asks.append(f"VRE (vibration rectification, {unit}/g²): at most {value:.4g} "
+                            f"passes under {profile}")
+            else:
+                other = "m32" if name == "m31" else "m31"
+                asks.append(f"{name} (multiplicative cross-axis coefficient, ({rate_unit})^-1): "
+                            f"|{name}| at most {value:.4g} passes under {profile} "
+                            f"(with {other} = 0)")
+        if asks:
+            questions[i] = tuple(asks)
+    return unknown, questions
+
+
 def _effective_vre(prepared: Prepared) -> FloatArray:
-    """|Δ0(6)|/Σ⟨a_j²⟩ of every sensor under every profile, deg/s per g² (MODEL.md section 8).
+    """|Δ0(6)|/Σ⟨a_j²⟩ of every sensor under every profile, deg/s per g² (docs/model.md section 8).
 
     0 where a profile has no linear vibration.
     """
@@ -287,7 +434,7 @@ def _effective_vre(prepared: Prepared) -> FloatArray:
 
 
 def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray) -> None:
-    """|Δ_V| maximised over the phases of ``phase: worst`` orders (MODEL.md section 10).
+    """|Δ_V| maximised over the phases of ``phase: worst`` orders (docs/model.md section 10).
 
     The synthesis multipliers take each moment at its largest magnitude, which
     fixes their signs; the direct test |Δ_V| ≤ Δ* needs, as ``analyze`` does,

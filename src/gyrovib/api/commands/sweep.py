@@ -9,6 +9,7 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
+from gyrovib.api.entries import select_entries
 from gyrovib.api.other_results import SweepResult
 from gyrovib.api.prepare import check_finite, float_guard, prepare
 from gyrovib.catalog.loader import Catalog
@@ -20,6 +21,35 @@ from gyrovib.errors import OptionError
 
 #: Most rates in one sweep: several tones cost about 10^4 kernel values per rate.
 MAX_SWEEP_POINTS = 20_000
+#: Most sensor × profile × rate cells of one sweep: each holds ~16 values per
+#: method in the result (~260 MB at this many), so a long sweep stays under 400 MB.
+MAX_SWEEP_CELLS = 1_000_000
+#: Most datasheet-sensor × profile × rate × method worst cases of one sweep: each
+#: is a linear programme polished from its neighbour's, 0.1-0.2 ms (5-10 s at this many;
+#: the default 401-rate sweep of the bundled catalogue is 45,000).
+MAX_SWEEP_PROGRAMMES = 50_000
+
+
+def check_sweep_size(n_sensors: int, n_spec: int, n_profiles: int, n_rates: int) -> None:
+    """Refuse, before any computation, a sweep whose result or whose datasheet worst
+    cases would exceed :data:`MAX_SWEEP_CELLS` or :data:`MAX_SWEEP_PROGRAMMES`."""
+    cells = n_sensors * n_profiles * n_rates
+    if cells > MAX_SWEEP_CELLS:
+        most = max(1, MAX_SWEEP_CELLS // max(1, n_sensors * n_profiles))
+        raise OptionError(
+            f"--rate-range: {n_rates:,} rates × {n_profiles} profiles × {n_sensors} sensors "
+            f"are {cells:,} results, more than the {MAX_SWEEP_CELLS:,} one sweep holds "
+            f"(~16 values each per method, to stay under 400 MB); sweep at most {most:,} "
+            "rates here, or fewer profiles (--profile) or sensors (--sensor)")
+    programmes = n_spec * n_profiles * n_rates * len(METHODS)
+    if programmes > MAX_SWEEP_PROGRAMMES:
+        most = max(1, MAX_SWEEP_PROGRAMMES // max(1, n_spec * n_profiles * len(METHODS)))
+        raise OptionError(
+            f"--rate-range: {n_rates:,} rates × {n_profiles} profiles × {n_spec} datasheet "
+            f"sensors need {programmes:,} worst cases over their envelopes (a linear "
+            f"programme each, both methods), more than the {MAX_SWEEP_PROGRAMMES:,} "
+            f"(about 10 s) one sweep may take; sweep at most {most:,} rates here, or fewer "
+            "profiles (--profile) or datasheet sensors (--sensor)")
 
 
 def rate_range(start: float, stop: float, count: int) -> FloatArray:
@@ -57,12 +87,15 @@ def sweep(
     the exact method's worst polynomial at each rate.
     :attr:`SweepResult.saturated` flags the rates where a sensor saturates
     (|Ω_K3| + the vibration's swing at its nonlinear element, κ =
-    ``peak_factor``, above its range; MODEL.md section 9).
+    ``peak_factor``, above its range; docs/model.md section 9).
     """
     unit = units.canonical_unit(unit)
     omega = np.asarray(rates, dtype=float).reshape(-1)
     if omega.size == 0 or not np.all(np.isfinite(omega)):
         raise OptionError("the swept rates must be finite, and at least one")
+    s_entries, p_entries = select_entries(catalog, sensors, profiles)
+    check_sweep_size(len(s_entries), int(specs.spec_index(s_entries).size), len(p_entries),
+                     omega.size)
     with float_guard():
         # only the paper's refusals leave empty cells; the exact method's is a
         # ModelError at the profile's place in its file, as in analyze

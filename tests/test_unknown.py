@@ -1,0 +1,177 @@
+"""Unknown is not zero: a datasheet figure that is not published leaves a verdict open.
+
+INTERFACE.md, "Trust and first use": a spec-form part that passes on its
+published figures, but whose verdict an unpublished one can change (the VRE
+under linear vibration; m31, m32 under cross-axis vibration correlated with
+x3, docs/model.md sections 8 and 11), is ``unverified``: not passing, not ranked,
+with the figures to ask its vendor for. ``--assume-unknown zero`` restores
+the reading of old and says so.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import gyrovib
+from tests.conftest import invoke
+
+BUDGET = 0.01  # deg/s
+
+# Two datasheet parts (one without a VRE, one with) and a coefficient part under
+# 'shaker': linear random vibration only, σ = 1 g on each axis, Σ⟨a_j²⟩ = 3 g²
+# (docs/model.md section 8), no angular vibration (C31 = C32 = 0, nothing for the NL
+# envelope either: the worst case on the published figures is the VRE's alone);
+# and 'tone': one angular tone a = (1, 0, 2) deg/s in phase, C31 = ½·1·2 = 1
+# (deg/s)², C32 = 0 (eq. (9) with cos 0 = 1).
+CATALOGUE = """\
+gyrovib: 1
+units: {rate: deg/s}
+sensors:
+  - id: no-vre
+    specs:
+      range: 100
+      nonlinearity: {value: 0.001, unit: "%FS", fit: least-squares, measure: max}
+  - id: with-vre
+    specs:
+      range: 100
+      nonlinearity: {value: 0.001, unit: "%FS", fit: least-squares, measure: max}
+      vre: 1.0e-3
+  - id: coefficients
+    coefficients: {k2: 1.0e-6}
+profiles:
+  - id: shaker
+    rate: [0, 0, 0]
+    acceleration:
+      random: {rms: [1.0, 1.0, 1.0]}
+  - id: tone
+    rate: [0, 0, 0]
+    harmonic:
+      - {frequency: 100, amplitude: [1.0, 0.0, 2.0]}
+"""
+
+
+@pytest.fixture
+def catalog(tmp_path: Path) -> str:
+    path = tmp_path / "unknown.yaml"
+    path.write_text(CATALOGUE, encoding="utf-8")
+    return str(path)
+
+
+def select_json(catalog: str, *args: str) -> tuple[int, dict]:
+    done = invoke("select", catalog, "--budget", str(BUDGET), "--format", "json", *args)
+    return done.exit_code, json.loads(done.stdout)
+
+
+def test_a_part_without_a_vre_under_linear_vibration_is_unverified(catalog: str) -> None:
+    code, doc = select_json(catalog, "--profile", "shaker", "--require", "all")
+    assert code == 1  # unverified is not passing: --require all is not met
+    assert doc["assume_unknown"] == "none"
+    parts = {s["sensor"]: s for s in doc["sensors"]}
+    cell = parts["no-vre"]["profiles"][0]
+    assert (cell["pass"], cell["status"], cell["unknown"]) == (False, "unverified", ["vre"])
+    assert cell["reason"].startswith("unverified: passes on its published figures, but VRE "
+                                     "not published")
+    # the VRE check is not shown to pass: its value is not known
+    assert cell["checks"]["vre"] == {"value": None, "bound": cell["checks"]["vre"]["bound"],
+                                     "pass": False}
+    assert (parts["no-vre"]["pass"], parts["no-vre"]["status"]) == (False, "unverified")
+    # the vendor question: the VRE that still passes. The worst case on the published
+    # figures is 0 here (no angular vibration), so VRE_max = Δ*/Σ⟨a_j²⟩ = 0.01/3
+    # deg/s/g² (docs/model.md section 11, all of Δ* to the one part the profile excites).
+    assert parts["no-vre"]["questions"] == [
+        f"VRE (vibration rectification, deg/s/g²): at most {BUDGET / 3:.4g} passes under "
+        "shaker"]
+    # a published VRE of 1e-3 deg/s/g² gives 3e-3 deg/s ≤ 0.01: a verified pass
+    other = parts["with-vre"]["profiles"][0]
+    assert (other["status"], other["unknown"], other["pass"]) == ("pass", [], True)
+    # a coefficient-form part states its polynomial: nothing unknown
+    assert parts["coefficients"]["status"] == "pass"
+
+
+def test_assume_unknown_zero_passes_it_and_says_so(catalog: str) -> None:
+    code, doc = select_json(catalog, "--profile", "shaker", "--require", "all",
+                            "--assume-unknown", "zero")
+    assert code == 0 and doc["assume_unknown"] == "zero"
+    cell = {s["sensor"]: s for s in doc["sensors"]}["no-vre"]["profiles"][0]
+    # still listed as unknown, but taken as 0: the reading of old (margin ∞: no error)
+    assert (cell["pass"], cell["status"], cell["unknown"]) == (True, "pass", ["vre"])
+    assert cell["reason"] is None and cell["margin"] is None
+    table = invoke("select", catalog, "--budget", str(BUDGET), "--profile", "shaker",
+                   "--assume-unknown", "zero", env={"COLUMNS": "200"}).stdout
+    assert "Assumed (--assume-unknown zero): unpublished figures taken as 0 -- no-vre: VRE" in (
+        " ".join(table.split()))
+    assert "✓ ∞*" in table  # the cell that passes only under the assumption is marked
+    junit = invoke("select", catalog, "--budget", str(BUDGET), "--profile", "shaker",
+                   "--assume-unknown", "zero", "--format", "junit").stdout
+    assert "<failure" not in junit and "(assumed VRE = 0: --assume-unknown zero)" in junit
+
+
+def test_table_junit_csv_and_github_show_it(catalog: str) -> None:
+    args = ("select", catalog, "--budget", str(BUDGET), "--profile", "shaker")
+    table = invoke(*args, env={"COLUMNS": "200"}).stdout
+    row = next(line for line in table.splitlines() if "│ no-vre" in line)
+    assert "? VRE unknown" in row and "UNVERIFIED" in row and "✓" not in row
+    assert "Unverified sensors: questions for the vendor" in table
+    assert "1 of 3 sensor(s) pass" not in table and "2 of 3 sensor(s) pass, 1 unverified" in table
+    junit = invoke(*args, "--format", "junit").stdout
+    case = junit.split('classname="no-vre"')[1].split("</testcase>")[0]
+    assert 'type="Unverified"' in case and "VRE not published" in case
+    csv = invoke(*args, "--format", "csv").stdout.splitlines()
+    head = csv[0].split(",")
+    row = dict(zip(head, next(r for r in csv if r.startswith("no-vre")).split(","),
+                   strict=False))
+    assert (row["passed"], row["status"], row["unknown"]) == ("False", "unverified", "vre")
+    github = invoke(*args, "--format", "github").stdout
+    assert "no-vre is unverified" in github and "Ask the vendor: VRE" in github
+
+
+def test_cross_axis_m31_is_unknown_where_c31_is_not_zero(catalog: str) -> None:
+    result = gyrovib.select(catalog, budget=BUDGET, profiles="tone", criterion="worst")
+    i = result.sensors.index("with-vre")
+    # C31 = 1 (deg/s)² ≠ 0, C32 = 0: only m31 can matter (and no linear vibration: the
+    # VRE cannot)
+    assert result.unknown[(i, 0)] == ("m31",)
+    assert result.status(i, 0) == "unverified" and not result.sensor_pass[i]
+    # |m31|·C31 may take what the worst case leaves: (Δ* − worst |Δ_V|)/C31, (deg/s)^-1
+    left = BUDGET - float(result.total[i, 0])
+    assert 0 < left < BUDGET
+    assert result.questions[i] == (
+        f"m31 (multiplicative cross-axis coefficient, (deg/s)^-1): |m31| at most "
+        f"{left / 1.0:.4g} passes under tone (with m32 = 0)",)
+    # not ranked on its margin: the verified sensors come first
+    assert result.ranking[-2:] == tuple(sorted(
+        (result.sensors.index("no-vre"), i), key=lambda k: (-result.worst_margin[k], k)))
+    zero = gyrovib.select(catalog, budget=BUDGET, profiles="tone", criterion="worst",
+                          assume_unknown="zero")
+    assert zero.status(i, 0) == "pass" and zero.unknown[(i, 0)] == ("m31",)
+
+
+def test_a_part_that_fails_on_its_published_figures_fails(catalog: str) -> None:
+    # Δ* below the NL worst case under 'tone': it fails whatever m31 is
+    worst = gyrovib.select(catalog, budget=BUDGET, profiles="tone", criterion="worst")
+    i = worst.sensors.index("no-vre")
+    budget = 0.5 * float(worst.total[i, 0])
+    result = gyrovib.select(catalog, budget=budget, profiles="tone", criterion="worst")
+    assert result.status(i, 0) == "fail" and result.sensor_status(i) == "fail"
+    assert result.limits[i].name == "worst" and i not in result.questions
+
+
+def test_report_colours_it_apart_and_asks_the_vendor(catalog: str, tmp_path: Path) -> None:
+    out = tmp_path / "r.html"
+    invoke("report", catalog, "--budget", str(BUDGET), "--profile", "shaker", "-o", str(out))
+    html = out.read_text(encoding="utf-8")
+    row = html.split("<b>no-vre</b>")[1].split("</tr>")[0]
+    assert 'class="unverified"' in row and "? unverified" in row and "VRE unknown" in row
+    assert "✓" not in row and "∞" not in row
+    assert "questions for the vendor</h2>" in html and "VRE (vibration rectification" in html
+
+
+def test_analyze_says_the_vre_is_left_out(catalog: str) -> None:
+    result = gyrovib.analyze(catalog, profiles="shaker")
+    i = result.sensors.index("no-vre")
+    assert any("publishes no VRE" in w for w in result.warnings[(i, 0)])
+    assert not any("publishes no VRE" in w
+                   for w in result.warnings.get((result.sensors.index("with-vre"), 0), ()))
