@@ -307,3 +307,12 @@ def test_yield_without_lots_says_so(tmp_path: Path) -> None:
     assert result.exit_code == 0, result.stderr
     assert "no production lot" in result.stderr
     assert "yield" not in json.loads(result.stdout)
+
+
+def test_github_annotations_name_the_yield(catalogue: Path) -> None:
+    args = (catalogue, "--budget", BUDGET, "--criterion", "worst", "--format", "github")
+    exact = within(BUDGET, MU * SIGMA3_SQ, S * SIGMA3_SQ)  # ≈ 0.84
+    passing = invoke("select", *args, "--yield", 0.8).stdout
+    assert f"has a yield of at least 0.8 under every profile (lowest {exact:.4g})" in passing
+    failing = invoke("select", *args, "--yield", 0.9).stdout
+    assert "::error" in failing and f"yield {exact:.4g} (exact) under random-x3" in failing

@@ -7,6 +7,8 @@ import math
 from collections.abc import Iterator, Sequence
 from typing import Any
 
+import numpy as np
+
 from gyrovib.api import SelectionResult
 from gyrovib.api.reasons import failures as _failures
 from gyrovib.api.reasons import in_table_unit, reason, table_unit
@@ -612,9 +614,14 @@ def to_github(
         rank.append(float(result.worst_margin[i]))
         if result.sensor_pass[i]:
             worst = _margin(float(result.worst_margin[i]))
-            items.append((file, line, f"{sensor} passes",
-                          f"{sensor} meets Δ* = {fmt(result.budget)} {result.unit} under every "
-                          f"profile; worst margin {worst}", "notice"))
+            met = (f"meets Δ* = {fmt(result.budget)} {result.unit} under every profile; worst "
+                   f"margin {worst}")
+            if result.yields is not None and result.yields.is_lot(i):
+                lowest = fmt(float(np.nanmin(result.yields.value[i])), 4)
+                met = (f"(a production lot) has a yield of at least {result.yields.target:g} "
+                       f"under every profile (lowest {lowest}) against Δ* = "
+                       f"{fmt(result.budget)} {result.unit}")
+            items.append((file, line, f"{sensor} passes", f"{sensor} {met}", "notice"))
             continue
         reasons = [f"{result.profiles[j]}: {'; '.join(failures(result, i, j))}"
                    for j in range(len(result.profiles)) if not result.passed[i, j]]
