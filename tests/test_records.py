@@ -70,7 +70,8 @@ VALUES = [None, 0, 1, -1, 0.5, -0.5, 2, 1.5, True, False, "x", "deg/h", "mV", ""
 
 #: Messages of the rules a JSON Schema cannot express.
 INEXPRESSIBLE = ("breakpoint frequencies must increase", "appears more than twice", "given twice",
-                 "two different frequencies", "overflows; check the units of K1")
+                 "two different frequencies", "overflows; check the units of K1",
+                 "not a valid correlation", "integrates to a variance", "is more than the range")
 
 
 def paths(node, prefix=()):
@@ -284,10 +285,10 @@ def test_real_catalogues_are_valid_for_both(path, schema_validator):
 
 
 def test_huge_integer_still_loads():
-    src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n    range: 1180591620717411303424\n"
-                        "    coefficients: {}\n")
+    src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n"
+                        "    coefficients: {k2: 1180591620717411303424}\n")
     assert isinstance(src.model, models.Catalogue)
-    assert src.model.sensors[0].range == 2.0**70
+    assert src.model.sensors[0].rate_coefficients.k2 == 2.0**70
 
 
 def test_records_are_immutable():

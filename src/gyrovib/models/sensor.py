@@ -10,8 +10,10 @@ from gyrovib.errors import CatalogError
 from gyrovib.models._types import (
     FREE_TEXT,
     ID_TEXT,
+    MAX_MAGNITUDE,
     RATE,
     Group,
+    Hint,
     Identifier,
     Model,
     Named,
@@ -107,6 +109,12 @@ class OutputCoefficients(Model):
 
 # ---------------------------------------------------------------- g² sensitivity
 
+G2_WHY = (" (in its unit: datasheets quote "
+          "about 1e-3 deg/s/g², and the model squares it times the acceleration to the 4th "
+          "power, which must stay a finite floating-point number)")
+#: One g² sensitivity term, signed and bounded.
+G2Term = Annotated[Number, Field(ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE), Hint(G2_WHY)]
+
 
 def _g(text: str) -> Any:
     return Field(0.0, description=text, json_schema_extra=in_unit("rate/g^2"))
@@ -115,15 +123,24 @@ def _g(text: str) -> Any:
 class G2Sensitivity(Model):
     """Acceleration-squared sensitivity (IEEE 528/1431), rate per g², signed."""
 
-    G11: Number = _g("G11: along x1 squared (a datasheet VRE), rate/g².")
-    G22: Number = _g("G22: along x2 squared, rate/g².")
-    G33: Number = _g("G33: along x3 squared, rate/g².")
-    G12: Number = _g("G12: anisoelastic x1·x2, rate/g².")
-    G13: Number = _g("G13: anisoelastic x1·x3, rate/g².")
-    G23: Number = _g("G23: anisoelastic x2·x3, rate/g².")
+    G11: G2Term = _g("G11: along x1 squared (a datasheet VRE), rate/g².")
+    G22: G2Term = _g("G22: along x2 squared, rate/g².")
+    G33: G2Term = _g("G33: along x3 squared, rate/g².")
+    G12: G2Term = _g("G12: anisoelastic x1·x2, rate/g².")
+    G13: G2Term = _g("G13: anisoelastic x1·x3, rate/g².")
+    G23: G2Term = _g("G23: anisoelastic x2·x3, rate/g².")
 
 
 # ---------------------------------------------------------------- datasheet
+
+#: The band a full-scale range may lie in, deg/s (converted to the file's rate unit).
+RANGE_BAND = (1e-3, 1e7)
+RANGE_WHY = ("from a slow-rate gyro's milli-degree per second to ten million deg/s "
+             "(28,000 revolutions per second), beyond any spinning body a gyro is put on")
+#: The largest nonlinearity in %FS: a residual larger than the full scale is no gyro.
+MAX_NONLINEARITY_PERCENT = 100.0
+#: The largest scale-factor asymmetry, in %.
+MAX_ASYMMETRY_PERCENT = 100.0
 
 
 class Nonlinearity(Model):
@@ -147,10 +164,18 @@ class Nonlinearity(Model):
         {"if": {"required": ["unit"], "properties": {"unit": {"enum": list(get_args(RateUnit))}}},
          "then": {"not": {"required": ["of"]}}},
         {"not": {"required": ["measure", "fit"], "properties": {
-            "measure": {"const": "rms"}, "fit": {"const": "minimax"}}}}]}}
+            "measure": {"const": "rms"}, "fit": {"const": "minimax"}}}},
+        {"if": {"required": ["unit"], "properties": {"unit": {"const": "%FS"}}},
+         "then": {"properties": {"value": {"maximum": MAX_NONLINEARITY_PERCENT}}}}]}}
 
     @model_validator(mode="after")
     def _rules(self) -> "Nonlinearity":
+        if self.unit == "%FS" and self.value > MAX_NONLINEARITY_PERCENT:
+            raise_at(("value",), rule_error(
+                f"a nonlinearity of {self.value:g} %FS is more than "
+                f"{MAX_NONLINEARITY_PERCENT:g} %FS: a residual larger than the full scale "
+                "is not a gyro's nonlinearity (check the unit: ppm of FS is 1e-4 %FS)"),
+                self.value, "Nonlinearity")
         if "of" in self.model_fields_set and self.unit != "%FS":
             raise_at(("of",), rule_error(
                 f"'of' applies to a nonlinearity in %FS only; {self.value!r} "
@@ -170,6 +195,20 @@ class Asymmetry(Model):
     unit: Annotated[Literal["ppm", "%"], Named("asymmetry unit")] = Field(
         description="ppm or %.")
 
+    model_config = Model.model_config | {"json_schema_extra": {"allOf": [
+        {"if": {"required": ["unit"], "properties": {"unit": {"const": unit}}},
+         "then": {"properties": {"value": {"maximum": MAX_ASYMMETRY_PERCENT * per_percent}}}}
+        for unit, per_percent in (("%", 1.0), ("ppm", 1e4))]}}
+
+    @model_validator(mode="after")
+    def _bounded(self) -> "Asymmetry":
+        if self.value > MAX_ASYMMETRY_PERCENT * (1e4 if self.unit == "ppm" else 1.0):
+            raise_at(("value",), rule_error(
+                f"an asymmetry of {self.value:g} {self.unit} is more than "
+                f"{MAX_ASYMMETRY_PERCENT:g} % ({MAX_ASYMMETRY_PERCENT * 1e4:g} ppm): the two "
+                "scale factors would differ by more than their mean"), self.value, "Asymmetry")
+        return self
+
 
 class Specs(Model):
     """A sensor given by its datasheet (MODEL.md section 11).
@@ -187,7 +226,7 @@ class Specs(Model):
         description="The nonlinearity spec: value, unit, fit, measure, of.")
     asymmetry: Asymmetry | None = Field(
         None, description="Scale-factor asymmetry bound: |A1| <= value.")
-    vre: Annotated[Number, Field(ge=0)] | None = Field(
+    vre: Annotated[Number, Field(ge=0, le=MAX_MAGNITUDE), Hint(G2_WHY)] | None = Field(
         None, description="Vibration rectification bound |G_jj| <= vre, rate per g².",
         json_schema_extra=in_unit("rate/g^2"))
 
@@ -252,7 +291,7 @@ class Sensor(Model):
     g2_sensitivity: G2Sensitivity | None = Field(
         None, description="Acceleration-squared sensitivity G_jk, rate per g² "
         "(MODEL.md section 8); an omitted term is 0.", json_schema_extra=in_unit("rate/g^2"))
-    vre: Number | None = Field(
+    vre: G2Term | None = Field(
         None, description="Shorthand for g2_sensitivity with G11 = G22 = G33 = vre "
         "(rate per g², signed) and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
 
