@@ -67,7 +67,7 @@ ACCELERATION_WHY = (" (in the file's unit: beyond any physical vibration, and th
                     "floating-point number)")
 GAIN_WHY = (" (80 dB: beyond any mount or sensor resonance, and a gain multiplies every "
             "amplitude the model raises to the 10th power)")
-PSD_WHY = (" (unit²/Hz: the square of the largest rate or acceleration a profile may give, "
+PSD_WHY = (" (a PSD level in unit²/Hz: the square of the largest rate or acceleration a profile may give, "
            "1e+12, which keeps the model's powers finite)")
 
 
@@ -245,19 +245,30 @@ def _band(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
 def psd_variance(table: list[tuple[float, float]]) -> float:
     """∫ S(f) df of a breakpoint table, log-log interpolated between its rows (eq. 6
     without a gain); inf when it overflows. A segment with a zero end is bounded by
-    its larger level × its width."""
+    its larger level × its width.
+
+    Between (fa, Sa) and (fb, Sb), S = Sa·(f/fa)^B with B = ln(Sb/Sa)/ln(fb/fa), so
+    ∫ = Sa·fa·(e^x − 1)/(B + 1) with x = (B + 1)·ln(fb/fa) (Sa·fa·ln(fb/fa) when
+    B = −1); computed through logarithms so that no step overflows first.
+    """
     total = 0.0
     for (fa, sa), (fb, sb) in zip(table, table[1:], strict=False):
         if fb <= fa:
             continue
         if sa > 0 and sb > 0:
-            span = math.log(fb / fa)
-            x = (math.log(sb / sa) / span + 1.0) * span
-            try:
-                ratio = 1.0 if abs(x) < 1e-12 else math.expm1(x) / x
-            except OverflowError:
+            span = math.log(fb) - math.log(fa)
+            b1 = (math.log(sb) - math.log(sa)) / span + 1.0
+            x = b1 * span
+            log_scale = math.log(sa) + math.log(fa)
+            if abs(x) < 1e-12:
+                log_part = log_scale + math.log(span)
+            elif x > 0:
+                log_part = log_scale + x + math.log(-math.expm1(-x)) - math.log(b1)
+            else:
+                log_part = log_scale + math.log(-math.expm1(x)) - math.log(-b1)
+            if log_part > 709.0:
                 return math.inf
-            total += sa * fa * span * ratio
+            total += math.exp(log_part)
         else:
             total += max(sa, sb) * (fb - fa)
     return total

@@ -54,7 +54,7 @@ def correlation_problem(r12: float, r13: float, r23: float) -> str | None:
     if det >= -1e-12:
         return None
     return (f"the matrix [[1, {r12:g}, {r13:g}], [{r12:g}, 1, {r23:g}], [{r13:g}, {r23:g}, 1]] "
-            f"is not a valid correlation: it is not positive semi-definite (determinant "
+            f"is not a valid correlation matrix: it is not positive semi-definite (determinant "
             f"{det:.3g} < 0), so no three signals have these coherences (e.g. if two pairs "
             "are fully correlated, the third pair is too)")
 
