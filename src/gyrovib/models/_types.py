@@ -326,4 +326,4 @@ def by_kind(expected: str) -> Discriminator:
 
 
 #: Tags that name a union member in an error's location, not a key of the file.
-TAGS = frozenset(("<mapping>", "<list>", "<text>"))
+TAGS = frozenset(("<mapping>", "<list>", "<text>", "<number>"))

@@ -11,6 +11,9 @@ from gyrovib.models._types import Model, Named, Number, rule_error
 from gyrovib.models.profile import Profile
 from gyrovib.models.sensor import RANGE_BAND, RANGE_WHY, RateUnit, Sensor
 
+#: The acceleration units in which a bare g² sensitivity would be ambiguous.
+_NOT_G = ("m/s^2", "m/s2")
+
 #: The format version this gyrovib reads.
 VERSION = 1
 
@@ -78,6 +81,15 @@ def _unit_rules_schema() -> dict[str, Any]:
 
     rules = [{"if": when(u), "then": band(u)} for u in others]
     rules.append({"if": {"not": {"anyOf": [when(u) for u in others]}}, "then": band(default)})
+    # a g² sensitivity in a file whose acceleration unit is not g carries its unit
+    written = {"not": {"type": "number", "not": {"const": 0}}}
+    rules.append({
+        "if": {"required": ["units"], "properties": {"units": {
+            "required": ["acceleration"], "properties": {"acceleration": {"enum": list(_NOT_G)}}}}},
+        "then": {"properties": {"sensors": {"items": {"properties": {
+            "vre": written, "specs": {"properties": {"vre": written}},
+            "g2_sensitivity": {"additionalProperties": written, "properties": {
+                k: written for k in ("G11", "G22", "G33", "G12", "G13", "G23")}}}}}}}})
     return {"allOf": rules}
 
 
@@ -101,10 +113,17 @@ class Catalogue(Model):
     def _unit_rules(self) -> "Catalogue":
         """The rules that need the file's units: ranges in their band, an absolute
         nonlinearity within the range."""
+        problems = [(i, p) for i, sensor in enumerate(self.sensors)
+                    for p in _range_problems(sensor, self.units.rate)]
+        if self.units.acceleration in _NOT_G:
+            problems += [(i, (loc, value, _bare_g2(loc, value, self.units.rate,
+                                                    self.acceleration_unit)))
+                         for i, sensor in enumerate(self.sensors)
+                         for loc, value in sensor.bare_g2()]
+        problems.sort(key=lambda p: p[0])
         found = [InitErrorDetails(type=rule_error(message), loc=("sensors", i, *loc),
                                   input=value)
-                 for i, sensor in enumerate(self.sensors)
-                 for loc, value, message in _range_problems(sensor, self.units.rate)]
+                 for i, (loc, value, message) in problems]
         if found:
             raise ValidationError.from_exception_data("Catalogue", found)
         return self
@@ -148,3 +167,17 @@ def _range_problems(sensor: Sensor, unit: str) -> list[tuple[tuple[str, ...], fl
                         f"({spec.range:g} {unit}): a residual larger than the full scale "
                         "is not a gyro's nonlinearity"))
     return out
+
+
+def _bare_g2(loc: tuple[str, ...], value: float, rate: str, acceleration: str) -> str:
+    """Why a bare g² sensitivity is refused in a file whose acceleration unit is not g:
+    both readings, and how to write the one meant."""
+    from gyrovib.units import STANDARD_GRAVITY
+
+    ratio = STANDARD_GRAVITY**2
+    key = loc[-1]
+    return (f"a bare g² sensitivity is read per g², but this file's accelerations are in "
+            f"{acceleration}: {value:g} read per g² is {value:g} {rate}/g²; read per "
+            f"({acceleration})² it would be {value * ratio:.4g} {rate}/g², {ratio:.3g}× "
+            f"larger. Write the unit: '{key}: {value:g} {rate}/g^2' (a datasheet's VRE) or "
+            f"'{key}: {{value: {value:g}, unit: {rate}/(m/s^2)^2}}'")

@@ -2,9 +2,19 @@
 response and its g² sensitivity. Values are in the file's units."""
 
 import math
+import re
 from typing import Annotated, Any, ClassVar, Literal, get_args
 
-from pydantic import Field, Tag, field_validator, model_validator
+from pydantic import (
+    AfterValidator,
+    Discriminator,
+    Field,
+    Strict,
+    Tag,
+    WithJsonSchema,
+    field_validator,
+    model_validator,
+)
 
 from gyrovib.errors import CatalogError
 from gyrovib.models._types import (
@@ -22,6 +32,7 @@ from gyrovib.models._types import (
     Text,
     by_kind,
     groups_schema,
+    yaml_kind,
     in_unit,
     one_of,
     raise_at,
@@ -114,6 +125,94 @@ G2_WHY = (" (in its unit: datasheets quote "
           "power, which must stay a finite floating-point number)")
 #: One g² sensitivity term, signed and bounded.
 G2Term = Annotated[Number, Field(ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE), Hint(G2_WHY)]
+#: A g² sensitivity bound (a datasheet VRE), >= 0.
+G2Bound = Annotated[Number, Field(ge=0, le=MAX_MAGNITUDE), Hint(G2_WHY)]
+
+#: How "per acceleration squared" may be written: per g², or per (m/s²)².
+G2_PER = {"g^2": "g", "g²": "g", "(m/s^2)^2": "m/s^2", "(m/s²)²": "m/s^2"}
+#: Every unit a g² sensitivity may be written in: a rate unit per acceleration².
+G2Unit = Literal[tuple(f"{r}/{a}" for r in get_args(RateUnit)  # type: ignore[misc]
+                       for a in G2_PER)]
+_NUMBER = r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"
+#: A g² sensitivity written as text: a number, spaces, a unit ("0.0004 deg/s/g^2").
+G2_TEXT = (rf"^ *({_NUMBER}) +((?:{'|'.join(re.escape(r) for r in get_args(RateUnit))})/"
+           rf"(?:{'|'.join(re.escape(a) for a in G2_PER)})) *$")
+
+
+class G2Quantity(Model):
+    """A g² sensitivity with its unit: a rate unit per g² or per (m/s²)²."""
+
+    value: G2Term = Field(description="The value, in unit; signed.")
+    unit: Annotated[G2Unit, Named("g² sensitivity unit")] = Field(
+        description="A rate unit per g² (deg/s/g^2, a datasheet VRE's) or per (m/s²)² "
+        "(deg/s/(m/s^2)^2).")
+
+    @property
+    def rate_unit(self) -> str:
+        """The rate unit of :attr:`unit` (``deg/s``, ...)."""
+        return str(self.unit).split("/" + self.per, 1)[0]
+
+    @property
+    def per(self) -> str:
+        """The acceleration² part of :attr:`unit` as written (``g^2``, ``(m/s^2)^2``, ...)."""
+        return next(a for a in G2_PER if str(self.unit).endswith("/" + a))
+
+    @property
+    def acceleration_unit(self) -> str:
+        """The acceleration unit squared in :attr:`unit`: ``g`` or ``m/s^2``."""
+        return G2_PER[self.per]
+
+
+class G2BoundQuantity(G2Quantity):
+    """A g² sensitivity bound (a VRE) with its unit; >= 0."""
+
+    value: G2Bound = Field(description="The value, in unit; >= 0.")
+
+
+def _g2_text(value: str) -> G2Quantity:
+    match = re.match(G2_TEXT, value)
+    if match is None:
+        raise rule_error(
+            f"cannot read {value!r} as a g² sensitivity: write a number, a space and a unit, "
+            "a rate unit per g² or per (m/s²)², e.g. '0.0004 deg/s/g^2' "
+            "(rate units: " + ", ".join(get_args(RateUnit)) + "; per " + ", ".join(G2_PER)
+            + ")")
+    return G2Quantity(value=float(match.group(1)), unit=match.group(2))  # type: ignore[arg-type]
+
+
+def _g2_kind(value: Any) -> str | None:
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return "<number>"
+    return yaml_kind(value)
+
+
+def _g2_form(number: Any, quantity: type[G2Quantity], low: float) -> Any:
+    """A g² sensitivity: a bare number (rate per g²), a text such as '0.0004 deg/s/g^2'
+    or a mapping {value, unit}."""
+
+    def bounded(q: G2Quantity) -> G2Quantity:
+        if not low <= q.value <= MAX_MAGNITUDE:
+            raise rule_error(f"{q.value!r} {q.unit} is outside [{low:g}, {MAX_MAGNITUDE:g}]"
+                             f"{G2_WHY}")
+        return q
+
+    return Annotated[
+        Annotated[number, Tag("<number>")]
+        | Annotated[str, Strict(), AfterValidator(_g2_text), AfterValidator(bounded),
+                    WithJsonSchema({"type": "string", "pattern": G2_TEXT}), Tag("<text>")]
+        | Annotated[quantity, Tag("<mapping>")],
+        Discriminator(_g2_kind, custom_error_type="kind", custom_error_message=(
+            "a number (rate per g²), a text such as '0.0004 deg/s/g^2' or a mapping "
+            "{value, unit}"))]
+
+
+#: A signed g² sensitivity term as written.
+G2Value = _g2_form(G2Term, G2Quantity, -MAX_MAGNITUDE)
+#: A g² sensitivity bound (a VRE) as written, >= 0.
+G2BoundValue = _g2_form(G2Bound, G2BoundQuantity, 0.0)
+#: What a g² sensitivity holds once validated: rate per g² (a bare number), or a value
+#: with its unit; :mod:`gyrovib.api` converts it.
+G2Written = float | G2Quantity
 
 
 def _g(text: str) -> Any:
@@ -121,14 +220,15 @@ def _g(text: str) -> Any:
 
 
 class G2Sensitivity(Model):
-    """Acceleration-squared sensitivity (IEEE 528/1431), rate per g², signed."""
+    """Acceleration-squared sensitivity (IEEE 528/1431), signed: each term rate per g²
+    (a bare number), or written with its unit ('0.0004 deg/s/(m/s^2)^2', {value, unit})."""
 
-    G11: G2Term = _g("G11: along x1 squared (a datasheet VRE), rate/g².")
-    G22: G2Term = _g("G22: along x2 squared, rate/g².")
-    G33: G2Term = _g("G33: along x3 squared, rate/g².")
-    G12: G2Term = _g("G12: anisoelastic x1·x2, rate/g².")
-    G13: G2Term = _g("G13: anisoelastic x1·x3, rate/g².")
-    G23: G2Term = _g("G23: anisoelastic x2·x3, rate/g².")
+    G11: G2Value = _g("G11: along x1 squared (a datasheet VRE), rate/g².")
+    G22: G2Value = _g("G22: along x2 squared, rate/g².")
+    G33: G2Value = _g("G33: along x3 squared, rate/g².")
+    G12: G2Value = _g("G12: anisoelastic x1·x2, rate/g².")
+    G13: G2Value = _g("G13: anisoelastic x1·x3, rate/g².")
+    G23: G2Value = _g("G23: anisoelastic x2·x3, rate/g².")
 
 
 # ---------------------------------------------------------------- datasheet
@@ -226,8 +326,10 @@ class Specs(Model):
         description="The nonlinearity spec: value, unit, fit, measure, of.")
     asymmetry: Asymmetry | None = Field(
         None, description="Scale-factor asymmetry bound: |A1| <= value.")
-    vre: Annotated[Number, Field(ge=0, le=MAX_MAGNITUDE), Hint(G2_WHY)] | None = Field(
-        None, description="Vibration rectification bound |G_jj| <= vre, rate per g².",
+    vre: G2BoundValue | None = Field(
+        None, description="Vibration rectification bound |G_jj| <= vre: rate per g² (a bare "
+        "number, as datasheets quote it), or with its unit ('0.0004 deg/s/g^2', "
+        "{value, unit}).",
         json_schema_extra=in_unit("rate/g^2"))
 
 
@@ -291,9 +393,10 @@ class Sensor(Model):
     g2_sensitivity: G2Sensitivity | None = Field(
         None, description="Acceleration-squared sensitivity G_jk, rate per g² "
         "(MODEL.md section 8); an omitted term is 0.", json_schema_extra=in_unit("rate/g^2"))
-    vre: G2Term | None = Field(
+    vre: G2Value | None = Field(
         None, description="Shorthand for g2_sensitivity with G11 = G22 = G33 = vre "
-        "(rate per g², signed) and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
+        "(rate per g², signed; or with its unit, '0.0004 deg/s/g^2' or {value, unit}) "
+        "and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
 
     model_config = Model.model_config | {"json_schema_extra": groups_schema(*_SENSOR_GROUPS)}
 
@@ -312,13 +415,28 @@ class Sensor(Model):
         return str(Response.model_fields["at"].default)
 
     @property
-    def g2(self) -> tuple[float, float, float, float, float, float]:
-        """(G11, G22, G33, G12, G13, G23), rate per (units.acceleration)²; 0 if not given."""
+    def g2(self) -> tuple[G2Written, G2Written, G2Written, G2Written, G2Written, G2Written]:
+        """(G11, G22, G33, G12, G13, G23) as written: a number is in the file's rate unit
+        per g², a :class:`G2Quantity` carries its unit; 0 if not given.
+        :mod:`gyrovib.api` converts them (``api.linear.g2_matrix``)."""
         if self.g2_sensitivity is not None:
             g = self.g2_sensitivity
             return (g.G11, g.G22, g.G33, g.G12, g.G13, g.G23)
-        v = 0.0 if self.vre is None else self.vre
+        v: G2Written = 0.0 if self.vre is None else self.vre
         return (v, v, v, 0.0, 0.0, 0.0)
+
+    def bare_g2(self) -> list[tuple[tuple[str, ...], float]]:
+        """Where a g² sensitivity is a bare number (read per g²), with its value; zeros
+        (the same in every unit) left out."""
+        out: list[tuple[tuple[str, ...], float]] = []
+        if self.g2_sensitivity is not None:
+            out += [(("g2_sensitivity", k), v) for k, v in self.g2_sensitivity
+                    if isinstance(v, float) and v != 0]
+        if isinstance(self.vre, float) and self.vre != 0:
+            out.append((("vre",), self.vre))
+        if self.specs is not None and isinstance(self.specs.vre, float) and self.specs.vre != 0:
+            out.append((("specs", "vre"), self.specs.vre))
+        return out
 
     @property
     def rate_coefficients(self) -> Coefficients:
