@@ -139,7 +139,7 @@ def test_the_limit_is_derived_from_the_float_range() -> None:
     # input-side response, rad/s to deg/s, 64 groups of 64 orders + 64 tones + random
     worst = _types.MAX_MAGNITUDE * _types.MAX_GAIN**2 * (180 / math.pi) * (64 * 64 + 64 + 1)
     assert worst**10 < 1e300  # the 10th power is the highest the model computes
-    assert _types.MAX_VARIANCE == pytest.approx(_types.MAX_MAGNITUDE**2)
+    assert pytest.approx(_types.MAX_MAGNITUDE**2) == _types.MAX_VARIANCE
 
 
 @pytest.mark.parametrize(("r12", "r13", "r23", "valid"), [
@@ -186,7 +186,8 @@ HOSTILE = [
     ("acc-rms-at-cap", PSD_BLOCK, "rms: [1.0e12, 1.0e12, 1.0e12]"),
     ("acc-psd-at-cap", PSD_BLOCK, "psd:\n          x1: [[1, 1.0e24], [1.99, 1.0e24]]"),
     ("acc-psd-past-variance", PSD_BLOCK, "psd:\n          x1: [[1, 1.0e24], [2.01, 1.0e24]]"),
-    ("acc-psd-wide-band", PSD_BLOCK, "psd:\n          x1: [[1.0e-300, 1.0e-10], [1.0e300, 1.0e-10]]"),
+    ("acc-psd-wide-band", PSD_BLOCK,
+     "psd:\n          x1: [[1.0e-300, 1.0e-10], [1.0e300, 1.0e-10]]"),
     ("vre-at-cap", "vre: 4.0e-4", "vre: 1.0e12"),
     ("g2-at-cap", "vre: 4.0e-4", "g2_sensitivity: {G11: -1.0e12, G23: 1.0e12}"),
     ("mount-at-cap", "    random: {rms: [0.1, 0.1, 0.2]}\n",
@@ -249,3 +250,11 @@ def test_psd_variance_closed_forms(table: list[tuple[float, float]], expected: f
 
 def test_psd_variance_overflow_is_inf() -> None:
     assert _types.psd_variance([(1, 1e24), (1e300, 1e24)]) == math.inf
+
+
+def test_g2_units_are_every_rate_unit_per_every_acceleration_squared() -> None:
+    from typing import get_args
+
+    from gyrovib.models.sensor import G2_PER, G2Unit, RateUnit
+
+    assert set(get_args(G2Unit)) == {f"{r}/{a}" for r in get_args(RateUnit) for a in G2_PER}

@@ -281,7 +281,8 @@ def test_unit_changes_change_nothing(amp: float, phase: float, sigma: float, rho
         r = units.scale(rate_unit)  # deg/s per rate unit
 
         def gv(x: float) -> str:  # a g² sensitivity per (acceleration unit)², with its unit
-            return repr(x) if acc_unit == "g" else f"{{value: {x!r}, unit: '{rate_unit}/(m/s^2)^2'}}"
+            unit = f"{rate_unit}/(m/s^2)^2"
+            return repr(x) if acc_unit == "g" else f"{{value: {x!r}, unit: '{unit}'}}"
 
         return f"""
 gyrovib: 1

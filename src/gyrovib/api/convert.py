@@ -36,7 +36,7 @@ def unit_scales(entries: Sequence[SensorEntry] | Sequence[ProfileEntry]) -> Floa
     return np.array(out, dtype=float)
 
 
-def g2_value(value: float | G2Quantity, rate_unit: str) -> float:
+def g2_value(value: float | str | G2Quantity, rate_unit: str) -> float:
     """A g² sensitivity as the catalogue holds it, in deg/s per g².
 
     A bare number is in the file's ``rate_unit`` per g² (as datasheets quote a
@@ -47,6 +47,7 @@ def g2_value(value: float | G2Quantity, rate_unit: str) -> float:
     """
     if isinstance(value, (int, float)):
         return float(value) * units.scale(rate_unit)
+    assert isinstance(value, G2Quantity), "a text form is a G2Quantity once validated"
     a = units.acceleration(value.acceleration_unit)
     return value.value * units.scale(value.rate_unit) / (a * a)
 

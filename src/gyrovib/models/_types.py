@@ -7,6 +7,7 @@ field that carries it (see the model modules); the types here carry none but
 the ones every value of the type shares (a breakpoint's frequency is > 0).
 """
 
+import itertools
 import math
 from collections.abc import Callable
 from typing import Annotated, Any, NamedTuple
@@ -67,8 +68,8 @@ ACCELERATION_WHY = (" (in the file's unit: beyond any physical vibration, and th
                     "floating-point number)")
 GAIN_WHY = (" (80 dB: beyond any mount or sensor resonance, and a gain multiplies every "
             "amplitude the model raises to the 10th power)")
-PSD_WHY = (" (a PSD level in unit²/Hz: the square of the largest rate or acceleration a profile may give, "
-           "1e+12, which keeps the model's powers finite)")
+PSD_WHY = (" (a PSD level in unit²/Hz: the square of the largest rate or acceleration a "
+           "profile may give, 1e+12, which keeps the model's powers finite)")
 
 
 class Model(BaseModel):
@@ -252,7 +253,7 @@ def psd_variance(table: list[tuple[float, float]]) -> float:
     B = −1); computed through logarithms so that no step overflows first.
     """
     total = 0.0
-    for (fa, sa), (fb, sb) in zip(table, table[1:], strict=False):
+    for (fa, sa), (fb, sb) in itertools.pairwise(table):
         if fb <= fa:
             continue
         if sa > 0 and sb > 0:

@@ -147,7 +147,7 @@ def _range_problems(sensor: Sensor, unit: str) -> list[tuple[tuple[str, ...], fl
     out: list[tuple[tuple[str, ...], float, str]] = []
     s = rate_units.scale(unit)
     low, high = range_band(unit)
-    places = [(("range",), sensor.range)]
+    places: list[tuple[tuple[str, ...], float | None]] = [(("range",), sensor.range)]
     if sensor.specs is not None:
         places.append((("specs", "range"), sensor.specs.range))
     for loc, value in places:

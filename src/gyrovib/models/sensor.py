@@ -32,11 +32,11 @@ from gyrovib.models._types import (
     Text,
     by_kind,
     groups_schema,
-    yaml_kind,
     in_unit,
     one_of,
     raise_at,
     rule_error,
+    yaml_kind,
 )
 
 #: Units a rate may be written in (``units.rate``).
@@ -131,8 +131,10 @@ G2Bound = Annotated[Number, Field(ge=0, le=MAX_MAGNITUDE), Hint(G2_WHY)]
 #: How "per acceleration squared" may be written: per g², or per (m/s²)².
 G2_PER = {"g^2": "g", "g²": "g", "(m/s^2)^2": "m/s^2", "(m/s²)²": "m/s^2"}
 #: Every unit a g² sensitivity may be written in: a rate unit per acceleration².
-G2Unit = Literal[tuple(f"{r}/{a}" for r in get_args(RateUnit)  # type: ignore[misc]
-                       for a in G2_PER)]
+G2Unit = Literal[
+    "deg/s/g^2", "deg/s/g²", "deg/s/(m/s^2)^2", "deg/s/(m/s²)²", "deg/h/g^2", "deg/h/g²",
+    "deg/h/(m/s^2)^2", "deg/h/(m/s²)²", "rad/s/g^2", "rad/s/g²", "rad/s/(m/s^2)^2",
+    "rad/s/(m/s²)²", "rpm/g^2", "rpm/g²", "rpm/(m/s^2)^2", "rpm/(m/s²)²"]
 _NUMBER = r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"
 #: A g² sensitivity written as text: a number, spaces, a unit ("0.0004 deg/s/g^2").
 G2_TEXT = (rf"^ *({_NUMBER}) +((?:{'|'.join(re.escape(r) for r in get_args(RateUnit))})/"
@@ -177,7 +179,7 @@ def _g2_text(value: str) -> G2Quantity:
             "a rate unit per g² or per (m/s²)², e.g. '0.0004 deg/s/g^2' "
             "(rate units: " + ", ".join(get_args(RateUnit)) + "; per " + ", ".join(G2_PER)
             + ")")
-    return G2Quantity(value=float(match.group(1)), unit=match.group(2))  # type: ignore[arg-type]
+    return G2Quantity(value=float(match.group(1)), unit=match.group(2))
 
 
 def _g2_kind(value: Any) -> str | None:
@@ -186,33 +188,46 @@ def _g2_kind(value: Any) -> str | None:
     return yaml_kind(value)
 
 
-def _g2_form(number: Any, quantity: type[G2Quantity], low: float) -> Any:
-    """A g² sensitivity: a bare number (rate per g²), a text such as '0.0004 deg/s/g^2'
-    or a mapping {value, unit}."""
-
-    def bounded(q: G2Quantity) -> G2Quantity:
-        if not low <= q.value <= MAX_MAGNITUDE:
-            raise rule_error(f"{q.value!r} {q.unit} is outside [{low:g}, {MAX_MAGNITUDE:g}]"
-                             f"{G2_WHY}")
-        return q
-
-    return Annotated[
-        Annotated[number, Tag("<number>")]
-        | Annotated[str, Strict(), AfterValidator(_g2_text), AfterValidator(bounded),
-                    WithJsonSchema({"type": "string", "pattern": G2_TEXT}), Tag("<text>")]
-        | Annotated[quantity, Tag("<mapping>")],
-        Discriminator(_g2_kind, custom_error_type="kind", custom_error_message=(
-            "a number (rate per g²), a text such as '0.0004 deg/s/g^2' or a mapping "
-            "{value, unit}"))]
+def _in_band(q: G2Quantity, low: float) -> G2Quantity:
+    if not low <= q.value <= MAX_MAGNITUDE:
+        raise rule_error(f"{q.value!r} {q.unit} is outside [{low:g}, {MAX_MAGNITUDE:g}]{G2_WHY}")
+    return q
 
 
-#: A signed g² sensitivity term as written.
-G2Value = _g2_form(G2Term, G2Quantity, -MAX_MAGNITUDE)
+def _signed(q: G2Quantity) -> G2Quantity:
+    return _in_band(q, -MAX_MAGNITUDE)
+
+
+def _non_negative(q: G2Quantity) -> G2Quantity:
+    return _in_band(q, 0.0)
+
+
+_G2_KIND = Discriminator(_g2_kind, custom_error_type="kind", custom_error_message=(
+    "a number (rate per g²), a text such as '0.0004 deg/s/g^2' or a mapping {value, unit}"))
+_G2_TEXT_SCHEMA = WithJsonSchema({"type": "string", "pattern": G2_TEXT})
+
+#: A signed g² sensitivity term as written: a bare number (rate per g²), a text such as
+#: '0.0004 deg/s/g^2' or a mapping {value, unit}.
+G2Value = Annotated[
+    Annotated[G2Term, Tag("<number>")]
+    | Annotated[str, Strict(), AfterValidator(_g2_text), AfterValidator(_signed),
+                _G2_TEXT_SCHEMA, Tag("<text>")]
+    | Annotated[G2Quantity, Tag("<mapping>")], _G2_KIND]
 #: A g² sensitivity bound (a VRE) as written, >= 0.
-G2BoundValue = _g2_form(G2Bound, G2BoundQuantity, 0.0)
+G2BoundValue = Annotated[
+    Annotated[G2Bound, Tag("<number>")]
+    | Annotated[str, Strict(), AfterValidator(_g2_text), AfterValidator(_non_negative),
+                _G2_TEXT_SCHEMA, Tag("<text>")]
+    | Annotated[G2BoundQuantity, Tag("<mapping>")], _G2_KIND]
 #: What a g² sensitivity holds once validated: rate per g² (a bare number), or a value
 #: with its unit; :mod:`gyrovib.api` converts it.
 G2Written = float | G2Quantity
+
+
+def _written(value: Any) -> G2Written:
+    """A validated g² sensitivity (a text has become a :class:`G2Quantity`)."""
+    assert isinstance(value, (float, G2Quantity))
+    return value
 
 
 def _g(text: str) -> Any:
@@ -421,8 +436,9 @@ class Sensor(Model):
         :mod:`gyrovib.api` converts them (``api.linear.g2_matrix``)."""
         if self.g2_sensitivity is not None:
             g = self.g2_sensitivity
-            return (g.G11, g.G22, g.G33, g.G12, g.G13, g.G23)
-        v: G2Written = 0.0 if self.vre is None else self.vre
+            t = [_written(x) for x in (g.G11, g.G22, g.G33, g.G12, g.G13, g.G23)]
+            return (t[0], t[1], t[2], t[3], t[4], t[5])
+        v = 0.0 if self.vre is None else _written(self.vre)
         return (v, v, v, 0.0, 0.0, 0.0)
 
     def bare_g2(self) -> list[tuple[tuple[str, ...], float]]:
