@@ -39,6 +39,7 @@ from gyrovib.models.profile import (
 from gyrovib.models.sensor import (
     Asymmetry,
     Coefficients,
+    G2Quantity,
     G2Sensitivity,
     Nonlinearity,
     OutputCoefficients,
@@ -59,6 +60,7 @@ __all__ = [
     "Asymmetry",
     "Catalogue",
     "Coefficients",
+    "G2Quantity",
     "G2Sensitivity",
     "Harmonics",
     "Nonlinearity",
