@@ -11,6 +11,7 @@ from __future__ import annotations
 import jsonschema
 import pytest
 
+from gyrovib import models
 from gyrovib.catalog.loader import CatalogError, _parse, parse_catalog
 from gyrovib.models.schema import catalog_schema
 
@@ -90,7 +91,7 @@ units: {acceleration: m/s2}
 sensors:
   - id: a
     coefficients: {}
-    vre: -2.5e-4
+    vre: -2.5e-4 deg/s/g^2
     response: [[10, 1.0]]
   - id: b
     coefficients: {}
@@ -109,8 +110,9 @@ profiles:
     assert model.acceleration_unit == "m/s^2"  # m/s2 is another spelling
     assert model.units.acceleration == "m/s2"  # kept as written
     a, b = model.sensors
-    assert a.g2 == (-2.5e-4, -2.5e-4, -2.5e-4, 0.0, 0.0, 0.0)  # signed, G11 = G22 = G33
-    assert a.vre == -2.5e-4 and a.g2_sensitivity is None
+    g = models.G2Quantity(value=-2.5e-4, unit="deg/s/g^2")
+    assert a.g2 == (g, g, g, 0.0, 0.0, 0.0)  # signed, G11 = G22 = G33
+    assert a.vre == g and a.g2_sensitivity is None
     assert (a.response_table, a.response_at) == ([(10.0, 1.0)], "output")  # a bare table: output
     assert (b.response_table, b.response_at) == ([(10.0, 1.0), (20.0, 0.5)], "input")
     assert b.g2 == (0.0,) * 6
@@ -140,7 +142,8 @@ CASES = [
      ("'vre'", "not both")),
     (S + "    coefficients: {}\n    g2_sensitivity: {G21: 1}\n", "G21", ("unknown key 'G21'",)),
     (S + "    coefficients: {}\n    g2_sensitivity: {G11: .inf}\n", ".inf", ("infinities",)),
-    (S + "    coefficients: {}\n    vre: fast\n", "fast", ("must be a number",)),
+    (S + "    coefficients: {}\n    vre: fast\n", "fast",
+     ("cannot read 'fast' as a g² sensitivity", "0.0004 deg/s/g^2")),
     (S + "    coefficients: {}\n    response: {at: middle, table: [[1, 1]]}\n", "middle",
      ("unknown response position 'middle'", "output, input")),
     (S + "    coefficients: {}\n    response: {at: input}\n", "{at: input}",

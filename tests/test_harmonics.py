@@ -283,7 +283,7 @@ def test_two_groups_match_brute_force() -> None:
 
 @pytest.mark.parametrize("omega", [0.0, 0.3, 0.7, 1.1])
 def test_two_groups_alone_e_to_1e_6(omega: float) -> None:
-    # MODEL.md section 4 asks 1e-6 for tones-only mixtures. Reference: brute force,
+    # docs/model.md section 4 asks 1e-6 for tones-only mixtures. Reference: brute force,
     # <|Ω + x3(θ1) + y3(θ2)|> − |Ω| on a 3000 × 3000 midpoint grid of the two periods
     # (its own error, against 8000²: below 1e-7 at these rates). The former
     # 256-node grid over the second group was 2.6e-5 off at Ω = 1.1, 1.2e-6 at 0.7.

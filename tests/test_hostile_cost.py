@@ -3,7 +3,7 @@ runs quickly or is refused before any computation, at the offending key.
 
 The timed sizes (and the before/after figures) are in benchmarks/bench_hostile.py;
 here each case is a located exit 2 or a small but discriminating run. The
-limits are gyrovib's own constants (core/harmonics.py MAX_ORDER, MAX_GROUPS;
+limits are gyrovib's own constants (the models' MAX_ORDER, core/harmonics.py MAX_GROUPS;
 core/phases.py MAX_SEARCH_COST), so a test fails if a refusal goes missing or
 lands on another line.
 """
@@ -95,7 +95,7 @@ def test_a_high_harmonic_order_is_refused_at_its_key(tmp_path: Path, command: tu
     s, p = files(tmp_path, one_group([(1, "[0, 0, 0]"), (order, "[0, 0, 0]")]))
     result = run(*command, s, p)
     # line 10 is the second order; its `order:` value starts at column 19
-    refused_at(result, p, 10, 19, f"harmonic order {order}", "above 64")
+    refused_at(result, p, 10, 19, "must not be greater than 64", f"got {order}")
 
 
 def test_order_64_runs_a_sweep_inside_the_swing_quickly(tmp_path: Path) -> None:

@@ -36,12 +36,16 @@ BASE = {
         {"id": "s.2", "output_coefficients": {"unit": "mV", "K1": 25, "K0": 2.0, "A1": 2e-3,
                                               "K2": 1e-4, "K3": 1, "K4": 0, "K5": 0, "M1": 0,
                                               "M2": 0, "M31": 1, "M32": -1},
-         "g2_sensitivity": {"G11": 1e-4, "G22": 1e-4, "G33": 2e-4, "G12": 0, "G13": -1e-5,
+         # the file's accelerations are in m/s²: a g² sensitivity carries its unit
+         "g2_sensitivity": {"G11": "1.0e-4 deg/h/g^2",
+                            "G22": {"value": 1e-4, "unit": "deg/h/(m/s^2)^2"},
+                            "G33": "2.0e-4 deg/h/(m/s²)²", "G12": 0, "G13": "-1e-5 rpm/g²",
                             "G23": 0}},
         {"id": "s3", "specs": {"range": 100, "nonlinearity": {
             "value": 0.5, "unit": "%FS", "fit": "endpoint", "measure": "rms", "of": "span"},
-            "asymmetry": {"value": 500, "unit": "ppm"}, "vre": 4e-4},
-         "vre": 1e-4, "response": {"at": "input", "table": [[10, 1.0], [500, 0.7]]}},
+            "asymmetry": {"value": 500, "unit": "ppm"},
+            "vre": {"value": 4e-4, "unit": "deg/h/g^2"}},
+         "vre": "1e-4 deg/h/g^2", "response": {"at": "input", "table": [[10, 1.0], [500, 0.7]]}},
     ],
     "profiles": [
         {"id": "p", "name": "P", "notes": "n", "rate": [0, 0, 30],
@@ -70,7 +74,8 @@ VALUES = [None, 0, 1, -1, 0.5, -0.5, 2, 1.5, True, False, "x", "deg/h", "mV", ""
 
 #: Messages of the rules a JSON Schema cannot express.
 INEXPRESSIBLE = ("breakpoint frequencies must increase", "appears more than twice", "given twice",
-                 "two different frequencies", "overflows; check the units of K1")
+                 "two different frequencies", "overflows; check the units of K1",
+                 "not a valid correlation", "integrates to a variance", "is more than the range")
 
 
 def paths(node, prefix=()):
@@ -284,10 +289,10 @@ def test_real_catalogues_are_valid_for_both(path, schema_validator):
 
 
 def test_huge_integer_still_loads():
-    src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n    range: 1180591620717411303424\n"
-                        "    coefficients: {}\n")
+    src = parse_catalog("gyrovib: 1\nsensors:\n  - id: s\n"
+                        "    coefficients: {k2: 1180591620717411303424}\n")
     assert isinstance(src.model, models.Catalogue)
-    assert src.model.sensors[0].range == 2.0**70
+    assert src.model.sensors[0].rate_coefficients.k2 == 2.0**70
 
 
 def test_records_are_immutable():

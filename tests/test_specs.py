@@ -441,12 +441,18 @@ def test_vre_in_a_metres_per_second_squared_file_is_converted_to_g(tmp_path: Pat
     path = tmp_path / "ms2.yaml"
     path.write_text("gyrovib: 1\nunits: {rate: deg/h, acceleration: m/s^2}\nsensors:\n"
                     "  - id: s\n    specs:\n      range: 360000\n      nonlinearity: "
-                    f"{{value: 0.5, unit: '%FS'}}\n      vre: {1.44 / g**2!r}\n" + PROFILES)
+                    f"{{value: 0.5, unit: '%FS'}}\n"
+                    f"      vre: {{value: {1.44 / g**2!r}, unit: deg/h/(m/s^2)^2}}\n" + PROFILES)
     figs = specs.figures(prepare(load([path])).sensors)
     # 1.44 deg/h per g² = 4e-4 deg/s per g²; R = 360000 deg/h = 100 deg/s; b = 0.5 deg/s
     np.testing.assert_allclose(figs.vre, [4e-4], rtol=1e-12)
     np.testing.assert_allclose(figs.range, [100.0], rtol=1e-12)
     np.testing.assert_allclose(figs.limit, [0.5], rtol=1e-12)
+    # written per g², as data sheets do: the same figure, unconverted
+    path.write_text(path.read_text().replace(f"{{value: {1.44 / g**2!r}, unit: deg/h/(m/s^2)^2}}",
+                                             "1.44 deg/h/g^2"))
+    figs = specs.figures(prepare(load([path])).sensors)
+    np.testing.assert_allclose(figs.vre, [4e-4], rtol=1e-12)
 
 
 def test_sweep_plot_draws_the_worst_polynomials_in_a_second_png(tmp_path: Path) -> None:

@@ -16,6 +16,7 @@ from gyrovib.catalog.loader import ProfileEntry, SensorEntry
 from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, VibrationError
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
+from gyrovib.models.sensor import G2Quantity
 
 _RATE_POWERS = np.array([units.COEFFICIENT_RATE_POWER[c] for c in COEFFICIENTS], dtype=float)
 _GET_COEFFICIENTS = operator.attrgetter(*COEFFICIENTS)
@@ -33,6 +34,22 @@ def unit_scales(entries: Sequence[SensorEntry] | Sequence[ProfileEntry]) -> Floa
             s = known[unit] = units.scale(unit)
         out.append(s)
     return np.array(out, dtype=float)
+
+
+def g2_value(value: float | str | G2Quantity, rate_unit: str) -> float:
+    """A g² sensitivity as the catalogue holds it, in deg/s per g².
+
+    A bare number is in the file's ``rate_unit`` per g² (as datasheets quote a
+    VRE, whatever the file's acceleration unit: a bare number where that is not g
+    is refused by the models); a :class:`~gyrovib.models.sensor.G2Quantity` carries
+    its unit, a rate unit per g² or per (m/s²)²: G[deg/s/g²] = v·s_rate / a², a in
+    g per acceleration unit (9.80665⁻¹ for m/s²), so per (m/s²)² is 96.17× per g².
+    """
+    if isinstance(value, (int, float)):
+        return float(value) * units.scale(rate_unit)
+    assert isinstance(value, G2Quantity), "a text form is a G2Quantity once validated"
+    a = units.acceleration(value.acceleration_unit)
+    return value.value * units.scale(value.rate_unit) / (a * a)
 
 
 def coefficient_matrix(entries: Sequence[SensorEntry]) -> FloatArray:

@@ -2,7 +2,8 @@
 
 The catalogue gives a profile's ``acceleration:`` block in its file's
 ``units.acceleration`` (g or m/s²) and a sensor's ``g2_sensitivity`` / ``vre``
-in its rate unit per acceleration unit². Here they become what the engines
+per g² (a bare number, in the file's rate unit) or with its own unit
+(:func:`gyrovib.api.convert.g2_value`). Here they become what the engines
 take: a :class:`~gyrovib.core.linear.LinearVibration` in g at the sensor's
 axes, and G_jk in deg/s per g².
 
@@ -22,6 +23,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from gyrovib import units
+from gyrovib.api.convert import g2_value
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
 from gyrovib.core.linear import LinearVibration, linear_vibration
 from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp, psd_variance
@@ -77,19 +79,9 @@ def profile_linear(entry: ProfileEntry) -> LinearVibration | None:
 def g2_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
     """G_jk of every sensor in deg/s per g², shape (sensors, 6), order G11, G22, G33, G12, G13, G23.
 
-    A sensor gives G in its rate unit per (its acceleration unit)²: G[deg/s/g²]
-    = G·s_rate / a², with s_rate deg/s per rate unit and a g per acceleration
-    unit (:func:`gyrovib.units.acceleration`). Zero where a sensor gives none.
+    A sensor gives G per g² in its file's rate unit (a bare number), or with its
+    own unit (:func:`gyrovib.api.convert.g2_value`). Zero where a sensor gives none.
     """
-    known: dict[tuple[str, str], float] = {}
-    factors = []
-    for e in entries:
-        key = (e.unit, e.acceleration_unit)
-        f = known.get(key)
-        if f is None:
-            a = units.acceleration(e.acceleration_unit)
-            f = known[key] = units.scale(e.unit) / (a * a)
-        factors.append(f)
-    raw = np.array([e.sensor.g2 for e in entries], dtype=float).reshape(len(entries), 6)
-    out: FloatArray = raw * np.array(factors, dtype=float).reshape(-1, 1)
+    out: FloatArray = np.array([[g2_value(g, e.unit) for g in e.sensor.g2] for e in entries],
+                               dtype=float).reshape(len(entries), 6)
     return out

@@ -240,8 +240,7 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
                   phase_search: bool) -> dict[int, Problem]:
     """Profiles whose locked harmonics would cost more than the input's size warrants.
 
-    Refused before any computation, each at the offending key: an order above
-    :data:`~gyrovib.core.harmonics.MAX_ORDER`, more than
+    Refused before any computation, each at the offending key: more than
     :data:`~gyrovib.core.harmonics.MAX_GROUPS` groups, and a ``phase: worst``
     search (with ``phase_search``, over ``rates`` rates and ``sensors`` sensors)
     estimated above :data:`~gyrovib.core.phases.MAX_SEARCH_COST` — four
@@ -251,28 +250,13 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
     problems: dict[int, Problem] = {}
     if not any(p.profile.harmonic_groups for p in entries):
         return problems
-    from gyrovib.core.harmonics import MAX_GROUPS, MAX_ORDER
+    from gyrovib.core.harmonics import MAX_GROUPS
 
     for j, p in enumerate(entries):
         groups = p.profile.harmonic_groups
         if not groups:
             continue
         pid = p.profile.id
-        for gi, h in enumerate(groups):
-            for oi, o in enumerate(h.orders):
-                if o.order > MAX_ORDER:
-                    problems[j] = p.source.problem(
-                        f"profile {pid!r}: harmonic order {o.order} is above {MAX_ORDER}, the "
-                        "highest gyrovib computes (E(Ω) needs the stationary points of the "
-                        f"group's signal, an eigenvalue problem of size 2·order, and 2·{o.order} "
-                        "would take minutes or more memory than there is); give such a high "
-                        "harmonic as an independent tone under 'harmonic' instead",
-                        _harmonics_path(p, gi, "orders", oi, "order"))
-                    break
-            if j in problems:
-                break
-        if j in problems:
-            continue
         if len(groups) > MAX_GROUPS:
             problems[j] = p.source.problem(
                 f"profile {pid!r}: {len(groups)} phase-locked groups, more than {MAX_GROUPS}, "

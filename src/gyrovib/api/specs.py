@@ -36,6 +36,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.convert import g2_value
 from gyrovib.api.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
@@ -49,8 +50,6 @@ if TYPE_CHECKING:
     from gyrovib.api.spec_bounds import selection_fields as selection_fields
     from gyrovib.api.spec_bounds import spec_checks as spec_checks
 
-#: m/s² per g (the standard gravity the catalogue's ``g`` means).
-STANDARD_GRAVITY = 9.80665
 #: Order of the worst polynomial's coefficients (core.envelope.COEFFICIENTS).
 WORST_COEFFICIENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5")
 #: Rate powers of (A1, k2…k5): a coefficient in U is q[deg/s]·s**(-p).
@@ -112,7 +111,6 @@ def figures(entries: Sequence[SensorEntry]) -> SpecFigures:
         a = np.inf
         if spec.asymmetry is not None:
             a = spec.asymmetry.value * (1e-6 if spec.asymmetry.unit == "ppm" else 1e-2)
-        g = 1.0 if e.acceleration_unit == "g" else STANDARD_GRAVITY**2
         rng.append(r)
         lim.append(b)
         pct.append(percent)
@@ -120,7 +118,7 @@ def figures(entries: Sequence[SensorEntry]) -> SpecFigures:
         measures.append(nl.measure)
         ofs.append(of)
         asym.append(abs(a))
-        vre.append(0.0 if spec.vre is None else abs(spec.vre) * s * g)
+        vre.append(0.0 if spec.vre is None else abs(g2_value(spec.vre, e.unit)))
         has.append(spec.vre is not None)
     return SpecFigures(np.array(rng, dtype=float), np.array(lim, dtype=float),
                        np.array(pct, dtype=float), tuple(fits), tuple(measures), tuple(ofs),

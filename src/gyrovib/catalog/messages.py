@@ -268,7 +268,7 @@ _BOUND_WORDS = {">": "must be greater than", ">=": "must not be less than",
 
 def _bound(e: Error, prefix: str, at: str, text: str | None) -> str:
     op, bound = e.ctx["op"], e.ctx["bound"]
-    shown = int(bound) if float(bound).is_integer() else bound
+    shown = int(bound) if float(bound).is_integer() and abs(bound) < 1e7 else f"{bound:g}"
     what = f"{_BOUND_WORDS[op]} {shown}"
     if bound == 0 and op == ">=":
         what = "must not be negative"

@@ -34,10 +34,6 @@ from gyrovib.frozen import Frozen
 
 ComplexArray = NDArray[np.complex128]
 
-#: Highest harmonic order computed: E(Ω) needs the stationary points of x3, the
-#: zeros of a trigonometric polynomial of degree n_max (an eigenvalue problem of
-#: size 2·n_max: 0.03-0.15 s at 64 on a shared 2-core machine, 1-7 s at 256).
-MAX_ORDER = 64
 #: Most locked groups of one profile: E(Ω) averages over the joint phases of the
 #: groups beyond the first (two groups alone: exactly; three would take 256² nodes
 #: per rate, 12 s and 650 MB for a 401-rate sweep, minutes inside the swing).

@@ -39,6 +39,7 @@ from gyrovib.models.profile import (
 from gyrovib.models.sensor import (
     Asymmetry,
     Coefficients,
+    G2Quantity,
     G2Sensitivity,
     Lot,
     Nonlinearity,
@@ -61,6 +62,7 @@ __all__ = [
     "Asymmetry",
     "Catalogue",
     "Coefficients",
+    "G2Quantity",
     "G2Sensitivity",
     "Harmonics",
     "Lot",

@@ -7,6 +7,8 @@ field that carries it (see the model modules); the types here carry none but
 the ones every value of the type shares (a breakpoint's frequency is > 0).
 """
 
+import itertools
+import math
 from collections.abc import Callable
 from typing import Annotated, Any, NamedTuple
 
@@ -36,6 +38,38 @@ ID_PATTERN = r"^[A-Za-z0-9._-]+$"
 ID_TEXT = "Unique id: letters, digits, '.', '_' and '-'."
 FREE_TEXT = "Free text."
 RATE = "in the file's rate unit (units.rate)"
+
+# ---------------------------------------------------------------- physical limits
+#
+# Every magnitude a catalogue gives is bounded so that what the model computes from
+# it stays a finite float (max ~1.8e308). The largest rate at a sensor is a
+# profile's magnitude × a mount's gain × an input-side response's gain × 57.3
+# (rad/s to deg/s) × 4,161 terms (64 groups of 64 orders, 64 tones, the random
+# part): 1e12 × 1e4 × 1e4 × 57.3 × 4161 ≈ 2.4e25 deg/s. The highest power of it
+# the model computes is the 10th (the square, in the RMS, of a fifth-order term):
+# ≈ 6e253, which leaves a factor 1e54 for the sensor's coefficients. An
+# acceleration enters squared (G·a², squared again in the RMS: a⁴·G²).
+
+#: The largest magnitude of a rate or acceleration a profile gives (a tone or
+#: harmonic amplitude, an rms, the carrier rate, the σ a PSD integrates to), in the
+#: file's unit, and of a g² sensitivity in its unit.
+MAX_MAGNITUDE = 1e12
+#: The largest gain of a transmissibility table (a mount, a sensor's response): 80 dB.
+MAX_GAIN = 1e4
+#: The largest level of a PSD breakpoint, unit²/Hz, and the largest variance ∫S df.
+MAX_VARIANCE = 1e24
+assert MAX_VARIANCE == MAX_MAGNITUDE**2 or math.isclose(MAX_VARIANCE, MAX_MAGNITUDE**2)
+#: Why: appended to a magnitude's out-of-bounds message.
+MAGNITUDE_WHY = (" (in the file's unit: beyond any physical vibration, and the model raises "
+                 "the rate at the sensor to the 10th power, which must stay a finite "
+                 "floating-point number)")
+ACCELERATION_WHY = (" (in the file's unit: beyond any physical vibration, and the model "
+                    "raises the acceleration to the 4th power, which must stay a finite "
+                    "floating-point number)")
+GAIN_WHY = (" (80 dB: beyond any mount or sensor resonance, and a gain multiplies every "
+            "amplitude the model raises to the 10th power)")
+PSD_WHY = (" (a PSD level in unit²/Hz: the square of the largest rate or acceleration a "
+           "profile may give, 1e+12, which keeps the model's powers finite)")
 
 
 class Model(BaseModel):
@@ -149,6 +183,13 @@ def one_of(*groups: Group) -> Any:
 
 #: A finite float (an integer is converted); no boolean, no text.
 Number = Annotated[float, Strict(), AllowInfNan(False)]
+#: A rate or acceleration magnitude of a profile, >= 0 (see MAX_MAGNITUDE).
+Magnitude = Annotated[Number, Field(ge=0, le=MAX_MAGNITUDE), Hint(MAGNITUDE_WHY)]
+#: An acceleration magnitude of a profile, >= 0 (see MAX_MAGNITUDE).
+AccelerationMagnitude = Annotated[Number, Field(ge=0, le=MAX_MAGNITUDE), Hint(ACCELERATION_WHY)]
+#: A signed rate of a profile (see MAX_MAGNITUDE).
+SignedMagnitude = Annotated[Number, Field(ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE),
+                            Hint(MAGNITUDE_WHY)]
 
 
 def _integral(value: Any) -> Any:
@@ -202,17 +243,65 @@ def _band(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
     return table
 
 
-Row = tuple[Annotated[Number, Field(gt=0)], Annotated[Number, Field(ge=0)]]
-#: Breakpoints ``[[f Hz > 0, value >= 0], ...]``, frequencies increasing (a repeated
-#: frequency is a step).
+def psd_variance(table: list[tuple[float, float]]) -> float:
+    """∫ S(f) df of a breakpoint table, log-log interpolated between its rows (eq. 6
+    without a gain); inf when it overflows. A segment with a zero end is bounded by
+    its larger level × its width.
+
+    Between (fa, Sa) and (fb, Sb), S = Sa·(f/fa)^B with B = ln(Sb/Sa)/ln(fb/fa), so
+    ∫ = Sa·fa·(e^x − 1)/(B + 1) with x = (B + 1)·ln(fb/fa) (Sa·fa·ln(fb/fa) when
+    B = −1); computed through logarithms so that no step overflows first.
+    """
+    total = 0.0
+    for (fa, sa), (fb, sb) in itertools.pairwise(table):
+        if fb <= fa:
+            continue
+        if sa > 0 and sb > 0:
+            span = math.log(fb) - math.log(fa)
+            b1 = (math.log(sb) - math.log(sa)) / span + 1.0
+            x = b1 * span
+            log_scale = math.log(sa) + math.log(fa)
+            if abs(x) < 1e-12:
+                log_part = log_scale + math.log(span)
+            elif x > 0:
+                log_part = log_scale + x + math.log(-math.expm1(-x)) - math.log(b1)
+            else:
+                log_part = log_scale + math.log(-math.expm1(x)) - math.log(-b1)
+            if log_part > 709.0:
+                return math.inf
+            total += math.exp(log_part)
+        else:
+            total += max(sa, sb) * (fb - fa)
+    return total
+
+
+def _finite_variance(table: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    variance = psd_variance(table)
+    if not variance <= MAX_VARIANCE:
+        raise rule_error(
+            f"this PSD integrates to a variance ∫S df of {variance:.3g} unit², more than "
+            f"{MAX_VARIANCE:g} (an rms of {MAX_MAGNITUDE:g} in its unit): beyond any physical "
+            "vibration, and the model raises the vibration at the sensor to the 4th power "
+            "and beyond, which must stay a finite floating-point number")
+    return table
+
+
+Row = tuple[Annotated[Number, Field(gt=0)],
+            Annotated[Number, Field(ge=0, le=MAX_GAIN), Hint(GAIN_WHY)]]
+PSDRow = tuple[Annotated[Number, Field(gt=0)],
+               Annotated[Number, Field(ge=0, le=MAX_VARIANCE), Hint(PSD_WHY)]]
+#: Transmissibility breakpoints ``[[f Hz > 0, gain in [0, MAX_GAIN]], ...]``,
+#: frequencies increasing (a repeated frequency is a step).
 Table = Annotated[list[Row], Field(min_length=1, max_length=MAX_TABLE),
                   AfterValidator(_ordered)]
-#: A table a PSD is integrated over: two distinct frequencies at least.
+#: A PSD's breakpoints, integrated over: two distinct frequencies at least, levels
+#: and their integral bounded (see MAX_VARIANCE).
 #: (One row is refused by the band rule, whose message says why; the schema says
 #: two rows at least.)
-BandTable = Annotated[list[Row], Field(min_length=1, max_length=MAX_TABLE,
-                                       json_schema_extra={"minItems": 2}),
-                      AfterValidator(_ordered), AfterValidator(_band)]
+BandTable = Annotated[list[PSDRow], Field(min_length=1, max_length=MAX_TABLE,
+                                          json_schema_extra={"minItems": 2}),
+                      AfterValidator(_ordered), AfterValidator(_band),
+                      AfterValidator(_finite_variance)]
 
 
 # ---------------------------------------------------------------- either
@@ -238,4 +327,4 @@ def by_kind(expected: str) -> Discriminator:
 
 
 #: Tags that name a union member in an error's location, not a key of the file.
-TAGS = frozenset(("<mapping>", "<list>", "<text>"))
+TAGS = frozenset(("<mapping>", "<list>", "<text>", "<number>"))

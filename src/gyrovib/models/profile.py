@@ -10,14 +10,17 @@ from gyrovib.models._types import (
     FREE_TEXT,
     ID_TEXT,
     RATE,
+    AccelerationMagnitude,
     AsInteger,
     BandTable,
     Group,
     Hint,
     Identifier,
+    Magnitude,
     Model,
     Named,
     Number,
+    SignedMagnitude,
     Table,
     Text,
     Triple,
@@ -31,10 +34,29 @@ from gyrovib.models._types import (
 
 #: Most harmonic tones (or harmonic orders, or locked groups) of one profile.
 MAX_TONES = 64
+#: The highest order n of a phase-locked harmonic.
+MAX_ORDER = 64
+ORDER_WHY = (f" (the highest order is {MAX_ORDER}: the exact evaluation of a locked group "
+             "samples the fundamental's period finely enough for its highest order, so its "
+             "cost grows with that order)")
 
-NonNegative = Annotated[Number, Field(ge=0)]
-NonNegativeTriple = tuple[NonNegative, NonNegative, NonNegative]
+NonNegativeTriple = tuple[Magnitude, Magnitude, Magnitude]
+AccelerationTriple = tuple[AccelerationMagnitude, AccelerationMagnitude, AccelerationMagnitude]
 Coherence = Annotated[Number, Field(ge=-1, le=1), Hint(" (a coherence lies in [-1, 1])")]
+
+
+def correlation_problem(r12: float, r13: float, r23: float) -> str | None:
+    """Why [[1, r12, r13], [r12, 1, r23], [r13, r23, 1]] is no correlation matrix, or None.
+
+    With every |r| <= 1 the 2×2 minors are >= 0, so the matrix is positive
+    semi-definite exactly when its determinant is >= 0 (to rounding)."""
+    det = 1.0 + 2.0 * r12 * r13 * r23 - r12 * r12 - r13 * r13 - r23 * r23
+    if det >= -1e-12:
+        return None
+    return (f"the matrix [[1, {r12:g}, {r13:g}], [{r12:g}, 1, {r23:g}], [{r13:g}, {r23:g}, 1]] "
+            f"is not a valid correlation matrix: it is not positive semi-definite (determinant "
+            f"{det:.3g} < 0), so no three signals have these coherences (e.g. if two pairs "
+            "are fully correlated, the third pair is too)")
 
 
 def _phase() -> Any:
@@ -91,6 +113,18 @@ class Random(Model):
     model_config = Model.model_config | {"json_schema_extra": groups_schema(*_RANDOM)}
     check_one_of: ClassVar[Any] = one_of(*_RANDOM)
 
+    @model_validator(mode="after")
+    def _correlation(self) -> "Random":
+        """ρ31, ρ32 and ρ12 (the third value, or ρ31·ρ32) form a correlation matrix."""
+        values = tuple(self.coherence)
+        r31, r32 = values[0], values[1]
+        r12 = values[2] if len(values) > 2 else r31 * r32
+        problem = correlation_problem(r12, r31, r32)
+        if problem is not None:
+            raise_at(("coherence",), rule_error(problem),
+                     list(values), "Random")
+        return self
+
 
 # ---------------------------------------------------------------- locked harmonics
 
@@ -115,8 +149,8 @@ PhaseOrWorst = Annotated[
 class Order(Model):
     """One harmonic of a locked group: ``phase`` is a triple (degrees) or ``"worst"``."""
 
-    order: Annotated[int, Strict(), Field(ge=1), AsInteger] = Field(
-        description="The harmonic number n (frequency n·f0); a positive integer.")
+    order: Annotated[int, Strict(), Field(ge=1, le=MAX_ORDER), Hint(ORDER_WHY), AsInteger] = Field(
+        description=f"The harmonic number n (frequency n·f0); an integer from 1 to {MAX_ORDER}.")
     amplitude: NonNegativeTriple = Field(
         description=f"Amplitude per axis x1, x2, x3, {RATE}; >= 0.",
         json_schema_extra=in_unit("rate"))
@@ -169,7 +203,7 @@ class AccelerationTone(Model):
 
     frequency: Annotated[Number, Field(gt=0)] = Field(
         description="Frequency in Hz; > 0.", json_schema_extra=in_unit("Hz"))
-    amplitude: NonNegativeTriple = Field(
+    amplitude: AccelerationTriple = Field(
         description="Amplitude per axis x1, x2, x3, in units.acceleration; >= 0.",
         json_schema_extra=in_unit("acceleration"))
     phase: Triple = _phase()
@@ -195,7 +229,7 @@ class AccelerationRandom(Model):
 
     psd: AccelerationPSD | None = Field(
         None, description="PSD breakpoints per axis, acceleration²/Hz.")
-    rms: NonNegativeTriple | None = Field(
+    rms: AccelerationTriple | None = Field(
         None, description="RMS per axis, in units.acceleration.",
         json_schema_extra=in_unit("acceleration"))
     coherence: tuple[Coherence, Coherence, Coherence] = Field(
@@ -205,6 +239,15 @@ class AccelerationRandom(Model):
     model_config = Model.model_config | {
         "json_schema_extra": groups_schema(*_ACCELERATION_RANDOM)}
     check_one_of: ClassVar[Any] = one_of(*_ACCELERATION_RANDOM)
+
+    @model_validator(mode="after")
+    def _correlation(self) -> "AccelerationRandom":
+        """ρ12, ρ13, ρ23 form a correlation matrix."""
+        problem = correlation_problem(*self.coherence)
+        if problem is not None:
+            raise_at(("coherence",), rule_error(problem), list(self.coherence),
+                     "AccelerationRandom")
+        return self
 
 
 class Acceleration(Model):
@@ -233,8 +276,9 @@ class Profile(Model):
     id: Identifier = Field(description=ID_TEXT)
     name: Text | None = Field(None, description=FREE_TEXT)
     notes: Text | None = Field(None, description=FREE_TEXT)
-    rate: Triple = Field((0.0, 0.0, 0.0), description=f"Carrier rate Ω_K about x1, x2, x3, "
-                         f"{RATE}.", json_schema_extra=in_unit("rate"))
+    rate: tuple[SignedMagnitude, SignedMagnitude, SignedMagnitude] = Field(
+        (0.0, 0.0, 0.0), description=f"Carrier rate Ω_K about x1, x2, x3, {RATE}.",
+        json_schema_extra=in_unit("rate"))
     harmonic: Annotated[list[Tone], Field(max_length=MAX_TONES)] = Field(
         [], description="Harmonic tones of eq. (3), zero or more.")
     random: Random | None = Field(

@@ -2,16 +2,28 @@
 response and its g² sensitivity. Values are in the file's units."""
 
 import math
+import re
 from typing import Annotated, Any, ClassVar, Literal, get_args
 
-from pydantic import Field, Tag, field_validator, model_validator
+from pydantic import (
+    AfterValidator,
+    Discriminator,
+    Field,
+    Strict,
+    Tag,
+    WithJsonSchema,
+    field_validator,
+    model_validator,
+)
 
 from gyrovib.errors import CatalogError
 from gyrovib.models._types import (
     FREE_TEXT,
     ID_TEXT,
+    MAX_MAGNITUDE,
     RATE,
     Group,
+    Hint,
     Identifier,
     Model,
     Named,
@@ -24,6 +36,7 @@ from gyrovib.models._types import (
     one_of,
     raise_at,
     rule_error,
+    yaml_kind,
 )
 from gyrovib.models.uncertainty import LotSpread, Uncertainty
 
@@ -108,23 +121,142 @@ class OutputCoefficients(Model):
 
 # ---------------------------------------------------------------- g² sensitivity
 
+G2_WHY = (" (in its unit: datasheets quote "
+          "about 1e-3 deg/s/g², and the model squares it times the acceleration to the 4th "
+          "power, which must stay a finite floating-point number)")
+#: One g² sensitivity term, signed and bounded.
+G2Term = Annotated[Number, Field(ge=-MAX_MAGNITUDE, le=MAX_MAGNITUDE), Hint(G2_WHY)]
+#: A g² sensitivity bound (a datasheet VRE), >= 0.
+G2Bound = Annotated[Number, Field(ge=0, le=MAX_MAGNITUDE), Hint(G2_WHY)]
+
+#: How "per acceleration squared" may be written: per g², or per (m/s²)².
+G2_PER = {"g^2": "g", "g²": "g", "(m/s^2)^2": "m/s^2", "(m/s²)²": "m/s^2"}
+#: Every unit a g² sensitivity may be written in: a rate unit per acceleration².
+G2Unit = Literal[
+    "deg/s/g^2", "deg/s/g²", "deg/s/(m/s^2)^2", "deg/s/(m/s²)²", "deg/h/g^2", "deg/h/g²",
+    "deg/h/(m/s^2)^2", "deg/h/(m/s²)²", "rad/s/g^2", "rad/s/g²", "rad/s/(m/s^2)^2",
+    "rad/s/(m/s²)²", "rpm/g^2", "rpm/g²", "rpm/(m/s^2)^2", "rpm/(m/s²)²"]
+_NUMBER = r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"
+#: A g² sensitivity written as text: a number, spaces, a unit ("0.0004 deg/s/g^2").
+G2_TEXT = (rf"^ *({_NUMBER}) +((?:{'|'.join(re.escape(r) for r in get_args(RateUnit))})/"
+           rf"(?:{'|'.join(re.escape(a) for a in G2_PER)})) *$")
+
+
+class G2Quantity(Model):
+    """A g² sensitivity with its unit: a rate unit per g² or per (m/s²)²."""
+
+    value: G2Term = Field(description="The value, in unit; signed.")
+    unit: Annotated[G2Unit, Named("g² sensitivity unit")] = Field(
+        description="A rate unit per g² (deg/s/g^2, a datasheet VRE's) or per (m/s²)² "
+        "(deg/s/(m/s^2)^2).")
+
+    @property
+    def rate_unit(self) -> str:
+        """The rate unit of :attr:`unit` (``deg/s``, ...)."""
+        return str(self.unit).split("/" + self.per, 1)[0]
+
+    @property
+    def per(self) -> str:
+        """The acceleration² part of :attr:`unit` as written (``g^2``, ``(m/s^2)^2``, ...)."""
+        return next(a for a in G2_PER if str(self.unit).endswith("/" + a))
+
+    @property
+    def acceleration_unit(self) -> str:
+        """The acceleration unit squared in :attr:`unit`: ``g`` or ``m/s^2``."""
+        return G2_PER[self.per]
+
+
+class G2BoundQuantity(G2Quantity):
+    """A g² sensitivity bound (a VRE) with its unit; >= 0."""
+
+    value: G2Bound = Field(description="The value, in unit; >= 0.")
+
+
+def _g2_text(value: str) -> G2Quantity:
+    match = re.match(G2_TEXT, value)
+    if match is None:
+        raise rule_error(
+            f"cannot read {value!r} as a g² sensitivity: write a number, a space and a unit, "
+            "a rate unit per g² or per (m/s²)², e.g. '0.0004 deg/s/g^2' "
+            "(rate units: " + ", ".join(get_args(RateUnit)) + "; per " + ", ".join(G2_PER)
+            + ")")
+    return G2Quantity(value=float(match.group(1)), unit=match.group(2))
+
+
+def _g2_kind(value: Any) -> str | None:
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return "<number>"
+    return yaml_kind(value)
+
+
+def _in_band(q: G2Quantity, low: float) -> G2Quantity:
+    if not low <= q.value <= MAX_MAGNITUDE:
+        raise rule_error(f"{q.value!r} {q.unit} is outside [{low:g}, {MAX_MAGNITUDE:g}]{G2_WHY}")
+    return q
+
+
+def _signed(q: G2Quantity) -> G2Quantity:
+    return _in_band(q, -MAX_MAGNITUDE)
+
+
+def _non_negative(q: G2Quantity) -> G2Quantity:
+    return _in_band(q, 0.0)
+
+
+_G2_KIND = Discriminator(_g2_kind, custom_error_type="kind", custom_error_message=(
+    "a number (rate per g²), a text such as '0.0004 deg/s/g^2' or a mapping {value, unit}"))
+_G2_TEXT_SCHEMA = WithJsonSchema({"type": "string", "pattern": G2_TEXT})
+
+#: A signed g² sensitivity term as written: a bare number (rate per g²), a text such as
+#: '0.0004 deg/s/g^2' or a mapping {value, unit}.
+G2Value = Annotated[
+    Annotated[G2Term, Tag("<number>")]
+    | Annotated[str, Strict(), AfterValidator(_g2_text), AfterValidator(_signed),
+                _G2_TEXT_SCHEMA, Tag("<text>")]
+    | Annotated[G2Quantity, Tag("<mapping>")], _G2_KIND]
+#: A g² sensitivity bound (a VRE) as written, >= 0.
+G2BoundValue = Annotated[
+    Annotated[G2Bound, Tag("<number>")]
+    | Annotated[str, Strict(), AfterValidator(_g2_text), AfterValidator(_non_negative),
+                _G2_TEXT_SCHEMA, Tag("<text>")]
+    | Annotated[G2BoundQuantity, Tag("<mapping>")], _G2_KIND]
+#: What a g² sensitivity holds once validated: rate per g² (a bare number), or a value
+#: with its unit; :mod:`gyrovib.api` converts it.
+G2Written = float | G2Quantity
+
+
+def _written(value: Any) -> G2Written:
+    """A validated g² sensitivity (a text has become a :class:`G2Quantity`)."""
+    assert isinstance(value, (float, G2Quantity))
+    return value
+
 
 def _g(text: str) -> Any:
     return Field(0.0, description=text, json_schema_extra=in_unit("rate/g^2"))
 
 
 class G2Sensitivity(Model):
-    """Acceleration-squared sensitivity (IEEE 528/1431), rate per g², signed."""
+    """Acceleration-squared sensitivity (IEEE 528/1431), signed: each term rate per g²
+    (a bare number), or written with its unit ('0.0004 deg/s/(m/s^2)^2', {value, unit})."""
 
-    G11: Number = _g("G11: along x1 squared (a datasheet VRE), rate/g².")
-    G22: Number = _g("G22: along x2 squared, rate/g².")
-    G33: Number = _g("G33: along x3 squared, rate/g².")
-    G12: Number = _g("G12: anisoelastic x1·x2, rate/g².")
-    G13: Number = _g("G13: anisoelastic x1·x3, rate/g².")
-    G23: Number = _g("G23: anisoelastic x2·x3, rate/g².")
+    G11: G2Value = _g("G11: along x1 squared (a datasheet VRE), rate/g².")
+    G22: G2Value = _g("G22: along x2 squared, rate/g².")
+    G33: G2Value = _g("G33: along x3 squared, rate/g².")
+    G12: G2Value = _g("G12: anisoelastic x1·x2, rate/g².")
+    G13: G2Value = _g("G13: anisoelastic x1·x3, rate/g².")
+    G23: G2Value = _g("G23: anisoelastic x2·x3, rate/g².")
 
 
 # ---------------------------------------------------------------- datasheet
+
+#: The band a full-scale range may lie in, deg/s (converted to the file's rate unit).
+RANGE_BAND = (1e-3, 1e7)
+RANGE_WHY = ("from a slow-rate gyro's milli-degree per second to ten million deg/s "
+             "(28,000 revolutions per second), beyond any spinning body a gyro is put on")
+#: The largest nonlinearity in %FS: a residual larger than the full scale is no gyro.
+MAX_NONLINEARITY_PERCENT = 100.0
+#: The largest scale-factor asymmetry, in %.
+MAX_ASYMMETRY_PERCENT = 100.0
 
 
 class Nonlinearity(Model):
@@ -148,10 +280,18 @@ class Nonlinearity(Model):
         {"if": {"required": ["unit"], "properties": {"unit": {"enum": list(get_args(RateUnit))}}},
          "then": {"not": {"required": ["of"]}}},
         {"not": {"required": ["measure", "fit"], "properties": {
-            "measure": {"const": "rms"}, "fit": {"const": "minimax"}}}}]}}
+            "measure": {"const": "rms"}, "fit": {"const": "minimax"}}}},
+        {"if": {"required": ["unit"], "properties": {"unit": {"const": "%FS"}}},
+         "then": {"properties": {"value": {"maximum": MAX_NONLINEARITY_PERCENT}}}}]}}
 
     @model_validator(mode="after")
     def _rules(self) -> "Nonlinearity":
+        if self.unit == "%FS" and self.value > MAX_NONLINEARITY_PERCENT:
+            raise_at(("value",), rule_error(
+                f"a nonlinearity of {self.value:g} %FS is more than "
+                f"{MAX_NONLINEARITY_PERCENT:g} %FS: a residual larger than the full scale "
+                "is not a gyro's nonlinearity (check the unit: ppm of FS is 1e-4 %FS)"),
+                self.value, "Nonlinearity")
         if "of" in self.model_fields_set and self.unit != "%FS":
             raise_at(("of",), rule_error(
                 f"'of' applies to a nonlinearity in %FS only; {self.value!r} "
@@ -171,6 +311,20 @@ class Asymmetry(Model):
     unit: Annotated[Literal["ppm", "%"], Named("asymmetry unit")] = Field(
         description="ppm or %.")
 
+    model_config = Model.model_config | {"json_schema_extra": {"allOf": [
+        {"if": {"required": ["unit"], "properties": {"unit": {"const": unit}}},
+         "then": {"properties": {"value": {"maximum": MAX_ASYMMETRY_PERCENT * per_percent}}}}
+        for unit, per_percent in (("%", 1.0), ("ppm", 1e4))]}}
+
+    @model_validator(mode="after")
+    def _bounded(self) -> "Asymmetry":
+        if self.value > MAX_ASYMMETRY_PERCENT * (1e4 if self.unit == "ppm" else 1.0):
+            raise_at(("value",), rule_error(
+                f"an asymmetry of {self.value:g} {self.unit} is more than "
+                f"{MAX_ASYMMETRY_PERCENT:g} % ({MAX_ASYMMETRY_PERCENT * 1e4:g} ppm): the two "
+                "scale factors would differ by more than their mean"), self.value, "Asymmetry")
+        return self
+
 
 class Specs(Model):
     """A sensor given by its datasheet (docs/model.md section 11).
@@ -188,8 +342,10 @@ class Specs(Model):
         description="The nonlinearity spec: value, unit, fit, measure, of.")
     asymmetry: Asymmetry | None = Field(
         None, description="Scale-factor asymmetry bound: |A1| <= value.")
-    vre: Annotated[Number, Field(ge=0)] | None = Field(
-        None, description="Vibration rectification bound |G_jj| <= vre, rate per g².",
+    vre: G2BoundValue | None = Field(
+        None, description="Vibration rectification bound |G_jj| <= vre: rate per g² (a bare "
+        "number, as datasheets quote it), or with its unit ('0.0004 deg/s/g^2', "
+        "{value, unit}).",
         json_schema_extra=in_unit("rate/g^2"))
 
 
@@ -262,9 +418,10 @@ class Sensor(Model):
     g2_sensitivity: G2Sensitivity | None = Field(
         None, description="Acceleration-squared sensitivity G_jk, rate per g² "
         "(docs/model.md section 8); an omitted term is 0.", json_schema_extra=in_unit("rate/g^2"))
-    vre: Number | None = Field(
+    vre: G2Value | None = Field(
         None, description="Shorthand for g2_sensitivity with G11 = G22 = G33 = vre "
-        "(rate per g², signed) and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
+        "(rate per g², signed; or with its unit, '0.0004 deg/s/g^2' or {value, unit}) "
+        "and no cross terms.", json_schema_extra=in_unit("rate/g^2"))
     uncertainty: Uncertainty | None = Field(
         None, description="Standard uncertainties and correlations of the coefficients "
         "(docs/model.md section 14); only beside 'coefficients'.")
@@ -298,13 +455,29 @@ class Sensor(Model):
         return str(Response.model_fields["at"].default)
 
     @property
-    def g2(self) -> tuple[float, float, float, float, float, float]:
-        """(G11, G22, G33, G12, G13, G23), rate per (units.acceleration)²; 0 if not given."""
+    def g2(self) -> tuple[G2Written, G2Written, G2Written, G2Written, G2Written, G2Written]:
+        """(G11, G22, G33, G12, G13, G23) as written: a number is in the file's rate unit
+        per g², a :class:`G2Quantity` carries its unit; 0 if not given.
+        :mod:`gyrovib.api` converts them (``api.linear.g2_matrix``)."""
         if self.g2_sensitivity is not None:
             g = self.g2_sensitivity
-            return (g.G11, g.G22, g.G33, g.G12, g.G13, g.G23)
-        v = 0.0 if self.vre is None else self.vre
+            t = [_written(x) for x in (g.G11, g.G22, g.G33, g.G12, g.G13, g.G23)]
+            return (t[0], t[1], t[2], t[3], t[4], t[5])
+        v = 0.0 if self.vre is None else _written(self.vre)
         return (v, v, v, 0.0, 0.0, 0.0)
+
+    def bare_g2(self) -> list[tuple[tuple[str, ...], float]]:
+        """Where a g² sensitivity is a bare number (read per g²), with its value; zeros
+        (the same in every unit) left out."""
+        out: list[tuple[tuple[str, ...], float]] = []
+        if self.g2_sensitivity is not None:
+            out += [(("g2_sensitivity", k), v) for k, v in self.g2_sensitivity
+                    if isinstance(v, float) and v != 0]
+        if isinstance(self.vre, float) and self.vre != 0:
+            out.append((("vre",), self.vre))
+        if self.specs is not None and isinstance(self.specs.vre, float) and self.specs.vre != 0:
+            out.append((("specs", "vre"), self.specs.vre))
+        return out
 
     @property
     def rate_coefficients(self) -> Coefficients:
