@@ -23,6 +23,7 @@ from __future__ import annotations
 from typing import Any
 
 from gyrovib.models.catalogue import VERSION, Allocation, Catalogue, Units
+from gyrovib.models.mission import AxisPlacement, Mission, Segment
 from gyrovib.models.profile import (
     MAX_TONES,
     PSD,
@@ -57,16 +58,19 @@ __all__ = [
     "AccelerationTone",
     "Allocation",
     "Asymmetry",
+    "AxisPlacement",
     "Catalogue",
     "Coefficients",
     "G2Sensitivity",
     "Harmonics",
+    "Mission",
     "Nonlinearity",
     "Order",
     "OutputCoefficients",
     "Profile",
     "Random",
     "Response",
+    "Segment",
     "Sensor",
     "Specs",
     "Tone",
