@@ -189,3 +189,41 @@ def budget_arguments(budget: str, unit: str | None, rate: str | None,
     unit = resolve_unit(unit, budget)
     return {"unit": unit, "rate": parse_rate_option(rate, unit),
             "budget": parse_budget(budget, unit), "allocation": parse_allocation(allocation)}
+
+
+def placement_option(f: F) -> F:
+    return click.option(
+        "--placement", metavar="P",
+        help="How the sensor sits in the vehicle (profiles are in vehicle axes X, Y, Z; "
+             "MODEL.md section 12): x1=+Y,x2=+Z,x3=+X (a rotation), or triad (x3 on +X, "
+             "+Y and +Z in turn). Default x1=+X,x2=+Y,x3=+Z.",
+    )(f)
+
+
+def parse_placement(text: str | None) -> Any:
+    """``--placement`` → a :class:`gyrovib.core.placement.Placement`, the triad's tuple,
+    or None (the one parser: :func:`gyrovib.core.placement.parse`)."""
+    if text is None:
+        return None
+    from gyrovib.core.placement import parse
+
+    try:
+        return parse(text)
+    except ValueError as exc:
+        raise OptionError(f"--placement {text!r}: {exc}") from None
+
+
+def parse_angle_budget(text: str) -> float:
+    """``--angle-budget`` (``0.5deg``, ``2 mrad``) → θ* in radians; positive, finite."""
+    import re
+
+    from gyrovib.core.mission import ANGLE_IN_RAD
+
+    m = re.match(r"^\s*([-+]?(?:[0-9]*\.?[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*([A-Za-zµ]+)\s*$", text)
+    if m is None or m.group(2) not in ANGLE_IN_RAD:
+        raise OptionError(f"--angle-budget {text!r}: give a number with an angle unit "
+                          f"({', '.join(ANGLE_IN_RAD)}), e.g. 0.5deg or '2 mrad'")
+    value = float(m.group(1)) * ANGLE_IN_RAD[m.group(2)]
+    if not (math.isfinite(value) and value > 0):
+        raise OptionError(f"--angle-budget {text!r}: the angle budget must be positive")
+    return value
