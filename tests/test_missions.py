@@ -1,0 +1,357 @@
+"""Missions and placements (MODEL.md section 12): the aggregates against per-segment
+analyze results worked by hand, the spec-form mission worst case against an independent
+LP, placements against profiles permuted by hand, and invariants."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from gyrovib import api
+from gyrovib.api.placement import place_catalog
+from gyrovib.catalog.loader import merge, parse_catalog
+from gyrovib.core.placement import Placement, parse
+from tests.conftest import invoke
+
+# A coefficient sensor with odd, even and cross-axis terms, so that sign flips,
+# permutations and coherences all move its error.
+SENSOR = """\
+gyrovib: 1
+units: {rate: deg/s}
+sensors:
+  - id: s
+    coefficients: {A1: 2.0e-3, k2: 3.0e-4, k3: 2.0e-6, k4: 1.0e-7, m31: 5.0e-4, m32: -3.0e-4}
+"""
+
+# A profile in vehicle axes with a different value on every axis.
+PROFILE = """\
+  - id: veh
+    rate: [1.0, 2.0, 3.0]
+    harmonic:
+      - {frequency: 50, amplitude: [1.0, 2.0, 3.0], phase: [10, 40, 70]}
+      - {frequency: 120, amplitude: [0.5, 0.25, 1.5], phase: [0, 90, 200]}
+    random: {rms: [0.7, 1.1, 1.9], coherence: [0.4, -0.3, 0.25]}
+"""
+
+
+def _catalog(*texts: str):  # type: ignore[no-untyped-def]
+    return merge([parse_catalog(t, f"<{k}>") for k, t in enumerate(texts)])
+
+
+def _profiles(*items: str) -> str:
+    return "gyrovib: 1\nprofiles:\n" + "".join(items)
+
+
+def _analyze(catalog) -> np.ndarray:  # type: ignore[no-untyped-def]
+    return np.asarray(api.analyze(catalog).error.total)
+
+
+# ---------------------------------------------------------------- placements by hand
+
+# x1=-X, x2=-Y, x3=+Z (two flips, det +1): rates of X and Y negate, their tones' phases
+# gain 180°, ρ31 and ρ32 change sign (one flipped axis each), ρ12 does not (two).
+FLIPPED = """\
+  - id: veh
+    rate: [-1.0, -2.0, 3.0]
+    harmonic:
+      - {frequency: 50, amplitude: [1.0, 2.0, 3.0], phase: [190, 220, 70]}
+      - {frequency: 120, amplitude: [0.5, 0.25, 1.5], phase: [180, 270, 200]}
+    random: {rms: [0.7, 1.1, 1.9], coherence: [-0.4, 0.3, 0.25]}
+"""
+# x1=+Y, x2=+Z, x3=+X (cyclic): sensor axes read (Y, Z, X); ρ31' = corr(X, Y) = ρ12,
+# ρ32' = corr(X, Z) = ρ31, ρ12' = corr(Y, Z) = ρ32.
+CYCLIC = """\
+  - id: veh
+    rate: [2.0, 3.0, 1.0]
+    harmonic:
+      - {frequency: 50, amplitude: [2.0, 3.0, 1.0], phase: [40, 70, 10]}
+      - {frequency: 120, amplitude: [0.25, 1.5, 0.5], phase: [90, 200, 0]}
+    random: {rms: [1.1, 1.9, 0.7], coherence: [0.25, 0.4, -0.3]}
+"""
+# x1=+Z, x2=+X, x3=+Y: sensor axes read (Z, X, Y); ρ31' = corr(Y, Z) = ρ32,
+# ρ32' = corr(Y, X) = ρ12, ρ12' = corr(Z, X) = ρ31.
+CYCLIC2 = """\
+  - id: veh
+    rate: [3.0, 1.0, 2.0]
+    harmonic:
+      - {frequency: 50, amplitude: [3.0, 1.0, 2.0], phase: [70, 10, 40]}
+      - {frequency: 120, amplitude: [1.5, 0.5, 0.25], phase: [200, 0, 90]}
+    random: {rms: [1.9, 0.7, 1.1], coherence: [-0.3, 0.25, 0.4]}
+"""
+
+
+@pytest.mark.parametrize(("placement", "by_hand"), [
+    ("x1=-X,x2=-Y,x3=+Z", FLIPPED),
+    ("x1=+Y,x2=+Z,x3=+X", CYCLIC),
+    ("x1=+Z,x2=+X,x3=+Y", CYCLIC2),
+])
+def test_a_placed_profile_is_the_profile_permuted_by_hand(placement: str, by_hand: str) -> None:
+    placed = _analyze(place_catalog(_catalog(SENSOR, _profiles(PROFILE)), parse(placement)))
+    hand = _analyze(_catalog(SENSOR, _profiles(by_hand)))
+    plain = _analyze(_catalog(SENSOR, _profiles(PROFILE)))
+    np.testing.assert_allclose(placed, hand, rtol=1e-12, atol=0)
+    assert not np.allclose(placed, plain)  # the placement does move the error
+
+
+def test_a_triad_is_the_three_hand_permuted_profiles() -> None:
+    mission = """\
+gyrovib: 1
+missions:
+  - id: m
+    placement: triad
+    segments: [{profile: veh, duration: 60}]
+"""
+    result = api.mission(_catalog(SENSOR, _profiles(PROFILE), mission), unit="deg/s")
+    by_axis = {r.axis: r.mean for r in result.rows}
+    # x3 on X: (x1, x2) = (+Y, +Z) is CYCLIC; on Y: (+Z, +X) is CYCLIC2; on Z: the profile
+    expected = {"X": _analyze(_catalog(SENSOR, _profiles(CYCLIC)))[0, 0],
+                "Y": _analyze(_catalog(SENSOR, _profiles(CYCLIC2)))[0, 0],
+                "Z": _analyze(_catalog(SENSOR, _profiles(PROFILE)))[0, 0]}
+    assert by_axis == pytest.approx(expected, rel=1e-12)
+    worst = max(expected, key=lambda a: abs(expected[a]))
+    assert {r.worst_axis for r in result.rows} == {worst}
+
+
+_axis = st.floats(0.0, 3.0)
+_phase = st.floats(-180.0, 180.0)
+_rho = st.floats(-0.5, 0.5)
+
+
+@given(rate=st.tuples(st.floats(-5, 5), st.floats(-5, 5), st.floats(-5, 5)),
+       amp=st.tuples(_axis, _axis, _axis), phase=st.tuples(_phase, _phase, _phase),
+       rms=st.tuples(_axis, _axis, _axis), rho=st.tuples(_rho, _rho, _rho))
+def test_the_default_placement_and_full_turns_change_nothing(rate, amp, phase, rms, rho):  # type: ignore[no-untyped-def]
+    """The default placement is the identity; so are three cyclic turns and a double
+    flip through the general mapping (each step maps every part of the profile)."""
+    text = _profiles(
+        f"  - id: veh\n    rate: {list(rate)}\n"
+        f"    harmonic: [{{frequency: 80, amplitude: {list(amp)}, phase: {list(phase)}}}]\n"
+        f"    random: {{rms: {list(rms)}, coherence: {list(rho)}}}\n")
+    catalog = _catalog(SENSOR, text)
+    plain = _analyze(catalog)
+    assert np.array_equal(_analyze(place_catalog(catalog, parse("default"))), plain)
+    turn = parse("x1=+Y,x2=+Z,x3=+X")
+    flip = parse("x1=-X,x2=-Y,x3=+Z")
+    assert isinstance(turn, Placement) and isinstance(flip, Placement)
+    turned = place_catalog(place_catalog(place_catalog(catalog, turn), turn), turn)
+    flipped = place_catalog(place_catalog(catalog, flip), flip)
+    np.testing.assert_allclose(_analyze(turned), plain, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(_analyze(flipped), plain, rtol=1e-9, atol=1e-15)
+
+
+# ---------------------------------------------------------------- aggregates by hand
+
+TWO_PROFILES = """\
+  - id: hover
+    rate: [0, 0, 2]
+    random: {rms: [0.5, 0.5, 1.5]}
+  - id: turn
+    harmonic: [{frequency: 100, amplitude: [1, 0.5, 2]}]
+"""
+# 'turn' at the segment's rate 10 deg/s about Z, written out by hand
+TURN_AT_10 = """\
+  - id: turn10
+    rate: [0, 0, 10]
+    harmonic: [{frequency: 100, amplitude: [1, 0.5, 2]}]
+"""
+MISSION = """\
+gyrovib: 1
+units: {rate: deg/h}
+missions:
+  - id: flight
+    segments:
+      - {profile: hover, duration: 10 min}
+      - {profile: turn, duration: 60, rate: [0, 0, 36000]}
+      - {profile: hover, duration: 2 min}
+"""
+
+
+def test_mean_angle_rms_and_worst_segment_by_hand() -> None:
+    # the segments' Δ_V and Δ_V(RMS) from analyze, each profile as written by hand
+    per = api.analyze(_catalog(SENSOR, _profiles(TWO_PROFILES, TURN_AT_10)),
+                      profiles=["hover", "turn10"], unit="deg/h")
+    d_hover, d_turn = (float(v) for v in per.error.total[0])
+    r_hover, r_turn = (float(v) for v in per.error.rms[0])
+    t = [600.0, 60.0, 120.0]  # 10 min, 60 s, 2 min; 36000 deg/h = 10 deg/s
+    d = [d_hover, d_turn, d_hover]
+    r = [r_hover, r_turn, r_hover]
+    theta_deg = sum(a * b for a, b in zip(t, d, strict=True)) / 3600.0  # deg/h × s → deg
+    mean = theta_deg * 3600.0 / sum(t)
+    rms = math.sqrt(sum(a * b * b for a, b in zip(t, r, strict=True)) / sum(t))
+    result = api.mission(_catalog(SENSOR, _profiles(TWO_PROFILES), MISSION), unit="deg/h")
+    (row,) = result.rows
+    assert result.angle_unit == "deg"
+    assert row.mean == pytest.approx(mean, rel=1e-12)
+    assert row.angle == pytest.approx(theta_deg, rel=1e-12)
+    assert row.rms == pytest.approx(rms, rel=1e-12)
+    worst = int(np.argmax(np.abs(d)))
+    assert (row.worst_index, row.worst_profile) == (worst, ["hover", "turn", "hover"][worst])
+    assert [s.total for s in row.segments] == pytest.approx(d, rel=1e-12)
+    assert row.segments[1].rate == pytest.approx((0.0, 0.0, 36000.0))
+    # in rad/s the angle is in rad
+    rad = api.mission(_catalog(SENSOR, _profiles(TWO_PROFILES), MISSION), unit="rad/s")
+    assert rad.angle_unit == "rad"
+    assert rad.rows[0].angle == pytest.approx(math.radians(theta_deg), rel=1e-12)
+
+
+def test_splitting_a_segment_changes_nothing() -> None:
+    one = MISSION.replace("- {profile: hover, duration: 10 min}",
+                          "- {profile: hover, duration: 4 min}\n"
+                          "      - {profile: hover, duration: 360}")
+    a = api.mission(_catalog(SENSOR, _profiles(TWO_PROFILES), MISSION)).rows[0]
+    b = api.mission(_catalog(SENSOR, _profiles(TWO_PROFILES), one)).rows[0]
+    assert len(b.segments) == 4
+    assert (b.mean, b.angle, b.rms) == pytest.approx((a.mean, a.angle, a.rms), rel=1e-13)
+
+
+def test_saturation_in_one_segment_fails_the_mission() -> None:
+    ranged = SENSOR.replace("  - id: s\n", "  - id: s\n    range: 20\n")
+    text = MISSION.replace("rate: [0, 0, 36000]", "rate: [0, 0, 72000]")  # 20 deg/s + tones
+    result = api.mission(_catalog(ranged, _profiles(TWO_PROFILES), text),
+                         angle_budget=1.0)  # 1 rad: the angle alone would pass
+    (row,) = result.rows
+    assert row.saturated and [s.saturated for s in row.segments] == [False, True, False]
+    assert row.passed is False and not result.requirement_met
+
+
+# ---------------------------------------------------------------- datasheet sensors
+
+SPEC = """\
+gyrovib: 1
+sensors:
+  - id: ds
+    specs:
+      range: 300
+      nonlinearity: {value: 0.1, unit: "%FS"}
+"""
+R, B = 300.0, 0.3  # 0.1 %FS of a 300 deg/s range, least-squares line, max measure
+UNIT_SENSORS = "".join(
+    f"  - id: unit-{name}\n    coefficients: {{{name}: {scale}}}\n"
+    for name, scale in (("A1", 1e-3), ("k2", 1e-5), ("k3", 1e-7), ("k4", 1e-9), ("k5", 1e-11)))
+SCALES = np.array([1e-3, 1e-5, 1e-7, 1e-9, 1e-11])
+
+
+def _functionals(profiles: str) -> np.ndarray:
+    """c_s per profile: Δ_V is linear in x = (A1, k2…k5), so a sensor with one unit
+    coefficient gives one column (analyze of coefficient sensors, no envelope code)."""
+    cat = _catalog("gyrovib: 1\nsensors:\n" + UNIT_SENSORS, _profiles(profiles))
+    return np.asarray(api.analyze(cat).error.total).T / SCALES  # (P, 5)
+
+
+def _lp_worst(c: np.ndarray) -> float:
+    """max |c·x| over |p(ω) − LS line of p| ≤ b on a fine grid of [−R, R] (scipy)."""
+    from scipy.optimize import linprog
+
+    w = np.linspace(-R, R, 4001)
+    basis = np.stack([0.5 * np.abs(w), w**2, w**3, w**4, w**5], axis=1)
+    line = np.stack([np.ones_like(w), w], axis=1)
+    proj = line @ np.linalg.lstsq(line, basis, rcond=None)[0]
+    resid = basis - proj                                              # r(ω) = resid · x
+    # scale the variables to order 1: x_k = u_k / R^(k+1) ... R^k
+    s = np.array([1.0, R**-1, R**-2, R**-3, R**-4])
+    a = resid * s
+    res = linprog(-(c * s), A_ub=np.vstack([a, -a]), b_ub=np.full(2 * w.size, B),
+                  bounds=[(None, None)] * 5, method="highs")
+    assert res.status == 0
+    return float(-res.fun)
+
+
+MIXED = """\
+  - id: slow
+    rate: [0, 0, 1]
+    random: {rms: [0, 0, 20]}
+  - id: fast
+    rate: [0, 0, 150]
+    harmonic: [{frequency: 100, amplitude: [0, 0, 5]}]
+"""
+
+
+def test_spec_mission_worst_case_is_one_programme_against_an_lp() -> None:
+    mission = """\
+gyrovib: 1
+missions:
+  - id: m
+    segments: [{profile: slow, duration: 300}, {profile: fast, duration: 100}]
+"""
+    c = _functionals(MIXED)                                           # (2, 5)
+    weights = np.array([300.0, 100.0]) / 400.0
+    lp = _lp_worst(weights @ c)
+    result = api.mission(_catalog(SPEC, _profiles(MIXED), mission))
+    (row,) = result.rows
+    assert row.source == "specs"
+    assert row.mean == pytest.approx(lp, rel=2e-3)  # grid LP vs refined continuous LP
+    assert row.angle == pytest.approx(row.mean * 400.0, rel=1e-12)
+    # each segment's own worst case, and their duration-weighted sum: strictly larger
+    per = [_lp_worst(ci) for ci in c]
+    assert [s.total for s in row.segments] == pytest.approx(per, rel=2e-3)
+    summed = float(weights @ np.array([s.total for s in row.segments]))
+    assert row.mean < summed * (1 - 1e-3)
+
+
+def test_spec_mission_equals_the_sum_when_one_function_is_worst_everywhere() -> None:
+    # the same profile at two durations: one polynomial is worst for both segments
+    mission = """\
+gyrovib: 1
+missions:
+  - id: m
+    segments: [{profile: slow, duration: 300}, {profile: slow, duration: 100, rate: [0, 0, 1]}]
+"""
+    (row,) = api.mission(_catalog(SPEC, _profiles(MIXED), mission)).rows
+    summed = (300.0 * row.segments[0].total + 100.0 * row.segments[1].total) / 400.0
+    assert row.mean == pytest.approx(summed, rel=1e-9)
+
+
+# ---------------------------------------------------------------- the command
+
+def test_bundled_mission_prints_angle_and_worst_segment() -> None:
+    result = invoke("mission", "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    doc = json.loads(result.stdout)
+    assert doc["angle_unit"] == "deg" and doc["unit"] == "deg/h"
+    rows = doc["mission"]
+    assert {r["mission"] for r in rows} == {"survey-flight"}
+    assert {r["axis"] for r in rows} == {"X", "Y", "Z"}
+    for r in rows:
+        assert set(r) >= {"sensor", "mission", "placement", "mean", "angle", "rms",
+                          "worst_segment", "segments", "saturated", "pass", "axis",
+                          "worst_axis"}
+        assert r["angle"] == pytest.approx(
+            sum(s["duration"] * s["total"] for s in r["segments"]) / 3600.0, rel=1e-9) \
+            or r["source"] == "specs"
+    table = invoke("mission")
+    assert "survey-flight" in table.stdout and "flat-random-hover" in table.stdout
+
+
+def test_angle_budget_exits_1_when_no_sensor_passes() -> None:
+    mems = ["--sensor", "adxrs645", "--sensor", "sch16t", "--sensor", "generic-rate-mems"]
+    result = invoke("mission", *mems, "--angle-budget", "0.5deg")
+    assert result.exit_code == 1
+    assert "FAIL" in result.stdout
+    ok = invoke("mission", "--sensor", "generic-navigation-fog", "--angle-budget", "0.5deg",
+                "--format", "junit")
+    assert ok.exit_code == 0 and 'failures="0"' in ok.stdout
+
+
+def test_angle_budget_units_and_refusals() -> None:
+    r = invoke("mission", "--sensor", "generic-navigation-fog", "--angle-budget", "2 mrad",
+               "--format", "json")
+    assert r.exit_code == 0
+    assert json.loads(r.stdout)["angle_budget"] == pytest.approx(math.degrees(2e-3))
+    bad = invoke("mission", "--angle-budget", "0.5")
+    assert bad.exit_code == 2 and "angle unit" in bad.stderr
+    both = invoke("mission", "--angle-budget", "1deg", "--budget", "1")
+    assert both.exit_code == 2
+
+
+def test_csv_and_frame_have_one_row_per_sensor_mission_axis() -> None:
+    result = api.mission(api.load(), sensors=["generic-navigation-fog"])
+    frame = result.to_frame()
+    assert len(frame) == 3 and list(frame["axis"]) == ["X", "Y", "Z"]
+    csv = invoke("mission", "--sensor", "generic-navigation-fog", "--format", "csv").stdout
+    assert csv.splitlines()[0].split(",") == list(frame.columns)
+    assert len(csv.splitlines()) == 4
