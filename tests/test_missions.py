@@ -355,3 +355,48 @@ def test_csv_and_frame_have_one_row_per_sensor_mission_axis() -> None:
     csv = invoke("mission", "--sensor", "generic-navigation-fog", "--format", "csv").stdout
     assert csv.splitlines()[0].split(",") == list(frame.columns)
     assert len(csv.splitlines()) == 4
+
+
+# ---------------------------------------------------------------- --placement on the commands
+
+
+def test_analyze_placement_option_against_a_hand_permuted_file(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    veh = tmp_path / "veh.yaml"
+    veh.write_text(SENSOR + "profiles:\n" + PROFILE, encoding="utf-8")
+    hand = tmp_path / "hand.yaml"
+    hand.write_text(SENSOR + "profiles:\n" + CYCLIC, encoding="utf-8")
+    placed = invoke("analyze", veh, "--placement", "x1=+Y,x2=+Z,x3=+X", "--format", "json")
+    by_hand = invoke("analyze", hand, "--format", "json")
+    assert placed.exit_code == 0 and by_hand.exit_code == 0
+    assert json.loads(placed.stdout)["results"] == json.loads(by_hand.stdout)["results"]
+
+
+def test_analyze_triad_tags_each_result_with_its_axis(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    veh = tmp_path / "veh.yaml"
+    veh.write_text(SENSOR + "profiles:\n" + PROFILE, encoding="utf-8")
+    doc = json.loads(invoke("analyze", veh, "--placement", "triad", "--format", "json").stdout)
+    totals = {r["axis"]: r["total"] for r in doc["results"]}
+    for axis, text in (("X", CYCLIC), ("Y", CYCLIC2), ("Z", PROFILE)):
+        expected = _analyze(_catalog(SENSOR, _profiles(text)))[0, 0]
+        assert totals[axis] == pytest.approx(expected, rel=1e-12)
+    assert doc["worst_axis"] == {"s": max(totals, key=lambda a: abs(totals[a]))}
+    assert doc["placement"] == "triad"
+
+
+def test_select_triad_fails_a_sensor_failing_on_one_axis(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    # all vibration on X: the sensor is quiet with x3 on Z, loud with x3 on X
+    text = SENSOR + "profiles:\n  - id: xonly\n    random: {rms: [3.0, 0, 0]}\n"
+    path = tmp_path / "x.yaml"
+    path.write_text(text, encoding="utf-8")
+    plain = invoke("select", path, "--budget", "1e-3", "--criterion", "rms")
+    assert plain.exit_code == 0, plain.stdout  # x3 on Z: no x3 vibration, no error
+    triad = invoke("select", path, "--budget", "1e-3", "--criterion", "rms",
+                   "--placement", "triad", "--format", "json")
+    assert triad.exit_code == 1
+    doc = json.loads(triad.stdout)
+    assert doc["worst_axis"] == {"s": "X"} and doc["requirement_met"] is False
+
+
+def test_a_mirror_placement_option_is_refused() -> None:
+    result = invoke("analyze", "--placement", "x1=+Y,x2=+X,x3=+Z")
+    assert result.exit_code == 2 and "determinant -1" in result.stderr

@@ -21,6 +21,7 @@ from gyrovib.cli.options import (
     parse_rate_option,
     parse_unit,
     peak_factor_option,
+    placement_option,
     rate_option,
     selection_options,
     unit_option,
@@ -43,6 +44,7 @@ from gyrovib.cli.recording import recording_options
 @rate_option
 @unit_option
 @peak_factor_option
+@placement_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
 @click.option("--recording", metavar="RECORDING",
@@ -51,7 +53,7 @@ from gyrovib.cli.recording import recording_options
 @recording_options
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
             method: str, samples: int, seed: int, rate: str | None, unit: str,
-            peak_factor: float, fmt: str,
+            peak_factor: float, placement: str | None, fmt: str,
             output: str | None, recording: str | None, **rec: Any) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 
@@ -78,10 +80,21 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         refuse_with_recording(profiles=profiles, rate=rate, method=method)
         analyze_recording(recording, catalog, sensors, unit, fmt, output, rec)
         return
+    from gyrovib.cli.placement import is_triad, run_placed, write_triad
+
     with progress_bar("brute force", enabled=method == "numeric") as advance:
-        result = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
-                             rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
-                             seed=seed, progress=advance, peak_factor=peak_factor)
+        result = run_placed(api.analyze, catalog, placement, fmt, sensors=sensors,
+                            profiles=profiles, method=method,
+                            rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
+                            seed=seed, progress=advance, peak_factor=peak_factor)
+    if is_triad(result):
+        write_triad(result, lambda r: render.to_table(r, color=use_color(output),
+                                                      width=page_width(output),
+                                                      ascii=plain_ascii(output))
+                    if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
+                                            "markdown": render.to_markdown}[fmt](r),
+                    fmt, output)
+        return
     if fmt == "table":
         note_slow_table(len(result.sensors) * len(result.profiles))
         write_output(render.to_table(result, color=use_color(output), width=page_width(output),

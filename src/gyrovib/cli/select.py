@@ -21,6 +21,7 @@ from gyrovib.cli.options import (
     format_option,
     output_option,
     peak_factor_option,
+    placement_option,
     selection_options,
 )
 from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
@@ -40,6 +41,7 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
                    "worst: |Δ_V| ≤ budget (a datasheet sensor over its envelope); both: "
                    "bounds and rms. A saturating sensor fails whatever the criterion.")
 @spec_weights_option
+@placement_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
@@ -49,7 +51,8 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
-           spec_weights: str | None, require: str, fmt: str, output: str | None) -> None:
+           spec_weights: str | None, placement: str | None, require: str, fmt: str,
+           output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its frequency response where it acts at its
@@ -69,9 +72,20 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     github_errors(fmt == "github")
     catalog = load_catalog(files)
     split = budget_arguments(budget, unit, rate, allocation)
-    result = api.select(catalog, sensors=sensors, profiles=profiles, method=method, **split,
-                        criterion=criterion, require=require,
-                        spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor)
+    from gyrovib.cli.placement import is_triad, run_placed, write_triad
+
+    result = run_placed(api.select, catalog, placement, fmt, sensors=sensors,
+                        profiles=profiles, method=method, **split, criterion=criterion,
+                        require=require, spec_weights=parse_spec_weights(spec_weights),
+                        peak_factor=peak_factor)
+    if is_triad(result):  # table, json, csv or markdown, per axis, and the worst axes
+        write_triad(result, lambda one: render.to_table(
+            one, color=use_color(output), width=page_width(output), ascii=plain_ascii(output))
+            if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
+                                    "markdown": render.to_markdown}[fmt](one), fmt, output)
+        if not result.requirement_met:
+            ctx.exit(1)
+        return
     if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
         note_slow_table(2 * len(result.sensors))
         text = render.to_table(result, color=use_color(output), width=page_width(output),
