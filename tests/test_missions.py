@@ -400,3 +400,17 @@ def test_select_triad_fails_a_sensor_failing_on_one_axis(tmp_path) -> None:  # t
 def test_a_mirror_placement_option_is_refused() -> None:
     result = invoke("analyze", "--placement", "x1=+Y,x2=+X,x3=+Z")
     assert result.exit_code == 2 and "determinant -1" in result.stderr
+
+
+def test_select_on_a_mission_is_the_mission_verdict() -> None:
+    args = ["--sensor", "sch16t", "--sensor", "generic-navigation-fog", "--format", "json"]
+    direct = invoke("mission", "--mission", "survey-flight", "--angle-budget", "0.5deg", *args)
+    chosen = invoke("select", "--mission", "survey-flight", "--angle-budget", "0.5deg", *args)
+    assert direct.exit_code == chosen.exit_code == 0
+    assert json.loads(direct.stdout) == json.loads(chosen.stdout)
+    # only the MEMS part: nothing passes, exit 1; --budget (on the mean RMS) alike
+    assert invoke("select", "--mission", "survey-flight", "--angle-budget", "0.5deg",
+                  "--sensor", "sch16t").exit_code == 1
+    assert invoke("select", "--mission", "survey-flight", "--budget", "1deg/h",
+                  "--sensor", "sch16t").exit_code == 1
+    assert invoke("select").exit_code == 2  # without a mission --budget is still required

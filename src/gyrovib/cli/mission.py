@@ -82,3 +82,41 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
     write_output(text, output)
     if not result.requirement_met:
         ctx.exit(1)
+
+
+def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tuple[str, ...],
+                   profiles: tuple[str, ...], budget: str | None, angle_budget: str | None,
+                   unit: str | None, placement: str | None, peak_factor: float,
+                   require: str, fmt: str, output: str | None) -> bool:
+    """``select --mission ID``: the mission's verdicts in select's formats; returns
+    whether the --require condition is met."""
+    from gyrovib import api, units
+    from gyrovib.cli.output import write_output
+    from gyrovib.errors import OptionError
+    from gyrovib.render import mission as render
+
+    if mission_id is None:
+        raise OptionError("--angle-budget needs --mission ID (select on a mission)")
+    if profiles:
+        raise OptionError("--mission selects on the mission's own profiles: drop --profile")
+    if (budget is None) == (angle_budget is None):
+        raise OptionError("with --mission give --budget (on the mean RMS) or --angle-budget "
+                          "(on the angle), one of them")
+    if fmt == "github":
+        raise OptionError("--mission: use --format table, json, csv, markdown or junit")
+    unit = parse_unit(unit) if unit is not None else (
+        (units.quantity_unit(budget) if budget is not None else None) or "deg/h")
+    result = api.mission(
+        load_catalog(files), missions=(mission_id,), sensors=sensors,
+        budget=None if budget is None else parse_budget(budget, unit),
+        angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
+        unit=unit, require=require, placement=parse_placement(placement),
+        peak_factor=peak_factor)
+    if fmt == "table":
+        text = render.to_table(result, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output))
+    else:
+        text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
+                "junit": render.to_junit}[fmt](result)
+    write_output(text, output)
+    return result.requirement_met

@@ -42,6 +42,12 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
                    "bounds and rms. A saturating sensor fails whatever the criterion.")
 @spec_weights_option
 @placement_option
+@click.option("--mission", "mission", metavar="ID",
+              help="Select on this mission instead of profiles (MODEL.md section 12): "
+                   "--budget on the mean RMS Δ̄_RMS, or --angle-budget on |θ_V|.")
+@click.option("--angle-budget", "angle_budget", metavar="A",
+              help="With --mission: θ* on the accumulated angle, with an angle unit "
+                   "(0.5deg, '2 mrad'); --budget is then not needed.")
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
@@ -49,10 +55,10 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @output_option
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
-           profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
+           profiles: tuple[str, ...], budget: str | None, method: str, rate: str | None,
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
-           spec_weights: str | None, placement: str | None, require: str, fmt: str,
-           output: str | None) -> None:
+           spec_weights: str | None, placement: str | None, mission: str | None,
+           angle_budget: str | None, require: str, fmt: str, output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its frequency response where it acts at its
@@ -70,6 +76,16 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
 
     text: str | Iterator[str]  # the JSON document is streamed
     github_errors(fmt == "github")
+    if mission is not None or angle_budget is not None:
+        from gyrovib.cli.mission import select_mission
+
+        met = select_mission(files, mission, sensors, profiles, budget, angle_budget, unit,
+                             placement, peak_factor, require, fmt, output)
+        if not met:
+            ctx.exit(1)
+        return
+    if budget is None:
+        raise click.UsageError("Missing option '--budget'.", ctx)
     catalog = load_catalog(files)
     split = budget_arguments(budget, unit, rate, allocation)
     from gyrovib.cli.placement import is_triad, run_placed, write_triad
@@ -100,3 +116,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     write_output(text, output)
     if not result.requirement_met:
         ctx.exit(1)
+
+
+for _param in select.params:  # --budget is not needed with --mission --angle-budget
+    if _param.name == "budget":
+        _param.required = False
