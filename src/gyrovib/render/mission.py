@@ -35,8 +35,8 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
     return f"Δ̄_RMS = {fmt(row.rms)} {result.unit} > {fmt(result.budget)} {result.unit}"
 
 
-_HEAD = ["sensor", "mission", "axis", "mean Δ̄_V", "angle θ_V", "mean RMS", "worst segment",
-         "verdict"]
+_HEAD = ["sensor", "mission", "axis", "mean Δ̄_V", "angle θ_V", "mean RMS Δ̄_RMS",
+         "worst segment", "verdict"]
 
 
 def _cells(result: MissionResult, row: MissionRow) -> list[str]:
@@ -44,7 +44,7 @@ def _cells(result: MissionResult, row: MissionRow) -> list[str]:
     axis = "-" if row.axis is None else row.axis + (" (worst)" if row.axis == row.worst_axis
                                                     else "")
     return [row.sensor, row.mission, axis, fmt(row.mean), fmt(row.angle), fmt(row.rms),
-            f"{row.worst_index + 1}: {w.profile} ({fmt(w.total)})",
+            f"{row.worst_index + 1} {w.profile} ({fmt(w.total)})",
             _verdict(row.passed) + (" (saturated)" if row.saturated else "")]
 
 
@@ -59,13 +59,15 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
     head[3] += f" ({result.unit})"
     head[4] += f" ({result.angle_unit})"
     head[5] += f" ({result.unit})"
-    for k, label in enumerate(head):
-        table.add_column(label, justify="right" if 3 <= k <= 5 else "left", no_wrap=True)
+    keep = [k for k in range(len(head)) if k != 1 or len(result.missions) > 1]  # in the title
+    for k in keep:
+        table.add_column(head[k], justify="right" if 3 <= k <= 5 else "left", no_wrap=True)
     for row in result.rows:
-        table.add_row(*_cells(result, row))
+        cells = _cells(result, row)
+        table.add_row(*(cells[k] for k in keep))
     out: list[Any] = [table]
     notes = ["mean Δ̄_V = Σ T_s·Δ_V,s / Σ T_s; angle θ_V = Σ T_s·Δ_V,s; mean RMS = "
-             "√(Σ T_s·Δ_V(RMS),s² / Σ T_s); worst segment: number: profile (its Δ_V,s) "
+             "√(Σ T_s·Δ_V(RMS),s² / Σ T_s); worst segment: its number, profile and Δ_V,s "
              "(MODEL.md section 12)."]
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
