@@ -13,10 +13,12 @@ from gyrovib.errors import OptionError
 def run_placed(command: Callable[..., Any], catalog: Any, placement: str | None, fmt: str,
                **options: Any) -> Any:
     """``command(catalog, **options)`` under ``--placement`` (a TriadResult for triad)."""
+    parsed = parse_placement(placement)
+    if parsed is None:
+        return command(catalog, **options)
     from gyrovib.api.triad import placed
     from gyrovib.render.triad import TRIAD_FORMATS
 
-    parsed = parse_placement(placement)
     if isinstance(parsed, tuple) and fmt not in TRIAD_FORMATS:
         raise OptionError(f"--placement triad: use --format {', '.join(TRIAD_FORMATS)} "
                           f"(not {fmt})")
