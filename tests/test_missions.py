@@ -414,3 +414,24 @@ def test_select_on_a_mission_is_the_mission_verdict() -> None:
     assert invoke("select", "--mission", "survey-flight", "--budget", "1deg/h",
                   "--sensor", "sch16t").exit_code == 1
     assert invoke("select").exit_code == 2  # without a mission --budget is still required
+
+
+def test_report_gains_a_mission_section(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    out = tmp_path / "r.html"
+    result = invoke("report", "--budget", "10deg/h", "--profile", "flat-random-hover",
+                    "--sensor", "sch16t", "--sensor", "generic-tactical-fog",
+                    "--mission", "survey-flight", "--angle-budget", "0.5deg", "-o", out)
+    assert result.exit_code == 0, result.stderr
+    html = out.read_text(encoding="utf-8")
+    section = html[html.index("<h2>Missions</h2>"):]
+    assert "Accumulated angle |θ_V| over survey-flight" in section
+    assert "θ* = 0.5 deg" in section
+    doc = json.loads(invoke("mission", "--sensor", "sch16t", "--sensor", "generic-tactical-fog",
+                            "--format", "json").stdout)
+    for r in doc["mission"]:
+        if r["axis"] == r["worst_axis"]:  # the report shows each sensor's worst axis
+            from gyrovib.render.common import fmt
+
+            assert f"{r['sensor']} with x3 on {r['axis']}: θ_V = {fmt(r['angle'])} deg" in section
+    # one table row per segment (8) per sensor shown (2), and a header row each
+    assert section.count("<tr") == 2 * (8 + 1)

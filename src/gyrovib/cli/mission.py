@@ -120,3 +120,16 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
                 "junit": render.to_junit}[fmt](result)
     write_output(text, output)
     return result.requirement_met
+
+
+def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
+                    angle_budget: str | None, unit: str, peak_factor: float) -> str:
+    """``report --mission``: the HTML of the mission section."""
+    from gyrovib import api
+    from gyrovib.render.report_mission import mission_section as section
+
+    result = api.mission(
+        catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
+        angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
+        unit=unit, peak_factor=peak_factor)
+    return section(result)

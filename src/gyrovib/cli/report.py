@@ -40,11 +40,17 @@ DEFAULT_OUTPUT = "report.html"
               help="Add a recording (MODEL.md section 13): its PSD against the fitted "
                    "profile, the honesty of the fit, Δ_V,rec beside the closed form; the "
                    "fitted profile joins the study's profiles.")
+@click.option("--mission", "missions", multiple=True, metavar="ID",
+              help="Add a mission section (repeatable): per sensor the angle θ_V against "
+                   "--angle-budget and the per-segment breakdown (MODEL.md section 12).")
+@click.option("--angle-budget", "angle_budget", metavar="A",
+              help="θ* of the mission section, with an angle unit (0.5deg, '2 mrad').")
 @recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, require: str, rate_range: str | None,
-           output: str, recording: str | None, **rec: Any) -> None:
+           output: str, recording: str | None, missions: tuple[str, ...],
+           angle_budget: str | None, **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -75,6 +81,11 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
+    if missions:
+        from gyrovib.cli.mission import mission_section
+
+        section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
+                                   peak_factor)
     write_output(to_html(result, section), output)
     if output not in ("-", ""):
         say(f"gyrovib: wrote {output}")
