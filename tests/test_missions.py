@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gyrovib import api
@@ -199,14 +199,22 @@ def test_mean_angle_rms_and_worst_segment_by_hand() -> None:
     assert rad.rows[0].angle == pytest.approx(math.radians(theta_deg), rel=1e-12)
 
 
-def test_splitting_a_segment_changes_nothing() -> None:
-    one = MISSION.replace("- {profile: hover, duration: 10 min}",
-                          "- {profile: hover, duration: 4 min}\n"
-                          "      - {profile: hover, duration: 360}")
-    a = api.mission(_catalog(SENSOR, _profiles(TWO_PROFILES), MISSION)).rows[0]
-    b = api.mission(_catalog(SENSOR, _profiles(TWO_PROFILES), one)).rows[0]
-    assert len(b.segments) == 4
-    assert (b.mean, b.angle, b.rms) == pytest.approx((a.mean, a.angle, a.rms), rel=1e-13)
+@settings(max_examples=15)
+@given(fraction=st.floats(0.01, 0.99), seconds=st.floats(1.0, 1e5))
+def test_splitting_a_segment_changes_nothing(fraction: float, seconds: float) -> None:
+    """A segment split in two of the same profile: the same mean, angle and RMS, for a
+    coefficient sensor and for a datasheet sensor's whole-mission worst case."""
+    first = seconds * fraction
+    whole = MISSION.replace("duration: 10 min", f"duration: {seconds!r}")
+    split = MISSION.replace("- {profile: hover, duration: 10 min}",
+                            f"- {{profile: hover, duration: {first!r}}}\n"
+                            f"      - {{profile: hover, duration: {seconds - first!r}}}")
+    profiles = _profiles(TWO_PROFILES)
+    a = api.mission(_catalog(SENSOR, SPEC, profiles, whole)).rows
+    b = api.mission(_catalog(SENSOR, SPEC, profiles, split)).rows
+    for x, y in zip(a, b, strict=True):
+        assert len(y.segments) == len(x.segments) + 1
+        assert (y.mean, y.angle, y.rms) == pytest.approx((x.mean, x.angle, x.rms), rel=1e-9)
 
 
 def test_saturation_in_one_segment_fails_the_mission() -> None:

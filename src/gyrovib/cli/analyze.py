@@ -78,6 +78,11 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         from gyrovib.cli.recording import analyze_recording, refuse_with_recording
 
         refuse_with_recording(profiles=profiles, rate=rate, method=method)
+        if placement is not None:
+            from gyrovib.errors import OptionError
+
+            raise OptionError("--placement maps catalogue profiles; with --recording give "
+                              "the recording's columns in sensor axes (--rate-columns)")
         analyze_recording(recording, catalog, sensors, unit, fmt, output, rec)
         return
     from gyrovib.cli.placement import is_triad, run_placed, write_triad
