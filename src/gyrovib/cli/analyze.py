@@ -42,9 +42,9 @@ from gyrovib.cli.recording import recording_options
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               metavar="S", help="numeric: random seed; the same seed gives the same numbers.")
 @rate_option
+@placement_option
 @unit_option
 @peak_factor_option
-@placement_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
 @click.option("--recording", metavar="RECORDING",
@@ -52,8 +52,9 @@ from gyrovib.cli.recording import recording_options
                    "the fitted profile's closed form; see `gyrovib profile` for its options.")
 @recording_options
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
+            placement: str | None,
             method: str, samples: int, seed: int, rate: str | None, unit: str,
-            peak_factor: float, placement: str | None, fmt: str,
+            peak_factor: float, fmt: str,
             output: str | None, recording: str | None, **rec: Any) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 

@@ -135,7 +135,10 @@ def _echo_interrupted(code: int) -> None:
 #: (or ``--help`` lists them all).
 _COMMANDS = {name: f"gyrovib.cli.{name}"
              for name in ("analyze", "bounds", "select", "sweep", "report", "validate", "schema",
-                          "fit", "profile", "mission")}
+                          "fit", "profile")}
+
+
+_COMMANDS["mission"] = "gyrovib.cli.mission"
 
 
 class _Group(click.Group):

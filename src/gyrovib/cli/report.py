@@ -47,10 +47,10 @@ DEFAULT_OUTPUT = "report.html"
               help="θ* of the mission section, with an angle unit (0.5deg, '2 mrad').")
 @recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
+           missions: tuple[str, ...], angle_budget: str | None,
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, require: str, rate_range: str | None,
-           output: str, recording: str | None, missions: tuple[str, ...],
-           angle_budget: str | None, **rec: Any) -> None:
+           output: str, recording: str | None, **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -78,14 +78,14 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
 
         catalog, profiles, section = report_recording(recording, catalog, sensors, profiles,
                                                       split["unit"], rec)
-    result = studies.trade_study(
-        catalog, sensors=sensors, profiles=profiles, method=method, **split,
-        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
-    if missions:
+    if missions:  # after the recording's section, before the profiles
         from gyrovib.cli.mission import mission_section
 
         section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
                                    peak_factor)
+    result = studies.trade_study(
+        catalog, sensors=sensors, profiles=profiles, method=method, **split,
+        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor)
     write_output(to_html(result, section), output)
     if output not in ("-", ""):
         say(f"gyrovib: wrote {output}")

@@ -32,6 +32,13 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @selection_options
 @budget_options
 @peak_factor_option
+@placement_option
+@click.option("--mission", "mission", metavar="ID",
+              help="Select on this mission instead of profiles (MODEL.md section 12): "
+                   "--budget on the mean RMS Δ̄_RMS, or --angle-budget on |θ_V|.")
+@click.option("--angle-budget", "angle_budget", metavar="A",
+              help="With --mission: θ* on the accumulated angle, with an angle unit "
+                   "(0.5deg, '2 mrad'); --budget is then not needed.")
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
               default="bounds", show_default=True,
               help="What a pass means: bounds: every coefficient within its bound (the "
@@ -41,13 +48,6 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
                    "worst: |Δ_V| ≤ budget (a datasheet sensor over its envelope); both: "
                    "bounds and rms. A saturating sensor fails whatever the criterion.")
 @spec_weights_option
-@placement_option
-@click.option("--mission", "mission", metavar="ID",
-              help="Select on this mission instead of profiles (MODEL.md section 12): "
-                   "--budget on the mean RMS Δ̄_RMS, or --angle-budget on |θ_V|.")
-@click.option("--angle-budget", "angle_budget", metavar="A",
-              help="With --mission: θ* on the accumulated angle, with an angle unit "
-                   "(0.5deg, '2 mrad'); --budget is then not needed.")
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes under "
                    "every chosen profile.")
@@ -55,10 +55,10 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @output_option
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
+           placement: str | None, mission: str | None, angle_budget: str | None,
            profiles: tuple[str, ...], budget: str | None, method: str, rate: str | None,
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
-           spec_weights: str | None, placement: str | None, mission: str | None,
-           angle_budget: str | None, require: str, fmt: str, output: str | None) -> None:
+           spec_weights: str | None, require: str, fmt: str, output: str | None) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its frequency response where it acts at its

@@ -21,6 +21,5 @@ def validate(files: tuple[str, ...], fmt: str) -> None:
     """
     github_errors(fmt == "github")
     catalog = load_catalog(files)
-    missions = f", {len(catalog.missions)} mission(s)" if catalog.missions else ""
     say(f"{len(files)} file(s) valid: {len(catalog.sensors)} sensor(s), "
-        f"{len(catalog.profiles)} profile(s){missions}")
+        f"{len(catalog.profiles)} profile(s)")
