@@ -443,3 +443,17 @@ def test_report_gains_a_mission_section(tmp_path) -> None:  # type: ignore[no-un
             assert f"{r['sensor']} with x3 on {r['axis']}: θ_V = {fmt(r['angle'])} deg" in section
     # one table row per segment (8) per sensor shown (2), and a header row each
     assert section.count("<tr") == 2 * (8 + 1)
+
+
+def test_notebook_mission_is_the_command() -> None:
+    import gyrovib
+
+    result = gyrovib.mission(sensors="generic-navigation-fog", angle_budget="0.5deg")
+    doc = json.loads(invoke("mission", "--sensor", "generic-navigation-fog",
+                            "--angle-budget", "0.5deg", "--format", "json").stdout)
+    assert [r.angle for r in result.rows] == [r["angle"] for r in doc["mission"]]
+    assert result.angle_budget == pytest.approx(0.5)
+    with pytest.raises(gyrovib.errors.ArgumentError, match="angle unit"):
+        gyrovib.mission(angle_budget="0.5")
+    with pytest.raises(gyrovib.errors.ArgumentError, match="determinant -1"):
+        gyrovib.mission(placement="x1=+Y,x2=+X,x3=+Z")

@@ -215,15 +215,9 @@ def parse_placement(text: str | None) -> Any:
 
 def parse_angle_budget(text: str) -> float:
     """``--angle-budget`` (``0.5deg``, ``2 mrad``) → θ* in radians; positive, finite."""
-    import re
+    from gyrovib.api.commands.mission import angle_in_rad
 
-    from gyrovib.core.mission import ANGLE_IN_RAD
-
-    m = re.match(r"^\s*([-+]?(?:[0-9]*\.?[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*([A-Za-zµ]+)\s*$", text)
-    if m is None or m.group(2) not in ANGLE_IN_RAD:
-        raise OptionError(f"--angle-budget {text!r}: give a number with an angle unit "
-                          f"({', '.join(ANGLE_IN_RAD)}), e.g. 0.5deg or '2 mrad'")
-    value = float(m.group(1)) * ANGLE_IN_RAD[m.group(2)]
-    if not (math.isfinite(value) and value > 0):
-        raise OptionError(f"--angle-budget {text!r}: the angle budget must be positive")
-    return value
+    try:
+        return angle_in_rad(text)
+    except ValueError as exc:
+        raise OptionError(f"--angle-budget {text!r}: {exc}") from None

@@ -18,6 +18,7 @@ never larger than the duration-weighted sum of the per-segment worst cases.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -100,6 +101,24 @@ def _segment_entries(catalog: Catalog, chosen: Sequence[MissionEntry],
             runs.append(_Run(m.mission, placement, triad, tuple(columns),
                              tuple(float(s.duration) for s in m.mission.segments)))
     return entries, runs
+
+
+def angle_in_rad(text: str) -> float:
+    """An angle with its unit (``"0.5deg"``, ``"2 mrad"``, ``"30 arcmin"``) in radians;
+    positive and finite. Raises :class:`ValueError` with a message for the user."""
+    import re
+
+    from gyrovib.core.mission import ANGLE_IN_RAD
+
+    m = re.match(r"^\s*([-+]?(?:[0-9]*\.?[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*([A-Za-zµ]+)\s*$",
+                 text)
+    if m is None or m.group(2) not in ANGLE_IN_RAD:
+        raise ValueError(f"give a number with an angle unit ({', '.join(ANGLE_IN_RAD)}), "
+                         "e.g. 0.5deg or '2 mrad'")
+    value = float(m.group(1)) * ANGLE_IN_RAD[m.group(2)]
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError("the angle budget must be positive")
+    return value
 
 
 def angle_unit(unit: str) -> str:
