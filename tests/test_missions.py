@@ -457,3 +457,71 @@ def test_notebook_mission_is_the_command() -> None:
         gyrovib.mission(angle_budget="0.5")
     with pytest.raises(gyrovib.errors.ArgumentError, match="determinant -1"):
         gyrovib.mission(placement="x1=+Y,x2=+X,x3=+Z")
+
+
+# Locked orders, a PSD on two axes and a linear vibration, for a sensor with every
+# g² sensitivity: the parts test_a_placed_profile_... does not reach.
+SENSOR_G2 = """\
+gyrovib: 1
+sensors:
+  - id: g
+    coefficients: {A1: 2.0e-3, k2: 3.0e-4, k3: 2.0e-5, k4: 1.0e-7, m31: 5.0e-4, m32: -3.0e-4}
+    g2_sensitivity: {G11: 4.0e-3, G22: 1.0e-3, G33: 2.0e-3, G12: 1.5e-3, G13: -2.0e-3, G23: 3.0e-3}
+"""
+RICH = """\
+  - id: veh
+    rate: [1.0, 2.0, 3.0]
+    harmonics:
+      fundamental: 20
+      orders:
+        - {order: 1, amplitude: [1.0, 0.5, 2.0], phase: [0, 30, 60]}
+        - {order: 2, amplitude: [0.3, 0.6, 0.9], phase: [10, 20, 45]}
+    random:
+      psd:
+        x1: [[20, 1.0e-3], [500, 1.0e-3]]
+        x3: [[20, 4.0e-3], [800, 2.0e-3]]
+      coherence: [0.3, 0.0]
+    acceleration:
+      harmonic:
+        - {frequency: 100, amplitude: [1.0, 2.0, 3.0], phase: [0, 90, 30]}
+      random:
+        rms: [1.0, 2.0, 0.5]
+        coherence: [0.5, -0.2, 0.1]
+"""
+# x1=-Y, x2=+X, x3=+Z (a quarter turn about Z): sensor axes read (−Y, X, Z). Y's phases
+# gain 180°; the PSD of X moves to x2 (Y has none); rate coherences: ρ31' = corr(Z, −Y)
+# = −ρ32 = 0, ρ32' = corr(Z, X) = ρ31 = 0.3, ρ12' = corr(−Y, X) = −ρ31·ρ32 = 0;
+# acceleration: ρ12' = corr(−Y, X) = −0.5, ρ13' = corr(−Y, Z) = −0.1, ρ23' = corr(X, Z) = −0.2.
+RICH_TURNED = """\
+  - id: veh
+    rate: [-2.0, 1.0, 3.0]
+    harmonics:
+      fundamental: 20
+      orders:
+        - {order: 1, amplitude: [0.5, 1.0, 2.0], phase: [210, 0, 60]}
+        - {order: 2, amplitude: [0.6, 0.3, 0.9], phase: [200, 10, 45]}
+    random:
+      psd:
+        x2: [[20, 1.0e-3], [500, 1.0e-3]]
+        x3: [[20, 4.0e-3], [800, 2.0e-3]]
+      coherence: [0.0, 0.3, 0.0]
+    acceleration:
+      harmonic:
+        - {frequency: 100, amplitude: [2.0, 1.0, 3.0], phase: [270, 0, 30]}
+      random:
+        rms: [2.0, 1.0, 0.5]
+        coherence: [-0.5, -0.1, -0.2]
+"""
+
+
+def test_locked_orders_psd_and_linear_vibration_are_placed_as_by_hand() -> None:
+    turn = parse("x1=-Y,x2=+X,x3=+Z")
+    assert isinstance(turn, Placement)
+    placed = api.analyze(place_catalog(_catalog(SENSOR_G2, _profiles(RICH)), turn))
+    hand = api.analyze(_catalog(SENSOR_G2, _profiles(RICH_TURNED)))
+    plain = api.analyze(_catalog(SENSOR_G2, _profiles(RICH)))
+    for name in ("total", "rms", "additive_terms", "extra_terms"):
+        np.testing.assert_allclose(getattr(placed.error, name), getattr(hand.error, name),
+                                   rtol=1e-12, atol=1e-18)
+    assert not np.allclose(placed.error.total, plain.error.total)
+    assert not np.allclose(placed.error.extra_terms[..., 0], plain.error.extra_terms[..., 0])
