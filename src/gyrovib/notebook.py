@@ -307,7 +307,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
     samples, seed : int
         ``method='numeric'`` only: evaluations per sensor × profile, seed.
     peak_factor : float
-        κ of the saturation check (MODEL.md section 9), default 3.
+        κ of the saturation check (docs/model.md section 9), default 3.
 
     Returns
     -------
@@ -423,7 +423,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     spec_weights : (float, float)
         As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
     peak_factor : float
-        κ of the saturation check (MODEL.md section 9), default 3.
+        κ of the saturation check (docs/model.md section 9), default 3.
 
     Returns
     -------
@@ -499,7 +499,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
             angle_budget: str | None = None, unit: str | None = None,
             require: str = "any", placement: str | None = None,
             peak_factor: float = 3.0) -> Any:
-    """Every sensor over every mission (MODEL.md section 12): mean error, angle θ_V,
+    """Every sensor over every mission (docs/model.md section 12): mean error, angle θ_V,
     mean RMS, worst segment.
 
     Parameters
@@ -519,7 +519,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     placement : str, optional
         ``"triad"`` or ``"x1=+Y,x2=+Z,x3=+X"``: replaces the missions' own.
     peak_factor : float
-        κ of the saturation check (MODEL.md section 9), default 3.
+        κ of the saturation check (docs/model.md section 9), default 3.
 
     Returns
     -------

@@ -1,4 +1,4 @@
-"""The result of ``gyrovib mission`` (MODEL.md section 12): immutable rows, one per
+"""The result of ``gyrovib mission`` (docs/model.md section 12): immutable rows, one per
 sensor × mission × axis, each with its segments."""
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ class SegmentResult(Frozen):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class MissionRow(Frozen):
-    """One sensor over one mission in one placement (MODEL.md section 12).
+    """One sensor over one mission in one placement (docs/model.md section 12).
 
     ``mean`` Δ̄_V and ``rms`` Δ̄_RMS in the result's unit; ``angle`` θ_V in its
     ``angle_unit``; ``worst_index`` (0-based), ``worst_profile``, ``worst_total``:

@@ -1,4 +1,4 @@
-"""Profiles in sensor axes: a placement applied to a profile (MODEL.md section 12).
+"""Profiles in sensor axes: a placement applied to a profile (docs/model.md section 12).
 
 Profiles are written in vehicle axes X, Y, Z. A placement
 (:class:`gyrovib.core.placement.Placement`) says which signed vehicle axis

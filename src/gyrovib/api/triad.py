@@ -1,4 +1,4 @@
-"""A command under a placement, or under the three placements of a triad (MODEL.md §12).
+"""A command under a placement, or under the three placements of a triad (docs/model.md §12).
 
 :func:`placed` runs ``analyze``, ``bounds``, ``select`` or ``sweep`` on the
 catalogue's profiles mapped into the sensor axes of a placement

@@ -1,4 +1,4 @@
-"""`gyrovib mission`: every sensor over every mission (MODEL.md section 12)."""
+"""`gyrovib mission`: every sensor over every mission (docs/model.md section 12)."""
 
 from __future__ import annotations
 

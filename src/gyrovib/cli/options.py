@@ -195,7 +195,7 @@ def placement_option(f: F) -> F:
     return click.option(
         "--placement", metavar="P",
         help="How the sensor sits in the vehicle (profiles are in vehicle axes X, Y, Z; "
-             "MODEL.md section 12): x1=+Y,x2=+Z,x3=+X (a rotation), or triad (x3 on +X, "
+             "docs/model.md section 12): x1=+Y,x2=+Z,x3=+X (a rotation), or triad (x3 on +X, "
              "+Y and +Z in turn). Default x1=+X,x2=+Y,x3=+Z.",
     )(f)
 

@@ -42,7 +42,7 @@ DEFAULT_OUTPUT = "report.html"
                    "fitted profile joins the study's profiles.")
 @click.option("--mission", "missions", multiple=True, metavar="ID",
               help="Add a mission section (repeatable): per sensor the angle θ_V against "
-                   "--angle-budget and the per-segment breakdown (MODEL.md section 12).")
+                   "--angle-budget and the per-segment breakdown (docs/model.md section 12).")
 @click.option("--angle-budget", "angle_budget", metavar="A",
               help="θ* of the mission section, with an angle unit (0.5deg, '2 mrad').")
 @recording_options

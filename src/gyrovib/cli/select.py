@@ -34,7 +34,7 @@ from gyrovib.cli.spec_options import parse_spec_weights, spec_weights_option
 @peak_factor_option
 @placement_option
 @click.option("--mission", "mission", metavar="ID",
-              help="Select on this mission instead of profiles (MODEL.md section 12): "
+              help="Select on this mission instead of profiles (docs/model.md section 12): "
                    "--budget on the mean RMS Δ̄_RMS, or --angle-budget on |θ_V|.")
 @click.option("--angle-budget", "angle_budget", metavar="A",
               help="With --mission: θ* on the accumulated angle, with an angle unit "

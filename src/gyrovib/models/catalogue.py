@@ -66,7 +66,7 @@ class Catalogue(Model):
     profiles: list[Profile] = Field(
         [], description="Vibration environments; ids unique across all files given.")
     missions: list[Mission] = Field(
-        [], description="Missions: ordered segments of profiles (MODEL.md section 12); "
+        [], description="Missions: ordered segments of profiles (docs/model.md section 12); "
         "ids unique across all files given.")
     allocation: Allocation | None = Field(
         None, description="How a budget is split among the terms (eq. 18, 21, 24).")

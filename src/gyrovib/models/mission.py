@@ -1,5 +1,5 @@
 """A mission: an ordered list of flight segments, each under one profile for a
-duration, with how the sensor sits in the vehicle (MODEL.md section 12).
+duration, with how the sensor sits in the vehicle (docs/model.md section 12).
 
 Profiles are given in vehicle axes X, Y, Z; a mission's ``placement`` maps each
 sensor axis x1, x2, x3 to a signed vehicle axis (a proper rotation: the
@@ -116,7 +116,7 @@ class Segment(Model):
 
 
 class Mission(Model):
-    """A sequence of segments flown in order (MODEL.md section 12)."""
+    """A sequence of segments flown in order (docs/model.md section 12)."""
 
     id: Identifier = Field(description=ID_TEXT)
     name: Text | None = Field(None, description=FREE_TEXT)

@@ -68,7 +68,7 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
     out: list[Any] = [table]
     notes = ["mean Δ̄_V = Σ T_s·Δ_V,s / Σ T_s; angle θ_V = Σ T_s·Δ_V,s; mean RMS = "
              "√(Σ T_s·Δ_V(RMS),s² / Σ T_s); worst segment: its number, profile and Δ_V,s "
-             "(MODEL.md section 12)."]
+             "(docs/model.md section 12)."]
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "

@@ -1,4 +1,4 @@
-"""The mission section of ``gyrovib report --mission`` (MODEL.md section 12): per mission
+"""The mission section of ``gyrovib report --mission`` (docs/model.md section 12): per mission
 the accumulated angle |θ_V| of every sensor against the angle budget, and per sensor the
 segments that make it up."""
 
@@ -74,7 +74,7 @@ def mission_section(result: MissionResult) -> str:
               f"budget Δ̄_RMS ≤ {fmt(result.budget)} {result.unit}")
     parts = ["<style>section.mission tr.worst td{font-weight:bold}</style>",
              "<h2>Missions</h2>",
-             f"<p>Each sensor over each mission (MODEL.md section 12; {_e(budget)}): the "
+             f"<p>Each sensor over each mission (docs/model.md section 12; {_e(budget)}): the "
              "accumulated angle θ_V = Σ T_s·Δ_V,s, and per sensor the segments that make "
              "it up (the worst segment highlighted).</p>"]
     for mission in result.missions:

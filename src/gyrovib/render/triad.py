@@ -1,4 +1,4 @@
-"""A command's output under the triad (MODEL.md section 12): the three axes' outputs
+"""A command's output under the triad (docs/model.md section 12): the three axes' outputs
 in one document, each result tagged with its ``axis``, and the ``worst_axis`` summary.
 
 ``draw`` is the command's own renderer for the chosen format (result → text).

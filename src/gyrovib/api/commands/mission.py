@@ -1,4 +1,4 @@
-"""``mission``: every sensor over every mission (MODEL.md section 12).
+"""``mission``: every sensor over every mission (docs/model.md section 12).
 
 Each segment s is a profile p_s flown for T_s seconds at the carrier rate
 Ω_K,s (the segment's ``rate``, else the profile's own), in the sensor axes of
@@ -12,7 +12,7 @@ A spec-form (datasheet) sensor's mean error is the worst case over its envelope
 of the whole mission: the mission's Δ̄_V is one linear functional of the
 conversion function (:func:`gyrovib.core.mission.combined_functional` of the
 segments' term functionals, and the g² moments weighted likewise), so it is one
-more programme of MODEL.md section 11 (:func:`gyrovib.core.envelope.worst_case`),
+more programme of docs/model.md section 11 (:func:`gyrovib.core.envelope.worst_case`),
 never larger than the duration-weighted sum of the per-segment worst cases.
 """
 
@@ -138,7 +138,7 @@ def mission(
     placement: Placement | tuple[Placement, ...] | None = None,
     peak_factor: float = 3.0,
 ) -> MissionResult:
-    """Every chosen sensor over every chosen mission (MODEL.md section 12).
+    """Every chosen sensor over every chosen mission (docs/model.md section 12).
 
     ``budget``: Δ* on the mean RMS Δ̄_RMS, in deg/s; ``angle_budget``: θ* on
     |θ_V|, in radians (at most one of the two). ``unit``: the output rate unit
