@@ -307,7 +307,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
     samples, seed : int
         ``method='numeric'`` only: evaluations per sensor × profile, seed.
     peak_factor : float
-        κ of the saturation check (docs/model.md section 9), default 3.
+        κ of the saturation check (MODEL.md section 9), default 3.
 
     Returns
     -------
@@ -423,7 +423,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     spec_weights : (float, float)
         As in :func:`bounds`, for datasheet sensors under ``criterion='bounds'``.
     peak_factor : float
-        κ of the saturation check (docs/model.md section 9), default 3.
+        κ of the saturation check (MODEL.md section 9), default 3.
 
     Returns
     -------
