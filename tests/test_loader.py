@@ -126,7 +126,7 @@ def test_bundled_files_are_the_bundled_paths() -> None:
     from gyrovib.catalog.loader import bundled_files, bundled_paths
 
     assert bundled_files() == [str(p) for p in bundled_paths()]
-    assert len(bundled_files()) == 2
+    assert len(bundled_files()) == 3  # missions, profiles, sensors
 
 
 def test_a_one_of_rule_is_reported_beside_other_problems_of_its_entry():

@@ -21,7 +21,7 @@ import pytest
 pytest.importorskip("build")
 
 ROOT = Path(__file__).resolve().parent.parent
-CATALOGUES = ("profiles.gyrovib.yaml", "sensors.gyrovib.yaml")
+CATALOGUES = ("missions.gyrovib.yaml", "profiles.gyrovib.yaml", "sensors.gyrovib.yaml")
 IGNORE = shutil.ignore_patterns(".git", ".venv*", "__pycache__", "*.egg-info", "build", "dist",
                                 ".pytest_cache", ".hypothesis", ".mypy_cache", ".ruff_cache",
                                 ".benchmarks")

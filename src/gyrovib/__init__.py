@@ -34,7 +34,7 @@ from typing import Any
 
 from gyrovib._version import __version__
 
-_NOTEBOOK = ("load", "analyze", "bounds", "select", "sweep")
+_NOTEBOOK = ("load", "analyze", "bounds", "select", "sweep", "mission")
 
 __all__ = ["__version__", *_NOTEBOOK]
 

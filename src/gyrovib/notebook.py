@@ -39,7 +39,7 @@ if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
     from gyrovib.catalog.loader import Catalog
 
-__all__ = ["analyze", "bounds", "load", "select", "sweep"]
+__all__ = ["analyze", "bounds", "load", "mission", "select", "sweep"]
 
 #: The methods of bounds and select (analyze adds 'numeric').
 METHODS = ("exact", "paper")
@@ -511,3 +511,63 @@ def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-20
         omega = values
     return api.sweep(_catalog(catalog), omega, sensors=_ids("sensors", sensors),
                      profiles=_ids("profiles", profiles), unit=unit)
+
+
+def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
+            sensors: str | Sequence[str] = (), budget: float | str | None = None,
+            angle_budget: str | None = None, unit: str | None = None,
+            require: str = "any", placement: str | None = None,
+            peak_factor: float = 3.0) -> Any:
+    """Every sensor over every mission (docs/model.md section 12): mean error, angle θ_V,
+    mean RMS, worst segment.
+
+    Parameters
+    ----------
+    catalog : Catalog, path, list of paths, gyrovib.models.Catalogue(s) or None
+        Sensors, profiles and missions; None: the bundled catalogues.
+    missions, sensors : str or sequence of str
+        Only these ids.
+    budget : float or str, optional
+        Δ* on the mean RMS Δ̄_RMS: a number in ``unit`` or with a unit.
+    angle_budget : str, optional
+        θ* on |θ_V| with an angle unit: ``"0.5deg"``, ``"2 mrad"``.
+    unit : str, optional
+        Output rate unit; default the unit a budget string carries, else deg/h.
+    require : {'any', 'all'}
+        Decides ``requirement_met``.
+    placement : str, optional
+        ``"triad"`` or ``"x1=+Y,x2=+Z,x3=+X"``: replaces the missions' own.
+    peak_factor : float
+        κ of the saturation check (docs/model.md section 9), default 3.
+
+    Returns
+    -------
+    gyrovib.api.MissionResult
+        ``to_frame()`` gives one row per sensor × mission × axis.
+    """
+    from gyrovib import api
+    from gyrovib.core.placement import parse
+
+    if unit is not None:
+        unit = _unit("unit", unit)
+    else:
+        unit = (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/h"
+    theta = None
+    if angle_budget is not None:
+        from gyrovib.api.commands.mission import angle_in_rad
+
+        try:
+            theta = angle_in_rad(_text("angle_budget", angle_budget))
+        except ValueError as exc:
+            raise ArgumentError(f"argument 'angle_budget': {exc}") from None
+    where = None
+    if placement is not None:
+        try:
+            where = parse(_text("placement", placement))
+        except ValueError as exc:
+            raise ArgumentError(f"argument 'placement': {exc}") from None
+    return api.mission(
+        _catalog(catalog), missions=_ids("missions", missions), sensors=_ids("sensors", sensors),
+        budget=None if budget is None else _quantity("budget", budget, unit, True),
+        angle_budget=theta, unit=unit, require=_text("require", require, ("any", "all")),
+        placement=where, peak_factor=_number("peak_factor", peak_factor, nonnegative=True))

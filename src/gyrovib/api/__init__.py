@@ -80,6 +80,10 @@ _WHERE: dict[str, str] = {
     "read_rate_table": "ratetable",
     "REQUIREMENTS": "commands.select",
     "PASS_RTOL": "commands.select",
+    "mission": "commands.mission",
+    "MissionResult": "mission_results",
+    "place_profile": "placement",
+    "place_catalog": "placement",
     # catalogue types, for annotations
     "Catalog": "gyrovib.catalog.loader",
     "ProfileEntry": "gyrovib.catalog.loader",
@@ -101,6 +105,7 @@ __all__ = [
     "Catalog",
     "FitResult",
     "Limit",
+    "MissionResult",
     "Prepared",
     "ProfileEntry",
     "ProgressCallback",
@@ -116,6 +121,9 @@ __all__ = [
     "fit",
     "float_guard",
     "load",
+    "mission",
+    "place_catalog",
+    "place_profile",
     "prepare",
     "profile_generator",
     "profile_location",
@@ -185,6 +193,9 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     from gyrovib.api.commands.fit import (
         fit as fit,
     )
+    from gyrovib.api.commands.mission import (
+        mission as mission,
+    )
     from gyrovib.api.commands.select import (
         CRITERIA as CRITERIA,
     )
@@ -241,6 +252,15 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     )
     from gyrovib.api.fit_results import (
         FitResult as FitResult,
+    )
+    from gyrovib.api.mission_results import (
+        MissionResult as MissionResult,
+    )
+    from gyrovib.api.placement import (
+        place_catalog as place_catalog,
+    )
+    from gyrovib.api.placement import (
+        place_profile as place_profile,
     )
     from gyrovib.api.prepare import (
         Prepared as Prepared,

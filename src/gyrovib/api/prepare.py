@@ -130,7 +130,7 @@ def profile_vibration(entry: ProfileEntry, response: Table | None = None) -> Vib
     rms = None
     coherence: tuple[float, float] = (1.0, 1.0)
     if p.random is not None:
-        coherence = p.random.coherence
+        coherence = (p.random.coherence[0], p.random.coherence[1])  # ρ12 acts on no x3 term
         if p.random.psd is not None:
             psd = []
             for axis in ("x1", "x2", "x3"):

@@ -31,7 +31,7 @@ from gyrovib.catalog.locate import Index
 from gyrovib.catalog.messages import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY, Error
 from gyrovib.errors import CatalogError, Problem
 from gyrovib.frozen import Frozen
-from gyrovib.models import Allocation, Catalogue, Profile, Sensor, validate_document
+from gyrovib.models import Allocation, Catalogue, Mission, Profile, Sensor, validate_document
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -293,13 +293,21 @@ class ProfileEntry(Entry):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
+class MissionEntry(Entry):
+    """A mission with its file (whose ``units.rate`` its segments' rates are in)."""
+
+    mission: Mission
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class Catalog(Frozen):
-    """Sensors and profiles merged from one or more files, ids unique."""
+    """Sensors, profiles and missions merged from one or more files, ids unique."""
 
     sources: tuple[CatalogSource, ...]
     sensors: tuple[SensorEntry, ...]
     profiles: tuple[ProfileEntry, ...]
     allocation: Allocation | None
+    missions: tuple[MissionEntry, ...] = ()
 
     @property
     def models(self) -> tuple[Catalogue, ...]:
@@ -367,11 +375,14 @@ def merge(sources: Sequence[CatalogSource],
           _reported_within: frozenset[int] = frozenset()) -> Catalog:
     """Merge validated files; an id used twice (in one file or across files) is an error."""
     problems: list[Problem] = []
-    (sensor_key, _), (profile_key, _) = SECTIONS
+    (sensor_key, _), (profile_key, _), (mission_key, _) = SECTIONS
     sensors = [SensorEntry(s, i, x)
                for s, i, x in _unique(sources, sensor_key, problems, _reported_within)]
     profiles = [ProfileEntry(s, i, x)
                 for s, i, x in _unique(sources, profile_key, problems, _reported_within)]
+    missions = [MissionEntry(s, i, x)
+                for s, i, x in _unique(sources, mission_key, problems, _reported_within)]
+    problems.extend(_unknown_profiles(missions, {p.profile.id for p in profiles}))
     allocation: Allocation | None = None
     allocation_source: CatalogSource | None = None
     for source in sources:
@@ -387,7 +398,33 @@ def merge(sources: Sequence[CatalogSource],
             allocation, allocation_source = source.model.allocation, source
     if problems:
         raise CatalogError(_capped(problems))
-    return Catalog(tuple(sources), tuple(sensors), tuple(profiles), allocation)
+    return Catalog(tuple(sources), tuple(sensors), tuple(profiles), allocation,
+                   tuple(missions))
+
+
+def _unknown_profiles(missions: Sequence[MissionEntry], known: set[str]) -> list[Problem]:
+    """A segment naming a profile that no file given defines, at its ``profile`` key.
+
+    Checked after merging: a mission may fly profiles of another file."""
+    problems: list[Problem] = []
+    for entry in missions:
+        if not isinstance(getattr(entry.mission, "segments", None), list):
+            continue  # an invalid file's stand-in: its own problems are reported
+        for k, segment in enumerate(entry.mission.segments):
+            if segment.profile in known:
+                continue
+            from difflib import get_close_matches
+
+            near = get_close_matches(segment.profile, sorted(known), n=1)
+            hint = f" (did you mean {near[0]!r}?)" if near else (
+                " (give the file that defines it too)" if not known else "")
+            problems.append(entry.source.problem(
+                f"mission {entry.mission.id!r}, segment {k + 1}: unknown profile "
+                f"{segment.profile!r}{hint}",
+                ("missions", entry.index, "segments", k, "profile")))
+            if len(problems) >= MAX_PROBLEMS:
+                return problems
+    return problems
 
 
 def load_catalog(paths: Sequence[str | Path], skip: Collection[str] = ()) -> Catalog:
@@ -444,6 +481,7 @@ __all__ = [
     "CatalogError",
     "CatalogSource",
     "Entry",
+    "MissionEntry",
     "Profile",
     "ProfileEntry",
     "Sensor",

@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 #: The top-level key holding the format version.
 VERSION_KEY = "gyrovib"
 #: Top-level lists of items with an id unique across files, with the item's name.
-SECTIONS = (("sensors", "sensor"), ("profiles", "profile"))
+SECTIONS = (("sensors", "sensor"), ("profiles", "profile"), ("missions", "mission"))
 #: The key of an item's id.
 ID_KEY = "id"
 #: The top-level key every merged file must agree on.

@@ -22,6 +22,7 @@ from gyrovib.cli.options import (
     parse_rate_option,
     parse_unit,
     peak_factor_option,
+    placement_option,
     rate_option,
     selection_options,
     unit_option,
@@ -42,6 +43,7 @@ from gyrovib.cli.recording import recording_options
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               metavar="S", help="numeric: random seed; the same seed gives the same numbers.")
 @rate_option
+@placement_option
 @unit_option
 @peak_factor_option
 @click.option("--detail/--matrix", "detail", default=None,
@@ -55,6 +57,7 @@ from gyrovib.cli.recording import recording_options
                    "the fitted profile's closed form; see `gyrovib profile` for its options.")
 @recording_options
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
+            placement: str | None,
             method: str, samples: int, seed: int, rate: str | None, unit: str,
             peak_factor: float, detail: bool | None, fmt: str,
             output: str | None, recording: str | None, **rec: Any) -> None:
@@ -81,12 +84,28 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         from gyrovib.cli.recording import analyze_recording, refuse_with_recording
 
         refuse_with_recording(profiles=profiles, rate=rate, method=method)
+        if placement is not None:
+            from gyrovib.errors import OptionError
+
+            raise OptionError("--placement maps catalogue profiles; with --recording give "
+                              "the recording's columns in sensor axes (--rate-columns)")
         analyze_recording(recording, catalog, sensors, unit, fmt, output, rec)
         return
+    from gyrovib.cli.placement import is_triad, run_placed, write_triad
+
     with progress_bar("brute force", enabled=method == "numeric") as advance:
-        result = api.analyze(catalog, sensors=sensors, profiles=profiles, method=method,
-                             rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
-                             seed=seed, progress=advance, peak_factor=peak_factor)
+        result = run_placed(api.analyze, catalog, placement, fmt, sensors=sensors,
+                            profiles=profiles, method=method,
+                            rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
+                            seed=seed, progress=advance, peak_factor=peak_factor)
+    if is_triad(result):
+        write_triad(result, lambda r: render.to_table(r, color=use_color(output),
+                                                      width=page_width(output),
+                                                      ascii=plain_ascii(output))
+                    if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
+                                            "markdown": render.to_markdown}[fmt](r),
+                    fmt, output)
+        return
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
     if fmt == "table":

@@ -11,6 +11,7 @@ from gyrovib.cli.options import (
     files_argument,
     format_option,
     output_option,
+    placement_option,
 )
 from gyrovib.cli.spec_options import (
     parse_range,
@@ -27,12 +28,13 @@ from gyrovib.cli.spec_options import (
 @budget_options
 @range_options
 @spec_weights_option
+@placement_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
 def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, method: str,
            rate: str | None, unit: str | None, allocation: str | None, range_: str | None,
-           nl_fit: str, nl_measure: str, nl_of: str, spec_weights: str | None, fmt: str,
-           output: str | None) -> None:
+           nl_fit: str, nl_measure: str, nl_of: str, spec_weights: str | None,
+           placement: str | None, fmt: str, output: str | None) -> None:
     """The inverse problem: the largest coefficients that keep the error within budget.
 
     Every file is validated whole, sensors included, as `gyrovib validate`
@@ -52,14 +54,21 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
 
     catalog = load_catalog(files)  # validated whole; the bounds use the profiles only
     split = budget_arguments(budget, unit, rate, allocation)
-    result = api.bounds(catalog, profiles=profiles, method=method, **split,
-                        range_=parse_range(range_, split["unit"]), nl_fit=nl_fit,
+    from gyrovib.cli.placement import is_triad, run_placed, write_triad
+
+    result = run_placed(api.bounds, catalog, placement, fmt, profiles=profiles, method=method,
+                        **split, range_=parse_range(range_, split["unit"]), nl_fit=nl_fit,
                         nl_measure=nl_measure, nl_of=nl_of,
                         spec_weights=parse_spec_weights(spec_weights))
-    if fmt == "table":
-        text = render.to_table(result, color=use_color(output), width=page_width(output),
-                               ascii=plain_ascii(output))
-    else:
-        text = {"json": render.to_json, "csv": render.to_csv,
-                "markdown": render.to_markdown}[fmt](result)
-    write_output(text, output)
+
+    def draw(one: api.BoundsResult) -> str:
+        if fmt == "table":
+            return render.to_table(one, color=use_color(output), width=page_width(output),
+                                   ascii=plain_ascii(output))
+        return {"json": render.to_json, "csv": render.to_csv,
+                "markdown": render.to_markdown}[fmt](one)
+
+    if is_triad(result):
+        write_triad(result, draw, fmt, output)
+        return
+    write_output(draw(result), output)

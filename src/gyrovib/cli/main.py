@@ -7,7 +7,7 @@ caught here, once: one line per problem on standard error, exit status 2.
 
 Exit status (the contract; no environment variable changes it):
 
-* 0 success; 1 ``select``'s requirement not met; 2 bad usage or bad input;
+* 0 success; 1 ``select``'s (or ``mission``'s) requirement not met; 2 bad usage or bad input;
 * 3 an internal error (a bug in gyrovib), reported in one line asking for a
   report; ``GYROVIB_DEBUG=1`` (or ``true``, ``yes``; any case) adds the
   traceback, the status stays 3;
@@ -138,6 +138,9 @@ _COMMANDS = {name: f"gyrovib.cli.{name}"
                           "fit", "profile", "catalog")}
 
 
+_COMMANDS["mission"] = "gyrovib.cli.mission"
+
+
 class _Group(click.Group):
     """Catches the one error root and turns it into lines on stderr and exit 2.
 
@@ -229,7 +232,7 @@ def cli(ctx: click.Context, color: str) -> None:
     find which sensors of a catalogue meet an error budget.
 
     Without FILE arguments every command uses the catalogues bundled with
-    gyrovib. Exit status: 0 success, 1 a `select` requirement not met,
+    gyrovib. Exit status: 0 success, 1 a `select` or `mission` requirement not met,
     2 bad usage or bad input, 3 an internal error (please report it),
     74 the output could not be written, 129 hung up, 130 interrupted,
     143 terminated, 141 standard output closed early.

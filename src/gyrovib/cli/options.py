@@ -207,3 +207,35 @@ def budget_arguments(budget: str, unit: str | None, rate: str | None,
     unit = resolve_unit(unit, budget)
     return {"unit": unit, "rate": parse_rate_option(rate, unit),
             "budget": parse_budget(budget, unit), "allocation": parse_allocation(allocation)}
+
+
+def placement_option(f: F) -> F:
+    return click.option(
+        "--placement", metavar="P",
+        help="How the sensor sits in the vehicle (profiles are in vehicle axes X, Y, Z; "
+             "docs/model.md section 12): x1=+Y,x2=+Z,x3=+X (a rotation), or triad (x3 on +X, "
+             "+Y and +Z in turn). Default x1=+X,x2=+Y,x3=+Z.",
+    )(f)
+
+
+def parse_placement(text: str | None) -> Any:
+    """``--placement`` → a :class:`gyrovib.core.placement.Placement`, the triad's tuple,
+    or None (the one parser: :func:`gyrovib.core.placement.parse`)."""
+    if text is None:
+        return None
+    from gyrovib.core.placement import parse
+
+    try:
+        return parse(text)
+    except ValueError as exc:
+        raise OptionError(f"--placement {text!r}: {exc}") from None
+
+
+def parse_angle_budget(text: str) -> float:
+    """``--angle-budget`` (``0.5deg``, ``2 mrad``) → θ* in radians; positive, finite."""
+    from gyrovib.api.commands.mission import angle_in_rad
+
+    try:
+        return angle_in_rad(text)
+    except ValueError as exc:
+        raise OptionError(f"--angle-budget {text!r}: {exc}") from None

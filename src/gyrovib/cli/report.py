@@ -44,8 +44,14 @@ DEFAULT_OUTPUT = "report.html"
               help="Add a recording (docs/model.md section 13): its PSD against the fitted "
                    "profile, the honesty of the fit, Δ_V,rec beside the closed form; the "
                    "fitted profile joins the study's profiles.")
+@click.option("--mission", "missions", multiple=True, metavar="ID",
+              help="Add a mission section (repeatable): per sensor the angle θ_V against "
+                   "--angle-budget and the per-segment breakdown (docs/model.md section 12).")
+@click.option("--angle-budget", "angle_budget", metavar="A",
+              help="θ* of the mission section, with an angle unit (0.5deg, '2 mrad').")
 @recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
+           missions: tuple[str, ...], angle_budget: str | None,
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, assume_unknown: str | None, require: str,
            rate_range: str | None, yield_target: float | None, seed: int, draws: int,
@@ -77,6 +83,11 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
 
         catalog, profiles, section = report_recording(recording, catalog, sensors, profiles,
                                                       split["unit"], rec)
+    if missions:  # after the recording's section, before the profiles
+        from gyrovib.cli.mission import mission_section
+
+        section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
+                                   peak_factor)
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,

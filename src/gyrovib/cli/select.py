@@ -22,6 +22,7 @@ from gyrovib.cli.options import (
     format_option,
     output_option,
     peak_factor_option,
+    placement_option,
     selection_options,
 )
 from gyrovib.cli.spec_options import (
@@ -37,6 +38,13 @@ from gyrovib.cli.yield_options import yield_options
 @selection_options
 @budget_options
 @peak_factor_option
+@placement_option
+@click.option("--mission", "mission", metavar="ID",
+              help="Select on this mission instead of profiles (docs/model.md section 12): "
+                   "--budget on the mean RMS Δ̄_RMS, or --angle-budget on |θ_V|.")
+@click.option("--angle-budget", "angle_budget", metavar="A",
+              help="With --mission: θ* on the accumulated angle, with an angle unit "
+                   "(0.5deg, '2 mrad'); --budget is then not needed.")
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
               default="bounds", show_default=True,
               help="What a pass means: bounds: every coefficient within its bound (the "
@@ -55,7 +63,8 @@ from gyrovib.cli.yield_options import yield_options
 @output_option
 @click.pass_context
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
-           profiles: tuple[str, ...], budget: str, method: str, rate: str | None,
+           placement: str | None, mission: str | None, angle_budget: str | None,
+           profiles: tuple[str, ...], budget: str | None, method: str, rate: str | None,
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
            spec_weights: str | None, assume_unknown: str | None, require: str,
            yield_target: float | None, seed: int, draws: int, fmt: str,
@@ -81,13 +90,33 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
 
     text: str | Iterator[str]  # the JSON document is streamed
     github_errors(fmt == "github")
+    if mission is not None or angle_budget is not None:
+        from gyrovib.cli.mission import select_mission
+
+        met = select_mission(files, mission, sensors, profiles, budget, angle_budget, unit,
+                             placement, peak_factor, require, fmt, output)
+        if not met:
+            ctx.exit(1)
+        return
+    if budget is None:
+        raise click.UsageError("Missing option '--budget'.", ctx)
     catalog = load_catalog(files)
     split = budget_arguments(budget, unit, rate, allocation)
-    result = api.select(catalog, sensors=sensors, profiles=profiles, method=method, **split,
-                        criterion=criterion, require=require,
-                        spec_weights=parse_spec_weights(spec_weights), peak_factor=peak_factor,
-                        assume_unknown=assume_unknown or "none", yield_target=yield_target,
-                        seed=seed, draws=draws)
+    from gyrovib.cli.placement import is_triad, run_placed, write_triad
+
+    result = run_placed(api.select, catalog, placement, fmt, sensors=sensors,
+                        profiles=profiles, method=method, **split, criterion=criterion,
+                        require=require, spec_weights=parse_spec_weights(spec_weights),
+                        peak_factor=peak_factor, assume_unknown=assume_unknown or "none",
+                        yield_target=yield_target, seed=seed, draws=draws)
+    if is_triad(result):  # table, json, csv or markdown, per axis, and the worst axes
+        write_triad(result, lambda one: render.to_table(
+            one, color=use_color(output), width=page_width(output), ascii=plain_ascii(output))
+            if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
+                                    "markdown": render.to_markdown}[fmt](one), fmt, output)
+        if not result.requirement_met:
+            ctx.exit(1)
+        return
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
     if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
@@ -104,3 +133,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     write_output(text, output)
     if not result.requirement_met:
         ctx.exit(1)
+
+
+for _param in select.params:  # --budget is not needed with --mission --angle-budget
+    if _param.name == "budget":
+        _param.required = False

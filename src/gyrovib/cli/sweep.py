@@ -19,6 +19,7 @@ from gyrovib.cli.options import (
     output_option,
     parse_budget,
     peak_factor_option,
+    placement_option,
     resolve_unit,
     selection_options,
 )
@@ -72,11 +73,12 @@ def envelope_path(plot: str) -> str:
               help="Plot on logarithmic (Δ_V(RMS)) and symmetric-log (Δ_V) axes.")
 @budget_unit_option
 @peak_factor_option
+@placement_option
 @format_option("table", "json", "csv")
 @output_option
 def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
           rate_range: str, budget: str | None, plot: str | None, log_scale: bool,
-          unit: str | None, peak_factor: float,
+          unit: str | None, peak_factor: float, placement: str | None,
           fmt: str, output: str | None) -> None:
     """Δ_V and Δ_V(RMS) over a range of Ω_K3, exact and paper side by side.
 
@@ -92,8 +94,21 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
     unit = resolve_unit(unit, budget or "")
     start, stop, count = parse_rate_range(rate_range, unit)
     budget_value = parse_budget(budget, unit) / units.scale(unit) if budget is not None else None
-    result = api.sweep(load_catalog(files), api.rate_range(start, stop, count), sensors=sensors,
-                       profiles=profiles, unit=unit, peak_factor=peak_factor)
+    from gyrovib.cli.placement import is_triad, run_placed, write_triad
+
+    result = run_placed(api.sweep, load_catalog(files), placement, fmt,
+                        rates=api.rate_range(start, stop, count), sensors=sensors,
+                        profiles=profiles, unit=unit, peak_factor=peak_factor)
+    if is_triad(result):
+        if plot is not None:
+            raise OptionError("--plot draws one placement: give --placement x1=..,x2=..,x3=..")
+        write_triad(result, lambda r: render.to_table(r, budget_value, width=page_width(output),
+                                                      color=use_color(output),
+                                                      ascii=plain_ascii(output))
+                    if fmt == "table" else {"json": render.to_json,
+                                            "csv": render.to_csv_chunks}[fmt](r, budget_value),
+                    fmt, output)
+        return
     if result.paper_refused:
         listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
         say(f"gyrovib: note: the paper's columns are empty for {listed}")

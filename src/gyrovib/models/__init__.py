@@ -23,6 +23,7 @@ from __future__ import annotations
 from typing import Any
 
 from gyrovib.models.catalogue import VERSION, Allocation, Catalogue, Units
+from gyrovib.models.mission import AxisPlacement, Mission, Segment
 from gyrovib.models.profile import (
     MAX_TONES,
     PSD,
@@ -60,18 +61,21 @@ __all__ = [
     "AccelerationTone",
     "Allocation",
     "Asymmetry",
+    "AxisPlacement",
     "Catalogue",
     "Coefficients",
     "G2Quantity",
     "G2Sensitivity",
     "Harmonics",
     "Lot",
+    "Mission",
     "Nonlinearity",
     "Order",
     "OutputCoefficients",
     "Profile",
     "Random",
     "Response",
+    "Segment",
     "Sensor",
     "Sigmas",
     "Specs",

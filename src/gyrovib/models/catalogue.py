@@ -8,6 +8,7 @@ from pydantic_core import InitErrorDetails, PydanticCustomError
 
 from gyrovib import units as rate_units
 from gyrovib.models._types import Model, Named, Number, rule_error
+from gyrovib.models.mission import Mission
 from gyrovib.models.profile import Profile
 from gyrovib.models.sensor import RANGE_BAND, RANGE_WHY, RateUnit, Sensor
 
@@ -106,6 +107,9 @@ class Catalogue(Model):
         [], description="Angular-rate sensors; ids unique across all files given.")
     profiles: list[Profile] = Field(
         [], description="Vibration environments; ids unique across all files given.")
+    missions: list[Mission] = Field(
+        [], description="Missions: ordered segments of profiles (docs/model.md section 12); "
+        "ids unique across all files given.")
     allocation: Allocation | None = Field(
         None, description="How a budget is split among the terms (eq. 18, 21, 24).")
 

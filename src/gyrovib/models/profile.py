@@ -107,8 +107,9 @@ class Random(Model):
     rms: NonNegativeTriple | None = Field(
         None, description=f"RMS per axis at the sensor, {RATE}; no spectrum, "
         "so ν(f) does not apply.", json_schema_extra=in_unit("rate"))
-    coherence: tuple[Coherence, Coherence] = Field(
-        (1.0, 1.0), description="Coherences ρ31, ρ32, each in [-1, 1]; default 1.")
+    coherence: Annotated[tuple[Coherence, ...], Field(min_length=2, max_length=3)] = Field(
+        (1.0, 1.0), description="Coherences ρ31, ρ32 and optionally ρ12 (docs/model.md section "
+        "12; default ρ31·ρ32), each in [-1, 1]; default 1.")
 
     model_config = Model.model_config | {"json_schema_extra": groups_schema(*_RANDOM)}
     check_one_of: ClassVar[Any] = one_of(*_RANDOM)

@@ -1,0 +1,285 @@
+"""``mission``: every sensor over every mission (docs/model.md section 12).
+
+Each segment s is a profile p_s flown for T_s seconds at the carrier rate
+Ω_K,s (the segment's ``rate``, else the profile's own), in the sensor axes of
+the mission's placement (:func:`gyrovib.api.placement.place_profile`). The
+distinct (placement, profile, rate) triples are evaluated together in one
+:func:`gyrovib.api.analyze` call (so a profile flown in several segments is
+prepared once per rate), and :func:`gyrovib.core.mission.totals` gives the
+mean error Δ̄_V, the angle θ_V, the mean RMS Δ̄_RMS and the worst segment.
+
+A spec-form (datasheet) sensor's mean error is the worst case over its envelope
+of the whole mission: the mission's Δ̄_V is one linear functional of the
+conversion function (:func:`gyrovib.core.mission.combined_functional` of the
+segments' term functionals, and the g² moments weighted likewise), so it is one
+more programme of docs/model.md section 11 (:func:`gyrovib.core.envelope.worst_case`),
+never larger than the duration-weighted sum of the per-segment worst cases.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from gyrovib import units
+from gyrovib.api.mission_results import MissionResult, MissionRow, SegmentResult
+from gyrovib.api.placement import place_profile
+from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry
+from gyrovib.core import placement as placements
+from gyrovib.core.mission import ANGLE_UNITS, combined_functional, totals
+from gyrovib.core.placement import Placement
+from gyrovib.errors import OptionError
+from gyrovib.models import Mission
+
+
+@dataclass(frozen=True)
+class _Run:
+    """One mission in one placement: the columns of its segments in the analysis."""
+
+    mission: Mission
+    placement: Placement
+    triad: bool
+    columns: tuple[int, ...]
+    durations: tuple[float, ...]
+
+
+def chosen_missions(catalog: Catalog, missions: Sequence[str] = ()) -> tuple[MissionEntry, ...]:
+    """The missions named (all when none are), in catalogue order."""
+    if not catalog.missions:
+        files = ", ".join(s.name for s in catalog.sources) or "the catalogue"
+        raise OptionError(f"no missions in {files}: give a file with 'missions:' (or no FILE "
+                          "at all for the bundled catalogues)")
+    ids = [e.mission.id for e in catalog.missions]
+    unknown = [m for m in dict.fromkeys(missions) if m not in ids]
+    if unknown:
+        raise OptionError(f"unknown mission {unknown[0]!r}; known: {', '.join(ids)}")
+    if not missions:
+        return catalog.missions
+    wanted = set(missions)
+    return tuple(e for e in catalog.missions if e.mission.id in wanted)
+
+
+def _placements(entry: MissionEntry, override: Placement | tuple[Placement, ...] | None
+                ) -> tuple[tuple[Placement, ...], bool]:
+    if override is not None:
+        return (override, True) if isinstance(override, tuple) else ((override,), False)
+    parsed = placements.parse(entry.mission.placement_text)
+    return (parsed, True) if isinstance(parsed, tuple) else ((parsed,), False)
+
+
+def _segment_entries(catalog: Catalog, chosen: Sequence[MissionEntry],
+                     override: Placement | tuple[Placement, ...] | None
+                     ) -> tuple[list[ProfileEntry], list[_Run]]:
+    """The distinct placed profiles (ids made unique) and each run's columns among them."""
+    by_id = {e.profile.id: e for e in catalog.profiles}
+    keys: dict[tuple[Placement, str, tuple[float, ...] | None], int] = {}
+    entries: list[ProfileEntry] = []
+    runs: list[_Run] = []
+    for m in chosen:
+        places, triad = _placements(m, override)
+        for placement in places:
+            columns = []
+            for seg in m.mission.segments:
+                rate = None if seg.rate is None else tuple(
+                    float(v) * units.scale(m.unit) for v in seg.rate)  # deg/s, vehicle axes
+                key = (placement, seg.profile, rate)
+                if key not in keys:
+                    base = by_id[seg.profile]
+                    profile = base.profile
+                    if rate is not None:
+                        s = units.scale(base.unit)
+                        profile = profile.model_copy(
+                            update={"rate": tuple(v / s for v in rate)})
+                    profile = place_profile(profile, placement).model_copy(
+                        update={"id": f"{seg.profile}#{len(entries)}"})
+                    keys[key] = len(entries)
+                    entries.append(ProfileEntry(base.source, base.index, profile))
+                columns.append(keys[key])
+            runs.append(_Run(m.mission, placement, triad, tuple(columns),
+                             tuple(float(s.duration) for s in m.mission.segments)))
+    return entries, runs
+
+
+def angle_in_rad(text: str) -> float:
+    """An angle with its unit (``"0.5deg"``, ``"2 mrad"``, ``"30 arcmin"``) in radians;
+    positive and finite. Raises :class:`ValueError` with a message for the user."""
+    import re
+
+    from gyrovib.core.mission import ANGLE_IN_RAD
+
+    m = re.match(r"^\s*([-+]?(?:[0-9]*\.?[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*([A-Za-zµ]+)\s*$",
+                 text)
+    if m is None or m.group(2) not in ANGLE_IN_RAD:
+        raise ValueError(f"give a number with an angle unit ({', '.join(ANGLE_IN_RAD)}), "
+                         "e.g. 0.5deg or '2 mrad'")
+    value = float(m.group(1)) * ANGLE_IN_RAD[m.group(2)]
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError("the angle budget must be positive")
+    return value
+
+
+def angle_unit(unit: str) -> str:
+    """deg for deg/s and deg/h, rad for rad/s, rev for rpm."""
+    return ANGLE_UNITS[units.canonical_unit(unit)][0]
+
+
+def mission(
+    catalog: Catalog,
+    *,
+    missions: Sequence[str] = (),
+    sensors: Sequence[str] = (),
+    budget: float | None = None,
+    angle_budget: float | None = None,
+    unit: str = "deg/s",
+    require: str = "any",
+    placement: Placement | tuple[Placement, ...] | None = None,
+    peak_factor: float = 3.0,
+) -> MissionResult:
+    """Every chosen sensor over every chosen mission (docs/model.md section 12).
+
+    ``budget``: Δ* on the mean RMS Δ̄_RMS, in deg/s; ``angle_budget``: θ* on
+    |θ_V|, in radians (at most one of the two). ``unit``: the output rate unit
+    (the angle is in deg, rad or rev: :func:`angle_unit`). ``placement``
+    replaces every mission's own (a :class:`~gyrovib.core.placement.Placement`
+    or the :data:`~gyrovib.core.placement.TRIAD`). A sensor passes a mission
+    when no segment saturates it and the budget is met, on every axis of a triad.
+    """
+    from gyrovib.api.commands.analyze import analyze
+
+    if budget is not None and angle_budget is not None:
+        raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
+                          "not both")
+    if require not in ("any", "all"):
+        raise OptionError(f"--require {require!r}: use any or all")
+    unit = units.canonical_unit(unit)
+    a_unit, a_factor = ANGLE_UNITS[unit]
+    chosen = chosen_missions(catalog, missions)
+    entries, runs = _segment_entries(catalog, chosen, placement)
+    derived = Catalog(catalog.sources, catalog.sensors, tuple(entries), catalog.allocation,
+                      catalog.missions)
+    result = analyze(derived, sensors=sensors, profiles=[e.profile.id for e in entries],
+                     unit=unit, peak_factor=peak_factor)
+    total, rms = result.error.total, result.error.rms
+    saturated = (np.zeros(total.shape, dtype=bool) if result.saturated is None
+                 else np.asarray(result.saturated))
+    sources = result.sources or ("coefficients",) * len(result.sensors)
+    spec_mean = _spec_means(derived, result.sensors, sources, entries, runs, unit)
+    theta_budget = None if angle_budget is None else (
+        angle_budget / _rad_per(a_unit))
+    budget_out = None if budget is None else budget / units.scale(unit)
+    rows: list[MissionRow] = []
+    for i, sensor in enumerate(result.sensors):
+        per_sensor: list[MissionRow] = []
+        for r, run in enumerate(runs):
+            cols = list(run.columns)
+            agg = totals(run.durations, total[i, cols], rms[i, cols], a_factor)
+            mean = float(agg.mean)
+            if (i, r) in spec_mean:
+                mean = spec_mean[(i, r)]
+            angle = mean * agg.duration * a_factor
+            sat = bool(np.any(saturated[i, cols]))
+            segs = tuple(
+                SegmentResult(profile=seg.profile, duration=float(seg.duration),
+                              rate=(float(result.rates[c, 0]), float(result.rates[c, 1]),
+                                    float(result.rates[c, 2])),
+                              total=float(total[i, c]), rms=float(rms[i, c]),
+                              saturated=bool(saturated[i, c]))
+                for seg, c in zip(run.mission.segments, cols, strict=True))
+            passed: bool | None = None
+            if theta_budget is not None:
+                passed = not sat and abs(angle) <= theta_budget
+            elif budget_out is not None:
+                passed = not sat and float(agg.rms) <= budget_out
+            w = int(agg.worst_index)
+            per_sensor.append(MissionRow(
+                sensor=sensor, mission=run.mission.id,
+                placement="triad" if run.triad else str(run.placement),
+                axis=run.placement.axis if run.triad else None,
+                mean=mean, angle=angle, rms=float(agg.rms), worst_index=w,
+                worst_profile=run.mission.segments[w].profile,
+                worst_total=float(agg.worst_total), segments=segs, saturated=sat,
+                passed=passed, source=sources[i]))
+        rows.extend(_with_worst_axis(per_sensor))
+    sensor_pass = tuple(
+        None if budget is None and angle_budget is None else
+        all(bool(r.passed) for r in rows if r.sensor == s) for s in result.sensors)
+    if budget is None and angle_budget is None:
+        met = True
+    elif require == "all":
+        met = all(bool(p) for p in sensor_pass)
+    else:
+        met = any(bool(p) for p in sensor_pass)
+    return MissionResult(unit=unit, angle_unit=a_unit, budget=budget_out,
+                         angle_budget=theta_budget, require=require, sensors=result.sensors,
+                         missions=tuple(m.mission.id for m in chosen), rows=tuple(rows),
+                         sensor_pass=sensor_pass, requirement_met=met)
+
+
+def _rad_per(angle_unit_name: str) -> float:
+    from gyrovib.core.mission import ANGLE_IN_RAD
+
+    return ANGLE_IN_RAD[angle_unit_name]
+
+
+def _with_worst_axis(rows: list[MissionRow]) -> list[MissionRow]:
+    """A triad's three rows of one mission name the axis of the largest |θ_V|."""
+    from dataclasses import replace
+
+    out: list[MissionRow] = []
+    k = 0
+    while k < len(rows):
+        row = rows[k]
+        if row.axis is None:
+            out.append(row)
+            k += 1
+            continue
+        group = [r for r in rows[k:k + 3]]
+        worst = max(group, key=lambda r: (r.saturated, abs(r.angle))).axis
+        out.extend(replace(r, worst_axis=worst) for r in group)
+        k += 3
+    return out
+
+
+def _spec_means(catalog: Catalog, sensors: Sequence[str], sources: Sequence[str],
+                entries: Sequence[ProfileEntry], runs: Sequence[_Run],
+                unit: str) -> dict[tuple[int, int], float]:
+    """(sensor, run) → a spec-form sensor's worst mean error over the whole mission.
+
+    One :func:`~gyrovib.core.envelope.worst_case` per sensor group and run, on the
+    mission's functional Σ T_s c_s / Σ T_s and g² moment Σ T_s S_s / Σ T_s.
+    """
+    spec_ids = [s for s, src in zip(sensors, sources, strict=True) if src == "specs"]
+    if not spec_ids:
+        return {}
+    from gyrovib.api import specs
+    from gyrovib.api.prepare import float_guard, prepare
+    from gyrovib.core.envelope import worst_case
+
+    out: dict[tuple[int, int], float] = {}
+    where = {s: i for i, s in enumerate(sensors)}
+    scale = units.scale(unit)
+    with float_guard():
+        prepared = prepare(catalog, sensors=spec_ids, profiles=[e.profile.id for e in entries],
+                           methods=("exact",), phase_search=True)
+        for group in prepared.groups:
+            members = [prepared.sensors[int(i)] for i in group.index.tolist()]
+            if not members:
+                continue
+            m = specs.multipliers_of(group, prepared, "exact")
+            t = specs.terms_of(m)                                   # (P, 8, 5)
+            s2 = specs.mean_square_acceleration(m)                  # (P,)
+            figs = specs.figures(members)
+            for r, run in enumerate(runs):
+                cols = list(run.columns)
+                tm = combined_functional(run.durations, t[cols])
+                sm = combined_functional(run.durations, s2[cols])
+                wc = worst_case(tm[None], np.atleast_1d(sm), figs.range, figs.limit,
+                                figs.fit, figs.measure, asymmetry=figs.asymmetry,
+                                vre=figs.vre)
+                values = np.asarray(wc.total, dtype=float).reshape(len(members), -1)[:, 0]
+                for e, v in zip(members, values.tolist(), strict=True):
+                    out[(where[e.sensor.id], r)] = v / scale
+    return out

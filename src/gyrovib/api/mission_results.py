@@ -1,0 +1,105 @@
+"""The result of ``gyrovib mission`` (docs/model.md section 12): immutable rows, one per
+sensor × mission × axis, each with its segments."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from gyrovib.frozen import Frozen
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SegmentResult(Frozen):
+    """One segment for one sensor: profile id, duration (s), carrier rate Ω_K about
+    x1, x2, x3 of the sensor (output unit), Δ_V and Δ_V(RMS) (output unit), saturated."""
+
+    profile: str
+    duration: float
+    rate: tuple[float, float, float]
+    total: float
+    rms: float
+    saturated: bool
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class MissionRow(Frozen):
+    """One sensor over one mission in one placement (docs/model.md section 12).
+
+    ``mean`` Δ̄_V and ``rms`` Δ̄_RMS in the result's unit; ``angle`` θ_V in its
+    ``angle_unit``; ``worst_index`` (0-based), ``worst_profile``, ``worst_total``:
+    the segment of largest |Δ_V,s|. ``axis``: the vehicle axis of the sensitive
+    axis x3 ("X", "Y", "Z") in a triad, else None; ``worst_axis``: the triad's
+    worst axis (largest |θ_V|), else None. ``passed``: None without a budget.
+    A spec-form sensor's ``mean`` is the worst case over its datasheet envelope of
+    the whole mission (one conversion function for every segment), and its
+    ``angle`` that mean times the mission's duration.
+    """
+
+    sensor: str
+    mission: str
+    placement: str
+    axis: str | None
+    mean: float
+    angle: float
+    rms: float
+    worst_index: int
+    worst_profile: str
+    worst_total: float
+    segments: tuple[SegmentResult, ...]
+    saturated: bool
+    passed: bool | None
+    source: str = "coefficients"
+    worst_axis: str | None = None
+
+    @property
+    def duration(self) -> float:
+        """Σ T_s, seconds."""
+        return sum(s.duration for s in self.segments)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class MissionResult(Frozen):
+    """Every chosen sensor over every chosen mission (rows in sensor, mission, axis order).
+
+    ``unit``: the rate unit of every rate value; ``angle_unit``: deg (deg/s, deg/h),
+    rad (rad/s) or rev (rpm); ``budget`` (on Δ̄_RMS, in ``unit``) or
+    ``angle_budget`` (on |θ_V|, in ``angle_unit``), at most one, None without;
+    ``sensor_pass``: per sensor (in ``sensors`` order) whether it passes every
+    mission on every axis (None without a budget); ``requirement_met``: the
+    ``require`` condition (any: one sensor passes; all: every sensor does).
+    """
+
+    unit: str
+    angle_unit: str
+    budget: float | None
+    angle_budget: float | None
+    require: str
+    sensors: tuple[str, ...]
+    missions: tuple[str, ...]
+    rows: tuple[MissionRow, ...]
+    sensor_pass: tuple[bool | None, ...]
+    requirement_met: bool
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per sensor × mission × axis (pandas): the columns of the CSV."""
+        import pandas as pd
+
+        return pd.DataFrame([_record(r) for r in self.rows])
+
+
+def _record(r: MissionRow) -> dict[str, Any]:
+    return {"sensor": r.sensor, "mission": r.mission, "placement": r.placement,
+            "axis": r.axis, "mean": r.mean, "angle": r.angle, "rms": r.rms,
+            "worst_segment": r.worst_index + 1, "worst_profile": r.worst_profile,
+            "worst_total": r.worst_total, "duration": r.duration, "saturated": r.saturated,
+            "source": r.source, "passed": r.passed}
+
+
+def frame_columns() -> tuple[str, ...]:
+    """The DataFrame's (and the CSV's) column names, in order."""
+    return ("sensor", "mission", "placement", "axis", "mean", "angle", "rms", "worst_segment",
+            "worst_profile", "worst_total", "duration", "saturated", "source", "passed")

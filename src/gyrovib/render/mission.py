@@ -1,0 +1,174 @@
+"""Renderers of :class:`gyrovib.api.MissionResult`: table, json, csv, markdown, junit."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+
+if TYPE_CHECKING:
+    from gyrovib.api.mission_results import MissionResult, MissionRow
+
+
+def _verdict(passed: bool | None) -> str:
+    return "-" if passed is None else "pass" if passed else "FAIL"
+
+
+def _budget_text(result: MissionResult) -> str:
+    if result.angle_budget is not None:
+        return f"angle budget |θ_V| ≤ {fmt(result.angle_budget)} {result.angle_unit}"
+    if result.budget is not None:
+        return f"budget Δ̄_RMS ≤ {fmt(result.budget)} {result.unit}"
+    return "no budget"
+
+
+def _reason(result: MissionResult, row: MissionRow) -> str:
+    """Why a row fails, in one line ('' when it passes or has no budget)."""
+    if row.passed is None or row.passed:
+        return ""
+    if row.saturated:
+        bad = [str(k + 1) for k, s in enumerate(row.segments) if s.saturated]
+        return f"saturated in segment {', '.join(bad)}"
+    if result.angle_budget is not None:
+        return (f"|θ_V| = {fmt(abs(row.angle))} {result.angle_unit} > "
+                f"{fmt(result.angle_budget)} {result.angle_unit}")
+    return f"Δ̄_RMS = {fmt(row.rms)} {result.unit} > {fmt(result.budget)} {result.unit}"
+
+
+_HEAD = ["sensor", "mission", "axis", "mean Δ̄_V", "angle θ_V", "mean RMS Δ̄_RMS",
+         "worst segment", "verdict"]
+
+
+def _cells(result: MissionResult, row: MissionRow) -> list[str]:
+    w = row.segments[row.worst_index]
+    axis = "-" if row.axis is None else row.axis + (" (worst)" if row.axis == row.worst_axis
+                                                    else "")
+    return [row.sensor, row.mission, axis, fmt(row.mean), fmt(row.angle), fmt(row.rms),
+            f"{row.worst_index + 1} {w.profile} ({fmt(w.total)})",
+            _verdict(row.passed) + (" (saturated)" if row.saturated else "")]
+
+
+def to_table(result: MissionResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
+    from gyrovib.render.common import Table, Text
+
+    table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
+                  f"({_budget_text(result)})", title_justify="left")
+    head = [*_HEAD]
+    head[3] += f" ({result.unit})"
+    head[4] += f" ({result.angle_unit})"
+    head[5] += f" ({result.unit})"
+    keep = [k for k in range(len(head)) if k != 1 or len(result.missions) > 1]  # in the title
+    for k in keep:
+        table.add_column(head[k], justify="right" if 3 <= k <= 5 else "left", no_wrap=True)
+    for row in result.rows:
+        cells = _cells(result, row)
+        table.add_row(*(cells[k] for k in keep))
+    out: list[Any] = [table]
+    notes = ["mean Δ̄_V = Σ T_s·Δ_V,s / Σ T_s; angle θ_V = Σ T_s·Δ_V,s; mean RMS = "
+             "√(Σ T_s·Δ_V(RMS),s² / Σ T_s); worst segment: its number, profile and Δ_V,s "
+             "(docs/model.md section 12)."]
+    if any(r.source == "specs" for r in result.rows):
+        notes.append("A datasheet sensor's mean and angle are the worst case over its "
+                     "envelope of the whole mission (one conversion function for every "
+                     "segment).")
+    if any(r.axis is not None for r in result.rows):
+        notes.append("axis: the vehicle axis of the sensitive axis x3 in a triad; (worst): "
+                     "the triad's largest |θ_V|.")
+    if result.budget is not None or result.angle_budget is not None:
+        n = sum(1 for p in result.sensor_pass if p)
+        notes.append(f"{n} of {len(result.sensors)} sensors pass every mission "
+                     f"(--require {result.require}: "
+                     f"{'met' if result.requirement_met else 'NOT met'}).")
+    out.append(Text(" ".join(notes), style="dim"))
+    return rich_text(out, width=width, color=color, ascii=ascii)
+
+
+def _row_json(row: MissionRow) -> dict[str, Any]:
+    out: dict[str, Any] = {
+        "sensor": row.sensor, "mission": row.mission, "placement": row.placement,
+        "mean": number(row.mean), "angle": number(row.angle), "rms": number(row.rms),
+        "worst_segment": {"index": row.worst_index, "profile": row.worst_profile,
+                          "total": number(row.worst_total)},
+        "segments": [{"profile": s.profile, "duration": s.duration,
+                      "rate": [number(v) for v in s.rate], "total": number(s.total),
+                      "rms": number(s.rms), "saturated": s.saturated} for s in row.segments],
+        "saturated": row.saturated, "pass": row.passed, "source": row.source,
+    }
+    if row.axis is not None:
+        out["axis"] = row.axis
+        out["worst_axis"] = row.worst_axis
+    return out
+
+
+def to_json(result: MissionResult) -> str:
+    """The JSON document of INTERFACE.md (third round): one entry per sensor × mission
+    (× axis), then each triad's summary and each sensor's verdict."""
+    triads = []
+    seen: set[tuple[str, str]] = set()
+    for row in result.rows:
+        if row.axis is not None and (row.sensor, row.mission) not in seen:
+            seen.add((row.sensor, row.mission))
+            group = [r for r in result.rows if (r.sensor, r.mission) == (row.sensor, row.mission)]
+            passed = (None if row.passed is None else all(bool(r.passed) for r in group))
+            triads.append({"sensor": row.sensor, "mission": row.mission,
+                           "worst_axis": row.worst_axis, "pass": passed})
+    document = {
+        **header("exact", result.unit), "angle_unit": result.angle_unit,
+        "budget": None if result.budget is None else number(result.budget),
+        "angle_budget": None if result.angle_budget is None else number(result.angle_budget),
+        "require": result.require,
+        "mission": [_row_json(r) for r in result.rows],
+        "triads": triads,
+        "sensors": [{"sensor": s, "pass": p}
+                    for s, p in zip(result.sensors, result.sensor_pass, strict=True)],
+        "requirement_met": result.requirement_met,
+    }
+    return dumps(document)
+
+
+def to_csv(result: MissionResult) -> str:
+    """One row per sensor × mission × axis; columns as :meth:`MissionResult.to_frame`."""
+    from gyrovib.api.mission_results import frame_columns
+
+    def row(r: MissionRow) -> list[Any]:
+        return [r.sensor, r.mission, r.placement, r.axis or "", r.mean, r.angle, r.rms,
+                r.worst_index + 1, r.worst_profile, r.worst_total, r.duration,
+                str(r.saturated).lower(), r.source,
+                "" if r.passed is None else str(r.passed).lower()]
+
+    return csv_text(frame_columns(), (row(r) for r in result.rows))
+
+
+def to_markdown(result: MissionResult) -> str:
+    head = [*_HEAD]
+    head[3] += f" ({result.unit})"
+    head[4] += f" ({result.angle_unit})"
+    head[5] += f" ({result.unit})"
+    return markdown_table(head, (_cells(result, r) for r in result.rows))
+
+
+def to_junit(result: MissionResult) -> str:
+    """JUnit XML: one testcase per sensor × mission × axis (classname = sensor)."""
+    import xml.etree.ElementTree as ET
+
+    n = len(result.rows)
+    n_fail = sum(1 for r in result.rows if r.passed is False)
+    suites = ET.Element("testsuites", name="gyrovib mission", tests=str(n),
+                        failures=str(n_fail), errors="0")
+    suite = ET.SubElement(suites, "testsuite", name=f"gyrovib mission: {_budget_text(result)}",
+                          tests=str(n), failures=str(n_fail), errors="0", skipped="0")
+    for r in result.rows:
+        name = r.mission if r.axis is None else f"{r.mission} (x3 on {r.axis})"
+        case = ET.SubElement(suite, "testcase", classname=r.sensor, name=name, time="0")
+        out = ET.SubElement(case, "system-out")
+        out.text = (f"θ_V = {fmt(r.angle)} {result.angle_unit}, mean RMS = {fmt(r.rms)} "
+                    f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})")
+        if r.passed is False:
+            reason = _reason(result, r)
+            failure = ET.Element("failure", message=reason, type="BudgetExceeded")
+            failure.text = reason
+            case.insert(0, failure)
+    ET.indent(suites)
+    return ET.tostring(suites, encoding="unicode", xml_declaration=True) + "\n"
