@@ -332,3 +332,31 @@ def test_a_late_signal_never_contradicts_the_output(tmp_path: Path) -> None:
             assert text == "previous\n", process.returncode
         outcomes.add(process.returncode)
     assert outcomes  # at least one run; which outcomes depends on the machine's speed
+
+
+def test_a_signal_a_library_turned_into_another_error_is_still_the_signal(
+        monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    # pydantic, building its models, may catch the exception a SIGTERM raised and raise
+    # another in its place: the run was terminated (143), not an internal error (3)
+    from gyrovib import api
+    from gyrovib.cli import main as cli_main
+
+    def swallowing(*args: object, **kwargs: object) -> None:
+        try:
+            cli_main._on_signal(signal.SIGTERM, None)
+        except BaseException as exc:
+            raise RuntimeError("wrapped by a library") from exc
+
+    monkeypatch.setattr(api, "analyze", swallowing)
+    monkeypatch.setattr(cli_main, "_received", [])
+    handlers = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+    try:
+        with pytest.raises(SystemExit) as done:
+            cli_main.main(["analyze", "--format", "json"])
+    finally:  # main() leaves the signals it caught ignored, as the process ends
+        for s, handler in handlers.items():
+            signal.signal(s, handler)
+    assert done.value.code == 143
+    err = capsys.readouterr().err
+    assert err.strip() == "gyrovib: terminated"
+    assert "internal error" not in err

@@ -72,9 +72,21 @@ def _on_signal(signum: int, frame: Any) -> None:
     """
     if output_in_place():
         return
+    _received.append(signum)
     if signum == signal.SIGINT:
         raise KeyboardInterrupt
     raise Terminated(signum)
+
+
+#: The signals received (:func:`_on_signal`): a library that catches the exception
+#: a signal raised and raises another in its place (as pydantic may while it builds
+#: a model) must not turn an interrupted run into an internal error.
+_received: list[int] = []
+
+
+def _interrupted_status() -> int | None:
+    """128 + the first signal received, if any."""
+    return 128 + _received[0] if _received else None
 
 
 def _signal_status(exc: KeyboardInterrupt) -> int:
@@ -205,6 +217,10 @@ class _Group(click.Group):
             say(f"gyrovib: error: {exc}")
             ctx.exit(EXIT_WRITE_FAILED)
         except Exception as exc:
+            signalled = _interrupted_status()
+            if signalled is not None:
+                _echo_interrupted(signalled)
+                ctx.exit(signalled)
             _traceback()
             detail = str(exc).splitlines()[0][:300] if str(exc) else ""
             say(f"gyrovib: internal error: {type(exc).__name__}"
@@ -263,10 +279,15 @@ def main(args: list[str] | None = None) -> NoReturn:
         silence_stdout()
         code = EXIT_BROKEN_PIPE
     except Exception as exc:  # outside a command (parsing the group, completion): still a bug
-        _traceback()
-        say(f"gyrovib: internal error: {type(exc).__name__}: "
-            f"{str(exc)[:300]}; this is a bug in gyrovib: please report it")
-        code = EXIT_INTERNAL
+        signalled = _interrupted_status()
+        if signalled is not None:
+            code = signalled
+            _echo_interrupted(code)
+        else:
+            _traceback()
+            say(f"gyrovib: internal error: {type(exc).__name__}: "
+                f"{str(exc)[:300]}; this is a bug in gyrovib: please report it")
+            code = EXIT_INTERNAL
     code = code if isinstance(code, int) else 0
     if code in (EXIT_OK, EXIT_NOT_MET):
         try:
