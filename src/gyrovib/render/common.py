@@ -13,7 +13,9 @@ from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
 
 if TYPE_CHECKING:  # at run time rich is imported on first use (module __getattr__)
-    from rich.console import Console
+    from rich.console import Console, ConsoleOptions
+    from rich.measure import Measurement
+    from rich.segment import Segment
     from rich.table import Table as Table
     from rich.text import Text as Text
 
@@ -271,17 +273,38 @@ def _fitted(table: Table, group: list[int], headers: list[Text], cells: list[lis
     columns = table.columns
     for k in group:
         c = columns[k]
-        part.add_column(_pad(headers[k], widths[k], c.justify), justify="left", style=c.style,
-                        no_wrap=True, overflow="fold", width=widths[k] + 2)
-    for row in zip(*([_pad(x, widths[k], columns[k].justify) for x in cells[k]]
+        part.add_column(_Line(_pad(headers[k], widths[k], c.justify)), justify="left",
+                        style=c.style, no_wrap=True, overflow="fold", width=widths[k] + 2)
+    for row in zip(*([_Line(_pad(x, widths[k], columns[k].justify)) for x in cells[k]]
                      for k in group), strict=True):
         part.add_row(*row)
     return part
 
 
+class _Line:
+    """A cell already laid out (:func:`_pad`: one line, exactly its column's width),
+    handed to rich through its console protocol: rich renders the text's styled
+    segments (``Text.render``) without wrapping and justifying it again."""
+
+    __slots__ = ("text",)
+
+    def __init__(self, text: Text) -> None:
+        self.text = text
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> Iterable[Segment]:
+        return self.text.render(console)
+
+    def __rich_measure__(self, console: Console, options: ConsoleOptions) -> Measurement:
+        from rich.measure import Measurement
+
+        width = self.text.cell_len
+        return Measurement(width, width)
+
+
 def _pad(text: Text, width: int, justify: str) -> Text:
     """``text`` justified in ``width`` cells with one space each side; the spaces
-    unstyled (as rich's padding), the text's own style and spans kept."""
+    unstyled (as rich's padding), the text's own style kept as a span (so that
+    ``Text.render`` draws it)."""
     from rich.text import Text
 
     gap = width - text.cell_len
