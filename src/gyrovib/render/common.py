@@ -302,18 +302,22 @@ class _Line:
 
 
 def _pad(text: Text, width: int, justify: str) -> Text:
-    """``text`` justified in ``width`` cells with one space each side; the spaces
-    unstyled (as rich's padding), the text's own style kept as a span (so that
-    ``Text.render`` draws it)."""
+    """``text`` justified in ``width`` cells with one space each side, as rich lays it
+    out: the two spaces of padding unstyled, the text's spans kept, and its base style
+    kept as a span, over the justification's fill too when rich's justify pads the
+    text itself ("left", "right", "center"; "default" pads outside it)."""
     from rich.text import Text
 
     gap = width - text.cell_len
     left = gap if justify == "right" else gap // 2 if justify == "center" else 0
     if not text.spans and not text.style:
         return Text(" " * (1 + left) + text.plain + " " * (1 + gap - left), end="")
-    out = Text(" " * (1 + left), end="")
+    fill = text.style if justify in ("left", "right", "center") else None
+    out = Text(" ", end="")
+    out.append(" " * left, style=fill)
     out.append_text(text)
-    out.append(" " * (1 + gap - left))
+    out.append(" " * (gap - left), style=fill)
+    out.append(" ")
     return out
 
 
