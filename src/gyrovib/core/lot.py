@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, Multipliers, vibration_error
+from gyrovib.core.special import erfc
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
@@ -54,13 +55,11 @@ class LotError(ModelError):
 
 # --------------------------------------------------------------------------- normal law
 
-_erfc_scalar = np.frompyfunc(math.erfc, 1, 1)
-
-
 def normal_cdf(x: ArrayLike) -> FloatArray:
-    """Φ(x) = ½·erfc(−x/√2), elementwise (math.erfc: no scipy at run time)."""
+    """Φ(x) = ½·erfc(−x/√2), elementwise (:func:`gyrovib.core.special.erfc`: no scipy
+    at run time)."""
     z = np.asarray(x, dtype=float)
-    out: FloatArray = 0.5 * np.asarray(_erfc_scalar(-z / math.sqrt(2.0)), dtype=float)
+    out: FloatArray = 0.5 * erfc(-z / math.sqrt(2.0))
     return out
 
 

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.mixtures import _contour_excess
+from gyrovib.core.special import erfc
 from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
@@ -129,13 +130,10 @@ def vibration_at_sensor(
 
 # --------------------------------------------------------------------------- E(Ω)
 
-_erfc_scalar = np.frompyfunc(math.erfc, 1, 1)
-
-
 def _erfc(x: FloatArray) -> FloatArray:
-    """math.erfc elementwise (numpy has no erf; scipy would slow start-up)."""
-    out: FloatArray = np.asarray(_erfc_scalar(x), dtype=float)
-    return out
+    """erfc elementwise, vectorised (:func:`gyrovib.core.special.erfc`, Cody's rational
+    approximations: numpy has no erf, and scipy would slow start-up)."""
+    return erfc(x)
 
 
 def folded_normal_excess(omega: ArrayLike, sigma: float) -> FloatArray:
