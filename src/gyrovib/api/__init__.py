@@ -42,7 +42,8 @@ _WHERE: dict[str, str] = {
     "resolve_rate": "convert",
     "to_unit": "convert",
     # the pipeline
-    "prepare": "prepare",
+    "prepare": "study",
+    "Study": "study",
     "Prepared": "prepare",
     "float_guard": "prepare",
     "quiet_float": "prepare",
@@ -107,6 +108,7 @@ __all__ = [
     "RateTable",
     "SelectionResult",
     "SensorEntry",
+    "Study",
     "SweepResult",
     "analyze",
     "bounds",
@@ -255,9 +257,6 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
         float_guard as float_guard,
     )
     from gyrovib.api.prepare import (
-        prepare as prepare,
-    )
-    from gyrovib.api.prepare import (
         profile_locked as profile_locked,
     )
     from gyrovib.api.prepare import (
@@ -298,6 +297,12 @@ if TYPE_CHECKING:  # the names, for type checkers (re-exported as they are)
     )
     from gyrovib.api.results import (
         SweepResult as SweepResult,
+    )
+    from gyrovib.api.study import (
+        Study as Study,
+    )
+    from gyrovib.api.study import (
+        prepare as prepare,
     )
     from gyrovib.catalog.loader import (
         Catalog as Catalog,

@@ -162,12 +162,14 @@ class SpecWorst(Frozen):
     g2: FloatArray
 
 
-def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
+def worst(figs: SpecFigures, m: Multipliers, *, total: bool = True) -> SpecWorst:
     """Worst |Δ_V| of every sensor of ``figs`` under the multipliers ``m`` (any shape).
 
     One call to :func:`gyrovib.core.envelope.worst_case` over all profiles
     (× rates), flattened; the result has shape (N,) + m.omega.shape. A
     profile (× rate) whose multipliers are NaN (a method's refusal) gets NaN.
+    ``total`` False: the per-term RMS bound only (``error.rms``); the rest is
+    NaN, unknown (:func:`gyrovib.core.envelope.worst_case`).
     """
     from gyrovib.core.envelope import worst_case
 
@@ -178,7 +180,7 @@ def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
     ok = np.all(np.isfinite(t), axis=(1, 2)) & np.isfinite(s)
     k_all = t.shape[0]
     wc = worst_case(t[ok], s[ok], figs.range, figs.limit, figs.fit, figs.measure,
-                    asymmetry=figs.asymmetry, vre=figs.vre)
+                    asymmetry=figs.asymmetry, vre=figs.vre, total=total)
 
     def spread(a: FloatArray) -> FloatArray:
         out = np.full((n, k_all, *a.shape[2:]), np.nan)
@@ -283,8 +285,8 @@ class SpecResults(Frozen):
     cross_axis: NDArray[np.bool_]
 
 
-def spec_results(prepared: Prepared, method: str,
-                 omega: FloatArray | None = None) -> SpecResults | None:
+def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = None,
+                 *, total: bool = True) -> SpecResults | None:
     """The worst case of every spec-form sensor of ``prepared`` (None when there are none).
 
     Each sensor group (one response ν_sensor) is one call of the envelope
@@ -312,7 +314,7 @@ def spec_results(prepared: Prepared, method: str,
             continue
         m = multipliers_of(group, prepared, method, omega)
         sub = _subset(figs, rows)
-        result = worst(sub, m)
+        result = worst(sub, m, total=total)
         for name, array in parts.items():
             array[rows] = getattr(result.error, name)
         coefficients[rows] = result.coefficients

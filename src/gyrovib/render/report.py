@@ -18,7 +18,7 @@ from html import escape
 
 import numpy as np
 
-from gyrovib.api.study import Spectrum, TradeStudy
+from gyrovib.api.trade_study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares
 from gyrovib.render.common import fmt

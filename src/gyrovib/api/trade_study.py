@@ -1,0 +1,213 @@
+"""A trade study: everything ``gyrovib report`` shows, views of one Study.
+
+One selection (:func:`gyrovib.api.select`) together with what explains it:
+the error of every sensor × profile broken down by term
+(:func:`gyrovib.api.analyze`, same method), the error over the rate envelope
+(:func:`gyrovib.api.sweep`), each profile's spectrum in the output unit, and
+the inputs that make the study reproducible (each catalogue file with its
+SHA-256, the gyrovib version, the time). This module sits beside
+:mod:`gyrovib.api` and uses only its public functions.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from gyrovib import api, units
+from gyrovib._version import __version__
+from gyrovib.api.linear import profile_linear
+from gyrovib.api.prepare import float_guard
+from gyrovib.api.study import Study
+from gyrovib.catalog.loader import Catalog, ProfileEntry
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.models import Allocation
+
+#: Points of the default rate sweep (odd: Ω_K3 = 0 is one of them).
+SWEEP_POINTS = 241
+#: The default sweep reaches this multiple of the largest |Ω_K3| + vibration peak.
+ENVELOPE_FACTOR = 1.5
+
+
+@dataclass(frozen=True)
+class InputFile:
+    """A catalogue file as read: its name as given, SHA-256 of its bytes, size."""
+
+    name: str
+    sha256: str
+    size: int
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """A profile's vibration as the catalogue gives it, in the study's unit.
+
+    ``psd``: (axis, frequencies Hz, PSD unit²/Hz) per axis given; ``tones``:
+    (frequency Hz, amplitudes about x1, x2, x3); ``rms``: the random part given
+    as σ per axis instead of a PSD; ``mount``: the isolation mount's ν(f);
+    ``linear_rms``: the RMS per axis of the linear vibration at the sensor, in g
+    (through its mount; MODEL.md section 8), or None without one.
+    """
+
+    profile: str
+    name: str | None
+    notes: str | None
+    psd: tuple[tuple[str, tuple[float, ...], tuple[float, ...]], ...]
+    tones: tuple[tuple[float, tuple[float, float, float]], ...]
+    rms: tuple[float, float, float] | None
+    mount: tuple[tuple[float, ...], tuple[float, ...]] | None
+    linear_rms: tuple[float, float, float] | None = None
+
+
+@dataclass(frozen=True)
+class TradeStudy:
+    """A selection with its explanation and its inputs (see the module docstring)."""
+
+    selection: api.SelectionResult
+    analysis: api.AnalysisResult
+    sweep: api.SweepResult
+    spectra: tuple[Spectrum, ...]
+    files: tuple[InputFile, ...]
+    sensor_names: tuple[str | None, ...]
+    #: How each sensor is given: "coefficients", "output coefficients" or
+    #: "datasheet" (the spec form, whose results are worst-case bounds).
+    sensor_forms: tuple[str, ...]
+    version: str
+    created: str
+
+
+def file_digest(name: str, text: str) -> InputFile:
+    """SHA-256 of the file's bytes on disk (of its text as UTF-8 when it cannot be read)."""
+    try:
+        data = Path(name).read_bytes()
+    except OSError:
+        data = text.encode("utf-8")
+    return InputFile(name=_shown_name(name), sha256=hashlib.sha256(data).hexdigest(),
+                     size=len(data))
+
+
+def _shown_name(name: str) -> str:
+    """A bundled catalogue as ``gyrovib/catalogs/NAME (bundled)``, not the install path."""
+    from gyrovib.catalog.loader import bundled_paths
+
+    path = Path(name)
+    for bundled in bundled_paths():
+        if path.name == bundled.name and path.resolve() == bundled.resolve():
+            return f"gyrovib/catalogs/{bundled.name} (bundled)"
+    return name
+
+
+def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
+    """The profile's PSD, tones and mount with rates converted to ``unit``."""
+    p = entry.profile
+    f = units.scale(entry.unit) / units.scale(unit)
+    psd: list[tuple[str, tuple[float, ...], tuple[float, ...]]] = []
+    rms = None
+    if p.random is not None:
+        if p.random.psd is not None:
+            for axis in ("x1", "x2", "x3"):
+                table = getattr(p.random.psd, axis)
+                if table is not None:
+                    psd.append((axis, tuple(float(a) for a, _ in table),
+                                tuple(float(b) * f * f for _, b in table)))
+        elif p.random.rms is not None:
+            a, b, c = (float(v) * f for v in p.random.rms)
+            rms = (a, b, c)
+    tones = tuple((float(t.frequency), (float(t.amplitude[0]) * f, float(t.amplitude[1]) * f,
+                                        float(t.amplitude[2]) * f)) for t in p.harmonic)
+    mount = None
+    if p.mount is not None:
+        mount = (tuple(float(a) for a, _ in p.mount), tuple(float(b) for _, b in p.mount))
+    linear = profile_linear(entry)
+    linear_rms = None
+    if linear is not None:
+        x, y, z = (math.sqrt(max(float(v), 0.0)) for v in linear.moments()[:3])
+        linear_rms = (x, y, z)
+    return Spectrum(profile=p.id, name=p.name, notes=p.notes, psd=tuple(psd), tones=tones,
+                    rms=rms, mount=mount, linear_rms=linear_rms)
+
+
+def sensor_form(sensor: object) -> str:
+    """``"datasheet"`` for a sensor given by its specs, else which coefficients it gives."""
+    if getattr(sensor, "specs", None) is not None:
+        return "datasheet"
+    if getattr(sensor, "output_coefficients", None) is not None:
+        return "output coefficients"
+    return "coefficients"
+
+
+def envelope(catalog: Catalog | Study, profiles: Sequence[str] = (),
+             rate: Sequence[float] | None = None) -> float:
+    """Half-width of the default sweep in deg/s: ENVELOPE_FACTOR × max(|Ω_K3| + peak).
+
+    The peak is Σ tone amplitudes + the locked groups' peaks + 3σ of x3 (the
+    saturation check's, κ = 3); 1 deg/s when every profile is still and
+    without vibration. Given a :class:`~gyrovib.api.study.Study`, its profiles
+    as they reach a sensor without input-side response (computed once).
+    """
+    study = catalog if isinstance(catalog, Study) else Study.of(
+        catalog, profiles=profiles, need=("profiles",), rate=rate)
+    with float_guard():
+        seen = study.seen(None, None)
+    reach = [abs(float(study.rates[j, 2])) + float(seen.swing[j])
+             for j in range(len(study.profiles))]
+    widest = max(reach, default=0.0)
+    return ENVELOPE_FACTOR * widest if widest > 0 else 1.0
+
+
+def trade_study(
+    catalog: Catalog,
+    *,
+    budget: float,
+    sensors: Sequence[str] = (),
+    profiles: Sequence[str] = (),
+    method: str = "exact",
+    rate: Sequence[float] | None = None,
+    unit: str = "deg/s",
+    criterion: str = "bounds",
+    require: str = "any",
+    allocation: Allocation | Sequence[float] | None = None,
+    sweep_rates: Sequence[float] | FloatArray | None = None,
+    created: _dt.datetime | None = None,
+    peak_factor: float = 3.0,
+) -> TradeStudy:
+    """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
+
+    Three views of one :class:`~gyrovib.api.study.Study`: each profile's
+    vibration is computed once and shared. ``sweep_rates`` default:
+    :data:`SWEEP_POINTS` rates over ±:func:`envelope`. The sweep evaluates
+    ``method`` only (the one the report draws); the other method's arrays are
+    NaN. ``created`` (default: now, UTC) is stamped on the study.
+    ``peak_factor``: κ of the saturation check (MODEL.md section 9) of the
+    selection and analysis.
+    """
+    from gyrovib.api.commands.analyze import analysis_of
+    from gyrovib.api.commands.select import selection_of
+    from gyrovib.api.commands.sweep import sweep_of
+
+    unit = units.canonical_unit(unit)
+    study = Study.of(catalog, sensors=sensors, profiles=profiles, rate=rate)
+    selection = selection_of(study, method=method, budget=budget, unit=unit,
+                             criterion=criterion, require=require, allocation=allocation,
+                             peak_factor=peak_factor)
+    analysis = analysis_of(study, method=method, unit=unit, peak_factor=peak_factor)
+    if sweep_rates is None:
+        half = envelope(study)
+        sweep_rates = api.rate_range(-half, half, SWEEP_POINTS)
+    swept = sweep_of(study, sweep_rates, unit=unit, methods=(method,), rms_only=True)
+    when = (created or _dt.datetime.now(_dt.UTC)).astimezone(_dt.UTC)
+    return TradeStudy(
+        selection=selection,
+        analysis=analysis,
+        sweep=swept,
+        spectra=tuple(spectrum(p, unit) for p in study.profiles),
+        files=tuple(file_digest(s.name, s.text) for s in catalog.sources),
+        sensor_names=tuple(e.sensor.name for e in study.sensors),
+        sensor_forms=tuple(sensor_form(e.sensor) for e in study.sensors),
+        version=__version__,
+        created=when.strftime("%Y-%m-%d %H:%M:%S UTC"),
+    )
