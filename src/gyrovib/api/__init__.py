@@ -57,10 +57,10 @@ _WHERE: dict[str, str] = {
     "profile_locked": "prepare",
     # results
     "AnalysisResult": "results",
-    "SweepResult": "other_results",
-    "BoundsResult": "other_results",
-    "SelectionResult": "other_results",
-    "Limit": "other_results",
+    "SweepResult": "results",
+    "BoundsResult": "results",
+    "SelectionResult": "results",
+    "Limit": "results",
     # commands
     "analyze": "commands.analyze",
     "ANALYZE_METHODS": "commands.analyze",

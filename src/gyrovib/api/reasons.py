@@ -7,17 +7,19 @@ significant figures, as in the tables.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.other_results import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
+
+if TYPE_CHECKING:
+    from gyrovib.api.results import SelectionResult
 
 
 def coefficient_unit(name: str, unit: str) -> str:

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,13 +41,6 @@ from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
-
-if TYPE_CHECKING:
-    from gyrovib.api.spec_bounds import DatasheetBounds as DatasheetBounds
-    from gyrovib.api.spec_bounds import SpecChecks as SpecChecks
-    from gyrovib.api.spec_bounds import datasheet_bounds as datasheet_bounds
-    from gyrovib.api.spec_bounds import selection_fields as selection_fields
-    from gyrovib.api.spec_bounds import spec_checks as spec_checks
 
 #: m/s² per g (the standard gravity the catalogue's ``g`` means).
 STANDARD_GRAVITY = 9.80665
@@ -443,18 +436,3 @@ def worst_residual(result: Any, i: int, j: int, r: int,
         slope, intercept = np.polyfit(w, p, 1)
         line = intercept + slope * w
     return w, p - line, float(result.nl_limit[i])
-
-
-#: The checks of ``select`` and the bounds of ``bounds --range`` live in
-#: :mod:`gyrovib.api.spec_bounds` (so that ``analyze`` defines none of their
-#: classes); still reachable from here.
-_ELSEWHERE = ("SpecChecks", "spec_checks", "selection_fields", "DatasheetBounds",
-              "datasheet_bounds")
-
-
-def __getattr__(name: str) -> Any:
-    if name in _ELSEWHERE:
-        from gyrovib.api import spec_bounds
-
-        return getattr(spec_bounds, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

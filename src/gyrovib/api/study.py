@@ -196,7 +196,7 @@ class Study(Frozen):
         tolerated = (set(methods if tolerate_refusals else ())
                      if isinstance(tolerate_refusals, bool) else set(tolerate_refusals))
         problems = dict(self.problems)
-        refusal: tuple[int, str] | None = None
+        refusals: list[tuple[int, str]] = []  # the refused profiles, and why, in order
         groups: list[Group] = []
         for response, key, index in self.layout(by_response):
             seen = self.seen(response, key)
@@ -206,38 +206,47 @@ class Study(Frozen):
                           locked=seen.locked,
                           swing=self.swing(seen, key, peak_factor, problems))
             for method in methods:
-                items: list[Multipliers] = []
-                for j, got in enumerate(self.outcomes(seen, key, method, omega, phase_search)):
-                    w = np.asarray(self.rates[j, 2] if omega is None else omega, dtype=float)
-                    if isinstance(got, Multipliers):
-                        if not all(np.all(np.isfinite(getattr(got, f)))
-                                   for f in _MULTIPLIER_FIELDS):
-                            problems.setdefault(j, overflow_problem(
-                                self.profiles[j],
-                                "a statistic of the vibration (<x3²>, <x3⁴>, <x3·xi>)"))
-                        items.append(got)
-                        continue
-                    kind, why = got
-                    if kind == "refused":
-                        if method not in tolerated:
-                            refusal = refusal or (j, why)
-                            problems.setdefault(j, refusal_problem(self.profiles[j], method, why))
-                        group.refused.setdefault(method, {})[j] = why
-                    elif kind == "overflow":
-                        problems.setdefault(j, overflow_problem(self.profiles[j], why))
-                    items.append(nan_multipliers(w))
-                group.multipliers[method] = self.remember(
-                    ("stacked", key, method, omega_key(omega), phase_search),
-                    lambda items=items: stack_multipliers(items))  # type: ignore[misc]
+                group.multipliers[method] = self._stacked(
+                    seen, key, method, omega, phase_search, method in tolerated,
+                    group.refused, problems, refusals)
             groups.append(group)
         if problems:
             ordered = [problems[j] for j in sorted(problems)]
-            if refusal is not None:
-                raise ModelError(ordered, reason=refusal[1], profile=refusal[0])
+            if refusals:
+                raise ModelError(ordered, reason=refusals[0][1], profile=refusals[0][0])
             raise RangeError(ordered)
         return Prepared(self.sensors, self.profiles, self.coefficients, self.rates,
                         tuple(groups), rate_given=self.rate_given, linear=self.linear,
                         g2=self.g2)
+
+    def _stacked(self, seen: Seen, key: Any, method: str, omega: FloatArray | None,
+                 phase_search: bool, tolerated: bool, refused: dict[str, dict[int, str]],
+                 problems: dict[int, Problem], refusals: list[tuple[int, str]]) -> Multipliers:
+        """One group's multipliers of ``method`` stacked over the profiles (kept by the study).
+
+        A profile without multipliers gets NaN ones and a problem (an overflow,
+        or a refusal unless ``tolerated``: then it is noted in ``refused``).
+        """
+        items: list[Multipliers] = []
+        for j, got in enumerate(self.outcomes(seen, key, method, omega, phase_search)):
+            if isinstance(got, Multipliers):
+                if not all(np.all(np.isfinite(getattr(got, f))) for f in _MULTIPLIER_FIELDS):
+                    problems.setdefault(j, overflow_problem(
+                        self.profiles[j], "a statistic of the vibration (<x3²>, <x3⁴>, <x3·xi>)"))
+                items.append(got)
+                continue
+            kind, why = got
+            if kind == "refused":
+                refused.setdefault(method, {})[j] = why
+                if not tolerated:
+                    refusals.append((j, why))
+                    problems.setdefault(j, refusal_problem(self.profiles[j], method, why))
+            elif kind == "overflow":
+                problems.setdefault(j, overflow_problem(self.profiles[j], why))
+            items.append(nan_multipliers(np.asarray(
+                self.rates[j, 2] if omega is None else omega, dtype=float)))
+        return self.remember(("stacked", key, method, omega_key(omega), phase_search),
+                             lambda: stack_multipliers(items))
 
     def layout(self, by_response: bool) -> list[tuple[Table | None, Any, Any]]:
         """(response, memory key, sensor indices) per group; one group of all when not

@@ -270,7 +270,8 @@ def to_markdown(result: AnalysisResult) -> str:
 def to_table(result: AnalysisResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One table per profile, sensors as rows, warnings below."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     e = result.error
     extra = getattr(result, "stderr", None)

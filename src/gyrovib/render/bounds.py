@@ -285,7 +285,8 @@ def to_markdown(result: BoundsResult) -> str:
 def to_table(result: BoundsResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One table per profile, one row per bounded coefficient."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     def table(head: list[str], rows: list[list[str]], **title: Any) -> Any:
         """A table whose second column, the bound, is bold and right-aligned."""

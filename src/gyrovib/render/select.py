@@ -360,7 +360,8 @@ def to_markdown(result: SelectionResult) -> str:
 def to_table(result: SelectionResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """Tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     out: list[Any] = [Text(_heading(result), style="bold")]
     matrix = Table(header_style="bold")

@@ -10,7 +10,6 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import bound_factors
-from gyrovib.api.other_results import BoundsResult
 from gyrovib.api.prepare import (
     TINY,
     Prepared,
@@ -18,6 +17,7 @@ from gyrovib.api.prepare import (
     float_guard,
     overflow_problem,
 )
+from gyrovib.api.results import BoundsResult
 from gyrovib.api.study import Study
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS

@@ -17,9 +17,9 @@ from gyrovib.api.commands.bounds import (
 )
 from gyrovib.api.convert import bound_factors
 from gyrovib.api.evaluate import errors, saturation, worst_case
-from gyrovib.api.other_results import Limit, SelectionResult
 from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard
 from gyrovib.api.reasons import saturation_reasons
+from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.api.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import COEFFICIENTS

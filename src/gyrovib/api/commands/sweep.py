@@ -10,8 +10,8 @@ from gyrovib import units
 from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, to_unit
 from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, worst_case
-from gyrovib.api.other_results import SweepResult
 from gyrovib.api.prepare import check_finite, float_guard
+from gyrovib.api.results import SweepResult
 from gyrovib.api.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS, VibrationError
