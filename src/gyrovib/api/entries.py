@@ -14,6 +14,7 @@ from gyrovib.catalog.loader import (
     Catalog,
     ProfileEntry,
     SensorEntry,
+    Source,
     bundled_files,
     load_catalog,
 )
@@ -26,8 +27,11 @@ if TYPE_CHECKING:
 Location = tuple[str | None, int | None]
 
 
-def load(paths: Sequence[str | Path] = (), *, sensors: bool = True) -> Catalog:
+def load(paths: Sequence[str | Path | Source] = (), *, sensors: bool = True) -> Catalog:
     """Load and merge catalogue files; no paths means the bundled catalogues.
+
+    A :class:`~gyrovib.catalog.loader.Source` stands for a file or for bytes
+    read elsewhere (standard input), read by the same loader.
 
     ``sensors=False``: the profiles only. The ``sensors:`` sections are read
     past by the YAML parser, neither built nor validated: a library shortcut
