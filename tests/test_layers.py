@@ -197,3 +197,22 @@ def test_the_error_loop_and_the_saturation_rule_are_written_once() -> None:
     assert sorted(set(calls["vibration_error"])) == ["api/commands/analyze.py:_simulate",
                                                       "api/evaluate.py:error"]
     assert calls["saturated_at"] == ["api/evaluate.py:saturation"]
+
+
+def test_one_immutability_mechanism_in_the_library() -> None:
+    # every dataclass of gyrovib.api is declared frozen=True, eq=False, repr=False on
+    # the Frozen base (directly or through Result): one mechanism, not three
+    found = []
+    for path in sorted((SRC / "gyrovib" / "api").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.ClassDef):
+                continue
+            for deco in node.decorator_list:
+                if "dataclass" in ast.unparse(deco):
+                    found.append((node.name, ast.unparse(deco),
+                                  [ast.unparse(b) for b in node.bases]))
+    assert len(found) > 20  # the probe works
+    odd = [f for f in found
+           if f[1] != "dataclass(frozen=True, eq=False, repr=False)"
+           or not set(f[2]) & {"Frozen", "Result", "SensorsByProfiles"}]
+    assert odd == []

@@ -122,6 +122,15 @@ def form_rows(sensors: Sequence[SensorEntry]) -> list[tuple[SensorForm, NDArray[
     return out
 
 
+def sources(sensors: Sequence[SensorEntry]) -> tuple[str, ...]:
+    """Each sensor's form, as results name it; empty when every sensor has coefficients."""
+    named = ["coefficients"] * len(sensors)
+    for form, rows in form_rows(sensors):
+        for i in rows.tolist():
+            named[i] = form.source
+    return () if all(n == "coefficients" for n in named) else tuple(named)
+
+
 def worst_case(study: Study, prepared: Prepared, method: str,
                omega: FloatArray | None = None, *,
                rms_only: bool = False) -> specs.SpecResults | None:

@@ -25,6 +25,7 @@ from gyrovib.api.prepare import float_guard
 from gyrovib.api.study import Study
 from gyrovib.catalog.loader import Catalog, ProfileEntry
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
 from gyrovib.models import Allocation
 
 #: Points of the default rate sweep (odd: Ω_K3 = 0 is one of them).
@@ -33,8 +34,8 @@ SWEEP_POINTS = 241
 ENVELOPE_FACTOR = 1.5
 
 
-@dataclass(frozen=True)
-class InputFile:
+@dataclass(frozen=True, eq=False, repr=False)
+class InputFile(Frozen):
     """A catalogue file as read: its name as given, SHA-256 of its bytes, size."""
 
     name: str
@@ -42,8 +43,8 @@ class InputFile:
     size: int
 
 
-@dataclass(frozen=True)
-class Spectrum:
+@dataclass(frozen=True, eq=False, repr=False)
+class Spectrum(Frozen):
     """A profile's vibration as the catalogue gives it, in the study's unit.
 
     ``psd``: (axis, frequencies Hz, PSD unit²/Hz) per axis given; ``tones``:
@@ -63,8 +64,8 @@ class Spectrum:
     linear_rms: tuple[float, float, float] | None = None
 
 
-@dataclass(frozen=True)
-class TradeStudy:
+@dataclass(frozen=True, eq=False, repr=False)
+class TradeStudy(Frozen):
     """A selection with its explanation and its inputs (see the module docstring)."""
 
     selection: api.SelectionResult

@@ -9,7 +9,7 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api import specs
 from gyrovib.api.convert import error_arrays, to_unit
-from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, worst_case
+from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, sources, worst_case
 from gyrovib.api.prepare import check_finite, float_guard
 from gyrovib.api.results import SweepResult
 from gyrovib.api.study import Study, check_peak_factor
@@ -99,7 +99,8 @@ def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "
                    for m in METHODS}
         spec = (worst_case(study, prepared, "exact", omega, rms_only=rms_only)
                 if "exact" in methods else None)
-        worst_x = None if spec is None else specs.sweep_fields(len(prepared.sensors), spec, unit)
+        worst_x = (specs.sweep_fields(len(prepared.sensors), spec, unit) if spec is not None
+                   else {"sources": sources(prepared.sensors)})
         exact = to_unit(VibrationError(**results["exact"]), unit, in_place=True)
         paper = to_unit(VibrationError(**results["paper"]), unit, in_place=True)
         checked = (lambda e: [e.rms]) if rms_only else error_arrays
