@@ -215,6 +215,31 @@ class BoundsResult(Result):
     def _shape(self) -> tuple[int, ...]:
         return (len(self.profiles),)
 
+    @property
+    def table_unit(self) -> str:
+        """The rate unit tables write coefficient bounds in (:attr:`coefficient_unit`)."""
+        return self.coefficient_unit or self.unit
+
+    @property
+    def table_bounds(self) -> CoefficientBounds:
+        """:attr:`bounds` in :attr:`table_unit` powers, as tables show them (the VRE
+        bound stays in :attr:`unit` per g²)."""
+        return _in_table_unit(self.bounds, self.unit, self.table_unit)
+
+
+def _coefficient_factors(unit: str, table_unit: str) -> dict[str, float]:
+    """Each bounded coefficient's factor from ``unit`` powers to ``table_unit`` powers."""
+    from gyrovib import units
+    from gyrovib.core.synthesis import BOUNDED
+
+    return {name: units.coefficient_factor(name, unit, table_unit) for name in BOUNDED}
+
+
+def _in_table_unit(bounds: CoefficientBounds, unit: str, table_unit: str) -> CoefficientBounds:
+    if table_unit == unit:
+        return bounds
+    return bounds.scaled({**_coefficient_factors(unit, table_unit), "vre": 1.0})
+
 
 @dataclass(frozen=True, eq=False, repr=False)
 class Limit(Frozen):
@@ -294,3 +319,32 @@ class SelectionResult(SensorsByProfiles):
     def has_linear(self) -> bool:
         """Whether some profile has a linear vibration (so the ``vre`` check can bind)."""
         return self.profile_bounds.vre is not None
+
+    @property
+    def table_unit(self) -> str:
+        """The rate unit tables write coefficients in (:attr:`coefficient_unit`)."""
+        return self.coefficient_unit or self.unit
+
+    @property
+    def table_values(self) -> FloatArray:
+        """:attr:`values` in :attr:`table_unit` powers, as tables show them."""
+        return self._in_table_unit(self.values)
+
+    @property
+    def table_bounds(self) -> FloatArray:
+        """:attr:`bounds` in :attr:`table_unit` powers, as tables show them."""
+        return self._in_table_unit(self.bounds)
+
+    @property
+    def table_profile_bounds(self) -> CoefficientBounds:
+        """:attr:`profile_bounds` in :attr:`table_unit` powers."""
+        return _in_table_unit(self.profile_bounds, self.unit, self.table_unit)
+
+    def _in_table_unit(self, array: FloatArray) -> FloatArray:
+        if self.table_unit == self.unit:
+            return array
+        from gyrovib.core.synthesis import BOUNDED
+
+        factors = _coefficient_factors(self.unit, self.table_unit)
+        out: FloatArray = array * np.array([factors[name] for name in BOUNDED])
+        return out

@@ -10,7 +10,6 @@ import numpy as np
 
 from gyrovib.api import BoundsResult
 from gyrovib.api.reasons import coefficient_unit as coefficient_unit
-from gyrovib.api.reasons import in_table_unit, table_unit
 from gyrovib.core.synthesis import (
     BOUNDED,
     ODD_PARTS,
@@ -212,9 +211,9 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     odd = [getattr(result.bounds, name) for name in ("k3_additive", "k5_additive")]
     m3, m5 = (part is not None and bool(np.isfinite(part[j])) for part in odd)
     share = shares(result.allocation, linear=linear, m3=m3, m5=m5)
-    unit = table_unit(result)
-    converted = _Converted(result)
-    rows = [[name, fmt(in_table_unit(result, name, getattr(result.bounds, name)[j])),
+    unit = result.table_unit
+    converted = result.table_bounds
+    rows = [[name, fmt(getattr(converted, name)[j]),
              coefficient_unit(name, unit), share[name], _which(converted, j, name)]
             for name in BOUNDED]
     if linear:
@@ -222,19 +221,6 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
         rows.append(["vre", fmt(result.bounds.vre[j]), vre_unit(result.unit), share["vre"],
                      "|Δ0(6)|/Σ⟨a_j²⟩"])
     return rows
-
-
-class _Converted:
-    """The k3/k4/k5 candidates of a result in its table unit (for :func:`_which`)."""
-
-    def __init__(self, result: BoundsResult) -> None:
-        self._result = result
-
-    def __getattr__(self, name: str) -> Any:
-        values = getattr(self._result.bounds, name)
-        if values is None:  # a section-10 part of a document without odd moments
-            return None
-        return [in_table_unit(self._result, name, v) for v in values]
 
 
 _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
@@ -247,7 +233,7 @@ def _title(result: BoundsResult, j: int) -> str:
 
 def unit_note(result: Any) -> str:
     """Where tables write coefficients in another unit than the rates, say so."""
-    unit = table_unit(result)
+    unit = result.table_unit
     if unit == result.unit:
         return ""
     return (f" Coefficients and their bounds are written in the catalogue's rate unit, "

@@ -9,7 +9,7 @@ from typing import Any
 
 from gyrovib.api import SelectionResult
 from gyrovib.api.reasons import failures as _failures
-from gyrovib.api.reasons import in_table_unit, reason, table_unit
+from gyrovib.api.reasons import reason
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, unit_note, vre_unit
@@ -74,10 +74,10 @@ def limit_text(result: SelectionResult, i: int) -> str:
         return _spec_limit_text(result, i, limit.name, j, ratio)
     b = BOUNDED.index(limit.name)
     name = limit.name
-    unit = coefficient_unit(name, table_unit(result))
+    unit = coefficient_unit(name, result.table_unit)
     tail = "" if unit == "1" else f" {unit}"
-    return (f"{name}: |{name}| = {fmt(in_table_unit(result, name, result.values[i, j, b]))} "
-            f"is {ratio}× its bound {fmt(in_table_unit(result, name, result.bounds[i, j, b]))}"
+    return (f"{name}: |{name}| = {fmt(float(result.table_values[i, j, b]))} "
+            f"is {ratio}× its bound {fmt(float(result.table_bounds[i, j, b]))}"
             f"{tail} under {profile}")
 
 
