@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -75,7 +75,15 @@ class CoefficientForm:
     def error(self, study: Study, prepared: Prepared, rows: NDArray[np.intp], method: str,
               omega: FloatArray | None, parts: dict[str, FloatArray],
               rms_only: bool = False) -> None:
-        """Eq. (13)-(16) for its rows, one vectorised call per sensor group."""
+        """Eq. (13)-(16) for its rows, one vectorised call per sensor group.
+
+        ``parts`` empty: its rows are every sensor, in one group; the arrays of
+        that one call become the results (a long sweep's are large: copied into
+        zeros they would double its memory).
+        """
+        shape = (len(prepared.sensors), len(prepared.profiles),
+                 *(() if omega is None else (np.asarray(omega).size,)))
+        whole = not parts
         mine = np.zeros(len(prepared.sensors), dtype=bool)
         mine[rows] = True
         for group in prepared.groups:
@@ -84,8 +92,28 @@ class CoefficientForm:
                 continue
             err = vibration_error(prepared.coefficients[idx], group.multipliers[method],
                                   g2_sensitivity=prepared.g2[idx])
+            if whole:
+                _take_whole(err, shape, parts, group.multipliers[method])
+                continue
             for name, array in parts.items():
                 array[idx] = getattr(err, name)
+
+
+def _take_whole(err: Any, shape: tuple[int, ...], parts: dict[str, FloatArray],
+                kept: Any) -> None:
+    """The arrays of ``err`` as the results: broadcast and copied only where they must be
+    (a view shared with another result or with the multipliers the study keeps, a
+    read-only one, a shape left to broadcasting)."""
+    others = [a for a in vars(kept).values() if isinstance(a, np.ndarray)] if hasattr(
+        kept, "__dict__") else [getattr(kept, f) for f in kept.__dataclass_fields__
+                                if isinstance(getattr(kept, f), np.ndarray)]
+    for name, tail in ERROR_PARTS.items():
+        array = np.asarray(getattr(err, name))
+        if (array.shape != (*shape, *tail) or not array.flags.writeable
+                or any(np.may_share_memory(array, other)
+                       for other in [*parts.values(), *others])):
+            array = np.array(np.broadcast_to(array, (*shape, *tail)))
+        parts[name] = array
 
 
 class DatasheetForm:
@@ -159,10 +187,18 @@ def errors(study: Study, prepared: Prepared, method: str, omega: FloatArray | No
     """
     tail = () if omega is None else (np.asarray(omega).size,)
     shape = (len(prepared.sensors), len(prepared.profiles), *tail)
-    parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
-    for form, rows in form_rows(prepared.sensors):
+    forms = form_rows(prepared.sensors)
+    parts: dict[str, FloatArray] = {}
+    whole = (len(forms) == 1 and forms[0][0].source == "coefficients"
+             and len(prepared.groups) == 1
+             and np.array_equal(prepared.groups[0].index, np.arange(shape[0])))
+    if not whole:  # each form fills its own rows of zeros
+        parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
+    for form, rows in forms:
         form.error(study, datasheet if datasheet is not None and form.source == "specs"
                    else prepared, rows, method, omega, parts, rms_only)
+    if not parts:  # no profile (no group): nothing was computed
+        parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
     return parts
 
 
