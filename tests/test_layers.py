@@ -166,16 +166,21 @@ def _complexity(function: ast.FunctionDef) -> int:
     return count
 
 
-#: The preparation and evaluation every command shares.
-PIPELINE = ("api/study.py", "api/prepare.py", "api/evaluate.py")
+#: The preparation and evaluation every command shares, and the views on it (select's
+#: view, selection_of, is not yet among them: it still judges every criterion inline).
+PIPELINE = ("api/study.py", "api/prepare.py", "api/evaluate.py", "api/commands/sweep.py",
+            "api/commands/bounds.py:bounds_of", "api/commands/analyze.py:analysis_of",
+            "api/trade_study.py:trade_study")
 
 
 def test_the_preparation_is_made_of_small_functions() -> None:
     over = {}
-    for rel in PIPELINE:
+    for where in PIPELINE:
+        rel, _, only = where.partition(":")
         tree = ast.parse((SRC / "gyrovib" / rel).read_text(encoding="utf-8"))
         for node in ast.walk(tree):
-            if isinstance(node, ast.FunctionDef) and _complexity(node) >= 15:
+            if (isinstance(node, ast.FunctionDef) and node.name == (only or node.name)
+                    and _complexity(node) >= 15):
                 over[f"{rel}:{node.name}"] = _complexity(node)
     assert over == {}
 

@@ -134,10 +134,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         if numeric:
             parts, stderr = _numeric(prepared, spec, samples, seed, progress)
         else:
-            parts = errors(study, prepared, method, datasheet=datasheet)
-            if method == "exact":
-                for group in prepared.groups:
-                    worst.update(_worst_phases(prepared, group, parts, spec))
+            parts, worst = _closed_form(study, prepared, datasheet, method, spec)
         warnings = specs.with_cross_axis(_saturation(prepared, unit), spec)
         saturated = saturation(prepared).saturated
         error = to_unit(VibrationError(**parts), unit)
@@ -164,6 +161,20 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         locked=locked,
         worst_phases=worst,
     )
+
+
+def _closed_form(study: Study, prepared: Prepared, datasheet: Prepared, method: str,
+                 spec: specs.SpecResults | None,
+                 ) -> tuple[dict[str, FloatArray],
+                            dict[tuple[int, int], tuple[dict[str, float], ...]]]:
+    """Eq. (13)-(16) by ``method`` (deg/s); under ``exact``, profiles with ``phase:
+    worst`` orders at the phases found for each coefficient sensor, and those phases."""
+    parts = errors(study, prepared, method, datasheet=datasheet)
+    worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
+    if method == "exact":
+        for group in prepared.groups:
+            worst.update(_worst_phases(prepared, group, parts, spec))
+    return parts, worst
 
 
 def _numeric(prepared: Prepared, spec: specs.SpecResults | None, samples: int, seed: int,
