@@ -221,3 +221,17 @@ def test_one_immutability_mechanism_in_the_library() -> None:
            if f[1] != "dataclass(frozen=True, eq=False, repr=False)"
            or not set(f[2]) & {"Frozen", "Result", "SensorsByProfiles"}]
     assert odd == []
+
+
+def test_the_api_face_lists_its_names_once_for_run_time_and_once_for_types() -> None:
+    # __init__.py imports each name of _WHERE on first use; __init__.pyi gives the same
+    # names their types (a name in one and not the other is a broken face)
+    import gyrovib.api as face
+
+    stub = ast.parse((SRC / "gyrovib" / "api" / "__init__.pyi").read_text(encoding="utf-8"))
+    typed = {a.asname or a.name for n in stub.body if isinstance(n, ast.ImportFrom)
+             for a in n.names}
+    assert len(typed) > 40  # the probe works
+    assert typed == set(face._WHERE) == set(face.__all__)
+    for name in sorted(typed):  # and each resolves at run time
+        assert getattr(face, name) is not None
