@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from gyrovib import api
-from gyrovib.api.study import trade_study
+from gyrovib.api.trade_study import trade_study
 from gyrovib.render.report import to_html
 
 CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")

@@ -18,10 +18,11 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from rich.table import Table
 
 from gyrovib.cli.common import printable, resolve_color
 from gyrovib.cli.main import cli
-from gyrovib.render.common import Table, rich_text, to_ascii
+from gyrovib.render.common import rich_text, to_ascii
 
 ANSI = re.compile(r"\x1b\[[0-9;]*m")
 #: A command that runs for minutes: 10^8 samples of eq. (2) per sensor × profile.

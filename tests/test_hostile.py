@@ -472,3 +472,22 @@ def test_internal_error_debug_shows_it(valid_file: Path,
     assert result.exit_code == 3
     assert "Traceback (most recent call last)" in result.stderr
     assert "ZeroDivisionError: simulated bug" in result.stderr
+
+
+@pytest.mark.parametrize("raw", [
+    pytest.param("gyrovib: 1\n".encode("utf-16"), id="utf16"),
+    pytest.param(b"gyrovib: 1\n\x00\x01\x02", id="binary-nul"),
+    pytest.param(b"gyrovib: 1\nsensors:\n  - id: caf\xe9\n", id="non-utf8"),
+    pytest.param(b"gyrovib: 1\nsensors: [\n", id="yaml-syntax"),
+])
+def test_standard_input_and_a_file_give_the_same_message(tmp_path, raw):
+    # one loader for both (catalog.loader.Source): the same bytes, the same refusal,
+    # located the same way; only the name differs. (Standard input used to be read
+    # by a second path, which called UTF-16 "binary data (a NUL byte)".)
+    path = tmp_path / "bad.gyrovib.yaml"
+    path.write_bytes(raw)
+    from_file = invoke("validate", str(path))
+    from_stdin = invoke("validate", "-", input=raw)
+    assert from_file.exit_code == from_stdin.exit_code == 2
+    assert from_file.stderr.replace(str(path), "<stdin>") == from_stdin.stderr
+    assert "<stdin>:" in from_stdin.stderr  # located: <stdin>:LINE:COL

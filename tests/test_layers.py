@@ -3,6 +3,7 @@ of pyproject.toml ([tool.importlinter])."""
 
 from __future__ import annotations
 
+import ast
 import shutil
 import subprocess
 import sys
@@ -40,3 +41,197 @@ def test_core_messages_name_no_command_line_option() -> None:
         text = path.read_text(encoding="utf-8")
         for flag in ("--method", "--profile", "--sensor", "--rate", "--samples", "--unit"):
             assert flag not in text, f"{path.name} mentions {flag}"
+
+
+# ----------------------------------------------------------------- the package's own imports
+
+SRC = ROOT / "src"
+#: The package faces, whose module ``__getattr__`` imports their names on first use.
+FACES = ("gyrovib", "gyrovib.api")
+
+
+def _modules() -> dict[str, Path]:
+    out = {}
+    for path in sorted((SRC / "gyrovib").rglob("*.py")):
+        parts = list(path.relative_to(SRC).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts.pop()
+        out[".".join(parts)] = path
+    return out
+
+
+def _type_checking(node: ast.AST) -> bool:
+    return isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
+
+
+def _imports(name: str, path: Path, known: dict[str, Path]) -> set[str]:
+    """The package's modules ``name`` imports, anywhere in it (functions too), except
+    under ``if TYPE_CHECKING:`` (annotations only)."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found: set[str] = set()
+
+    def visit(node: ast.AST) -> None:
+        if _type_checking(node):
+            return
+        if isinstance(node, ast.Import):
+            found.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parent = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join([*parent, *([base] if base else [])])
+            names = {f"{base}.{a.name}" for a in node.names}
+            found.update(names)
+            if not names <= set(known):  # a name of the package itself, not a submodule
+                found.add(base)
+        for child in ast.iter_child_nodes(node):
+            visit(child)
+
+    visit(ast.parse(path.read_text(encoding="utf-8")))
+    return {m for m in found if m in known and m != name}
+
+
+def _graph() -> dict[str, set[str]]:
+    known = _modules()
+    return {name: _imports(name, path, known) for name, path in known.items()}
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    out: list[list[str]] = []
+
+    def strong(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in sorted(graph[v]):
+            if w not in index:
+                strong(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            part = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                part.append(w)
+                if w == v:
+                    break
+            if len(part) > 1:
+                out.append(sorted(part))
+
+    for v in sorted(graph):
+        if v not in index:
+            strong(v)
+    return out
+
+
+def test_no_import_circle_in_the_package() -> None:
+    graph = _graph()
+    assert graph["gyrovib.api.commands.select"] >= {"gyrovib.api.study"}  # the probe works
+    assert _cycles(graph) == []
+
+
+def test_the_cycle_finder_finds_a_circle() -> None:
+    # the finder itself, on a made-up graph: a → b → c → a, d alone
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
+    assert _cycles(graph) == [["a", "b", "c"]]
+
+
+def test_only_package_faces_have_a_module_getattr() -> None:
+    found = []
+    for name, path in _modules().items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        if any(isinstance(n, ast.FunctionDef) and n.name == "__getattr__" for n in tree.body):
+            found.append(name)
+    assert sorted(found) == sorted(FACES)
+
+
+def _complexity(function: ast.FunctionDef) -> int:
+    """McCabe's cyclomatic complexity: 1 + decisions (branches, loops, handlers, and/or)."""
+    count = 1
+    for node in ast.walk(function):
+        if isinstance(node, ast.If | ast.For | ast.While | ast.IfExp | ast.ExceptHandler
+                      | ast.AsyncFor | ast.match_case):
+            count += 1
+        elif isinstance(node, ast.BoolOp):
+            count += len(node.values) - 1
+        elif isinstance(node, ast.comprehension):
+            count += 1 + len(node.ifs)
+    return count
+
+
+#: The preparation and evaluation every command shares, and the views on it (select's
+#: view, selection_of, is not yet among them: it still judges every criterion inline).
+PIPELINE = ("api/study.py", "api/prepare.py", "api/evaluate.py", "api/commands/sweep.py",
+            "api/commands/bounds.py:bounds_of", "api/commands/analyze.py:analysis_of",
+            "api/trade_study.py:trade_study")
+
+
+def test_the_preparation_is_made_of_small_functions() -> None:
+    over = {}
+    for where in PIPELINE:
+        rel, _, only = where.partition(":")
+        tree = ast.parse((SRC / "gyrovib" / rel).read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.FunctionDef) and node.name == (only or node.name)
+                    and _complexity(node) >= 15):
+                over[f"{rel}:{node.name}"] = _complexity(node)
+    assert over == {}
+
+
+def test_the_error_loop_and_the_saturation_rule_are_written_once() -> None:
+    # eq. (13)-(16) over the sensor groups, and reach > range, are called from one
+    # module of the library (the brute force of analyze --method numeric turns its
+    # sample moments into terms with vibration_error too: it is the one other caller)
+    calls: dict[str, list[str]] = {"vibration_error": [], "saturated_at": []}
+    for path in sorted((SRC / "gyrovib" / "api").rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.FunctionDef):
+                for call in ast.walk(node):
+                    if (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)
+                            and call.func.id in calls):
+                        calls[call.func.id].append(
+                            f"{path.relative_to(SRC / 'gyrovib')}:{node.name}")
+    assert sorted(set(calls["vibration_error"])) == ["api/commands/analyze.py:_simulate",
+                                                      "api/evaluate.py:error"]
+    assert calls["saturated_at"] == ["api/evaluate.py:saturation"]
+
+
+def test_one_immutability_mechanism_in_the_library() -> None:
+    # every dataclass of gyrovib.api is declared frozen=True, eq=False, repr=False on
+    # the Frozen base (directly or through Result): one mechanism, not three
+    found = []
+    for path in sorted((SRC / "gyrovib" / "api").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.ClassDef):
+                continue
+            for deco in node.decorator_list:
+                if "dataclass" in ast.unparse(deco):
+                    found.append((node.name, ast.unparse(deco),
+                                  [ast.unparse(b) for b in node.bases]))
+    assert len(found) > 20  # the probe works
+    odd = [f for f in found
+           if f[1] != "dataclass(frozen=True, eq=False, repr=False)"
+           or not set(f[2]) & {"Frozen", "Result", "SensorsByProfiles"}]
+    assert odd == []
+
+
+def test_the_api_face_lists_its_names_once_for_run_time_and_once_for_types() -> None:
+    # __init__.py imports each name of _WHERE on first use; __init__.pyi gives the same
+    # names their types (a name in one and not the other is a broken face)
+    import gyrovib.api as face
+
+    stub = ast.parse((SRC / "gyrovib" / "api" / "__init__.pyi").read_text(encoding="utf-8"))
+    typed = {a.asname or a.name for n in stub.body if isinstance(n, ast.ImportFrom)
+             for a in n.names}
+    assert len(typed) > 40  # the probe works
+    assert typed == set(face._WHERE) == set(face.__all__)
+    for name in sorted(typed):  # and each resolves at run time
+        assert getattr(face, name) is not None

@@ -15,12 +15,14 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from rich.table import Table
+from rich.text import Text
 
 from gyrovib import api
 from gyrovib.catalog.loader import merge, parse_catalog
 from gyrovib.formatting import fmt
 from gyrovib.render import analysis as render
-from gyrovib.render.common import Table, Text, column_groups, rich_text
+from gyrovib.render.common import column_groups, rich_text
 from tests.conftest import MIXED_FORMS
 
 # the renderers' catalogue and a locked group (its odd-moment columns)

@@ -85,3 +85,19 @@ def test_parse_rate_accepts_units_and_refuses_nonsense():
     for bad in ("abc", "1 furlong/s", "nan", "1e999"):
         with pytest.raises(units.OptionError):
             units.parse_rate(bad, "deg/s")
+
+
+def test_one_reading_of_a_quantity_for_the_command_line_and_the_notebook():
+    # units.quantity is the one reading of "a number with a unit": --budget and the
+    # notebook's budget= give the same deg/s (36 deg/h = 0.01 deg/s, by hand)
+    from gyrovib import notebook
+    from gyrovib.cli.options import parse_budget
+
+    for text in ("36deg/h", "36 deg/h", "0.01"):
+        cli_value = parse_budget(text, "deg/s")
+        assert cli_value == notebook._quantity("budget", text, "deg/s", True)
+        assert cli_value == pytest.approx(0.01, rel=1e-15)
+    assert units.quantity(0.01, "deg/s") == notebook._quantity("budget", 0.01, "deg/s")
+    with pytest.raises(units.NotPositive):
+        units.quantity("-36deg/h", "deg/s", positive=True)
+    assert units.quantity("-36deg/h", "deg/s") == pytest.approx(-0.01, rel=1e-15)

@@ -118,19 +118,18 @@ def _unit(name: str, value: object) -> str:
 
 
 def _quantity(name: str, value: object, unit: str, positive: bool = False) -> float:
-    """A rate in deg/s: a number in ``unit`` or a string with its own unit; finite."""
-    if isinstance(value, str):
-        try:
-            rate = units.parse_rate(value, unit)
-        except OptionError as exc:
+    """A rate in deg/s: a number in ``unit`` or a string with its own unit; finite
+    (:func:`gyrovib.units.quantity`, the command line's reading too)."""
+    if not isinstance(value, str):
+        value = _number(name, value, positive=positive)
+    try:
+        return units.quantity(value, unit, positive=positive)
+    except units.NotPositive:
+        raise ArgumentError(f"argument {name!r}: {value!r} must be positive") from None
+    except OptionError as exc:
+        if isinstance(value, str):
             raise ArgumentError(f"argument {name!r}: {exc.problems[0].message}") from None
-        if positive and not rate > 0:
-            raise ArgumentError(f"argument {name!r}: {value!r} must be positive")
-        return rate
-    rate = _number(name, value, positive=positive) * units.scale(unit)
-    if not math.isfinite(rate):
-        raise ArgumentError(f"argument {name!r}: {_show(value)} {unit} overflows")
-    return rate
+        raise ArgumentError(f"argument {name!r}: {_show(value)} {unit} overflows") from None
 
 
 def _sequence(name: str, value: object, what: str) -> list[Any]:

@@ -114,6 +114,34 @@ def parse_rate(text: str, default_unit: str) -> float:
     return result
 
 
+class NotPositive(OptionError):
+    """A quantity that had to be positive was not (its text or number in ``value``)."""
+
+    def __init__(self, value: object) -> None:
+        super().__init__(f"{value!r} must be positive")
+        self.value = value
+
+
+def quantity(value: str | float, unit: str, *, positive: bool = False) -> float:
+    """A rate in deg/s: a number in ``unit``, or a text with its own unit (``"36deg/h"``).
+
+    The one reading of "a number with a unit", shared by the command line's
+    options and the notebook's arguments (each words the refusal for its
+    own face). Raises :class:`OptionError` for text that is not a finite rate
+    or a number that overflows in deg/s, :class:`NotPositive` for a value
+    ≤ 0 when ``positive``.
+    """
+    if isinstance(value, str):
+        rate = parse_rate(value, unit)
+    else:
+        rate = float(value) * scale(unit)
+        if not math.isfinite(rate):
+            raise OptionError(f"{value!r} {canonical_unit(unit)} overflows")
+    if positive and not rate > 0:
+        raise NotPositive(value)
+    return rate
+
+
 #: Standard gravity, m/s² per g (ISO 80000-3).
 STANDARD_GRAVITY = 9.80665
 #: g per unit of each linear-acceleration unit a catalogue may use (``units.acceleration``).

@@ -15,6 +15,7 @@ from gyrovib.catalog.loader import (
     Catalog,
     ProfileEntry,
     SensorEntry,
+    Source,
     bundled_files,
     load_catalog,
 )
@@ -42,9 +43,12 @@ def bundled_choice(which: str) -> list[str]:
     return [f for f in found if os.path.basename(f).startswith(which + ".")]
 
 
-def load(paths: Sequence[str | Path] = (), *, sensors: bool = True,
+def load(paths: Sequence[str | Path | Source] = (), *, sensors: bool = True,
          bundled: str | None = None) -> Catalog:
     """Load and merge catalogue files; no paths means the bundled catalogues.
+
+    A :class:`~gyrovib.catalog.loader.Source` stands for a file or for bytes
+    read elsewhere (standard input), read by the same loader.
 
     ``bundled`` (``"sensors"``, ``"profiles"`` or ``"all"``) adds those bundled
     catalogues after ``paths`` (e.g. your own profiles with the bundled
@@ -53,7 +57,7 @@ def load(paths: Sequence[str | Path] = (), *, sensors: bool = True,
     neither built nor validated: a library shortcut for profiles alone. No
     command uses it; every command validates each file whole.
     """
-    files = [str(p) for p in paths]
+    files: list[str | Path | Source] = [p if isinstance(p, Source) else str(p) for p in paths]
     if bundled is not None:
         files += [f for f in bundled_choice(bundled) if f not in files]
     return load_catalog(files if files else bundled_files(),

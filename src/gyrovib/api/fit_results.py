@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units as rate_units
-from gyrovib.api.results import _freeze, _Frozen
+from gyrovib.api.results import Result, freeze
 from gyrovib.core.fit import SIGNIFICANT_T, RateFit
 from gyrovib.core.lot import LotStatistics
 
@@ -33,7 +33,7 @@ def pair_key(a: str, b: str) -> str:
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class FitResult(_Frozen):
+class FitResult(Result):
     """One least-squares fit per unit of a rate table, and the lot of them.
 
     ``fits[i]`` (:class:`gyrovib.core.fit.RateFit`) is unit ``units[i]``'s fit:
@@ -60,7 +60,7 @@ class FitResult(_Frozen):
         super().__post_init__()
         for item in (*self.fits, self.lot):
             if item is not None:
-                _freeze(item)
+                freeze(item)
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.units), len(self.names))

@@ -100,7 +100,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
     import numpy as np
 
-    from gyrovib.api.results import JSON_TERMS
+    from gyrovib.core.analysis import ALL_TERMS as JSON_TERMS
     from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
 
     n_s, n_p = len(result.sensors), len(result.profiles)

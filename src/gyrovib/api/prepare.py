@@ -1,8 +1,10 @@
-"""The one preparation pipeline every command runs.
+"""The pieces of the one preparation every command runs (:mod:`gyrovib.api.study`).
 
-entries → deg/s (coefficients, rates) → vibrations at each sensor response →
-multipliers of the chosen methods → finite checks, all under
-:func:`float_guard`. A value that leaves floating-point range (an amplitude of
+A profile's vibration at a sensor's nonlinear element, its phase-locked
+groups and saturation swing, one profile's multipliers, the sensors grouped
+by response, and the located wording of what overflowed or was refused; the
+:class:`Prepared` a :class:`~gyrovib.api.study.Study` hands to its views. All
+under :func:`float_guard`. A value that leaves floating-point range (an amplitude of
 1e200, a rate of 1e308) or a profile a method cannot handle is reported here,
 once, at the profile's place in its file (:class:`~gyrovib.errors.RangeError`,
 :class:`~gyrovib.errors.ModelError`, exit status 2), never as NaN or null in
@@ -25,17 +27,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.convert import coefficient_matrix, resolve_rate
-from gyrovib.api.entries import select_entries
-from gyrovib.api.linear import g2_matrix, profile_linear
-from gyrovib.catalog.loader import Catalog, ProfileEntry, SensorEntry
-from gyrovib.core.analysis import BOUNDED, Multipliers, profile_multipliers, stack_multipliers
+from gyrovib.api.linear import profile_linear
+from gyrovib.catalog.loader import ProfileEntry, SensorEntry
+from gyrovib.core.analysis import BOUNDED, Multipliers, profile_multipliers
 from gyrovib.core.harmonics import LockedGroup, locked_group
 from gyrovib.core.linear import LinearVibration
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR, group_peak, saturation_reach
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
 from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp
-from gyrovib.errors import ModelError, OptionError, Problem, RangeError
+from gyrovib.errors import Problem, RangeError
 from gyrovib.frozen import Frozen
 
 P = ParamSpec("P")
@@ -45,7 +45,6 @@ R = TypeVar("R")
 FLOAT_FAILURES = (OverflowError, FloatingPointError, ZeroDivisionError)
 #: The smallest positive normal float: below it a share or a bound has lost its digits.
 TINY = float(np.finfo(float).tiny)
-_MULTIPLIER_FIELDS = ("asymmetry", "m2", "m4", "c31", "c32")
 
 
 @contextmanager
@@ -103,12 +102,19 @@ def response_groups(entries: Sequence[SensorEntry]) -> list[tuple[Table | None, 
     acts before its nonlinearity (:func:`input_response`), so they are
     computed once per group, not once per sensor.
     """
+    return [(table, index) for table, _, index in response_layout(entries)]
+
+
+def response_layout(entries: Sequence[SensorEntry],
+                    ) -> list[tuple[Table | None, tuple[tuple[float, float], ...] | None,
+                                    NDArray[np.intp]]]:
+    """As :func:`response_groups`, with each group's key (its response as written)."""
     groups: dict[tuple[tuple[float, float], ...] | None, list[int]] = {}
     for i, e in enumerate(entries):
         key = input_response(e)
         groups.setdefault(key, []).append(i)
     return [
-        (None if key is None else as_table(key), np.array(idx, dtype=np.intp))
+        (None if key is None else as_table(key), key, np.array(idx, dtype=np.intp))
         for key, idx in groups.items()
     ]
 
@@ -248,46 +254,64 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
     for the per-sensor search of ``analyze`` and ``select``.
     """
     problems: dict[int, Problem] = {}
-    if not any(p.profile.harmonic_groups for p in entries):
-        return problems
+    for j, p in enumerate(entries):
+        if not p.profile.harmonic_groups:
+            continue
+        problem = (_too_many_groups(p)
+                   or _search_too_costly(p, rates, sensors, phase_search))
+        if problem is not None:
+            problems[j] = problem
+    return problems
+
+
+def _too_many_groups(p: ProfileEntry) -> Problem | None:
+    """More phase-locked groups than :data:`~gyrovib.core.harmonics.MAX_GROUPS`."""
     from gyrovib.core.harmonics import MAX_GROUPS
 
-    for j, p in enumerate(entries):
-        groups = p.profile.harmonic_groups
-        if not groups:
-            continue
-        pid = p.profile.id
-        if len(groups) > MAX_GROUPS:
-            problems[j] = p.source.problem(
-                f"profile {pid!r}: {len(groups)} phase-locked groups, more than {MAX_GROUPS}, "
-                "the most gyrovib averages E(Ω) over (the joint phases of the groups beyond "
-                f"the first take 256^(groups − 1) nodes per rate: 256^{len(groups) - 1} here); "
-                "give the smaller groups' orders as independent tones under 'harmonic'",
-                _harmonics_path(p, MAX_GROUPS, "fundamental"))
-            continue
-        worst = [(gi, oi) for gi, h in enumerate(groups) for oi, o in enumerate(h.orders)
-                 if o.worst_phase]
-        if not worst:
-            continue
-        from gyrovib.core.phases import MAX_SEARCH_COST, search_cost  # only for phase: worst
+    groups = p.profile.harmonic_groups
+    if len(groups) <= MAX_GROUPS:
+        return None
+    return p.source.problem(
+        f"profile {p.profile.id!r}: {len(groups)} phase-locked groups, more than "
+        f"{MAX_GROUPS}, the most gyrovib averages E(Ω) over (the joint phases of the groups "
+        f"beyond the first take 256^(groups − 1) nodes per rate: 256^{len(groups) - 1} "
+        "here); give the smaller groups' orders as independent tones under 'harmonic'",
+        _harmonics_path(p, MAX_GROUPS, "fundamental"))
 
-        dims = sum(sum(bool(o.worst_phase) for o in h.orders)
-                   - (1 if all(o.worst_phase for o in h.orders) else 0) for h in groups)
-        n_max = max(o.order for h in groups for o in h.orders)
-        cost = search_cost(dims, (4 * rates if phase_search else 0) + sensors, n_max)
-        if cost > MAX_SEARCH_COST:
-            gi, oi = worst[0]
-            problems[j] = p.source.problem(
-                f"profile {pid!r}: the search over {dims} unknown relative phase"
-                f"{'s' if dims != 1 else ''} (phase: worst, orders up to {n_max}) at {rates} "
-                f"rate{'s' if rates != 1 else ''} for {sensors} sensor"
-                f"{'s' if sensors != 1 else ''} would take about {cost:,.0f} evaluations of "
-                f"the profile, more than the {MAX_SEARCH_COST:,.0f} (a few seconds) gyrovib "
-                "allows; "
-                "give fewer orders phase: worst (their phases, if known), fewer rates, or "
-                "fewer sensors",
-                _harmonics_path(p, gi, "orders", oi, "phase"))
-    return problems
+
+def _search_size(groups: Sequence[Any]) -> tuple[int, int]:
+    """The unknown relative phases of ``phase: worst`` orders (a group whose every order
+    is ``worst`` has one fewer: its common phase is free), and the highest order."""
+    dims = sum(sum(bool(o.worst_phase) for o in h.orders)
+               - (1 if all(o.worst_phase for o in h.orders) else 0) for h in groups)
+    return dims, max(o.order for h in groups for o in h.orders)
+
+
+def _search_too_costly(p: ProfileEntry, rates: int, sensors: int,
+                       phase_search: bool) -> Problem | None:
+    """A ``phase: worst`` search estimated above :data:`~gyrovib.core.phases.MAX_SEARCH_COST`."""
+    groups = p.profile.harmonic_groups
+    worst = [(gi, oi) for gi, h in enumerate(groups) for oi, o in enumerate(h.orders)
+             if o.worst_phase]
+    if not worst:
+        return None
+    from gyrovib.core.phases import MAX_SEARCH_COST, search_cost  # only for phase: worst
+
+    dims, n_max = _search_size(groups)
+    cost = search_cost(dims, (4 * rates if phase_search else 0) + sensors, n_max)
+    if cost <= MAX_SEARCH_COST:
+        return None
+    gi, oi = worst[0]
+    return p.source.problem(
+        f"profile {p.profile.id!r}: the search over {dims} unknown relative phase"
+        f"{'s' if dims != 1 else ''} (phase: worst, orders up to {n_max}) at {rates} "
+        f"rate{'s' if rates != 1 else ''} for {sensors} sensor"
+        f"{'s' if sensors != 1 else ''} would take about {cost:,.0f} evaluations of "
+        f"the profile, more than the {MAX_SEARCH_COST:,.0f} (a few seconds) gyrovib "
+        "allows; "
+        "give fewer orders phase: worst (their phases, if known), fewer rates, or "
+        "fewer sensors",
+        _harmonics_path(p, gi, "orders", oi, "phase"))
 
 
 # ----------------------------------------------------------------- the pipeline
@@ -345,116 +369,7 @@ class Prepared(Frozen):
         return any(v is not None for v in self.linear)
 
 
-def prepare(
-    catalog: Catalog,
-    *,
-    sensors: Sequence[str] = (),
-    profiles: Sequence[str] = (),
-    need: Sequence[str] = ("sensors", "profiles"),
-    rate: Sequence[float] | None = None,
-    omega: FloatArray | None = None,
-    methods: Sequence[str] = ("exact",),
-    by_response: bool = True,
-    tolerate_refusals: bool | Sequence[str] = False,
-    peak_factor: float = DEFAULT_PEAK_FACTOR,
-    phase_search: bool = True,
-) -> Prepared:
-    """Run the pipeline; call it under :func:`float_guard`.
-
-    ``omega`` replaces Ω_K3 by an array of rates (a sweep); otherwise each
-    profile's Ω_K3 (or ``rate``'s) is used. ``methods`` are the closed forms
-    whose multipliers are needed (none for brute force). ``by_response``
-    False: one group, the profiles alone (ν_sensor ≡ 1). Every profile that
-    overflows or that a method refuses is reported, one problem each.
-    ``peak_factor``: κ of the saturation reach (:attr:`Group.swing`).
-    Profiles with ``phase: worst`` orders get, with ``phase_search``, the
-    largest multiplier of each term over the unknown phases (a bound for
-    synthesis, :func:`~gyrovib.core.phases.worst_phase_multipliers`); without,
-    those orders' nominal phase 0 (the caller searches itself).
-    ``tolerate_refusals``: the methods (True: every method) whose refusal of a
-    profile is kept in :attr:`Group.refused` with NaN multipliers instead.
-    """
-    if not (np.isfinite(peak_factor) and peak_factor >= 0):
-        raise OptionError(f"--peak-factor {peak_factor:g}: give a finite number ≥ 0")
-    s_entries, p_entries = select_entries(catalog, sensors, profiles, need=need)
-    tolerated = (set(methods if tolerate_refusals else ()) if isinstance(tolerate_refusals, bool)
-                 else set(tolerate_refusals))
-    n_rates = 1 if omega is None else int(np.size(omega))
-    problems: dict[int, Problem] = cost_problems(p_entries, n_rates, len(s_entries),
-                                                 phase_search)
-    if problems:
-        raise ModelError([problems[j] for j in sorted(problems)],
-                         reason=next(iter(problems.values())).message)
-    refusal: tuple[int, str] | None = None  # the first refused profile, and why
-    coefficients = coefficient_matrix(s_entries)
-    _check_sensors(coefficients, s_entries)
-    rates = np.array([resolve_rate(p, rate) for p in p_entries], dtype=float).reshape(-1, 3)
-    for j in np.nonzero(~np.all(np.isfinite(rates), axis=1))[0].tolist():
-        problems[j] = overflow_problem(p_entries[j], "the carrier rate in deg/s",
-                                            rate_given=rate is not None)
-    g2 = g2_matrix(s_entries)
-    _check_sensors(g2, s_entries, "g²-sensitivities (g2_sensitivity or vre) in deg/s per g²")
-    linear, accelerations = _linear(p_entries, problems)
-    if by_response:
-        layout = response_groups(s_entries) if s_entries and p_entries else []
-    else:
-        layout = [(None, np.arange(len(s_entries), dtype=np.intp))] if p_entries else []
-    groups: list[Group] = []
-    for response, index in layout:
-        vibrations: list[Vibration | None] = []
-        locked: list[tuple[LockedGroup, ...]] = []
-        swing = np.zeros(len(p_entries))
-        for j, p in enumerate(p_entries):
-            try:
-                vibration = profile_vibration(p, response)
-                groups_j = profile_locked(p, response)
-                swing[j] = vibration_swing(vibration, groups_j, peak_factor)
-            except FLOAT_FAILURES:
-                problems.setdefault(j, overflow_problem(p, "the vibration"))
-                vibrations.append(None)
-                locked.append(())
-                swing[j] = np.nan
-            else:
-                vibrations.append(vibration)
-                locked.append(groups_j)
-        group = Group(response, index, tuple(v for v in vibrations if v is not None),
-                      locked=tuple(locked), swing=swing)
-        for method in methods:
-            items: list[Multipliers] = []
-            for j, (p, v) in enumerate(zip(p_entries, vibrations, strict=True)):
-                w = rates[j, 2] if omega is None else omega
-                if v is None:  # reported above
-                    items.append(nan_multipliers(np.asarray(w, dtype=float)))
-                    continue
-                try:
-                    m = _multipliers(v, w, method, locked[j], phase_search, accelerations[j])
-                except ModelError as exc:
-                    if method not in tolerated:
-                        refusal = refusal or (j, exc.reason)
-                        problems.setdefault(j, refusal_problem(p, method, exc.reason))
-                    group.refused.setdefault(method, {})[j] = exc.reason
-                    m = nan_multipliers(np.asarray(w, dtype=float))
-                except FLOAT_FAILURES:
-                    problems.setdefault(j, overflow_problem(
-                        p, f"a statistic of the vibration ({method} method)"))
-                    m = nan_multipliers(np.asarray(w, dtype=float))
-                else:
-                    if not all(np.all(np.isfinite(getattr(m, f))) for f in _MULTIPLIER_FIELDS):
-                        problems.setdefault(j, overflow_problem(
-                            p, "a statistic of the vibration (<x3²>, <x3⁴>, <x3·xi>)"))
-                items.append(m)
-            group.multipliers[method] = stack_multipliers(items)
-        groups.append(group)
-    if problems:
-        ordered = [problems[j] for j in sorted(problems)]
-        if refusal is not None:
-            raise ModelError(ordered, reason=refusal[1], profile=refusal[0])
-        raise RangeError(ordered)
-    return Prepared(s_entries, p_entries, coefficients, rates, tuple(groups),
-                    rate_given=rate is not None, linear=linear, g2=g2)
-
-
-def _linear(entries: Sequence[ProfileEntry], problems: dict[int, Problem],
+def linear_vibrations(entries: Sequence[ProfileEntry], problems: dict[int, Problem],
             ) -> tuple[tuple[LinearVibration | None, ...], list[FloatArray | None]]:
     """Each profile's linear vibration in g and its six moments ⟨a_j·a_k⟩ (g²), or None."""
     linear: list[LinearVibration | None] = []
@@ -488,7 +403,7 @@ def _valid_coherence(linear: LinearVibration) -> bool:
     return bool(np.linalg.eigvalsh(rho).min() >= -1e-12)
 
 
-def _multipliers(vibration: Vibration, omega: FloatArray | float, method: str,
+def multipliers_of_profile(vibration: Vibration, omega: FloatArray | float, method: str,
                  locked: Sequence[LockedGroup], phase_search: bool,
                  acceleration: FloatArray | None = None) -> Multipliers:
     """One profile's multipliers: with locked groups (section 10), and the worst phases."""
@@ -500,7 +415,7 @@ def _multipliers(vibration: Vibration, omega: FloatArray | float, method: str,
                                acceleration=acceleration)
 
 
-def _check_sensors(values: FloatArray, entries: Sequence[SensorEntry],
+def check_sensors(values: FloatArray, entries: Sequence[SensorEntry],
                    what: str = "coefficients") -> None:
     bad = np.nonzero(~np.all(np.isfinite(values), axis=1))[0]
     if bad.size:

@@ -7,17 +7,20 @@ significant figures, as in the tables.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.other_results import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
+
+if TYPE_CHECKING:
+    from gyrovib.api.results import SelectionResult
+    from gyrovib.api.yields import LotYields
 
 
 def coefficient_unit(name: str, unit: str) -> str:
@@ -26,20 +29,6 @@ def coefficient_unit(name: str, unit: str) -> str:
     if power == 0:
         return "1"
     return f"({unit})^{power}"
-
-
-def table_unit(result: Any) -> str:
-    """The rate unit of coefficients in tables: the catalogue's own (JSON keeps :attr:`unit`)."""
-    unit: str = getattr(result, "coefficient_unit", None) or result.unit
-    return unit
-
-
-def in_table_unit(result: Any, name: str, value: float) -> float:
-    """A coefficient (bound) of ``result`` (in its :attr:`unit`) in :func:`table_unit`."""
-    target = table_unit(result)
-    if target == result.unit:
-        return float(value)
-    return float(value) * units.coefficient_factor(name, result.unit, target)
 
 
 def saturation_reason(reach: float, range_: float, peak_factor: float, unit: str) -> str:
@@ -64,7 +53,7 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
 
     Saturation first (it fails a sensor whatever the criterion), then only the
     criteria that count (``--criterion``). ``table``: as the tables write it,
-    coefficients in the catalogue's unit (:func:`table_unit`) and a negligible
+    coefficients in the catalogue's unit (:attr:`~SelectionResult.table_unit`) and a negligible
     Δ_V(RMS) as 0; otherwise in :attr:`~SelectionResult.unit` (JSON, frames).
     """
     reasons: list[str] = []
@@ -73,22 +62,19 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     if (i, j) in result.reasons:
         reasons.append(result.reasons[(i, j)])
     if result.yields is not None and result.yields.is_lot(i):  # judged by its yield
-        from gyrovib.api.yields import yield_reason
-
         return reasons + yield_reason(result.yields, i, j)
     spec = result.source(i) == "specs"
     if result.criterion in ("bounds", "both") and spec:
         reasons.extend(_spec_failures(result, i, j))
     elif result.criterion in ("bounds", "both"):
-        rate_unit = table_unit(result) if table else result.unit
+        rate_unit = result.table_unit if table else result.unit
+        values = result.table_values if table else result.values
+        bounds = result.table_bounds if table else result.bounds
         for b, name in enumerate(BOUNDED):
             if not result.check_pass[i, j, b]:
                 unit = coefficient_unit(name, rate_unit)
                 tail = "" if unit == "1" else f" {unit}"
-                value, bound = result.values[i, j, b], result.bounds[i, j, b]
-                if table:
-                    value, bound = (in_table_unit(result, name, value),
-                                    in_table_unit(result, name, bound))
+                value, bound = float(values[i, j, b]), float(bounds[i, j, b])
                 reasons.append(f"|{name}| = {fmt(value)} exceeds its bound {fmt(bound)}{tail}")
         if result.vre_pass is not None and not result.vre_pass[i, j]:
             reasons.append(_vre_failure(result, i, j))
@@ -144,3 +130,21 @@ def reason(result: SelectionResult, i: int, j: int) -> str | None:
     if result.passed[i, j]:
         return None
     return "; ".join(failures(result, i, j)) or None
+
+
+def yield_text(yields: LotYields, i: int, j: int) -> str:
+    """A lot's yield in words: ``0.9912 (exact)`` or ``0.9911 [0.9905, 0.9917] (monte-carlo,
+    100000 draws)``."""
+    value = float(yields.value[i, j])
+    if yields.method == "exact":
+        return f"{fmt(value, 4)} (exact)"
+    return (f"{fmt(value, 4)} [{fmt(float(yields.low[i, j]), 4)}, "
+            f"{fmt(float(yields.high[i, j]), 4)}] (monte-carlo, {yields.draws} draws)")
+
+
+def yield_reason(yields: LotYields, i: int, j: int) -> list[str]:
+    """Why lot ``i`` fails under profile ``j`` by its yield (empty when the yield is
+    enough: it fails there by saturation only)."""
+    if float(yields.value[i, j]) >= yields.target:
+        return []
+    return [f"yield {yield_text(yields, i, j)} is below {yields.target:g}"]

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -42,13 +42,6 @@ from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
-
-if TYPE_CHECKING:
-    from gyrovib.api.spec_bounds import DatasheetBounds as DatasheetBounds
-    from gyrovib.api.spec_bounds import SpecChecks as SpecChecks
-    from gyrovib.api.spec_bounds import datasheet_bounds as datasheet_bounds
-    from gyrovib.api.spec_bounds import selection_fields as selection_fields
-    from gyrovib.api.spec_bounds import spec_checks as spec_checks
 
 #: Order of the worst polynomial's coefficients (core.envelope.COEFFICIENTS).
 WORST_COEFFICIENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5")
@@ -160,12 +153,14 @@ class SpecWorst(Frozen):
     g2: FloatArray
 
 
-def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
+def worst(figs: SpecFigures, m: Multipliers, *, total: bool = True) -> SpecWorst:
     """Worst |Δ_V| of every sensor of ``figs`` under the multipliers ``m`` (any shape).
 
     One call to :func:`gyrovib.core.envelope.worst_case` over all profiles
     (× rates), flattened; the result has shape (N,) + m.omega.shape. A
     profile (× rate) whose multipliers are NaN (a method's refusal) gets NaN.
+    ``total`` False: the per-term RMS bound only (``error.rms``); the rest is
+    NaN, unknown (:func:`gyrovib.core.envelope.worst_case`).
     """
     from gyrovib.core.envelope import worst_case
 
@@ -176,7 +171,7 @@ def worst(figs: SpecFigures, m: Multipliers) -> SpecWorst:
     ok = np.all(np.isfinite(t), axis=(1, 2)) & np.isfinite(s)
     k_all = t.shape[0]
     wc = worst_case(t[ok], s[ok], figs.range, figs.limit, figs.fit, figs.measure,
-                    asymmetry=figs.asymmetry, vre=figs.vre)
+                    asymmetry=figs.asymmetry, vre=figs.vre, total=total)
 
     def spread(a: FloatArray) -> FloatArray:
         out = np.full((n, k_all, *a.shape[2:]), np.nan)
@@ -281,8 +276,8 @@ class SpecResults(Frozen):
     cross_axis: NDArray[np.bool_]
 
 
-def spec_results(prepared: Prepared, method: str,
-                 omega: FloatArray | None = None) -> SpecResults | None:
+def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = None,
+                 *, total: bool = True) -> SpecResults | None:
     """The worst case of every spec-form sensor of ``prepared`` (None when there are none).
 
     Each sensor group (one response ν_sensor) is one call of the envelope
@@ -316,7 +311,7 @@ def spec_results(prepared: Prepared, method: str,
         for lo in range(0, 1 if omega is None else m.omega.shape[-1], width):
             at: tuple[Any, ...] = (rows,) if omega is None else (
                 rows, slice(None), slice(lo, lo + width))
-            result = worst(sub, m if omega is None else _rate_block(m, lo, width))
+            result = worst(sub, m if omega is None else _rate_block(m, lo, width), total=total)
             for name, array in parts.items():
                 array[at] = getattr(result.error, name)
             coefficients[at] = result.coefficients
@@ -482,18 +477,3 @@ def worst_residual(result: Any, i: int, j: int, r: int,
         slope, intercept = np.polyfit(w, p, 1)
         line = intercept + slope * w
     return w, p - line, float(result.nl_limit[i])
-
-
-#: The checks of ``select`` and the bounds of ``bounds --range`` live in
-#: :mod:`gyrovib.api.spec_bounds` (so that ``analyze`` defines none of their
-#: classes); still reachable from here.
-_ELSEWHERE = ("SpecChecks", "spec_checks", "selection_fields", "DatasheetBounds",
-              "datasheet_bounds")
-
-
-def __getattr__(name: str) -> Any:
-    if name in _ELSEWHERE:
-        from gyrovib.api import spec_bounds
-
-        return getattr(spec_bounds, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

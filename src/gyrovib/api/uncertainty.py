@@ -24,7 +24,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import unit_scales
-from gyrovib.api.prepare import Group, Prepared, _multipliers
+from gyrovib.api.prepare import Group, Prepared, multipliers_of_profile
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COEFFICIENTS, Multipliers, stack_multipliers
 from gyrovib.core.lot import (
@@ -109,7 +109,7 @@ def group_multipliers(prepared: Prepared, group: Group, method: str) -> Multipli
     items = []
     for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
         linear = prepared.linear[j] if prepared.linear else None
-        items.append(_multipliers(v, prepared.rates[j, 2], "exact", locked, False,
+        items.append(multipliers_of_profile(v, prepared.rates[j, 2], "exact", locked, False,
                                   None if linear is None else linear.moments()))
     return stack_multipliers(items)
 

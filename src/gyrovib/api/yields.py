@@ -31,9 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.api.other_results import Limit
 from gyrovib.api.prepare import Prepared, profile_problem
-from gyrovib.api.results import _Frozen
+from gyrovib.api.results import Limit, Result
 from gyrovib.api.uncertainty import (
     Distribution,
     distributions,
@@ -42,7 +41,7 @@ from gyrovib.api.uncertainty import (
     lot_warnings,
     sensor_sensitivity,
 )
-from gyrovib.core.analysis import COEFFICIENTS, Multipliers, vibration_error
+from gyrovib.core.analysis import COEFFICIENTS, Multipliers
 from gyrovib.core.lot import DEFAULT_DRAWS as DEFAULT_DRAWS
 from gyrovib.core.lot import (
     bounds_test,
@@ -62,7 +61,7 @@ MAX_DRAWS = 10_000_000
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class LotYields(_Frozen):
+class LotYields(Result):
     """The yields of the lots among the chosen sensors, (sensors, profiles).
 
     ``value``: the yield (NaN on a sensor that is not a lot); ``low``/``high``:
@@ -118,28 +117,29 @@ def _augmented(dist: Distribution) -> tuple[FloatArray, FloatArray]:
     return mean, cov
 
 
-def _direct(multipliers: Multipliers, dist: Distribution, row: FloatArray,
-            g2: FloatArray) -> FloatArray:
+def _direct(multipliers: Multipliers, dist: Distribution,
+            parts: Mapping[str, FloatArray], i: int) -> FloatArray:
     """(profiles, p + 1): g of Δ_V over the lot's coefficients and, last, the fixed part
-    Δ_V(μ) − gᵀμ (deg/s)."""
+    Δ_V(μ) − gᵀμ (deg/s); Δ_V(μ) is the view's own error of the lot's row ``i``
+    (``parts``, :func:`gyrovib.api.evaluate.errors`: the lot at its mean)."""
     g = sensor_sensitivity(multipliers, dist)
-    total = vibration_error(row[None], multipliers, g2_sensitivity=g2[None]).total[0]
+    total = parts["total"][i]
     out: FloatArray = np.concatenate([g, (total - g @ dist.mean)[..., None]], axis=-1)
     return out
 
 
-def _terms(multipliers: Multipliers, dist: Distribution, row: FloatArray,
-           g2: FloatArray) -> FloatArray:
+def _terms(multipliers: Multipliers, dist: Distribution,
+           parts: Mapping[str, FloatArray], i: int) -> FloatArray:
     """(profiles, terms, p + 1): the terms of eq. (16) as G·c over the lot's coefficients
-    and, last, the fixed part (deg/s)."""
+    and, last, the fixed part (deg/s); the terms at the mean are the view's own
+    (``parts`` of row ``i``, as :func:`_direct`)."""
     g = term_matrix(multipliers, dist.names)
     if "A1" in dist.names:
         g = g.copy()
         g[..., dist.names.index("A1")] *= dist.k1
-    error = vibration_error(row[None], multipliers, g2_sensitivity=g2[None])
     powers = np.stack([multipliers.omega ** q for q in (1, 2, 3)], axis=-1)
-    terms = np.concatenate([error.additive_terms[0], error.extra_terms[0],
-                            error.multiplicative_coefficients[0] * powers], axis=-1)
+    terms = np.concatenate([parts["additive_terms"][i], parts["extra_terms"][i],
+                            parts["multiplicative_coefficients"][i] * powers], axis=-1)
     fixed = terms - np.einsum("...tp,p->...t", g, dist.mean)
     out: FloatArray = np.concatenate([g, fixed[..., None]], axis=-1)
     return out
@@ -189,16 +189,20 @@ def _refuse_searched_phases(prepared: Prepared, lots: Sequence[bool]) -> None:
             reason="--yield with phase: worst")
 
 
-def lot_yields(prepared: Prepared, method: str, criterion: str, budget: float,
+def lot_yields(prepared: Prepared, parts: Mapping[str, FloatArray], method: str,
+               criterion: str, budget: float,
                limits_deg: FloatArray, vre_pass: NDArray[np.bool_], target: float, *,
                seed: int = DEFAULT_SEED, draws: int = DEFAULT_DRAWS, rtol: float = 0.0,
                found: Sequence[Distribution | None] | None = None) -> LotYields | None:
     """The yield of every lot under every profile for ``criterion`` (module docstring);
     None when no chosen sensor is a lot.
 
-    ``budget`` Δ* in deg/s; ``limits_deg`` (sensors, profiles, :data:`BOUNDED`) each
-    sensor's coefficient bounds in deg/s powers; ``vre_pass`` (sensors, profiles) the
-    VRE check; ``rtol`` the slack of every ≤ (``select``'s).
+    ``parts``: the view's error terms of every sensor in deg/s
+    (:func:`gyrovib.api.evaluate.errors` on ``prepared`` under ``method``; a lot's
+    row is the lot at its mean). ``budget`` Δ* in deg/s; ``limits_deg`` (sensors,
+    profiles, :data:`BOUNDED`) each sensor's coefficient bounds in deg/s powers;
+    ``vre_pass`` (sensors, profiles) the VRE check; ``rtol`` the slack of every ≤
+    (``select``'s).
     """
     check_yield_options(target, draws, seed)
     found = distributions(prepared) if found is None else found
@@ -216,17 +220,17 @@ def lot_yields(prepared: Prepared, method: str, criterion: str, budget: float,
         for i in (int(k) for k in group.index if lots[int(k)]):
             dist = found[i]
             assert dist is not None
-            row, g2 = prepared.coefficients[i], prepared.g2[i]
+            row = prepared.coefficients[i]
             mean, cov = _augmented(dist)
             if exact:
-                value[i] = direct_yield(_direct(multipliers, dist, row, g2), mean, cov, limit)
+                value[i] = direct_yield(_direct(multipliers, dist, parts, i), mean, cov, limit)
                 continue
             tests: list[Callable[[FloatArray], NDArray[np.bool_]]] = []
             if criterion in ("bounds", "both"):
                 bounds, fixed_ok = _bounds(dist, row, limits_deg[i], vre_pass[i], rtol)
                 tests.append(_and_fixed(bounds_test(bounds), fixed_ok))
             if criterion in ("rms", "both"):
-                tests.append(rms_test(_terms(multipliers, dist, row, g2), limit))
+                tests.append(rms_test(_terms(multipliers, dist, parts, i), limit))
 
             def passes(c: FloatArray,
                        tests: list[Callable[[FloatArray], NDArray[np.bool_]]] = tests
@@ -266,26 +270,6 @@ def yield_limits(yields: LotYields, limits: Mapping[int, Limit],
         j = int(np.nanargmin(yields.value[i]))
         out[i] = Limit("yield", j, yields.shortfall(i, j))
     return out
-
-
-def yield_text(yields: LotYields, i: int, j: int) -> str:
-    """A lot's yield in words: ``0.9912 (exact)`` or ``0.9911 [0.9905, 0.9917] (monte-carlo,
-    100000 draws)``."""
-    from gyrovib.formatting import fmt
-
-    value = float(yields.value[i, j])
-    if yields.method == "exact":
-        return f"{fmt(value, 4)} (exact)"
-    return (f"{fmt(value, 4)} [{fmt(float(yields.low[i, j]), 4)}, "
-            f"{fmt(float(yields.high[i, j]), 4)}] (monte-carlo, {yields.draws} draws)")
-
-
-def yield_reason(yields: LotYields, i: int, j: int) -> list[str]:
-    """Why lot ``i`` fails under profile ``j`` by its yield (empty when the yield is
-    enough: it fails there by saturation only)."""
-    if float(yields.value[i, j]) >= yields.target:
-        return []
-    return [f"yield {yield_text(yields, i, j)} is below {yields.target:g}"]
 
 
 #: The note of ``--yield`` without a lot among the chosen sensors.

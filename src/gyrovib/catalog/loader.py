@@ -201,10 +201,37 @@ def model_source(model: Catalogue, name: str = "<gyrovib.models.Catalogue>") -> 
     return CatalogSource(name=name, text=text, model=model, index=Index(""))
 
 
-def read_catalog(path: str | Path, skip: Collection[str] = ()) -> CatalogSource:
+@dataclass(frozen=True, slots=True)
+class Source:
+    """Where a catalogue comes from: a file at ``path``, or ``data`` already read
+    (standard input, a download) under ``name``. Both go through one loader
+    (:func:`read_source`): the same bytes give the same message either way."""
+
+    name: str
+    path: str | Path | None = None
+    data: bytes | None = None
+
+    @classmethod
+    def file(cls, path: str | Path) -> Source:
+        return cls(str(path), path=path)
+
+    @classmethod
+    def of_bytes(cls, data: bytes, name: str) -> Source:
+        return cls(name, data=data)
+
+
+def read_source(source: Source, skip: Collection[str] = ()) -> CatalogSource:
+    """Read, parse and validate one catalogue (``skip``: as :func:`parse_catalog`)."""
+    if source.path is not None:
+        raw = _read_bytes(_native(source.path), source.name)
+    else:
+        raw = source.data if source.data is not None else b""
+    return parse_catalog(_decode(raw, source.name), source.name, skip)
+
+
+def read_catalog(path: str | Path | Source, skip: Collection[str] = ()) -> CatalogSource:
     """Read, parse and validate one catalogue file (``skip``: as :func:`parse_catalog`)."""
-    name = str(path)
-    return parse_catalog(_read_text(_native(path), name), name, skip)
+    return read_source(path if isinstance(path, Source) else Source.file(path), skip)
 
 
 def _native(path: str | Path) -> str:
@@ -221,10 +248,10 @@ def _native(path: str | Path) -> str:
     return str(Path(path))
 
 
-def _read_text(path: str, name: str) -> str:
+def _read_bytes(path: str, name: str) -> bytes:
     try:
         with open(path, "rb") as handle:
-            raw = handle.read(MAX_FILE_BYTES + 1)
+            return handle.read(MAX_FILE_BYTES + 1)
     except FileNotFoundError:
         raise CatalogError(Problem("no such file or directory", name)) from None
     except IsADirectoryError:
@@ -233,13 +260,17 @@ def _read_text(path: str, name: str) -> str:
         ) from None
     except OSError as exc:
         raise CatalogError(Problem(f"cannot read: {exc.strerror or exc}", name)) from None
+
+
+def _decode(raw: bytes, name: str) -> str:
+    """A catalogue's bytes as text: UTF-8 (a BOM allowed), located refusals otherwise."""
     if len(raw) > MAX_FILE_BYTES:
         raise CatalogError(
-            Problem(f"the file is larger than {MAX_FILE_BYTES // 2**20} MiB; "
+            Problem(f"larger than {MAX_FILE_BYTES // 2**20} MiB; "
                     "that is not a catalogue", name)
         )
     if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
-        raise CatalogError(Problem("the file is UTF-16 text; save the catalogue as UTF-8",
+        raise CatalogError(Problem("UTF-16 text, not UTF-8; save the catalogue as UTF-8",
                                    name, 1, 1))
     if b"\0" in raw:
         at = raw.index(b"\0")
@@ -427,7 +458,7 @@ def _unknown_profiles(missions: Sequence[MissionEntry], known: set[str]) -> list
     return problems
 
 
-def load_catalog(paths: Sequence[str | Path], skip: Collection[str] = ()) -> Catalog:
+def load_catalog(paths: Sequence[str | Path | Source], skip: Collection[str] = ()) -> Catalog:
     """Read every file (collecting the problems of all of them), then merge.
 
     ``skip``: sections not loaded nor validated (:func:`parse_catalog`).

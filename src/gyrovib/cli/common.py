@@ -195,16 +195,19 @@ def load_catalog(files: tuple[str, ...]) -> Any:
     refuses, every command refuses at the same place.
     """
     from gyrovib.api import load
+    from gyrovib.errors import OptionError
 
     _no_pydantic_plugins()
     bundled = _bundled()
     if STDIN not in files:
         return load(files, bundled=bundled)
-    if bundled is not None:
-        from gyrovib.api.entries import bundled_choice
+    if files.count(STDIN) > 1:
+        raise OptionError("'-' (standard input) can be given only once")
+    from gyrovib.catalog.loader import Source
 
-        files = (*files, *bundled_choice(bundled))
-    return _load_with_stdin(files)
+    # standard input is one more source, read through the loader every file goes through
+    return load([Source.of_bytes(_read_stdin(), STDIN_NAME) if name == STDIN else name
+                 for name in files], bundled=bundled)
 
 
 def _bundled() -> str | None:
@@ -216,48 +219,15 @@ def _bundled() -> str | None:
     return found if isinstance(found, str) else None
 
 
-def _read_stdin() -> str:
+def _read_stdin() -> bytes:
+    """Standard input's bytes, at most one more than a catalogue may have."""
     from gyrovib.catalog.loader import MAX_FILE_BYTES
     from gyrovib.errors import CatalogError, Problem
 
     stream = sys.stdin
     if stream is None:
         raise CatalogError(Problem("standard input is closed", STDIN_NAME))
-    raw = stream.buffer.read(MAX_FILE_BYTES + 1) if hasattr(stream, "buffer") else (
-        stream.read(MAX_FILE_BYTES + 1).encode("utf-8"))
-    if len(raw) > MAX_FILE_BYTES:
-        raise CatalogError(Problem(f"the input is larger than {MAX_FILE_BYTES // 2**20} MiB; "
-                                   "that is not a catalogue", STDIN_NAME))
-    if b"\0" in raw:
-        raise CatalogError(Problem("binary data (a NUL byte), not a YAML text file",
-                                   STDIN_NAME))
-    try:
-        return raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        line = raw[: exc.start].count(b"\n") + 1
-        raise CatalogError(Problem(f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); give the "
-                                   "catalogue as UTF-8", STDIN_NAME, line, 1)) from None
-
-
-def _load_with_stdin(files: tuple[str, ...]) -> Any:
-    """Like :func:`gyrovib.api.load`, standard input read once for ``-``."""
-    from gyrovib.catalog.loader import CatalogSource, merge, parse_catalog, read_catalog
-    from gyrovib.errors import CatalogError, OptionError, Problem
-
-    if files.count(STDIN) > 1:
-        raise OptionError("'-' (standard input) can be given only once")
-    problems: list[Problem] = []
-    sources: list[CatalogSource] = []
-    for name in files:
-        try:
-            sources.append(parse_catalog(_read_stdin(), STDIN_NAME) if name == STDIN
-                           else read_catalog(name))
-        except CatalogError as exc:
-            problems.extend(exc.problems)
-    if problems:
-        try:  # the files that did parse may still clash: report that too
-            merge(sources)
-        except CatalogError as exc:
-            problems.extend(exc.problems)
-        raise CatalogError(problems)
-    return merge(sources)
+    if hasattr(stream, "buffer"):
+        raw: bytes = stream.buffer.read(MAX_FILE_BYTES + 1)
+        return raw
+    return str(stream.read(MAX_FILE_BYTES + 1)).encode("utf-8")

@@ -120,7 +120,7 @@ def parse_rate_option(text: str | None, unit: str) -> list[float] | None:
     if len(pieces) not in (1, 3) or any(not p for p in pieces):
         raise OptionError(f"--rate {text!r}: give one number (Ω_K3) or three, comma-separated")
     try:
-        return [units.parse_rate(p, unit) for p in pieces]
+        return [units.quantity(p, unit) for p in pieces]
     except OptionError as exc:
         raise OptionError(f"--rate: {exc.problems[0].message}") from None
 
@@ -128,12 +128,11 @@ def parse_rate_option(text: str | None, unit: str) -> list[float] | None:
 def positive_rate(option: str, text: str, unit: str, what: str) -> float:
     """A rate option's value in deg/s (a number in ``unit`` or with its own unit); > 0."""
     try:
-        value = units.parse_rate(text, unit)
+        return units.quantity(text, unit, positive=True)
+    except units.NotPositive:
+        raise OptionError(f"{option} {text!r}: {what} must be positive") from None
     except OptionError as exc:
         raise OptionError(f"{option}: {exc.problems[0].message}") from None
-    if value <= 0:
-        raise OptionError(f"{option} {text!r}: {what} must be positive")
-    return value
 
 
 def parse_budget(text: str, unit: str) -> float:

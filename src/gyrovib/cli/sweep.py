@@ -36,8 +36,8 @@ def parse_rate_range(text: str, unit: str) -> tuple[float, float, int]:
     if len(pieces) != 3 or not all(pieces):
         raise OptionError(f"--rate-range {text!r}: write START:STOP:COUNT, e.g. {DEFAULT_RANGE}")
     try:
-        start = units.parse_rate(pieces[0], unit)
-        stop = units.parse_rate(pieces[1], unit)
+        start = units.quantity(pieces[0], unit)
+        stop = units.quantity(pieces[1], unit)
     except OptionError as exc:
         raise OptionError(f"--rate-range: {exc.problems[0].message}") from None
     try:

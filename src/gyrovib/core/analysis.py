@@ -70,6 +70,8 @@ ADDITIVE_TERMS: tuple[str, ...] = ("A1", "k2", "k4", "m31", "m32")
 #: Names of the additive terms of docs/model.md sections 8 and 10: Δ0(6) = ΣG_jk·⟨a_j a_k⟩
 #: (``g2``), k3·M3 (``k3``) and k5·M5 (``k5``), in ``VibrationError.extra_terms``.
 EXTRA_TERMS: tuple[str, ...] = ("g2", "k3", "k5")
+#: Every additive term, in the order results show them: ADDITIVE_TERMS, then EXTRA_TERMS.
+ALL_TERMS: tuple[str, ...] = (*ADDITIVE_TERMS, *EXTRA_TERMS)
 #: Names of the multiplicative coefficients Δ(1..3).
 MULTIPLICATIVE_TERMS: tuple[str, ...] = ("q1", "q2", "q3")
 

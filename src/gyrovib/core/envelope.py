@@ -201,7 +201,7 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
                fit: str | Sequence[str] = "least-squares",
                measure: str | Sequence[str] = "max",
                asymmetry: ArrayLike | None = None,
-               vre: ArrayLike | None = None) -> WorstCase:
+               vre: ArrayLike | None = None, *, total: bool = True) -> WorstCase:
     """Worst |Δ_V| over each sensor's datasheet envelope (docs/model.md section 11).
 
     terms: (P, 8, 5) from :func:`term_functionals` (one row per profile or
@@ -211,6 +211,11 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
     (dimensionless; inf or None: no spec), vre |v| (rate/g²; 0 or None: no
     spec). The max measure is a semi-infinite LP solved on a grid and refined
     to 1e-7 relative; the rms measure is the closed form b·√(cᵀG⁻¹c).
+
+    ``total`` False: the per-term maxima and ``rms_bound`` only (the
+    programme of the whole error, the costly direction, is not solved); the
+    fields that need it (``total``, ``nonlinearity``, ``coefficients``,
+    ``line``, ``gap``) are NaN, unknown.
     """
     t = np.asarray(terms, dtype=float)
     if t.ndim != 3 or t.shape[1:] != (8, 5):
@@ -240,7 +245,8 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where(b > 0, a_max * r / np.where(b > 0, b, 1.0), np.inf)
     c = t.sum(axis=1)                                            # (P, 5)
-    d = np.concatenate([c[None, :, None, :], t[None, :, :, :]], axis=2) * scale[:, None, None, :]
+    directions = [c[:, None, :], t] if total else [t]
+    d = np.concatenate(directions, axis=1)[None] * scale[:, None, None, :]
     # sensors sorted by envelope (fit, measure, asymmetry ratio) and range: neighbours
     # in _solve's order polish each other's programmes
     order = np.lexsort((r, ratio, ms, f))
@@ -249,6 +255,9 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
     h, y, line, gap = _solve(f[order, None, None], ms[order, None, None],
                              ratio[order, None, None], d[order])
     h, y, line, gap = h[back], y[back], line[back], gap[back]
+    if not total:  # the whole error's direction left unsolved: unknown
+        h, y, line, gap = (np.concatenate([np.full((*a.shape[:2], 1, *a.shape[3:]), np.nan), a],
+                                          axis=2) for a in (h, y, line, gap))
     bb = b[:, None]
     nonlin = bb * h[:, :, 0]
     coef = bb[..., None] * y[:, :, 0, :] * scale[:, None, :]

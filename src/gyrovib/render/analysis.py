@@ -441,7 +441,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
         detail = len(result.profiles) <= 2
     if not detail:
         return _matrix(result, width=width, color=color, ascii=ascii)
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     e = result.error
     extra = getattr(result, "stderr", None)
@@ -525,7 +526,8 @@ def _matrix(result: AnalysisResult, width: int | None = None, color: bool = Fals
             ascii: bool = False) -> str:
     """The compact form: a row per profile, a column per sensor, each cell the error
     (Δ_V(RMS); a datasheet part's worst |Δ_V|) and its dominant term."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     e = result.error
     groups = grouped_warnings(result)

@@ -10,7 +10,6 @@ import numpy as np
 
 from gyrovib.api import BoundsResult
 from gyrovib.api.reasons import coefficient_unit as coefficient_unit
-from gyrovib.api.reasons import in_table_unit, table_unit
 from gyrovib.core.synthesis import (
     BOUNDED,
     ODD_PARTS,
@@ -232,9 +231,9 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     odd = [getattr(result.bounds, name) for name in ("k3_additive", "k5_additive")]
     m3, m5 = (part is not None and bool(np.isfinite(part[j])) for part in odd)
     share = shares(result.allocation, linear=linear, m3=m3, m5=m5)
-    unit = table_unit(result)
-    converted = _Converted(result)
-    rows = [[name, bound_text(name, in_table_unit(result, name, getattr(result.bounds, name)[j])),
+    unit = result.table_unit
+    converted = result.table_bounds
+    rows = [[name, bound_text(name, getattr(converted, name)[j]),
              coefficient_unit(name, unit), share[name], _which(converted, j, name)]
             for name in BOUNDED]
     if linear and result.spec_bounds is None:  # with --range: the datasheet VRE alone
@@ -244,19 +243,6 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
     return rows
 
 
-class _Converted:
-    """The k3/k4/k5 candidates of a result in its table unit (for :func:`_which`)."""
-
-    def __init__(self, result: BoundsResult) -> None:
-        self._result = result
-
-    def __getattr__(self, name: str) -> Any:
-        values = getattr(self._result.bounds, name)
-        if values is None:  # a section-10 part of a document without odd moments
-            return None
-        return [in_table_unit(self._result, name, v) for v in values]
-
-
 _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
 
 
@@ -264,7 +250,7 @@ def _title(result: BoundsResult, j: int) -> str:
     """The profile, its Ω_K3 in the catalogue's rate unit and Δ* in the output unit."""
     from gyrovib import units
 
-    rate_unit = table_unit(result)
+    rate_unit = result.table_unit
     omega = float(result.rates[j, 2]) * units.scale(result.unit) / units.scale(rate_unit)
     return (f"{result.profiles[j]}  (Ω_K3 = {fmt(omega)} {rate_unit}, "
             f"Δ* = {fmt(result.budget)} {result.unit}, method {result.method})")
@@ -272,7 +258,7 @@ def _title(result: BoundsResult, j: int) -> str:
 
 def unit_note(result: Any) -> str:
     """Where tables write coefficients in another unit than the rates, say so."""
-    unit = table_unit(result)
+    unit = result.table_unit
     if unit == result.unit:
         return ""
     return (f" Coefficients and their bounds are written in the catalogue's rate unit, "
@@ -312,7 +298,8 @@ def to_markdown(result: BoundsResult) -> str:
 def to_table(result: BoundsResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One table per profile, one row per bounded coefficient."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     def table(head: list[str], rows: list[list[str]], **title: Any) -> Any:
         """A table whose second column, the bound, is bold and right-aligned."""

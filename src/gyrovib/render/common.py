@@ -12,7 +12,7 @@ from gyrovib._version import __version__
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
 
-if TYPE_CHECKING:  # at run time rich is imported on first use (module __getattr__)
+if TYPE_CHECKING:  # at run time rich is imported inside the functions that draw
     from rich.console import Console, ConsoleOptions
     from rich.measure import Measurement
     from rich.segment import Segment
@@ -110,20 +110,6 @@ def markdown_table(header_row: list[str], rows: Iterable[list[str]]) -> str:
              "|" + "|".join("---" for _ in header_row) + "|"]
     lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in rows]
     return "\n".join(lines) + "\n"
-
-
-def __getattr__(name: str) -> Any:
-    """``Table`` and ``Text`` are rich's own, imported on first use: the renderers'
-    modules load without rich (``gyrovib --help`` never imports it)."""
-    if name == "Table":
-        from rich.table import Table
-
-        return Table
-    if name == "Text":
-        from rich.text import Text
-
-        return Text
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class _Page(io.StringIO):

@@ -116,7 +116,8 @@ def _legend(result: FitResult) -> str:
 def to_table(result: FitResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One table per unit (coefficients, σ, t), then the lot's mean and spread."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     def table(head: list[str], rows: list[list[str]], title: str | None) -> Table:
         out = Table(title=title, header_style="bold")

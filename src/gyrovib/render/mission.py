@@ -51,7 +51,8 @@ def _cells(result: MissionResult, row: MissionRow) -> list[str]:
 def to_table(result: MissionResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
                   f"({_budget_text(result)})", title_justify="left")

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gyrovib.api.study import Spectrum, TradeStudy
+from gyrovib.api.trade_study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares
 from gyrovib.render.common import fmt

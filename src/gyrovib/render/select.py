@@ -11,7 +11,7 @@ import numpy as np
 
 from gyrovib.api import SelectionResult
 from gyrovib.api.reasons import failures as _failures
-from gyrovib.api.reasons import in_table_unit, reason, table_unit
+from gyrovib.api.reasons import reason
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, unit_note, vre_unit
@@ -68,7 +68,7 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "saturated":
         return f"its range under {profile}: {result.reasons[(i, j)]}"
     if limit.name == "yield" and result.yields is not None:
-        from gyrovib.api.yields import yield_text
+        from gyrovib.api.reasons import yield_text
 
         return (f"yield {yield_text(result.yields, i, j)} under {profile}, below "
                 f"{result.yields.target:g}")
@@ -81,10 +81,10 @@ def limit_text(result: SelectionResult, i: int) -> str:
         return _spec_limit_text(result, i, limit.name, j, ratio)
     b = BOUNDED.index(limit.name)
     name = limit.name
-    unit = coefficient_unit(name, table_unit(result))
+    unit = coefficient_unit(name, result.table_unit)
     tail = "" if unit == "1" else f" {unit}"
-    return (f"{name}: |{name}| = {fmt(in_table_unit(result, name, result.values[i, j, b]))} "
-            f"is {ratio}× its bound {fmt(in_table_unit(result, name, result.bounds[i, j, b]))}"
+    return (f"{name}: |{name}| = {fmt(float(result.table_values[i, j, b]))} "
+            f"is {ratio}× its bound {fmt(float(result.table_bounds[i, j, b]))}"
             f"{tail} under {profile}")
 
 
@@ -504,7 +504,8 @@ def to_markdown(result: SelectionResult) -> str:
 def to_table(result: SelectionResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """Tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     out: list[Any] = [Text(_heading(result), style="bold")]
     matrix = Table(header_style="bold")

@@ -104,7 +104,8 @@ def to_table(result: SweepResult, budget: float | None = None, width: int | None
              color: bool = False,
              ascii: bool = False) -> str:
     """One table per profile × sensor: the rates as rows, exact and paper side by side."""
-    from gyrovib.render.common import Table, Text
+    from rich.table import Table
+    from rich.text import Text
 
     out: list[Any] = []
     any_saturated = False

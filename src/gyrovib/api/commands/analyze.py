@@ -6,23 +6,23 @@ import zlib
 from collections.abc import Callable, Sequence
 
 import numpy as np
-from numpy.typing import NDArray
 
 from gyrovib import units
 from gyrovib.api import specs
-from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
+from gyrovib.api.convert import error_arrays, to_unit
+from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, worst_case
 from gyrovib.api.prepare import (
     Group,
     Prepared,
     check_finite,
     float_guard,
-    prepare,
     profile_problem,
 )
 from gyrovib.api.results import AnalysisResult
+from gyrovib.api.study import Study, check_peak_factor
 from gyrovib.api.uncertainty import with_uncertainty
 from gyrovib.catalog.loader import Catalog
-from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
+from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
 from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.linear import LinearVibration
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
@@ -37,11 +37,6 @@ DEFAULT_SAMPLES = 200_000
 DEFAULT_SEED = 0
 
 ProgressCallback = Callable[[int, int], None]
-
-_PARTS = ("additive_terms", "multiplicative_coefficients", "additive", "multiplicative",
-          "total", "rms", "extra_terms")
-_TAILS = ((5,), (3,), (), (), (), (), (len(EXTRA_TERMS),))
-
 
 def profile_generator(seed: int, profile_id: str) -> np.random.Generator:
     """The random stream of one profile: a function of the seed and the profile id only.
@@ -113,52 +108,37 @@ def analyze(
     docs/model.md section 9).
     """
     _check_options(method, samples, seed)
+    check_peak_factor(peak_factor)
+    study = Study.of(catalog, sensors=sensors, profiles=profiles, rate=rate)
+    return analysis_of(study, method=method, unit=unit, samples=samples, seed=seed,
+                       progress=progress, peak_factor=peak_factor)
+
+
+def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
+                samples: int = DEFAULT_SAMPLES, seed: int = DEFAULT_SEED,
+                progress: ProgressCallback | None = None,
+                peak_factor: float = DEFAULT_PEAK_FACTOR) -> AnalysisResult:
+    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.Study`."""
+    _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
     numeric = method == "numeric"
     with float_guard():
-        prepared = prepare(catalog, sensors=sensors, profiles=profiles, rate=rate,
-                           methods=() if numeric else (method,), peak_factor=peak_factor,
-                           phase_search=False)
+        prepared = study.prepare(methods=() if numeric else (method,),
+                                 peak_factor=peak_factor, phase_search=False)
+        n_p = len(prepared.profiles)
+        stderr = None
         if numeric:
             _refuse_unknown_phases(prepared)
-        n_s, n_p = len(prepared.sensors), len(prepared.profiles)
-        coeffs, rates = prepared.coefficients, prepared.rates
-        parts = {name: np.zeros((n_s, n_p, *tail)) for name, tail in
-                 zip(_PARTS, _TAILS, strict=True)}
-        stderr = np.zeros((n_s, n_p)) if numeric else None
-        tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
-        spec = specs.spec_results(_spec_prepared(prepared, catalog, sensors, profiles, rate,
-                                                 method, peak_factor),
-                                  "exact" if numeric else method)
+        datasheet = _spec_prepared(study, prepared, method, peak_factor)
+        spec = worst_case(study, datasheet, "exact" if numeric else method)
         worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
-        for group in prepared.groups:
-            idx = group.index
-            if stderr is not None:
-                for j, (p, v) in enumerate(zip(prepared.profiles, group.vibrations,
-                                               strict=True)):
-                    block = coeffs[idx] if spec is None else specs.numeric_rows(
-                        coeffs, idx, j, spec)
-                    err, stderr[idx, j] = _simulate(block, v, rates[j], samples,
-                                                    profile_generator(seed, p.profile.id),
-                                                    tracker, group.locked[j],
-                                                    linear=prepared.linear[j],
-                                                    g2=prepared.g2[idx])
-                    for name, array in parts.items():
-                        array[idx, j] = getattr(err, name)
-            else:
-                err = vibration_error(coeffs[idx], group.multipliers[method],
-                                      g2_sensitivity=prepared.g2[idx])
-                for name, array in parts.items():
-                    array[idx] = getattr(err, name)
-                if method == "exact":
-                    worst.update(_worst_phases(prepared, group, parts))
-        if spec is not None:
-            specs.place_analysis(parts, spec, numeric=numeric)
-            # a spec-form row is the worst case over its envelope, not a polynomial's phases
-            worst = {k: v for k, v in worst.items() if k[0] not in set(spec.index.tolist())}
+        if numeric:
+            parts, stderr = _numeric(prepared, spec, samples, seed, progress)
+        else:
+            parts, worst = _closed_form(study, prepared, datasheet, method, spec)
         warnings = specs.with_cross_axis(_saturation(prepared, unit), spec,
-                                         [v is not None for v in prepared.linear])
-        saturated = _saturated(prepared)
+                                         _shaken(prepared))
+        saturated = saturation(prepared).saturated
         error = to_unit(VibrationError(**parts), unit)
         out_scale = units.scale(unit)
         stderr_out = None if stderr is None else stderr / out_scale
@@ -171,13 +151,13 @@ def analyze(
         unit=unit,
         sensors=tuple(e.sensor.id for e in prepared.sensors),
         profiles=tuple(p.profile.id for p in prepared.profiles),
-        rates=rates / out_scale,
+        rates=prepared.rates / out_scale,
         error=error,
         warnings=warnings,
         stderr=stderr_out,
         samples=samples if numeric else None,
         seed=seed if numeric else None,
-        linear=tuple(v is not None for v in prepared.linear),
+        linear=tuple(_shaken(prepared)),
         **specs.analysis_fields(len(prepared.sensors), n_p, spec, unit),
         saturated=saturated,
         peak_factor=peak_factor,
@@ -188,10 +168,57 @@ def analyze(
     )
 
 
+def _shaken(prepared: Prepared) -> list[bool]:
+    """Per profile, whether it has a linear vibration (docs/model.md section 8)."""
+    return [v is not None for v in prepared.linear]
+
+
 def _shared_unit(file_units: Sequence[str]) -> str | None:
     """The rate unit the profiles' files share (canonical), or None when they differ."""
     found = {units.canonical_unit(u) for u in file_units}
     return found.pop() if len(found) == 1 else None
+
+
+def _closed_form(study: Study, prepared: Prepared, datasheet: Prepared, method: str,
+                 spec: specs.SpecResults | None,
+                 ) -> tuple[dict[str, FloatArray],
+                            dict[tuple[int, int], tuple[dict[str, float], ...]]]:
+    """Eq. (13)-(16) by ``method`` (deg/s); under ``exact``, profiles with ``phase:
+    worst`` orders at the phases found for each coefficient sensor, and those phases."""
+    parts = errors(study, prepared, method, datasheet=datasheet)
+    worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
+    if method == "exact":
+        for group in prepared.groups:
+            worst.update(_worst_phases(prepared, group, parts, spec))
+    return parts, worst
+
+
+def _numeric(prepared: Prepared, spec: specs.SpecResults | None, samples: int, seed: int,
+             progress: ProgressCallback | None,
+             ) -> tuple[dict[str, FloatArray], FloatArray]:
+    """Brute force of eq. (2) for every sensor group × profile (deg/s), and its stderr.
+
+    A datasheet sensor averages its worst polynomial; its ``total`` gets the g²
+    part |v|·S and its ``rms`` stays the per-term bound (:func:`specs.place_analysis`).
+    """
+    n_s, n_p = len(prepared.sensors), len(prepared.profiles)
+    parts = {name: np.zeros((n_s, n_p, *tail)) for name, tail in ERROR_PARTS.items()}
+    stderr = np.zeros((n_s, n_p))
+    tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
+    coeffs = prepared.coefficients
+    for group in prepared.groups:
+        idx = group.index
+        for j, (p, v) in enumerate(zip(prepared.profiles, group.vibrations, strict=True)):
+            block = coeffs[idx] if spec is None else specs.numeric_rows(coeffs, idx, j, spec)
+            err, stderr[idx, j] = _simulate(block, v, prepared.rates[j], samples,
+                                            profile_generator(seed, p.profile.id),
+                                            tracker, group.locked[j],
+                                            linear=prepared.linear[j], g2=prepared.g2[idx])
+            for name, array in parts.items():
+                array[idx, j] = getattr(err, name)
+    if spec is not None:
+        specs.place_analysis(parts, spec, numeric=True)
+    return parts, stderr
 
 
 def _refuse_unknown_phases(prepared: Prepared) -> None:
@@ -207,10 +234,9 @@ def _refuse_unknown_phases(prepared: Prepared) -> None:
         raise ModelError(problems, reason="phase: worst with the numeric method")
 
 
-def _spec_prepared(prepared: Prepared, catalog: Catalog, sensors: Sequence[str],
-                   profiles: Sequence[str], rate: Sequence[float] | None, method: str,
+def _spec_prepared(study: Study, prepared: Prepared, method: str,
                    peak_factor: float) -> Prepared:
-    """The preparation behind spec-form sensors' worst case (docs/model.md sections 10, 11).
+    """The preparation behind datasheet sensors' worst case (docs/model.md sections 10, 11).
 
     With ``phase: worst`` orders, their worst case takes each multiplier at its
     largest over the unknown phases (which bounds every phase's share), as
@@ -218,15 +244,15 @@ def _spec_prepared(prepared: Prepared, catalog: Catalog, sensors: Sequence[str],
     """
     worst = any(g.worst.any() for group in prepared.groups for gs in group.locked
                 for g in gs)
-    if method != "exact" or not worst or not len(specs.spec_index(prepared.sensors)):
+    if method != "exact" or not worst or not len(
+            specs.spec_index(prepared.sensors)):
         return prepared
-    return prepare(catalog, sensors=sensors, profiles=profiles, rate=rate, methods=("exact",),
-                   peak_factor=peak_factor, phase_search=True)
+    return study.prepare(methods=("exact",), peak_factor=peak_factor, phase_search=True)
 
 
-def _worst_phases(prepared: Prepared, group: Group,
-                  parts: dict[str, FloatArray]) -> dict[tuple[int, int],
-                                                        tuple[dict[str, float], ...]]:
+def _worst_phases(prepared: Prepared, group: Group, parts: dict[str, FloatArray],
+                  spec: specs.SpecResults | None,
+                  ) -> dict[tuple[int, int], tuple[dict[str, float], ...]]:
     """Profiles with ``phase: worst`` orders: the phases maximising |Δ_V| per sensor.
 
     Overwrites those profiles' columns of ``parts`` (deg/s) with the error at
@@ -234,7 +260,11 @@ def _worst_phases(prepared: Prepared, group: Group,
     phase (degrees, common to the axes) of each order written ``worst``.
     """
     out: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
-    coeffs, rates, idx = prepared.coefficients, prepared.rates, group.index
+    coeffs, rates = prepared.coefficients, prepared.rates
+    # a datasheet row is the worst case over its envelope, not one polynomial's phases
+    idx = group.index if spec is None else np.setdiff1d(group.index, spec.index)
+    if idx.size == 0:
+        return out
     for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
         if not any(g.worst.any() for g in locked):
             continue
@@ -258,39 +288,23 @@ def _worst_phases(prepared: Prepared, group: Group,
     return out
 
 
-def _saturated(prepared: Prepared) -> NDArray[np.bool_]:
-    """(sensors, profiles): the reach at the nonlinear element exceeds the range (section 9)."""
-    from gyrovib.core.saturation import saturated
-
-    out = np.zeros((len(prepared.sensors), len(prepared.profiles)), dtype=bool)
-    ranges = sensor_ranges(prepared.sensors)
-    for group in prepared.groups:
-        reach = group.reach(prepared.rates[:, 2])
-        out[group.index] = saturated(reach, ranges[group.index])
-    return out
-
-
 def _saturation(prepared: Prepared, unit: str) -> dict[tuple[int, int], tuple[str, ...]]:
     """Warnings where the saturation reach (|Ω_K3| + the vibration's peak) exceeds a range."""
     out_scale = units.scale(unit)
-    ranges = sensor_ranges(prepared.sensors)
-    rates = prepared.rates
+    found = saturation(prepared)
+    reach, ranges = found.reach, found.ranges
     warnings: dict[tuple[int, int], tuple[str, ...]] = {}
-    for group in prepared.groups:
-        idx = group.index
-        reach = group.reach(rates[:, 2])
-        over_s, over_p = np.nonzero(reach[None, :] > ranges[idx][:, None])
-        messages: dict[tuple[int, float], tuple[str, ...]] = {}  # one text per value pair
-        for sensor, j in zip(idx[over_s].tolist(), over_p.tolist(), strict=True):
-            key = (j, float(ranges[sensor]))
-            message = messages.get(key)
-            if message is None:
-                message = messages[key] = (
-                    f"|Ω_K3| + vibration peak = {reach[j] / out_scale:.6g} {unit} exceeds "
-                    f"the sensor's range {ranges[sensor] / out_scale:.6g} {unit}: "
-                    "the static model does not hold in saturation",
-                )
-            warnings[(sensor, j)] = message
+    messages: dict[tuple[float, float], tuple[str, ...]] = {}  # one text per value pair
+    for sensor, j in zip(*(a.tolist() for a in np.nonzero(found.saturated)), strict=True):
+        key = (float(reach[sensor, j]), float(ranges[sensor]))
+        message = messages.get(key)
+        if message is None:
+            message = messages[key] = (
+                f"|Ω_K3| + vibration peak = {reach[sensor, j] / out_scale:.6g} {unit} exceeds "
+                f"the sensor's range {ranges[sensor] / out_scale:.6g} {unit}: "
+                "the static model does not hold in saturation",
+            )
+        warnings[(sensor, j)] = message
     return warnings
 
 

@@ -10,15 +10,15 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import bound_factors
-from gyrovib.api.other_results import BoundsResult
 from gyrovib.api.prepare import (
     TINY,
     Prepared,
     check_bounds,
     float_guard,
     overflow_problem,
-    prepare,
 )
+from gyrovib.api.results import BoundsResult
+from gyrovib.api.study import Study
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS
 from gyrovib.core.synthesis import (
@@ -162,21 +162,24 @@ def bounds(
     ``spec_weights`` (NL:VRE) of Δ* (:attr:`BoundsResult.spec_bounds`).
     """
     check_method_budget(method, budget)
+    resolve_allocation(catalog, method, allocation)  # its refusal before the entries'
+    study = Study.of(catalog, profiles=profiles, need=("profiles",), rate=rate)
+    return bounds_of(study, method=method, budget=budget, unit=unit, allocation=allocation,
+                     range_=range_, nl_fit=nl_fit, nl_measure=nl_measure, nl_of=nl_of,
+                     spec_weights=spec_weights)
+
+
+def bounds_of(study: Study, *, method: str = "exact", budget: float, unit: str = "deg/s",
+              allocation: Allocation | Sequence[float] | None = None,
+              range_: float | None = None, nl_fit: str = "least-squares",
+              nl_measure: str = "max", nl_of: str = "range",
+              spec_weights: tuple[float, float] = (1.0, 1.0)) -> BoundsResult:
+    """:func:`bounds` as a view of a :class:`~gyrovib.api.study.Study` (its profiles alone)."""
+    check_method_budget(method, budget)
     unit = units.canonical_unit(unit)
-    constants = resolve_allocation(catalog, method, allocation)
+    constants = resolve_allocation(study.catalog, method, allocation)
     with float_guard():
-        prepared = prepare(catalog, profiles=profiles, need=("profiles",), rate=rate,
-                           methods=(method,), by_response=False)
-        if prepared.groups:
-            raw = coefficient_bounds(prepared.groups[0].multipliers[method], budget, constants)
-        else:
-            empty = np.zeros(0)
-            raw = CoefficientBounds(**{n: empty for n in CoefficientBounds.__dataclass_fields__})
-        scaled = raw.scaled(bound_factors(unit))
-        check_bounds(raw.stacked(), prepared)
-        check_bounds(scaled.stacked(), prepared)
-        check_vre_bound(raw.vre, prepared)
-        check_vre_bound(scaled.vre, prepared)
+        prepared, _, scaled = profile_bounds(study, method, budget, constants, unit)
         datasheet = None
         if range_ is not None:
             from gyrovib.api.spec_bounds import datasheet_bounds
@@ -195,6 +198,23 @@ def bounds(
         spec_bounds=datasheet,
         coefficient_unit=catalog_unit([p.unit for p in prepared.profiles]),
     )
+
+
+def profile_bounds(study: Study, method: str, budget: float, constants: AllocationConstants,
+                   unit: str) -> tuple[Prepared, CoefficientBounds, CoefficientBounds]:
+    """Eq. (23), (25) for the profiles alone (ν_sensor ≡ 1): deg/s and ``unit``, checked."""
+    prepared = study.prepare(methods=(method,), by_response=False)
+    if prepared.groups:
+        raw = coefficient_bounds(prepared.groups[0].multipliers[method], budget, constants)
+    else:
+        empty = np.zeros(0)
+        raw = CoefficientBounds(**{n: empty for n in CoefficientBounds.__dataclass_fields__})
+    scaled = raw.scaled(bound_factors(unit))
+    check_bounds(raw.stacked(), prepared)
+    check_bounds(scaled.stacked(), prepared)
+    check_vre_bound(raw.vre, prepared)
+    check_vre_bound(scaled.vre, prepared)
+    return prepared, raw, scaled
 
 
 def catalog_unit(file_units: Sequence[str]) -> str | None:

@@ -32,11 +32,12 @@ from gyrovib.core import placement as placements
 from gyrovib.core.mission import ANGLE_UNITS, combined_functional, totals
 from gyrovib.core.placement import Placement
 from gyrovib.errors import OptionError
+from gyrovib.frozen import Frozen
 from gyrovib.models import Mission
 
 
-@dataclass(frozen=True)
-class _Run:
+@dataclass(frozen=True, eq=False, repr=False)
+class _Run(Frozen):
     """One mission in one placement: the columns of its segments in the analysis."""
 
     mission: Mission
@@ -255,7 +256,8 @@ def _spec_means(catalog: Catalog, sensors: Sequence[str], sources: Sequence[str]
     if not spec_ids:
         return {}
     from gyrovib.api import specs
-    from gyrovib.api.prepare import float_guard, prepare
+    from gyrovib.api.prepare import float_guard
+    from gyrovib.api.study import prepare
     from gyrovib.core.envelope import worst_case
 
     out: dict[tuple[int, int], float] = {}

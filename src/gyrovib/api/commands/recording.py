@@ -493,9 +493,10 @@ def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str],
     its term functionals are time-weighted first, then maximised once.
     """
     from gyrovib.api.commands.analyze import analyze
-    from gyrovib.api.prepare import float_guard, prepare
+    from gyrovib.api.prepare import float_guard
     from gyrovib.api.recording_yaml import with_fitted_profile
     from gyrovib.api.specs import mean_square_acceleration, terms_of
+    from gyrovib.api.study import prepare
     from gyrovib.core.envelope import worst_case
 
     combined = with_fitted_profile(catalog, fit)

@@ -10,15 +10,17 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api import spec_bounds, specs
 from gyrovib.api.commands.bounds import (
-    bounds,
     catalog_unit,
     check_method_budget,
+    profile_bounds,
     resolve_allocation,
 )
-from gyrovib.api.convert import bound_factors, sensor_ranges
-from gyrovib.api.other_results import Limit, SelectionResult
-from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard, prepare
+from gyrovib.api.convert import bound_factors
+from gyrovib.api.evaluate import errors, saturation, worst_case
+from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard
 from gyrovib.api.reasons import saturation_reasons
+from gyrovib.api.results import Limit, SelectionResult
+from gyrovib.api.study import Study, check_peak_factor
 from gyrovib.api.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
@@ -29,10 +31,9 @@ from gyrovib.api.yields import (
     yield_limits,
 )
 from gyrovib.catalog.loader import Catalog
-from gyrovib.core.analysis import COEFFICIENTS, vibration_error
+from gyrovib.core.analysis import COEFFICIENTS
 from gyrovib.core.linear import effective_vre
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
-from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
@@ -163,6 +164,20 @@ def select(
     :mod:`gyrovib.api.yields`: exact under ``worst``, else Monte Carlo with ``draws``
     draws seeded by ``seed``); without it a lot is judged at its mean.
     """
+    _check_options(method, budget, criterion, require, assume_unknown, yield_target, seed,
+                   draws)
+    resolve_allocation(catalog, method, allocation)  # its refusal before the entries'
+    check_peak_factor(peak_factor)
+    study = Study.of(catalog, sensors=sensors, profiles=profiles, rate=rate)
+    return selection_of(study, method=method, budget=budget, unit=unit, criterion=criterion,
+                        require=require, allocation=allocation, spec_weights=spec_weights,
+                        peak_factor=peak_factor, assume_unknown=assume_unknown,
+                        yield_target=yield_target, seed=seed, draws=draws)
+
+
+def _check_options(method: str, budget: float, criterion: str, require: str,
+                   assume_unknown: str = "none", yield_target: float | None = None,
+                   seed: int = DEFAULT_SEED, draws: int = DEFAULT_DRAWS) -> None:
     check_method_budget(method, budget)
     if yield_target is not None:
         check_yield_options(yield_target, draws, seed)
@@ -173,42 +188,46 @@ def select(
     if assume_unknown not in ASSUMPTIONS:
         raise OptionError(f"unknown assumption {assume_unknown!r}; use one of "
                           f"{', '.join(ASSUMPTIONS)}")
+
+
+def selection_of(study: Study, *, method: str = "exact", budget: float, unit: str = "deg/s",
+                 criterion: str = "bounds", require: str = "any",
+                 allocation: Allocation | Sequence[float] | None = None,
+                 spec_weights: tuple[float, float] = (1.0, 1.0),
+                 peak_factor: float = DEFAULT_PEAK_FACTOR,
+                 assume_unknown: str = "none",
+                 yield_target: float | None = None,
+                 seed: int = DEFAULT_SEED,
+                 draws: int = DEFAULT_DRAWS) -> SelectionResult:
+    """:func:`select` as a view of a :class:`~gyrovib.api.study.Study`."""
+    _check_options(method, budget, criterion, require, assume_unknown, yield_target, seed,
+                   draws)
     unit = units.canonical_unit(unit)
-    constants = resolve_allocation(catalog, method, allocation)
-    alone = bounds(catalog, profiles=profiles, method=method, rate=rate, budget=budget,
-                   unit=unit, allocation=allocation)
+    constants = resolve_allocation(study.catalog, method, allocation)
     with float_guard():
-        prepared = prepare(catalog, sensors=sensors, profiles=profiles, rate=rate,
-                           methods=(method,), peak_factor=peak_factor)
+        _, _, alone = profile_bounds(study, method, budget, constants, unit)
+        prepared = study.prepare(methods=(method,), peak_factor=peak_factor)
         coeffs = prepared.coefficients
         n_s, n_p, n_b = len(prepared.sensors), len(prepared.profiles), len(BOUNDED)
         limits_deg = np.full((n_s, n_p, n_b), np.inf)
         vre_bound_deg = np.full((n_s, n_p), np.inf)
-        rms = np.zeros((n_s, n_p))
-        total = np.zeros((n_s, n_p))
-        reach = np.zeros((n_s, n_p))
         for group in prepared.groups:
-            multipliers = group.multipliers[method]
-            cb = coefficient_bounds(multipliers, budget, constants)
+            cb = coefficient_bounds(group.multipliers[method], budget, constants)
             limits_deg[group.index] = cb.stacked()[None]
             if cb.vre is not None:
                 vre_bound_deg[group.index] = cb.vre[None]
-            err = vibration_error(coeffs[group.index], multipliers,
-                                  g2_sensitivity=prepared.g2[group.index])
-            rms[group.index] = err.rms
-            total[group.index] = np.abs(err.total)
-            if method == "exact":
-                _worst_phase_totals(prepared, group, total)
-            reach[group.index] = group.reach(prepared.rates[:, 2])[None]
-        # a spec-form sensor saturates against its datasheet range (specs.range)
-        ranges = sensor_ranges(prepared.sensors)
-        saturated = saturated_at(reach, ranges)
+        parts = errors(study, prepared, method)
+        rms, total = parts["rms"], np.abs(parts["total"])
+        spec = worst_case(study, prepared, method)
+        if method == "exact":
+            for group in prepared.groups:
+                _worst_phase_totals(prepared, group, total, spec)
+        # a datasheet sensor saturates against its datasheet range (specs.range)
+        found = saturation(prepared)
+        reach, ranges, saturated = found.reach, found.ranges, found.saturated
         vre_deg = _effective_vre(prepared)
-        spec = specs.spec_results(prepared, method)
         own = None
         if spec is not None:
-            rms[spec.index] = spec.error.rms
-            total[spec.index] = spec.error.total
             own = spec_bounds.spec_checks(prepared, spec, method, budget, spec_weights, PASS_RTOL)
         check_finite([rms, total, vre_deg], prepared)
         check_bounds(limits_deg, prepared)
@@ -238,7 +257,7 @@ def select(
                     passed[i, j] = False
 
         yields = None if yield_target is None else lot_yields(
-            prepared, method, criterion, budget, limits_deg, vre_pass, yield_target,
+            prepared, parts, method, criterion, budget, limits_deg, vre_pass, yield_target,
             seed=seed, draws=draws, rtol=PASS_RTOL)
         if yields is not None:
             passed = judge(yields, passed, saturated)
@@ -266,8 +285,8 @@ def select(
                          spec_ratios, saturated, reach / ranges[:, None])
         # the margin of the test that decides each cell, and the tests that disagree
         largest = ratios.max(axis=-1) if n_p else np.zeros((n_s, 0))
-        for i, found in (spec_ratios or {}).items():
-            largest[i] = np.maximum(found["nonlinearity"], found["vre"])
+        for i, own_ratios in (spec_ratios or {}).items():
+            largest[i] = np.maximum(own_ratios["nonlinearity"], own_ratios["vre"])
         bounds_margin = np.where(largest > 0, 1.0 / np.where(largest > 0, largest, 1.0),
                                  np.inf)
         direct = {"rms": _inverse(rms, budget), "worst": _inverse(total, budget)}
@@ -298,7 +317,7 @@ def select(
         sensors=tuple(e.sensor.id for e in prepared.sensors),
         profiles=tuple(p.profile.id for p in prepared.profiles),
         rates=prepared.rates / s,
-        profile_bounds=alone.bounds,
+        profile_bounds=alone,
         values=values,
         bounds=limits_out,
         check_pass=check_pass,
@@ -324,7 +343,7 @@ def select(
         questions=questions,
         assume_unknown=assume_unknown,
         coefficient_unit=catalog_unit([e.unit for e in prepared.sensors])
-        or alone.coefficient_unit,
+        or catalog_unit([p.unit for p in prepared.profiles]),
         yields=yields,
         notes=notes(prepared, yield_target, yields),
     )
@@ -433,7 +452,8 @@ def _effective_vre(prepared: Prepared) -> FloatArray:
     return effective_vre(prepared.g2, moments)
 
 
-def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray) -> None:
+def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray,
+                        spec: specs.SpecResults | None) -> None:
     """|Δ_V| maximised over the phases of ``phase: worst`` orders (docs/model.md section 10).
 
     The synthesis multipliers take each moment at its largest magnitude, which
@@ -443,7 +463,10 @@ def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray) -> 
     """
     from gyrovib.core.phases import worst_phase_error
 
-    idx = group.index
+    # a datasheet row is the worst case over its envelope already
+    idx = group.index if spec is None else np.setdiff1d(group.index, spec.index)
+    if idx.size == 0:
+        return
     for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
         if not any(g.worst.any() for g in locked):
             continue

@@ -8,14 +8,14 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api import specs
-from gyrovib.api.convert import error_arrays, sensor_ranges, to_unit
-from gyrovib.api.entries import select_entries
-from gyrovib.api.other_results import SweepResult
-from gyrovib.api.prepare import check_finite, float_guard, prepare
+from gyrovib.api.convert import error_arrays, to_unit
+from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, sources, worst_case
+from gyrovib.api.prepare import check_finite, float_guard
+from gyrovib.api.results import SweepResult
+from gyrovib.api.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
-from gyrovib.core.analysis import EXTRA_TERMS, METHODS, VibrationError, vibration_error
+from gyrovib.core.analysis import METHODS, VibrationError
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
-from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 
@@ -50,6 +50,13 @@ def check_sweep_size(n_sensors: int, n_spec: int, n_profiles: int, n_rates: int)
             f"programme each, both methods), more than the {MAX_SWEEP_PROGRAMMES:,} "
             f"(about 10 s) one sweep may take; sweep at most {most:,} rates here, or fewer "
             "profiles (--profile) or datasheet sensors (--sensor)")
+
+
+def _check_size(study: Study, n_rates: int, rms_only: bool) -> None:
+    """:func:`check_sweep_size` of a sweep of ``study`` (with ``rms_only``, no datasheet
+    worst case is a programme per rate)."""
+    n_spec = 0 if rms_only else int(specs.spec_index(study.sensors).size)
+    check_sweep_size(len(study.sensors), n_spec, len(study.profiles), n_rates)
 
 
 def rate_range(start: float, stop: float, count: int) -> FloatArray:
@@ -89,61 +96,55 @@ def sweep(
     (|Ω_K3| + the vibration's swing at its nonlinear element, κ =
     ``peak_factor``, above its range; docs/model.md section 9).
     """
-    unit = units.canonical_unit(unit)
+    omega = _rates(rates)
+    check_peak_factor(peak_factor)
+    study = Study.of(catalog, sensors=sensors, profiles=profiles)
+    return sweep_of(study, omega, unit=unit, peak_factor=peak_factor)
+
+
+def _rates(rates: Sequence[float] | FloatArray) -> FloatArray:
     omega = np.asarray(rates, dtype=float).reshape(-1)
     if omega.size == 0 or not np.all(np.isfinite(omega)):
         raise OptionError("the swept rates must be finite, and at least one")
-    s_entries, p_entries = select_entries(catalog, sensors, profiles)
-    check_sweep_size(len(s_entries), int(specs.spec_index(s_entries).size), len(p_entries),
-                     omega.size)
+    return omega
+
+
+def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "deg/s",
+             peak_factor: float = DEFAULT_PEAK_FACTOR,
+             methods: Sequence[str] = METHODS, rms_only: bool = False) -> SweepResult:
+    """:func:`sweep` as a view of a :class:`~gyrovib.api.study.Study`.
+
+    ``methods``: the methods evaluated; a method left out (the report draws
+    one) has NaN in its arrays — unknown, not zero. ``rms_only``: datasheet
+    sensors get Δ_V(RMS) (their per-term bound) alone, the rest NaN — the
+    worst |Δ_V| over the envelope is a programme per rate, Δ_V(RMS) is not.
+    """
+    unit = units.canonical_unit(unit)
+    omega = _rates(rates)
+    _check_size(study, omega.size, rms_only)
     with float_guard():
         # only the paper's refusals leave empty cells; the exact method's is a
         # ModelError at the profile's place in its file, as in analyze
-        prepared = prepare(catalog, sensors=sensors, profiles=profiles, omega=omega,
-                           methods=METHODS, tolerate_refusals=("paper",), peak_factor=peak_factor)
+        prepared = study.prepare(omega=omega, methods=methods, tolerate_refusals=("paper",),
+                                 peak_factor=peak_factor)
         shape = (len(prepared.sensors), len(prepared.profiles), omega.size)
-        tails = {"additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
-                 "multiplicative": (), "total": (), "rms": (),
-                 "extra_terms": (len(EXTRA_TERMS),)}
-        # one group of every sensor in order (the usual case): its arrays are the results,
-        # not copied into zeros, which would double the memory of a long sweep
-        whole = (len(prepared.groups) == 1
-                 and np.array_equal(prepared.groups[0].index, np.arange(shape[0])))
-        results: dict[str, dict[str, FloatArray]] = {
-            m: {} if whole else {name: np.zeros((*shape, *t)) for name, t in tails.items()}
-            for m in METHODS}
         refused: dict[int, str] = {}
-        saturated = np.zeros(shape, dtype=bool)
-        ranges = sensor_ranges(prepared.sensors)
         for group in prepared.groups:
-            reach = np.abs(omega)[None, :] + group.swing[:, None]  # (profiles, rates)
-            saturated[group.index] = saturated_at(reach, ranges[group.index])
             refused.update(group.refused.get("paper", {}))
-            for method in METHODS:
-                err = vibration_error(prepared.coefficients[group.index],
-                                      group.multipliers[method],
-                                      g2_sensitivity=prepared.g2[group.index])
-                for name, tail in tails.items():
-                    if whole:
-                        array = np.asarray(getattr(err, name))
-                        if (array.shape != (*shape, *tail) or not array.flags.writeable
-                                or any(np.may_share_memory(array, other)
-                                       for other in results[method].values())):
-                            array = np.array(np.broadcast_to(array, (*shape, *tail)))
-                        results[method][name] = array
-                    else:
-                        results[method][name][group.index] = getattr(err, name)
-        worst_x = None
-        for method in METHODS:
-            spec = specs.spec_results(prepared, method, omega=omega)
-            if spec is not None:
-                specs.place(results[method], spec)
-                if method == "exact":
-                    worst_x = specs.sweep_fields(len(prepared.sensors), spec, unit)
+        results = {m: errors(study, prepared, m, omega, rms_only=rms_only) if m in methods else
+                   {name: np.full((*shape, *t), np.nan) for name, t in ERROR_PARTS.items()}
+                   for m in METHODS}
+        spec = (worst_case(study, prepared, "exact", omega, rms_only=rms_only)
+                if "exact" in methods else None)
+        worst_x = (specs.sweep_fields(len(prepared.sensors), spec, unit) if spec is not None
+                   else {"sources": sources(prepared.sensors)})
         exact = to_unit(VibrationError(**results["exact"]), unit, in_place=True)
         paper = to_unit(VibrationError(**results["paper"]), unit, in_place=True)
-        check_finite(error_arrays(exact), prepared)
-        check_finite(error_arrays(paper), prepared, exclude=sorted(refused))
+        checked = (lambda e: [e.rms]) if rms_only else error_arrays
+        if "exact" in methods:
+            check_finite(checked(exact), prepared)
+        if "paper" in methods:
+            check_finite(checked(paper), prepared, exclude=sorted(refused))
     return SweepResult(
         unit=unit,
         sensors=tuple(e.sensor.id for e in prepared.sensors),
@@ -153,6 +154,6 @@ def sweep(
         paper=paper,
         paper_refused={prepared.profiles[j].profile.id: refused[j] for j in sorted(refused)},
         **(worst_x or {}),
-        saturated=saturated,
+        saturated=saturation(prepared, omega).saturated,
         peak_factor=peak_factor,
     )

@@ -1,0 +1,229 @@
+"""The model evaluated on a prepared study: each sensor form's error, and saturation.
+
+Every view (``analyze``, ``sweep``, ``select``, the report, the notebook)
+takes its numbers from here, so the error loop over the sensor groups and the
+saturation rule are written once.
+
+A sensor is given in one of a few *forms*; each form is one small object with
+the same interface (:class:`SensorForm`):
+
+* :class:`CoefficientForm` — a conversion function's coefficients (written as
+  ``coefficients:``, or ``output_coefficients:`` divided by K1 when loaded):
+  its error terms are eq. (13)-(16) of its own polynomial;
+* :class:`DatasheetForm` — a datasheet (``specs:``): its error terms are those
+  of the worst polynomial its envelope allows (docs/model.md section 11,
+  :mod:`gyrovib.api.specs`), its bound checks the datasheet figures against
+  their spec bounds.
+
+A form answers for its own rows only; no form writes placeholder rows another
+overwrites. A new form (a lot of parts, say) is a new class here and an entry
+in :data:`FORMS`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gyrovib.api import specs
+from gyrovib.api.convert import sensor_ranges
+from gyrovib.api.prepare import Prepared
+from gyrovib.api.study import Study, omega_key
+from gyrovib.catalog.loader import SensorEntry
+from gyrovib.core.analysis import EXTRA_TERMS, vibration_error
+from gyrovib.core.saturation import saturated as saturated_at
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.frozen import Frozen
+
+#: The arrays of a :class:`~gyrovib.core.analysis.VibrationError` and their trailing shapes.
+ERROR_PARTS: dict[str, tuple[int, ...]] = {
+    "additive_terms": (5,), "multiplicative_coefficients": (3,), "additive": (),
+    "multiplicative": (), "total": (), "rms": (), "extra_terms": (len(EXTRA_TERMS),)}
+
+
+class SensorForm(Protocol):
+    """How one form of sensor enters the model.
+
+    ``source``: its name in results (``"coefficients"``, ``"specs"``);
+    :meth:`owns` picks its sensors; :meth:`error` writes their error terms
+    (deg/s) into the (sensors, profiles[, rates]) arrays ``parts``.
+    Saturation is the same rule for every form (:func:`saturation`), against
+    each sensor's own range (:func:`~gyrovib.api.convert.sensor_ranges`).
+    """
+
+    source: str
+
+    def owns(self, entry: SensorEntry) -> bool: ...
+
+    def error(self, study: Study, prepared: Prepared, rows: NDArray[np.intp], method: str,
+              omega: FloatArray | None, parts: dict[str, FloatArray],
+              rms_only: bool = False) -> None: ...
+
+
+class CoefficientForm:
+    """A sensor given by its conversion function's coefficients (eq. 2)."""
+
+    source = "coefficients"
+
+    def owns(self, entry: SensorEntry) -> bool:
+        return entry.sensor.specs is None
+
+    def error(self, study: Study, prepared: Prepared, rows: NDArray[np.intp], method: str,
+              omega: FloatArray | None, parts: dict[str, FloatArray],
+              rms_only: bool = False) -> None:
+        """Eq. (13)-(16) for its rows, one vectorised call per sensor group.
+
+        ``parts`` empty: its rows are every sensor, in one group; the arrays of
+        that one call become the results (a long sweep's are large: copied into
+        zeros they would double its memory).
+        """
+        shape = (len(prepared.sensors), len(prepared.profiles),
+                 *(() if omega is None else (np.asarray(omega).size,)))
+        whole = not parts
+        mine = np.zeros(len(prepared.sensors), dtype=bool)
+        mine[rows] = True
+        for group in prepared.groups:
+            idx = group.index[mine[group.index]]
+            if idx.size == 0:
+                continue
+            err = vibration_error(prepared.coefficients[idx], group.multipliers[method],
+                                  g2_sensitivity=prepared.g2[idx])
+            if whole:
+                _take_whole(err, shape, parts, group.multipliers[method])
+                continue
+            for name, array in parts.items():
+                array[idx] = getattr(err, name)
+
+
+def _take_whole(err: Any, shape: tuple[int, ...], parts: dict[str, FloatArray],
+                kept: Any) -> None:
+    """The arrays of ``err`` as the results: broadcast and copied only where they must be
+    (a view shared with another result or with the multipliers the study keeps, a
+    read-only one, a shape left to broadcasting)."""
+    others = [a for a in vars(kept).values() if isinstance(a, np.ndarray)] if hasattr(
+        kept, "__dict__") else [getattr(kept, f) for f in kept.__dataclass_fields__
+                                if isinstance(getattr(kept, f), np.ndarray)]
+    for name, tail in ERROR_PARTS.items():
+        array = np.asarray(getattr(err, name))
+        if (array.shape != (*shape, *tail) or not array.flags.writeable
+                or any(np.may_share_memory(array, other)
+                       for other in [*parts.values(), *others])):
+            array = np.array(np.broadcast_to(array, (*shape, *tail)))
+        parts[name] = array
+
+
+class DatasheetForm:
+    """A sensor given by its datasheet: the worst case over its envelope (section 11)."""
+
+    source = "specs"
+
+    def owns(self, entry: SensorEntry) -> bool:
+        return entry.sensor.specs is not None
+
+    def error(self, study: Study, prepared: Prepared, rows: NDArray[np.intp], method: str,
+              omega: FloatArray | None, parts: dict[str, FloatArray],
+              rms_only: bool = False) -> None:
+        """The worst polynomial's terms; ``total`` the worst |Δ_V|, ``rms`` the per-term bound."""
+        spec = worst_case(study, prepared, method, omega, rms_only=rms_only)
+        if spec is not None:
+            specs.place(parts, spec)
+
+
+#: The forms, in the order they are asked whether a sensor is theirs.
+FORMS: tuple[SensorForm, ...] = (DatasheetForm(), CoefficientForm())
+
+
+def form_rows(sensors: Sequence[SensorEntry]) -> list[tuple[SensorForm, NDArray[np.intp]]]:
+    """Each form with the indices of its sensors (forms without sensors left out)."""
+    taken = np.zeros(len(sensors), dtype=bool)
+    out = []
+    for form in FORMS:
+        rows = np.array([i for i, e in enumerate(sensors) if not taken[i] and form.owns(e)],
+                        dtype=np.intp)
+        taken[rows] = True
+        if rows.size:
+            out.append((form, rows))
+    return out
+
+
+def sources(sensors: Sequence[SensorEntry]) -> tuple[str, ...]:
+    """Each sensor's form, as results name it; empty when every sensor has coefficients."""
+    named = ["coefficients"] * len(sensors)
+    for form, rows in form_rows(sensors):
+        for i in rows.tolist():
+            named[i] = form.source
+    return () if all(n == "coefficients" for n in named) else tuple(named)
+
+
+def worst_case(study: Study, prepared: Prepared, method: str,
+               omega: FloatArray | None = None, *,
+               rms_only: bool = False) -> specs.SpecResults | None:
+    """The datasheet sensors' worst case under ``method`` (kept by the study).
+
+    Kept per method, rates and the multipliers prepared (which the study keeps
+    too, so one preparation asked twice gives the same objects). ``rms_only``:
+    the per-term RMS bound alone, the rest NaN (a chart of Δ_V(RMS)).
+    """
+    multipliers = tuple(id(g.multipliers.get(method)) for g in prepared.groups)
+    return study.remember(("worst case", method, omega_key(omega), multipliers, rms_only),
+                          lambda: specs.spec_results(prepared, method, omega=omega,
+                                                     total=not rms_only))
+
+
+def errors(study: Study, prepared: Prepared, method: str, omega: FloatArray | None = None,
+           *, datasheet: Prepared | None = None,
+           rms_only: bool = False) -> dict[str, FloatArray]:
+    """Every sensor's error terms under ``method`` in deg/s, (sensors, profiles[, rates], ...).
+
+    ``datasheet``: the preparation the datasheet worst case is taken on when
+    it differs (``analyze`` with ``phase: worst``: each multiplier at its
+    largest over the phases); default ``prepared``. ``rms_only``: a form may
+    give Δ_V(RMS) alone where the rest costs much more (the datasheet form's
+    whole-error programme), leaving the rest NaN.
+    """
+    tail = () if omega is None else (np.asarray(omega).size,)
+    shape = (len(prepared.sensors), len(prepared.profiles), *tail)
+    forms = form_rows(prepared.sensors)
+    parts: dict[str, FloatArray] = {}
+    whole = (len(forms) == 1 and forms[0][0].source == "coefficients"
+             and len(prepared.groups) == 1
+             and np.array_equal(prepared.groups[0].index, np.arange(shape[0])))
+    if not whole:  # each form fills its own rows of zeros
+        parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
+    for form, rows in forms:
+        form.error(study, datasheet if datasheet is not None and form.source == "specs"
+                   else prepared, rows, method, omega, parts, rms_only)
+    if not parts:  # no profile (no group): nothing was computed
+        parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
+    return parts
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Saturation(Frozen):
+    """The saturation rule (docs/model.md section 9), (sensors, profiles[, rates]), deg/s.
+
+    ``reach``: |Ω_K3| + the vibration's swing at the sensor's nonlinear element;
+    ``ranges``: each sensor's range (inf: none given; a datasheet's own range);
+    ``saturated``: reach > range.
+    """
+
+    reach: FloatArray
+    ranges: FloatArray
+    saturated: NDArray[np.bool_]
+
+
+def saturation(prepared: Prepared, omega: FloatArray | None = None) -> Saturation:
+    """Where each sensor saturates, at the profiles' Ω_K3 or at every rate of ``omega``."""
+    n_s, n_p = len(prepared.sensors), len(prepared.profiles)
+    rates = prepared.rates[:, 2] if omega is None else np.asarray(omega, dtype=float)
+    tail = () if omega is None else (rates.size,)
+    reach = np.zeros((n_s, n_p, *tail))
+    for group in prepared.groups:
+        swing = group.swing if omega is None else group.swing[:, None]
+        reach[group.index] = (np.abs(rates) + swing)[None]
+    ranges = sensor_ranges(prepared.sensors)
+    return Saturation(reach, ranges, saturated_at(reach, ranges))
