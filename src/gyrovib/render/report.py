@@ -20,7 +20,7 @@ import numpy as np
 
 from gyrovib.api.study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
-from gyrovib.render.bounds import shares
+from gyrovib.render.bounds import shares_text
 from gyrovib.render.common import fmt
 from gyrovib.render.select import (
     CELL_MARGIN,
@@ -163,7 +163,6 @@ def _inputs(study: TradeStudy) -> str:
     files = _table(["catalogue file", "SHA-256", "bytes"], (
         [f"<td><code>{_e(f.name)}</code></td>", f'<td class="hash">{_e(f.sha256)}</td>',
          f'<td class="num">{f.size}</td>'] for f in study.files), raw=True)
-    share = shares(s.allocation)
     rows = [
         ["budget Δ*_V", f"{fmt(s.budget)} {s.unit}"],
         ["output unit", s.unit],
@@ -171,10 +170,10 @@ def _inputs(study: TradeStudy) -> str:
         ["criterion", s.criterion],
         ["requirement", f"{s.require}: " + ("at least one sensor" if s.require == "any"
                                               else "every sensor") + " passes everywhere"],
-        ["allocation (shares of Δ*)", "; ".join(f"{k}: {v}" for k, v in share.items())],
-        *([["… under a linear vibration (g² term, docs/model.md section 8)",
-            "; ".join(f"{k}: {v}" for k, v in shares(s.allocation, linear=True).items())]]
-          if s.has_linear else []),
+        ["allocation (shares of Δ*)" + (
+            "; in brackets: under a linear vibration, whose g² term takes α6 "
+            "(docs/model.md section 8)" if s.has_linear else ""),
+         shares_text(s.allocation, linear=s.has_linear)],
         ["sensors × profiles", f"{len(s.sensors)} × {len(s.profiles)}"],
         ["gyrovib version", study.version],
         ["date", study.created],

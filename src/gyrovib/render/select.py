@@ -12,7 +12,13 @@ from gyrovib.api.reasons import failures as _failures
 from gyrovib.api.reasons import in_table_unit, reason, table_unit
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.analysis import SATURATED_MARK
-from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, unit_note, vre_unit
+from gyrovib.render.bounds import (
+    coefficient_unit,
+    profiles_json,
+    shares_text,
+    unit_note,
+    vre_unit,
+)
 from gyrovib.render.common import (
     csv_text,
     dumps,
@@ -140,7 +146,6 @@ BOUNDS_NOTE = ("The bounds are sufficient, not necessary: a sensor within every 
 
 
 def _legend(result: SelectionResult) -> str:
-    share = shares(result.allocation)
     judged = CELL_MARGIN[result.criterion]
     spec = (" Under bounds a datasheet (spec-form) sensor's nonlinearity and VRE are "
             "checked against the allowable figures for its own range and NL definition."
@@ -152,16 +157,13 @@ def _legend(result: SelectionResult) -> str:
             "bounds: every coefficient, or datasheet figure, within its bound). Ranked by "
             f"the worst margin {ranking_margin(result)} over the profiles. Each sensor's "
             "bounds include its own frequency response where it acts at the input "
-            "(`at: input`); an output filter earns no credit. Shares of Δ*: "
-            + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE
-            + unit_note(result))
-    if result.has_linear:  # docs/model.md section 8: α6 joins the additive shares
-        linear = shares(result.allocation, linear=True)
-        text += (" Under a profile with linear vibration the additive shares make room for "
-                 "the g² term: " + ", ".join(f"{k} {linear[k]}" for k in
-                                             ("A1", "k2", "k4", "m31", "m32", "vre"))
-                 + "; the vre check compares each sensor's effective VRE "
-                 "|Δ0(6)|/Σ⟨a_j²⟩ with its bound.")
+            "(`at: input`); an output filter earns no credit. Shares of Δ*"
+            + (" (in brackets: under a profile with linear vibration, where the g² term "
+               "takes α6)" if result.has_linear else "") + ": "
+            + shares_text(result.allocation, linear=result.has_linear) + ". "
+            + ("The vre check compares each sensor's effective VRE |Δ0(6)|/Σ⟨a_j²⟩ with "
+               "its bound. " if result.has_linear else "")
+            + BOUNDS_NOTE + unit_note(result))
     if result.unknown:
         text += (f" {UNVERIFIED_MARK} unverified: the sensor passes on its published figures, "
                  "but a figure its datasheet does not publish (named) can change the verdict "
