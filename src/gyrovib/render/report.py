@@ -18,6 +18,7 @@ from html import escape
 
 import numpy as np
 
+from gyrovib.api.reasons import unknown_label
 from gyrovib.api.study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.bounds import shares_text
@@ -210,8 +211,7 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
             notes = warnings.get((i, j), ())
             klass = status + (" warn" if notes else "")
             if status == "unverified":  # no margin: it hangs on figures not published
-                unknown = ", ".join("VRE" if n == "vre" else n
-                                    for n in s.unknown.get((i, j), ()))
+                unknown = ", ".join(unknown_label(s, i, n) for n in s.unknown.get((i, j), ()))
                 cells.append(f'<td class="{klass}"{_tip(notes)}>? unverified<br>'
                              f'<span class="small">{_e(unknown)} unknown</span></td>')
                 continue
@@ -290,7 +290,8 @@ def _questions(study: TradeStudy) -> str:
         + "</ul></li>" for i in open_)
     return ("<h2>Unverified sensors: questions for the vendor</h2>"
             "<p>These pass on their published figures, but their datasheets leave out a "
-            "figure that can decide the verdict under a chosen profile (unknown, not zero; "
+            "figure (or their catalogue entry gives no g² sensitivity) that can decide the "
+            "verdict under a chosen profile (unknown, not zero; "
             "docs/model.md section 11). Each line is a figure to ask for, with the largest value "
             f'that would still pass.</p><ul class="questions">{items}</ul>')
 
@@ -515,7 +516,8 @@ def to_html(study: TradeStudy, recording: str = "") -> str:
         "|Δ_V| ≤ Δ*; bounds: every coefficient or datasheet figure within its bound) that "
         "would decide it otherwise, and the term that dominates Δ_V(RMS)²; "
         "? unverified: passes on its published figures, but a figure its datasheet does "
-        "not publish (named) can change the verdict.</p>",
+        "not publish (named; g²: a coefficient-form sensor's g² sensitivity, not given) "
+        "can change the verdict.</p>",
         _matrix(study, squares, names),
         f'<div class="charts">{_figure(worst_margin_chart(study), WORST_KEY)}</div>',
         _warnings(study),

@@ -9,7 +9,7 @@ from typing import Any
 
 from gyrovib.api import SelectionResult
 from gyrovib.api.reasons import failures as _failures
-from gyrovib.api.reasons import in_table_unit, reason, table_unit
+from gyrovib.api.reasons import in_table_unit, reason, table_unit, unknown_label
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import (
@@ -166,7 +166,8 @@ def _legend(result: SelectionResult) -> str:
             + BOUNDS_NOTE + unit_note(result))
     if result.unknown:
         text += (f" {UNVERIFIED_MARK} unverified: the sensor passes on its published figures, "
-                 "but a figure its datasheet does not publish (named) can change the verdict "
+                 "but a figure its datasheet does not publish (named; g²: a coefficient-form "
+                 "sensor's g² sensitivity, not given) can change the verdict "
                  "there; it is counted as not passing and not ranked (--assume-unknown zero "
                  "takes such figures as 0).")
     if result.saturated is not None and result.saturated.any():
@@ -328,7 +329,8 @@ def to_csv(result: SelectionResult) -> str:
                             float(_get(result.vre_bound, i, j)),
                             bool(_get(result.vre_pass, i, j))]
                 elif vre:
-                    row += [*_vre(result, i, j), bool(_get(result.vre_pass, i, j))]
+                    row += [("" if math.isnan(v) else v) for v in _vre(result, i, j)]
+                    row += [bool(_get(result.vre_pass, i, j))]
                 elif with_specs:
                     row += [""] * 3
                 row += [_sat(result, i, j), result.status(i, j),
@@ -392,7 +394,7 @@ def ranking_margin(result: SelectionResult) -> str:
 
 def _unknown_names(result: SelectionResult, i: int, j: int) -> list[str]:
     """The unknown figures of a cell as written: VRE, m31, m32."""
-    return [n.upper() if n == "vre" else n for n in result.unknown.get((i, j), ())]
+    return [unknown_label(result, i, n) for n in result.unknown.get((i, j), ())]
 
 
 def _unverified(result: SelectionResult) -> list[list[str]]:
@@ -407,11 +409,11 @@ def assumption_note(result: SelectionResult) -> str:
     if result.assume_unknown != "zero" or not result.unknown:
         return ""
     order = ("vre", "m31", "m32")
-    cells = sorted({(result.sensors[i], n) for (i, _), names in result.unknown.items()
-                    for n in names}, key=lambda c: (c[0], order.index(c[1])))
+    cells = sorted({(i, n) for (i, _), names in result.unknown.items() for n in names},
+                   key=lambda c: (result.sensors[c[0]], order.index(c[1])))
     by_sensor: dict[str, list[str]] = {}
-    for sensor, name in cells:
-        by_sensor.setdefault(sensor, []).append("VRE" if name == "vre" else name)
+    for i, name in cells:
+        by_sensor.setdefault(result.sensors[i], []).append(unknown_label(result, i, name))
     return ("Assumed (--assume-unknown zero): unpublished figures taken as 0 -- "
             + "; ".join(f"{s}: {', '.join(n)}" for s, n in by_sensor.items())
             + "; cells marked * pass only under that assumption.")
