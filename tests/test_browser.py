@@ -15,7 +15,9 @@ stderr as an ``INFO:CONSOLE`` line; the report has no script and loads
 nothing, so the only lines are the probe's own. The probes are checked in the
 same run: deliberate faults added after the report (an element wider than the
 printed page, a shrunk chart whose text runs past its edge, an undefined
-function called) must each be found. Skipped where no Chromium is installed
+function called) must each be found, and charts at the edges of what
+svg.py lays out (long legends, names and labels; markers at the edge) must
+show whole. Skipped where no Chromium is installed
 (Debian: ``apt-get install chromium``; ``.ci/run`` installs it where it can).
 """
 
@@ -35,6 +37,7 @@ import pytest
 from gyrovib import api
 from gyrovib.api.study import trade_study
 from gyrovib.render.report import to_html
+from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
 
 CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 CHROMIUM = next(filter(None, map(shutil.which, CANDIDATES)), None)
@@ -57,6 +60,29 @@ FAULTS = """
 """
 
 
+def hard_charts() -> str:
+    """Charts at the edges of what svg.py lays out, added to the page: they must show
+    whole like the report's own. A legend longer than the chart (2 rows, 13 terms;
+    20 series), names and labels longer than their room, markers at the right edge."""
+    long = "a-sensor-id-much-longer-than-any-room-for-it-{}"
+    terms = [f"term {k} with a long name" for k in range(13)]
+    charts = [
+        share_chart("Error by term: two sensors, thirteen terms", ["s1", long.format(2)], terms,
+                    [[1.0] * 13, [0.0] * 12 + [1.0]]),
+        LineChart("Twenty series " + "and a very long title " * 5, "x " * 80, "y " * 80,
+                  [Series(long.format(k), [1.0, 2.0, 3.0], [k + 1.0, k + 2.0, k + 3.0],
+                          color(k), dash(k)) for k in range(20)],
+                  markers=(Marker("Δ* = 12.3456 at the right edge, labelled at length", y=20.0),
+                           Marker("a tone at the right edge, labelled at length", x=3.0),
+                           Marker("a tone at the left edge", x=1.0, row=1))).svg(),
+        bar_chart("Bars " * 30, "value " * 40, [long.format(k) for k in range(3)],
+                  [1e-3, 2e-3, 4e-3], ["#2ca02c"] * 3,
+                  Marker("Δ* = 0.0039999 at the right end", x=4e-3)),
+    ]
+    return '<section id="hard"><div class="charts">' + "".join(
+        f"<figure>{c}</figure>" for c in charts) + "</div></section>"
+
+
 @pytest.fixture(scope="module")
 def page(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
     """The bundled report loaded once: screenshot, console lines and the probe's result."""
@@ -66,7 +92,7 @@ def page(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
     probe = PROBE_JS.read_text(encoding="utf-8")
     path = tmp / "report.html"
     path.write_text(report.replace(
-        "</body>", f"{FAULTS}<script>{probe}</script>"
+        "</body>", f"{hard_charts()}{FAULTS}<script>{probe}</script>"
                    "<script>gyrovibUndefinedProbe()</script></body>"), encoding="utf-8")
     png = tmp / "report.png"
     done = subprocess.run(

@@ -173,10 +173,20 @@ def _axes(x: Scale, y: Scale, xlabel: str, ylabel: str) -> list[str]:
     return out
 
 
+#: Vertical step of the legend's entries.
+LEGEND_STEP = 15
+
+
+def legend_bottom(count: int, top: int = TOP) -> int:
+    """The lowest y a legend of ``count`` entries reaches: a chart is made at least that
+    tall, so that a long legend is not cut off by the chart's edge."""
+    return top + 8 + LEGEND_STEP * max(count - 1, 0) + 8
+
+
 def _legend(names: Sequence[str], styles: Sequence[tuple[str, str]], top: int = TOP) -> list[str]:
     out = []
     for k, (name, (stroke, pattern)) in enumerate(zip(names, styles, strict=True)):
-        y = top + 8 + 15 * k
+        y = top + 8 + LEGEND_STEP * k
         x = WIDTH - RIGHT + 10
         extra = f' stroke-dasharray="{pattern}"' if pattern else ""
         out.append(f'<line x1="{x}" y1="{y}" x2="{x + 18}" y2="{y}" stroke="{stroke}" '
@@ -221,7 +231,8 @@ class LineChart:
         xs = [v for s in self.series for v in s.x] + [m.x for m in self.markers if m.x is not None]
         ys = [v for s in self.series for v in s.y] + [m.y for m in self.markers if m.y is not None]
         xr, yr = extent(xs, self.xlog), extent(ys, self.ylog)
-        out = _open(self.title)
+        # below the plot the right column is free: a long legend runs on there
+        out = _open(self.title, max(HEIGHT, legend_bottom(len(self.series))))
         if xr is None or yr is None:
             out.append(f'<text x="{LEFT + 10}" y="{TOP + 30}" class="lg">no value to plot '
                        f'on {"log" if self.ylog else "linear"} axes</text></svg>')
@@ -331,7 +342,7 @@ def share_chart(title: str, names: Sequence[str], parts: Sequence[str],
                 shares: Sequence[Sequence[float]]) -> str:
     """100 % stacked horizontal bars: row k splits into ``shares[k]`` (summing to 1 or 0)."""
     row = 18
-    height = TOP + BOTTOM + row * max(len(names), 1)
+    height = max(TOP + BOTTOM + row * max(len(names), 1), legend_bottom(len(parts)))
     left, right = 170, WIDTH - RIGHT - 10
     out = _open(title, height)
     bottom = height - BOTTOM
