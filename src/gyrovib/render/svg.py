@@ -272,12 +272,13 @@ class LineChart:
 
 def _marker_label(text: str, px: float, y: float, right: float) -> str:
     """A vertical marker's label: right of the line, or left of it (anchored at its end)
-    where it would run past ``right``."""
-    width = text_width(text, SIZES["ml"])
-    if px + 3 + width <= right:
-        return f'<text x="{px + 3:.1f}" y="{y}" class="ml">{escape(text)}</text>'
+    where it would run past ``right`` and there is more room on the left; cut to its room."""
+    after, before = right - px - 3, px - 3 - 4
+    if text_width(text, SIZES["ml"]) <= after or after >= before:
+        return (f'<text x="{px + 3:.1f}" y="{y}" class="ml">'
+                f'{escape(fit(text, after, SIZES["ml"]))}</text>')
     return (f'<text x="{px - 3:.1f}" y="{y}" class="ml" text-anchor="end">'
-            f'{escape(fit(text, px - 3 - 4, SIZES["ml"]))}</text>')
+            f'{escape(fit(text, before, SIZES["ml"]))}</text>')
 
 
 def _segments(s: Series, xlog: bool, ylog: bool) -> list[list[tuple[float, float]]]:
