@@ -41,6 +41,7 @@ sensors:
       vre: 1.0e-3
   - id: coefficients
     coefficients: {k2: 1.0e-6}
+    vre: 0.0      # stated: a known zero, unlike a g² sensitivity not given
 profiles:
   - id: shaker
     rate: [0, 0, 0]
@@ -87,8 +88,90 @@ def test_a_part_without_a_vre_under_linear_vibration_is_unverified(catalog: str)
     # a published VRE of 1e-3 deg/s/g² gives 3e-3 deg/s ≤ 0.01: a verified pass
     other = parts["with-vre"]["profiles"][0]
     assert (other["status"], other["unknown"], other["pass"]) == ("pass", [], True)
-    # a coefficient-form part states its polynomial: nothing unknown
+    # a coefficient-form part that states its g² sensitivity (here 0): nothing unknown
     assert parts["coefficients"]["status"] == "pass"
+
+
+# Coefficient-form sensors: one without a g² figure (neither g2_sensitivity nor vre),
+# one with vre: 1e-4 deg/s/g², and one that fails on its other figures; under 'shaker'
+# (Σ⟨a_j²⟩ = 3 g², as above) and 'calm' (no linear vibration: the g² term cannot act).
+COEFFICIENTS = """\
+gyrovib: 1
+units: {rate: deg/s}
+sensors:
+  - id: no-g2
+    coefficients: {k2: 1.0e-6}
+  - id: with-g2
+    coefficients: {k2: 1.0e-6}
+    vre: 1.0e-4
+  - id: failing
+    coefficients: {A1: 0.5}
+profiles:
+  - id: shaker
+    rate: [0, 0, 0]
+    harmonic:
+      - {frequency: 100, amplitude: [0.0, 0.0, 1.0]}
+    acceleration:
+      random: {rms: [1.0, 1.0, 1.0]}
+  - id: calm
+    rate: [0, 0, 0]
+    harmonic:
+      - {frequency: 100, amplitude: [0.0, 0.0, 1.0]}
+"""
+
+
+@pytest.fixture
+def coefficient_catalog(tmp_path: Path) -> str:
+    path = tmp_path / "coefficients.yaml"
+    path.write_text(COEFFICIENTS, encoding="utf-8")
+    return str(path)
+
+
+def test_a_coefficient_sensor_without_a_g2_figure_is_unverified_under_linear_vibration(
+        coefficient_catalog: str) -> None:
+    result = gyrovib.select(coefficient_catalog, budget=BUDGET, criterion="rms")
+    no_g2, with_g2, failing = (result.sensors.index(s) for s in ("no-g2", "with-g2", "failing"))
+    shaker, calm = result.profiles.index("shaker"), result.profiles.index("calm")
+    # not given is unknown, not zero: under linear vibration the verdict is open
+    assert result.unknown[(no_g2, shaker)] == ("vre",)
+    assert result.status(no_g2, shaker) == "unverified" and not result.passed[no_g2, shaker]
+    assert result.sensor_status(no_g2) == "unverified"
+    # without linear vibration the g² term cannot act: a plain pass there
+    assert (no_g2, calm) not in result.unknown and result.status(no_g2, calm) == "pass"
+    # a stated g² sensitivity is known: vre·Σ⟨a_j²⟩ = 1e-4·3 = 3e-4 deg/s ≤ Δ*: a pass
+    assert (with_g2, shaker) not in result.unknown and result.sensor_status(with_g2) == "pass"
+    # one that fails on its other figures fails (|A1| = 0.5: Δ_V(RMS) far above Δ*)
+    assert result.status(failing, shaker) == "fail" and failing not in result.questions
+    # the question: Δ0(6) = vre·Σ⟨a_j²⟩ is one term of eq. (16), so under rms
+    # vre_max = √(Δ*² − Δ_V(RMS)²)/Σ⟨a_j²⟩ with Δ_V(RMS) that of the other terms
+    rms = float(result.rms[no_g2, shaker])
+    left = (BUDGET**2 - rms**2) ** 0.5 / 3.0
+    assert result.questions[no_g2] == (
+        f"g² sensitivity (G11 = G22 = G33, `vre`, deg/s/g²): at most {left:.4g} passes "
+        "under shaker",)
+    # every format says so: JSON reason and checks, the table, junit
+    done = invoke("select", coefficient_catalog, "--budget", str(BUDGET), "--criterion", "rms",
+                  "--format", "json")
+    cell = next(s for s in json.loads(done.stdout)["sensors"]
+                if s["sensor"] == "no-g2")["profiles"][shaker]
+    assert (cell["status"], cell["unknown"], cell["pass"]) == ("unverified", ["vre"], False)
+    assert "g² sensitivity not given" in cell["reason"]
+    assert cell["checks"]["vre"]["value"] is None and cell["checks"]["vre"]["pass"] is False
+    table = invoke("select", coefficient_catalog, "--budget", str(BUDGET),
+                   env={"COLUMNS": "200"}).stdout
+    row = next(line for line in table.splitlines() if "│ no-g2" in line)
+    assert "? g² unknown" in row and "UNVERIFIED" in row
+    junit = invoke("select", coefficient_catalog, "--budget", str(BUDGET), "--format",
+                   "junit").stdout
+    case = junit.split('classname="no-g2" name="shaker"')[1].split("</testcase>")[0]
+    assert 'type="Unverified"' in case and "g² sensitivity not given" in case
+    # --assume-unknown zero: taken as 0, a pass, and the output says so
+    zero = gyrovib.select(coefficient_catalog, budget=BUDGET, criterion="rms",
+                          assume_unknown="zero")
+    assert zero.status(no_g2, shaker) == "pass" and zero.unknown[(no_g2, shaker)] == ("vre",)
+    flat = " ".join(invoke("select", coefficient_catalog, "--budget", str(BUDGET),
+                           "--assume-unknown", "zero", env={"COLUMNS": "200"}).stdout.split())
+    assert "unpublished figures taken as 0 -- failing: g²; no-g2: g²;" in flat
 
 
 def test_assume_unknown_zero_passes_it_and_says_so(catalog: str) -> None:

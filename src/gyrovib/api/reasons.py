@@ -110,9 +110,24 @@ def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
     from gyrovib.api.spec_bounds import UNKNOWN_WORDS
 
     names = result.unknown.get((i, j), ())
+    spec = result.source(i) == "specs"
     return ("unverified: passes on its published figures, but "
-            + "; ".join(UNKNOWN_WORDS[n] for n in names)
+            + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS for n in names)
             + " -- ask the vendor, or --assume-unknown zero to take it as 0")
+
+
+#: Why a coefficient-form sensor's missing g² figure can matter, as a reason names it.
+G2_WORDS = ("g² sensitivity not given (no g2_sensitivity or vre in the catalogue; the profile "
+            "has linear vibration, so its g² term G_jj·⟨a_j²⟩ can rectify; docs/model.md "
+            "section 8)")
+
+
+def unknown_label(result: SelectionResult, i: int, name: str) -> str:
+    """An unknown figure of sensor ``i`` as tables name it: ``VRE`` (a datasheet part's),
+    ``g²`` (a coefficient-form sensor's g² sensitivity), ``m31``, ``m32``."""
+    if name != "vre":
+        return name
+    return "VRE" if result.source(i) == "specs" else "g²"
 
 
 def _vre_failure(result: SelectionResult, i: int, j: int) -> str:
