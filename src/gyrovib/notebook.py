@@ -532,7 +532,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     angle_budget : str, optional
         θ* on |θ_V| with an angle unit: ``"0.5deg"``, ``"2 mrad"``.
     unit : str, optional
-        Output rate unit; default the unit a budget string carries, else deg/h.
+        Output rate unit; default the unit a budget string carries, else deg/s.
     require : {'any', 'all'}
         Decides ``requirement_met``.
     placement : str, optional
@@ -551,7 +551,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     if unit is not None:
         unit = _unit("unit", unit)
     else:
-        unit = (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/h"
+        unit = (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/s"
     theta = None
     if angle_budget is not None:
         from gyrovib.api.commands.mission import angle_in_rad

@@ -32,7 +32,7 @@ from gyrovib.cli.options import (
                    "'2 mrad', 30arcmin.")
 @click.option("--unit", default=None, metavar="UNIT",
               help="Rate unit of every output rate (deg/s, deg/h, rad/s, rpm); default: "
-                   "the unit --budget is written in, else deg/h. The angle is in deg for "
+                   "the unit --budget is written in, else deg/s. The angle is in deg for "
                    "deg/s and deg/h, rad for rad/s, rev for rpm.")
 @placement_option
 @peak_factor_option
@@ -65,7 +65,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
     if unit is not None:
         unit = parse_unit(unit)
     else:
-        unit = (units.quantity_unit(budget) if budget is not None else None) or "deg/h"
+        unit = (units.quantity_unit(budget) if budget is not None else None) or "deg/s"
     catalog = load_catalog(files)
     result = api.mission(
         catalog, missions=missions, sensors=sensors,
@@ -105,7 +105,7 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
     if fmt == "github":
         raise OptionError("--mission: use --format table, json, csv, markdown or junit")
     unit = parse_unit(unit) if unit is not None else (
-        (units.quantity_unit(budget) if budget is not None else None) or "deg/h")
+        (units.quantity_unit(budget) if budget is not None else None) or "deg/s")
     result = api.mission(
         load_catalog(files), missions=(mission_id,), sensors=sensors,
         budget=None if budget is None else parse_budget(budget, unit),
