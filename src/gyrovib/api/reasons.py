@@ -7,6 +7,7 @@ significant figures, as in the tables.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -107,9 +108,14 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
 def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
     """Why sensor ``i`` is unverified under profile ``j``: the unpublished figures that can
     decide it (docs/model.md section 11), e.g. ``unverified: VRE not published (…)``."""
+    return unverified_text(result.unknown.get((i, j), ()))
+
+
+def unverified_text(names: Sequence[str]) -> str:
+    """The reason of an unverified verdict whose unpublished figures are ``names``
+    (``select`` and ``mission`` alike)."""
     from gyrovib.api.spec_bounds import UNKNOWN_WORDS
 
-    names = result.unknown.get((i, j), ())
     return ("unverified: passes on its published figures, but "
             + "; ".join(UNKNOWN_WORDS[n] for n in names)
             + " -- ask the vendor, or --assume-unknown zero to take it as 0")
