@@ -7,6 +7,7 @@ significant figures, as in the tables.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -107,10 +108,15 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
 def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
     """Why sensor ``i`` is unverified under profile ``j``: the unpublished figures that can
     decide it (docs/model.md section 11), e.g. ``unverified: VRE not published (…)``."""
+    return unverified_text(result.unknown.get((i, j), ()), spec=result.source(i) == "specs")
+
+
+def unverified_text(names: Sequence[str], spec: bool = True) -> str:
+    """The reason of an unverified verdict whose unpublished figures are ``names``
+    (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
+    sensor, whose missing g² figure is "not given" rather than "not published")."""
     from gyrovib.api.spec_bounds import UNKNOWN_WORDS
 
-    names = result.unknown.get((i, j), ())
-    spec = result.source(i) == "specs"
     return ("unverified: passes on its published figures, but "
             + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS for n in names)
             + " -- ask the vendor, or --assume-unknown zero to take it as 0")

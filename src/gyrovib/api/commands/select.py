@@ -40,9 +40,8 @@ from gyrovib.models import Allocation
 
 CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")
-#: What an unpublished datasheet figure is taken as: ``none`` (nothing: the
-#: verdict stays open, ``unverified``) or ``zero`` (the reading of old).
-ASSUMPTIONS = ("none", "zero")
+#: What an unpublished datasheet figure is taken as (:data:`spec_bounds.ASSUMPTIONS`).
+ASSUMPTIONS = spec_bounds.ASSUMPTIONS
 #: Relative slack of every ≤ comparison: a value at its bound, up to rounding
 #: (e.g. a bound printed in deg/h and read back), passes.
 PASS_RTOL = 1e-9
@@ -170,9 +169,7 @@ def select(
         raise OptionError(f"unknown criterion {criterion!r}; use one of {', '.join(CRITERIA)}")
     if require not in REQUIREMENTS:
         raise OptionError(f"unknown requirement {require!r}; use one of {', '.join(REQUIREMENTS)}")
-    if assume_unknown not in ASSUMPTIONS:
-        raise OptionError(f"unknown assumption {assume_unknown!r}; use one of "
-                          f"{', '.join(ASSUMPTIONS)}")
+    spec_bounds.check_assumption(assume_unknown)
     unit = units.canonical_unit(unit)
     constants = resolve_allocation(catalog, method, allocation)
     alone = bounds(catalog, profiles=profiles, method=method, rate=rate, budget=budget,
@@ -233,11 +230,10 @@ def select(
         _unknown_g2(prepared, criterion, passed, budget, rms, total, vre_bound_deg, unit,
                     unknown, questions)
         unverified = np.zeros(passed.shape, dtype=bool)
-        if assume_unknown != "zero":
-            for (i, j) in unknown:
-                if passed[i, j]:
-                    unverified[i, j] = True
-                    passed[i, j] = False
+        for (i, j), names in unknown.items():
+            if spec_bounds.is_unverified(bool(passed[i, j]), names, assume_unknown):
+                unverified[i, j] = True
+                passed[i, j] = False
 
         yields = None if yield_target is None else lot_yields(
             prepared, method, criterion, budget, limits_deg, vre_pass, yield_target,
