@@ -32,6 +32,7 @@ from gyrovib.core.statistics import rectified_excess, stretched_rule
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 
 ComplexArray = NDArray[np.complex128]
 
@@ -504,6 +505,7 @@ def two_groups_excess(omega: ArrayLike, first: LockedGroup, second: LockedGroup)
     per_rate = (targets.size * t2.size + uniform.size) * stretch.size
     step = max(1, (1 << 18) // per_rate)
     for lo in range(0, flat.size, step):
+        advance("E(Ω) of locked harmonics", lo, flat.size)
         part = flat[lo:lo + step]
         offsets = (part[:, None] + targets[None, :]).ravel()
         roots = monotone_roots(n2, p2, offsets, t2).reshape(part.size, -1)
@@ -516,6 +518,7 @@ def two_groups_excess(omega: ArrayLike, first: LockedGroup, second: LockedGroup)
         s = part[:, None, None] + _x3_at(n2.astype(float), p2, theta)[0]
         e1 = locked_abs_excess(s, n1, p1)
         out[lo:lo + step] = np.sum(e1 * weight, axis=(1, 2))
+    advance("E(Ω) of locked harmonics", flat.size, flat.size)
     result: FloatArray = (out + second_alone).reshape(w.shape)
     return result
 
@@ -629,11 +632,13 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     out = np.empty(flat.size)
     step = max(1, (1 << 20) // shift.size)
     for lo in range(0, flat.size, step):
+        advance("E(Ω) of locked harmonics", lo, flat.size)
         part = flat[lo:lo + step]
         s = part[:, None] + shift[None, :]
         e = _interpolate(s, h, reach, log)
         crossing = np.abs(part) < peak
         inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
         out[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
+    advance("E(Ω) of locked harmonics", flat.size, flat.size)
     result: FloatArray = out.reshape(w.shape)
     return result
