@@ -562,7 +562,8 @@ def _interpolate(c: FloatArray, h: float, reach: float, log: FloatArray) -> Floa
             if k != j:
                 weight *= (t - k) / (j - k)
         total += weight * log[base + j]
-    out: FloatArray = np.where(np.abs(c) < reach, np.exp(total), 0.0)
+    with np.errstate(over="ignore", invalid="ignore"):  # (past the reach: extrapolated, unused)
+        out: FloatArray = np.where(np.abs(c) < reach, np.exp(total), 0.0)
     return out
 
 
