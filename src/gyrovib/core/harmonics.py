@@ -612,34 +612,41 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     coefficients = [_x3_coefficients(g) for g in groups]
     live = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True) if n.size]
     nodes = mixture_nodes([g for g, _, _ in live], a, sigma)
-    total = math.prod(nodes) * flat.size
+    peak = sum(locked_peak(n, p) for _, n, p in live)
+    # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
+    near = np.abs(flat) < peak + math.fsum(a.tolist()) + 40.0 * sigma
+    total = math.prod(nodes) * int(np.count_nonzero(near))
     if total > MAX_MIXTURE_NODES:
         raise ModelError(
             reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
             f"with {a.size} independent tone{'s' if a.size != 1 else ''} on a random part of "
-            f"RMS {sigma:.4g} at {flat.size} rate{'s' if flat.size != 1 else ''} would take "
+            f"RMS {sigma:.4g} at {total // math.prod(nodes)} rate"
+            f"{'s' if total != math.prod(nodes) else ''} within its reach would take "
             f"{total:,} grid points (the groups' periods on "
             f"{' × '.join(str(m) for m in nodes)} nodes, as the random part is narrow "
             f"against their swing), more than the {MAX_MIXTURE_NODES:,} gyrovib allows; "
             "give fewer rates, or the smaller group's orders as independent tones")
+    out = np.zeros(flat.size)
+    if not near.any():
+        return out.reshape(w.shape)
     h, reach, log = _excess_table(a, sigma)
     shift = np.zeros(1)
-    peak = 0.0
     for (_, n, p), m in zip(live, nodes, strict=True):
         theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
         x3 = _x3_at(n.astype(float), p, theta)[0]
         shift = (shift[:, None] + x3[None, :]).ravel()
-        peak += locked_peak(n, p)
-    out = np.empty(flat.size)
+    todo = flat[near]
+    done = np.empty(todo.size)
     step = max(1, (1 << 20) // shift.size)
-    for lo in range(0, flat.size, step):
-        advance("E(Ω) of locked harmonics", lo, flat.size)
-        part = flat[lo:lo + step]
+    for lo in range(0, todo.size, step):
+        advance("E(Ω) of locked harmonics", lo, todo.size)
+        part = todo[lo:lo + step]
         s = part[:, None] + shift[None, :]
         e = _interpolate(s, h, reach, log)
         crossing = np.abs(part) < peak
         inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
-        out[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
-    advance("E(Ω) of locked harmonics", flat.size, flat.size)
+        done[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
+    advance("E(Ω) of locked harmonics", todo.size, todo.size)
+    out[near] = done
     result: FloatArray = out.reshape(w.shape)
     return result
