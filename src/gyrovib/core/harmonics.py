@@ -440,13 +440,18 @@ def locked_rectified_excess(
     theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
     x3 = np.sum((p[None, :] * np.exp(1j * n[None, :] * theta[:, None])).imag, axis=1)
     flat = w.ravel()
-    s = flat[:, None] + x3[None, :]
-    e = rectified_excess(s.ravel(), a, sigma).reshape(s.shape)
-    crossing = np.abs(flat) < peak
-    inside = np.mean(e + np.abs(s), axis=1) - np.abs(flat)
-    outside = np.mean(e, axis=1)
-    out: FloatArray = np.where(crossing, inside, outside).reshape(w.shape)
-    return out
+    out: FloatArray = np.empty(flat.size)
+    step = max(1, (1 << 20) // m)  # rates a block: memory bounded whatever the sweep
+    for lo in range(0, flat.size, step):
+        advance("E(Ω) of locked harmonics", lo, flat.size)
+        part = flat[lo:lo + step]
+        s = part[:, None] + x3[None, :]
+        e = rectified_excess(s.ravel(), a, sigma).reshape(s.shape)
+        crossing = np.abs(part) < peak
+        inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
+        out[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
+    advance("E(Ω) of locked harmonics", flat.size, flat.size)
+    return out.reshape(w.shape)
 
 
 #: Most pieces per rate of :func:`two_groups_excess` (the second group's period split
