@@ -399,6 +399,9 @@ def test_locked_mixture_excess_matches_brute_force() -> None:
                    "16384 × 16384 nodes", "more than the 16,777,216"]),
     ([1.0], None, ["two phase-locked groups with independent tones and no random part",
                    "give at most 4 rates"]),
+    # (σ = 1e-6 against a = 1: (1 + 4e-5)·16/σ = 16 million values of the tones' excess)
+    ([1.0], 1e-6, ["2 phase-locked groups with 1 independent tone (largest 1)",
+                   "would tabulate 16,000,648 values", "more than the 32,768"]),
 ])
 def test_two_groups_with_tones_beyond_the_budget_are_refused(
         tmp_path: Path, tones: list[float], rms: float | None, words: list[str]) -> None:

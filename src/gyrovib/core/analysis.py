@@ -44,12 +44,14 @@ from numpy.typing import ArrayLike
 
 from gyrovib.core.harmonics import (
     MAX_MIXTURE_NODES,
+    MAX_TABLE,
     LockedGroup,
     combine_moments,
     group_moments,
     group_signal,
     locked_mixture_excess,
     locked_rectified_excess,
+    table_size,
     two_groups_excess,
 )
 from gyrovib.core.statistics import (
@@ -227,8 +229,10 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
             omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
             acceleration=_acceleration(acceleration, w.shape),
         )
-    if s3 > 0 and (a.size or len(locked) > 1):
-        # tones and the Gaussian part tabulated once, the groups' periods on a grid
+    if s3 > 0 and (len(locked) > 1 or (a.size and table_size(a, s3) <= MAX_TABLE)):
+        # tones and the Gaussian part tabulated once, the groups' periods on a grid (one
+        # group with tones on a random part too narrow for the table: the group's grid
+        # of direct evaluations below, as before)
         asym = 0.5 * locked_mixture_excess(w, locked, a, s3)
         return Multipliers(
             asymmetry=asym, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
