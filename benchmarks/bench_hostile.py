@@ -18,6 +18,9 @@ FILE:LINE:COL). The catalogues are generated into a temporary directory:
   5-rate and the default 401-rate sweep;
 * 2, 3, 4 and 5 locked groups of orders 1 and 2;
 * one tone (a = 100) on a tiny random part (σ = 1e-3), the default 401-rate sweep;
+* two locked groups with a tone and a random PSD (σ3 = 2.2): ``analyze``,
+  ``select``, the default sweep and ``report``; with a narrow random part
+  (σ = 0.01) and with none (refused); one group, a tone and σ = 1e-3;
 * the bundled catalogue swept at 2,000 and 20,000 rates;
 * 3,000 datasheet (spec-form) sensors with all-different ranges × 2 profiles,
   ``select`` and ``report``.
@@ -62,6 +65,22 @@ def groups(count: int) -> str:
                   "          - {order: 1, amplitude: [0, 0, 0.5], phase: [0, 0, 0]}\n",
                   "          - {order: 2, amplitude: [0, 0, 0.3], phase: [0, 0, 30]}\n"]
     return "".join(lines)
+
+
+def mixture(count: int, tones: list[float], random: str | None) -> str:
+    """``count`` locked groups (orders 1 and 2), independent ``tones`` (x3 amplitudes)
+    and a ``random`` part (YAML of its mapping, or none)."""
+    lines = [groups(count)]
+    if tones:
+        lines.append("    harmonic:\n")
+        lines += [f"      - {{frequency: {50 + 10 * i}, amplitude: [0, 0, {a}]}}\n"
+                  for i, a in enumerate(tones)]
+    if random is not None:
+        lines.append(f"    random: {random}\n")
+    return "".join(lines)
+
+
+PSD = "{psd: {x3: [[20, 2.5e-3], [2000, 2.5e-3]]}}"  # σ3 = √(2.5e-3·1980) = 2.22 deg/s
 
 
 TONE_ON_TINY_RANDOM = HEAD + """    harmonic:
@@ -121,6 +140,16 @@ def cases(tmp: Path) -> list[tuple[str, list[str]]]:
                     ["sweep", s, p, "--rate-range", "-2:2:401", "--format", "csv"]))
     p = write("tr.yaml", TONE_ON_TINY_RANDOM)
     out.append(("tone a=100 + random 1e-3 sweep 401", ["sweep", s, p, "--format", "csv"]))
+    p = write("g2tr.yaml", mixture(2, [1.0], PSD))
+    for command in (["analyze"], ["select", "--budget", "1"], ["sweep", "--format", "csv"],
+                    ["report", "--budget", "1", "-o", str(tmp / "g2tr.html")]):
+        out.append((f"2 groups + tone + PSD {command[0]}", [command[0], s, p, *command[1:]]))
+    p = write("g2trs.yaml", mixture(2, [1.0], "{rms: [0, 0, 0.01]}"))
+    out.append(("2 groups + tone + rms 0.01 sweep", ["sweep", s, p, "--format", "csv"]))
+    p = write("g2t.yaml", mixture(2, [1.0], None))
+    out.append(("2 groups + tone, no random, sweep", ["sweep", s, p, "--format", "csv"]))
+    p = write("g1trs.yaml", mixture(1, [1.0], "{rms: [0, 0, 0.001]}"))
+    out.append(("1 group + tone + rms 1e-3 sweep", ["sweep", s, p, "--format", "csv"]))
     out.append(("bundled sweep 2,000 rates", ["sweep", "--rate-range", "-200:200:2000",
                                               "--format", "csv"]))
     out.append(("bundled sweep 20,000 rates", ["sweep", "--rate-range", "-200:200:20000",

@@ -73,7 +73,8 @@ def test_report_and_validate_take_it(own: str, tmp_path: Path) -> None:
     assert "adxrs645" in out.read_text(encoding="utf-8")
     checked = invoke("validate", own, "--bundled", "all")
     assert checked.exit_code == 0
-    assert (f"3 file(s) valid: {len(bundled_ids('sensors'))} sensor(s), "
+    # the user's file and the three bundled ones (sensors, profiles, missions)
+    assert (f"4 file(s) valid: {len(bundled_ids('sensors'))} sensor(s), "
             f"{len(bundled_ids('profiles')) + 1} profile(s)") in checked.stderr
 
 

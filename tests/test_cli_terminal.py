@@ -296,7 +296,9 @@ def test_ascii_stream_gets_an_ascii_table(encoding: str) -> None:
     assert re.fullmatch(r"\|-+(\+-+)+\|", rows[2])
     if encoding != "ascii":
         return
-    marks = gyrovib("select", "--budget", "0.001", env=clean_env(PYTHONIOENCODING="ascii"))
+    # (unknown figures taken as 0: cells that pass, rather than unverified ones)
+    marks = gyrovib("select", "--budget", "0.001", "--assume-unknown", "zero",
+                    env=clean_env(PYTHONIOENCODING="ascii"))
     assert marks.returncode == 0 and marks.stdout.isascii()
     assert re.search(r"\| +x [0-9][0-9.e+-]* +\|", marks.stdout)  # ✗ of a failing cell
     assert re.search(r"\| +v [0-9][0-9.e+-]* +\|", marks.stdout)  # ✓ of a passing one

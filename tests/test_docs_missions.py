@@ -51,7 +51,7 @@ def test_the_segment_table_is_the_json() -> None:
     for k, s in enumerate(row["segments"]):
         shown = f"| {k + 1} | {s['profile']} | {s['duration']:g} | "
         assert shown in text
-        assert f"| {s['duration'] * s['total'] / 3600:.3f} |" in text
-    summed = sum(s["duration"] * s["total"] for s in row["segments"]) / 3600
+        assert f"| {s['total']:.4g} | {s['duration'] * s['total']:.3f} |" in text  # deg/s × s
+    summed = sum(s["duration"] * s["total"] for s in row["segments"])
     assert f"Their sum is {summed:.2f} deg" in text
     assert f"the worst angle is {row['angle']:.2f} deg" in text

@@ -40,3 +40,4 @@ def test_page_has_both_steps() -> None:
     commands = [c for c, _ in console_blocks()]
     assert any(c.startswith("gyrovib profile") for c in commands)
     assert any(c.startswith("gyrovib analyze --recording") for c in commands)
+    assert any(c.startswith("gyrovib mission /tmp/px4.gyrovib.yaml") for c in commands)

@@ -320,7 +320,9 @@ def test_bundled_mission_prints_angle_and_worst_segment() -> None:
     result = invoke("mission", "--format", "json")
     assert result.exit_code == 0, result.stderr
     doc = json.loads(result.stdout)
-    assert doc["angle_unit"] == "deg" and doc["unit"] == "deg/h"
+    # the default output unit is every command's (INTERFACE.md: deg/s unless --budget
+    # carries a unit)
+    assert doc["angle_unit"] == "deg" and doc["unit"] == "deg/s"
     rows = doc["mission"]
     assert {r["mission"] for r in rows} == {"survey-flight"}
     assert {r["axis"] for r in rows} == {"X", "Y", "Z"}
@@ -328,8 +330,8 @@ def test_bundled_mission_prints_angle_and_worst_segment() -> None:
         assert set(r) >= {"sensor", "mission", "placement", "mean", "angle", "rms",
                           "worst_segment", "segments", "saturated", "pass", "axis",
                           "worst_axis"}
-        assert r["angle"] == pytest.approx(
-            sum(s["duration"] * s["total"] for s in r["segments"]) / 3600.0, rel=1e-9) \
+        assert r["angle"] == pytest.approx(  # deg/s × s = deg
+            sum(s["duration"] * s["total"] for s in r["segments"]), rel=1e-9) \
             or r["source"] == "specs"
     table = invoke("mission")
     assert "survey-flight" in table.stdout and "flat-random-hover" in table.stdout
@@ -525,3 +527,18 @@ def test_locked_orders_psd_and_linear_vibration_are_placed_as_by_hand() -> None:
                                    rtol=1e-12, atol=1e-18)
     assert not np.allclose(placed.error.total, plain.error.total)
     assert not np.allclose(placed.error.extra_terms[..., 0], plain.error.extra_terms[..., 0])
+
+
+def test_mission_unit_defaults_as_every_command() -> None:
+    """--unit: the unit --budget is written in, else deg/s (INTERFACE.md, `--unit U`), as
+    analyze and select; the angle stays in deg either way, and the same number."""
+    plain = json.loads(invoke("mission", "--sensor", "adxrs453", "--format", "json").stdout)
+    hours = json.loads(invoke("mission", "--sensor", "adxrs453", "--budget", "36deg/h",
+                              "--format", "json").stdout)
+    analyzed = json.loads(invoke("analyze", "--sensor", "adxrs453", "--profile",
+                                 "flat-random-hover", "--format", "json").stdout)
+    assert plain["unit"] == analyzed["unit"] == "deg/s"
+    assert hours["unit"] == "deg/h"
+    for a, b in zip(plain["mission"], hours["mission"], strict=True):
+        assert b["angle"] == pytest.approx(a["angle"], rel=1e-12)
+        assert b["mean"] == pytest.approx(3600.0 * a["mean"], rel=1e-12)  # 1 deg/s = 3600 deg/h

@@ -27,8 +27,9 @@ def test_the_verdict_column_is_passed_and_query_can_use_it() -> None:
 
 def test_a_catalog_prints_in_one_line() -> None:
     text = repr(gyrovib.load())
-    assert text == ("Catalog(9 sensors, 14 profiles from profiles.gyrovib.yaml, "
-                    "sensors.gyrovib.yaml)")
+    # the bundled files: 9 sensors, 14 profiles and one mission (src/gyrovib/catalogs/)
+    assert text == ("Catalog(9 sensors, 14 profiles, 1 mission from missions.gyrovib.yaml, "
+                    "profiles.gyrovib.yaml, sensors.gyrovib.yaml)")
     assert str(gyrovib.load()) == text
 
 

@@ -496,3 +496,68 @@ def test_ulog_another_topic_by_column_names() -> None:
     np.testing.assert_allclose(rec.rate[:, 2], np.rad2deg(data["yawspeed"].astype(float)),
                                rtol=1e-6)
     assert rec.fs == pytest.approx(1e6 / np.median(np.diff(data["timestamp"])), rel=1e-9)
+
+
+def test_the_written_mission_and_coherences_are_catalogue_data(tmp_path: Path) -> None:
+    """`profile` writes the carrier histogram as a real `missions:` entry and the random
+    part's coherences as [ρ31, ρ32, ρ12]; the file validates, `gyrovib mission` runs on it,
+    and `analyze --recording`'s fitted closed form is that mission's, number for number.
+
+    The noise is white (σ = 0.7 deg/s per axis) with the correlation matrix ρ31 = 0.3,
+    ρ32 = 0.2, ρ12 = -0.5 (Cholesky factor applied to independent normals; its
+    determinant 1 + 2·(-0.5)(0.3)(0.2) - 0.25 - 0.09 - 0.04 = 0.56 > 0): white noise is
+    correlated alike in every band, so the measured coherences are these, and ρ12 is
+    not the default ρ31·ρ32 = 0.06."""
+    import yaml
+
+    rng = np.random.default_rng(11)
+    fs, n = 1000.0, 60_000
+    corr = np.array([[1.0, -0.5, 0.3], [-0.5, 1.0, 0.2], [0.3, 0.2, 1.0]])
+    rate = SIGMA * rng.normal(size=(n, 3)) @ np.linalg.cholesky(corr).T
+    rate[:, 2] += 3.0 + 2.0 * np.sin(2 * np.pi * 0.05 * np.arange(n) / fs)  # slow carrier
+    np.save(tmp_path / "w.npy", rate)
+    out = tmp_path / "w.gyrovib.yaml"
+    r = invoke("profile", tmp_path / "w.npy", "--fs", fs, "-o", out)
+    assert r.exit_code == 0, r.stderr
+    assert invoke("validate", out).exit_code == 0
+    text = out.read_text(encoding="utf-8")
+    assert "#   mission:" not in text and "a comment until" not in text
+    doc = yaml.safe_load(text)
+    (mission,) = doc["missions"]
+    assert mission["id"] == "w-fitted-mission"
+    segments = mission["segments"]
+    assert len(segments) > 1  # the carrier sweeps 1..5 deg/s: several bins
+    assert {s["profile"] for s in segments} == {"w-fitted"}
+    assert sum(s["duration"] for s in segments) == pytest.approx(n / fs, rel=1e-5)
+    assert [min(s["rate"][2] for s in segments), max(s["rate"][2] for s in segments)] \
+        == pytest.approx([1.0, 5.0], abs=0.25)
+    coherence = doc["profiles"][0]["random"]["coherence"]
+    assert coherence == pytest.approx([0.3, 0.2, -0.5], abs=0.04)
+
+    flown = invoke("mission", out, "--bundled", "sensors", "--format", "json")
+    assert flown.exit_code == 0, flown.stderr
+    rows = {row["sensor"]: row for row in json.loads(flown.stdout)["mission"]}
+    analyzed = invoke("analyze", "--recording", tmp_path / "w.npy", "--fs", fs,
+                      "--format", "json")
+    assert analyzed.exit_code == 0, analyzed.stderr
+    results = json.loads(analyzed.stdout)["results"]
+    assert {row["sensor"] for row in results} == set(rows)
+    for row in results:
+        assert row["fitted"]["total"] == pytest.approx(rows[row["sensor"]]["mean"], rel=1e-12)
+        assert row["fitted"]["rms"] == pytest.approx(rows[row["sensor"]]["rms"], rel=1e-12)
+
+
+def test_rounded_coherences_stay_a_correlation_matrix() -> None:
+    """Nearly singular coherences (x1 = x3 and x2 = x3 but for a trace of noise) round to
+    6 figures into a matrix that would not be positive semi-definite; the written ρ12 is
+    held inside ρ31·ρ32 ± √((1-ρ31²)(1-ρ32²)), so the file still validates."""
+    from gyrovib.api.recording_yaml import _coherence
+    from gyrovib.models.profile import correlation_problem
+
+    r31, r32 = 0.99999949, 0.99999951
+    r12 = r31 * r32 + 0.999999 * np.sqrt((1 - r31**2) * (1 - r32**2))  # just inside
+    text = _coherence((r31, r32, r12))
+    a, b, c = (float(v) for v in text.strip("[]").split(","))
+    naive = [float(f"{v:.6g}") for v in (r31, r32, r12)]
+    assert correlation_problem(naive[2], naive[0], naive[1]) is not None  # rounding breaks it
+    assert correlation_problem(c, a, b) is None

@@ -41,6 +41,7 @@ sensors:
       vre: 1.0e-3
   - id: coefficients
     coefficients: {k2: 1.0e-6}
+    vre: 0.0      # stated: a known zero, unlike a g² sensitivity not given
 profiles:
   - id: shaker
     rate: [0, 0, 0]
@@ -87,8 +88,90 @@ def test_a_part_without_a_vre_under_linear_vibration_is_unverified(catalog: str)
     # a published VRE of 1e-3 deg/s/g² gives 3e-3 deg/s ≤ 0.01: a verified pass
     other = parts["with-vre"]["profiles"][0]
     assert (other["status"], other["unknown"], other["pass"]) == ("pass", [], True)
-    # a coefficient-form part states its polynomial: nothing unknown
+    # a coefficient-form part that states its g² sensitivity (here 0): nothing unknown
     assert parts["coefficients"]["status"] == "pass"
+
+
+# Coefficient-form sensors: one without a g² figure (neither g2_sensitivity nor vre),
+# one with vre: 1e-4 deg/s/g², and one that fails on its other figures; under 'shaker'
+# (Σ⟨a_j²⟩ = 3 g², as above) and 'calm' (no linear vibration: the g² term cannot act).
+COEFFICIENTS = """\
+gyrovib: 1
+units: {rate: deg/s}
+sensors:
+  - id: no-g2
+    coefficients: {k2: 1.0e-6}
+  - id: with-g2
+    coefficients: {k2: 1.0e-6}
+    vre: 1.0e-4
+  - id: failing
+    coefficients: {A1: 0.5}
+profiles:
+  - id: shaker
+    rate: [0, 0, 0]
+    harmonic:
+      - {frequency: 100, amplitude: [0.0, 0.0, 1.0]}
+    acceleration:
+      random: {rms: [1.0, 1.0, 1.0]}
+  - id: calm
+    rate: [0, 0, 0]
+    harmonic:
+      - {frequency: 100, amplitude: [0.0, 0.0, 1.0]}
+"""
+
+
+@pytest.fixture
+def coefficient_catalog(tmp_path: Path) -> str:
+    path = tmp_path / "coefficients.yaml"
+    path.write_text(COEFFICIENTS, encoding="utf-8")
+    return str(path)
+
+
+def test_a_coefficient_sensor_without_a_g2_figure_is_unverified_under_linear_vibration(
+        coefficient_catalog: str) -> None:
+    result = gyrovib.select(coefficient_catalog, budget=BUDGET, criterion="rms")
+    no_g2, with_g2, failing = (result.sensors.index(s) for s in ("no-g2", "with-g2", "failing"))
+    shaker, calm = result.profiles.index("shaker"), result.profiles.index("calm")
+    # not given is unknown, not zero: under linear vibration the verdict is open
+    assert result.unknown[(no_g2, shaker)] == ("vre",)
+    assert result.status(no_g2, shaker) == "unverified" and not result.passed[no_g2, shaker]
+    assert result.sensor_status(no_g2) == "unverified"
+    # without linear vibration the g² term cannot act: a plain pass there
+    assert (no_g2, calm) not in result.unknown and result.status(no_g2, calm) == "pass"
+    # a stated g² sensitivity is known: vre·Σ⟨a_j²⟩ = 1e-4·3 = 3e-4 deg/s ≤ Δ*: a pass
+    assert (with_g2, shaker) not in result.unknown and result.sensor_status(with_g2) == "pass"
+    # one that fails on its other figures fails (|A1| = 0.5: Δ_V(RMS) far above Δ*)
+    assert result.status(failing, shaker) == "fail" and failing not in result.questions
+    # the question: Δ0(6) = vre·Σ⟨a_j²⟩ is one term of eq. (16), so under rms
+    # vre_max = √(Δ*² − Δ_V(RMS)²)/Σ⟨a_j²⟩ with Δ_V(RMS) that of the other terms
+    rms = float(result.rms[no_g2, shaker])
+    left = (BUDGET**2 - rms**2) ** 0.5 / 3.0
+    assert result.questions[no_g2] == (
+        f"g² sensitivity (G11 = G22 = G33, `vre`, deg/s/g²): at most {left:.4g} passes "
+        "under shaker",)
+    # every format says so: JSON reason and checks, the table, junit
+    done = invoke("select", coefficient_catalog, "--budget", str(BUDGET), "--criterion", "rms",
+                  "--format", "json")
+    cell = next(s for s in json.loads(done.stdout)["sensors"]
+                if s["sensor"] == "no-g2")["profiles"][shaker]
+    assert (cell["status"], cell["unknown"], cell["pass"]) == ("unverified", ["vre"], False)
+    assert "g² sensitivity not given" in cell["reason"]
+    assert cell["checks"]["vre"]["value"] is None and cell["checks"]["vre"]["pass"] is False
+    table = invoke("select", coefficient_catalog, "--budget", str(BUDGET),
+                   env={"COLUMNS": "200"}).stdout
+    row = next(line for line in table.splitlines() if "│ no-g2" in line)
+    assert "? g² unknown" in row and "UNVERIFIED" in row
+    junit = invoke("select", coefficient_catalog, "--budget", str(BUDGET), "--format",
+                   "junit").stdout
+    case = junit.split('classname="no-g2" name="shaker"')[1].split("</testcase>")[0]
+    assert 'type="Unverified"' in case and "g² sensitivity not given" in case
+    # --assume-unknown zero: taken as 0, a pass, and the output says so
+    zero = gyrovib.select(coefficient_catalog, budget=BUDGET, criterion="rms",
+                          assume_unknown="zero")
+    assert zero.status(no_g2, shaker) == "pass" and zero.unknown[(no_g2, shaker)] == ("vre",)
+    flat = " ".join(invoke("select", coefficient_catalog, "--budget", str(BUDGET),
+                           "--assume-unknown", "zero", env={"COLUMNS": "200"}).stdout.split())
+    assert "unpublished figures taken as 0 -- failing: g²; no-g2: g²;" in flat
 
 
 def test_assume_unknown_zero_passes_it_and_says_so(catalog: str) -> None:
@@ -175,3 +258,136 @@ def test_analyze_says_the_vre_is_left_out(catalog: str) -> None:
     assert any("publishes no VRE" in w for w in result.warnings[(i, 0)])
     assert not any("publishes no VRE" in w
                    for w in result.warnings.get((result.sensors.index("with-vre"), 0), ()))
+
+
+# ---------------------------------------------------------------- missions
+# The same parts over missions (docs/model.md section 12): 'trip' flies a quiet tone
+# along x3 only (a = (0, 0, 2) deg/s: C31 = C32 = 0, no linear vibration) for 100 s,
+# then 'shaker' for 10 s; 'wobble' flies 'tone' (C31 = 1 (deg/s)²) for 60 s. ('quiet'
+# continues CATALOGUE's list of profiles.)
+MISSIONS = """\
+  - id: quiet
+    rate: [0, 0, 0]
+    harmonic:
+      - {frequency: 100, amplitude: [0.0, 0.0, 2.0]}
+missions:
+  - id: trip
+    segments:
+      - {profile: quiet, duration: 100}
+      - {profile: shaker, duration: 10}
+  - id: wobble
+    segments:
+      - {profile: tone, duration: 60}
+"""
+
+
+@pytest.fixture
+def flights(tmp_path: Path) -> str:
+    path = tmp_path / "flights.yaml"
+    path.write_text(CATALOGUE + MISSIONS, encoding="utf-8")
+    return str(path)
+
+
+def mission_json(catalog: str, *args: str) -> tuple[int, dict]:
+    done = invoke("mission", catalog, "--budget", str(BUDGET), "--format", "json", *args)
+    return done.exit_code, json.loads(done.stdout)
+
+
+def test_a_mission_with_linear_vibration_leaves_a_part_without_vre_unverified(
+        flights: str) -> None:
+    code, doc = mission_json(flights, "--mission", "trip", "--require", "all")
+    assert code == 1  # unverified is not passing
+    assert doc["assume_unknown"] == "none"
+    rows = {r["sensor"]: r for r in doc["mission"]}
+    cell = rows["no-vre"]
+    assert (cell["pass"], cell["status"], cell["unknown"]) == (False, "unverified", ["vre"])
+    assert cell["reason"].startswith("unverified: passes on its published figures, but VRE "
+                                     "not published")
+    for part in ("with-vre", "coefficients"):
+        assert (rows[part]["pass"], rows[part]["status"], rows[part]["unknown"]) == \
+            (True, "pass", [])
+    sensors = {s["sensor"]: s for s in doc["sensors"]}
+    assert (sensors["no-vre"]["pass"], sensors["no-vre"]["status"]) == (False, "unverified")
+    # by hand: the two parts differ only by the published VRE's term, 1e-3 deg/s/g² ×
+    # Σ⟨a_j²⟩ = 3 g² during the 10 s of 110 (the quiet segment has no acceleration)
+    assert rows["with-vre"]["mean"] - rows["no-vre"]["mean"] == pytest.approx(
+        1.0e-3 * 3.0 * 10.0 / 110.0, rel=1e-9)
+
+
+def test_cross_axis_vibration_in_a_segment_leaves_m31_unknown(flights: str) -> None:
+    _, doc = mission_json(flights, "--mission", "wobble")
+    rows = {r["sensor"]: r for r in doc["mission"]}
+    for part in ("no-vre", "with-vre"):  # no datasheet gives m31
+        assert (rows[part]["status"], rows[part]["unknown"]) == ("unverified", ["m31"])
+        assert "m31 not published" in rows[part]["reason"]
+    assert rows["coefficients"]["status"] == "pass"
+
+
+def test_mission_assume_unknown_zero_restores_and_says_so(flights: str) -> None:
+    code, doc = mission_json(flights, "--mission", "trip", "--require", "all",
+                             "--assume-unknown", "zero")
+    assert code == 0 and doc["assume_unknown"] == "zero"
+    rows = {r["sensor"]: r for r in doc["mission"]}
+    # still listed as unknown, but taken as 0: it passes on its published figures
+    assert (rows["no-vre"]["pass"], rows["no-vre"]["status"], rows["no-vre"]["unknown"]) \
+        == (True, "pass", ["vre"])
+    table = invoke("mission", flights, "--mission", "trip", "--budget", str(BUDGET),
+                   "--assume-unknown", "zero")
+    assert "Assumed (--assume-unknown zero): unpublished figures taken as 0 -- no-vre: VRE" \
+        in " ".join(table.stdout.split())
+
+
+def test_unverified_mission_rows_in_every_format(flights: str) -> None:
+    table = invoke("mission", flights, "--mission", "trip", "--budget", str(BUDGET))
+    assert "UNVERIFIED" in table.stdout and "1 unverified" in table.stdout
+    flat = " ".join(table.stdout.split())
+    assert "no-vre: unverified: passes on its published figures, but VRE not published" in flat
+    markdown = invoke("mission", flights, "--mission", "trip", "--budget", str(BUDGET),
+                      "--format", "markdown").stdout
+    assert "| UNVERIFIED |" in markdown
+    csv = invoke("mission", flights, "--mission", "trip", "--budget", str(BUDGET),
+                 "--format", "csv").stdout.splitlines()
+    assert csv[0].endswith(",passed,status,unknown")
+    (line,) = [ln for ln in csv if ln.startswith("no-vre,")]
+    assert line.endswith(",false,unverified,vre")
+    junit = invoke("select", "--mission", "trip", flights, "--budget", str(BUDGET),
+                   "--format", "junit", "--require", "all")
+    assert junit.exit_code == 1
+    assert 'type="Unverified"' in junit.stdout and junit.stdout.count("<failure") == 1
+    assert 'message="unverified: passes on its published figures, but VRE' in junit.stdout
+    frame = gyrovib.mission(flights, missions="trip", budget=BUDGET).to_frame()
+    assert list(frame.loc[frame.sensor == "no-vre", "status"]) == ["unverified"]
+
+
+def test_mission_and_select_share_one_rule(flights: str) -> None:
+    """A one-segment mission is select's verdict under the RMS criterion (the mission's
+    budget is on Δ̄_RMS): the same status for every part, with or without the assumption."""
+    one = flights.replace("flights.yaml", "one.yaml")
+    Path(one).write_text(CATALOGUE + "missions:\n  - id: only\n    segments:\n"
+                         "      - {profile: shaker, duration: 5}\n", encoding="utf-8")
+    for extra in ((), ("--assume-unknown", "zero")):
+        _, m = mission_json(one, *extra)
+        _, s = select_json(one, "--profile", "shaker", "--criterion", "rms", *extra)
+        by_select = {p["sensor"]: (p["profiles"][0]["status"], p["profiles"][0]["unknown"])
+                     for p in s["sensors"]}
+        by_mission = {r["sensor"]: (r["status"], r["unknown"]) for r in m["mission"]}
+        assert by_mission == by_select
+    assert by_select["no-vre"] == ("pass", ["vre"])
+
+
+def test_report_mission_section_paints_unverified_apart(flights: str, tmp_path: Path) -> None:
+    """report --mission: an unverified part's bar has its own colour (never the pass
+    green), and --assume-unknown zero reaches the section."""
+    from gyrovib.render.report_mission import OPEN_FILL, PASS_FILL
+
+    out = tmp_path / "r.html"
+    done = invoke("report", flights, "--budget", str(BUDGET), "--mission", "trip",
+                  "--angle-budget", "1deg", "-o", out)
+    assert done.exit_code in (0, 1), done.stderr
+    html = out.read_text(encoding="utf-8")
+    assert OPEN_FILL in html and "purple: unverified" in html
+    out_zero = tmp_path / "z.html"
+    invoke("report", flights, "--budget", str(BUDGET), "--mission", "trip",
+           "--angle-budget", "1deg", "--assume-unknown", "zero", "-o", out_zero)
+    zero = out_zero.read_text(encoding="utf-8")
+    assert OPEN_FILL not in zero and PASS_FILL in zero

@@ -516,7 +516,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
             sensors: str | Sequence[str] = (), budget: float | str | None = None,
             angle_budget: str | None = None, unit: str | None = None,
             require: str = "any", placement: str | None = None,
-            peak_factor: float = 3.0) -> Any:
+            peak_factor: float = 3.0, assume_unknown: str = "none") -> Any:
     """Every sensor over every mission (docs/model.md section 12): mean error, angle θ_V,
     mean RMS, worst segment.
 
@@ -531,13 +531,17 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     angle_budget : str, optional
         θ* on |θ_V| with an angle unit: ``"0.5deg"``, ``"2 mrad"``.
     unit : str, optional
-        Output rate unit; default the unit a budget string carries, else deg/h.
+        Output rate unit; default the unit a budget string carries, else deg/s.
     require : {'any', 'all'}
         Decides ``requirement_met``.
     placement : str, optional
         ``"triad"`` or ``"x1=+Y,x2=+Z,x3=+X"``: replaces the missions' own.
     peak_factor : float
         κ of the saturation check (docs/model.md section 9), default 3.
+    assume_unknown : {'none', 'zero'}
+        'none': a datasheet part that passes on its published figures while an
+        unpublished one (VRE, m31, m32) can decide it is 'unverified' (row
+        ``status``); 'zero' takes them as 0.
 
     Returns
     -------
@@ -550,7 +554,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     if unit is not None:
         unit = _unit("unit", unit)
     else:
-        unit = (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/h"
+        unit = (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/s"
     theta = None
     if angle_budget is not None:
         from gyrovib.api.commands.mission import angle_in_rad
@@ -569,4 +573,5 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
         _catalog(catalog), missions=_ids("missions", missions), sensors=_ids("sensors", sensors),
         budget=None if budget is None else _quantity("budget", budget, unit, True),
         angle_budget=theta, unit=unit, require=_text("require", require, ("any", "all")),
-        placement=where, peak_factor=_number("peak_factor", peak_factor, nonnegative=True))
+        placement=where, peak_factor=_number("peak_factor", peak_factor, nonnegative=True),
+        assume_unknown=_text("assume_unknown", assume_unknown, ("none", "zero")))

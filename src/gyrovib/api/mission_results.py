@@ -36,7 +36,11 @@ class MissionRow(Frozen):
     worst axis (largest |θ_V|), else None. ``passed``: None without a budget.
     A spec-form sensor's ``mean`` is the worst case over its datasheet envelope of
     the whole mission (one conversion function for every segment), and its
-    ``angle`` that mean times the mission's duration.
+    ``angle`` that mean times the mission's duration. ``unknown``: the
+    unpublished datasheet figures that can matter in some segment (``vre``,
+    ``m31``, ``m32``; docs/model.md section 11); ``unverified``: the row passes
+    on the published figures but an unknown one can decide it (then ``passed``
+    is False), see :attr:`status`.
     """
 
     sensor: str
@@ -54,11 +58,29 @@ class MissionRow(Frozen):
     passed: bool | None
     source: str = "coefficients"
     worst_axis: str | None = None
+    unknown: tuple[str, ...] = ()
+    unverified: bool = False
 
     @property
     def duration(self) -> float:
         """Σ T_s, seconds."""
         return sum(s.duration for s in self.segments)
+
+    @property
+    def status(self) -> str | None:
+        """``"pass"``, ``"fail"`` or ``"unverified"``; None without a budget."""
+        if self.passed is None:
+            return None
+        return "unverified" if self.unverified else "pass" if self.passed else "fail"
+
+    @property
+    def reason(self) -> str | None:
+        """Why an unverified row is open (:func:`gyrovib.api.reasons.unverified_text`)."""
+        if not self.unverified:
+            return None
+        from gyrovib.api.reasons import unverified_text
+
+        return unverified_text(self.unknown)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -83,6 +105,19 @@ class MissionResult(Frozen):
     rows: tuple[MissionRow, ...]
     sensor_pass: tuple[bool | None, ...]
     requirement_met: bool
+    assume_unknown: str = "none"
+
+    def sensor_status(self, k: int) -> str | None:
+        """Sensor ``k`` over every mission and axis: ``fail`` if a row fails on its
+        published figures, else ``unverified`` if one is, else ``pass`` (None without a
+        budget)."""
+        if self.sensor_pass[k] is None:
+            return None
+        statuses = {r.status for r in self.rows if r.sensor == self.sensors[k]}
+        for status in ("fail", "unverified"):
+            if status in statuses:
+                return status
+        return "pass"
 
     def to_frame(self) -> pd.DataFrame:
         """One row per sensor × mission × axis (pandas): the columns of the CSV."""
@@ -96,10 +131,12 @@ def _record(r: MissionRow) -> dict[str, Any]:
             "axis": r.axis, "mean": r.mean, "angle": r.angle, "rms": r.rms,
             "worst_segment": r.worst_index + 1, "worst_profile": r.worst_profile,
             "worst_total": r.worst_total, "duration": r.duration, "saturated": r.saturated,
-            "source": r.source, "passed": r.passed}
+            "source": r.source, "passed": r.passed, "status": r.status,
+            "unknown": " ".join(r.unknown)}
 
 
 def frame_columns() -> tuple[str, ...]:
     """The DataFrame's (and the CSV's) column names, in order."""
     return ("sensor", "mission", "placement", "axis", "mean", "angle", "rms", "worst_segment",
-            "worst_profile", "worst_total", "duration", "saturated", "source", "passed")
+            "worst_profile", "worst_total", "duration", "saturated", "source", "passed",
+            "status", "unknown")

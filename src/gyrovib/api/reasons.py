@@ -7,6 +7,7 @@ significant figures, as in the tables.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -93,12 +94,32 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
 def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
     """Why sensor ``i`` is unverified under profile ``j``: the unpublished figures that can
     decide it (docs/model.md section 11), e.g. ``unverified: VRE not published (…)``."""
+    return unverified_text(result.unknown.get((i, j), ()), spec=result.source(i) == "specs")
+
+
+def unverified_text(names: Sequence[str], spec: bool = True) -> str:
+    """The reason of an unverified verdict whose unpublished figures are ``names``
+    (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
+    sensor, whose missing g² figure is "not given" rather than "not published")."""
     from gyrovib.api.spec_bounds import UNKNOWN_WORDS
 
-    names = result.unknown.get((i, j), ())
     return ("unverified: passes on its published figures, but "
-            + "; ".join(UNKNOWN_WORDS[n] for n in names)
+            + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS for n in names)
             + " -- ask the vendor, or --assume-unknown zero to take it as 0")
+
+
+#: Why a coefficient-form sensor's missing g² figure can matter, as a reason names it.
+G2_WORDS = ("g² sensitivity not given (no g2_sensitivity or vre in the catalogue; the profile "
+            "has linear vibration, so its g² term G_jj·⟨a_j²⟩ can rectify; docs/model.md "
+            "section 8)")
+
+
+def unknown_label(result: SelectionResult, i: int, name: str) -> str:
+    """An unknown figure of sensor ``i`` as tables name it: ``VRE`` (a datasheet part's),
+    ``g²`` (a coefficient-form sensor's g² sensitivity), ``m31``, ``m32``."""
+    if name != "vre":
+        return name
+    return "VRE" if result.source(i) == "specs" else "g²"
 
 
 def _vre_failure(result: SelectionResult, i: int, j: int) -> str:

@@ -2,8 +2,10 @@
 
 The text is data for the catalogue loader (``gyrovib validate`` accepts it),
 so it is built here, beside the fit, and not by a renderer. The carrier
-histogram — the fitted mission of docs/model.md section 13 — is written as a
-comment block: the catalogue format of this version has no missions yet.
+histogram — the fitted mission of docs/model.md section 13 — is a
+``missions:`` entry (``<profile id>-mission``: one segment per histogram bin,
+its duration and carrier rate), which ``gyrovib mission`` evaluates; the rate
+random part's coherences are written as ``[ρ31, ρ32, ρ12]`` (section 12).
 """
 
 from __future__ import annotations
@@ -32,6 +34,34 @@ def _table(table: Table) -> str:
     return "[" + ", ".join(f"[{_num(a)}, {_num(b)}]" for a, b in zip(f, s, strict=True)) + "]"
 
 
+def _coherence(values: object) -> str:
+    """``[ρ31, ρ32, ρ12]`` as written, still a correlation matrix once rounded.
+
+    The measured coherences come from one band's cross-spectra, so they form a
+    correlation matrix; 6 significant figures can break that by rounding where
+    it is nearly singular (e.g. two fully correlated pairs). ρ12 is then held
+    inside its feasible interval ρ31·ρ32 ± √((1−ρ31²)(1−ρ32²)) and written
+    with more figures.
+    """
+    from gyrovib.models.profile import correlation_problem
+
+    r31, r32, r12 = (float(v) for v in np.asarray(values, dtype=float))
+    text = _triple((r31, r32, r12))
+    a, b, c = _read(text)
+    if correlation_problem(c, a, b) is None:
+        return text
+    r31, r32 = _read(text)[:2]
+    centre = r31 * r32
+    half = float(np.sqrt(max((1.0 - r31 * r31) * (1.0 - r32 * r32), 0.0)))
+    r12 = float(np.clip(r12, centre - half * (1 - 1e-9), centre + half * (1 - 1e-9)))
+    return "[" + ", ".join(_num(v) for v in (r31, r32)) + f", {r12:.15g}]"
+
+
+def _read(text: str) -> tuple[float, float, float]:
+    a, b, c = (float(v) for v in text.strip("[]").split(","))
+    return a, b, c
+
+
 def _part(part: FittedPart, indent: str, *, rate: bool) -> list[str]:
     out: list[str] = []
     if part.tones:
@@ -53,8 +83,8 @@ def _part(part: FittedPart, indent: str, *, rate: bool) -> list[str]:
         for axis, table in zip(("x1", "x2", "x3"), part.psd, strict=True):
             if table is not None:
                 out.append(f"{indent}    {axis}: {_table(table)}")
-        coherence = part.coherence[:2] if rate else part.coherence
-        out.append(f"{indent}  coherence: {_triple(coherence)}")
+        text = _coherence(part.coherence) if rate else _triple(part.coherence)
+        out.append(f"{indent}  coherence: {text}")
     return out
 
 
@@ -73,17 +103,10 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         lines.append("# Lines at integer multiples of a fundamental are one phase-locked group; "
                      "their relative phases are unobservable in a PSD, so each order is "
                      "'phase: worst'.")
-    c = fit.angular.coherence
-    lines.append(f"# Coherence of the random part: rho31 = {_num(c[0])}, rho32 = {_num(c[1])}, "
-                 f"rho12 = {_num(c[2])} (the format holds rho31, rho32).")
-    lines.append("# Fitted mission (carrier histogram of Omega_K3, docs/model.md sections 12-13),")
-    lines.append("# a comment until the catalogue format has missions:")
-    lines.append("#   mission:")
-    lines.append(f"#     id: {fit.profile_id}-mission")
-    lines.append("#     segments:")
-    for rate, t in zip(fit.mission_rates, fit.mission_durations, strict=True):
-        lines.append(f"#       - {{profile: {fit.profile_id}, duration: {_num(t)}, "
-                     f"rate: {_triple(rate)}}}")
+    lines.append("# The mission is the carrier histogram of Omega_K3 (docs/model.md sections "
+                 "12-13):")
+    lines.append("# one segment per bin, its time in s at its mean rate (Omega_K1, Omega_K2: "
+                 "the recording's means).")
     lines += [
         "",
         "gyrovib: 1",
@@ -101,7 +124,16 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
                                                            for t in fit.linear.psd)):
         lines.append("    acceleration:")
         lines += _part(fit.linear, "      ", rate=False)
+    lines += ["", "missions:", f"  - id: {mission_id(fit)}", "    segments:"]
+    for rate, t in zip(fit.mission_rates, fit.mission_durations, strict=True):
+        lines.append(f"      - {{profile: {fit.profile_id}, duration: {_num(t)}, "
+                     f"rate: {_triple(rate)}}}")
     return "\n".join(lines) + "\n"
+
+
+def mission_id(fit: RecordingFit) -> str:
+    """The id of the fitted mission: the profile's, with ``-mission``."""
+    return f"{fit.profile_id}-mission"
 
 
 def _quote(text: str) -> str:
@@ -119,5 +151,6 @@ def with_fitted_profile(catalog: Any, fit: RecordingFit) -> Any:
     try:
         return merge([*catalog.sources, source])
     except GyrovibError as exc:
-        raise OptionError(f"the fitted profile's id {fit.profile_id!r} is already used in the "
-                          "catalogue: choose another with --id") from exc
+        raise OptionError(f"the fitted profile's id {fit.profile_id!r} (or its mission's, "
+                          f"{mission_id(fit)!r}) is already used in the catalogue: choose "
+                          "another with --id") from exc

@@ -7,6 +7,7 @@ their names) so that ``analyze`` does not define their classes.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -90,6 +91,33 @@ def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: floa
 
 #: The figures a datasheet may leave unpublished, in the order they are reported.
 UNKNOWN_FIGURES: tuple[str, ...] = ("vre", "m31", "m32")
+#: What an unpublished datasheet figure is taken as: ``none`` (nothing: the
+#: verdict stays open, ``unverified``) or ``zero`` (the reading of old).
+ASSUMPTIONS = ("none", "zero")
+
+
+def check_assumption(assume_unknown: str) -> None:
+    """Refuse an ``assume_unknown`` that is not one of :data:`ASSUMPTIONS`."""
+    from gyrovib.errors import OptionError
+
+    if assume_unknown not in ASSUMPTIONS:
+        raise OptionError(f"unknown assumption {assume_unknown!r}; use one of "
+                          f"{', '.join(ASSUMPTIONS)}")
+
+
+def is_unverified(passed: bool, unknown: Sequence[str], assume_unknown: str) -> bool:
+    """Unknown is not zero (docs/model.md section 11): a verdict that passes on the
+    published figures, where an unpublished figure (``unknown``, names of
+    :data:`UNKNOWN_FIGURES`) can still decide it, is *unverified* — not passing —
+    unless ``assume_unknown`` is ``"zero"``. One rule for ``select`` and ``mission``."""
+    return bool(passed) and bool(unknown) and assume_unknown != "zero"
+
+
+def merge_unknown(names: Iterable[Sequence[str]]) -> tuple[str, ...]:
+    """The union of several cells' unknown figures (e.g. a mission's segments), in the
+    order of :data:`UNKNOWN_FIGURES`."""
+    found = {n for group in names for n in group}
+    return tuple(n for n in UNKNOWN_FIGURES if n in found)
 #: Why each unknown figure can matter, as a reason names it.
 UNKNOWN_WORDS = {
     "vre": "VRE not published (the profile has linear vibration, so its g² term "
@@ -130,15 +158,22 @@ def unknown_figures(prepared: Prepared, spec: SpecResults, method: str) -> Unkno
     linear vibration, m31 (m32) where its x1 (x2) vibration is correlated
     with x3 (C31, C32 ≠ 0, the terms m3i·C3i of eq. (2) then rectify).
     """
+    return unknown_figures_at(prepared, spec.index, spec.figures.has_vre, method)
+
+
+def unknown_figures_at(prepared: Prepared, index: NDArray[np.intp], has_vre: NDArray[np.bool_],
+                       method: str) -> UnknownFigures:
+    """:func:`unknown_figures` of the spec sensors at ``index`` (rows of
+    ``prepared.sensors``) whose VRE is published where ``has_vre``."""
     from gyrovib.core.linear import mean_square
 
-    m_count, n_p = spec.index.size, len(prepared.profiles)
+    m_count, n_p = index.size, len(prepared.profiles)
     msq = np.array([0.0 if v is None else float(mean_square(v.moments()))
                     for v in prepared.linear] if prepared.linear else [0.0] * n_p,
                    dtype=float).reshape(n_p)
     c31 = np.zeros((m_count, n_p))
     c32 = np.zeros((m_count, n_p))
-    position = {int(i): k for k, i in enumerate(spec.index.tolist())}
+    position = {int(i): k for k, i in enumerate(index.tolist())}
     for group in prepared.groups:
         rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
         if not rows or not n_p:
@@ -146,7 +181,7 @@ def unknown_figures(prepared: Prepared, spec: SpecResults, method: str) -> Unkno
         m = multipliers_of(group, prepared, method)
         c31[rows] = np.broadcast_to(np.asarray(m.c31, dtype=float), (n_p,))[None]
         c32[rows] = np.broadcast_to(np.asarray(m.c32, dtype=float), (n_p,))[None]
-    vre = (~spec.figures.has_vre)[:, None] & (msq > 0)[None, :]
+    vre = (~np.asarray(has_vre, dtype=bool))[:, None] & (msq > 0)[None, :]
     return UnknownFigures(vre=vre, m31=c31 != 0, m32=c32 != 0, mean_square=msq,
                           c31=c31, c32=c32)
 

@@ -360,9 +360,12 @@ class Catalog(Frozen):
         return entry.source.locate((SECTIONS[0][0], entry.index, ID_KEY))
 
     def __repr__(self) -> str:
-        """One line: how many sensors and profiles, from which files (not their contents)."""
+        """One line: how many sensors, profiles and missions, from which files (not
+        their contents)."""
         files = ", ".join(os.path.basename(s.name) for s in self.sources)
+        missions = len(self.missions)
         return (f"Catalog({len(self.sensors)} sensors, {len(self.profiles)} profiles"
+                + (f", {missions} mission{'s' if missions != 1 else ''}" if missions else "")
                 + (f" from {files}" if files else "") + ")")
 
 

@@ -181,7 +181,9 @@ class _Group(click.Group):
     def invoke(self, ctx: click.Context) -> Any:
         start_run()
         try:
-            with warnings.catch_warnings():
+            from gyrovib.cli.progress import terminal_progress
+
+            with warnings.catch_warnings(), terminal_progress():
                 # numpy overflow warnings: results are checked for finiteness instead.
                 warnings.filterwarnings("ignore", category=RuntimeWarning,
                                         module=r"(gyrovib|numpy)(\..*)?$")

@@ -16,6 +16,7 @@ from gyrovib.cli.options import (
     peak_factor_option,
     placement_option,
 )
+from gyrovib.cli.spec_options import assume_unknown_option
 
 
 @click.command()
@@ -32,10 +33,11 @@ from gyrovib.cli.options import (
                    "'2 mrad', 30arcmin.")
 @click.option("--unit", default=None, metavar="UNIT",
               help="Rate unit of every output rate (deg/s, deg/h, rad/s, rpm); default: "
-                   "the unit --budget is written in, else deg/h. The angle is in deg for "
+                   "the unit --budget is written in, else deg/s. The angle is in deg for "
                    "deg/s and deg/h, rad for rad/s, rev for rpm.")
 @placement_option
 @peak_factor_option
+@assume_unknown_option
 @click.option("--require", type=click.Choice(["any", "all"]), default="any", show_default=True,
               help="Exit 1 unless at least one (any) or every (all) sensor passes every "
                    "chosen mission (on every axis of a triad).")
@@ -44,15 +46,18 @@ from gyrovib.cli.options import (
 @click.pass_context
 def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...],
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
-            unit: str | None, placement: str | None, peak_factor: float, require: str,
-            fmt: str, output: str | None) -> None:
+            unit: str | None, placement: str | None, peak_factor: float,
+            assume_unknown: str | None, require: str, fmt: str, output: str | None) -> None:
     """Each sensor over each mission: mean error, angle θ_V, mean RMS, worst segment.
 
     A mission is an ordered list of segments (profile, duration, optional
     carrier rate) in the catalogue's `missions:`. A sensor passes when no
     segment saturates it and |θ_V| ≤ --angle-budget (or Δ̄_RMS ≤ --budget).
     A datasheet sensor is taken at the worst conversion function over the
-    whole mission. Exit status 1 when the --require condition is not met.
+    whole mission; one that passes on its published figures while an
+    unpublished one (VRE, m31, m32) can decide it is 'unverified', not
+    passing (--assume-unknown zero takes them as 0). Exit status 1 when the
+    --require condition is not met.
     """
     from gyrovib import api, units
     from gyrovib.cli.output import write_output
@@ -65,14 +70,14 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
     if unit is not None:
         unit = parse_unit(unit)
     else:
-        unit = (units.quantity_unit(budget) if budget is not None else None) or "deg/h"
+        unit = (units.quantity_unit(budget) if budget is not None else None) or "deg/s"
     catalog = load_catalog(files)
     result = api.mission(
         catalog, missions=missions, sensors=sensors,
         budget=None if budget is None else parse_budget(budget, unit),
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
-        peak_factor=peak_factor)
+        peak_factor=peak_factor, assume_unknown=assume_unknown or "none")
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
@@ -87,7 +92,8 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
 def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tuple[str, ...],
                    profiles: tuple[str, ...], budget: str | None, angle_budget: str | None,
                    unit: str | None, placement: str | None, peak_factor: float,
-                   require: str, fmt: str, output: str | None) -> bool:
+                   require: str, fmt: str, output: str | None,
+                   assume_unknown: str = "none") -> bool:
     """``select --mission ID``: the mission's verdicts in select's formats; returns
     whether the --require condition is met."""
     from gyrovib import api, units
@@ -105,13 +111,13 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
     if fmt == "github":
         raise OptionError("--mission: use --format table, json, csv, markdown or junit")
     unit = parse_unit(unit) if unit is not None else (
-        (units.quantity_unit(budget) if budget is not None else None) or "deg/h")
+        (units.quantity_unit(budget) if budget is not None else None) or "deg/s")
     result = api.mission(
         load_catalog(files), missions=(mission_id,), sensors=sensors,
         budget=None if budget is None else parse_budget(budget, unit),
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
-        peak_factor=peak_factor)
+        peak_factor=peak_factor, assume_unknown=assume_unknown)
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
@@ -123,7 +129,8 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
 
 
 def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
-                    angle_budget: str | None, unit: str, peak_factor: float) -> str:
+                    angle_budget: str | None, unit: str, peak_factor: float,
+                    assume_unknown: str = "none") -> str:
     """``report --mission``: the HTML of the mission section."""
     from gyrovib import api
     from gyrovib.render.report_mission import mission_section as section
@@ -131,5 +138,5 @@ def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[s
     result = api.mission(
         catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
-        unit=unit, peak_factor=peak_factor)
+        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown)
     return section(result)

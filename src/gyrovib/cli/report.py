@@ -87,7 +87,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
         from gyrovib.cli.mission import mission_section
 
         section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
-                                   peak_factor)
+                                   peak_factor, assume_unknown=assume_unknown or "none")
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,

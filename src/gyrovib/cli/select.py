@@ -94,7 +94,8 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
         from gyrovib.cli.mission import select_mission
 
         met = select_mission(files, mission, sensors, profiles, budget, angle_budget, unit,
-                             placement, peak_factor, require, fmt, output)
+                             placement, peak_factor, require, fmt, output,
+                             assume_unknown=assume_unknown or "none")
         if not met:
             ctx.exit(1)
         return

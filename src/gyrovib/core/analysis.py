@@ -43,11 +43,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from gyrovib.core.harmonics import (
+    MAX_MIXTURE_NODES,
+    MAX_TABLE,
     LockedGroup,
     combine_moments,
     group_moments,
     group_signal,
+    locked_mixture_excess,
     locked_rectified_excess,
+    table_size,
     two_groups_excess,
 )
 from gyrovib.core.statistics import (
@@ -227,7 +231,26 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
             omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
             acceleration=_acceleration(acceleration, w.shape),
         )
-    # E(Ω): the first group exactly (or against the others), any further group on a grid
+    if s3 > 0 and (len(locked) > 1 or (a.size and table_size(a, s3) <= MAX_TABLE)):
+        # tones and the Gaussian part tabulated once, the groups' periods on a grid (one
+        # group with tones on a random part too narrow for the table: the group's grid
+        # of direct evaluations below, as before)
+        asym = 0.5 * locked_mixture_excess(w, locked, a, s3)
+        return Multipliers(
+            asymmetry=asym, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
+            omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
+            acceleration=_acceleration(acceleration, w.shape),
+        )
+    if len(locked) > 1 and w.size * _EXTRA_GROUP_NODES * (1 << 14) > MAX_MIXTURE_NODES:
+        raise ModelError(reason=(
+            "E(Ω) for two phase-locked groups with independent tones and no random part "
+            f"at {w.size} rates would take {w.size * _EXTRA_GROUP_NODES * (1 << 14):,} grid "
+            f"points (both groups' periods on {_EXTRA_GROUP_NODES} × 16,384 nodes per rate: "
+            "the tones' excess has kinks), more than the "
+            f"{MAX_MIXTURE_NODES:,} gyrovib allows; give at most "
+            f"{MAX_MIXTURE_NODES // (_EXTRA_GROUP_NODES << 14)} rates, the smaller group's "
+            "orders as independent tones, or the tones as orders of a group"))
+    # E(Ω): the group against the independent tones, or alone
     shift = np.zeros(1)
     for g in locked[1:]:
         theta = 2.0 * math.pi * (np.arange(_EXTRA_GROUP_NODES) + 0.5) / _EXTRA_GROUP_NODES

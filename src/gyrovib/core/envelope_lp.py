@@ -28,6 +28,7 @@ from gyrovib.core.envelope_basis import (
     true_max,
 )
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.progress import advance
 
 __all__ = ["FITS", "MEASURES", "basis", "gram", "minimax_line", "residual_normalised", "support",
            "true_max", "without_idle_cuts"]
@@ -300,7 +301,8 @@ def _record(found: Contacts, pairs: np.ndarray, pol: envelope_kkt.Polished) -> N
 
 
 def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
-            out: tuple[FloatArray, ...], found: Contacts | None = None) -> None:
+            out: tuple[FloatArray, ...], found: Contacts | None = None,
+            progress: tuple[int, int, int] | None = None) -> None:
     """Grid LP, polish, continuous check, add the residual's violating extrema; repeat.
 
     Blocks go CHUNK at a time into one :class:`_GridLP` on the coarse grid,
@@ -309,10 +311,15 @@ def _refine(fit: np.ndarray, a: np.ndarray, d: np.ndarray, todo: np.ndarray,
     its grid optimum's scaled solution is within TOLERANCE of it. Fills
     ``out`` = (h, y, line, gap) at ``todo``, and ``found`` (if given) with the
     contacts of the certified pairs.
+    ``progress``: (offset, scale, total) of the
+    "datasheet worst cases" reported after each chunk (offset + scale·done).
     """
     h, y, line, gap = out
     base = _initial_grid()
     for start in range(0, todo.size, CHUNK):
+        if progress is not None:
+            offset, each, total = progress
+            advance("datasheet worst cases", min(offset + each * start, total - 1), total)
         idx = todo[start:start + CHUNK]
         lp = _GridLP(fit[idx], a[idx], d[idx], [base] * idx.size)
         live = np.arange(idx.size)
@@ -407,18 +414,22 @@ def _support_max(fit: np.ndarray, a: np.ndarray,
     out = (np.zeros(k), np.zeros((k, 5)), np.zeros((k, 2)), np.zeros(k))
     live = np.flatnonzero(np.any(d != 0, axis=1))
     if live.size < SEEDED:
-        _refine(fit, a, d, live, out)
+        _refine(fit, a, d, live, out, progress=(0, 1, live.size))
+        advance("datasheet worst cases", live.size, live.size)
         return out
     for start in range(0, live.size, WINDOW):
-        _seeded_window(fit, a, d, live[start:start + WINDOW], out)
+        _seeded_window(fit, a, d, live[start:start + WINDOW], out, (start, live.size))
+    advance("datasheet worst cases", live.size, live.size)
     return out
 
 
 def _seeded_window(fit: np.ndarray, a: np.ndarray, d: np.ndarray, live: np.ndarray,
-                   out: tuple[FloatArray, ...]) -> None:
-    """The steps of :func:`_support_max` for the pairs ``live`` (consecutive in order)."""
+                   out: tuple[FloatArray, ...], where: tuple[int, int] = (0, 0)) -> None:
+    """The steps of :func:`_support_max` for the pairs ``live`` (consecutive in order);
+    ``where``: the window's first pair and the pairs in all (for the progress, reported
+    as the spaced refinement goes, each of its pairs standing for SPACING)."""
     found: Contacts = {}
-    _refine(fit, a, d, live[::SPACING], out, found)
+    _refine(fit, a, d, live[::SPACING], out, found, progress=(where[0], SPACING, where[1]))
     unit = d[live] / np.maximum(np.linalg.norm(d[live], axis=1), 1e-300)[:, None]
     pos = np.arange(live.size)
     tried = np.full(live.size, -1)

@@ -30,7 +30,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.statistics import rectified_excess, stretched_rule
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 
 ComplexArray = NDArray[np.complex128]
 
@@ -438,13 +440,18 @@ def locked_rectified_excess(
     theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
     x3 = np.sum((p[None, :] * np.exp(1j * n[None, :] * theta[:, None])).imag, axis=1)
     flat = w.ravel()
-    s = flat[:, None] + x3[None, :]
-    e = rectified_excess(s.ravel(), a, sigma).reshape(s.shape)
-    crossing = np.abs(flat) < peak
-    inside = np.mean(e + np.abs(s), axis=1) - np.abs(flat)
-    outside = np.mean(e, axis=1)
-    out: FloatArray = np.where(crossing, inside, outside).reshape(w.shape)
-    return out
+    out: FloatArray = np.empty(flat.size)
+    step = max(1, (1 << 20) // m)  # rates a block: memory bounded whatever the sweep
+    for lo in range(0, flat.size, step):
+        advance("E(Ω) of locked harmonics", lo, flat.size)
+        part = flat[lo:lo + step]
+        s = part[:, None] + x3[None, :]
+        e = rectified_excess(s.ravel(), a, sigma).reshape(s.shape)
+        crossing = np.abs(part) < peak
+        inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
+        out[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
+    advance("E(Ω) of locked harmonics", flat.size, flat.size)
+    return out.reshape(w.shape)
 
 
 #: Most pieces per rate of :func:`two_groups_excess` (the second group's period split
@@ -503,6 +510,7 @@ def two_groups_excess(omega: ArrayLike, first: LockedGroup, second: LockedGroup)
     per_rate = (targets.size * t2.size + uniform.size) * stretch.size
     step = max(1, (1 << 18) // per_rate)
     for lo in range(0, flat.size, step):
+        advance("E(Ω) of locked harmonics", lo, flat.size)
         part = flat[lo:lo + step]
         offsets = (part[:, None] + targets[None, :]).ravel()
         roots = monotone_roots(n2, p2, offsets, t2).reshape(part.size, -1)
@@ -515,5 +523,156 @@ def two_groups_excess(omega: ArrayLike, first: LockedGroup, second: LockedGroup)
         s = part[:, None, None] + _x3_at(n2.astype(float), p2, theta)[0]
         e1 = locked_abs_excess(s, n1, p1)
         out[lo:lo + step] = np.sum(e1 * weight, axis=(1, 2))
+    advance("E(Ω) of locked harmonics", flat.size, flat.size)
     result: FloatArray = (out + second_alone).reshape(w.shape)
+    return result
+
+
+#: Most grid nodes × rates :func:`locked_mixture_excess` evaluates (about 0.3 µs
+#: each: a few seconds); beyond, the profile is refused with the reason.
+MAX_MIXTURE_NODES = 1 << 24
+#: Table steps per σ and the points of the local Lagrange interpolation of
+#: :func:`_excess_table` (error ~(1/16)^8 of log E's scale: below 1e-12).
+_TABLE_PER_SIGMA = 16
+_STENCIL = 8
+
+
+#: Most values of E_Y in the table of :func:`_excess_table` ((Σa + 40σ)·16/σ): a
+#: Gaussian part narrow against the tones needs more (up to ~0.25 ms each).
+MAX_TABLE = 1 << 15
+
+
+def table_size(amplitudes: ArrayLike, sigma: float) -> float:
+    """Values :func:`_excess_table` computes for tones ``amplitudes`` on σ > 0 (a float:
+    it may be huge)."""
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    return (math.fsum(a[a > 0].tolist()) + 40.0 * sigma) * _TABLE_PER_SIGMA / sigma + _STENCIL
+
+
+def _excess_table(amplitudes: FloatArray, sigma: float) -> tuple[float, float, FloatArray]:
+    """``log E_Y(c)`` on c = 0, h, 2h, … for Y = Σ a_k·sin φ_k + σZ (σ > 0), with h and
+    the reach beyond which E_Y underflows (Σa + 40σ).
+
+    E_Y(c) = <|c + Y|> − |c| is even, smooth on c ≥ 0 at the scale σ (the Gaussian
+    part smooths the tones' kinks) and decays like a Gaussian past Σa: its
+    logarithm is tabulated, so that interpolation keeps relative precision in
+    the tail.
+    """
+    reach = math.fsum(amplitudes.tolist()) + 40.0 * sigma
+    h = sigma / _TABLE_PER_SIGMA
+    c = h * np.arange(math.ceil(reach / h) + _STENCIL + 1)
+    e = rectified_excess(c, amplitudes, sigma)
+    log: FloatArray = np.log(np.maximum(e, 1e-300))
+    return h, reach, log
+
+
+def _interpolate(c: FloatArray, h: float, reach: float, log: FloatArray) -> FloatArray:
+    """E_Y(|c|) from :func:`_excess_table` by Lagrange interpolation on 8 table points."""
+    x = np.abs(c) / h
+    last = log.size - _STENCIL
+    base = np.clip(np.floor(x).astype(np.int64) - (_STENCIL // 2 - 1), 0, last)
+    t = x - base
+    total = np.zeros_like(x)
+    for j in range(_STENCIL):
+        weight = np.ones_like(x)
+        for k in range(_STENCIL):
+            if k != j:
+                weight *= (t - k) / (j - k)
+        total += weight * log[base + j]
+    with np.errstate(over="ignore", invalid="ignore"):  # (past the reach: extrapolated, unused)
+        out: FloatArray = np.where(np.abs(c) < reach, np.exp(total), 0.0)
+    return out
+
+
+def mixture_nodes(groups: Sequence[LockedGroup], amplitudes: ArrayLike,
+                  sigma: float) -> list[int]:
+    """Midpoint nodes per group period for :func:`locked_mixture_excess` (σ > 0).
+
+    The integrand is analytic at the scale σ, so the midpoint rule converges
+    geometrically once each group has ``1.25·n_max·(8·peak/σ + (swing +
+    peak)·peak/σ²) + 64`` nodes (the kernel's width against the group's swing,
+    and the curvature of its Gaussian tail; the rule of the single group of
+    :func:`locked_rectified_excess`), capped at 2^14.
+    """
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    peaks = [locked_peak(*_x3_coefficients(g)) for g in groups]
+    swing = sum(peaks) + float(np.sum(a[a > 0]))
+    out = []
+    for g, peak in zip(groups, peaks, strict=True):
+        need = 1.25 * g.n_max * (8.0 * peak / sigma + (swing + peak) * peak / sigma**2) + 64
+        out.append(int(min(max(need, 64), 1 << 14)) if peak > 0 else 1)
+    return out
+
+
+def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
+                          amplitudes: ArrayLike, sigma: float) -> FloatArray:
+    """``E(Ω) = <|Ω + x3(θ1) [+ y3(θ2)] + Y|> − |Ω|``: one or two locked groups, with
+    independent tones ``amplitudes`` and a Gaussian part ``sigma`` > 0 in Y.
+
+    The Gaussian part and the tones are integrated first, once: E_Y(c) =
+    <|c + Y|> − |c| (:func:`~gyrovib.core.statistics.rectified_excess`) is
+    tabulated in c (log E_Y, 16 steps per σ, local 8-point Lagrange
+    interpolation) — it depends on c alone, not on the rate or the groups'
+    phases. The mean over the groups' phases of the smooth F(s) = E_Y(s) + |s|
+    at s = Ω + x3 + y3 is then a midpoint rule on the groups' periods
+    (:func:`mixture_nodes`, geometric convergence): ``mean F − |Ω|`` where Ω
+    + x3 + y3 may cross 0, ``mean E_Y`` (no cancellation) where it cannot.
+    Cost: (Σa + 40σ)·16/σ values of E_Y, and rates × the product of the
+    nodes interpolations; above :data:`MAX_MIXTURE_NODES` a
+    :class:`~gyrovib.errors.ModelError` says so before any work (a Gaussian
+    part tiny against the groups' swing).
+    """
+    w = np.asarray(omega, dtype=float)
+    flat = w.ravel()
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    a = np.sort(a[a > 0])[::-1]
+    coefficients = [_x3_coefficients(g) for g in groups]
+    live = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True) if n.size]
+    nodes = mixture_nodes([g for g, _, _ in live], a, sigma)
+    peak = sum(locked_peak(n, p) for _, n, p in live)
+    # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
+    near = np.abs(flat) < peak + math.fsum(a.tolist()) + 40.0 * sigma
+    total = math.prod(nodes) * int(np.count_nonzero(near))
+    if near.any() and table_size(a, sigma) > MAX_TABLE:
+        raise ModelError(
+            reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
+            f"with {a.size} independent tone{'s' if a.size != 1 else ''} (largest "
+            f"{float(a[0]) if a.size else 0.0:.4g}) on a random part of RMS {sigma:.4g} would "
+            f"tabulate {table_size(a, sigma):,.0f} values of the tones' excess on the random "
+            f"part (16 per σ), more than the {MAX_TABLE:,} gyrovib allows: the random part "
+            "is too narrow against the tones to matter, yet too large to drop; drop it, "
+            "or give the tones as orders of a group")
+    if total > MAX_MIXTURE_NODES:
+        raise ModelError(
+            reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
+            f"with {a.size} independent tone{'s' if a.size != 1 else ''} on a random part of "
+            f"RMS {sigma:.4g} at {total // math.prod(nodes)} rate"
+            f"{'s' if total != math.prod(nodes) else ''} within its reach would take "
+            f"{total:,} grid points (the groups' periods on "
+            f"{' × '.join(str(m) for m in nodes)} nodes, as the random part is narrow "
+            f"against their swing), more than the {MAX_MIXTURE_NODES:,} gyrovib allows; "
+            "give fewer rates, or the smaller group's orders as independent tones")
+    out = np.zeros(flat.size)
+    if not near.any():
+        return out.reshape(w.shape)
+    h, reach, log = _excess_table(a, sigma)
+    shift = np.zeros(1)
+    for (_, n, p), m in zip(live, nodes, strict=True):
+        theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
+        x3 = _x3_at(n.astype(float), p, theta)[0]
+        shift = (shift[:, None] + x3[None, :]).ravel()
+    todo = flat[near]
+    done = np.empty(todo.size)
+    step = max(1, (1 << 20) // shift.size)
+    for lo in range(0, todo.size, step):
+        advance("E(Ω) of locked harmonics", lo, todo.size)
+        part = todo[lo:lo + step]
+        s = part[:, None] + shift[None, :]
+        e = _interpolate(s, h, reach, log)
+        crossing = np.abs(part) < peak
+        inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
+        done[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
+    advance("E(Ω) of locked harmonics", todo.size, todo.size)
+    out[near] = done
+    result: FloatArray = out.reshape(w.shape)
     return result

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
+from gyrovib.progress import advance
 
 #: Most Bessel-function values one group of rates may need on the contour of
 #: :func:`_contour_excess` (K tones × nodes); about 1 µs each.
@@ -240,6 +241,7 @@ def _contour_excess(w: FloatArray, a: FloatArray, sigma: float) -> FloatArray:
     power = a.size / 2.0 + 2.0  # algebraic decay of the envelope for tones alone
     start = 0
     while start < ws.size:
+        advance("E(Ω) of mixed tones", start, ws.size)
         alpha = float(al[start])
         rest = slice(start, ws.size)
 
@@ -302,4 +304,5 @@ def _contour_excess(w: FloatArray, a: FloatArray, sigma: float) -> FloatArray:
             with np.errstate(under="ignore"):
                 out[order[lo:hi]] = (2.0 * h / math.pi) * np.exp(first - alpha * wc) * total
         start = stop
+    advance("E(Ω) of mixed tones", ws.size, ws.size)
     return out

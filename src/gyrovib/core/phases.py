@@ -41,6 +41,7 @@ from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 
 #: Most nodes of the coarse grid over the free offsets.
 COARSE_NODES = 256
@@ -193,11 +194,13 @@ def maximise_on_torus(objective: Callable[[FloatArray], FloatArray], dims: int
     per_axis = max(2, round(nodes.shape[0] ** (1.0 / dims)))
     start = 2.0 * math.pi / per_axis
     for k in range(best.shape[0]):
+        advance("phase: worst search", k, best.shape[0])
         point, value = _compass(objective, k, best[k], float(best_value[k]), start, NEWTON_FROM)
         point, value, done = _newton(objective, k, point, value)
         if not done:
             point, value = _compass(objective, k, point, value, NEWTON_FROM, FINE_STEP)
         best[k], best_value[k] = point, value
+    advance("phase: worst search", best.shape[0], best.shape[0])
     return best, best_value
 
 
@@ -284,7 +287,9 @@ def worst_phase_multipliers(
     fields: dict[str, list[float]] = {"asymmetry": [], "m3": [], "m4": [], "m5": []}
     base = profile_multipliers(vibration, w, "exact", locked=list(groups),
                                acceleration=acceleration)
-    for rate in flat:
+    for i, rate in enumerate(flat):
+        advance("phase: worst, rates", i, flat.size)
+
         def objective(psi: FloatArray, rate: float = float(rate)) -> FloatArray:
             mu = stack_multipliers([
                 profile_multipliers(vibration, np.asarray(rate), "exact",
@@ -298,6 +303,7 @@ def worst_phase_multipliers(
         _, values = maximise_on_torus(objective, len(free))
         for name, v in zip(("asymmetry", "m3", "m4", "m5"), values, strict=True):
             fields[name].append(float(v))
+    advance("phase: worst, rates", flat.size, flat.size)
     shaped = {k: np.asarray(v).reshape(w.shape) for k, v in fields.items()}
     return Multipliers(
         asymmetry=shaped["asymmetry"], m2=base.m2, m4=shaped["m4"], c31=base.c31,

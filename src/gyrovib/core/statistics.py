@@ -28,6 +28,7 @@ from gyrovib.core.special import erfc
 from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 
 SQRT_2_OVER_PI = math.sqrt(2.0 / math.pi)
 #: The paper's printed multiplier of A1·a for a tone (eq. 14; docs/model.md).
@@ -358,6 +359,8 @@ def _tone_on_gauss_excess(w: FloatArray, a: float, sigma: float) -> FloatArray:
     stretch, stretch_weight = stretched_rule()
     out: FloatArray = np.empty_like(w)
     for i, wi in enumerate(w.tolist()):
+        if i % 256 == 0:
+            advance("E(Ω) of a tone on a random part", i, w.size)
         upper = min(45.0, (a - wi) / sigma)
         # the bulk of the Gaussian in unit pieces, or its tail beyond |upper| > 1
         # (where φ falls by e^{-|upper|·δ} over δ) in pieces of 1/|upper|
@@ -373,6 +376,7 @@ def _tone_on_gauss_excess(w: FloatArray, a: float, sigma: float) -> FloatArray:
         weight = length * stretch_weight
         dens = np.exp(-0.5 * nodes * nodes) / math.sqrt(2.0 * math.pi)
         out[i] = float(np.sum(dens * weight * _tone_kernel(wi + sigma * nodes, a)))
+    advance("E(Ω) of a tone on a random part", w.size, w.size)
     return out
 
 

@@ -175,6 +175,32 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
     }
 
 
+
+def shares_text(constants: AllocationConstants, linear: bool = False) -> str:
+    """The shares of Δ*, each printed once: ``A1 α1 = 0.4447, …``.
+
+    ``linear``: some profile has a linear vibration, whose g² term takes the
+    share α6 so that α1…α5 shrink (docs/model.md section 8); a share that
+    differs there is followed by its value under such a profile in brackets
+    (``α1 = 0.4447 [0.3922]``), and ``vre α6 = [0.3922]`` exists only there.
+    """
+    plain = shares(constants)
+    if not linear:
+        return ", ".join(f"{k} {v}" for k, v in plain.items())
+    moved = shares(constants, linear=True)
+    out = []
+    for name, text in moved.items():
+        if name not in plain:  # the g² term's own share: only under linear vibration
+            label, _, value = text.partition(" = ")
+            out.append(f"{name} {label} = [{value}]")
+            continue
+        parts = []
+        for before, after in zip(plain[name].split(" | "), text.split(" | "), strict=True):
+            value = after.partition(" = ")[2]
+            parts.append(before if before == after else f"{before} [{value}]")
+        out.append(f"{name} " + " | ".join(parts))
+    return ", ".join(out)
+
 #: The parts whose least is each coefficient's bound (docs/model.md sections 6 and 10):
 #: label and attribute of :class:`~gyrovib.core.synthesis.CoefficientBounds`. The
 #: section-10 parts exist only with odd moments (None, or not finite, otherwise).

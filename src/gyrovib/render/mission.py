@@ -10,8 +10,12 @@ if TYPE_CHECKING:
     from gyrovib.api.mission_results import MissionResult, MissionRow
 
 
-def _verdict(passed: bool | None) -> str:
-    return "-" if passed is None else "pass" if passed else "FAIL"
+#: The verdict cell of each row status (None: no budget).
+VERDICT = {None: "-", "pass": "pass", "fail": "FAIL", "unverified": "UNVERIFIED"}
+
+
+def _verdict(row: MissionRow) -> str:
+    return VERDICT[row.status]
 
 
 def _budget_text(result: MissionResult) -> str:
@@ -26,6 +30,8 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
     """Why a row fails, in one line ('' when it passes or has no budget)."""
     if row.passed is None or row.passed:
         return ""
+    if row.unverified:
+        return row.reason or ""
     if row.saturated:
         bad = [str(k + 1) for k, s in enumerate(row.segments) if s.saturated]
         return f"saturated in segment {', '.join(bad)}"
@@ -45,7 +51,29 @@ def _cells(result: MissionResult, row: MissionRow) -> list[str]:
                                                     else "")
     return [row.sensor, row.mission, axis, fmt(row.mean), fmt(row.angle), fmt(row.rms),
             f"{row.worst_index + 1} {w.profile} ({fmt(w.total)})",
-            _verdict(row.passed) + (" (saturated)" if row.saturated else "")]
+            _verdict(row) + (" (saturated)" if row.saturated else "")]
+
+
+def _unknown_notes(result: MissionResult) -> list[str]:
+    """Why rows are unverified (once per sensor and reason), and what
+    ``--assume-unknown zero`` took as 0."""
+    notes: list[str] = []
+    seen: dict[tuple[str, str], None] = {}
+    for r in result.rows:
+        if r.unverified and r.reason:
+            seen[(r.sensor, r.reason)] = None
+    notes.extend(f"{sensor}: {reason}." for sensor, reason in seen)
+    if result.assume_unknown == "zero":
+        taken: dict[str, dict[str, None]] = {}
+        for r in result.rows:
+            if r.unknown:
+                taken.setdefault(r.sensor, {}).update(dict.fromkeys(r.unknown))
+        if taken:
+            notes.append("Assumed (--assume-unknown zero): unpublished figures taken as 0 -- "
+                         + "; ".join(f"{s}: " + ", ".join("VRE" if n == "vre" else n
+                                                          for n in names)
+                                     for s, names in taken.items()) + ".")
+    return notes
 
 
 def to_table(result: MissionResult, width: int | None = None, color: bool = False,
@@ -79,14 +107,18 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
                      "the triad's largest |θ_V|.")
     if result.budget is not None or result.angle_budget is not None:
         n = sum(1 for p in result.sensor_pass if p)
-        notes.append(f"{n} of {len(result.sensors)} sensors pass every mission "
+        n_open = sum(1 for k in range(len(result.sensors))
+                     if result.sensor_status(k) == "unverified")
+        open_ = f", {n_open} unverified" if n_open else ""
+        notes.append(f"{n} of {len(result.sensors)} sensors pass every mission{open_} "
                      f"(--require {result.require}: "
                      f"{'met' if result.requirement_met else 'NOT met'}).")
     out.append(Text(" ".join(notes), style="dim"))
+    out.extend(Text(note) for note in _unknown_notes(result))
     return rich_text(out, width=width, color=color, ascii=ascii)
 
 
-def _row_json(row: MissionRow) -> dict[str, Any]:
+def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
     out: dict[str, Any] = {
         "sensor": row.sensor, "mission": row.mission, "placement": row.placement,
         "mean": number(row.mean), "angle": number(row.angle), "rms": number(row.rms),
@@ -95,7 +127,9 @@ def _row_json(row: MissionRow) -> dict[str, Any]:
         "segments": [{"profile": s.profile, "duration": s.duration,
                       "rate": [number(v) for v in s.rate], "total": number(s.total),
                       "rms": number(s.rms), "saturated": s.saturated} for s in row.segments],
-        "saturated": row.saturated, "pass": row.passed, "source": row.source,
+        "saturated": row.saturated, "pass": row.passed, "status": row.status,
+        "unknown": list(row.unknown), "reason": _reason(result, row) or None,
+        "source": row.source,
     }
     if row.axis is not None:
         out["axis"] = row.axis
@@ -113,17 +147,21 @@ def to_json(result: MissionResult) -> str:
             seen.add((row.sensor, row.mission))
             group = [r for r in result.rows if (r.sensor, r.mission) == (row.sensor, row.mission)]
             passed = (None if row.passed is None else all(bool(r.passed) for r in group))
+            statuses = {r.status for r in group}
+            status = (None if passed is None else "fail" if "fail" in statuses
+                      else "unverified" if "unverified" in statuses else "pass")
             triads.append({"sensor": row.sensor, "mission": row.mission,
-                           "worst_axis": row.worst_axis, "pass": passed})
+                           "worst_axis": row.worst_axis, "pass": passed, "status": status})
     document = {
         **header("exact", result.unit), "angle_unit": result.angle_unit,
         "budget": None if result.budget is None else number(result.budget),
         "angle_budget": None if result.angle_budget is None else number(result.angle_budget),
-        "require": result.require,
-        "mission": [_row_json(r) for r in result.rows],
+        "require": result.require, "assume_unknown": result.assume_unknown,
+        "mission": [_row_json(result, r) for r in result.rows],
         "triads": triads,
-        "sensors": [{"sensor": s, "pass": p}
-                    for s, p in zip(result.sensors, result.sensor_pass, strict=True)],
+        "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k)}
+                    for k, (s, p) in enumerate(zip(result.sensors, result.sensor_pass,
+                                                   strict=True))],
         "requirement_met": result.requirement_met,
     }
     return dumps(document)
@@ -137,7 +175,8 @@ def to_csv(result: MissionResult) -> str:
         return [r.sensor, r.mission, r.placement, r.axis or "", r.mean, r.angle, r.rms,
                 r.worst_index + 1, r.worst_profile, r.worst_total, r.duration,
                 str(r.saturated).lower(), r.source,
-                "" if r.passed is None else str(r.passed).lower()]
+                "" if r.passed is None else str(r.passed).lower(), r.status or "",
+                " ".join(r.unknown)]
 
     return csv_text(frame_columns(), (row(r) for r in result.rows))
 
@@ -147,7 +186,9 @@ def to_markdown(result: MissionResult) -> str:
     head[3] += f" ({result.unit})"
     head[4] += f" ({result.angle_unit})"
     head[5] += f" ({result.unit})"
-    return markdown_table(head, (_cells(result, r) for r in result.rows))
+    text = markdown_table(head, (_cells(result, r) for r in result.rows))
+    notes = _unknown_notes(result)
+    return text + ("\n" + "\n\n".join(notes) + "\n" if notes else "")
 
 
 def to_junit(result: MissionResult) -> str:
@@ -168,7 +209,8 @@ def to_junit(result: MissionResult) -> str:
                     f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})")
         if r.passed is False:
             reason = _reason(result, r)
-            failure = ET.Element("failure", message=reason, type="BudgetExceeded")
+            failure = ET.Element("failure", message=reason,
+                                 type="Unverified" if r.unverified else "BudgetExceeded")
             failure.text = reason
             case.insert(0, failure)
     ET.indent(suites)

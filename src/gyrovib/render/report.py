@@ -19,9 +19,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gyrovib.api.reasons import unknown_label
 from gyrovib.api.trade_study import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
-from gyrovib.render.bounds import shares
+from gyrovib.render.bounds import shares_text
 from gyrovib.render.common import fmt
 from gyrovib.render.select import (
     CELL_MARGIN,
@@ -31,7 +32,16 @@ from gyrovib.render.select import (
     limit_text,
     ranking_margin,
 )
-from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
+from gyrovib.render.svg import (
+    SIZES,
+    LineChart,
+    Marker,
+    Series,
+    bar_chart,
+    color,
+    dash,
+    share_chart,
+)
 
 if TYPE_CHECKING:
     from gyrovib.api.yields import LotYields
@@ -51,7 +61,7 @@ CSS = """
   --warn: #fff4d6; --open: #ebe4f7; }
 * { box-sizing: border-box; }
 body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif;
-  color: var(--ink); margin: 0 auto; max-width: 1180px; padding: 24px; }
+  color: var(--ink); margin: 0 auto; max-width: 1520px; padding: 24px; }
 h1 { font-size: 24px; margin: 0 0 4px; } h2 { font-size: 19px; margin: 28px 0 8px;
   border-bottom: 2px solid var(--ink); padding-bottom: 3px; }
 h3 { font-size: 16px; margin: 20px 0 6px; }
@@ -68,14 +78,14 @@ td.warn { outline: 2px solid #e0a800; outline-offset: -2px; }
 .small { font-size: 11px; color: var(--muted); } code, .hash { font-family: ui-monospace,
   "SFMono-Regular", Menlo, Consolas, monospace; font-size: 12px; }
 .hash { word-break: break-all; }
-.charts { display: grid; grid-template-columns: repeat(auto-fill, minmax(520px, 1fr));
-  gap: 10px 18px; }
-figure { margin: 0; } figcaption { font-size: 12px; color: var(--muted); }
-svg.chart { width: 100%; height: auto; font-family: inherit; background: #fff; }
-svg .ct { font-size: 13px; font-weight: 600; } svg .tx { font-size: 11px; text-anchor: middle; }
-svg .ty { font-size: 11px; text-anchor: end; } svg .xl, svg .yl { font-size: 12px;
-  text-anchor: middle; } svg .lg { font-size: 11px; } svg .ml { font-size: 11px; fill: #b00; }
-svg .mr { font-size: 11px; fill: #b00; text-anchor: end; }
+.charts { display: grid; gap: 10px 18px;
+  grid-template-columns: repeat(auto-fill, minmax(min(720px, 100%), 1fr)); }
+figure { margin: 0; } figcaption { font-size: 12px; color: var(--muted); max-width: 720px; }
+svg.chart { display: block; max-width: 100%; height: auto; font-family: inherit;
+  background: #fff; }
+svg .ct { font-weight: 600; } svg .tx { text-anchor: middle; } svg .ty { text-anchor: end; }
+svg .xl, svg .yl { text-anchor: middle; } svg .ml { fill: #b00; }
+svg .mr { fill: #b00; text-anchor: end; }
 svg .frame { fill: none; stroke: #999; } svg .grid { stroke: #e8e8e8; }
 svg .ref { stroke: #b00; stroke-width: 1.5; stroke-dasharray: 5 3; }
 svg .tone { stroke: #555; stroke-width: 1.2; stroke-dasharray: 2 2; }
@@ -92,12 +102,14 @@ ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-
   * { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
   h2 { break-after: avoid; } h3 { break-after: avoid; }
   figure, table, .profile-head { break-inside: avoid; }
-  .charts { grid-template-columns: 1fr 1fr; }
+  .charts { grid-template-columns: minmax(0, 720px); }
   table.matrix { font-size: 10px; width: 100%; table-layout: fixed; }
   table.matrix td, table.matrix th { overflow-wrap: anywhere; }
   section.profile { break-before: page; }
 }
-"""
+""" + "".join(f"svg .{k} {{ font-size: {v:g}px; }}\n" for k, v in SIZES.items())
+# the chart text sizes are those svg.py places its text by, in the charts' own px:
+# a chart is shown at its own width (never wider than the page), so as displayed
 
 
 def _e(text: object) -> str:
@@ -168,7 +180,6 @@ def _inputs(study: TradeStudy) -> str:
     files = _table(["catalogue file", "SHA-256", "bytes"], (
         [f"<td><code>{_e(f.name)}</code></td>", f'<td class="hash">{_e(f.sha256)}</td>',
          f'<td class="num">{f.size}</td>'] for f in study.files), raw=True)
-    share = shares(s.allocation)
     rows = [
         ["budget Δ*_V", f"{fmt(s.budget)} {s.unit}"],
         ["output unit", s.unit],
@@ -176,10 +187,10 @@ def _inputs(study: TradeStudy) -> str:
         ["criterion", s.criterion],
         ["requirement", f"{s.require}: " + ("at least one sensor" if s.require == "any"
                                               else "every sensor") + " passes everywhere"],
-        ["allocation (shares of Δ*)", "; ".join(f"{k}: {v}" for k, v in share.items())],
-        *([["… under a linear vibration (g² term, docs/model.md section 8)",
-            "; ".join(f"{k}: {v}" for k, v in shares(s.allocation, linear=True).items())]]
-          if s.has_linear else []),
+        ["allocation (shares of Δ*)" + (
+            "; in brackets: under a linear vibration, whose g² term takes α6 "
+            "(docs/model.md section 8)" if s.has_linear else ""),
+         shares_text(s.allocation, linear=s.has_linear)],
         *([["production lots", _yield_input(s.yields)]] if s.yields is not None else []),
         ["sensors × profiles", f"{len(s.sensors)} × {len(s.profiles)}"],
         ["gyrovib version", study.version],
@@ -212,8 +223,7 @@ def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str
             notes = warnings.get((i, j), ())
             klass = status + (" warn" if notes else "")
             if status == "unverified":  # no margin: it hangs on figures not published
-                unknown = ", ".join("VRE" if n == "vre" else n
-                                    for n in s.unknown.get((i, j), ()))
+                unknown = ", ".join(unknown_label(s, i, n) for n in s.unknown.get((i, j), ()))
                 cells.append(f'<td class="{klass}"{_tip(notes)}>? unverified<br>'
                              f'<span class="small">{_e(unknown)} unknown</span></td>')
                 continue
@@ -306,7 +316,8 @@ def _questions(study: TradeStudy) -> str:
         + "</ul></li>" for i in open_)
     return ("<h2>Unverified sensors: questions for the vendor</h2>"
             "<p>These pass on their published figures, but their datasheets leave out a "
-            "figure that can decide the verdict under a chosen profile (unknown, not zero; "
+            "figure (or their catalogue entry gives no g² sensitivity) that can decide the "
+            "verdict under a chosen profile (unknown, not zero; "
             "docs/model.md section 11). Each line is a figure to ask for, with the largest value "
             f'that would still pass.</p><ul class="questions">{items}</ul>')
 
@@ -336,23 +347,27 @@ def margins_chart(study: TradeStudy, j: int) -> str:
     fills = [_fill(s.status(i, j)) for i in range(len(s.sensors))]
     if s.criterion == "worst" and s.total is not None:  # what the verdict compares
         return bar_chart(f"|Δ_V| against the budget: {s.profiles[j]}",
-                         f"|Δ_V| ({s.unit}, log; a datasheet part: its worst case); green: "
-                         "passes, red: fails, purple: unverified",
+                         f"|Δ_V| ({s.unit}, log; a datasheet part: its worst case)",
                          s.sensors, [float(v) for v in s.total[:, j]], fills,
                          Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
     return bar_chart(f"Δ_V(RMS) against the budget: {s.profiles[j]}",
-                     f"Δ_V(RMS) ({s.unit}, log); green: passes the criterion, red: fails, "
-                     "purple: unverified (on its published figures only)",
+                     f"Δ_V(RMS) ({s.unit}, log)",
                      s.sensors, [float(v) for v in s.rms[:, j]], fills,
                      Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
+
+
+#: The colours of the bar charts, said under them.
+BAR_KEY = ("Green: passes the criterion, red: fails, purple: unverified (passes on its "
+           "published figures only).")
+WORST_KEY = ("Green: passes under every profile, red: fails under one, purple: unverified "
+             "(passes on its published figures only).")
 
 
 def worst_margin_chart(study: TradeStudy) -> str:
     s = study.selection
     fills = [_fill(s.sensor_status(i)) for i in range(len(s.sensors))]
-    return bar_chart(f"Worst margin {ranking_margin(s)} over the profiles, per sensor",
-                     "margin (log); green: passes under every profile, red: fails somewhere, "
-                     "purple: unverified",
+    return bar_chart("Worst margin over the profiles, per sensor",
+                     f"margin {ranking_margin(s)} (log)",
                      s.sensors, [float(v) for v in s.worst_margin], fills,
                      Marker("margin 1", x=1.0))
 
@@ -482,7 +497,7 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
         notes += ('<ul class="small worst">' + "".join(f"<li>{_e(w)}</li>" for w in why)
                   + "</ul>")
     figures = [
-        _figure(margins_chart(study, j)),
+        _figure(margins_chart(study, j), BAR_KEY),
         _figure(breakdown_chart(study, j, squares, names),
                 "Which coefficient dominates: each term's share of Δ_V(RMS)²."),
         _figure(sweep_chart(study, j), "Ω_K1, Ω_K2 stay the profile's; the dotted line marks "
@@ -527,9 +542,11 @@ def to_html(study: TradeStudy, recording: str = "") -> str:
         "|Δ_V| ≤ Δ*; bounds: every coefficient or datasheet figure within its bound) that "
         "would decide it otherwise, and the term that dominates Δ_V(RMS)²; "
         "? unverified: passes on its published figures, but a figure its datasheet does "
-        "not publish (named) can change the verdict.</p>",
+        "not publish (named; g²: a coefficient-form sensor's g² sensitivity, not given) "
+        "can change the verdict.</p>",
         _matrix(study, squares, names),
-        f'<div class="charts">{_figure(worst_margin_chart(study))}</div>', _warnings(study),
+        f'<div class="charts">{_figure(worst_margin_chart(study), WORST_KEY)}</div>',
+        _warnings(study),
         "<h2>Passing sensors, ranked</h2>", _ranking(study),
         "<h2>Failing sensors: what limits them</h2>", _failing(study),
         _questions(study),

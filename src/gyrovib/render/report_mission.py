@@ -14,6 +14,8 @@ if TYPE_CHECKING:
     from gyrovib.api.mission_results import MissionResult, MissionRow
 
 PASS_FILL, FAIL_FILL, NO_BUDGET_FILL = "#2ca02c", "#d62728", "#1f77b4"
+#: Unverified (hangs on an unpublished datasheet figure): its own colour, as in select.
+OPEN_FILL = "#8c6bb1"
 
 
 def _e(text: object) -> str:
@@ -27,6 +29,8 @@ def _shown(result: MissionResult, mission: str) -> list[MissionRow]:
 
 
 def _fill(row: MissionRow) -> str:
+    if row.unverified:
+        return OPEN_FILL
     return NO_BUDGET_FILL if row.passed is None else PASS_FILL if row.passed else FAIL_FILL
 
 
@@ -38,6 +42,8 @@ def angle_chart(result: MissionResult, mission: str) -> str:
                      x=float(result.angle_budget)))
     return bar_chart(f"Accumulated angle |θ_V| over {mission}",
                      f"|θ_V| ({result.angle_unit}, log); green: passes, red: fails"
+                     + ("; purple: unverified (an unpublished datasheet figure can decide it)"
+                        if any(r.unverified for r in rows) else "")
                      + ("; a triad shows its worst axis" if any(r.axis for r in rows) else ""),
                      names, [abs(r.angle) for r in rows], [_fill(r) for r in rows], marker)
 

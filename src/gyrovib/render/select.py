@@ -11,10 +11,16 @@ import numpy as np
 
 from gyrovib.api import SelectionResult
 from gyrovib.api.reasons import failures as _failures
-from gyrovib.api.reasons import reason
+from gyrovib.api.reasons import reason, unknown_label
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.analysis import SATURATED_MARK
-from gyrovib.render.bounds import coefficient_unit, profiles_json, shares, unit_note, vre_unit
+from gyrovib.render.bounds import (
+    coefficient_unit,
+    profiles_json,
+    shares_text,
+    unit_note,
+    vre_unit,
+)
 from gyrovib.render.common import (
     csv_text,
     dumps,
@@ -147,7 +153,6 @@ BOUNDS_NOTE = ("The bounds are sufficient, not necessary: a sensor within every 
 
 
 def _legend(result: SelectionResult) -> str:
-    share = shares(result.allocation)
     judged = CELL_MARGIN[result.criterion]
     spec = (" Under bounds a datasheet (spec-form) sensor's nonlinearity and VRE are "
             "checked against the allowable figures for its own range and NL definition."
@@ -159,19 +164,17 @@ def _legend(result: SelectionResult) -> str:
             "bounds: every coefficient, or datasheet figure, within its bound). Ranked by "
             f"the worst margin {ranking_margin(result)} over the profiles. Each sensor's "
             "bounds include its own frequency response where it acts at the input "
-            "(`at: input`); an output filter earns no credit. Shares of Δ*: "
-            + ", ".join(f"{k} {v}" for k, v in share.items()) + ". " + BOUNDS_NOTE
-            + unit_note(result))
-    if result.has_linear:  # docs/model.md section 8: α6 joins the additive shares
-        linear = shares(result.allocation, linear=True)
-        text += (" Under a profile with linear vibration the additive shares make room for "
-                 "the g² term: " + ", ".join(f"{k} {linear[k]}" for k in
-                                             ("A1", "k2", "k4", "m31", "m32", "vre"))
-                 + "; the vre check compares each sensor's effective VRE "
-                 "|Δ0(6)|/Σ⟨a_j²⟩ with its bound.")
+            "(`at: input`); an output filter earns no credit. Shares of Δ*"
+            + (" (in brackets: under a profile with linear vibration, where the g² term "
+               "takes α6)" if result.has_linear else "") + ": "
+            + shares_text(result.allocation, linear=result.has_linear) + ". "
+            + ("The vre check compares each sensor's effective VRE |Δ0(6)|/Σ⟨a_j²⟩ with "
+               "its bound. " if result.has_linear else "")
+            + BOUNDS_NOTE + unit_note(result))
     if result.unknown:
         text += (f" {UNVERIFIED_MARK} unverified: the sensor passes on its published figures, "
-                 "but a figure its datasheet does not publish (named) can change the verdict "
+                 "but a figure its datasheet does not publish (named; g²: a coefficient-form "
+                 "sensor's g² sensitivity, not given) can change the verdict "
                  "there; it is counted as not passing and not ranked (--assume-unknown zero "
                  "takes such figures as 0).")
     if result.yields is not None:
@@ -364,7 +367,8 @@ def to_csv(result: SelectionResult) -> str:
                             float(_get(result.vre_bound, i, j)),
                             bool(_get(result.vre_pass, i, j))]
                 elif vre:
-                    row += [*_vre(result, i, j), bool(_get(result.vre_pass, i, j))]
+                    row += [("" if math.isnan(v) else v) for v in _vre(result, i, j)]
+                    row += [bool(_get(result.vre_pass, i, j))]
                 elif with_specs:
                     row += [""] * 3
                 if y is not None:
@@ -435,7 +439,7 @@ def ranking_margin(result: SelectionResult) -> str:
 
 def _unknown_names(result: SelectionResult, i: int, j: int) -> list[str]:
     """The unknown figures of a cell as written: VRE, m31, m32."""
-    return [n.upper() if n == "vre" else n for n in result.unknown.get((i, j), ())]
+    return [unknown_label(result, i, n) for n in result.unknown.get((i, j), ())]
 
 
 def _unverified(result: SelectionResult) -> list[list[str]]:
@@ -450,11 +454,11 @@ def assumption_note(result: SelectionResult) -> str:
     if result.assume_unknown != "zero" or not result.unknown:
         return ""
     order = ("vre", "m31", "m32")
-    cells = sorted({(result.sensors[i], n) for (i, _), names in result.unknown.items()
-                    for n in names}, key=lambda c: (c[0], order.index(c[1])))
+    cells = sorted({(i, n) for (i, _), names in result.unknown.items() for n in names},
+                   key=lambda c: (result.sensors[c[0]], order.index(c[1])))
     by_sensor: dict[str, list[str]] = {}
-    for sensor, name in cells:
-        by_sensor.setdefault(sensor, []).append("VRE" if name == "vre" else name)
+    for i, name in cells:
+        by_sensor.setdefault(result.sensors[i], []).append(unknown_label(result, i, name))
     return ("Assumed (--assume-unknown zero): unpublished figures taken as 0 -- "
             + "; ".join(f"{s}: {', '.join(n)}" for s, n in by_sensor.items())
             + "; cells marked * pass only under that assumption.")

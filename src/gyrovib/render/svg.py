@@ -9,7 +9,11 @@ machine (no font metrics, no backend), and the charts stay vector graphics that
 scale and print sharply. Every piece of text is escaped.
 
 Coordinates are computed in Python; a chart is a ``<svg>`` element with a
-``viewBox``, so CSS sizes it. Non-finite values and, on log axes, values ≤ 0
+``viewBox`` and its own width and height in px: the report shows it at that
+size (scaled down only where the page is narrower), so its text is shown at
+the sizes of :data:`SIZES`. There are no font metrics here: text that could
+run past the chart's edge is cut to a generous width estimate
+(:func:`text_width`). Non-finite values and, on log axes, values ≤ 0
 are left out (a line breaks there).
 """
 
@@ -49,6 +53,36 @@ def label(value: float) -> str:
         mantissa = mantissa.rstrip("0").rstrip(".")
         return f"{mantissa}e{int(exponent)}"
     return f"{value:.3g}"
+
+
+#: Font sizes (px, the chart's own units) of the report's chart text classes; the
+#: report's stylesheet sets the same (render/report.py). A chart is shown at its
+#: own width (never shrunk), so these are the sizes as displayed.
+SIZES = {"ct": 13.0, "xl": 12.0, "yl": 12.0, "tx": 11.0, "ty": 11.0, "lg": 11.0, "ml": 11.0,
+         "mr": 11.0}
+_NARROW = set("iljtfr.,:;!|'()[] -/1")
+_WIDE = set("mwMWΔΩ%@—…")
+
+
+def text_width(text: str, size: float, bold: bool = False) -> float:
+    """A generous estimate of the width of ``text`` at font size ``size`` (px).
+
+    No font metrics here (the text is laid out by the viewer's font): an
+    upper bound for common sans-serif fonts, character classes at 0.36, 0.64
+    and 0.95 em (bold: 8 % more), so text placed by it is not clipped.
+    """
+    em = sum(0.36 if c in _NARROW else 0.95 if c in _WIDE or c.isupper() else 0.64
+             for c in text)
+    return em * size * (1.08 if bold else 1.0)
+
+
+def fit(text: str, width: float, size: float, bold: bool = False) -> str:
+    """``text`` cut short with "…" so that :func:`text_width` is at most ``width``."""
+    if text_width(text, size, bold) <= width:
+        return text
+    while text and text_width(text + "…", size, bold) > width:
+        text = text[:-1]
+    return text.rstrip() + "…"
 
 
 @dataclass(frozen=True)
@@ -105,10 +139,14 @@ def extent(values: Sequence[float], log: bool) -> tuple[float, float] | None:
 
 
 def _open(title: str, height: int = HEIGHT) -> list[str]:
+    """The ``<svg>`` element (``width`` its own: shown unshrunk where there is room) and
+    its title, the whole of it in ``<title>``, the visible line cut to the chart's width."""
+    shown = fit(title, WIDTH - 16, SIZES["ct"], bold=True)
     return [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {WIDTH} {height}" '
+            f'width="{WIDTH}" height="{height}" '
             f'class="chart" role="img" aria-label="{escape(title)}">',
             f'<title>{escape(title)}</title>',
-            f'<text x="{LEFT}" y="18" class="ct">{escape(title)}</text>']
+            f'<text x="8" y="18" class="ct">{escape(shown)}</text>']
 
 
 def _axes(x: Scale, y: Scale, xlabel: str, ylabel: str) -> list[str]:
@@ -125,6 +163,8 @@ def _axes(x: Scale, y: Scale, xlabel: str, ylabel: str) -> list[str]:
         out.append(f'<line x1="{LEFT}" y1="{py:.1f}" x2="{WIDTH - RIGHT}" y2="{py:.1f}" '
                    'class="grid"/>')
         out.append(f'<text x="{LEFT - 4}" y="{py + 4:.1f}" class="ty">{escape(label(t))}</text>')
+    xlabel = fit(xlabel, WIDTH - LEFT - RIGHT, SIZES["xl"])
+    ylabel = fit(ylabel, HEIGHT - TOP - BOTTOM + 20, SIZES["yl"])
     out.append(f'<text x="{(LEFT + WIDTH - RIGHT) / 2:.0f}" y="{HEIGHT - 6}" class="xl">'
                f'{escape(xlabel)}</text>')
     out.append(f'<text x="14" y="{(TOP + HEIGHT - BOTTOM) / 2:.0f}" class="yl" '
@@ -133,15 +173,25 @@ def _axes(x: Scale, y: Scale, xlabel: str, ylabel: str) -> list[str]:
     return out
 
 
+#: Vertical step of the legend's entries.
+LEGEND_STEP = 15
+
+
+def legend_bottom(count: int, top: int = TOP) -> int:
+    """The lowest y a legend of ``count`` entries reaches: a chart is made at least that
+    tall, so that a long legend is not cut off by the chart's edge."""
+    return top + 8 + LEGEND_STEP * max(count - 1, 0) + 8
+
+
 def _legend(names: Sequence[str], styles: Sequence[tuple[str, str]], top: int = TOP) -> list[str]:
     out = []
     for k, (name, (stroke, pattern)) in enumerate(zip(names, styles, strict=True)):
-        y = top + 8 + 15 * k
+        y = top + 8 + LEGEND_STEP * k
         x = WIDTH - RIGHT + 10
         extra = f' stroke-dasharray="{pattern}"' if pattern else ""
         out.append(f'<line x1="{x}" y1="{y}" x2="{x + 18}" y2="{y}" stroke="{stroke}" '
                    f'stroke-width="2.5"{extra}/>')
-        text = name if len(name) <= 26 else name[:25] + "…"
+        text = fit(name, WIDTH - x - 23 - 4, SIZES["lg"])
         out.append(f'<text x="{x + 23}" y="{y + 4}" class="lg">{escape(text)}</text>')
     return out
 
@@ -181,7 +231,8 @@ class LineChart:
         xs = [v for s in self.series for v in s.x] + [m.x for m in self.markers if m.x is not None]
         ys = [v for s in self.series for v in s.y] + [m.y for m in self.markers if m.y is not None]
         xr, yr = extent(xs, self.xlog), extent(ys, self.ylog)
-        out = _open(self.title)
+        # below the plot the right column is free: a long legend runs on there
+        out = _open(self.title, max(HEIGHT, legend_bottom(len(self.series))))
         if xr is None or yr is None:
             out.append(f'<text x="{LEFT + 10}" y="{TOP + 30}" class="lg">no value to plot '
                        f'on {"log" if self.ylog else "linear"} axes</text></svg>')
@@ -205,17 +256,29 @@ class LineChart:
                 px = x(m.x)
                 out.append(f'<line x1="{px:.1f}" y1="{TOP}" x2="{px:.1f}" '
                            f'y2="{HEIGHT - BOTTOM}" class="{m.style}"/>')
-                out.append(f'<text x="{px + 3:.1f}" y="{TOP + 11 + 11 * m.row}" class="ml">'
-                           f'{escape(m.label)}</text>')
+                out.append(_marker_label(m.label, px, TOP + 11 + 11 * m.row,
+                                         WIDTH - RIGHT))
             if m.y is not None and y.lo <= m.y <= y.hi:
                 py = y(m.y)
                 out.append(f'<line x1="{LEFT}" y1="{py:.1f}" x2="{WIDTH - RIGHT}" '
                            f'y2="{py:.1f}" class="{m.style}"/>')
+                text = fit(m.label, WIDTH - LEFT - RIGHT - 6, SIZES["mr"])
                 out.append(f'<text x="{WIDTH - RIGHT - 3}" y="{py - 4:.1f}" class="mr">'
-                           f'{escape(m.label)}</text>')
+                           f'{escape(text)}</text>')
         out += _legend([s.name for s in self.series], [(s.stroke, s.pattern) for s in self.series])
         out.append("</svg>")
         return "\n".join(out)
+
+
+def _marker_label(text: str, px: float, y: float, right: float) -> str:
+    """A vertical marker's label: right of the line, or left of it (anchored at its end)
+    where it would run past ``right`` and there is more room on the left; cut to its room."""
+    after, before = right - px - 3, px - 3 - 4
+    if text_width(text, SIZES["ml"]) <= after or after >= before:
+        return (f'<text x="{px + 3:.1f}" y="{y}" class="ml">'
+                f'{escape(fit(text, after, SIZES["ml"]))}</text>')
+    return (f'<text x="{px - 3:.1f}" y="{y}" class="ml" text-anchor="end">'
+            f'{escape(fit(text, before, SIZES["ml"]))}</text>')
 
 
 def _segments(s: Series, xlog: bool, ylog: bool) -> list[list[tuple[float, float]]]:
@@ -254,7 +317,7 @@ def bar_chart(title: str, xlabel: str, names: Sequence[str], values: Sequence[fl
         out.append(f'<text x="{px:.1f}" y="{bottom + 14}" class="tx">{escape(label(t))}</text>')
     for k, (name, value, fill) in enumerate(zip(names, values, fills, strict=True)):
         y = top + row * k
-        text = name if len(name) <= 24 else name[:23] + "…"
+        text = fit(name, left - 5 - 4, SIZES["ty"])
         out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">{escape(text)}</text>')
         if value > 0:
             end = min(max(x(value), left), WIDTH - 40) if math.isfinite(value) else WIDTH - 40
@@ -268,10 +331,10 @@ def bar_chart(title: str, xlabel: str, names: Sequence[str], values: Sequence[fl
         px = x(reference.x)
         out.append(f'<line x1="{px:.1f}" y1="{top - 4}" x2="{px:.1f}" y2="{bottom}" '
                    f'class="{reference.style}"/>')
-        out.append(f'<text x="{px + 3:.1f}" y="{top - 6}" class="ml">'
-                   f'{escape(reference.label)}</text>')
-    out.append(f'<text x="{(left + WIDTH - 40) / 2:.0f}" y="{height - 6}" class="xl">'
-               f'{escape(xlabel)}</text>')
+        out.append(_marker_label(reference.label, px, top - 6, WIDTH - 4))
+    middle = (left + WIDTH - 40) / 2  # centred there: as wide as twice its nearer edge
+    xlabel = fit(xlabel, 2 * min(middle - 8, WIDTH - 8 - middle), SIZES["xl"])
+    out.append(f'<text x="{middle:.0f}" y="{height - 6}" class="xl">{escape(xlabel)}</text>')
     out.append("</svg>")
     return "\n".join(out)
 
@@ -280,13 +343,13 @@ def share_chart(title: str, names: Sequence[str], parts: Sequence[str],
                 shares: Sequence[Sequence[float]]) -> str:
     """100 % stacked horizontal bars: row k splits into ``shares[k]`` (summing to 1 or 0)."""
     row = 18
-    height = TOP + BOTTOM + row * max(len(names), 1)
+    height = max(TOP + BOTTOM + row * max(len(names), 1), legend_bottom(len(parts)))
     left, right = 170, WIDTH - RIGHT - 10
     out = _open(title, height)
     bottom = height - BOTTOM
     for k, name in enumerate(names):
         y = TOP + row * k
-        text = name if len(name) <= 24 else name[:23] + "…"
+        text = fit(name, left - 5 - 4, SIZES["ty"])
         out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">{escape(text)}</text>')
         start = float(left)
         total = sum(v for v in shares[k] if math.isfinite(v))

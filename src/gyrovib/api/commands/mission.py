@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gyrovib import units
+from gyrovib.api import spec_bounds
 from gyrovib.api.mission_results import MissionResult, MissionRow, SegmentResult
 from gyrovib.api.placement import place_profile
 from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry
@@ -138,6 +139,7 @@ def mission(
     require: str = "any",
     placement: Placement | tuple[Placement, ...] | None = None,
     peak_factor: float = 3.0,
+    assume_unknown: str = "none",
 ) -> MissionResult:
     """Every chosen sensor over every chosen mission (docs/model.md section 12).
 
@@ -147,6 +149,13 @@ def mission(
     replaces every mission's own (a :class:`~gyrovib.core.placement.Placement`
     or the :data:`~gyrovib.core.placement.TRIAD`). A sensor passes a mission
     when no segment saturates it and the budget is met, on every axis of a triad.
+
+    Unknown is not zero (docs/model.md section 11, as ``select``): a datasheet
+    sensor that passes on its published figures while an unpublished one can
+    decide it in some segment (the VRE under linear vibration; m31, m32 under
+    cross-axis vibration correlated with x3) is ``unverified`` there, not
+    passing (:func:`gyrovib.api.spec_bounds.is_unverified`), unless
+    ``assume_unknown="zero"``.
     """
     from gyrovib.api.commands.analyze import analyze
 
@@ -155,6 +164,7 @@ def mission(
                           "not both")
     if require not in ("any", "all"):
         raise OptionError(f"--require {require!r}: use any or all")
+    spec_bounds.check_assumption(assume_unknown)
     unit = units.canonical_unit(unit)
     a_unit, a_factor = ANGLE_UNITS[unit]
     chosen = chosen_missions(catalog, missions)
@@ -167,7 +177,7 @@ def mission(
     saturated = (np.zeros(total.shape, dtype=bool) if result.saturated is None
                  else np.asarray(result.saturated))
     sources = result.sources or ("coefficients",) * len(result.sensors)
-    spec_mean = _spec_means(derived, result.sensors, sources, entries, runs, unit)
+    spec_mean, unknown = _spec_means(derived, result.sensors, sources, entries, runs, unit)
     theta_budget = None if angle_budget is None else (
         angle_budget / _rad_per(a_unit))
     budget_out = None if budget is None else budget / units.scale(unit)
@@ -194,6 +204,11 @@ def mission(
                 passed = not sat and abs(angle) <= theta_budget
             elif budget_out is not None:
                 passed = not sat and float(agg.rms) <= budget_out
+            names = unknown.get((i, r), ())
+            open_ = passed is not None and spec_bounds.is_unverified(passed, names,
+                                                                     assume_unknown)
+            if open_:
+                passed = False
             w = int(agg.worst_index)
             per_sensor.append(MissionRow(
                 sensor=sensor, mission=run.mission.id,
@@ -202,7 +217,7 @@ def mission(
                 mean=mean, angle=angle, rms=float(agg.rms), worst_index=w,
                 worst_profile=run.mission.segments[w].profile,
                 worst_total=float(agg.worst_total), segments=segs, saturated=sat,
-                passed=passed, source=sources[i]))
+                passed=passed, source=sources[i], unknown=names, unverified=open_))
         rows.extend(_with_worst_axis(per_sensor))
     sensor_pass = tuple(
         None if budget is None and angle_budget is None else
@@ -216,7 +231,8 @@ def mission(
     return MissionResult(unit=unit, angle_unit=a_unit, budget=budget_out,
                          angle_budget=theta_budget, require=require, sensors=result.sensors,
                          missions=tuple(m.mission.id for m in chosen), rows=tuple(rows),
-                         sensor_pass=sensor_pass, requirement_met=met)
+                         sensor_pass=sensor_pass, requirement_met=met,
+                         assume_unknown=assume_unknown)
 
 
 def _rad_per(angle_unit_name: str) -> float:
@@ -246,26 +262,40 @@ def _with_worst_axis(rows: list[MissionRow]) -> list[MissionRow]:
 
 def _spec_means(catalog: Catalog, sensors: Sequence[str], sources: Sequence[str],
                 entries: Sequence[ProfileEntry], runs: Sequence[_Run],
-                unit: str) -> dict[tuple[int, int], float]:
-    """(sensor, run) → a spec-form sensor's worst mean error over the whole mission.
+                unit: str) -> tuple[dict[tuple[int, int], float],
+                                    dict[tuple[int, int], tuple[str, ...]]]:
+    """(sensor, run) → a spec-form sensor's worst mean error over the whole mission, and
+    the unpublished figures that can decide it in some segment (none: no entry).
 
     One :func:`~gyrovib.core.envelope.worst_case` per sensor group and run, on the
-    mission's functional Σ T_s c_s / Σ T_s and g² moment Σ T_s S_s / Σ T_s.
+    mission's functional Σ T_s c_s / Σ T_s and g² moment Σ T_s S_s / Σ T_s; the
+    unknown figures are :func:`gyrovib.api.spec_bounds.unknown_figures_at` of the
+    run's segments, merged.
     """
     spec_ids = [s for s, src in zip(sensors, sources, strict=True) if src == "specs"]
     if not spec_ids:
-        return {}
+        return {}, {}
     from gyrovib.api import specs
     from gyrovib.api.prepare import float_guard
     from gyrovib.api.study import prepare
     from gyrovib.core.envelope import worst_case
 
     out: dict[tuple[int, int], float] = {}
+    unknown: dict[tuple[int, int], tuple[str, ...]] = {}
     where = {s: i for i, s in enumerate(sensors)}
     scale = units.scale(unit)
     with float_guard():
         prepared = prepare(catalog, sensors=spec_ids, profiles=[e.profile.id for e in entries],
                            methods=("exact",), phase_search=True)
+        figures_unknown = spec_bounds.unknown_figures_at(
+            prepared, np.arange(len(prepared.sensors)),
+            specs.figures(list(prepared.sensors)).has_vre, "exact")
+        for k, e in enumerate(prepared.sensors):
+            for r, run in enumerate(runs):
+                names = spec_bounds.merge_unknown(figures_unknown.names(k, c)
+                                                  for c in run.columns)
+                if names:
+                    unknown[(where[e.sensor.id], r)] = names
         for group in prepared.groups:
             members = [prepared.sensors[int(i)] for i in group.index.tolist()]
             if not members:
@@ -284,4 +314,4 @@ def _spec_means(catalog: Catalog, sensors: Sequence[str], sources: Sequence[str]
                 values = np.asarray(wc.total, dtype=float).reshape(len(members), -1)[:, 0]
                 for e, v in zip(members, values.tolist(), strict=True):
                     out[(where[e.sensor.id], r)] = v / scale
-    return out
+    return out, unknown

@@ -388,9 +388,10 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
     Coefficient-form sensors: the definition itself, vectorised; sensors whose
     response acts at the input see ν·x (a zero-phase gain). Spec-form
     sensors: the worst Δ_V,rec over their datasheet envelope (it is linear in
-    the coefficients, docs/model.md section 11). The closed form evaluates the
-    fitted profile at each histogram bin of Ω_K3 and weights the bins by
-    their time (docs/model.md section 12's mean error Δ̄_V).
+    the coefficients, docs/model.md section 11). The closed form is the fitted
+    mission's mean error Δ̄_V (docs/model.md section 12): the fitted profile at
+    each histogram bin of Ω_K3, the bins weighted by their time, exactly as
+    ``gyrovib mission`` computes it on the written YAML.
     """
     from gyrovib.api.convert import coefficient_matrix, sensor_ranges
     from gyrovib.api.entries import select_entries
@@ -421,8 +422,7 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
                                                g2_part, figures)
     ranges = sensor_ranges(entries)
     saturated = peak > ranges
-    fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries], spec,
-                                         entries, figures)
+    fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries])
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
     s = units.scale(unit)
@@ -482,52 +482,22 @@ def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: Flo
     return total, terms, g2_part
 
 
-def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str],
-                    spec: NDArray[np.bool_], entries: Sequence[Any],
-                    figures: Any) -> tuple[FloatArray, FloatArray]:
-    """Time-weighted closed form (exact method) of the fitted profile over the carrier
-    histogram: Δ̄ = Σ T_b·Δ_V(Ω_b)/ΣT, and √(Σ T_b·Δ_V(RMS)_b²/ΣT), deg/s.
+def _fitted_mission(fit: RecordingFit, catalog: Any,
+                    sensor_ids: Sequence[str]) -> tuple[FloatArray, FloatArray]:
+    """The fitted mission's closed form, deg/s: :func:`gyrovib.api.mission` on the mission
+    the written YAML holds (the same numbers as ``gyrovib mission`` on that file).
 
-    A spec-form sensor's Δ̄ is the worst case over its envelope of the whole
-    mission — one conversion function for every bin (docs/model.md section 12):
-    its term functionals are time-weighted first, then maximised once.
+    Δ̄ = Σ T_b·Δ_V(Ω_b)/ΣT over the carrier histogram's bins, and the mean RMS
+    √(Σ T_b·Δ_V(RMS)_b²/ΣT) (docs/model.md section 12). A spec-form sensor's Δ̄
+    is the worst case over its envelope of the whole mission — one conversion
+    function for every bin.
     """
-    from gyrovib.api.commands.analyze import analyze
-    from gyrovib.api.prepare import float_guard
-    from gyrovib.api.recording_yaml import with_fitted_profile
-    from gyrovib.api.specs import mean_square_acceleration, terms_of
-    from gyrovib.api.study import prepare
-    from gyrovib.core.envelope import worst_case
+    from gyrovib.api.commands.mission import mission
+    from gyrovib.api.recording_yaml import mission_id, with_fitted_profile
 
     combined = with_fitted_profile(catalog, fit)
-    durations = fit.mission_durations
-    total = np.zeros(len(sensor_ids))
-    square = np.zeros(len(sensor_ids))
-    spec_ids = [sensor_ids[i] for i in np.flatnonzero(spec).tolist()]
-    spec_terms = np.zeros((len(spec_ids), 8, 5))
-    spec_s = np.zeros(len(spec_ids))
-    for rate, t in zip(fit.mission_rates, durations, strict=True):
-        result = analyze(combined, sensors=sensor_ids, profiles=(fit.profile_id,),
-                         rate=[float(v) for v in rate])
-        total += t * result.error.total[:, 0]
-        square += t * result.error.rms[:, 0] ** 2
-        if spec_ids:
-            with float_guard():
-                prepared = prepare(combined, sensors=spec_ids, profiles=(fit.profile_id,),
-                                   rate=[float(v) for v in rate], methods=("exact",))
-            for group in prepared.groups:
-                m = group.multipliers["exact"]
-                spec_terms[group.index] += t * terms_of(m).reshape(8, 5)
-                spec_s[group.index] += t * float(mean_square_acceleration(m).reshape(-1)[0])
-    weight = float(np.sum(durations))
-    total /= weight
-    if spec_ids:
-        idx = np.flatnonzero(spec)
-        figs = figures([entries[i] for i in idx.tolist()])
-        for k, i in enumerate(idx.tolist()):
-            wc = worst_case(spec_terms[k:k + 1] / weight, spec_s[k] / weight,
-                            figs.range[k:k + 1], figs.limit[k:k + 1], figs.fit[k:k + 1],
-                            figs.measure[k:k + 1], asymmetry=figs.asymmetry[k:k + 1],
-                            vre=figs.vre[k:k + 1])
-            total[i] = float(wc.total[0, 0])
-    return total, np.sqrt(square / weight)
+    result = mission(combined, missions=(mission_id(fit),), sensors=sensor_ids, unit="deg/s")
+    rows = {r.sensor: r for r in result.rows}
+    total = np.array([rows[s].mean for s in sensor_ids], dtype=float)
+    rms = np.array([rows[s].rms for s in sensor_ids], dtype=float)
+    return total, rms

@@ -32,7 +32,7 @@ from gyrovib.api.yields import (
 )
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import COEFFICIENTS
-from gyrovib.core.linear import effective_vre
+from gyrovib.core.linear import effective_vre, mean_square
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
@@ -41,9 +41,8 @@ from gyrovib.models import Allocation
 
 CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")
-#: What an unpublished datasheet figure is taken as: ``none`` (nothing: the
-#: verdict stays open, ``unverified``) or ``zero`` (the reading of old).
-ASSUMPTIONS = ("none", "zero")
+#: What an unpublished datasheet figure is taken as (:data:`spec_bounds.ASSUMPTIONS`).
+ASSUMPTIONS = spec_bounds.ASSUMPTIONS
 #: Relative slack of every ≤ comparison: a value at its bound, up to rounding
 #: (e.g. a bound printed in deg/h and read back), passes.
 PASS_RTOL = 1e-9
@@ -185,9 +184,7 @@ def _check_options(method: str, budget: float, criterion: str, require: str,
         raise OptionError(f"unknown criterion {criterion!r}; use one of {', '.join(CRITERIA)}")
     if require not in REQUIREMENTS:
         raise OptionError(f"unknown requirement {require!r}; use one of {', '.join(REQUIREMENTS)}")
-    if assume_unknown not in ASSUMPTIONS:
-        raise OptionError(f"unknown assumption {assume_unknown!r}; use one of "
-                          f"{', '.join(ASSUMPTIONS)}")
+    spec_bounds.check_assumption(assume_unknown)
 
 
 def selection_of(study: Study, *, method: str = "exact", budget: float, unit: str = "deg/s",
@@ -249,12 +246,13 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
                   "both": bounds_pass & rms_pass}[criterion] & ~saturated
         unknown, questions = _unknowns(prepared, spec, own, method, criterion, passed,
                                        budget, rms, total, unit)
+        _unknown_g2(prepared, criterion, passed, budget, rms, total, vre_bound_deg, unit,
+                    unknown, questions)
         unverified = np.zeros(passed.shape, dtype=bool)
-        if assume_unknown != "zero":
-            for (i, j) in unknown:
-                if passed[i, j]:
-                    unverified[i, j] = True
-                    passed[i, j] = False
+        for (i, j), names in unknown.items():
+            if spec_bounds.is_unverified(bool(passed[i, j]), names, assume_unknown):
+                unverified[i, j] = True
+                passed[i, j] = False
 
         yields = None if yield_target is None else lot_yields(
             prepared, parts, method, criterion, budget, limits_deg, vre_pass, yield_target,
@@ -304,9 +302,12 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
                                           (vre_deg, vre_bound_deg, vre_pass))
     if assume_unknown != "zero" and any("vre" in names for names in unknown.values()):
         shown = np.array(fields["vre_pass"], dtype=bool)  # not shown to pass: not known
+        value = np.array(fields["vre_value"], dtype=float)  # nor shown as 0
         for (i, j), names in unknown.items():
-            shown[i, j] &= "vre" not in names
-        fields["vre_pass"] = shown
+            if "vre" in names:
+                shown[i, j] = False
+                value[i, j] = np.nan
+        fields["vre_pass"], fields["vre_value"] = shown, value
     s = units.scale(unit)
     return SelectionResult(
         method=method,
@@ -440,6 +441,51 @@ def _unknowns(prepared: Prepared, spec: specs.SpecResults | None,
         if asks:
             questions[i] = tuple(asks)
     return unknown, questions
+
+
+def _unknown_g2(prepared: Prepared, criterion: str, passed: NDArray[np.bool_], budget: float,
+                rms: FloatArray, total: FloatArray, vre_bound: FloatArray, unit: str,
+                unknown: dict[tuple[int, int], tuple[str, ...]],
+                questions: dict[int, tuple[str, ...]]) -> None:
+    """Add to ``unknown`` and ``questions`` the coefficient-form sensors without a g² figure.
+
+    A coefficient-form sensor that gives neither ``g2_sensitivity`` nor ``vre``
+    has no known g² sensitivity: under a profile with linear vibration
+    (Σ⟨a_j²⟩ > 0) its g² term Δ0(6) = Σ G_jk⟨a_j a_k⟩ (docs/model.md section 8) is
+    unknown, not zero, as a datasheet part's missing VRE is (``"vre"``). The
+    question: the largest equal G11 = G22 = G33 that would still pass where it
+    passes on its other figures: the ``vre`` bound under ``bounds``; what is
+    left of Δ* beside |Δ_V| (``worst``) or in quadrature beside Δ_V(RMS)
+    (``rms``; Δ0(6) is one term of eq. (16)), over Σ⟨a_j²⟩; ``both``: the lesser
+    of the bound and the ``rms`` figure. ``budget``, ``rms``, ``total``,
+    ``vre_bound`` in deg/s (per g²).
+    """
+    msq = [0.0 if v is None else float(mean_square(v.moments())) for v in prepared.linear] \
+        if prepared.linear else [0.0] * len(prepared.profiles)
+    s = units.scale(unit)
+    for i, entry in enumerate(prepared.sensors):
+        sensor = entry.sensor
+        if (sensor.specs is not None or sensor.g2_sensitivity is not None
+                or sensor.vre is not None):
+            continue
+        best: tuple[float, int] | None = None
+        for j, ms in enumerate(msq):
+            if not ms > 0:
+                continue
+            unknown[(i, j)] = (*unknown.get((i, j), ()), "vre")
+            if not passed[i, j]:
+                continue  # it fails there on its other figures alone
+            left_worst = max(budget - float(total[i, j]), 0.0) / ms
+            left_rms = float(np.sqrt(max(budget**2 - float(rms[i, j]) ** 2, 0.0))) / ms
+            bound = float(vre_bound[i, j])
+            value = {"bounds": bound, "worst": left_worst, "rms": left_rms,
+                     "both": min(bound, left_rms)}[criterion] / s
+            if best is None or value < best[0]:
+                best = (value, j)
+        if best is not None:
+            questions[i] = (*questions.get(i, ()),
+                            f"g² sensitivity (G11 = G22 = G33, `vre`, {unit}/g²): at most "
+                            f"{best[0]:.4g} passes under {prepared.profiles[best[1]].profile.id}")
 
 
 def _effective_vre(prepared: Prepared) -> FloatArray:
