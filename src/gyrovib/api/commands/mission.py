@@ -28,6 +28,7 @@ from gyrovib import units
 from gyrovib.api import spec_bounds
 from gyrovib.api.mission_results import MissionResult, MissionRow, SegmentResult
 from gyrovib.api.placement import place_profile
+from gyrovib.api.study import Study
 from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry
 from gyrovib.core import placement as placements
 from gyrovib.core.mission import ANGLE_UNITS, combined_functional, totals
@@ -157,7 +158,8 @@ def mission(
     passing (:func:`gyrovib.api.spec_bounds.is_unverified`), unless
     ``assume_unknown="zero"``.
     """
-    from gyrovib.api.commands.analyze import analyze
+    from gyrovib.api.commands.analyze import analysis_of
+    from gyrovib.api.study import check_peak_factor
 
     if budget is not None and angle_budget is not None:
         raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
@@ -171,13 +173,16 @@ def mission(
     entries, runs = _segment_entries(catalog, chosen, placement)
     derived = Catalog(catalog.sources, catalog.sensors, tuple(entries), catalog.allocation,
                       catalog.missions)
-    result = analyze(derived, sensors=sensors, profiles=[e.profile.id for e in entries],
-                     unit=unit, peak_factor=peak_factor)
+    check_peak_factor(peak_factor)
+    # one Study of the segments' distinct placed profiles: the analysis and the
+    # datasheet sensors' mission worst cases share its vibrations
+    study = Study.of(derived, sensors=sensors, profiles=[e.profile.id for e in entries])
+    result = analysis_of(study, unit=unit, peak_factor=peak_factor)
     total, rms = result.error.total, result.error.rms
     saturated = (np.zeros(total.shape, dtype=bool) if result.saturated is None
                  else np.asarray(result.saturated))
     sources = result.sources or ("coefficients",) * len(result.sensors)
-    spec_mean, unknown = _spec_means(derived, result.sensors, sources, entries, runs, unit)
+    spec_mean, unknown = _spec_means(study, sources, runs, unit)
     theta_budget = None if angle_budget is None else (
         angle_budget / _rad_per(a_unit))
     budget_out = None if budget is None else budget / units.scale(unit)
@@ -260,8 +265,7 @@ def _with_worst_axis(rows: list[MissionRow]) -> list[MissionRow]:
     return out
 
 
-def _spec_means(catalog: Catalog, sensors: Sequence[str], sources: Sequence[str],
-                entries: Sequence[ProfileEntry], runs: Sequence[_Run],
+def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
                 unit: str) -> tuple[dict[tuple[int, int], float],
                                     dict[tuple[int, int], tuple[str, ...]]]:
     """(sensor, run) → a spec-form sensor's worst mean error over the whole mission, and
@@ -270,23 +274,22 @@ def _spec_means(catalog: Catalog, sensors: Sequence[str], sources: Sequence[str]
     One :func:`~gyrovib.core.envelope.worst_case` per sensor group and run, on the
     mission's functional Σ T_s c_s / Σ T_s and g² moment Σ T_s S_s / Σ T_s; the
     unknown figures are :func:`gyrovib.api.spec_bounds.unknown_figures_at` of the
-    run's segments, merged.
+    run's segments, merged. The datasheet sensors are ``study`` narrowed to them (its
+    vibrations computed once for the analysis and for this).
     """
-    spec_ids = [s for s, src in zip(sensors, sources, strict=True) if src == "specs"]
-    if not spec_ids:
+    rows = [i for i, src in enumerate(sources) if src == "specs"]
+    if not rows:
         return {}, {}
     from gyrovib.api import specs
     from gyrovib.api.prepare import float_guard
-    from gyrovib.api.study import prepare
     from gyrovib.core.envelope import worst_case
 
     out: dict[tuple[int, int], float] = {}
     unknown: dict[tuple[int, int], tuple[str, ...]] = {}
-    where = {s: i for i, s in enumerate(sensors)}
+    where = {e.sensor.id: i for i, e in enumerate(study.sensors)}
     scale = units.scale(unit)
     with float_guard():
-        prepared = prepare(catalog, sensors=spec_ids, profiles=[e.profile.id for e in entries],
-                           methods=("exact",), phase_search=True)
+        prepared = study.narrowed(rows).prepare(methods=("exact",), phase_search=True)
         figures_unknown = spec_bounds.unknown_figures_at(
             prepared, np.arange(len(prepared.sensors)),
             specs.figures(list(prepared.sensors)).has_vre, "exact")
