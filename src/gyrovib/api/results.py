@@ -169,6 +169,27 @@ class AnalysisResult(SensorsByProfiles):
         """Whether sensor ``i`` is a production lot (its row is the lot's mean)."""
         return bool(self.lots) and self.lots[i]
 
+    @property
+    def table_rate_unit(self) -> str:
+        """The rate unit tables write the vehicle's rates in: :attr:`rate_unit`, the
+        profiles' files' own, else :attr:`unit`."""
+        return self.rate_unit or self.unit
+
+    @property
+    def table_rates(self) -> FloatArray:
+        """:attr:`rates` in :attr:`table_rate_unit`, as tables show them."""
+        return _rates_in(self.rates, self.unit, self.table_rate_unit)
+
+
+def _rates_in(rates: FloatArray, unit: str, target: str) -> FloatArray:
+    """Rates in ``unit`` converted to ``target``."""
+    if target == unit:
+        return rates
+    from gyrovib import units
+
+    out: FloatArray = rates * units.scale(unit) / units.scale(target)
+    return out
+
 
 @dataclass(frozen=True, eq=False, repr=False)
 class SweepResult(SensorsByProfiles):
@@ -244,6 +265,11 @@ class BoundsResult(Result):
         """:attr:`bounds` in :attr:`table_unit` powers, as tables show them (the VRE
         bound stays in :attr:`unit` per g²)."""
         return _in_table_unit(self.bounds, self.unit, self.table_unit)
+
+    @property
+    def table_rates(self) -> FloatArray:
+        """:attr:`rates` (Ω_K per profile) in :attr:`table_unit`, as tables show them."""
+        return _rates_in(self.rates, self.unit, self.table_unit)
 
 
 def _coefficient_factors(unit: str, table_unit: str) -> dict[str, float]:

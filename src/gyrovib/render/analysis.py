@@ -383,16 +383,6 @@ def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:
     return f"{result.sensors[i]}: {what}; the datasheet figure that would shrink it most: {ask}"
 
 
-def rate_in_table_unit(result: AnalysisResult, value: float) -> tuple[float, str]:
-    """A vehicle rate of ``result`` (in its :attr:`unit`) in the catalogue's rate unit."""
-    from gyrovib import units
-
-    target = getattr(result, "rate_unit", None) or result.unit
-    if target == result.unit:
-        return float(value), result.unit
-    return float(value) * units.scale(result.unit) / units.scale(target), target
-
-
 def grouped_warnings(result: AnalysisResult) -> list[tuple[str, list[tuple[int, int]]]]:
     """Each distinct warning once, with the (sensor, profile) cells it applies to, in the
     order they first appear (profile by profile, sensor by sensor)."""
@@ -458,7 +448,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
     stderr = None if extra is None else extra.tolist()
     saturated = None if result.saturated is None else result.saturated.tolist()
     for j, profile in enumerate(result.profiles):
-        omega, rate_unit = rate_in_table_unit(result, result.rates[j, 2])
+        omega, rate_unit = float(result.table_rates[j, 2]), result.table_rate_unit
         table = Table(
             title=f"{profile}  (Ω_K3 = {fmt(omega)} {rate_unit}, method {result.method})",
             title_justify="left", header_style="bold",
@@ -556,10 +546,10 @@ def _matrix(result: AnalysisResult, width: int | None = None, color: bool = Fals
                 text.append(f" {SATURATED_MARK}", style="bold red")
             cells.append(text)
         cells_profile = Text(profile)
-        cells_profile.append(f" ({fmt(rate_in_table_unit(result, result.rates[j, 2])[0], 3)})",
+        cells_profile.append(f" ({fmt(float(result.table_rates[j, 2]), 3)})",
                              style="dim")
         table.add_row(cells_profile, *cells)
-    _, rate_unit = rate_in_table_unit(result, 0.0)
+    rate_unit = result.table_rate_unit
     out: list[Any] = [table]
     legend = (f"Each row: a profile with its Ω_K3 in {rate_unit}. Dominant term: the term of "
               "eq. (13) of largest magnitude (A1, k2, k4, m31, m32, g² = the linear "

@@ -274,10 +274,8 @@ _HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
 
 def _title(result: BoundsResult, j: int) -> str:
     """The profile, its Ω_K3 in the catalogue's rate unit and Δ* in the output unit."""
-    from gyrovib import units
-
     rate_unit = result.table_unit
-    omega = float(result.rates[j, 2]) * units.scale(result.unit) / units.scale(rate_unit)
+    omega = float(result.table_rates[j, 2])
     return (f"{result.profiles[j]}  (Ω_K3 = {fmt(omega)} {rate_unit}, "
             f"Δ* = {fmt(result.budget)} {result.unit}, method {result.method})")
 
