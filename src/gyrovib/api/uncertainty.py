@@ -24,9 +24,9 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.convert import unit_scales
-from gyrovib.api.prepare import Group, Prepared, multipliers_of_profile
+from gyrovib.api.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
-from gyrovib.core.analysis import COEFFICIENTS, Multipliers, stack_multipliers
+from gyrovib.core.analysis import COEFFICIENTS, Multipliers
 from gyrovib.core.lot import (
     correlation_from_pairs,
     covariance_from,
@@ -100,18 +100,12 @@ def lot_warnings(found: Sequence[Distribution | None]) -> tuple[str, ...]:
 
 
 def group_multipliers(prepared: Prepared, group: Group, method: str) -> Multipliers:
-    """The group's multipliers under ``method``, or the exact ones where the pipeline
-    prepared none (the numeric method: its g is the closed form's)."""
+    """The group's multipliers under ``method``, or the exact ones where ``method`` has
+    none (the numeric method: its g is the closed form's; its view hands in a
+    preparation with the exact multipliers)."""
     if method in group.multipliers:
         return group.multipliers[method]
-    if "exact" in group.multipliers:
-        return group.multipliers["exact"]
-    items = []
-    for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
-        linear = prepared.linear[j] if prepared.linear else None
-        items.append(multipliers_of_profile(v, prepared.rates[j, 2], "exact", locked, False,
-                                  None if linear is None else linear.moments()))
-    return stack_multipliers(items)
+    return group.multipliers["exact"]
 
 
 def sensor_sensitivity(multipliers: Multipliers, dist: Distribution) -> FloatArray:

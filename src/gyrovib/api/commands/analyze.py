@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import zlib
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -20,7 +21,7 @@ from gyrovib.api.prepare import (
 )
 from gyrovib.api.results import AnalysisResult
 from gyrovib.api.study import Study, check_peak_factor
-from gyrovib.api.uncertainty import with_uncertainty
+from gyrovib.api.uncertainty import distributions, with_uncertainty
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
 from gyrovib.core.harmonics import LockedGroup
@@ -145,7 +146,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         check_finite([*error_arrays(error), *([] if stderr_out is None else [stderr_out])],
                      prepared)
         locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
-        spread = with_uncertainty(prepared, method, unit)
+        spread = _spread(study, prepared, method, unit, peak_factor)
     return AnalysisResult(
         method=method,
         unit=unit,
@@ -166,6 +167,16 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         rate_unit=_shared_unit([p.unit for p in prepared.profiles]),
         **spread,
     )
+
+
+def _spread(study: Study, prepared: Prepared, method: str, unit: str,
+            peak_factor: float) -> dict[str, Any]:
+    """The uncertainty fields of the result (:func:`~gyrovib.api.uncertainty.with_uncertainty`);
+    under ``numeric``, g comes from the Study's exact multipliers (the closed form's)."""
+    if method == "numeric" and any(d is not None for d in distributions(prepared)):
+        prepared = study.prepare(methods=("exact",), peak_factor=peak_factor,
+                                 phase_search=False)
+    return with_uncertainty(prepared, method, unit)
 
 
 def _shaken(prepared: Prepared) -> list[bool]:
