@@ -22,6 +22,19 @@ HEADER = "gyrovib: 1\n"
 #: One valid profile after the sensors, so that ``bounds`` has something to bound.
 PROFILES = "profiles:\n  - id: p\n    random: {rms: [0, 0, 1]}\n"
 SENSOR = HEADER + "sensors:\n  - id: a\n    coefficients:\n"
+#: One sensor under one profile: what `report` reads in the tests of its output name,
+#: signals and standard error. These test the write of the file and the status, which do
+#: not depend on what the report holds; the bundled catalogues (the default) cost 3 s of
+#: CPU a run for the same write.
+SMALL = SENSOR + "      k2: 1.0e-7\n" + PROFILES
+
+
+@pytest.fixture(scope="module")
+def small(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """SMALL in a file outside each test's tmp_path (whose listing the tests check)."""
+    path = tmp_path_factory.mktemp("small") / "small.yaml"
+    path.write_text(SMALL, encoding="utf-8")
+    return path
 
 # (id, sensors part of the file, line, column of the first problem, words it contains)
 BAD_SENSORS: list[tuple[str, str, int, int, tuple[str, ...]]] = [
@@ -93,7 +106,7 @@ os.replace = replace
 SIGNALS = {signal.SIGHUP: (129, "hung up"), signal.SIGTERM: (143, "terminated"),
            signal.SIGINT: (130, "interrupted")}
 COMMANDS = {"analyze": ["analyze", "--format", "json"],
-            "report": ["report", "--budget", "0.01"], "schema": ["schema"]}
+            "report": ["report", "{small}", "--budget", "0.01"], "schema": ["schema"]}
 #: Every signal with the quickest command, and the hang-up (the case found) with the others.
 CASES = [("schema", s) for s in SIGNALS] + [("analyze", signal.SIGHUP),
                                             ("report", signal.SIGHUP)]
@@ -101,13 +114,14 @@ CASES = [("schema", s) for s in SIGNALS] + [("analyze", signal.SIGHUP),
 
 @pytest.mark.parametrize(("command", "sig"), CASES, ids=[f"{c}-{s.name}" for c, s in CASES])
 def test_a_signal_during_the_write_leaves_no_temporary_file(
-        tmp_path: Path, command: str, sig: signal.Signals) -> None:
+        tmp_path: Path, small: Path, command: str, sig: signal.Signals) -> None:
     # SIGHUP used to kill the process at once: its temporary file stayed behind
     status, word = SIGNALS[sig]
     target = tmp_path / "out.txt"
     target.write_text("previous\n")
-    done = _run_with(DURING_THE_WRITE.format(sig=int(sig)),
-                     [*COMMANDS[command], "-o", str(target)], tmp_path)
+    args = [a.format(small=small) for a in COMMANDS[command]]
+    done = _run_with(DURING_THE_WRITE.format(sig=int(sig)), [*args, "-o", str(target)],
+                     tmp_path)
     assert done.returncode == status, done.stderr
     assert done.stderr.strip() == f"gyrovib: {word}"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out.txt"]
@@ -120,12 +134,13 @@ LATE = [("schema", s) for s in SIGNALS] + [("analyze", signal.SIGTERM),
 
 @pytest.mark.parametrize(("command", "sig"), LATE, ids=[f"{c}-{s.name}" for c, s in LATE])
 def test_a_signal_once_the_output_is_in_place_is_a_success(
-        tmp_path: Path, command: str, sig: signal.Signals) -> None:
+        tmp_path: Path, small: Path, command: str, sig: signal.Signals) -> None:
     # it used to exit 130/143 with the new output already in place
     target = tmp_path / "out.txt"
     target.write_text("previous\n")
-    done = _run_with(AFTER_THE_RENAME.format(sig=int(sig)),
-                     [*COMMANDS[command], "-o", str(target)], tmp_path)
+    args = [a.format(small=small) for a in COMMANDS[command]]
+    done = _run_with(AFTER_THE_RENAME.format(sig=int(sig)), [*args, "-o", str(target)],
+                     tmp_path)
     assert done.returncode == 0, done.stderr
     assert SIGNALS[sig][1] not in done.stderr
     assert target.read_text() != "previous\n" and len(target.read_text()) > 100
@@ -163,14 +178,14 @@ def test_a_hang_up_during_a_long_computation_exits_129(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("command", [["schema"], ["analyze", "--format", "csv"],
-                                     ["report", "--budget", "0.01"],
+                                     ["report", "{small}", "--budget", "0.01"],
                                      ["bounds", "--budget", "0.01"]],
                          ids=lambda c: c[0])
-def test_an_output_name_too_long_is_bad_usage_with_the_name(tmp_path: Path,
+def test_an_output_name_too_long_is_bad_usage_with_the_name(tmp_path: Path, small: Path,
                                                            command: list[str]) -> None:
     # used to be an internal error, exit 3: "OSError: File name too long"
     name = str(tmp_path / ("x" * 300))
-    result = invoke(*command, "-o", name)
+    result = invoke(*(a.format(small=small) for a in command), "-o", name)
     assert result.exit_code == 2, result.stderr
     assert result.stderr == f"gyrovib: error: --output: cannot write {name!r}: " \
         "File name too long\n"
@@ -220,10 +235,10 @@ def test_an_output_where_no_file_can_be_created_is_bad_usage_with_the_name() -> 
 FORGED = "x\ngyrovib: error: forged\x1b[31m\u2028y"
 
 
-def test_a_name_with_a_newline_cannot_forge_a_line(tmp_path: Path) -> None:
+def test_a_name_with_a_newline_cannot_forge_a_line(tmp_path: Path, small: Path) -> None:
     # report's "wrote NAME" printed the name as it is: two lines, the second forged
     target = tmp_path / f"{FORGED}.html"
-    result = invoke("report", "--budget", "0.01", "-o", target)
+    result = invoke("report", small, "--budget", "0.01", "-o", target)
     assert result.exit_code == 0, result.stderr
     assert target.exists()
     assert result.stderr.count("\n") == 1 and len(result.stderr.splitlines()) == 1
@@ -247,17 +262,18 @@ def test_printable_escapes_line_separators_and_bidirectional_controls() -> None:
     (["validate", "{good}"], 0),
     (["analyze", "--no-such-option"], 2),
     (["bounds", "{bad}", "--budget", "0.01"], 2),
-    (["report", "--budget", "0.01", "-o", "{out}"], 0),
+    (["report", "{small}", "--budget", "0.01", "-o", "{out}"], 0),
     (["analyze", "-o", "{out}", "--sensor", "nope"], 2),
 ])
-def test_an_unwritable_standard_error_keeps_the_status(tmp_path: Path, args: list[str],
-                                                       status: int) -> None:
+def test_an_unwritable_standard_error_keeps_the_status(tmp_path: Path, small: Path,
+                                                       args: list[str], status: int) -> None:
     # a message that could not be written used to end in exit 1 ("requirement not met")
     bad = tmp_path / "bad.yaml"
     bad.write_text(HEADER + "sensors: 3\n" + PROFILES)
     good = tmp_path / "good.yaml"
     good.write_text(HEADER + PROFILES)
-    filled = [a.format(bad=bad, good=good, out=tmp_path / "out.html") for a in args]
+    filled = [a.format(bad=bad, good=good, out=tmp_path / "out.html", small=small)
+              for a in args]
     with open("/dev/full", "w") as full:
         done = subprocess.run([sys.executable, "-m", "gyrovib", *filled], stdout=subprocess.PIPE,
                               stderr=full, env=clean_env(), timeout=120, check=False)

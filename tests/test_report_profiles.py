@@ -4,16 +4,28 @@ rotor-harmonics was "no vibration" without a chart, linear spectra were never pl
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import pytest
+
 from tests.conftest import invoke
 
 
-def test_the_report_describes_and_plots_every_profile(tmp_path) -> None:
-    # every bundled profile gets a chart of its vibration: rotor-harmonics (locked
-    # orders only) its orders at n·f0, the shaker tests their linear PSD in g²/Hz
-    target = tmp_path / "all.html"
+@pytest.fixture(scope="module")
+def bundled_html(tmp_path_factory: pytest.TempPathFactory) -> str:
+    """`gyrovib report --budget 10deg/h -o all.html` of the bundled catalogues, run once
+    for the module: both tests read the same command's file (the report is a pure
+    function of the catalogues and the budget), so one run checks what two did."""
+    target: Path = tmp_path_factory.mktemp("report") / "all.html"
     done = invoke("report", "--budget", "10deg/h", "-o", str(target))
     assert done.exit_code == 0, done.stderr
-    html = target.read_text(encoding="utf-8")
+    return target.read_text(encoding="utf-8")
+
+
+def test_the_report_describes_and_plots_every_profile(bundled_html: str) -> None:
+    # every bundled profile gets a chart of its vibration: rotor-harmonics (locked
+    # orders only) its orders at n·f0, the shaker tests their linear PSD in g²/Hz
+    html = bundled_html
     sections = html.split('<section class="profile"')[1:]
     assert len(sections) == 14
     for section in sections:
@@ -29,12 +41,10 @@ def test_the_report_describes_and_plots_every_profile(tmp_path) -> None:
     assert len(items) == len(set(items)) <= 5
 
 
-def test_the_matrix_splits_to_fit_a_printed_page(tmp_path) -> None:
+def test_the_matrix_splits_to_fit_a_printed_page(bundled_html: str) -> None:
     # 14 profiles: two pass/fail tables of at most 7 profile columns, each with the
     # sensor and overall columns, on A4 landscape pages
-    target = tmp_path / "all.html"
-    invoke("report", "--budget", "10deg/h", "-o", str(target))
-    html = target.read_text(encoding="utf-8")
+    html = bundled_html
     assert "@page { size: A4 landscape;" in html
     matrices = html.split('<table class="matrix">')[1:]
     assert len(matrices) == 2
