@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike
 
 from gyrovib.core.harmonics import (
     MAX_MIXTURE_NODES,
-    MAX_TABLE,
+    MAX_SHIFT_TABLE,
     LockedGroup,
     combine_moments,
     group_moments,
@@ -231,7 +231,7 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
             omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
             acceleration=_acceleration(acceleration, w.shape),
         )
-    if s3 > 0 and (len(locked) > 1 or (a.size and table_size(a, s3) <= MAX_TABLE)):
+    if s3 > 0 and (len(locked) > 1 or (a.size and table_size(a, s3) <= MAX_SHIFT_TABLE)):
         # tones and the Gaussian part tabulated once, the groups' periods on a grid (one
         # group with tones on a random part too narrow for the table: the group's grid
         # of direct evaluations below, as before)

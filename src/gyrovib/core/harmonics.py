@@ -539,7 +539,7 @@ _STENCIL = 8
 
 #: Most values of E_Y in the table of :func:`_excess_table` ((Σa + 40σ)·16/σ): a
 #: Gaussian part narrow against the tones needs more (up to ~0.25 ms each).
-MAX_TABLE = 1 << 15
+MAX_SHIFT_TABLE = 1 << 15
 
 
 def table_size(amplitudes: ArrayLike, sigma: float) -> float:
@@ -633,13 +633,13 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
     near = np.abs(flat) < peak + math.fsum(a.tolist()) + 40.0 * sigma
     total = math.prod(nodes) * int(np.count_nonzero(near))
-    if near.any() and table_size(a, sigma) > MAX_TABLE:
+    if near.any() and table_size(a, sigma) > MAX_SHIFT_TABLE:
         raise ModelError(
             reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
             f"with {a.size} independent tone{'s' if a.size != 1 else ''} (largest "
             f"{float(a[0]) if a.size else 0.0:.4g}) on a random part of RMS {sigma:.4g} would "
             f"tabulate {table_size(a, sigma):,.0f} values of the tones' excess on the random "
-            f"part (16 per σ), more than the {MAX_TABLE:,} gyrovib allows: the random part "
+            f"part (16 per σ), more than the {MAX_SHIFT_TABLE:,} gyrovib allows: the random part "
             "is too narrow against the tones to matter, yet too large to drop; drop it, "
             "or give the tones as orders of a group")
     if total > MAX_MIXTURE_NODES:
