@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING, Any
 from gyrovib.render.common import dumps, header
 
 if TYPE_CHECKING:
-    from gyrovib.api.commands.recording import RecordingAnalysis, RecordingFit
+    from gyrovib.api.commands.recording import RecordingAnalysis
+    from gyrovib.api.recording_results import RecordingFit
 
 AXES = ("X", "Y", "Z")
 _TERMS = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")

@@ -13,13 +13,20 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.recording_results import (
+    AxisHonesty,
+    FittedHarmonics,
+    FittedPart,
+    FittedTone,
+    RecordingFit,
+)
 from gyrovib.api.recordings import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.core.transmissibility import FloatArray, Table
 from gyrovib.errors import GyrovibError, OptionError, Problem
@@ -38,80 +45,6 @@ NEGLIGIBLE = 1e-10
 _LINE_FLOOR = 2.0
 
 
-@dataclass(frozen=True, eq=False, repr=False)
-class AxisHonesty(Frozen):
-    """One axis of the honesty table: variance of x (unit²), the fraction of it the
-    fitted profile holds, skewness and excess kurtosis of x (NaN: not recorded)."""
-
-    variance: float
-    held: float
-    skewness: float
-    excess_kurtosis: float
-
-
-@dataclass(frozen=True, eq=False, repr=False)
-class FittedTone(Frozen):
-    """A tone: frequency (Hz), amplitude (3,) and phase (3,) in degrees."""
-
-    frequency: float
-    amplitude: FloatArray
-    phase: FloatArray
-
-
-@dataclass(frozen=True, eq=False, repr=False)
-class FittedHarmonics(Frozen):
-    """A phase-locked group: fundamental (Hz), orders, amplitudes (orders, 3)."""
-
-    fundamental: float
-    orders: tuple[int, ...]
-    amplitude: FloatArray
-    phase: FloatArray
-
-
-@dataclass(frozen=True, eq=False, repr=False)
-class FittedPart(Frozen):
-    """The fitted vibration of one kind (rate in deg/s, or acceleration in g)."""
-
-    tones: tuple[FittedTone, ...]
-    harmonics: tuple[FittedHarmonics, ...]
-    psd: tuple[Table | None, Table | None, Table | None]
-    coherence: FloatArray
-    frequencies: FloatArray
-    measured: FloatArray
-    median: FloatArray
-    variance: FloatArray
-    held: FloatArray
-
-
-@dataclass(frozen=True, eq=False, repr=False)
-class RecordingFit(Frozen):
-    """What :func:`fit_recording` found (rates deg/s, accelerations g).
-
-    ``mission_rates`` (bins, 3) and ``mission_durations`` (bins,) s: the
-    histogram of Ω_K3 (each bin's mean Ω_K3, the time means of Ω_K1, Ω_K2);
-    ``yaml``: the catalogue text (profile ``profile_id``) with provenance.
-    """
-
-    file: str
-    sha256: str
-    samples: int
-    fs: float
-    crossover: float
-    segments: int
-    duration: float
-    profile_id: str
-    rate: FloatArray
-    mission_rates: FloatArray
-    mission_durations: FloatArray
-    angular: FittedPart
-    linear: FittedPart | None
-    honesty: tuple[AxisHonesty, AxisHonesty, AxisHonesty]
-    rate_axes: tuple[bool, bool, bool]
-    warnings: tuple[str, ...]
-    yaml: str
-    peak: FloatArray = field(default_factory=lambda: np.zeros(0))
-    moments: dict[Any, FloatArray] = field(default_factory=dict)
-    g2_moments: FloatArray | None = None
 
 
 def _check(crossover: float, resolution: float, threshold: float, breakpoints: int) -> None:
