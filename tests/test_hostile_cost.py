@@ -215,17 +215,20 @@ def test_a_signal_acts_within_a_second_inside_long_numeric_work(tmp_path: Path, 
                      "      nonlinearity: {value: 0.1, unit: \"%FS\", fit: least-squares, "
                      "measure: max, of: range}\n")
     (tmp_path / "s.yaml").write_text("".join(lines), encoding="utf-8")
+    # eight profiles (tones and random parts at different carrier rates), so the run
+    # outlasts the wait below by far on a fast machine too (about 2 s a profile pair)
     (tmp_path / "p.yaml").write_text(
-        "gyrovib: 1\nunits: {rate: deg/s}\nprofiles:\n"
-        "  - id: tone\n    rate: [0, 0, 0.5]\n    harmonic:\n"
-        "      - {frequency: 95, amplitude: [1.2, 0.8, 2.5]}\n"
-        "  - id: random\n    rate: [0, 0, 2]\n    random: {rms: [0.5, 0.5, 1.0]}\n",
+        "gyrovib: 1\nunits: {rate: deg/s}\nprofiles:\n" + "".join(
+            f"  - id: tone{k}\n    rate: [0, 0, {0.5 + k}]\n    harmonic:\n"
+            "      - {frequency: 95, amplitude: [1.2, 0.8, 2.5]}\n"
+            f"  - id: random{k}\n    rate: [0, 0, {2 + k}]\n    random: {{rms: [0.5, 0.5, 1.0]}}\n"
+            for k in range(4)),
         encoding="utf-8")
     process = subprocess.Popen(
         [sys.executable, "-m", "gyrovib", "select", "s.yaml", "p.yaml", "--budget", "1",
          "--format", "csv", "-o", str(tmp_path / "out.csv")],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
-    time.sleep(3.0)
+    time.sleep(2.0)
     assert process.poll() is None, "finished before the signal"
     sent = time.perf_counter()
     process.send_signal(sig)

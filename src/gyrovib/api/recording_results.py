@@ -1,4 +1,4 @@
-"""What fitting a recording gives (MODEL.md section 13): the fitted profile's parts,
+"""What fitting a recording gives (docs/model.md section 13): the fitted profile's parts,
 the honesty of the fit per axis, the fitted mission.
 
 Result types of the recording view, apart from :mod:`gyrovib.api.commands.recording`
