@@ -260,6 +260,21 @@ def test_analyze_says_the_vre_is_left_out(catalog: str) -> None:
                    for w in result.warnings.get((result.sensors.index("with-vre"), 0), ()))
 
 
+
+def test_analyze_says_a_g2_figure_not_given_is_left_out(coefficient_catalog: str) -> None:
+    # the coefficient sensor with neither g2_sensitivity nor vre: its g² term under
+    # 'shaker' is unknown, and analyze says so (the value is a lower bound, "≥");
+    # one that states its figure, or a profile without linear vibration, gets no note
+    result = gyrovib.analyze(coefficient_catalog)
+    shaker, calm = result.profiles.index("shaker"), result.profiles.index("calm")
+    no_g2, with_g2 = result.sensors.index("no-g2"), result.sensors.index("with-g2")
+    assert any("gives no g² sensitivity" in w for w in result.warnings[(no_g2, shaker)])
+    for cell in ((with_g2, shaker), (no_g2, calm)):
+        assert not any("g² sensitivity" in w for w in result.warnings.get(cell, ()))
+    table = invoke("analyze", coefficient_catalog, "--matrix").stdout
+    assert "≥" in table and "not given" in table
+
+
 # ---------------------------------------------------------------- missions
 # The same parts over missions (docs/model.md section 12): 'trip' flies a quiet tone
 # along x3 only (a = (0, 0, 2) deg/s: C31 = C32 = 0, no linear vibration) for 100 s,

@@ -385,6 +385,31 @@ def place_analysis(parts: dict[str, FloatArray], spec: SpecResults, *, numeric: 
 NO_VRE_NOTE = ("spec-form sensor: the datasheet publishes no VRE, so the g² term of this "
                "profile's linear vibration is left out (the figure is unknown, not zero: "
                "`select` calls such a part unverified)")
+NO_G2_NOTE = ("the sensor gives no g² sensitivity (g2_sensitivity or vre), so the g² term of "
+              "this profile's linear vibration is left out (the figure is unknown, not zero: "
+              "`select` calls such a sensor unverified; write `vre: 0` for a known zero)")
+#: The notes that make a value a lower bound: a term left out because its figure is unknown.
+UNKNOWN_TERM_NOTES = (NO_VRE_NOTE, NO_G2_NOTE)
+
+
+def g2_unknown(sensor: Any) -> bool:
+    """Whether a coefficient-form sensor gives no g² figure at all (neither
+    ``g2_sensitivity`` nor ``vre``): its g² sensitivity is unknown, not zero
+    (docs/model.md section 8). Datasheet parts are judged by their VRE figure."""
+    return sensor.specs is None and sensor.g2_sensitivity is None and sensor.vre is None
+
+
+def with_unknown_g2(warnings: dict[tuple[int, int], tuple[str, ...]], sensors: Sequence[Any],
+                    linear: Sequence[bool]) -> dict[tuple[int, int], tuple[str, ...]]:
+    """``warnings`` plus :data:`NO_G2_NOTE` for each coefficient-form sensor without a g²
+    figure (:func:`g2_unknown`) under each profile with linear vibration (``linear``)."""
+    for i, entry in enumerate(sensors):
+        if not g2_unknown(entry.sensor):
+            continue
+        for j, shaken in enumerate(linear):
+            if shaken:
+                warnings[(i, j)] = (*warnings.get((i, j), ()), NO_G2_NOTE)
+    return warnings
 
 
 def with_cross_axis(warnings: dict[tuple[int, int], tuple[str, ...]],

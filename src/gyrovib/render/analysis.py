@@ -9,7 +9,7 @@ import numpy as np
 
 from gyrovib.api import AnalysisResult
 from gyrovib.api.results import JSON_TERMS as _JSON_TERMS
-from gyrovib.api.specs import NO_VRE_NOTE
+from gyrovib.api.specs import UNKNOWN_TERM_NOTES
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
@@ -535,8 +535,8 @@ def _matrix(result: AnalysisResult, width: int | None = None, color: bool = Fals
         for i in range(len(result.sensors)):
             value = e.total[i, j] if result.source(i) == "specs" else e.rms[i, j]
             # a term left out because its figure is unknown: the value is a lower bound
-            at_least = "≥" if any(w == NO_VRE_NOTE for w in result.warnings.get((i, j), ())) \
-                else ""
+            at_least = "≥" if any(w in UNKNOWN_TERM_NOTES
+                                  for w in result.warnings.get((i, j), ())) else ""
             text = Text(f"{at_least}{fmt(abs(float(value)), 3)} "
                         f"{dominant_term(result, i, j)}".rstrip())
             if (i, j) in result.warnings:
@@ -556,9 +556,9 @@ def _matrix(result: AnalysisResult, width: int | None = None, color: bool = Fals
               "vibration's VRE term, k3·M3, k5·M5, or Δ(q)·Ω^q).")
     if spec:
         legend += " " + _SPECS_NOTE
-    if any(NO_VRE_NOTE in ws for ws in result.warnings.values()):
-        legend += (" ≥: at least this much; a term whose datasheet figure is not published "
-                   "is left out.")
+    if any(w in UNKNOWN_TERM_NOTES for ws in result.warnings.values() for w in ws):
+        legend += (" ≥: at least this much; a term whose figure is unknown (not published, "
+                   "or not given) is left out.")
     out.append(Text(legend, style="dim"))
     if result.saturated is not None and result.saturated.any():
         out.append(Text(_saturation_note(result), style="red"))

@@ -137,8 +137,9 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
             parts, stderr = _numeric(prepared, spec, samples, seed, progress)
         else:
             parts, worst = _closed_form(study, prepared, datasheet, method, spec)
-        warnings = specs.with_cross_axis(_saturation(prepared, unit), spec,
-                                         _shaken(prepared))
+        warnings = specs.with_unknown_g2(
+            specs.with_cross_axis(_saturation(prepared, unit), spec, _shaken(prepared)),
+            prepared.sensors, _shaken(prepared))
         saturated = saturation(prepared).saturated
         error = to_unit(VibrationError(**parts), unit)
         out_scale = units.scale(unit)

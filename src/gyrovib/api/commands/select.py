@@ -464,9 +464,7 @@ def _unknown_g2(prepared: Prepared, criterion: str, passed: NDArray[np.bool_], b
         if prepared.linear else [0.0] * len(prepared.profiles)
     s = units.scale(unit)
     for i, entry in enumerate(prepared.sensors):
-        sensor = entry.sensor
-        if (sensor.specs is not None or sensor.g2_sensitivity is not None
-                or sensor.vre is not None):
+        if not specs.g2_unknown(entry.sensor):
             continue
         best: tuple[float, int] | None = None
         for j, ms in enumerate(msq):
