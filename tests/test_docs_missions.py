@@ -1,42 +1,25 @@
 """docs/missions.md shows gyrovib's own output: each ``$ gyrovib ...`` console block is
-what the command prints at 100 columns. When the bundled catalogues change, regenerate
-the page's blocks."""
+what the command prints (the conventions and the tool that regenerates the blocks:
+tests/docpages.py)."""
 
 from __future__ import annotations
 
-import os
-import re
-import shlex
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
+from tests.docpages import ROOT, assert_shows, console_blocks, run_shown
+
 PAGE = ROOT / "docs" / "missions.md"
 
 
-def console_blocks() -> list[tuple[str, str]]:
-    return re.findall(r"```console\n\$ (gyrovib [^\n]*)\n(.*?)```",
-                      PAGE.read_text(encoding="utf-8"), flags=re.S)
-
-
 def test_the_page_has_its_examples() -> None:
-    commands = [c for c, _ in console_blocks()]
+    commands = [c for c, _ in console_blocks(PAGE)]
     assert any(c.startswith("gyrovib mission") and "--angle-budget" in c for c in commands)
     assert any(c.startswith("gyrovib select --mission") for c in commands)
 
 
-@pytest.mark.parametrize(("command", "shown"), console_blocks())
+@pytest.mark.parametrize(("command", "shown"), console_blocks(PAGE))
 def test_console_block_is_the_output(command: str, shown: str) -> None:
-    env = {**os.environ, "COLUMNS": "100", "NO_COLOR": "1"}
-    env.pop("FORCE_COLOR", None)
-    done = subprocess.run([sys.executable, "-m", "gyrovib", *shlex.split(command)[1:]],
-                          cwd=ROOT, capture_output=True, text=True, env=env, timeout=120,
-                          check=False)
-    assert done.returncode in (0, 1), done.stderr
-    assert done.stdout == shown, f"regenerate {PAGE.name}: {command}"
+    assert_shows(PAGE, command, shown, run_shown(command))
 
 
 def test_the_segment_table_is_the_json() -> None:

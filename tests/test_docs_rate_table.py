@@ -13,24 +13,18 @@ from __future__ import annotations
 import doctest
 import os
 import re
-import shlex
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
+from tests.docpages import ROOT, assert_shows, console_blocks, run_shown
+
 PAGE = ROOT / "docs" / "rate-table.md"
 
 
-def console_blocks() -> list[tuple[str, str]]:
-    return re.findall(r"```console\n\$ (gyrovib [^\n]*)\n(.*?)```",
-                      PAGE.read_text(encoding="utf-8"), flags=re.S)
-
-
 def test_the_page_has_its_examples() -> None:
-    commands = [c for c, _ in console_blocks()]
+    commands = [c for c, _ in console_blocks(PAGE)]
     assert any(c.startswith("gyrovib fit") and "-o -" not in c for c in commands)
     assert any(c.startswith("gyrovib fit") and c.endswith("-o -") for c in commands)
     # the page ends with the purchase decision: the lot judged by its yield
@@ -55,23 +49,9 @@ def test_the_quoted_rms_yield_is_the_output() -> None:
             f'[{low}…, {high}…], "draws": 100000}}') in text
 
 
-@pytest.mark.parametrize(("command", "shown"), console_blocks())
+@pytest.mark.parametrize(("command", "shown"), console_blocks(PAGE))
 def test_console_block_is_the_output(command: str, shown: str) -> None:
-    env = {**os.environ, "COLUMNS": "100", "NO_COLOR": "1"}
-    env.pop("FORCE_COLOR", None)
-    done = subprocess.run([sys.executable, "-m", "gyrovib", *shlex.split(command)[1:]],
-                          cwd=ROOT, capture_output=True, text=True, env=env, timeout=120,
-                          check=False)
-    assert done.returncode == 0, done.stderr
-    pieces = ("\n" + shown).split("\n...\n")
-    out = done.stdout
-    assert out.startswith(pieces[0].lstrip("\n")), f"regenerate {PAGE.name}: {command}"
-    assert out.endswith(pieces[-1]), f"regenerate {PAGE.name}: {command}"
-    at = 0
-    for piece in pieces:
-        found = out.find(piece.strip("\n"), at)
-        assert found >= 0, f"regenerate {PAGE.name}: {command}: {piece[:80]!r}"
-        at = found + len(piece.strip("\n"))
+    assert_shows(PAGE, command, shown, run_shown(command, codes=(0,)))
 
 
 def test_python_examples_run(monkeypatch: pytest.MonkeyPatch) -> None:
