@@ -84,6 +84,7 @@ _WHERE: dict[str, str] = {
     "PASS_RTOL": "commands.select",
     "mission": "commands.mission",
     "MissionResult": "mission_results",
+    "LotYields": "yields",
     "place_profile": "placement",
     "place_catalog": "placement",
     # catalogue types, for annotations

@@ -158,6 +158,9 @@ from gyrovib.api.study import (
 from gyrovib.api.study import (
     prepare as prepare,
 )
+from gyrovib.api.yields import (
+    LotYields as LotYields,
+)
 from gyrovib.catalog.loader import (
     Catalog as Catalog,
 )
@@ -185,6 +188,7 @@ __all__ = [
     "Catalog",
     "FitResult",
     "Limit",
+    "LotYields",
     "MissionResult",
     "Prepared",
     "ProfileEntry",

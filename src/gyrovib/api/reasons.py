@@ -20,8 +20,7 @@ from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
 
 if TYPE_CHECKING:
-    from gyrovib.api import SelectionResult
-    from gyrovib.api.yields import LotYields
+    from gyrovib.api import LotYields, SelectionResult
 
 
 def coefficient_unit(name: str, unit: str) -> str:

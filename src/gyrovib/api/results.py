@@ -28,8 +28,8 @@ from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 if TYPE_CHECKING:
+    from gyrovib.api import LotYields
     from gyrovib.api.spec_bounds import DatasheetBounds
-    from gyrovib.api.yields import LotYields
     from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 
 #: The keys of ``additive_terms`` in JSON, CSV, tables and frames, in this order:
