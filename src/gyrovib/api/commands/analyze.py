@@ -18,6 +18,7 @@ from gyrovib.api.prepare import (
     check_finite,
     float_guard,
     profile_problem,
+    without,
 )
 from gyrovib.api.results import AnalysisResult
 from gyrovib.api.study import Study, check_peak_factor
@@ -274,7 +275,7 @@ def _worst_phases(prepared: Prepared, group: Group, parts: dict[str, FloatArray]
     out: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
     coeffs, rates = prepared.coefficients, prepared.rates
     # a datasheet row is the worst case over its envelope, not one polynomial's phases
-    idx = group.index if spec is None else np.setdiff1d(group.index, spec.index)
+    idx = group.index if spec is None else without(group.index, spec.index)
     if idx.size == 0:
         return out
     for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):

@@ -17,7 +17,14 @@ from gyrovib.api.commands.bounds import (
 )
 from gyrovib.api.convert import bound_factors
 from gyrovib.api.evaluate import errors, saturation, worst_case
-from gyrovib.api.prepare import Group, Prepared, check_bounds, check_finite, float_guard
+from gyrovib.api.prepare import (
+    Group,
+    Prepared,
+    check_bounds,
+    check_finite,
+    float_guard,
+    without,
+)
 from gyrovib.api.reasons import saturation_reasons
 from gyrovib.api.results import Limit, SelectionResult
 from gyrovib.api.study import Study, check_peak_factor
@@ -508,7 +515,7 @@ def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray,
     from gyrovib.core.phases import worst_phase_error
 
     # a datasheet row is the worst case over its envelope already
-    idx = group.index if spec is None else np.setdiff1d(group.index, spec.index)
+    idx = group.index if spec is None else without(group.index, spec.index)
     if idx.size == 0:
         return
     for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
