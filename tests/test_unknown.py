@@ -329,6 +329,34 @@ def test_a_mission_with_linear_vibration_leaves_a_part_without_vre_unverified(
         1.0e-3 * 3.0 * 10.0 / 110.0, rel=1e-9)
 
 
+def test_a_mission_leaves_a_coefficient_sensor_without_g2_unverified(tmp_path: Path) -> None:
+    # COEFFICIENTS' parts over a mission: 100 s 'calm' (no linear vibration), then 10 s
+    # 'shaker' (σ = 1 g on each axis). 'no-g2' gives no g² figure: unknown there, as
+    # select reads it (test above); 'with-g2' states one; a mission that never shakes
+    # leaves nothing unknown
+    path = tmp_path / "coefficient-flights.yaml"
+    path.write_text(COEFFICIENTS + """missions:
+  - id: shaken
+    segments:
+      - {profile: calm, duration: 100}
+      - {profile: shaker, duration: 10}
+  - id: still
+    segments:
+      - {profile: calm, duration: 60}
+""", encoding="utf-8")
+    _, doc = mission_json(str(path), "--budget", "1")
+    rows = {(r["sensor"], r["mission"]): r for r in doc["mission"]}
+    cell = rows[("no-g2", "shaken")]
+    assert (cell["pass"], cell["status"], cell["unknown"]) == (False, "unverified", ["vre"])
+    assert "g² sensitivity not given" in cell["reason"]
+    assert rows[("with-g2", "shaken")]["status"] == "pass"
+    assert rows[("no-g2", "still")]["status"] == "pass"
+    zero = invoke("mission", str(path), "--budget", "1", "--format", "json",
+                  "--assume-unknown", "zero")
+    assert {(r["sensor"], r["mission"]): r["status"] for r in json.loads(zero.stdout)[
+        "mission"]}[("no-g2", "shaken")] == "pass"
+
+
 def test_cross_axis_vibration_in_a_segment_leaves_m31_unknown(flights: str) -> None:
     _, doc = mission_json(flights, "--mission", "wobble")
     rows = {r["sensor"]: r for r in doc["mission"]}

@@ -80,7 +80,7 @@ class MissionRow(Frozen):
             return None
         from gyrovib.api.reasons import unverified_text
 
-        return unverified_text(self.unknown)
+        return unverified_text(self.unknown, spec=self.source == "specs")
 
 
 @dataclass(frozen=True, eq=False, repr=False)

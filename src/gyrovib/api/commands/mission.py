@@ -269,7 +269,8 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
                 unit: str) -> tuple[dict[tuple[int, int], float],
                                     dict[tuple[int, int], tuple[str, ...]]]:
     """(sensor, run) → a spec-form sensor's worst mean error over the whole mission, and
-    the unpublished figures that can decide it in some segment (none: no entry).
+    the unknown figures that can decide it in some segment (none: no entry): a
+    datasheet part's unpublished ones, and a coefficient sensor's g² figure not given.
 
     One :func:`~gyrovib.core.envelope.worst_case` per sensor group and run, on the
     mission's functional Σ T_s c_s / Σ T_s and g² moment Σ T_s S_s / Σ T_s; the
@@ -277,15 +278,23 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     run's segments, merged. The datasheet sensors are ``study`` narrowed to them (its
     vibrations computed once for the analysis and for this).
     """
-    rows = [i for i, src in enumerate(sources) if src == "specs"]
-    if not rows:
-        return {}, {}
     from gyrovib.api import specs
-    from gyrovib.api.prepare import float_guard
-    from gyrovib.core.envelope import worst_case
 
     out: dict[tuple[int, int], float] = {}
     unknown: dict[tuple[int, int], tuple[str, ...]] = {}
+    # a coefficient-form sensor that gives no g² figure: its g² term is unknown, not
+    # zero, in a run with linear vibration in some segment (as select reads it)
+    for i, e in enumerate(study.sensors):
+        if sources[i] != "specs" and specs.g2_unknown(e.sensor):
+            for r, run in enumerate(runs):
+                if any(study.linear[c] is not None for c in run.columns):
+                    unknown[(i, r)] = ("vre",)
+    rows = [i for i, src in enumerate(sources) if src == "specs"]
+    if not rows:
+        return out, unknown
+    from gyrovib.api.prepare import float_guard
+    from gyrovib.core.envelope import worst_case
+
     where = {e.sensor.id: i for i, e in enumerate(study.sensors)}
     scale = units.scale(unit)
     with float_guard():
