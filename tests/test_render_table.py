@@ -48,6 +48,12 @@ def expected_rows(result: api.AnalysisResult, j: int) -> list[list[str]]:
         scale = max((abs(v) for v in values if math.isfinite(v)), default=0.0)
         cells = ["0" if math.isfinite(v) and abs(v) < 1e-12 * scale else fmt(v)
                  for v in values]
+        if render.unknown_term(result, i, j):
+            # the g² term of a sensor whose g² figure is unknown reads "?", not 0
+            # (the unknown-figure notes of gyrovib.api.specs)
+            at = [t for k, t in enumerate(render.JSON_TERMS)
+                  if k in render._shown(bool(result.has_linear), odd)].index("g2")
+            cells[at] = "?"
         if result.stderr is not None:
             cells.insert(-1, fmt(result.stderr[i, j], 2))
         rows.append(cells)

@@ -273,6 +273,13 @@ def test_analyze_says_a_g2_figure_not_given_is_left_out(coefficient_catalog: str
         assert not any("g² sensitivity" in w for w in result.warnings.get(cell, ()))
     table = invoke("analyze", coefficient_catalog, "--matrix").stdout
     assert "≥" in table and "not given" in table
+    # the per-term forms: its g² term reads "?", never 0 (the stated one is a number)
+    detail = invoke("analyze", coefficient_catalog, "--profile", "shaker",
+                    "--format", "markdown").stdout
+    rows = {line.split("|")[1].split()[0]: line.split("|") for line in detail.splitlines()
+            if line.startswith("| no-g2") or line.startswith("| with-g2")}
+    g2 = detail.splitlines()[2].split("|").index(" Δ0 g² ")
+    assert rows["no-g2"][g2].strip() == "?" and rows["with-g2"][g2].strip() not in ("?", "0")
 
 
 # ---------------------------------------------------------------- missions

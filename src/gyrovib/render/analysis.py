@@ -21,8 +21,17 @@ JSON_TERMS = _JSON_TERMS
 #: always in JSON (0 where x3 is symmetric), in tables only where a profile has them.
 ODD_TERMS: tuple[str, ...] = ("k3", "k5")
 _LABELS = dict(zip(JSON_TERMS, (*_ADDITIVE_LABELS, "Δ0 g²", "Δ0 k3", "Δ0 k5"), strict=True))
+#: Where Δ0(6), the g² term, stands among :data:`JSON_TERMS`.
+G2_INDEX = JSON_TERMS.index("g2")
 #: The mark of a saturating sensor in tables (docs/model.md section 9).
 SATURATED_MARK = "SAT"
+
+
+def unknown_term(result: AnalysisResult, i: int, j: int) -> bool:
+    """Whether a term of sensor ``i`` under profile ``j`` is left out because its figure
+    is unknown (a VRE not published, a g² sensitivity not given): the value shown is
+    then a lower bound, and the term itself reads "?", never 0."""
+    return any(w in UNKNOWN_TERM_NOTES for w in result.warnings.get((i, j), ()))
 
 
 def _shown(linear: bool, odd: bool) -> tuple[int, ...]:
@@ -292,12 +301,17 @@ def to_markdown(result: AnalysisResult) -> str:
         mark = ""
         if (i, j) in result.warnings:
             mark = " ⚠" + ",".join(str(number_of[w]) for w in result.warnings[(i, j)])
+        numbers = row_cells([*_terms(result, i, j, odd), float(e.additive[i, j]),
+                             float(e.multiplicative[i, j]), float(e.total[i, j]),
+                             float(e.rms[i, j])])
+        shown = _shown(result.has_linear, odd)
+        if G2_INDEX in shown and unknown_term(result, i, j):
+            numbers[shown.index(G2_INDEX)] = "?"  # not given or not published: unknown
         rows.append([_lot_name(result, i) + mark, result.profiles[j], fmt(result.rates[j, 2]),
-                     *(fmt(x) for x in _terms(result, i, j, odd)), fmt(e.additive[i, j]),
-                     fmt(e.multiplicative[i, j]), fmt(e.total[i, j]),
+                     *numbers[:-1],
                      *([fmt(extra[i, j], 2)] if extra is not None else []),
                      *([_u_text(result, i, j)] if result.uncertainty is not None else []),
-                     fmt(e.rms[i, j]),
+                     numbers[-1],
                      "yes" if _saturated(result, i, j) else "no"])
     text = (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
             + markdown_table(head, rows))
@@ -481,6 +495,8 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
             values = [*additive_terms[i][j], *extra_terms[i][j]]
             numbers = row_cells([*(values[k] for k in shown), additive[i][j],
                                  multiplicative[i][j], total[i][j], rms[i][j]])
+            if G2_INDEX in shown and unknown_term(result, i, j):
+                numbers[shown.index(G2_INDEX)] = "?"  # not given or not published: unknown
             table.add_row(name, *numbers[:-1],
                           *([fmt(stderr[i][j], 2)] if stderr is not None else []),
                           *([_u_text(result, i, j)] if result.uncertainty is not None else []),
@@ -535,8 +551,7 @@ def _matrix(result: AnalysisResult, width: int | None = None, color: bool = Fals
         for i in range(len(result.sensors)):
             value = e.total[i, j] if result.source(i) == "specs" else e.rms[i, j]
             # a term left out because its figure is unknown: the value is a lower bound
-            at_least = "≥" if any(w in UNKNOWN_TERM_NOTES
-                                  for w in result.warnings.get((i, j), ())) else ""
+            at_least = "≥" if unknown_term(result, i, j) else ""
             text = Text(f"{at_least}{fmt(abs(float(value)), 3)} "
                         f"{dominant_term(result, i, j)}".rstrip())
             if (i, j) in result.warnings:
