@@ -168,13 +168,27 @@ def yield_document(estimate: YieldEstimate, index: tuple[int, ...] = ()) -> dict
 # --------------------------------------------------------------------------- catalogue YAML
 
 
-def yaml_number(value: float) -> str:
-    """A float as YAML 1.2 and 1.1 both read it (12 significant digits, ``1.5e-06`` with
-    a dot in the mantissa: ``1e-06`` would be a string to YAML 1.1)."""
+#: Significant digits of a standard uncertainty in the catalogue ``-o`` writes; a value is
+#: written to the same decimal place as its uncertainty (GUM 7.2.6 keeps two; one more
+#: digit guards the rounding). Beyond them the digits are the machine's rounding, not the data's.
+SIGMA_DIGITS = 3
+#: Decimal places of a written correlation: rounding each of the at most 45 pairs by
+#: 5e-10 moves the matrix's eigenvalues by less than gyrovib.models' PSD_TOLERANCE (1e-8),
+#: so a valid correlation matrix stays valid once written.
+CORRELATION_PLACES = 9
+
+
+def yaml_number(value: float, quantum: float | None = None) -> str:
+    """A float as YAML 1.2 and 1.1 both read it (``1.5e-06`` with a dot in the mantissa:
+    ``1e-06`` would be a string to YAML 1.1), rounded to a multiple of ``quantum`` (a power
+    of ten) when one is given, else to 12 significant digits."""
     v = float(value)
     if not math.isfinite(v):
         raise GyrovibError(f"cannot write the non-finite value {v!r} into a catalogue")
     text = format(v, ".12g")
+    if quantum is not None and v != 0:
+        digits = max(1, min(12, math.floor(math.log10(abs(v))) - round(math.log10(quantum)) + 1))
+        text = format(v, f".{digits}g") if abs(v) >= quantum / 2 else "0"
     if "e" in text:
         mantissa, exponent = text.split("e")
         if "." not in mantissa:
@@ -183,14 +197,32 @@ def yaml_number(value: float) -> str:
     return text if "." in text else text + ".0"
 
 
-def _flow(mapping: dict[str, float]) -> str:
-    return "{" + ", ".join(f"{k}: {yaml_number(v)}" for k, v in mapping.items()) + "}"
+def quantum_of(sigma: float) -> float | None:
+    """The decimal place a value with standard uncertainty ``sigma`` is written to: that of
+    the uncertainty's :data:`SIGMA_DIGITS`-th significant digit (``None``, twelve significant
+    digits, where the uncertainty is zero or not finite)."""
+    s = float(sigma)
+    if not math.isfinite(s) or s <= 0:
+        return None
+    return 10.0 ** (math.floor(math.log10(s)) - SIGMA_DIGITS + 1)
+
+
+def _flow(mapping: dict[str, float], sigma: dict[str, float] | None = None) -> str:
+    """``{k: v, ...}``; values to the place their ``sigma`` supports, or σ itself to
+    :data:`SIGMA_DIGITS` significant digits when ``sigma`` is None."""
+    def written(k: str, v: float) -> str:
+        quantum = quantum_of(sigma[k] if sigma is not None else v)
+        return yaml_number(v, quantum)
+
+    return "{" + ", ".join(f"{k}: {written(k, v)}" for k, v in mapping.items()) + "}"
 
 
 def _block(mapping: dict[str, float], indent: str) -> list[str]:
+    """Correlation pairs, one a line, to :data:`CORRELATION_PLACES` decimal places."""
     if not mapping:
         return [" {}"]
-    return [""] + [f"{indent}{k}: {yaml_number(v)}" for k, v in mapping.items()]
+    quantum = 10.0 ** -CORRELATION_PLACES
+    return [""] + [f"{indent}{k}: {yaml_number(v, quantum)}" for k, v in mapping.items()]
 
 
 def lot_id(result: FitResult) -> str:
@@ -206,7 +238,10 @@ def to_catalog(result: FitResult) -> str:
     """The catalogue ``-o`` writes (INTERFACE.md, third round): one coefficient-form
     sensor per unit with its ``uncertainty`` (σ and every correlation pair), and with
     two or more units a ``lot`` entry (mean, σ, correlation pairs unless the lot is
-    too small for them). Values in the table's rate unit, 12 significant digits."""
+    too small for them). Values in the table's rate unit, each to the decimal place its
+    uncertainty supports (:func:`quantum_of`), correlations to :data:`CORRELATION_PLACES`
+    places: the digits beyond are rounding, which differs from one machine's BLAS to the
+    next."""
     names = result.names
     lines = [
         f"# Written by gyrovib {__version__} fit from {result.file}: least squares of eq. (1),",
@@ -219,14 +254,16 @@ def to_catalog(result: FitResult) -> str:
         "sensors:",
     ]
     for name, f in zip(result.units, result.fits, strict=True):
+        sigma = dict(zip(names, map(float, f.sigma), strict=True))
+        values = dict(zip(names, map(float, f.values), strict=True))
         lines += [
             f"  - id: {name}",
             f"    # K1 = {fmt(f.scale_factor, 8)} ± {fmt(f.scale_factor_sigma, 2)} "
             f"{_output_unit(result)} per {result.unit}, {f.points} points, residual rms "
             f"{fmt(f.residual_rms, 3)}",
-            f"    coefficients: {_flow(dict(zip(names, map(float, f.values), strict=True)))}",
+            f"    coefficients: {_flow(values, sigma)}",
             "    uncertainty:",
-            f"      sigma: {_flow(dict(zip(names, map(float, f.sigma), strict=True)))}",
+            f"      sigma: {_flow(sigma)}",
             "      correlation:" + "\n".join(_block(pairs(names, f.correlation), " " * 8)),
         ]
     if result.lot is not None:
@@ -236,7 +273,7 @@ def to_catalog(result: FitResult) -> str:
         lines += [
             "    lot:",
             f"      units: {lot['units']}",
-            f"      mean: {_flow(lot['mean'])}",
+            f"      mean: {_flow(lot['mean'], lot['sigma'])}",
             f"      sigma: {_flow(lot['sigma'])}",
             "      correlation:" + "\n".join(_block(lot["correlation"], " " * 8)),
         ]
