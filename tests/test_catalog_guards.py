@@ -5,7 +5,6 @@ and reported next to other errors (issues 14 and 15)."""
 from __future__ import annotations
 
 import re
-import time
 from pathlib import Path
 
 import pytest
@@ -36,10 +35,8 @@ def test_deep_nesting_one_message_for_both_parsers(monkeypatch: pytest.MonkeyPat
                                                    text: str, line: int | None) -> None:
     if pure:  # PyYAML's own parser, as on a machine without libyaml
         monkeypatch.setattr(dialect, "Loader", dialect.loader_class(yaml.SafeLoader))
-    started = time.perf_counter()
     with pytest.raises(CatalogError) as info:
         parse_catalog(text, "cat.yaml")
-    assert time.perf_counter() - started < 5
     (problem,) = info.value.problems
     assert problem.message.startswith(f"values are nested more than {dialect.MAX_DEPTH} levels")
     assert problem.file == "cat.yaml" and problem.line is not None and problem.column
@@ -90,10 +87,8 @@ def test_many_duplicates_are_linear_and_capped(tmp_path: Path, name: str, text: 
                                                repeats: int) -> None:
     path = tmp_path / "cat.yaml"
     path.write_text(text)
-    started = time.perf_counter()
     with pytest.raises(CatalogError) as info:
         load_catalog([path])
-    assert time.perf_counter() - started < 5
     lines = [str(p) for p in info.value.problems]
     assert len(lines) == loader.MAX_PROBLEMS + 1, lines[-3:]
     summary = re.fullmatch(rf"{re.escape(str(path))}: \.\.\. and (\d+) more problems", lines[-1])

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import resource
 import subprocess
 import sys
 
@@ -60,17 +59,6 @@ def test_help_and_version_import_no_heavy_module(template, args):
 #: is its business: the start-up budget below is what it must keep.
 NOT_FOR_ANALYZE = ("json", "scipy", "numpy.ma")
 
-#: The start-up budget: a first ``gyrovib analyze`` of the bundled coefficient-form
-#: sensors costs at most this many times the CPU time of ``import numpy, yaml,
-#: pydantic, rich`` (the stack's own floor). Measured 2.35-2.5 (docs/performance.md,
-#: "Start-up budget"); benchmarks/bench_startup.py measures the wall-clock ratio
-#: closely. A heavy import or a needless engine at start-up goes over it
-#: (scipy.signal alone adds about six floors).
-FIRST_RUN_BUDGET = 3.0
-COEFFICIENT_SENSORS = ("adxrs453", "generic-rate-mems", "generic-tactical-fog",
-                       "generic-navigation-fog", "generic-navigation-rlg")
-FLOOR = "import numpy, yaml, pydantic, rich.console, rich.table"
-
 #: As VIA_CLI, json imported only after the modules are listed (it is one of them).
 VIA_CLI_LATE_JSON = """
 import contextlib, io, sys
@@ -106,30 +94,6 @@ def test_first_analyze_imports_only_what_it_uses():
     modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze"])
     assert "numpy" in modules and "gyrovib.api.results" in modules  # the probe works
     assert sorted(set(NOT_FOR_ANALYZE) & set(modules)) == []
-
-
-def _cpu_seconds(command: list[str]) -> float:
-    """CPU time (user + system) of one run: what a busy shared machine changes least."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(command, capture_output=True, check=True, timeout=60)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-
-
-def test_first_analyze_keeps_the_startup_budget():
-    # the least CPU time of a few runs of each, interleaved: a busy moment of the
-    # shared machine slows some runs, not the fastest of both alike
-    analyze = [sys.executable, "-m", "gyrovib", "analyze",
-               *(a for s in COEFFICIENT_SENSORS for a in ("--sensor", s))]
-    floor = [sys.executable, "-c", FLOOR]
-    times: dict[str, float] = {"analyze": float("inf"), "floor": float("inf")}
-    for _ in range(5):
-        times["floor"] = min(times["floor"], _cpu_seconds(floor))
-        times["analyze"] = min(times["analyze"], _cpu_seconds(analyze))
-    ratio = times["analyze"] / times["floor"]
-    assert ratio <= FIRST_RUN_BUDGET, (
-        f"a first gyrovib analyze took {times['analyze'] * 1e3:.0f} ms of CPU, "
-        f"{ratio:.2f} × the {times['floor'] * 1e3:.0f} ms of {FLOOR!r}")
 
 
 def test_csv_and_json_output_do_not_import_rich():
