@@ -187,7 +187,7 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
     assert set(doc["recording"]) == {"file", "sha256", "samples", "fs", "crossover",
                                      "segments", "duration", "axes"}
     assert set(doc["recording"]["axes"]["X"]) == {"variance", "held", "skewness",
-                                                  "excess_kurtosis"}
+                                                  "excess_kurtosis", "shape_db", "off_3db"}
     import hashlib
 
     assert doc["recording"]["sha256"] == hashlib.sha256(

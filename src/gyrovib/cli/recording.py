@@ -74,6 +74,9 @@ def analyze_recording(path: str, catalog: Any, sensors: tuple[str, ...], unit: s
 
     result = run(read(path, options), catalog, sensors=sensors, unit=unit,
                  **fit_options(options))
+    if fmt != "table" or output is not None:  # the table on the terminal lists them itself
+        for warning in result.fit.warnings:
+            click.echo(f"gyrovib: warning: {warning}", err=True)
     renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
                  "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

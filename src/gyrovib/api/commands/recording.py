@@ -43,6 +43,10 @@ RATIO_RANGE = (0.8, 1.25)
 NEGLIGIBLE = 1e-10
 #: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.
 _LINE_FLOOR = 2.0
+#: A fitted PSD worse than this (dB, power-weighted) or with more than this share of the
+#: power off by 3 dB is warned of.
+SHAPE_DB_LIMIT = 2.0
+OFF_3DB_LIMIT = 0.2
 
 
 
@@ -159,7 +163,11 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     mission_rates = np.column_stack([np.full(bin_rates.size, rate[0]),
                                      np.full(bin_rates.size, rate[1]), bin_rates])
     honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
-                                float(kurt[j])) for j in range(3))
+                                float(kurt[j]), float(angular.shape_db[j]),
+                                float(angular.off_3db[j])) for j in range(3))
+    warnings += shape_warnings(angular, "rate")
+    if linear is not None:
+        warnings += shape_warnings(linear, "acceleration")
     base = os.path.basename(recording.file)
     pid = profile_id or _default_id(base)
     fit = RecordingFit(
@@ -199,6 +207,7 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
               *, rate: bool) -> FittedPart:
     """Tones, harmonics, PSD breakpoints and coherences of one kind of vibration."""
     from gyrovib.core import recording as core
+    from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
     from gyrovib.core.transmissibility import psd_variance
 
     f, spectra, windows = core.welch_spectra(segments, fs, resolution)
@@ -220,13 +229,15 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     band = (f >= crossover) & (f < f[-1])
     tables: list[Table | None] = []
     sigma2 = np.zeros(3)
+    shape = np.full((2, 3), np.nan)  # shape_db, off_3db per axis
     for j in range(3):
         if not np.isfinite(variance[j]) or not np.any(random[j, band] > 0):
             tables.append(None)
             continue
-        bf, bs = core.fit_breakpoints(f[band], random[j, band], breakpoints)
+        bf, bs = fit_breakpoints(f[band], random[j, band], breakpoints)
         tables.append((bf, bs))
         sigma2[j] = psd_variance((bf, bs))
+        shape[:, j] = shape_figures(f[band], random[j, band], (bf, bs))
     keep = band & ~in_line
     coh = np.zeros(3)  # ρ31, ρ32, ρ12 (rate) or ρ12, ρ13, ρ23 (acceleration)
     pairs = ((2, 0), (2, 1), (0, 1)) if rate else ((0, 1), (0, 2), (1, 2))
@@ -255,7 +266,22 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     with np.errstate(invalid="ignore", divide="ignore"):
         held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
     return FittedPart(tuple(tones), tuple(harmonics),
-                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held)
+                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held,
+                      shape_db=shape[0], off_3db=shape[1])
+
+
+def shape_warnings(part: FittedPart, kind: str) -> list[str]:
+    """A warning per axis whose fitted PSD is off the measured one by more than
+    :data:`SHAPE_DB_LIMIT` dB power-weighted, or with more than :data:`OFF_3DB_LIMIT` of
+    the power in bins off by 3 dB (docs/model.md section 13)."""
+    out = []
+    for axis, db, off in zip("XYZ", part.shape_db, part.off_3db, strict=True):
+        if db > SHAPE_DB_LIMIT or off > OFF_3DB_LIMIT:
+            out.append(f"the fitted {kind} PSD of axis {axis} is off the measured one by "
+                       f"{db:.2g} dB (power-weighted), {100 * off:.0f} % of the power by more "
+                       f"than 3 dB: its shape is not the recording's (raise --breakpoints, "
+                       "or read the plot)")
+    return out
 
 
 # ----------------------------------------------------------------- analyze --recording
