@@ -12,8 +12,10 @@ The fit minimises the power-weighted squared log error
 
 so the bins that carry the power decide it (a roll-off carrying 10⁻⁶ of the
 power weighs next to nothing; the small floor τ/N only keeps every level
-determined). The knots are chosen among a log-spaced grid of at most
-:data:`CANDIDATES` bins between the band's ends (both ends always kept):
+determined). The knots are chosen among at most :data:`CANDIDATES` bins (both
+ends of the band always kept): most on a log-spaced grid, the rest at the
+quantiles of the measured power, so that a narrow resonance has candidates
+across it (:func:`candidate_knots`):
 
 1. each candidate k gets an anchor level y_k, the log of the mean measured
    PSD over the bins nearest to it in ln f (its cell);
@@ -21,13 +23,15 @@ determined). The knots are chosen among a log-spaced grid of at most
    (x_i, y_i) to (x_j, y_j) over the bins x_i ≤ x < x_j is summed, all pairs
    at once from prefix sums of w, w·x, w·x², w·z, w·x·z, w·z²;
 3. dynamic programming over those pair costs finds the knots (exactly B of
-   them, B ≤ the candidates) with the least total E: the optimum over every
-   subset of candidates, not a greedy one (:func:`optimal_knots`);
-4. the levels at the chosen knots are then the weighted least-squares fit of
-   z (a linear problem in the levels: hat functions in x), which can only
-   lower E further;
-5. one factor scales the levels so that ∫S df of the fit equals Σ S·Δf of
-   the measured bins: the band variance is held.
+   them, B ≤ the candidates) whose chain of anchored lines has the least
+   total E: the optimum over every subset of candidates, not a greedy one
+   (:func:`optimal_knots`; a test holds it against brute force);
+4. the levels at the chosen knots are then those of least E among the fits
+   whose ∫S df equals Σ S·Δf of the measured bins (the band variance held):
+   the weighted least squares, a linear problem in the levels (hat functions
+   in x), then Gauss-Newton steps on that equality-constrained problem. The
+   variance is thus taken up where it costs the shape least (a steep edge of
+   the band, say), not by one factor that would shift every level alike.
 
 :func:`shape_figures` says how well the shape holds: the power-weighted mean
 |dB| between fit and measurement, and the share of the power in bins off by
@@ -42,28 +46,41 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.core.transmissibility import FloatArray, loglog_interp, psd_variance
+from gyrovib.core.transmissibility import FloatArray, loglog_interp
 from gyrovib.errors import ModelError
 
 #: At most this many candidate knots, log-spaced between the band's ends.
 CANDIDATES = 160
+#: The share of the candidates placed by power rather than by frequency.
+POWER_SHARE = 0.375
 #: The weight floor τ: every bin weighs at least τ/N of the whole (N bins).
 WEIGHT_FLOOR = 1e-3
+#: At most this many Gauss-Newton steps of the variance-constrained levels.
+_NEWTON_STEPS = 20
 #: A bin is "off" when the fit is more than this many dB from the measured PSD.
 OFF_DB = 3.0
 
 
-def candidate_knots(f: FloatArray, count: int = CANDIDATES) -> NDArray[np.intp]:
-    """Indices of at most ``count`` bins of ``f`` (increasing, > 0) nearest in ln f to a
-    log-spaced grid between its ends; the first and last bins are always in."""
+def candidate_knots(f: FloatArray, psd: FloatArray,
+                    count: int = CANDIDATES) -> NDArray[np.intp]:
+    """Indices of at most ``count`` bins of ``f`` (increasing, > 0) as candidate knots.
+
+    :data:`POWER_SHARE` of them follow the power (the bins at the quantiles of the
+    cumulative PSD, so a narrow resonance gets candidates across it), the rest the
+    bins nearest in ln f to a log-spaced grid between the ends (so every part of the
+    band has some); the first and last bins are always in.
+    """
     if f.size <= count:
         return np.arange(f.size, dtype=np.intp)
     x = np.log(f)
-    grid = np.linspace(x[0], x[-1], count)
+    by_power = round(POWER_SHARE * count)
+    grid = np.linspace(x[0], x[-1], count - by_power - 2)
     hi = np.clip(np.searchsorted(x, grid), 1, x.size - 1)
     nearest = np.where(grid - x[hi - 1] < x[hi] - grid, hi - 1, hi)
-    keep = np.concatenate([[0], nearest, [x.size - 1]])
-    keep = np.sort(keep)
+    cumulative = np.cumsum(psd)
+    quantiles = (np.arange(by_power) + 0.5) / by_power * cumulative[-1]
+    heavy = np.minimum(np.searchsorted(cumulative, quantiles), x.size - 1)
+    keep = np.sort(np.concatenate([[0], nearest, heavy, [x.size - 1]]))
     out: NDArray[np.intp] = keep[np.concatenate([[True], keep[1:] != keep[:-1]])].astype(np.intp)
     return out
 
@@ -125,17 +142,64 @@ def optimal_knots(cost: FloatArray, count: int) -> tuple[NDArray[np.intp], float
     return np.array(path[::-1], dtype=np.intp), float(best[k - 1])
 
 
-def _levels(x: FloatArray, z: FloatArray, w: FloatArray, knots: FloatArray) -> FloatArray:
-    """Weighted least-squares levels at ``knots`` for ŷ linear in x between them."""
+def _hats(x: FloatArray, knots: FloatArray) -> FloatArray:
+    """(N, B): the value at each x of each knot's hat function (linear between knots)."""
     seg = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, knots.size - 2)
     t = (x - knots[seg]) / (knots[seg + 1] - knots[seg])
     basis = np.zeros((x.size, knots.size))
     rows = np.arange(x.size)
     basis[rows, seg] = 1.0 - t
     basis[rows, seg + 1] = t
-    root = np.sqrt(w)
-    out: FloatArray = np.linalg.lstsq(basis * root[:, None], z * root, rcond=None)[0]
-    return out
+    return basis
+
+
+def _log_variance(knots: FloatArray, levels: FloatArray) -> tuple[float, FloatArray]:
+    """ln ∫S df of the table (e^knots, e^levels) and its gradient in the levels.
+
+    On a segment of length L = x_b − x_a in x = ln f, with slope β = (y_b − y_a)/L,
+    ∫S df = ∫_0^L e^{y_a + x_a + (β+1)u} du; its derivatives in y_a and y_b weigh the
+    integrand by (1 − u/L) and u/L (closed forms below, series where (β+1)L is small).
+    """
+    length = np.diff(knots)
+    beta = np.diff(levels) / length
+    a = (beta + 1.0) * length
+    small = np.abs(a) < 1e-6
+    safe = np.where(small, 1.0, a)
+    ea = np.exp(np.where(small, 0.0, a))
+    # ∫_0^1 e^{a s} ds, ∫_0^1 s·e^{a s} ds
+    m0 = np.where(small, 1.0 + a / 2.0, np.expm1(safe) / safe)
+    m1 = np.where(small, 0.5 + a / 3.0, (ea * (safe - 1.0) + 1.0) / safe**2)
+    scale = np.exp(levels[:-1] + knots[:-1]) * length
+    total = float(np.sum(scale * m0))
+    grad = np.zeros(levels.size)
+    grad[:-1] += scale * (m0 - m1)
+    grad[1:] += scale * m1
+    return float(np.log(total)), grad / total
+
+
+def _levels(x: FloatArray, z: FloatArray, w: FloatArray, knots: FloatArray,
+            log_target: float) -> FloatArray:
+    """The levels at ``knots`` (ŷ linear in x between them) of least Σ w·(ŷ − z)² among
+    those whose table integrates to e^log_target: the weighted least squares, then
+    Gauss-Newton steps on the constrained problem (its KKT system), and a last uniform
+    factor for what rounding leaves."""
+    basis = _hats(x, knots)
+    normal = basis.T @ (basis * w[:, None])
+    rhs = basis.T @ (w * z)
+    levels: FloatArray = np.linalg.solve(normal, rhs)
+    n = knots.size
+    kkt = np.zeros((n + 1, n + 1))
+    kkt[:n, :n] = normal
+    for _ in range(_NEWTON_STEPS):
+        value, grad = _log_variance(knots, levels)
+        miss = value - log_target
+        if abs(miss) < 1e-9:
+            break
+        kkt[:n, n] = kkt[n, :n] = grad
+        step = np.linalg.solve(kkt, np.concatenate([rhs - normal @ levels, [-miss]]))[:n]
+        levels = levels + step
+    value, _ = _log_variance(knots, levels)
+    return levels + (log_target - value)
 
 
 def fit_breakpoints(f: FloatArray, psd: FloatArray, count: int) -> tuple[FloatArray, FloatArray]:
@@ -151,17 +215,14 @@ def fit_breakpoints(f: FloatArray, psd: FloatArray, count: int) -> tuple[FloatAr
         raise ModelError("the random part has fewer than two positive PSD bins to fit")
     x, z = np.log(fb), np.log(sb)
     w = sb / np.sum(sb) + WEIGHT_FLOOR / sb.size
-    cand = candidate_knots(fb)
+    cand = candidate_knots(fb, sb)
     anchors = anchor_levels(x, z, cand)
     chosen, _ = optimal_knots(pair_costs(x, z, w, cand, anchors), count)
     idx = cand[chosen]
-    levels = _levels(x, z, w, x[idx])
+    measured = float(np.sum(sb) * (f[1] - f[0]))
+    levels = _levels(x, z, w, x[idx], float(np.log(measured)))
     bf: FloatArray = fb[idx]
     bs: FloatArray = np.exp(levels)
-    measured = float(np.sum(sb) * (f[1] - f[0]))
-    fitted = psd_variance((bf, bs))
-    if fitted > 0 and measured > 0:
-        bs = bs * (measured / fitted)
     return bf, bs
 
 
