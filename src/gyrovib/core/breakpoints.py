@@ -186,7 +186,8 @@ def _levels(x: FloatArray, z: FloatArray, w: FloatArray, knots: FloatArray,
     basis = _hats(x, knots)
     normal = basis.T @ (basis * w[:, None])
     rhs = basis.T @ (w * z)
-    levels: FloatArray = np.linalg.solve(normal, rhs)
+    free = np.asarray(np.linalg.solve(normal, rhs), dtype=float)
+    levels = free.copy()
     n = knots.size
     kkt = np.zeros((n + 1, n + 1))
     kkt[:n, :n] = normal
@@ -199,7 +200,13 @@ def _levels(x: FloatArray, z: FloatArray, w: FloatArray, knots: FloatArray,
         step = np.linalg.solve(kkt, np.concatenate([rhs - normal @ levels, [-miss]]))[:n]
         levels = levels + step
     value, _ = _log_variance(knots, levels)
-    return levels + (log_target - value)
+    levels = levels + (log_target - value)
+    # never worse than the least-squares levels shifted alike (a safeguard: the steps
+    # converge in a few iterations on every spectrum tried)
+    shifted = free + (log_target - _log_variance(knots, free)[0])
+    error = [float(w @ (basis @ y - z) ** 2) for y in (levels, shifted)]
+    out: FloatArray = levels if np.isfinite(error[0]) and error[0] <= error[1] else shifted
+    return out
 
 
 def fit_breakpoints(f: FloatArray, psd: FloatArray, count: int) -> tuple[FloatArray, FloatArray]:
