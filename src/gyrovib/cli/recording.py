@@ -20,7 +20,8 @@ def recording_options(f: F) -> F:
                           "phase-locked harmonics group (phase: worst)."),
         click.option("--breakpoints", type=click.IntRange(min=2), default=12,
                      show_default=True, metavar="B",
-                     help="At most B log-log breakpoints for the random part's PSD."),
+                     help="At most B log-log breakpoints for the random part's PSD: the "
+                          "best set for the power-weighted log error, the variance held."),
         click.option("--tone-threshold", type=float, default=10.0, show_default=True,
                      metavar="DB", help="A line stands this many dB above the running median."),
         click.option("--resolution", type=float, default=0.5, show_default=True,
