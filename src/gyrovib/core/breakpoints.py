@@ -142,15 +142,11 @@ def optimal_knots(cost: FloatArray, count: int) -> tuple[NDArray[np.intp], float
     return np.array(path[::-1], dtype=np.intp), float(best[k - 1])
 
 
-def _hats(x: FloatArray, knots: FloatArray) -> FloatArray:
-    """(N, B): the value at each x of each knot's hat function (linear between knots)."""
+def _hats(x: FloatArray, knots: FloatArray) -> tuple[NDArray[np.intp], FloatArray]:
+    """For each x its segment k (knots k, k+1) and position t in it: ŷ = (1−t)·y_k + t·y_k+1."""
     seg = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, knots.size - 2)
-    t = (x - knots[seg]) / (knots[seg + 1] - knots[seg])
-    basis = np.zeros((x.size, knots.size))
-    rows = np.arange(x.size)
-    basis[rows, seg] = 1.0 - t
-    basis[rows, seg + 1] = t
-    return basis
+    t: FloatArray = (x - knots[seg]) / (knots[seg + 1] - knots[seg])
+    return seg, t
 
 
 def _log_variance(knots: FloatArray, levels: FloatArray) -> tuple[float, FloatArray]:
@@ -183,12 +179,18 @@ def _levels(x: FloatArray, z: FloatArray, w: FloatArray, knots: FloatArray,
     those whose table integrates to e^log_target: the weighted least squares, then
     Gauss-Newton steps on the constrained problem (its KKT system), and a last uniform
     factor for what rounding leaves."""
-    basis = _hats(x, knots)
-    normal = basis.T @ (basis * w[:, None])
-    rhs = basis.T @ (w * z)
+    n = knots.size
+    seg, t = _hats(x, knots)
+    # the normal equations of the hat basis, tridiagonal, summed bin by bin (no dense basis)
+    normal = np.zeros((n, n))
+    diagonal = np.bincount(seg, w * (1 - t) ** 2, n) + np.bincount(seg + 1, w * t * t, n)
+    beside = np.bincount(seg, w * t * (1 - t), n - 1)
+    normal[np.arange(n), np.arange(n)] = diagonal
+    normal[np.arange(n - 1), np.arange(1, n)] = beside
+    normal[np.arange(1, n), np.arange(n - 1)] = beside
+    rhs = np.bincount(seg, w * z * (1 - t), n) + np.bincount(seg + 1, w * z * t, n)
     free = np.asarray(np.linalg.solve(normal, rhs), dtype=float)
     levels = free.copy()
-    n = knots.size
     kkt = np.zeros((n + 1, n + 1))
     kkt[:n, :n] = normal
     for _ in range(_NEWTON_STEPS):
@@ -204,7 +206,8 @@ def _levels(x: FloatArray, z: FloatArray, w: FloatArray, knots: FloatArray,
     # never worse than the least-squares levels shifted alike (a safeguard: the steps
     # converge in a few iterations on every spectrum tried)
     shifted = free + (log_target - _log_variance(knots, free)[0])
-    error = [float(w @ (basis @ y - z) ** 2) for y in (levels, shifted)]
+    error = [float(np.sum(w * ((1 - t) * y[seg] + t * y[seg + 1] - z) ** 2))
+             for y in (levels, shifted)]
     out: FloatArray = levels if np.isfinite(error[0]) and error[0] <= error[1] else shifted
     return out
 
