@@ -152,25 +152,32 @@ def _hats(x: FloatArray, knots: FloatArray) -> tuple[NDArray[np.intp], FloatArra
 def _log_variance(knots: FloatArray, levels: FloatArray) -> tuple[float, FloatArray]:
     """ln ∫S df of the table (e^knots, e^levels) and its gradient in the levels.
 
-    On a segment of length L = x_b − x_a in x = ln f, with slope β = (y_b − y_a)/L,
-    ∫S df = ∫_0^L e^{y_a + x_a + (β+1)u} du; its derivatives in y_a and y_b weigh the
-    integrand by (1 − u/L) and u/L (closed forms below, series where (β+1)L is small).
+    On a segment from x_a to x_b (x = ln f, L = x_b − x_a) the integrand S·f is
+    e^{e_a + a·s}, s = (x − x_a)/L, with e = y + x at the ends and a = e_b − e_a, so
+    ∫S df = L·∫_0^1 e^{e_a + a·s} ds and its derivatives in y_a and y_b weigh the
+    integrand by 1 − s and s. Each segment is taken from its larger end (the exponent
+    then never grows: no overflow however steep), the segments relative to the largest.
     """
     length = np.diff(knots)
-    beta = np.diff(levels) / length
-    a = (beta + 1.0) * length
-    small = np.abs(a) < 1e-6
-    safe = np.where(small, 1.0, a)
-    ea = np.exp(np.where(small, 0.0, a))
-    # ∫_0^1 e^{a s} ds, ∫_0^1 s·e^{a s} ds
-    m0 = np.where(small, 1.0 + a / 2.0, np.expm1(safe) / safe)
-    m1 = np.where(small, 0.5 + a / 3.0, (ea * (safe - 1.0) + 1.0) / safe**2)
-    scale = np.exp(levels[:-1] + knots[:-1]) * length
+    ends = levels + knots
+    a = np.diff(ends)
+    n = -np.abs(a)  # the exponent from the larger end, ≤ 0
+    small = n > -1e-3
+    safe = np.where(small, -1.0, n)
+    # ∫_0^1 e^{n u} du and ∫_0^1 u·e^{n u} du (series where n is small)
+    m0 = np.where(small, 1 + n / 2 + n * n / 6 + n**3 / 24, np.expm1(safe) / safe)
+    m1 = np.where(small, 0.5 + n / 3 + n * n / 8 + n**3 / 30,
+                  (np.exp(safe) * (safe - 1.0) + 1.0) / safe**2)
+    rising = a >= 0  # the larger end is the right one: u = 1 − s
+    near, far = m0 - m1, m1  # weights of the larger end (1 − u) and of the other (u)
+    top = np.maximum(ends[:-1], ends[1:])
+    peak = float(top.max())
+    scale = length * np.exp(top - peak)
     total = float(np.sum(scale * m0))
     grad = np.zeros(levels.size)
-    grad[:-1] += scale * (m0 - m1)
-    grad[1:] += scale * m1
-    return float(np.log(total)), grad / total
+    grad[:-1] += scale * np.where(rising, far, near)
+    grad[1:] += scale * np.where(rising, near, far)
+    return float(np.log(total)) + peak, grad / total
 
 
 def _levels(x: FloatArray, z: FloatArray, w: FloatArray, knots: FloatArray,
