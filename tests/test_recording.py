@@ -187,7 +187,7 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
     assert set(doc["recording"]) == {"file", "sha256", "samples", "fs", "crossover",
                                      "segments", "duration", "axes"}
     assert set(doc["recording"]["axes"]["X"]) == {"variance", "held", "skewness",
-                                                  "excess_kurtosis"}
+                                                  "excess_kurtosis", "shape_db", "off_3db"}
     import hashlib
 
     assert doc["recording"]["sha256"] == hashlib.sha256(
@@ -278,6 +278,8 @@ def test_ulog_end_to_end(tmp_path: Path) -> None:
     doc = json.loads(r.stdout)
     assert doc["recording"]["samples"] == 2373
     assert doc["recording"]["fs"] == pytest.approx(250.0, rel=1e-6)
+    for axis in doc["recording"]["axes"].values():  # issue 30's figures on a real log
+        assert axis["shape_db"] <= 2.0 and axis["off_3db"] <= 0.2, axis
     r = invoke("profile", ULOG, "--topic", "no_such_topic")
     assert r.exit_code == 2 and "no topic 'no_such_topic'" in r.stderr
 
@@ -561,3 +563,54 @@ def test_rounded_coherences_stay_a_correlation_matrix() -> None:
     naive = [float(f"{v:.6g}") for v in (r31, r32, r12)]
     assert correlation_problem(naive[2], naive[0], naive[1]) is not None  # rounding breaks it
     assert correlation_problem(c, a, b) is None
+
+
+def _shaped_noise(rng: np.random.Generator, fs: float, seconds: float) -> np.ndarray:
+    """Three axes of white noise shaped in the frequency domain to issue 30's spectrum:
+    a plateau 2–150 Hz, a resonance at 80 Hz holding most of the power, an anti-alias
+    roll-off from 0.42·fs (tests/test_breakpoints.py has the same outline)."""
+    from tests.test_breakpoints import _plateau_resonance
+
+    n = int(fs * seconds)
+    f = np.fft.rfftfreq(n, 1 / fs)
+    gain = np.sqrt(_plateau_resonance(np.maximum(f, 1e-3), fs))
+    return np.fft.irfft(np.fft.rfft(rng.normal(size=(n, 3)), axis=0) * gain[:, None], n=n,
+                        axis=0)
+
+
+def test_the_fitted_shape_is_reported_and_warned(tmp_path: Path,
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    """End to end on a synthetic recording: every axis within issue 30's figures (≤ 2 dB,
+    ≤ 20 % of the power off by 3 dB), the resonance left in the random PSD (no tone),
+    the figures in the YAML's comments, the plot's titles and the honesty table; with
+    only 2 breakpoints
+    the straight line misses the resonance and the warning says so."""
+    from gyrovib.api.commands.recording import fit_recording
+    from gyrovib.api.recordings import read_recording
+
+    np.save(tmp_path / "res.npy", _shaped_noise(np.random.default_rng(30), 1000.0, 30.0))
+    fit = fit_recording(read_recording(str(tmp_path / "res.npy"), fs=1000.0))
+    assert not fit.angular.tones and not fit.angular.harmonics
+    for h in fit.honesty:
+        assert h.shape_db <= 2.0 and h.off_3db <= 0.2, h
+    assert not any("is off the measured one" in w for w in fit.warnings)
+    assert "#   rate: X " in fit.yaml and "shape dB" not in fit.yaml
+    plt = pytest.importorskip("matplotlib.pyplot")
+    from gyrovib.render.recording import plot_fit
+
+    shown: list[str] = []
+    monkeypatch.setattr(plt, "close", lambda fig: shown.extend(
+        [fig.texts[0].get_text(), *(ax.get_title() for ax in fig.axes)]))
+    plot_fit(fit, str(tmp_path / "res.png"))
+    h = fit.honesty[0]
+    assert f"axis X: shape {h.shape_db:.2f} dB, {100 * h.off_3db:.1f} % of power" in shown[1]
+    assert f"worst shape {max(a.shape_db for a in fit.honesty):.2f} dB" in shown[0]
+    r = invoke("profile", tmp_path / "res.npy", "--fs", 1000, "--breakpoints", 2)
+    assert r.exit_code == 0, r.stderr
+    assert "shape dB" in r.stderr and "off 3 dB" in r.stderr
+    assert "the fitted rate PSD of axis X is off the measured one" in r.stderr
+    r = invoke("analyze", "--recording", tmp_path / "res.npy", "--fs", 1000, "--breakpoints",
+               2, "--sensor", "generic-rate-mems", "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    assert "gyrovib: warning: the fitted rate PSD of axis X is off" in r.stderr
+    assert json.loads(r.stdout)["recording"]["axes"]["X"]["shape_db"] > 2.0

@@ -21,12 +21,17 @@ from gyrovib.frozen import Frozen
 @dataclass(frozen=True, eq=False, repr=False)
 class AxisHonesty(Frozen):
     """One axis of the honesty table: variance of x (unit²), the fraction of it the
-    fitted profile holds, skewness and excess kurtosis of x (NaN: not recorded)."""
+    fitted profile holds, skewness and excess kurtosis of x (NaN: not recorded), and
+    how well the fitted PSD's shape holds over f_c…fs/2: ``shape_db``, the power-weighted
+    mean |dB| between the fitted and the measured random PSD, and ``off_3db``, the share
+    of the measured power in bins off by more than 3 dB (NaN: no random part fitted)."""
 
     variance: float
     held: float
     skewness: float
     excess_kurtosis: float
+    shape_db: float = float("nan")
+    off_3db: float = float("nan")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -50,7 +55,11 @@ class FittedHarmonics(Frozen):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class FittedPart(Frozen):
-    """The fitted vibration of one kind (rate in deg/s, or acceleration in g)."""
+    """The fitted vibration of one kind (rate in deg/s, or acceleration in g).
+
+    ``shape_db`` and ``off_3db`` (3,): the shape figures of each axis's fitted PSD
+    (:class:`AxisHonesty`), NaN where no random part was fitted.
+    """
 
     tones: tuple[FittedTone, ...]
     harmonics: tuple[FittedHarmonics, ...]
@@ -61,6 +70,8 @@ class FittedPart(Frozen):
     median: FloatArray
     variance: FloatArray
     held: FloatArray
+    shape_db: FloatArray = field(default_factory=lambda: np.full(3, np.nan))
+    off_3db: FloatArray = field(default_factory=lambda: np.full(3, np.nan))
 
 
 @dataclass(frozen=True, eq=False, repr=False)

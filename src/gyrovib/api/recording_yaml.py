@@ -98,6 +98,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         f"# samples: {fit.samples}; fs: {_num(fit.fs)} Hz; crossover f_c: {_num(fit.crossover)}"
         f" Hz; segments: {fit.segments}; duration analysed: {_num(fit.duration)} s",
         "# Rates in deg/s (PSD in (deg/s)^2/Hz), accelerations in g (PSD in g^2/Hz).",
+        *_shape_comments(fit),
     ]
     if fit.angular.harmonics:
         lines.append("# Lines at integer multiples of a fundamental are one phase-locked group; "
@@ -129,6 +130,23 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         lines.append(f"      - {{profile: {fit.profile_id}, duration: {_num(t)}, "
                      f"rate: {_triple(rate)}}}")
     return "\n".join(lines) + "\n"
+
+
+def _shape_comments(fit: RecordingFit) -> list[str]:
+    """How well each fitted random PSD's shape holds (docs/model.md section 13), as comments."""
+    out = ["# Shape of each fitted random PSD against the measured one over f_c..fs/2: the "
+           "power-weighted",
+           "# mean |dB| between them, and the share of the power in bins off by more than 3 dB:"]
+    parts = [("rate", fit.angular), ("acceleration", fit.linear)]
+    for kind, part in parts:
+        if part is None:
+            continue
+        cells = [f"{axis} {db:.2f} dB, {100 * off:.1f} %"
+                 for axis, db, off in zip("XYZ", part.shape_db, part.off_3db, strict=True)
+                 if np.isfinite(db)]
+        if cells:
+            out.append(f"#   {kind}: " + "; ".join(cells))
+    return out if len(out) > 2 else []
 
 
 def mission_id(fit: RecordingFit) -> str:

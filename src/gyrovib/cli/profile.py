@@ -13,7 +13,8 @@ from gyrovib.cli.recording import fit_options, read, recording_options
 @click.command()
 @click.argument("recording", metavar="RECORDING")
 @recording_options
-@click.option("--plot", metavar="PNG", help="Plot the measured PSD against the fit, per axis.")
+@click.option("--plot", metavar="PNG", help="Plot the measured PSD against the fit, per axis, "
+              "each panel titled with its shape figures.")
 @output_option
 def profile(recording: str, plot: str | None, output: str | None, **options: Any) -> None:
     """Fit a profile (and its carrier mission) to a RECORDING.
@@ -22,7 +23,9 @@ def profile(recording: str, plot: str | None, output: str | None, **options: Any
     .npy (2-D, columns), .npz, or PX4 ULog .ulg (pip install 'gyrovib[ulog]').
     Writes catalogue YAML (stdout, or -o FILE) that `gyrovib validate`
     accepts, with the fit's provenance as comments; the honesty table goes to
-    standard error.
+    standard error. Its "shape dB" is the power-weighted mean distance between the
+    fitted and the measured random PSD, "off 3 dB" the share of the power more than
+    3 dB out; an axis past 2 dB or 20 % is warned of.
     """
     from gyrovib.api.commands.recording import fit_recording
     from gyrovib.cli.output import write_output

@@ -20,7 +20,8 @@ def recording_options(f: F) -> F:
                           "phase-locked harmonics group (phase: worst)."),
         click.option("--breakpoints", type=click.IntRange(min=2), default=12,
                      show_default=True, metavar="B",
-                     help="At most B log-log breakpoints for the random part's PSD."),
+                     help="At most B log-log breakpoints for the random part's PSD: the "
+                          "best set for the power-weighted log error, the variance held."),
         click.option("--tone-threshold", type=float, default=10.0, show_default=True,
                      metavar="DB", help="A line stands this many dB above the running median."),
         click.option("--resolution", type=float, default=0.5, show_default=True,
@@ -74,6 +75,9 @@ def analyze_recording(path: str, catalog: Any, sensors: tuple[str, ...], unit: s
 
     result = run(read(path, options), catalog, sensors=sensors, unit=unit,
                  **fit_options(options))
+    if fmt != "table" or output is not None:  # the table on the terminal lists them itself
+        for warning in result.fit.warnings:
+            click.echo(f"gyrovib: warning: {warning}", err=True)
     renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
                  "markdown": render.to_markdown}
     write_output(renderers[fmt](result), output)

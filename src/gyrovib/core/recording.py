@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
+from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 
@@ -310,58 +310,6 @@ def harmonic_groups(frequencies: ArrayLike,
             used[members] = True
             groups.append((float(f0), members, orders))
     return groups
-
-
-def fit_breakpoints(f: FloatArray, psd: FloatArray, count: int,
-                    tolerance: float = 0.01) -> tuple[FloatArray, FloatArray]:
-    """At most ``count`` log-log breakpoints (f, S) for a measured PSD (docs/model.md section 13).
-
-    Breakpoints are added greedily where the log error of the current fit is
-    largest (starting from the band's ends); the levels are the least-squares
-    fit of log S over all bins for those breakpoints, then scaled by one
-    factor so that ∫S df of the fit equals Σ psd·Δf of the band (within
-    ``tolerance``, 1 %, by construction). Bins with S ≤ 0 are left out.
-    """
-    ok = psd > 0
-    fb, sb = f[ok], psd[ok]
-    if fb.size < 2:
-        raise ModelError("the random part has fewer than two positive PSD bins to fit")
-    df = float(f[1] - f[0])
-    lf, ls = np.log(fb), np.log(sb)
-    chosen = [0, fb.size - 1]
-    count = max(2, min(count, fb.size))
-
-    def solve(idx: list[int]) -> FloatArray:
-        knots = lf[sorted(idx)]
-        basis = np.zeros((lf.size, knots.size))
-        for k in range(knots.size):
-            y = np.zeros(knots.size)
-            y[k] = 1.0
-            basis[:, k] = np.interp(lf, knots, y)
-        out: FloatArray = np.linalg.lstsq(basis, ls, rcond=None)[0].astype(float)
-        return out
-
-    levels = solve(chosen)
-    while len(chosen) < count:
-        knots = lf[sorted(chosen)]
-        err = np.abs(np.interp(lf, knots, levels) - ls)
-        err[chosen] = -1.0
-        # a smoothed error, so that one noisy bin does not take a breakpoint
-        smooth = np.convolve(err, np.ones(5) / 5, mode="same")
-        smooth[chosen] = -1.0
-        nxt = int(np.argmax(smooth))
-        if smooth[nxt] <= 0.05:
-            break
-        chosen.append(nxt)
-        levels = solve(chosen)
-    idx = sorted(chosen)
-    bf: FloatArray = fb[idx]
-    bs: FloatArray = np.exp(levels)
-    measured = float(np.sum(sb) * df)
-    fitted = psd_variance((bf, bs))
-    if fitted > 0 and measured > 0:
-        bs = bs * (measured / fitted)
-    return bf, bs
 
 
 def power_sums(x: ArrayLike, order: int = 4) -> FloatArray:

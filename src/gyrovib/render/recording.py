@@ -13,7 +13,7 @@ from gyrovib.render.common import dumps, header
 
 if TYPE_CHECKING:
     from gyrovib.api.commands.recording import RecordingAnalysis
-    from gyrovib.api.recording_results import RecordingFit
+    from gyrovib.api.recording_results import AxisHonesty, RecordingFit
 
 AXES = ("X", "Y", "Z")
 _TERMS = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
@@ -27,6 +27,21 @@ def _fmt(v: float, digits: int = 4) -> str:
     return "—" if not math.isfinite(v) else f"{v:.{digits}g}"
 
 
+def _percent(v: float) -> str:
+    return "—" if not math.isfinite(v) else f"{100 * v:.1f} %"
+
+
+def _decibels(v: float) -> str:
+    return "—" if math.isnan(v) else f"{v:.2f}"
+
+
+def shape_text(h: AxisHonesty) -> str:
+    """An axis's shape figures in words: "shape 0.42 dB, 1.2 % of power off > 3 dB"."""
+    if math.isnan(h.shape_db):
+        return "no random part fitted"
+    return f"shape {_decibels(h.shape_db)} dB, {_percent(h.off_3db)} of power off > 3 dB"
+
+
 def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
     """The ``"recording"`` object of the JSON; variances in (output unit)²."""
     return {
@@ -34,7 +49,8 @@ def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
         "fs": fit.fs, "crossover": fit.crossover, "segments": fit.segments,
         "duration": fit.duration,
         "axes": {a: {"variance": _num(h.variance / scale**2), "held": _num(h.held),
-                     "skewness": _num(h.skewness), "excess_kurtosis": _num(h.excess_kurtosis)}
+                     "skewness": _num(h.skewness), "excess_kurtosis": _num(h.excess_kurtosis),
+                     "shape_db": _num(h.shape_db), "off_3db": _num(h.off_3db)}
                  for a, h in zip(AXES, fit.honesty, strict=True)},
     }
 
@@ -45,11 +61,11 @@ def honesty_table(fit: RecordingFit) -> str:
              f"fs {fit.fs:.6g} Hz, f_c {fit.crossover:g} Hz, {fit.segments} segment(s), "
              f"{fit.duration:.6g} s analysed",
              f"{'axis':<5} {'variance (deg/s)²':>18} {'held':>8} {'skewness':>9} "
-             f"{'excess kurtosis':>16}"]
+             f"{'excess kurtosis':>16} {'shape dB':>9} {'off 3 dB':>9}"]
     for axis, h in zip(AXES, fit.honesty, strict=True):
-        held = "—" if not math.isfinite(h.held) else f"{100 * h.held:.1f} %"
-        lines.append(f"{axis:<5} {_fmt(h.variance):>18} {held:>8} {_fmt(h.skewness, 3):>9} "
-                     f"{_fmt(h.excess_kurtosis, 3):>16}")
+        lines.append(f"{axis:<5} {_fmt(h.variance):>18} {_percent(h.held):>8} "
+                     f"{_fmt(h.skewness, 3):>9} {_fmt(h.excess_kurtosis, 3):>16} "
+                     f"{_decibels(h.shape_db):>9} {_percent(h.off_3db):>9}")
     tones = len(fit.angular.tones) + sum(len(h.orders) for h in fit.angular.harmonics)
     lines.append(f"fitted: {len(fit.angular.tones)} tone(s), {len(fit.angular.harmonics)} "
                  f"harmonic group(s) ({tones} lines in all), carrier {len(fit.mission_rates)} "
@@ -154,7 +170,7 @@ def plot_fit(fit: RecordingFit, path: str) -> None:
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
     f = part.frequencies
     for j, ax in enumerate(axes):
-        ax.set_title(f"axis {AXES[j]}")
+        ax.set_title(f"axis {AXES[j]}: {shape_text(fit.honesty[j])}", fontsize=9)
         if not fit.rate_axes[j]:
             ax.text(0.5, 0.5, "not recorded", transform=ax.transAxes, ha="center")
             continue
@@ -163,7 +179,8 @@ def plot_fit(fit: RecordingFit, path: str) -> None:
                   label="measured PSD (Welch)")
         table = part.psd[j]
         if table is not None:
-            ax.loglog(table[0], table[1], "o-", color="C0", label="fitted breakpoints")
+            # the fit as the profile means it: straight lines on log-log axes between breakpoints
+            ax.loglog(table[0], table[1], "o-", color="C0", ms=3, label="fitted breakpoints")
         df = float(f[1] - f[0])
         lines = [(t.frequency, t.amplitude[j]) for t in part.tones]
         lines += [(h.fundamental * o, a[j]) for h in part.harmonics
@@ -177,7 +194,10 @@ def plot_fit(fit: RecordingFit, path: str) -> None:
         ax.set_ylabel("(deg/s)²/Hz")
         ax.legend(fontsize=7, loc="lower left")
     axes[-1].set_xlabel("frequency, Hz")
-    fig.suptitle(f"{os.path.basename(fit.file)}: measured and fitted (f_c {fit.crossover:g} Hz)")
+    worst = max((h.shape_db for h in fit.honesty if not math.isnan(h.shape_db)), default=None)
+    shape = "" if worst is None else f", worst shape {worst:.2f} dB"
+    fig.suptitle(f"{os.path.basename(fit.file)}: measured and fitted (f_c {fit.crossover:g} Hz"
+                 f"{shape})")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
@@ -221,9 +241,10 @@ def report_section(result: RecordingAnalysis) -> str:
         charts.append(LineChart(f"Recording {escape(os.path.basename(fit.file))}: axis {axis}",
                                 "frequency (Hz)", "PSD (deg/s)²/Hz", series, xlog=True,
                                 ylog=True, markers=markers).svg())
-    head = ["axis", "variance (deg/s)²", "held", "skewness", "excess kurtosis"]
-    rows = [[a, _fmt(h.variance), "—" if not math.isfinite(h.held) else f"{100 * h.held:.1f} %",
-             _fmt(h.skewness, 3), _fmt(h.excess_kurtosis, 3)]
+    head = ["axis", "variance (deg/s)²", "held", "skewness", "excess kurtosis", "shape dB",
+            "off 3 dB"]
+    rows = [[a, _fmt(h.variance), _percent(h.held), _fmt(h.skewness, 3),
+             _fmt(h.excess_kurtosis, 3), _decibels(h.shape_db), _percent(h.off_3db)]
             for a, h in zip(AXES, fit.honesty, strict=True)]
     honesty = _html_table(head, rows)
     compare = _html_table(_HEAD, _table_rows(result))

@@ -43,6 +43,10 @@ RATIO_RANGE = (0.8, 1.25)
 NEGLIGIBLE = 1e-10
 #: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.
 _LINE_FLOOR = 2.0
+#: A fitted PSD worse than this (dB, power-weighted) or with more than this share of the
+#: power off by 3 dB is warned of.
+SHAPE_DB_LIMIT = 2.0
+OFF_3DB_LIMIT = 0.2
 
 
 
@@ -58,21 +62,10 @@ def _check(crossover: float, resolution: float, threshold: float, breakpoints: i
         raise OptionError(f"--breakpoints {breakpoints}: give at least 2")
 
 
-def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
-                  resolution: float = DEFAULT_RESOLUTION,
-                  tone_threshold: float = DEFAULT_THRESHOLD,
-                  breakpoints: int = DEFAULT_BREAKPOINTS, independent_tones: bool = False,
-                  profile_id: str | None = None,
-                  responses: Sequence[Table] = ()) -> RecordingFit:
-    """Split, measure and fit a recording (docs/model.md section 13).
-
-    ``responses``: input-side sensor responses for which Δ_V,rec moments are
-    wanted besides the plain ones (``moments[None]``); each gets
-    ``moments[i]`` and ``peak[i + 1]`` (``peak[0]``: max |ω3| as recorded).
-    """
-    from gyrovib.core import recording as core
-
-    _check(crossover, resolution, tone_threshold, breakpoints)
+def _kept_segments(recording: Recording, crossover: float,
+                   ) -> tuple[list[tuple[int, int]], list[str]]:
+    """The segments long enough for f_c, and the warning for those dropped; a recording
+    with none, or too slow a sample rate for f_c, is refused."""
     fs = recording.fs
     if crossover >= fs / 2:
         raise RecordingError(Problem(
@@ -91,6 +84,26 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
             f"is {longest} samples = {longest / fs:.6g} s, and a segment needs 4/f_c = "
             f"{4 / crossover:g} s and more than {PADDING} samples (the filter's padding) "
             "(raise --crossover, or record longer)", recording.file))
+    return kept, warnings
+
+
+def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
+                  resolution: float = DEFAULT_RESOLUTION,
+                  tone_threshold: float = DEFAULT_THRESHOLD,
+                  breakpoints: int = DEFAULT_BREAKPOINTS, independent_tones: bool = False,
+                  profile_id: str | None = None,
+                  responses: Sequence[Table] = ()) -> RecordingFit:
+    """Split, measure and fit a recording (docs/model.md section 13).
+
+    ``responses``: input-side sensor responses for which Δ_V,rec moments are
+    wanted besides the plain ones (``moments[None]``); each gets
+    ``moments[i]`` and ``peak[i + 1]`` (``peak[0]``: max |ω3| as recorded).
+    """
+    from gyrovib.core import recording as core
+
+    _check(crossover, resolution, tone_threshold, breakpoints)
+    fs = recording.fs
+    kept, warnings = _kept_segments(recording, crossover)
     n_total = sum(hi - lo for lo, hi in kept)
     moments: dict[Any, FloatArray] = {None: np.zeros(len(core.MOMENTS))}
     peak = np.zeros(1 + len(responses))
@@ -130,24 +143,13 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     for key in moments:
         moments[key] = moments[key] / n_total
     g2_moments = None if g2_sums is None else g2_sums / n_total
-    var, skew, kurt = core.central_moments(raw, n_total)
-    # a vibration below 1e-10 of the signal's rms is the filter's rounding, not a vibration
-    quiet = var <= NEGLIGIBLE**2 * signal / n_total
-    var = np.where(quiet, 0.0, var)
-    skew, kurt = (np.where(quiet, np.nan, v) for v in (skew, kurt))
-    axes_on = np.array(recording.rate_axes)
-    var, skew, kurt = (np.where(axes_on, v, np.nan) for v in (var, skew, kurt))
+    var, skew, kurt = _rate_moments(raw, signal, n_total, recording.rate_axes)
     angular = _fit_part(recording.file, x_segments, fs, resolution, tone_threshold, breakpoints,
                         independent_tones, crossover, var, rate=True)
     del x_segments
     linear = None
     if xa_segments:
-        raw_a = np.zeros((2, 3))
-        for xa in xa_segments:
-            raw_a += core.power_sums(xa, 2)
-        var_a = raw_a[1] / n_total - (raw_a[0] / n_total) ** 2
-        var_a = np.where(var_a <= NEGLIGIBLE**2 * np.abs(raw_a[1]) / n_total, 0.0, var_a)
-        var_a = np.where(np.array(recording.accel_axes), var_a, np.nan)
+        var_a = _accel_variance(xa_segments, n_total, recording.accel_axes)
         linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
                            breakpoints, True, crossover, var_a, rate=False)
     del xa_segments
@@ -159,7 +161,9 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     mission_rates = np.column_stack([np.full(bin_rates.size, rate[0]),
                                      np.full(bin_rates.size, rate[1]), bin_rates])
     honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
-                                float(kurt[j])) for j in range(3))
+                                float(kurt[j]), float(angular.shape_db[j]),
+                                float(angular.off_3db[j])) for j in range(3))
+    warnings += shape_warnings(angular, "rate") + shape_warnings(linear, "acceleration")
     base = os.path.basename(recording.file)
     pid = profile_id or _default_id(base)
     fit = RecordingFit(
@@ -182,6 +186,36 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     return _replace_yaml(fit, text)
 
 
+def _rate_moments(raw: FloatArray, signal: FloatArray, n_total: int,
+                  axes: tuple[bool, bool, bool]) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Variance, skewness, excess kurtosis of x per axis from its power sums: a vibration
+    below 1e-10 of the signal's rms is the filter's rounding, not a vibration (variance
+    0, the shape figures NaN); NaN on an axis not recorded."""
+    from gyrovib.core import recording as core
+
+    var, skew, kurt = core.central_moments(raw, n_total)
+    quiet = var <= NEGLIGIBLE**2 * signal / n_total
+    var = np.where(quiet, 0.0, var)
+    skew, kurt = (np.where(quiet, np.nan, v) for v in (skew, kurt))
+    on = np.array(axes)
+    return np.where(on, var, np.nan), np.where(on, skew, np.nan), np.where(on, kurt, np.nan)
+
+
+def _accel_variance(segments: list[FloatArray], n_total: int,
+                    axes: tuple[bool, bool, bool]) -> FloatArray:
+    """Per axis the variance of a − A over the segments (g²); 0 where it is rounding,
+    NaN on an axis not recorded."""
+    from gyrovib.core import recording as core
+
+    raw = np.zeros((2, 3))
+    for xa in segments:
+        raw += core.power_sums(xa, 2)
+    var = raw[1] / n_total - (raw[0] / n_total) ** 2
+    var = np.where(var <= NEGLIGIBLE**2 * np.abs(raw[1]) / n_total, 0.0, var)
+    out: FloatArray = np.where(np.array(axes), var, np.nan)
+    return out
+
+
 def _replace_yaml(fit: RecordingFit, text: str) -> RecordingFit:
     import dataclasses
 
@@ -199,7 +233,6 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
               *, rate: bool) -> FittedPart:
     """Tones, harmonics, PSD breakpoints and coherences of one kind of vibration."""
     from gyrovib.core import recording as core
-    from gyrovib.core.transmissibility import psd_variance
 
     f, spectra, windows = core.welch_spectra(segments, fs, resolution)
     silent = ~(variance > 0)  # not recorded, or negligible: no spectrum to fit
@@ -218,17 +251,41 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
         random[:, line.lo:line.hi] = median[:, line.lo:line.hi]
         in_line[line.lo:line.hi] = True
     band = (f >= crossover) & (f < f[-1])
-    tables: list[Table | None] = []
+    tables, sigma2, shape = _random_tables(f[band], random[:, band], variance, breakpoints)
+    coh = _coherences(psd, spectra, band & ~in_line, df, rate)
+    tones, harmonics = _tones(lines, grouped=not independent and rate)
+    tone_var = sum((ln.amplitude**2 / 2 for ln in lines), np.zeros(3))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
+    return FittedPart(tones, harmonics, tables, coh, f, psd, median, variance, held,
+                      shape_db=shape[0], off_3db=shape[1])
+
+
+def _random_tables(f: FloatArray, random: FloatArray, variance: FloatArray,
+                   breakpoints: int) -> tuple[tuple[Table | None, Table | None, Table | None],
+                                              FloatArray, FloatArray]:
+    """Per axis the fitted breakpoints of the random PSD over the band ``f`` (None where
+    the axis has no vibration), their variances, and their shape figures (2, 3):
+    shape_db and off_3db (docs/model.md section 13)."""
+    from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
+    from gyrovib.core.transmissibility import psd_variance
+
+    tables: list[Table | None] = [None, None, None]
     sigma2 = np.zeros(3)
+    shape = np.full((2, 3), np.nan)
     for j in range(3):
-        if not np.isfinite(variance[j]) or not np.any(random[j, band] > 0):
-            tables.append(None)
-            continue
-        bf, bs = core.fit_breakpoints(f[band], random[j, band], breakpoints)
-        tables.append((bf, bs))
-        sigma2[j] = psd_variance((bf, bs))
-    keep = band & ~in_line
-    coh = np.zeros(3)  # ρ31, ρ32, ρ12 (rate) or ρ12, ρ13, ρ23 (acceleration)
+        if np.isfinite(variance[j]) and np.any(random[j] > 0):
+            table = fit_breakpoints(f, random[j], breakpoints)
+            tables[j] = table
+            sigma2[j] = psd_variance(table)
+            shape[:, j] = shape_figures(f, random[j], table)
+    return (tables[0], tables[1], tables[2]), sigma2, shape
+
+
+def _coherences(psd: FloatArray, spectra: NDArray[np.complex128], keep: NDArray[np.bool_],
+                df: float, rate: bool) -> FloatArray:
+    """ρ31, ρ32, ρ12 (rate) or ρ12, ρ13, ρ23 (acceleration) over the bins ``keep``."""
+    coh = np.zeros(3)
     pairs = ((2, 0), (2, 1), (0, 1)) if rate else ((0, 1), (0, 2), (1, 2))
     for k, (i, j) in enumerate(pairs):
         si = float(np.sum(psd[i, keep]) * df)
@@ -236,10 +293,18 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
         if si > 0 and sj > 0:
             coh[k] = float(np.clip(np.real(np.sum(spectra[i, j, keep])) * df
                                    / math.sqrt(si * sj), -1.0, 1.0))
-    tones: list[FittedTone] = []
+    return coh
+
+
+def _tones(lines: Sequence[Any], *, grouped: bool,
+           ) -> tuple[tuple[FittedTone, ...], tuple[FittedHarmonics, ...]]:
+    """The lines as tones, those at integer multiples of a fundamental as phase-locked
+    groups when ``grouped``."""
+    from gyrovib.core import recording as core
+
     harmonics: list[FittedHarmonics] = []
-    grouped: set[int] = set()
-    if not independent and rate:
+    taken: set[int] = set()
+    if grouped:
         for f0, members, orders in core.harmonic_groups([ln.frequency for ln in lines]):
             order_sort = np.argsort(orders)
             mem = [members[k] for k in order_sort]
@@ -247,15 +312,26 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
                 f0, tuple(int(orders[k]) for k in order_sort),
                 np.array([lines[m].amplitude for m in mem]),
                 np.array([lines[m].phase for m in mem])))
-            grouped.update(members)
-    for k, line in enumerate(lines):
-        if k not in grouped:
-            tones.append(FittedTone(line.frequency, line.amplitude, line.phase))
-    tone_var = sum((ln.amplitude**2 / 2 for ln in lines), np.zeros(3))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
-    return FittedPart(tuple(tones), tuple(harmonics),
-                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held)
+            taken.update(members)
+    tones = tuple(FittedTone(ln.frequency, ln.amplitude, ln.phase)
+                  for k, ln in enumerate(lines) if k not in taken)
+    return tones, tuple(harmonics)
+
+
+def shape_warnings(part: FittedPart | None, kind: str) -> list[str]:
+    """A warning per axis whose fitted PSD is off the measured one by more than
+    :data:`SHAPE_DB_LIMIT` dB power-weighted, or with more than :data:`OFF_3DB_LIMIT` of
+    the power in bins off by 3 dB (docs/model.md section 13); none for no part."""
+    out: list[str] = []
+    if part is None:
+        return out
+    for axis, db, off in zip("XYZ", part.shape_db, part.off_3db, strict=True):
+        if db > SHAPE_DB_LIMIT or off > OFF_3DB_LIMIT:
+            out.append(f"the fitted {kind} PSD of axis {axis} is off the measured one by "
+                       f"{db:.2g} dB (power-weighted), {100 * off:.0f} % of the power by more "
+                       f"than 3 dB: its shape is not the recording's (raise --breakpoints, "
+                       "or read the plot)")
+    return out
 
 
 # ----------------------------------------------------------------- analyze --recording
