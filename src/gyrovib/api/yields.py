@@ -251,8 +251,12 @@ def lot_yields(prepared: Prepared, parts: Mapping[str, FloatArray], method: str,
     return LotYields(value=value, low=low, high=high,
                      method="exact" if exact else "monte-carlo",
                      draws=0 if exact else draws, target=target, seed=seed, lots=lots,
-                     unmeasured=tuple(d.unmeasured if lot and d is not None else None
-                                      for d, lot in zip(found, lots, strict=True)))
+                     unmeasured=_unmeasured(found))
+
+
+def _unmeasured(found: Sequence[Distribution | None]) -> tuple[str | None, ...]:
+    """Per sensor, why its lot's yield is not a measurement (None: measured, or no lot)."""
+    return tuple(d.unmeasured if d is not None and d.is_lot else None for d in found)
 
 
 def judge(yields: LotYields, passed: NDArray[np.bool_],

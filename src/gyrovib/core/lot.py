@@ -402,16 +402,25 @@ def spread_problem(mean: ArrayLike, sigma: ArrayLike, correlation: ArrayLike, un
     if flat:
         reasons.append(f"no spread in {', '.join(flat)} (σ = 0, or within {SPREAD_RTOL:g} of "
                        "|mean|: the units agree there to rounding)")
-    elif units > size and len(index) > 1:
-        r = np.asarray(correlation, dtype=float)[np.ix_(index, index)]
-        eigenvalues = np.linalg.eigvalsh(r)
-        if eigenvalues[0] <= SPREAD_RTOL * eigenvalues[-1]:
-            reasons.append(
-                f"the correlations of {', '.join(label[i] for i in index)} make the "
-                f"covariance singular (the smallest eigenvalue of their correlation matrix "
-                f"is {eigenvalues[0]:.3g}, at most {SPREAD_RTOL:g} of the largest): the "
-                "units spread along fewer directions than there are coefficients")
+    elif units > size:
+        reasons += _singular_correlation(correlation, index, label)
     return "; ".join(reasons) or None
+
+
+def _singular_correlation(correlation: ArrayLike, index: list[int], label: list[str]
+                          ) -> list[str]:
+    """Why the correlation matrix of the coefficients ``index`` is singular (its smallest
+    eigenvalue at most :data:`SPREAD_RTOL` of its largest), or nothing."""
+    if len(index) < 2:
+        return []
+    r = np.asarray(correlation, dtype=float)[np.ix_(index, index)]
+    eigenvalues = np.linalg.eigvalsh(r)
+    if eigenvalues[0] > SPREAD_RTOL * eigenvalues[-1]:
+        return []
+    return [f"the correlations of {', '.join(label[i] for i in index)} make the covariance "
+            f"singular (the smallest eigenvalue of their correlation matrix is "
+            f"{eigenvalues[0]:.3g}, at most {SPREAD_RTOL:g} of the largest): the units "
+            "spread along fewer directions than there are coefficients"]
 
 
 def unmeasured_warning(lot: str, problem: str) -> str:
