@@ -264,10 +264,10 @@ def duration_notes(chosen: Sequence[MissionEntry]) -> tuple[str, ...]:
         for k, seconds in enumerate(durations):
             if seconds > MAX_DURATION:
                 notes.append(str(entry.source.problem(
-                    f"mission {entry.mission.id!r}, segment {k + 1}: {seconds:.6g} s is "
-                    f"{seconds / MAX_DURATION * MAX_DURATION_YEARS:.3g} years, longer than "
-                    f"{MAX_DURATION_YEARS} years: a typo? (durations are in seconds unless "
-                    "written with min or h)", _duration_place(entry, k))))
+                    f"mission {entry.mission.id!r}, segment {k + 1}: {seconds:.6g} s "
+                    f"({seconds / MAX_DURATION * MAX_DURATION_YEARS:.5g} years) is longer "
+                    f"than {MAX_DURATION_YEARS} years: a typo? (durations are in seconds "
+                    "unless written with min or h)", _duration_place(entry, k))))
     return tuple(notes)
 
 
@@ -281,8 +281,8 @@ def check_angles(rows: Sequence[MissionRow], chosen: Sequence[MissionEntry]) -> 
         return
     raise ModelError(by_id[bad.mission].source.problem(
         f"mission {bad.mission!r}, sensor {bad.sensor!r}: the angle θ_V = Σ T_s·Δ_V,s "
-        f"overflows floating point (its mean error is {bad.mean:.3g}); check the durations "
-        "(seconds unless written with min or h)", _duration_place(by_id[bad.mission], 0)),
+        "overflows floating point; check the durations (seconds unless written with min "
+        "or h)", _duration_place(by_id[bad.mission], 0)),
         reason="mission angle overflows")
 
 
