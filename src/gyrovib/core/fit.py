@@ -354,13 +354,11 @@ def _gram(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
 
 def _cholesky_qr(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
                  scaling: _Scaling) -> tuple[FloatArray, FloatArray] | None:
-    """R (p × p) and Qᵀv of X = Q·R by CholeskyQR2: R1 from the
-    Cholesky factor of D⁻¹·XᵀX·D⁻¹, then R2 from that of the same product of X·D⁻¹·R1⁻¹,
-    R = R2·R1·D, Qᵀv = R2⁻ᵀ·(X·D⁻¹·R1⁻¹)ᵀv (D the column norms of X). As accurate as Householder QR while the
-    scaled design's condition number is below about 1e7 (the first Gram matrix then
-    has a Cholesky factor and X·R1⁻¹ is near orthogonal; Yamamoto et al. 2015); None
-    beyond, where :func:`_householder` is used. Two passes of matrix products (BLAS
-    level 3), each block formed anew."""
+    """R (p × p) and Qᵀv of X = Q·R by CholeskyQR2 (two passes of matrix products, the
+    blocks formed anew): R1 the Cholesky factor of D⁻¹·XᵀX·D⁻¹ (D the column norms of
+    X), R2 that of the same product of X·D⁻¹·R1⁻¹; R = R2·R1·D, Qᵀv = R2⁻ᵀ·(X·D⁻¹·R1⁻¹)ᵀv.
+    As accurate as Householder QR while the scaled design's condition number is below
+    about 1e7 (Yamamoto et al. 2015); None beyond, for :func:`_householder`."""
     p = len(scaling.unscale)
     gram, _ = _gram(rate, v, order, cross, scaling)
     diagonal = np.sqrt(np.diag(gram))
