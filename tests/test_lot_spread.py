@@ -49,10 +49,15 @@ def test_as_many_units_as_coefficients() -> None:
 
 
 def test_units_varying_in_one_coefficient_only() -> None:
-    """Seven units that differ in A1 alone: every other rectifying coefficient has σ = 0;
-    units that differ in the bias k0 alone have no spread in any of them."""
+    """Seven units that differ in A1 alone, or six equal units and one with another A1:
+    every other rectifying coefficient has σ = 0; units that differ in the bias k0 alone
+    have no spread in any of them."""
     units = np.tile(BASE, (7, 1))
     units[:, 1] *= np.linspace(0.8, 1.2, 7)
+    problem = lot_statistics(units, NAMES).unmeasured
+    assert problem is not None and "no spread in k2, k3, k4, k5" in problem
+    units = np.tile(BASE, (7, 1))
+    units[0, 1] *= 1.1
     problem = lot_statistics(units, NAMES).unmeasured
     assert problem is not None and "no spread in k2, k3, k4, k5" in problem
     units = np.tile(BASE, (7, 1))
@@ -142,7 +147,15 @@ def test_a_catalogue_lot_without_spread_is_unverified(tmp_path: Path) -> None:
     assert "is not a measurement" in cell["reason"] and "no spread in A1, k2" in cell["reason"]
     assert "lot 'lot-flat'" in cell["stderr"] and cell["exit"] == 1
     assumed = select(tmp_path, "--budget", 6e-3, "--assume-unknown", "zero")
-    assert assumed["status"] == "pass" and assumed["pass"] is True
+    assert assumed["status"] == "pass" and assumed["pass"] is True and assumed["unknown"] == []
+    for fmt in ("table", "markdown", "junit"):  # every renderer takes the unknown "spread"
+        for more in ((), ("--assume-unknown", "zero")):
+            shown = invoke("select", tmp_path / "lot.yaml", "--budget", 6e-3, "--criterion",
+                           "worst", "--yield", 0.99, "--format", fmt, *more)
+            assert shown.exit_code == (0 if more else 1), shown.stderr
+    table = invoke("select", tmp_path / "lot.yaml", "--budget", 6e-3, "--criterion", "worst",
+                   "--yield", 0.99, "--format", "markdown")
+    assert "| lot-flat | the lot's spread, not measured" in table.stdout  # what settles it
 
 
 def test_a_catalogue_lot_of_too_few_units_is_unverified(tmp_path: Path) -> None:

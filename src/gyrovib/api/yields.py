@@ -269,13 +269,17 @@ def judge(yields: LotYields, passed: NDArray[np.bool_],
 
 
 def open_lots(yields: LotYields, passed: NDArray[np.bool_], unverified: NDArray[np.bool_],
-              unknown: dict[tuple[int, int], tuple[str, ...]], assume_unknown: str) -> None:
+              unknown: dict[tuple[int, int], tuple[str, ...]],
+              questions: dict[int, tuple[str, ...]], assume_unknown: str) -> None:
     """In place, after :func:`judge`: a lot whose spread is not measured (``unmeasured``)
     has the unknown ``"spread"`` under every profile, and where its yield passes it is
     ``unverified``, not passing (:func:`gyrovib.api.spec_bounds.is_unverified`, the one
-    rule of unknowns: ``assume_unknown="zero"`` takes the lot as given). A cell an
-    unknown figure already left open stays open, whatever the yield."""
+    rule of unknowns), with what would settle it among ``questions``;
+    ``assume_unknown="zero"`` takes the lot as given (no unknown). A cell an unknown
+    figure already left open stays open, whatever the yield."""
     passed &= ~unverified
+    if assume_unknown == "zero":
+        return
     for i, why in enumerate(yields.unmeasured):
         if why is None:
             continue
@@ -284,6 +288,8 @@ def open_lots(yields: LotYields, passed: NDArray[np.bool_], unverified: NDArray[
             if is_unverified(bool(passed[i, j]), unknown[(i, j)], assume_unknown):
                 unverified[i, j] = True
                 passed[i, j] = False
+        questions[i] = (*questions.get(i, ()), "the lot's spread, not measured (too few "
+                        "units, or units without spread): measure more units")
 
 
 def yield_limits(yields: LotYields, limits: Mapping[int, Limit],
