@@ -88,7 +88,7 @@ def test_json_keys(table: Path) -> None:
     means = [np.mean([u["coefficients"][n] for u in document["units"]]) for n in lot["mean"]]
     np.testing.assert_allclose(list(lot["mean"].values()), means, rtol=1e-12)
     assert document["warnings"] and "3 units" in document["warnings"][0]
-    assert "gyrovib: warning: a lot of 3 units" in result.stderr
+    assert "gyrovib: warning: lot 'lot-bench': a lot of 3 units" in result.stderr
 
 
 def test_catalogue_output(table: Path, tmp_path: Path) -> None:

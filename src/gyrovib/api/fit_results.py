@@ -5,7 +5,9 @@ In a module of its own so that no other command defines its classes.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -25,6 +27,13 @@ def coefficient_unit(name: str, rate_unit: str) -> str:
     if power == 1:
         return rate_unit
     return f"({rate_unit})^{power}"
+
+
+def lot_name(file: str) -> str:
+    """The id of the lot entry ``fit -o`` writes for the table ``file``: ``lot-`` and the
+    file's stem as an id (``lot-rate-table-gx100``)."""
+    stem = re.sub(r"[^A-Za-z0-9._-]+", "-", Path(file).stem).strip("-.") or "table"
+    return f"lot-{stem}"[:200]
 
 
 def pair_key(a: str, b: str) -> str:

@@ -92,7 +92,8 @@ class MissionResult(Frozen):
     ``angle_budget`` (on |θ_V|, in ``angle_unit``), at most one, None without;
     ``sensor_pass``: per sensor (in ``sensors`` order) whether it passes every
     mission on every axis (None without a budget); ``requirement_met``: the
-    ``require`` condition (any: one sensor passes; all: every sensor does).
+    ``require`` condition (any: one sensor passes; all: every sensor does);
+    ``notes``: warnings about the input (a segment longer than 100 years).
     """
 
     unit: str
@@ -106,6 +107,7 @@ class MissionResult(Frozen):
     sensor_pass: tuple[bool | None, ...]
     requirement_met: bool
     assume_unknown: str = "none"
+    notes: tuple[str, ...] = ()
 
     def sensor_status(self, k: int) -> str | None:
         """Sensor ``k`` over every mission and axis: ``fail`` if a row fails on its

@@ -92,8 +92,21 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
 
 def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
     """Why sensor ``i`` is unverified under profile ``j``: the unpublished figures that can
-    decide it (docs/model.md section 11), e.g. ``unverified: VRE not published (…)``."""
-    return unverified_text(result.unknown.get((i, j), ()), spec=result.source(i) == "specs")
+    decide it (docs/model.md section 11), e.g. ``unverified: VRE not published (…)``; for
+    a lot whose spread is not measured, why its yield is no measurement (section 14)."""
+    names = result.unknown.get((i, j), ())
+    figures = tuple(n for n in names if n != "spread")
+    out = [unverified_text(figures, spec=result.source(i) == "specs")] if figures else []
+    if "spread" in names and result.yields is not None:
+        out.append(unmeasured_text(result.yields, i, j))
+    return "; ".join(out)
+
+
+def unmeasured_text(yields: LotYields, i: int, j: int) -> str:
+    """The reason of a lot whose yield is not a measurement (docs/model.md section 14)."""
+    return (f"unverified: the yield {yield_text(yields, i, j)} is not a measurement, the "
+            f"lot's spread is not measured: {yields.unmeasured[i]} -- measure more units, "
+            "or --assume-unknown zero to take the lot as given")
 
 
 def unverified_text(names: Sequence[str], spec: bool = True) -> str:

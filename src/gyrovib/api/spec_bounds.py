@@ -126,6 +126,8 @@ UNKNOWN_WORDS = {
            "x3, so m31·C31 can rectify; docs/model.md section 11)",
     "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
            "x3, so m32·C32 can rectify; docs/model.md section 11)",
+    "spread": "the lot's spread is not measured (too few units, or units without spread: "
+              "its yield is not a measurement; docs/model.md section 14)",
 }
 
 

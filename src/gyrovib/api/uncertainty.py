@@ -33,6 +33,8 @@ from gyrovib.core.lot import (
     dispersion,
     lot_covariance,
     sensitivity,
+    spread_problem,
+    unmeasured_warning,
 )
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
@@ -46,7 +48,9 @@ class Distribution(Frozen):
     ``mean``: μ at those names; ``covariance``: Σ (p, p), the diagonal only for
     a lot with ``units`` ≤ p (then ``warning`` says so); ``units``: the lot's
     n, None for one unit's ``uncertainty``; ``k1``: the sensor's scale factor
-    (1 in eq. 2).
+    (1 in eq. 2); ``unmeasured``: why a yield from this lot is not a measurement
+    (:func:`gyrovib.core.lot.spread_problem`: n ≤ p, a σ of 0, a singular
+    correlation matrix; ``warning`` then says so too), None when it is one.
     """
 
     names: tuple[str, ...]
@@ -55,6 +59,7 @@ class Distribution(Frozen):
     units: int | None
     warning: str | None
     k1: float
+    unmeasured: str | None = None
 
     @property
     def is_lot(self) -> bool:
@@ -81,10 +86,14 @@ def distribution(entry: SensorEntry, row: FloatArray) -> Distribution | None:
     mean = np.array([row[COEFFICIENTS.index(n)] for n in names], dtype=float)
     k1 = float(row[COEFFICIENTS.index("k1")])
     if sensor.lot is not None:
-        cov, warning = lot_covariance(s, r, sensor.lot.units)
-        if warning is not None:
+        units_ = sensor.lot.units
+        cov, warning = lot_covariance(s, r, units_)
+        unmeasured = spread_problem(mean, s, r, units_, names, p=len(names))
+        if unmeasured is not None:
+            warning = unmeasured_warning(sensor.id, unmeasured)
+        elif warning is not None:
             warning = f"lot {sensor.id!r}: {warning}"
-        return Distribution(names, mean, cov, sensor.lot.units, warning, k1)
+        return Distribution(names, mean, cov, units_, warning, k1, unmeasured)
     return Distribution(names, mean, covariance_from(s, r), None, None, k1)
 
 

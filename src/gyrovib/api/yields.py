@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from gyrovib.api.prepare import Prepared, profile_problem
 from gyrovib.api.results import Limit, Result
+from gyrovib.api.spec_bounds import is_unverified
 from gyrovib.api.uncertainty import (
     Distribution,
     distributions,
@@ -68,7 +69,9 @@ class LotYields(Result):
     its 95 % Wilson interval (NaN for the exact yield and off lots);
     ``method``: ``"exact"`` (criterion ``worst``) or ``"monte-carlo"``;
     ``draws``: Monte-Carlo draws per lot (0 for exact); ``target``: Y;
-    ``seed``; ``lots``: per sensor, whether it is a lot.
+    ``seed``; ``lots``: per sensor, whether it is a lot; ``unmeasured``: per
+    sensor, why its yield is not a measurement (a lot without a measured spread,
+    :func:`gyrovib.core.lot.spread_problem`), else None.
     """
 
     value: FloatArray
@@ -79,6 +82,7 @@ class LotYields(Result):
     target: float
     seed: int
     lots: tuple[bool, ...]
+    unmeasured: tuple[str | None, ...] = ()
 
     def _shape(self) -> tuple[int, ...]:
         return tuple(self.value.shape)
@@ -246,7 +250,13 @@ def lot_yields(prepared: Prepared, parts: Mapping[str, FloatArray], method: str,
             value[i], low[i], high[i] = estimate.value, estimate.low, estimate.high
     return LotYields(value=value, low=low, high=high,
                      method="exact" if exact else "monte-carlo",
-                     draws=0 if exact else draws, target=target, seed=seed, lots=lots)
+                     draws=0 if exact else draws, target=target, seed=seed, lots=lots,
+                     unmeasured=_unmeasured(found))
+
+
+def _unmeasured(found: Sequence[Distribution | None]) -> tuple[str | None, ...]:
+    """Per sensor, why its lot's yield is not a measurement (None: measured, or no lot)."""
+    return tuple(d.unmeasured if d is not None and d.is_lot else None for d in found)
 
 
 def judge(yields: LotYields, passed: NDArray[np.bool_],
@@ -256,6 +266,30 @@ def judge(yields: LotYields, passed: NDArray[np.bool_],
     rows = np.array(yields.lots, dtype=bool)
     out[rows] = (yields.value[rows] >= yields.target) & ~saturated[rows]
     return out
+
+
+def open_lots(yields: LotYields, passed: NDArray[np.bool_], unverified: NDArray[np.bool_],
+              unknown: dict[tuple[int, int], tuple[str, ...]],
+              questions: dict[int, tuple[str, ...]], assume_unknown: str) -> None:
+    """In place, after :func:`judge`: a lot whose spread is not measured (``unmeasured``)
+    has the unknown ``"spread"`` under every profile, and where its yield passes it is
+    ``unverified``, not passing (:func:`gyrovib.api.spec_bounds.is_unverified`, the one
+    rule of unknowns), with what would settle it among ``questions``;
+    ``assume_unknown="zero"`` takes the lot as given (no unknown). A cell an unknown
+    figure already left open stays open, whatever the yield."""
+    passed &= ~unverified
+    if assume_unknown == "zero":
+        return
+    for i, why in enumerate(yields.unmeasured):
+        if why is None:
+            continue
+        for j in range(passed.shape[1]):
+            unknown[(i, j)] = (*unknown.get((i, j), ()), "spread")
+            if is_unverified(bool(passed[i, j]), unknown[(i, j)], assume_unknown):
+                unverified[i, j] = True
+                passed[i, j] = False
+        questions[i] = (*questions.get(i, ()), "the lot's spread, not measured (too few "
+                        "units, or units without spread): measure more units")
 
 
 def yield_limits(yields: LotYields, limits: Mapping[int, Limit],

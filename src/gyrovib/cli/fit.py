@@ -34,10 +34,13 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
     rms and the fitted curve's nonlinearity (%FS); with two or more units, the
     lot's mean and spread (docs/model.md section 14).
 
-    TABLE is a CSV file ('-': standard input) with a header row: unit (optional),
-    rate, output, and optionally rate_x1, rate_x2 (cross rates). Lines starting
-    with '#' are comments. Each unit needs rates of both signs, enough distinct
-    |rate| levels for --order, and more points than parameters.
+    TABLE is a CSV file of at most 16 MiB ('-': standard input) with a header
+    row: unit (optional), rate, output, and optionally rate_x1, rate_x2 (cross
+    rates). Lines starting with '#' are comments. Each unit needs rates of both
+    signs, enough distinct |rate| levels for --order, and more points than
+    parameters. A lot whose spread is not measured (no more units than
+    coefficients, identical units, a singular covariance) is written with a
+    warning naming it: select --yield calls it unverified.
     """
     from gyrovib import api
     from gyrovib.api.ratetable import STDIN, STDIN_NAME, read_rate_table_bytes

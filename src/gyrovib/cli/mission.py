@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
+from gyrovib.cli.common import load_catalog, page_width, plain_ascii, say, use_color
 from gyrovib.cli.options import (
     files_argument,
     format_option,
@@ -78,6 +78,8 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown or "none")
+    for note in result.notes:
+        say(f"gyrovib: warning: {note}")
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
@@ -118,6 +120,8 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown)
+    for note in result.notes:
+        say(f"gyrovib: warning: {note}")
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))

@@ -31,6 +31,8 @@ def yield_options(function: F) -> F:
         help="Judge a production lot (`lot:`) by its yield: it passes a profile when the "
              "probability that a part drawn from it passes the criterion is at least Y "
              "(0 < Y < 1, e.g. 0.9973 for 3σ). Exact for --criterion worst, Monte Carlo "
-             "with a 95% Wilson interval otherwise (docs/model.md section 14). Other sensors "
-             "are judged as without it.",
+             "with a 95% Wilson interval otherwise (docs/model.md section 14). A lot whose "
+             "spread is not measured (units <= coefficients, a sigma of 0, a singular "
+             "covariance) is unverified where its yield passes. Other sensors are judged as "
+             "without it.",
     )(function)

@@ -13,7 +13,9 @@ K1·Ω + h·|Ω|). Ordinary least squares gives θ̂ and
 
 computed on a scaled design matrix: Ω divided by the largest |Ω| (and ωi by
 the largest |ωi|), then every column divided by its Euclidean norm, solved by
-a QR factorisation; the scales are undone on θ̂ and its covariance. The
+a QR factorisation formed block by block (the triangle R of [X | U] is updated
+with each block of rows, so a table of millions of points needs O(p²) memory
+beside the points themselves); the scales are undone on θ̂ and its covariance. The
 output is divided by a power of two near its largest |U| first (exact), so
 that RSS and s² neither overflow (outputs near 1e300) nor underflow (near
 1e-300, which would give σ = 0); eq. (2) does not depend on that scale.
@@ -42,7 +44,7 @@ and as many distinct nonzero levels as the odd part K1Ω + K3Ω³ + K5Ω⁵ has
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -172,9 +174,8 @@ class RateFit(Frozen):
         return float(self.values[self.names.index(name)])
 
 
-def _levels(values: FloatArray, scale: float) -> FloatArray:
-    """The distinct values of ``values`` (≥ 0), those within 1e-9·scale merged."""
-    ordered = np.sort(values)
+def _levels(ordered: FloatArray, scale: float) -> FloatArray:
+    """The distinct values of ``ordered`` (sorted, ≥ 0), those within 1e-9·scale merged."""
     if ordered.size == 0:
         return ordered
     keep = np.concatenate([[True], np.diff(ordered) > 1e-9 * scale])
@@ -182,33 +183,48 @@ def _levels(values: FloatArray, scale: float) -> FloatArray:
     return out
 
 
-def check_identifiable(rate: FloatArray, order: int, p: int) -> None:
-    """Raise :class:`IdentificationError` unless the rates can identify eq. (1) at ``order``
-    with ``p`` parameters (both signs, enough |Ω| levels, n > p)."""
-    n = rate.size
-    problems = []
+def _sign_problem(rate: FloatArray) -> str | None:
+    """Why the rates cannot separate A1 from K1 (all of one sign), or None."""
     positive, negative = bool(np.any(rate > 0)), bool(np.any(rate < 0))
-    if not (positive and negative):
-        sign = "positive" if positive else "negative" if negative else "zero"
-        wanted = "negative" if positive else "positive" if negative else "nonzero"
-        problems.append(
-            f"every rate is {sign}: the asymmetry A1 (the |Ω| term) needs rates of both "
+    if positive and negative:
+        return None
+    sign = "positive" if positive else "negative" if negative else "zero"
+    wanted = "negative" if positive else "positive" if negative else "nonzero"
+    return (f"every rate is {sign}: the asymmetry A1 (the |Ω| term) needs rates of both "
             f"signs; add runs at {wanted} rates")
-    scale = float(np.max(np.abs(rate))) if n else 0.0
-    levels = _levels(np.abs(rate), scale)
-    nonzero = levels[levels > 1e-9 * scale] if scale > 0 else levels[:0]
+
+
+def _level_problems(rate: FloatArray, order: int) -> list[str]:
+    """Why the distinct |Ω| levels are too few for the even or the odd part at ``order``."""
+    scale = float(np.max(np.abs(rate))) if rate.size else 0.0
+    if not scale > 0:
+        return []
+    magnitudes = np.abs(rate)
+    magnitudes.sort()  # in place: one copy of the rates, however many
+    levels = _levels(magnitudes, scale)
+    nonzero = levels[levels > 1e-9 * scale]
     even = ["K0", "h", *(f"K{k}" for k in range(2, order + 1, 2))]
     odd = [f"K{k}" if k > 1 else "K1" for k in range(1, order + 1, 2)]
-    if scale > 0 and levels.size < len(even):
+    problems = []
+    if levels.size < len(even):
         problems.append(
             f"order {order} needs at least {len(even)} distinct |Ω| levels (zero counts) for "
             f"the even part ({', '.join(even)}); the table has {levels.size}: add rates at "
             "other magnitudes, or fit a lower order")
-    if scale > 0 and nonzero.size < len(odd):
+    if nonzero.size < len(odd):
         problems.append(
             f"order {order} needs at least {len(odd)} distinct nonzero |Ω| levels for the odd "
             f"part ({', '.join(odd)}); the table has {nonzero.size}: add rates at other "
             "magnitudes, or fit a lower order")
+    return problems
+
+
+def check_identifiable(rate: FloatArray, order: int, p: int) -> None:
+    """Raise :class:`IdentificationError` unless the rates can identify eq. (1) at ``order``
+    with ``p`` parameters (both signs, enough |Ω| levels, n > p)."""
+    n = rate.size
+    sign = _sign_problem(rate)
+    problems = ([] if sign is None else [sign]) + _level_problems(rate, order)
     if n <= p:
         problems.append(
             f"{n} point{'s' if n != 1 else ''} for {p} parameters: the fit needs more points "
@@ -243,35 +259,174 @@ def _check_magnitude(scale: float, order: int, column: str) -> None:
         f"square of that, beyond double precision (about 1e±308); {remedy}")
 
 
-def _design(rate: FloatArray, order: int, cross: FloatArray | None,
-            axes: tuple[int, ...]) -> tuple[FloatArray, FloatArray]:
-    """The scaled design matrix (columns of unit norm) and the factor undoing each
-    column's scaling (θ_j = β_j·factor_j); ``cross`` (n, len(axes)) holds ω_i, i in ``axes``."""
+#: Rows of the design matrix formed at once: the fit holds this many rows × p floats and
+#: the (p + 1) × (p + 1) triangle R, never the n × p matrix (docs/performance.md).
+BLOCK_ROWS = 1 << 16
+
+
+@dataclass(frozen=True)
+class _Scaling:
+    """How the design is scaled: Ω over ``rate`` (its largest |Ω|), ωi over ``cross[i]``;
+    ``unscale`` the factor of each parameter before the columns are normalised."""
+
+    rate: float
+    cross: FloatArray | None
+    unscale: FloatArray
+
+
+def _scaling(rate: FloatArray, order: int, cross: FloatArray | None,
+             axes: tuple[int, ...]) -> _Scaling:
+    """The scales of the design (:class:`_Scaling`), refusing those beyond double precision
+    and a cross rate that never varies."""
     scale = float(np.max(np.abs(rate)))
     _check_magnitude(scale, order, "rate")
-    x = rate / scale
-    columns = [np.ones_like(x), x, np.abs(x), *(x**k for k in range(2, order + 1))]
     unscale = [1.0, 1.0 / scale, 1.0 / scale, *(scale ** (-k) for k in range(2, order + 1))]
-    if cross is not None:
-        cross_scale = np.max(np.abs(cross), axis=0)
-        if np.any(cross_scale == 0):
-            missing = [f"rate_x{i}" for i, s in zip(axes, cross_scale, strict=True) if s == 0]
-            raise IdentificationError(
-                f"{', '.join(missing)} is zero in every row: the cross-axis terms need runs "
-                "with a cross rate; drop the column or add such runs")
-        for i, s in zip(axes, cross_scale, strict=True):
-            _check_magnitude(float(s), 1, f"rate_x{i}")
-            _check_magnitude(scale * float(s), 1, f"rate|·|rate_x{i}")
-        y = cross / cross_scale
+    if cross is None:
+        return _Scaling(scale, None, np.asarray(unscale))
+    cross_scale = np.max(np.abs(cross), axis=0)
+    if np.any(cross_scale == 0):
+        missing = [f"rate_x{i}" for i, s in zip(axes, cross_scale, strict=True) if s == 0]
+        raise IdentificationError(
+            f"{', '.join(missing)} is zero in every row: the cross-axis terms need runs "
+            "with a cross rate; drop the column or add such runs")
+    for i, s in zip(axes, cross_scale, strict=True):
+        _check_magnitude(float(s), 1, f"rate_x{i}")
+        _check_magnitude(scale * float(s), 1, f"rate|·|rate_x{i}")
+    unscale += [1.0 / float(s) for s in cross_scale]
+    unscale += [1.0 / (scale * float(s)) for s in cross_scale]
+    return _Scaling(scale, cross_scale, np.asarray(unscale))
+
+
+def _rows(rate: FloatArray, order: int, cross: FloatArray | None, scaling: _Scaling
+          ) -> FloatArray:
+    """The scaled design of these points, transposed (p, n) and before the columns are
+    normalised: rows 1, x, |x|, x²…x^N, then yi and x·yi per cross axis (x = Ω/R,
+    yi = ωi/max|ωi|)."""
+    x = rate / scaling.rate
+    columns = [np.ones_like(x), x, np.abs(x)]
+    power = x
+    for _ in range(2, order + 1):
+        power = power * x  # products, not x**k: numpy's pow is ~100 times slower
+        columns.append(power)
+    if cross is not None and scaling.cross is not None:
+        y = cross / scaling.cross
         columns += [y[:, i] for i in range(y.shape[1])]
-        unscale += [1.0 / float(s) for s in cross_scale]
         columns += [x * y[:, i] for i in range(y.shape[1])]
-        unscale += [1.0 / (scale * float(s)) for s in cross_scale]
-    design = np.stack(columns, axis=1)
-    norms = np.linalg.norm(design, axis=0)
+    return np.stack(columns)
+
+
+def _blocks(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
+            scaling: _Scaling) -> Iterator[tuple[FloatArray, FloatArray]]:
+    """The scaled design (before normalisation, transposed: :func:`_rows`) and v,
+    :data:`BLOCK_ROWS` points at a time."""
+    for start in range(0, rate.size, BLOCK_ROWS):
+        stop = start + BLOCK_ROWS
+        w = None if cross is None else cross[start:stop]
+        yield _rows(rate[start:stop], order, w, scaling), v[start:stop]
+
+
+def _householder(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
+                 scaling: _Scaling) -> tuple[FloatArray, FloatArray]:
+    """R (p × p) and Qᵀv of the QR factorisation of X, by Householder QR of [X | v] block by
+    block: R of [R_previous; block] is R of every row so far. Householder QR does not
+    depend on the scale of the columns, so X is normalised afterwards, on R."""
+    r = np.zeros((0, 0))
+    for rows, values in _blocks(rate, v, order, cross, scaling):
+        block = np.vstack([rows, values]).T
+        r = np.linalg.qr(block if r.size == 0 else np.vstack([r, block]), mode="r")
+    p = r.shape[1] - 1
+    return r[:p, :p], r[:p, p]
+
+
+def _gram(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
+          scaling: _Scaling, right: FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
+    """AᵀA and Aᵀv for A = X·``right`` (X the scaled design; X itself when None), summed
+    block by block."""
+    p = len(scaling.unscale)
+    gram = np.zeros((p, p))
+    moment = np.zeros(p)
+    for rows, values in _blocks(rate, v, order, cross, scaling):
+        a = rows if right is None else right.T @ rows  # Aᵀ, (p, block)
+        gram += a @ a.T
+        moment += a @ values
+    return gram, moment
+
+
+def _cholesky_qr(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
+                 scaling: _Scaling) -> tuple[FloatArray, FloatArray] | None:
+    """R (p × p) and Qᵀv of X = Q·R by CholeskyQR2 (two passes of matrix products, the
+    blocks formed anew): R1 the Cholesky factor of D⁻¹·XᵀX·D⁻¹ (D the column norms of
+    X), R2 that of the same product of X·D⁻¹·R1⁻¹; R = R2·R1·D, Qᵀv = R2⁻ᵀ·(X·D⁻¹·R1⁻¹)ᵀv.
+    As accurate as Householder QR while the scaled design's condition number is below
+    about 1e7 (Yamamoto et al. 2015); None beyond, for :func:`_householder`."""
+    p = len(scaling.unscale)
+    gram, _ = _gram(rate, v, order, cross, scaling)
+    diagonal = np.sqrt(np.diag(gram))
+    diagonal[diagonal == 0] = 1.0
+    try:
+        r1 = np.linalg.cholesky(gram / np.outer(diagonal, diagonal)).T
+        right = np.linalg.inv(r1 * diagonal)  # X·right = X·D⁻¹·R1⁻¹, near orthogonal
+        gram2, moment = _gram(rate, v, order, cross, scaling, right)
+        r2 = np.linalg.cholesky(gram2).T
+    except np.linalg.LinAlgError:
+        return None
+    if not (np.all(np.isfinite(r2)) and np.linalg.norm(gram2 - np.eye(p)) < 1e-2):
+        return None
+    return (r2 @ r1) * diagonal, np.linalg.solve(r2.T, moment)
+
+
+def _factor(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
+            scaling: _Scaling) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """R of the scaled design with normalised columns, Qᵀv and the column norms."""
+    quick = _cholesky_qr(rate, v, order, cross, scaling)
+    if quick is None:
+        r, qtv = _householder(rate, v, order, cross, scaling)
+    else:
+        r, qtv = quick
+    norms = np.linalg.norm(r, axis=0)
     norms[norms == 0] = 1.0
-    factor = np.asarray(unscale) / norms
-    return design / norms, factor
+    return r / norms, qtv, norms
+
+
+def _residuals(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,
+               scaling: _Scaling, beta: FloatArray) -> FloatArray:
+    """v − X·β per point, block by block (X the scaled design before normalisation)."""
+    out = np.empty_like(v)
+    start = 0
+    for rows, values in _blocks(rate, v, order, cross, scaling):
+        out[start:start + values.size] = values - beta @ rows
+        start += values.size
+    return out
+
+
+def _inputs(rate: ArrayLike, output: ArrayLike, order: int, cross: ArrayLike | None,
+            cross_axes: Sequence[int] | None
+            ) -> tuple[FloatArray, FloatArray, FloatArray | None, tuple[int, ...]]:
+    """The points as float arrays, checked: Ω (n,), U (n,), ω (n, k) or None, the axes."""
+    omega = np.asarray(rate, dtype=float).ravel()
+    u = np.asarray(output, dtype=float).ravel()
+    if omega.shape != u.shape:
+        raise ValueError("rate and output must have the same length")
+    if not (isinstance(order, int | np.integer) and 1 <= order <= MAX_ORDER):
+        raise IdentificationError(f"the order must be 1 to {MAX_ORDER} (eq. 1), not {order!r}")
+    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(u))):
+        raise IdentificationError("the rates and outputs must be finite numbers")
+    if cross is None:
+        return omega, u, None, ()
+    w = np.asarray(cross, dtype=float).reshape(omega.size, -1)
+    axes = tuple(cross_axes) if cross_axes is not None else tuple(range(1, w.shape[1] + 1))
+    if len(axes) != w.shape[1] or not set(axes) <= {1, 2} or len(set(axes)) != len(axes):
+        raise ValueError("cross must have one column per axis of cross_axes (1, 2)")
+    if not np.all(np.isfinite(w)):
+        raise IdentificationError("the cross rates must be finite numbers")
+    return omega, u, w, axes
+
+
+def _output_scale(u: FloatArray) -> float:
+    """A power of two near the largest |U| (exact division): RSS neither overflows nor
+    underflows; eq. (2) is a ratio and does not see the scale."""
+    top = float(np.max(np.abs(u)))
+    return math.ldexp(1.0, math.frexp(top)[1] - 1) if top > 0 else 1.0
 
 
 def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDER,
@@ -287,50 +442,26 @@ def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDE
     (see the module docstring). Raises :class:`IdentificationError` when the
     data cannot identify the model.
     """
-    omega = np.asarray(rate, dtype=float).ravel()
-    u = np.asarray(output, dtype=float).ravel()
-    if omega.shape != u.shape:
-        raise ValueError("rate and output must have the same length")
-    if not (isinstance(order, int | np.integer) and 1 <= order <= MAX_ORDER):
-        raise IdentificationError(f"the order must be 1 to {MAX_ORDER} (eq. 1), not {order!r}")
-    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(u))):
-        raise IdentificationError("the rates and outputs must be finite numbers")
-    w = None
-    axes: tuple[int, ...] = ()
-    if cross is not None:
-        w = np.asarray(cross, dtype=float).reshape(omega.size, -1)
-        axes = tuple(cross_axes) if cross_axes is not None else tuple(range(1, w.shape[1] + 1))
-        if len(axes) != w.shape[1] or not set(axes) <= {1, 2} or len(set(axes)) != len(axes):
-            raise ValueError("cross must have one column per axis of cross_axes (1, 2)")
-        if not np.all(np.isfinite(w)):
-            raise IdentificationError("the cross rates must be finite numbers")
+    omega, u, w, axes = _inputs(rate, output, order, cross, cross_axes)
     names_raw = raw_names(order, axes)
     p = len(names_raw)
     check_identifiable(omega, order, p)
-    design, factor = _design(omega, order, w, axes)
-    _check_rank(design, names_raw)
-    # the output over a power of two near its largest |U| (exact): RSS neither
-    # overflows nor underflows; eq. (2) is a ratio and does not see the scale
-    top = float(np.max(np.abs(u)))
-    out_scale = math.ldexp(1.0, math.frexp(top)[1] - 1) if top > 0 else 1.0
+    scaling = _scaling(omega, order, w, axes)
+    out_scale = _output_scale(u)
     v = u / out_scale
-    q, r = np.linalg.qr(design)
-    beta = np.linalg.solve(r, q.T @ v)
-    scaled_residuals = v - design @ beta
+    r, qtv, norms = _factor(omega, v, order, w, scaling)
+    _check_rank(r, names_raw)
+    beta = np.linalg.solve(r, qtv)
+    scaled_residuals = _residuals(omega, v, order, w, scaling, beta / norms)
     n = omega.size
     rss = float(scaled_residuals @ scaled_residuals)
     s2 = rss / (n - p)
     r_inv = np.linalg.solve(r, np.eye(p))
-    cov_beta = s2 * (r_inv @ r_inv.T)
+    factor = scaling.unscale / norms
     theta = beta * factor
-    cov_theta = cov_beta * np.outer(factor, factor)
+    cov_theta = s2 * (r_inv @ r_inv.T) * np.outer(factor, factor)
     values, covariance = to_rate_form(theta, cov_theta, order, axes, out_scale)
-    lost = s2 > 0 and bool(np.any(np.diag(covariance) < np.finfo(float).tiny))
-    if lost or not (np.all(np.isfinite(values)) and np.all(np.isfinite(covariance))):
-        raise IdentificationError(
-            "the coefficients or their variances are not finite double-precision numbers "
-            "(rates or outputs of extreme magnitude); are the columns in the stated "
-            "units?")
+    _check_finite(values, covariance, s2)
     with np.errstate(over="ignore"):
         raw_values = theta * out_scale
         raw_covariance = cov_theta * out_scale * out_scale  # inf beyond ~1e154
@@ -347,16 +478,28 @@ def fit_rate_table(rate: ArrayLike, output: ArrayLike, order: int = DEFAULT_ORDE
         residuals=scaled_residuals * out_scale,
         residual_rms=float(np.sqrt(rss / n)) * out_scale,
         residual_sigma=float(np.sqrt(s2)) * out_scale,
-        nonlinearity=nonlinearity(values, rate_names(order, axes), float(np.max(np.abs(omega)))),
+        nonlinearity=nonlinearity(values, rate_names(order, axes), scaling.rate),
         points=n,
         raw_sigma=raw_sigma,
     )
 
 
-def _check_rank(design: FloatArray, names: tuple[str, ...]) -> None:
+def _check_finite(values: FloatArray, covariance: FloatArray, s2: float) -> None:
+    """Refuse coefficients or variances that are not finite doubles, or variances that
+    underflowed to 0 where the residuals are not 0."""
+    lost = s2 > 0 and bool(np.any(np.diag(covariance) < np.finfo(float).tiny))
+    if lost or not (np.all(np.isfinite(values)) and np.all(np.isfinite(covariance))):
+        raise IdentificationError(
+            "the coefficients or their variances are not finite double-precision numbers "
+            "(rates or outputs of extreme magnitude); are the columns in the stated "
+            "units?")
+
+
+def _check_rank(r: FloatArray, names: tuple[str, ...]) -> None:
     """Raise when the scaled design matrix is (numerically) rank deficient, naming the
-    parameters that the data cannot tell apart (the null direction's main entries)."""
-    _, singular, vt = np.linalg.svd(design, full_matrices=False)
+    parameters that the data cannot tell apart (the null direction's main entries).
+    ``r``: the R of its QR factorisation (the same singular values and directions)."""
+    _, singular, vt = np.linalg.svd(r, full_matrices=False)
     small = singular <= singular[0] / MAX_CONDITION
     if not np.any(small):
         return

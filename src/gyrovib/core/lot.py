@@ -46,6 +46,11 @@ CHUNK = 20_000
 WILSON_Z = 1.959963984540054
 #: A correlation matrix whose smallest eigenvalue is below −this is not one.
 PSD_TOLERANCE = 1e-8
+#: A lot's spread is not measured (docs/model.md section 14, :func:`spread_problem`) where a
+#: coefficient's σ is at most this fraction of |μ| (units that agree to rounding: the mean
+#: of equal numbers is not always exactly that number), or where the correlation matrix's
+#: smallest eigenvalue is at most this fraction of its largest (a singular covariance).
+SPREAD_RTOL = 1e-9
 
 
 class LotError(ModelError):
@@ -369,6 +374,61 @@ def diagonal_warning(units: int, p: int) -> str:
             "only the standard deviations are used, correlations taken as 0")
 
 
+def spread_problem(mean: ArrayLike, sigma: ArrayLike, correlation: ArrayLike, units: int,
+                   names: Sequence[str] | None = None, p: int | None = None) -> str | None:
+    """Why a yield from this lot is not a measurement, or None (docs/model.md section 14).
+
+    A lot of ``units`` units whose coefficients ``names`` have mean μ, standard
+    deviations σ and correlation matrix R. Its sample covariance is singular, and a
+    yield drawn from it says nothing about the parts, when
+
+    * ``units`` ≤ p (``p``, default :func:`rectifying_count` of ``names``): only the
+      diagonal is used (:func:`lot_covariance`);
+    * a coefficient Δ_V is linear in has σ ≤ :data:`SPREAD_RTOL`·|μ| (σ = 0
+      included): identical units, or units that differ in other coefficients only;
+    * else, the smallest eigenvalue of R over those coefficients is at most
+      :data:`SPREAD_RTOL` times its largest (a spread along fewer directions than
+      coefficients).
+    """
+    mu = np.asarray(mean, dtype=float)
+    s = np.asarray(sigma, dtype=float)
+    label = list(names) if names is not None else [str(i) for i in range(s.size)]
+    size = rectifying_count(names, s.size) if p is None else p
+    reasons = []
+    if units <= size:
+        reasons.append(diagonal_warning(units, size))
+    index = [i for i in range(s.size) if names is None or label[i] in BOUNDED]
+    flat = [label[i] for i in index if not s[i] > SPREAD_RTOL * abs(mu[i])]
+    if flat:
+        reasons.append(f"no spread in {', '.join(flat)} (σ = 0, or within {SPREAD_RTOL:g} of "
+                       "|mean|: the units agree there to rounding)")
+    elif units > size:
+        reasons += _singular_correlation(correlation, index, label)
+    return "; ".join(reasons) or None
+
+
+def _singular_correlation(correlation: ArrayLike, index: list[int], label: list[str]
+                          ) -> list[str]:
+    """Why the correlation matrix of the coefficients ``index`` is singular (its smallest
+    eigenvalue at most :data:`SPREAD_RTOL` of its largest), or nothing."""
+    if len(index) < 2:
+        return []
+    r = np.asarray(correlation, dtype=float)[np.ix_(index, index)]
+    eigenvalues = np.linalg.eigvalsh(r)
+    if eigenvalues[0] > SPREAD_RTOL * eigenvalues[-1]:
+        return []
+    return [f"the correlations of {', '.join(label[i] for i in index)} make the covariance "
+            f"singular (the smallest eigenvalue of their correlation matrix is "
+            f"{eigenvalues[0]:.3g}, at most {SPREAD_RTOL:g} of the largest): the units "
+            "spread along fewer directions than there are coefficients"]
+
+
+def unmeasured_warning(lot: str, problem: str) -> str:
+    """The warning of a lot whose yield is not a measurement (:func:`spread_problem`)."""
+    return (f"lot {lot!r}: {problem}; a yield from this lot is not a measurement "
+            "(select --yield calls it unverified): measure more units, or units that differ")
+
+
 def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int,
                    names: Sequence[str] | None = None) -> tuple[FloatArray, str | None]:
     """The covariance of a lot of ``units`` units (docs/model.md section 14) and a warning:
@@ -388,7 +448,9 @@ class LotStatistics(Frozen):
 
     ``mean`` μ, ``sigma`` (sample standard deviations, n − 1), ``correlation``
     (the identity when ``diagonal``), ``covariance`` (the one the yield uses:
-    diagonal when n ≤ p), ``units`` n, ``warning`` (None unless diagonal).
+    diagonal when n ≤ p), ``units`` n, ``warning`` (None unless diagonal);
+    ``unmeasured``: why a yield from the lot is not a measurement
+    (:func:`spread_problem`), None when it is one.
     """
 
     mean: FloatArray
@@ -398,6 +460,7 @@ class LotStatistics(Frozen):
     units: int
     diagonal: bool
     warning: str | None
+    unmeasured: str | None = None
 
 
 def lot_statistics(coefficients: ArrayLike, names: Sequence[str] | None = None
@@ -428,4 +491,5 @@ def lot_statistics(coefficients: ArrayLike, names: Sequence[str] | None = None
     return LotStatistics(
         mean=mean, sigma=sigma, correlation=correlation,
         covariance=correlation * np.outer(sigma, sigma), units=n, diagonal=diagonal,
-        warning=diagonal_warning(n, p) if diagonal else None)
+        warning=diagonal_warning(n, p) if diagonal else None,
+        unmeasured=spread_problem(mean, sigma, correlation, n, names, p))

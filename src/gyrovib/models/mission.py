@@ -30,6 +30,11 @@ from gyrovib.models._types import (
 
 #: Most segments of one mission.
 MAX_SEGMENTS = 10_000
+#: The longest plausible segment, in years: a duration beyond it (e.g. 1e300 s, longer
+#: than the age of the universe) is read, with a warning that it is probably a typo.
+MAX_DURATION_YEARS = 100
+#: :data:`MAX_DURATION_YEARS` in seconds (Julian years of 365.25 days).
+MAX_DURATION = MAX_DURATION_YEARS * 365.25 * 86400.0
 #: Seconds per duration unit a segment may be written in.
 DURATION_UNITS = {"s": 1.0, "sec": 1.0, "min": 60.0, "h": 3600.0}
 _DURATION = re.compile(r"^\s*([0-9]*\.?[0-9]+(?:[eE][+-]?[0-9]+)?)\s*(s|sec|min|h)\s*$")

@@ -33,9 +33,10 @@ from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry
 from gyrovib.core import placement as placements
 from gyrovib.core.mission import ANGLE_UNITS, combined_functional, totals
 from gyrovib.core.placement import Placement
-from gyrovib.errors import OptionError
+from gyrovib.errors import ModelError, OptionError
 from gyrovib.frozen import Frozen
 from gyrovib.models import Mission
+from gyrovib.models.mission import MAX_DURATION, MAX_DURATION_YEARS
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -170,6 +171,7 @@ def mission(
     unit = units.canonical_unit(unit)
     a_unit, a_factor = ANGLE_UNITS[unit]
     chosen = chosen_missions(catalog, missions)
+    notes = duration_notes(chosen)
     entries, runs = _segment_entries(catalog, chosen, placement)
     derived = Catalog(catalog.sources, catalog.sensors, tuple(entries), catalog.allocation,
                       catalog.missions)
@@ -224,6 +226,7 @@ def mission(
                 worst_total=float(agg.worst_total), segments=segs, saturated=sat,
                 passed=passed, source=sources[i], unknown=names, unverified=open_))
         rows.extend(_with_worst_axis(per_sensor))
+    check_angles(rows, chosen)
     sensor_pass = tuple(
         None if budget is None and angle_budget is None else
         all(bool(r.passed) for r in rows if r.sensor == s) for s in result.sensors)
@@ -237,7 +240,50 @@ def mission(
                          angle_budget=theta_budget, require=require, sensors=result.sensors,
                          missions=tuple(m.mission.id for m in chosen), rows=tuple(rows),
                          sensor_pass=sensor_pass, requirement_met=met,
-                         assume_unknown=assume_unknown)
+                         assume_unknown=assume_unknown, notes=notes)
+
+
+def _duration_place(entry: MissionEntry, segment: int) -> tuple[object, ...]:
+    return ("missions", entry.index, "segments", segment, "duration")
+
+
+def duration_notes(chosen: Sequence[MissionEntry]) -> tuple[str, ...]:
+    """A warning per segment longer than :data:`~gyrovib.models.mission.MAX_DURATION`
+    (100 years: a typo, surely), at its ``duration``; raises :class:`ModelError` where a
+    mission's durations sum beyond double precision (Σ T_s would be inf and every mean
+    and angle meaningless)."""
+    notes: list[str] = []
+    for entry in chosen:
+        durations = [float(s.duration) for s in entry.mission.segments]
+        if not math.isfinite(sum(durations)):  # a float sum overflows to inf, not raises
+            raise ModelError(entry.source.problem(
+                f"mission {entry.mission.id!r}: its durations add up to more than double "
+                f"precision holds (about 1.8e308 s); no mean or angle can be computed: "
+                f"check the durations (seconds unless written with min or h)",
+                _duration_place(entry, 0)), reason="mission duration overflows")
+        for k, seconds in enumerate(durations):
+            if seconds > MAX_DURATION:
+                notes.append(str(entry.source.problem(
+                    f"mission {entry.mission.id!r}, segment {k + 1}: {seconds:.6g} s "
+                    f"({seconds / MAX_DURATION * MAX_DURATION_YEARS:.5g} years) is longer "
+                    f"than {MAX_DURATION_YEARS} years: a typo? (durations are in seconds "
+                    "unless written with min or h)", _duration_place(entry, k))))
+    return tuple(notes)
+
+
+def check_angles(rows: Sequence[MissionRow], chosen: Sequence[MissionEntry]) -> None:
+    """Raise :class:`ModelError` at the first segment of a mission whose mean error or
+    angle θ_V = Σ T_s·Δ_V,s overflowed (a finite Σ T_s times an error can still be inf)."""
+    by_id = {e.mission.id: e for e in chosen}
+    bad = next((r for r in rows if not (math.isfinite(r.angle) and math.isfinite(r.mean))),
+               None)
+    if bad is None:
+        return
+    raise ModelError(by_id[bad.mission].source.problem(
+        f"mission {bad.mission!r}, sensor {bad.sensor!r}: the angle θ_V = Σ T_s·Δ_V,s "
+        "overflows floating point; check the durations (seconds unless written with min "
+        "or h)", _duration_place(by_id[bad.mission], 0)),
+        reason="mission angle overflows")
 
 
 def _rad_per(angle_unit_name: str) -> float:

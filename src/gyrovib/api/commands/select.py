@@ -35,6 +35,7 @@ from gyrovib.api.yields import (
     judge,
     lot_yields,
     notes,
+    open_lots,
     yield_limits,
 )
 from gyrovib.catalog.loader import Catalog
@@ -266,6 +267,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
             seed=seed, draws=draws, rtol=PASS_RTOL)
         if yields is not None:
             passed = judge(yields, passed, saturated)
+            open_lots(yields, passed, unverified, unknown, questions, assume_unknown)
         sensor_pass = np.all(passed, axis=1)
         # a sensor that fails somewhere on its published figures (not only unverified)
         fails = np.any(~passed & ~unverified, axis=1)
