@@ -8,7 +8,8 @@ import math
 from typing import Any
 
 from gyrovib._version import __version__
-from gyrovib.api.fit_results import FIT_COLUMNS, FitResult, fit_columns, lot_mapping, pairs
+from gyrovib.api.fit_results import (FIT_COLUMNS, FitResult, fit_columns, lot_mapping, lot_name,
+                                      pairs)
 from gyrovib.core.fit import SIGNIFICANT_T
 from gyrovib.core.lot import YieldEstimate
 from gyrovib.errors import GyrovibError
@@ -225,15 +226,6 @@ def _block(mapping: dict[str, float], indent: str) -> list[str]:
     return [""] + [f"{indent}{k}: {yaml_number(v, quantum)}" for k, v in mapping.items()]
 
 
-def lot_id(result: FitResult) -> str:
-    """The id of the lot entry: ``lot-`` and the table's file stem (as an id)."""
-    import re
-    from pathlib import Path
-
-    stem = re.sub(r"[^A-Za-z0-9._-]+", "-", Path(result.file).stem).strip("-.") or "table"
-    return f"lot-{stem}"[:200]
-
-
 def to_catalog(result: FitResult) -> str:
     """The catalogue ``-o`` writes (INTERFACE.md, third round): one coefficient-form
     sensor per unit with its ``uncertainty`` (σ and every correlation pair), and with
@@ -268,7 +260,7 @@ def to_catalog(result: FitResult) -> str:
         ]
     if result.lot is not None:
         lot = lot_mapping(result)
-        lines += [f"  - id: {lot_id(result)}"]
+        lines += [f"  - id: {lot_name(result.file)}"]
         lines += [f"    # {w}" for w in result.warnings]
         lines += [
             "    lot:",
