@@ -8,8 +8,14 @@ import math
 from typing import Any
 
 from gyrovib._version import __version__
-from gyrovib.api.fit_results import (FIT_COLUMNS, FitResult, fit_columns, lot_mapping, lot_name,
-                                      pairs)
+from gyrovib.api.fit_results import (
+    FIT_COLUMNS,
+    FitResult,
+    fit_columns,
+    lot_mapping,
+    lot_name,
+    pairs,
+)
 from gyrovib.core.fit import SIGNIFICANT_T
 from gyrovib.core.lot import YieldEstimate
 from gyrovib.errors import GyrovibError
