@@ -41,6 +41,9 @@ def recording_options(f: F) -> F:
                           "recorded (default: the first three columns other than t/time)."),
         click.option("--fs", type=float, metavar="HZ",
                      help="Sample rate, Hz, for a recording without a time column."),
+        click.option("--strict", is_flag=True,
+                     help="Refuse (exit status 2) a recording that is only warned about "
+                          "otherwise: a ULog cut short or with corrupt data."),
     ]
     for option in options:
         f = option(f)
@@ -56,7 +59,7 @@ def read(path: str, options: dict[str, Any]) -> Any:
         rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
         accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
         rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
-        topic=options["topic"])
+        topic=options["topic"], strict=options.get("strict", False))
 
 
 def fit_options(options: dict[str, Any]) -> dict[str, Any]:

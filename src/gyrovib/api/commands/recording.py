@@ -79,7 +79,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
             f"fs = {fs:.6g} Hz is too low for the crossover {crossover:g} Hz (it must lie "
             f"below fs/2 = {fs / 2:.6g} Hz): lower --crossover", recording.file))
     kept = list(iter_segments(recording, crossover))
-    warnings: list[str] = []
+    warnings: list[str] = list(recording.warnings)
     dropped = len(recording.segments) - len(kept)
     if dropped:
         warnings.append(f"{dropped} segment(s) shorter than 4/f_c = {4 / crossover:g} s "
