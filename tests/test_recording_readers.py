@@ -4,6 +4,7 @@ block-wise zero-phase filter gives scipy's numbers."""
 
 from __future__ import annotations
 
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -48,7 +49,7 @@ def test_ulog_recorded_error_is_float64_from_the_raw_samples(tmp_path: Path) -> 
     pairs = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
     sos = scipy_signal.butter(4, fc, fs=fs, output="sos")
     total, count = 0.0, 0
-    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+    for lo, hi in itertools.pairwise(edges):
         if (hi - lo) / fs < 4.0 / fc or hi - lo <= 15:
             continue
         ws, gs = w[lo:hi], g[lo:hi]

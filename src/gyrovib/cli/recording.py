@@ -13,6 +13,9 @@ F = TypeVar("F", bound=Callable[..., Any])
 def recording_options(f: F) -> F:
     """The recording input and fit options of INTERFACE.md (third round)."""
     options = [
+        click.option("--strict", is_flag=True,
+                     help="Refuse (exit status 2) a recording that is only warned about "
+                          "otherwise: a ULog cut short or with corrupt data."),
         click.option("--id", "profile_id", metavar="NAME",
                      help="Id of the fitted profile (default: the file's name + -fitted)."),
         click.option("--independent-tones", is_flag=True,
@@ -41,9 +44,6 @@ def recording_options(f: F) -> F:
                           "recorded (default: the first three columns other than t/time)."),
         click.option("--fs", type=float, metavar="HZ",
                      help="Sample rate, Hz, for a recording without a time column."),
-        click.option("--strict", is_flag=True,
-                     help="Refuse (exit status 2) a recording that is only warned about "
-                          "otherwise: a ULog cut short or with corrupt data."),
     ]
     for option in options:
         f = option(f)

@@ -26,7 +26,7 @@ def padding(sos: FloatArray) -> int:
     """sosfiltfilt's default pad length for ``sos``: 3 × its number of taps."""
     ntaps = 2 * sos.shape[0] + 1
     ntaps -= min(int((sos[:, 2] == 0).sum()), int((sos[:, 5] == 0).sum()))
-    return 3 * ntaps
+    return int(3 * ntaps)
 
 
 def sosfiltfilt_into(sos: FloatArray, x: FloatArray, out: FloatArray,

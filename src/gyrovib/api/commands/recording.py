@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.recording_pass import RatePass, accel_pass, rate_pass
 from gyrovib.api.recording_results import (
     AxisHonesty,
     FittedHarmonics,
@@ -27,7 +28,6 @@ from gyrovib.api.recording_results import (
     FittedTone,
     RecordingFit,
 )
-from gyrovib.api.recording_pass import RatePass, accel_pass, rate_pass
 from gyrovib.api.recordings import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.core.transmissibility import FloatArray, Table
 from gyrovib.errors import GyrovibError, OptionError, Problem
