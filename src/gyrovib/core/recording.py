@@ -191,7 +191,7 @@ def welch_spectra(segments: Sequence[FloatArray], fs: float,
     m = segments[0].shape[1] if segments else 0
     total = np.zeros((m, m, freqs.size), dtype=np.complex128)
     count = 0
-    block = max(1, (1 << 22) // nper)
+    block = max(1, (1 << 20) // nper)
     for seg in segments:
         n = seg.shape[0]
         if n < nper:
