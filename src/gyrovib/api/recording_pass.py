@@ -3,8 +3,9 @@
 
 The memory of a pass is the vibration it hands to the spectra — x (n, 3),
 and a − A for the accelerations in a second pass once the angular spectra
-are done — plus a copy of Ω_K3 for the carrier histogram and one column
-being filtered. Nothing else as long as the recording: each column is split
+are done — and one column being filtered; Ω_K3 for the carrier histogram is
+filtered again at the end (:func:`carrier3`), when the vibration is gone.
+Nothing else as long as the recording: each column is split
 into the column of x that will hold its vibration (the carrier is written
 there first), the sums are taken over blocks of :data:`BLOCK` samples read
 again from the recording's store, and the vibration replaces the carrier
@@ -30,7 +31,6 @@ from gyrovib.core.transmissibility import FloatArray, Table
 
 #: Samples summed at once: core.recording's own chunk, so the sums are its sums.
 BLOCK = 1 << 20
-_ORDER = (2, 0, 1)  # Ω_K3 first: its copy feeds the carrier histogram
 
 
 @dataclass
@@ -42,7 +42,6 @@ class RatePass:
     carrier_sum: FloatArray = field(default_factory=lambda: np.zeros(3))
     raw: FloatArray = field(default_factory=lambda: np.zeros((4, 3)))
     signal: FloatArray = field(default_factory=lambda: np.zeros(3))
-    carrier3: list[FloatArray] = field(default_factory=list)
     x: list[FloatArray] = field(default_factory=list)
 
 
@@ -73,14 +72,13 @@ def _split(recording: Recording, kind: str, lo: int, hi: int, crossover: float,
            out: RatePass | None) -> FloatArray:
     """The carrier of each column of samples lo:hi, in a new (n, 3) Fortran-order array."""
     x = np.empty((hi - lo, 3), order="F")
-    for j in _ORDER:
+    for j in range(3):
         w = recording.store.column(kind, j, lo, hi)
         core.lowpass(w, recording.fs, crossover, out=x[:, j])
         if out is not None:
             out.carrier_sum[j] += float(x[:, j].sum())
             out.signal[j] += float(w @ w)
             if j == 2:
-                out.carrier3.append(x[:, 2].copy())
                 out.peak[0] = max(out.peak[0], float(np.max(np.abs(w))))
         del w
     return x
@@ -118,4 +116,16 @@ def accel_pass(recording: Recording, kept: Sequence[tuple[int, int]],
     return sums, vibration
 
 
-__all__ = ["BLOCK", "RatePass", "accel_pass", "rate_pass"]
+def carrier3(recording: Recording, kept: Sequence[tuple[int, int]],
+             crossover: float) -> FloatArray:
+    """Ω_K3 over the kept segments, end to end (the same split as the rate pass's)."""
+    out = np.empty(sum(hi - lo for lo, hi in kept))
+    at = 0
+    for lo, hi in kept:
+        core.lowpass(recording.store.column("rate", 2, lo, hi), recording.fs, crossover,
+                     out=out[at:at + hi - lo])
+        at += hi - lo
+    return out
+
+
+__all__ = ["BLOCK", "RatePass", "accel_pass", "carrier3", "rate_pass"]

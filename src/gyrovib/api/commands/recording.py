@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.recording_pass import RatePass, accel_pass, rate_pass
+from gyrovib.api.recording_pass import RatePass, accel_pass, carrier3, rate_pass
 from gyrovib.api.recording_results import (
     AxisHonesty,
     FittedHarmonics,
@@ -143,9 +143,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                            breakpoints, True, crossover, var_a, rate=False)
         del xa_segments
     rate = measured.carrier_sum / n_total
-    c3 = (measured.carrier3[0] if len(measured.carrier3) == 1
-          else np.concatenate(measured.carrier3))
-    measured.carrier3.clear()
+    c3 = carrier3(recording, kept, crossover)
     bin_rates, counts = core.carrier_histogram(c3)
     del c3
     peak = measured.peak
