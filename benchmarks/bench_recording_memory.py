@@ -5,6 +5,7 @@ Run on demand (not part of the test suite), one size at a time on a quiet machin
     python benchmarks/bench_recording_memory.py                  # 4.8 M rows × 6 (230 MB)
     python benchmarks/bench_recording_memory.py --rows 28800000  # issue 33: 1.38 GB
     python benchmarks/bench_recording_memory.py --csv-rows 2000000  # a CSV as well
+    python benchmarks/bench_recording_memory.py --rows 0 --ulog-rows 2000000  # a ULog
 
 It writes a float64 recording of ``--rows`` rows × 6 columns (rate X, Y, Z in
 deg/s: Gaussian noise, a 37 Hz tone and a slow carrier on Z; acceleration
@@ -15,7 +16,12 @@ subprocess, and reports that subprocess's peak resident memory
 (``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` read by a fresh wrapper
 process, so one measurement does not see another's) and its wall-clock time,
 beside the array's size in bytes. With ``--csv-rows`` it does the same for a
-CSV of that many rows with a time column. The temporary files are deleted.
+CSV of that many rows with a time column, and with ``--ulog-rows`` for a PX4
+ULog: the public test log's ``sensor_combined`` repeated to that many rows
+and written by pyulog (slow: about 10,000 rows a second). Besides the ratio
+to the array, each line gives the ratio of what the run adds to a process
+that only imports gyrovib and scipy.signal (the floor, printed first): at
+small sizes the floor dominates. The temporary files are deleted.
 
 The figures go into docs/performance.md.
 """
@@ -77,6 +83,26 @@ def write_csv(path: str, rows: int, seed: int = 0) -> int:
     return rows * 6 * 8
 
 
+def write_ulog(path: str, rows: int) -> int:
+    """The test log's sensor_combined repeated to ``rows`` rows (timestamps running on),
+    written by pyulog; the float64 arrays' size in bytes (rate and acceleration)."""
+    from pyulog import ULog
+
+    log = ULog(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                            "tests", "data", "px4-sample.ulg"), ["sensor_combined"])
+    data = log.data_list[0]
+    stamps = data.data["timestamp"].astype(np.int64)
+    step = int(np.median(np.diff(stamps)))
+    span = int(stamps[-1] - stamps[0]) + step
+    reps = -(-rows // stamps.size)
+    grown = {k: np.tile(v, reps)[:rows] for k, v in data.data.items()}
+    grown["timestamp"] = np.concatenate([stamps + r * span for r in range(reps)])[:rows] \
+        .astype(data.data["timestamp"].dtype)
+    data.data = grown
+    log.write_ulog(path)
+    return rows * 6 * 8
+
+
 def measure(*args: str) -> dict[str, float]:
     """Peak RSS and time of ``gyrovib profile ARGS`` in a fresh process tree."""
     cmd = [sys.executable, "-c", WRAPPER, sys.executable, "-m", "gyrovib", "profile", *args]
@@ -87,11 +113,15 @@ def measure(*args: str) -> dict[str, float]:
     return result
 
 
-def _report(label: str, size: int, result: dict[str, float]) -> dict[str, object]:
+def _report(label: str, size: int, result: dict[str, float],
+            floor: float) -> dict[str, object]:
     row = {"what": label, "array_bytes": size, "max_rss": result["max_rss"],
-           "ratio": result["max_rss"] / size, "seconds": round(result["seconds"], 1)}
+           "ratio": result["max_rss"] / size,
+           "above_floor": (result["max_rss"] - floor) / size,
+           "seconds": round(result["seconds"], 1)}
     print(f"{label}: array {size / 2**20:.0f} MiB, peak RSS {result['max_rss'] / 2**20:.0f} MiB "
-          f"= {row['ratio']:.2f} × the array, {result['seconds']:.1f} s", flush=True)
+          f"= {row['ratio']:.2f} × the array ({row['above_floor']:.2f} × above the floor), "
+          f"{result['seconds']:.1f} s", flush=True)
     return row
 
 
@@ -99,6 +129,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--rows", type=int, default=4_800_000, help="rows of the .npy")
     parser.add_argument("--csv-rows", type=int, default=0, help="rows of a CSV (0: none)")
+    parser.add_argument("--ulog-rows", type=int, default=0, help="rows of a ULog (0: none)")
     parser.add_argument("--json", action="store_true", help="print the rows as JSON too")
     args = parser.parse_args()
     rows = []
@@ -114,14 +145,20 @@ def main() -> None:
             size = write_npy(npy, args.rows)
             rows.append(_report(f".npy {args.rows} × 6", size,
                                 measure(npy, "--fs", str(FS), "--accel-columns", "3,4,5",
-                                        "-o", out)))
+                                        "-o", out), base))
             os.remove(npy)
         if args.csv_rows:
             csv = os.path.join(tmp, "big.csv")
             size = write_csv(csv, args.csv_rows)
             rows.append(_report(f"CSV {args.csv_rows} × 6 (+ t)", size,
-                                measure(csv, "--accel-columns", "ax,ay,az", "-o", out)))
+                                measure(csv, "--accel-columns", "ax,ay,az", "-o", out), base))
             os.remove(csv)
+        if args.ulog_rows:
+            ulg = os.path.join(tmp, "big.ulg")
+            size = write_ulog(ulg, args.ulog_rows)
+            rows.append(_report(f"ULog {args.ulog_rows} × 6", size,
+                                measure(ulg, "--crossover", "2", "-o", out), base))
+            os.remove(ulg)
     if args.json:
         print(json.dumps({"import_rss": base, "rows": rows}))
 

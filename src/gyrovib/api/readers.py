@@ -121,7 +121,7 @@ class NpyStore:
         out = np.zeros((hi - lo, 3))
         for b in range(lo, hi, self.step):
             e = min(hi, b + self.step)
-            self._convert(self.raw(b, e), kind, out[b - lo:e - lo])
+            self.convert(self.raw(b, e), kind, out[b - lo:e - lo])
         return out
 
     def column(self, kind: str, axis: int, lo: int, hi: int) -> FloatArray:
@@ -137,7 +137,8 @@ class NpyStore:
             part *= self.scales[kind]
         return out
 
-    def _convert(self, raw: NDArray[np.generic], kind: str, out: FloatArray) -> None:
+    def convert(self, raw: NDArray[np.generic], kind: str, out: FloatArray) -> None:
+        """Rows as stored to float64 in deg/s or g: promoted first, then scaled."""
         axes = self.axes[kind]
         for axis, c in enumerate(axes or ()):
             if c is not None:
@@ -428,7 +429,7 @@ class NpyColumns(Columns):
     def _check_finite(store: NpyStore, raw: NDArray[np.generic], kind: str, lo: int,
                       first: dict[int, int]) -> None:
         out = np.zeros((raw.shape[0], 3))
-        store._convert(raw, kind, out)
+        store.convert(raw, kind, out)
         axes = store.axes[kind] or ()
         for axis, c in enumerate(axes):
             if c is None or c in first:
