@@ -20,7 +20,6 @@ segment, so the moments are those numbers exactly.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -33,25 +32,27 @@ from gyrovib.core.transmissibility import FloatArray, Table
 BLOCK = 1 << 20
 
 
-@dataclass
 class RatePass:
-    """What the angular pass measures (sums over every kept sample)."""
+    """What the angular pass measures, summed over every kept sample (an accumulator
+    private to :func:`gyrovib.api.commands.recording.fit_recording`, not a result)."""
 
-    moments: dict[Any, FloatArray]
-    peak: FloatArray
-    carrier_sum: FloatArray = field(default_factory=lambda: np.zeros(3))
-    raw: FloatArray = field(default_factory=lambda: np.zeros((4, 3)))
-    signal: FloatArray = field(default_factory=lambda: np.zeros(3))
-    x: list[FloatArray] = field(default_factory=list)
+    __slots__ = ("carrier_sum", "moments", "peak", "raw", "signal", "x")
+
+    def __init__(self, responses: int) -> None:
+        self.moments: dict[Any, FloatArray] = {key: np.zeros(len(core.MOMENTS))
+                                               for key in (None, *range(responses))}
+        self.peak = np.zeros(1 + responses)
+        self.carrier_sum = np.zeros(3)
+        self.raw = np.zeros((4, 3))
+        self.signal = np.zeros(3)
+        self.x: list[FloatArray] = []
 
 
 def rate_pass(recording: Recording, kept: Sequence[tuple[int, int]], crossover: float,
               responses: Sequence[Table] = ()) -> RatePass:
     """The angular pass: moments (``None`` and one per response), peaks, carrier sums, the
     power sums of x and x itself per segment (Fortran order: a column is contiguous)."""
-    out = RatePass(moments={key: np.zeros(len(core.MOMENTS))
-                            for key in (None, *range(len(responses)))},
-                   peak=np.zeros(1 + len(responses)))
+    out = RatePass(len(responses))
     for lo, hi in kept:
         x = _split(recording, "rate", lo, hi, crossover, out)
         seg = np.zeros(len(core.MOMENTS))
