@@ -88,7 +88,9 @@ def _split(recording: Recording, kind: str, lo: int, hi: int, crossover: float,
 def _response(recording: Recording, x: FloatArray, lo: int, hi: int, table: Table, i: int,
               out: RatePass) -> None:
     """Moments and peak of Ω_K + ν·x, the rate at an input-side response's element."""
-    xr = core.zero_phase_gain(x, recording.fs, table)
+    xr = np.empty_like(x)
+    for j in range(3):  # a column at a time: the transforms are one column long
+        xr[:, j] = core.zero_phase_gain(x[:, j], recording.fs, table)
     seg = np.zeros(len(core.MOMENTS))
     for b in range(0, hi - lo, BLOCK):
         omega_k = recording.store.block("rate", lo + b, min(hi, lo + b + BLOCK)) - x[b:b + BLOCK]
