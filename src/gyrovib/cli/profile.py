@@ -20,7 +20,11 @@ def profile(recording: str, plot: str | None, output: str | None, **options: Any
     """Fit a profile (and its carrier mission) to a RECORDING.
 
     RECORDING: CSV with a header row (time column t/time in s, or --fs),
-    .npy (2-D, columns), .npz, or PX4 ULog .ulg (pip install 'gyrovib[ulog]').
+    .npy (2-D, columns; read from the file a block at a time, never whole),
+    .npz, or PX4 ULog .ulg (pip install 'gyrovib[ulog]'); every sample is
+    promoted to float64 before it is scaled. A ULog cut short (its last
+    message incomplete) or with corrupt data is warned about; --strict
+    refuses it (exit status 2).
     Writes catalogue YAML (stdout, or -o FILE) that `gyrovib validate`
     accepts, with the fit's provenance as comments; the honesty table goes to
     standard error. Its "shape dB" is the power-weighted mean distance between the

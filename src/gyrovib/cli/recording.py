@@ -13,6 +13,9 @@ F = TypeVar("F", bound=Callable[..., Any])
 def recording_options(f: F) -> F:
     """The recording input and fit options of INTERFACE.md (third round)."""
     options = [
+        click.option("--strict", is_flag=True,
+                     help="Refuse (exit status 2) a recording that is only warned about "
+                          "otherwise: a ULog cut short or with corrupt data."),
         click.option("--id", "profile_id", metavar="NAME",
                      help="Id of the fitted profile (default: the file's name + -fitted)."),
         click.option("--independent-tones", is_flag=True,
@@ -57,7 +60,7 @@ def read(path: str, options: dict[str, Any]) -> Any:
         rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
         accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
         rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
-        topic=options["topic"])
+        topic=options["topic"], strict=options.get("strict", False))
 
 
 def fit_options(options: dict[str, Any]) -> dict[str, Any]:

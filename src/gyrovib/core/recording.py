@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.core.filtfilt import sosfiltfilt_into
 from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
@@ -54,27 +55,29 @@ def gap_segments(time: ArrayLike, factor: float = 1.5) -> tuple[NDArray[np.intp]
     return np.column_stack([edges[:-1], edges[1:]]), med
 
 
-def lowpass(signal: ArrayLike, fs: float, crossover: float) -> FloatArray:
+def lowpass(signal: ArrayLike, fs: float, crossover: float,
+            out: FloatArray | None = None) -> FloatArray:
     """Zero-phase 4th-order Butterworth low-pass of each column (docs/model.md section 13).
 
     ``butter(4, f_c, fs=fs, output="sos")`` applied forward and backward with
-    ``sosfiltfilt`` and its default padding, along axis 0, one column at a
-    time (so the temporary arrays are one column long). Returns the carrier
-    Ω_K(t) (or A(t) for accelerations), same shape as ``signal``.
+    ``sosfiltfilt``'s numbers and its default padding, along axis 0, one
+    column at a time and a block at a time (:mod:`gyrovib.core.filtfilt`), so
+    the temporaries are a few blocks long. Returns the carrier Ω_K(t) (or
+    A(t) for accelerations), same shape as ``signal``, written into ``out``
+    when given (float64, same shape, not overlapping ``signal``).
     """
-    from scipy.signal import butter, sosfiltfilt
+    from scipy.signal import butter
 
     x = np.asarray(signal, dtype=float)
     if not 0 < crossover < fs / 2:
         raise ModelError(f"the crossover {crossover:g} Hz must lie in (0, fs/2 = {fs / 2:g} Hz)")
     sos = butter(FILTER_ORDER, crossover, fs=fs, output="sos")
-    out = np.empty_like(x)
+    result = np.empty_like(x) if out is None else out
     if x.ndim == 1:
-        out[:] = sosfiltfilt(sos, x)
-        return out
+        return sosfiltfilt_into(sos, x, result)
     for j in range(x.shape[1]):
-        out[:, j] = sosfiltfilt(sos, x[:, j])
-    return out
+        sosfiltfilt_into(sos, x[:, j], result[:, j])
+    return result
 
 
 def zero_phase_gain(x: ArrayLike, fs: float, table: Table) -> FloatArray:
@@ -188,7 +191,7 @@ def welch_spectra(segments: Sequence[FloatArray], fs: float,
     m = segments[0].shape[1] if segments else 0
     total = np.zeros((m, m, freqs.size), dtype=np.complex128)
     count = 0
-    block = max(1, (1 << 22) // nper)
+    block = max(1, (1 << 20) // nper)
     for seg in segments:
         n = seg.shape[0]
         if n < nper:

@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.recording_pass import RatePass, accel_pass, carrier3, rate_pass
 from gyrovib.api.recording_results import (
     AxisHonesty,
     FittedHarmonics,
@@ -62,17 +63,15 @@ def _check(crossover: float, resolution: float, threshold: float, breakpoints: i
         raise OptionError(f"--breakpoints {breakpoints}: give at least 2")
 
 
-def _kept_segments(recording: Recording, crossover: float,
-                   ) -> tuple[list[tuple[int, int]], list[str]]:
-    """The segments long enough for f_c, and the warning for those dropped; a recording
-    with none, or too slow a sample rate for f_c, is refused."""
+def _kept(recording: Recording, crossover: float) -> tuple[list[tuple[int, int]], list[str]]:
+    """The segments kept for f_c, and the warnings so far (the reader's, segments dropped)."""
     fs = recording.fs
     if crossover >= fs / 2:
         raise RecordingError(Problem(
             f"fs = {fs:.6g} Hz is too low for the crossover {crossover:g} Hz (it must lie "
             f"below fs/2 = {fs / 2:.6g} Hz): lower --crossover", recording.file))
     kept = list(iter_segments(recording, crossover))
-    warnings: list[str] = []
+    warnings: list[str] = list(recording.warnings)
     dropped = len(recording.segments) - len(kept)
     if dropped:
         warnings.append(f"{dropped} segment(s) shorter than 4/f_c = {4 / crossover:g} s "
@@ -85,6 +84,34 @@ def _kept_segments(recording: Recording, crossover: float,
             f"{4 / crossover:g} s and more than {PADDING} samples (the filter's padding) "
             "(raise --crossover, or record longer)", recording.file))
     return kept, warnings
+
+
+def _statistics(measured: RatePass, n_total: int, axes: tuple[bool, bool, bool],
+                ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Variance, skewness and excess kurtosis of x per axis (NaN on an axis not recorded)."""
+    from gyrovib.core import recording as core
+
+    var, skew, kurt = core.central_moments(measured.raw, n_total)
+    # a vibration below 1e-10 of the signal's rms is the filter's rounding, not a vibration
+    quiet = var <= NEGLIGIBLE**2 * measured.signal / n_total
+    var = np.where(quiet, 0.0, var)
+    skew, kurt = (np.where(quiet, np.nan, v) for v in (skew, kurt))
+    axes_on = np.array(axes)
+    var, skew, kurt = (np.where(axes_on, v, np.nan) for v in (var, skew, kurt))
+    return var, skew, kurt
+
+
+def _linear_variance(segments: list[FloatArray], n_total: int,
+                     axes: tuple[bool, bool, bool]) -> FloatArray:
+    """The variance of a − A per axis (0 when it is rounding, NaN where not recorded)."""
+    from gyrovib.core import recording as core
+
+    raw_a = np.zeros((2, 3))
+    for xa in segments:
+        raw_a += core.power_sums(xa, 2)
+    var_a = raw_a[1] / n_total - (raw_a[0] / n_total) ** 2
+    var_a = np.where(var_a <= NEGLIGIBLE**2 * np.abs(raw_a[1]) / n_total, 0.0, var_a)
+    return np.where(np.array(axes), var_a, np.nan)
 
 
 def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
@@ -103,61 +130,27 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
 
     _check(crossover, resolution, tone_threshold, breakpoints)
     fs = recording.fs
-    kept, warnings = _kept_segments(recording, crossover)
+    kept, warnings = _kept(recording, crossover)
     n_total = sum(hi - lo for lo, hi in kept)
-    moments: dict[Any, FloatArray] = {None: np.zeros(len(core.MOMENTS))}
-    peak = np.zeros(1 + len(responses))
-    for i in range(len(responses)):
-        moments[i] = np.zeros(len(core.MOMENTS))
-    g2_sums = np.zeros(len(core.G2_PAIRS)) if recording.accel is not None else None
-    carrier_sum = np.zeros(3)
-    carrier3: list[FloatArray] = []
-    x_segments: list[FloatArray] = []
-    xa_segments: list[FloatArray] = []
-    raw = np.zeros((4, 3))
-    signal = np.zeros(3)  # Σω² per axis, against which a vibration is negligible
-    for lo, hi in kept:
-        w = recording.rate[lo:hi]
-        c = core.lowpass(w, fs, crossover)
-        moments[None] += core.recorded_moments(w, c)
-        peak[0] = max(peak[0], float(np.max(np.abs(w[:, 2]))))
-        carrier_sum += c.sum(axis=0)
-        carrier3.append(c[:, 2].copy())
-        np.subtract(w, c, out=c)  # c is now x
-        for i, table in enumerate(responses):
-            omega_k = w - c
-            xr = core.zero_phase_gain(c, fs, table)
-            xr += omega_k  # Ω_K + ν·x: the rate at the nonlinear element
-            moments[i] += core.recorded_moments(xr, omega_k)
-            peak[i + 1] = max(peak[i + 1], float(np.max(np.abs(xr[:, 2]))))
-            del xr, omega_k
-        raw += core.power_sums(c)
-        signal += np.einsum("ij,ij->j", w, w)
-        x_segments.append(c)
-        if recording.accel is not None and g2_sums is not None:
-            a = recording.accel[lo:hi]
-            big_a = core.lowpass(a, fs, crossover)
-            g2_sums += core.recorded_g2_moments(a, big_a)
-            np.subtract(a, big_a, out=big_a)
-            xa_segments.append(big_a)
-    for key in moments:
-        moments[key] = moments[key] / n_total
-    g2_moments = None if g2_sums is None else g2_sums / n_total
-    var, skew, kurt = _rate_moments(raw, signal, n_total, recording.rate_axes)
-    angular = _fit_part(recording.file, x_segments, fs, resolution, tone_threshold, breakpoints,
+    measured = rate_pass(recording, kept, crossover, responses)
+    moments = {key: value / n_total for key, value in measured.moments.items()}
+    var, skew, kurt = _statistics(measured, n_total, recording.rate_axes)
+    angular = _fit_part(recording.file, measured.x, fs, resolution, tone_threshold, breakpoints,
                         independent_tones, crossover, var, rate=True)
-    del x_segments
-    linear = None
-    if xa_segments:
-        var_a = _accel_variance(xa_segments, n_total, recording.accel_axes)
+    measured.x.clear()  # the angular vibration is done with before the linear one is made
+    g2_moments, linear = None, None
+    if recording.store.has_accel:
+        g2_sums, xa_segments = accel_pass(recording, kept, crossover)
+        g2_moments = g2_sums / n_total
+        var_a = _linear_variance(xa_segments, n_total, recording.accel_axes)
         linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
                            breakpoints, True, crossover, var_a, rate=False)
-    del xa_segments
-    rate = carrier_sum / n_total
-    c3 = np.concatenate(carrier3)
-    del carrier3
+        del xa_segments
+    rate = measured.carrier_sum / n_total
+    c3 = carrier3(recording, kept, crossover)
     bin_rates, counts = core.carrier_histogram(c3)
     del c3
+    peak = measured.peak
     mission_rates = np.column_stack([np.full(bin_rates.size, rate[0]),
                                      np.full(bin_rates.size, rate[1]), bin_rates])
     honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
@@ -184,36 +177,6 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         raise OptionError(f"--id {pid!r}: the fitted profile does not validate: "
                           f"{exc.problems[0].message}") from None
     return _replace_yaml(fit, text)
-
-
-def _rate_moments(raw: FloatArray, signal: FloatArray, n_total: int,
-                  axes: tuple[bool, bool, bool]) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Variance, skewness, excess kurtosis of x per axis from its power sums: a vibration
-    below 1e-10 of the signal's rms is the filter's rounding, not a vibration (variance
-    0, the shape figures NaN); NaN on an axis not recorded."""
-    from gyrovib.core import recording as core
-
-    var, skew, kurt = core.central_moments(raw, n_total)
-    quiet = var <= NEGLIGIBLE**2 * signal / n_total
-    var = np.where(quiet, 0.0, var)
-    skew, kurt = (np.where(quiet, np.nan, v) for v in (skew, kurt))
-    on = np.array(axes)
-    return np.where(on, var, np.nan), np.where(on, skew, np.nan), np.where(on, kurt, np.nan)
-
-
-def _accel_variance(segments: list[FloatArray], n_total: int,
-                    axes: tuple[bool, bool, bool]) -> FloatArray:
-    """Per axis the variance of a − A over the segments (g²); 0 where it is rounding,
-    NaN on an axis not recorded."""
-    from gyrovib.core import recording as core
-
-    raw = np.zeros((2, 3))
-    for xa in segments:
-        raw += core.power_sums(xa, 2)
-    var = raw[1] / n_total - (raw[0] / n_total) ** 2
-    var = np.where(var <= NEGLIGIBLE**2 * np.abs(raw[1]) / n_total, 0.0, var)
-    out: FloatArray = np.where(np.array(axes), var, np.nan)
-    return out
 
 
 def _replace_yaml(fit: RecordingFit, text: str) -> RecordingFit:
