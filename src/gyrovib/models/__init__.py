@@ -24,6 +24,7 @@ from typing import Any
 
 from gyrovib.models.catalogue import VERSION, Allocation, Catalogue, Units
 from gyrovib.models.mission import AxisPlacement, Mission, Segment
+from gyrovib.models.noise import Noise, NoiseFigure
 from gyrovib.models.profile import (
     MAX_TONES,
     PSD,
@@ -56,6 +57,8 @@ __all__ = [
     "PSD",
     "VERSION",
     "Acceleration",
+    "Noise",
+    "NoiseFigure",
     "AccelerationPSD",
     "AccelerationRandom",
     "AccelerationTone",
