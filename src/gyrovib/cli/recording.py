@@ -10,23 +10,10 @@ import click
 F = TypeVar("F", bound=Callable[..., Any])
 
 
-def recording_options(f: F) -> F:
-    """The recording input and fit options of INTERFACE.md (third round)."""
+def reader_options(f: F) -> F:
+    """How a recording is read (INTERFACE.md, third round): its columns, units, topic and
+    sample rate; shared by ``profile``, ``analyze --recording`` and ``allan``."""
     options = [
-        click.option("--id", "profile_id", metavar="NAME",
-                     help="Id of the fitted profile (default: the file's name + -fitted)."),
-        click.option("--independent-tones", is_flag=True,
-                     help="Write integer-multiple lines as independent tones, not as one "
-                          "phase-locked harmonics group (phase: worst)."),
-        click.option("--breakpoints", type=click.IntRange(min=2), default=12,
-                     show_default=True, metavar="B",
-                     help="At most B log-log breakpoints for the random part's PSD."),
-        click.option("--tone-threshold", type=float, default=10.0, show_default=True,
-                     metavar="DB", help="A line stands this many dB above the running median."),
-        click.option("--resolution", type=float, default=0.5, show_default=True,
-                     metavar="DF", help="Frequency resolution of the Welch PSD, Hz."),
-        click.option("--crossover", type=float, default=5.0, show_default=True, metavar="F",
-                     help="f_c, Hz: below it the carrier's manoeuvres, above it vibration."),
         click.option("--topic", metavar="NAME",
                      help="ULog topic (default sensor_combined)."),
         click.option("--accel-unit", metavar="UNIT",
@@ -45,6 +32,29 @@ def recording_options(f: F) -> F:
     for option in options:
         f = option(f)
     return f
+
+
+def recording_options(f: F) -> F:
+    """The recording input and fit options of INTERFACE.md (third round)."""
+    options = [
+        click.option("--id", "profile_id", metavar="NAME",
+                     help="Id of the fitted profile (default: the file's name + -fitted)."),
+        click.option("--independent-tones", is_flag=True,
+                     help="Write integer-multiple lines as independent tones, not as one "
+                          "phase-locked harmonics group (phase: worst)."),
+        click.option("--breakpoints", type=click.IntRange(min=2), default=12,
+                     show_default=True, metavar="B",
+                     help="At most B log-log breakpoints for the random part's PSD."),
+        click.option("--tone-threshold", type=float, default=10.0, show_default=True,
+                     metavar="DB", help="A line stands this many dB above the running median."),
+        click.option("--resolution", type=float, default=0.5, show_default=True,
+                     metavar="DF", help="Frequency resolution of the Welch PSD, Hz."),
+        click.option("--crossover", type=float, default=5.0, show_default=True, metavar="F",
+                     help="f_c, Hz: below it the carrier's manoeuvres, above it vibration."),
+    ]
+    for option in options:
+        f = option(f)
+    return reader_options(f)
 
 
 def read(path: str, options: dict[str, Any]) -> Any:

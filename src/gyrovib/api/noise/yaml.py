@@ -12,13 +12,16 @@ def _number(x: float) -> str:
 
 
 def noise_yaml(result: AllanResult) -> str:
-    """One ``noise:`` block per axis (commented provenance; the figures in their default
-    units with their uncertainty as a comment), ready to indent under a sensor."""
+    """One ``noise:`` block per axis, each its own YAML document (``---`` between them),
+    with commented provenance and each figure's uncertainty as a comment: in the
+    default units, ready to indent under a sensor."""
     lines = [f"# from gyrovib allan {os.path.basename(result.file)} "
              f"(sha256 {result.sha256[:16]}…, {result.samples} samples at {result.fs:.6g} Hz)",
-             "# one block per recorded axis: keep the sensor's own axis, indent it under the",
+             "# one document per recorded axis: keep the sensor's own, indent it under the",
              "# sensor; ± values are standard uncertainties of the reads (docs/error-budget.md)"]
-    for ax in result.axes:
+    for k, ax in enumerate(result.axes):
+        if k:
+            lines.append("---")
         lines.append(f"# axis {ax.axis}")
         lines.append("noise:")
         for name, fig in (("arw", ax.arw), ("bias_instability", ax.bias_instability),
