@@ -29,7 +29,7 @@ from gyrovib.api.commands.bounds import (
 from gyrovib.api.commands.fit import (
     fit as fit,
 )
-from gyrovib.api.commands.mission import (
+from gyrovib.api.noise.mission import (
     mission as mission,
 )
 from gyrovib.api.commands.select import (
