@@ -114,3 +114,20 @@ def test_select_ranks_on_the_total(tmp_path) -> None:  # type: ignore[no-untyped
 
 def test_coverage_must_be_positive() -> None:
     assert invoke("mission", "--coverage", "0").exit_code == 2
+
+
+def test_report_shows_the_budget_as_a_stacked_bar(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    path = tmp_path / "c.yaml"
+    path.write_text(CATALOGUE, encoding="utf-8")
+    out = tmp_path / "r.html"
+    result = invoke("report", path, "--budget", "10deg/h", "--mission", "two-hours",
+                    "--angle-budget", "3deg", "-o", out)
+    assert result.exit_code == 0, result.stderr
+    html = out.read_text(encoding="utf-8")
+    chart = html[html.index("Angle budget over two-hours"):]
+    chart = chart[:chart.index("</svg>")]
+    # full: the vibration and the four noise parts; silent: its vibration and '≥ ?'
+    for part in ("full: vibration |θ_V|", "full: angle random walk", "full: bias instability",
+                 "full: rate random walk", "full: bias repeatability", "silent: vibration"):
+        assert part in chart
+    assert "silent: angle random walk" not in chart and chart.count("≥ ?") == 1
