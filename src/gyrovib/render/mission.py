@@ -99,25 +99,8 @@ def _unknown_notes(result: MissionResult) -> list[str]:
     return notes
 
 
-def to_table(result: MissionResult, width: int | None = None, color: bool = False,
-             ascii: bool = False) -> str:
-    """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
-    from rich.table import Table
-    from rich.text import Text
-
-    table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
-                  f"({_budget_text(result)})", title_justify="left")
-    head = [*_HEAD]
-    head[3] += f" ({result.unit})"
-    head[4] += f" ({result.angle_unit})"
-    head[5] += f" ({result.unit})"
-    keep = [k for k in range(len(head)) if k != 1 or len(result.missions) > 1]  # in the title
-    for k in keep:
-        table.add_column(head[k], justify="right" if 3 <= k <= 10 else "left", no_wrap=True)
-    for row in result.rows:
-        cells = _cells(result, row)
-        table.add_row(*(cells[k] for k in keep))
-    out: list[Any] = [table]
+def _table_notes(result: MissionResult) -> list[str]:
+    """The legend under the table: the definitions, then what applies to these rows."""
     notes = ["mean Δ̄_V = Σ T_s·Δ_V,s / Σ T_s; angle θ_V = Σ T_s·Δ_V,s; mean RMS = "
              "√(Σ T_s·Δ_V(RMS),s² / Σ T_s); worst segment: its number, profile and Δ_V,s "
              "(docs/model.md section 12). Budget over the mission's T hours (section 15): "
@@ -140,6 +123,29 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
         notes.append(f"{n} of {len(result.sensors)} sensors pass every mission{open_} "
                      f"(--require {result.require}: "
                      f"{'met' if result.requirement_met else 'NOT met'}).")
+    return notes
+
+
+def to_table(result: MissionResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
+    from rich.table import Table
+    from rich.text import Text
+
+    table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
+                  f"({_budget_text(result)})", title_justify="left")
+    head = [*_HEAD]
+    head[3] += f" ({result.unit})"
+    head[4] += f" ({result.angle_unit})"
+    head[5] += f" ({result.unit})"
+    keep = [k for k in range(len(head)) if k != 1 or len(result.missions) > 1]  # in the title
+    for k in keep:
+        table.add_column(head[k], justify="right" if 3 <= k <= 10 else "left", no_wrap=True)
+    for row in result.rows:
+        cells = _cells(result, row)
+        table.add_row(*(cells[k] for k in keep))
+    out: list[Any] = [table]
+    notes = _table_notes(result)
     out.append(Text(" ".join(notes), style="dim"))
     out.extend(Text(note) for note in _unknown_notes(result))
     return rich_text(out, width=width, color=color, ascii=ascii)

@@ -399,20 +399,7 @@ def stacked_bar_chart(title: str, xlabel: str, names: Sequence[str], parts: Sequ
         out.append(f'<line x1="{px:.1f}" y1="{top}" x2="{px:.1f}" y2="{bottom}" class="grid"/>')
         out.append(f'<text x="{px:.1f}" y="{bottom + 14}" class="tx">{escape(label(t))}</text>')
     for k, name in enumerate(names):
-        y = top + row * k
-        out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">'
-                   f'{escape(fit(name, left - 9, SIZES["ty"]))}</text>')
-        start = 0.0
-        for p, value in enumerate(lengths[k]):
-            if not math.isfinite(value) or value <= 0:
-                continue
-            a, b = x(start), x(start + value)
-            out.append(f'<rect x="{a:.1f}" y="{y + 3}" width="{max(b - a, 0.5):.1f}" '
-                       f'height="{row - 6}" fill="{color(p)}"><title>{escape(name)}: '
-                       f'{escape(parts[p])} {escape(label(value))}</title></rect>')
-            start += value
-        if open_end[k]:
-            out.append(f'<text x="{x(start) + 3:.1f}" y="{y + 13}" class="lg">≥ ?</text>')
+        out += _stacked_row(name, parts, lengths[k], open_end[k], x, top + row * k, row)
     if reference is not None and reference.x is not None:
         px = x(reference.x)
         out.append(f'<line x1="{px:.1f}" y1="{top - 4}" x2="{px:.1f}" y2="{bottom}" '
@@ -423,3 +410,22 @@ def stacked_bar_chart(title: str, xlabel: str, names: Sequence[str], parts: Sequ
                f'{escape(fit(xlabel, right - left, SIZES["xl"]))}</text>')
     out.append("</svg>")
     return "\n".join(out)
+
+
+def _stacked_row(name: str, parts: Sequence[str], lengths: Sequence[float], open_end: bool,
+                 x: Scale, y: float, row: int) -> list[str]:
+    """One bar of :func:`stacked_bar_chart`: its name, its parts end to end, '≥ ?'."""
+    out = [f'<text x="{x.start - 5}" y="{y + 13}" class="ty">'
+           f'{escape(fit(name, x.start - 9, SIZES["ty"]))}</text>']
+    start = 0.0
+    for p, value in enumerate(lengths):
+        if not math.isfinite(value) or value <= 0:
+            continue
+        a, b = x(start), x(start + value)
+        out.append(f'<rect x="{a:.1f}" y="{y + 3}" width="{max(b - a, 0.5):.1f}" '
+                   f'height="{row - 6}" fill="{color(p)}"><title>{escape(name)}: '
+                   f'{escape(parts[p])} {escape(label(value))}</title></rect>')
+        start += value
+    if open_end:
+        out.append(f'<text x="{x(start) + 3:.1f}" y="{y + 13}" class="lg">≥ ?</text>')
+    return out
