@@ -127,11 +127,11 @@ UNKNOWN_WORDS = {
     "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
            "x3, so m32·C32 can rectify; docs/model.md section 11)",
     # the noise figures of a mission's budget (docs/model.md section 15)
-    "arw": "angle random walk not given (its N·√T is part of the mission's total)",
-    "bias_instability": "bias instability not given (its B·T is part of the mission's total)",
-    "rrw": "rate random walk not given (its K·T^1.5/√3 is part of the mission's total)",
-    "bias_repeatability": "bias repeatability not given (its R·T is part of the mission's "
-                          "total; write 0 if the bias is calibrated at each start)",
+    "arw": "angle random walk not given (N·√T)",
+    "bias_instability": "bias instability not given (B·T)",
+    "rrw": "rate random walk not given (K·T^1.5/√3)",
+    "bias_repeatability": "bias repeatability not given (R·T; 0 if the bias is calibrated "
+                          "at each start)",
 }
 
 

@@ -13,7 +13,7 @@ if TYPE_CHECKING:
 
 _FIGURES = (("arw", "angle random walk N"), ("bias_instability", "bias instability B"),
             ("rrw", "rate random walk K"))
-#: Where each figure is read on its line (MODEL.md section 15).
+#: Where each figure is read on its line (docs/model.md section 15).
 _READ_AT = {"arw": "slope −½ line at τ = 1 s", "bias_instability": "σ_min / 0.664",
             "rrw": "slope +½ line at τ = 3 s"}
 
