@@ -41,8 +41,11 @@ from numpy.typing import NDArray
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
-#: k values summed at once: the working memory is a few blocks of this many floats.
-BLOCK = 1 << 16
+#: k values summed at once: the working memory is a few blocks of this many floats
+#: (64 KiB each, in a core's cache). Below OpenBLAS's threading threshold of its dot
+#: product, too: with larger blocks it starts threads for every block, which cost
+#: 15× the CPU time on a busy machine (docs/performance.md).
+BLOCK = 1 << 13
 #: √(2 ln 2/π): the flat floor of the Allan deviation of flicker noise per unit B.
 FLICKER_FLOOR = math.sqrt(2.0 * math.log(2.0) / math.pi)
 #: B = σ_min / 0.664 (the rounded constant the issue and the datasheets use).
@@ -79,6 +82,7 @@ def oadev_from_angle(x: FloatArray, tau0: float, m: IntArray,
     """σ(τ) at τ = m·τ0 from the angle x (n + 1 values), each in O(n) and blocks."""
     n = x.size - 1
     out = np.empty(m.size)
+    buffer = np.empty(min(block, max(n, 1)))
     for j, mm in enumerate(m.tolist()):
         count = n + 1 - 2 * mm
         if count < 1:
@@ -86,7 +90,9 @@ def oadev_from_angle(x: FloatArray, tau0: float, m: IntArray,
         total = 0.0
         for lo in range(0, count, block):
             hi = min(count, lo + block)
-            d = x[lo + 2 * mm:hi + 2 * mm] - 2.0 * x[lo + mm:hi + mm]
+            d = buffer[:hi - lo]
+            np.subtract(x[lo + 2 * mm:hi + 2 * mm], x[lo + mm:hi + mm], out=d)
+            d -= x[lo + mm:hi + mm]
             d += x[lo:hi]
             total += float(np.dot(d, d))
         tau = mm * tau0
