@@ -11,11 +11,8 @@ from gyrovib.render.common import dumps, fmt, header, number, rich_text
 if TYPE_CHECKING:
     from gyrovib.api.noise import AllanResult, AxisAllan, Figure
 
-_FIGURES = (("arw", "angle random walk N"), ("bias_instability", "bias instability B"),
-            ("rrw", "rate random walk K"))
-#: Where each figure is read on its line (docs/model.md section 15).
-_READ_AT = {"arw": "slope −½ line at τ = 1 s", "bias_instability": "σ_min / 0.664",
-            "rrw": "slope +½ line at τ = 3 s"}
+_FIGURES = (("arw", "N: angle random walk"), ("bias_instability", "B: bias instability"),
+            ("rrw", "K: rate random walk"))
 
 
 def _figure(fig: Figure) -> dict[str, Any]:
@@ -51,9 +48,11 @@ def _summary(result: AllanResult) -> str:
 def _legend() -> str:
     return ("Overlapping Allan deviation (IEEE Std 952, allantools' oadev). Each figure is "
             "read on its line through the point of the curve where its standard "
-            "uncertainty (±, from the equivalent degrees of freedom and the share of the "
-            "other fitted terms there) is least; τ read: that point; share: its own term's "
-            "share of the fitted σ² there (docs/error-budget.md). B = σ_min / 0.664.")
+            "uncertainty (u, from the equivalent degrees of freedom and the share of the "
+            "other fitted terms there) is least; read at τ: that point; share: its own "
+            "term's share of the fitted σ² there. N is the value of its slope −½ line at "
+            "τ = 1 s, K of its slope +½ line at τ = 3 s, B = σ_min / 0.664 "
+            "(docs/error-budget.md).")
 
 
 def to_table(result: AllanResult, width: int | None = None, color: bool = False,
@@ -64,14 +63,14 @@ def to_table(result: AllanResult, width: int | None = None, color: bool = False,
 
     items: list[Any] = [Text(_summary(result))]
     figures = Table(title="noise figures", header_style="bold")
-    for k, label in enumerate(("axis", "figure", "value", "±", "unit", "read", "τ read, s",
+    for k, label in enumerate(("axis", "figure", "value ± u", "unit", "read at τ (s)",
                                "share")):
-        figures.add_column(label, justify="right" if k in (2, 3, 6, 7) else "left")
+        figures.add_column(label, justify="right" if k in (2, 4, 5) else "left")
     for ax in result.axes:
         for name, label in _FIGURES:
             fig = getattr(ax, name)
-            figures.add_row(ax.axis, label, fmt(fig.value), fmt(fig.uncertainty, 2), fig.unit,
-                            _READ_AT[name], fmt(fig.tau), f"{100 * fig.share:.0f} %")
+            figures.add_row(ax.axis, label, f"{fmt(fig.value)} ± {fmt(fig.uncertainty, 2)}",
+                            fig.unit, fmt(fig.tau), f"{100 * fig.share:.0f} %")
     items.append(figures)
     for ax in result.axes:
         items.append(_curve_table(ax))

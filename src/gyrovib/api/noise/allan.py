@@ -36,7 +36,8 @@ def allan_axis(axis: str, rate: np.ndarray, fs: float, unit: str,
     """One axis: ``rate`` in deg/s at ``fs`` Hz; σ(τ) reported in ``unit``."""
     tau0 = 1.0 / fs
     m = kernel.tau_grid(rate.size, per_decade)
-    tau, adev = kernel.oadev(rate, tau0, m)
+    adev = kernel.oadev(rate, tau0, m)[1]
+    tau = m / fs  # as written: 3 / 10 is 0.3, where 3 · 0.1 is 0.30000000000000004
     terms = kernel.noise_terms(tau, adev, rate.size + 1, tau0)
     n2, b2, k2 = (float(c) for c in terms.fitted)
     fitted = (math.sqrt(n2) * TO_REPORTED["arw"], math.sqrt(b2) * TO_REPORTED["bias_instability"],
