@@ -33,8 +33,8 @@ def test_equals_an_independent_estimator_at_every_tau(seed: int) -> None:
     y = 40.0 + g.standard_normal(n) + np.cumsum(g.standard_normal(n)) * 0.05
     tau, adev = oadev(y, 0.02, block=97)           # a small block: several blocks per τ
     assert tau[0] == 0.02
-    for t, a in zip(tau, adev):
-        m = int(round(t / 0.02))
+    for t, a in zip(tau, adev, strict=True):
+        m = round(t / 0.02)
         assert a == pytest.approx(naive_oadev(y, 0.02, m), rel=1e-6)
 
 

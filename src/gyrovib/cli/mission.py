@@ -65,10 +65,10 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
     --budget). The budget adds to |θ_V| the noise over the mission's duration T
     (docs/model.md section 15): N·√T, B·T, K·T^1.5/√3 and R·T from the
     sensor's noise: block, in quadrature, times --coverage; a figure not given
-    is unknown ('?'), the total a lower bound. A datasheet sensor is taken at the worst conversion function over the
-    whole mission; one that passes on its published figures while an
-    unpublished one (VRE, m31, m32, a noise figure) can decide it is
-    'unverified', not passing (--assume-unknown zero takes them as 0). Exit
+    is unknown ('?'), the total a lower bound. A datasheet sensor is taken at
+    the worst conversion function over the whole mission; one that passes on
+    its published figures while an unpublished one (VRE, m31, m32, a noise
+    figure) can decide it is 'unverified', not passing (--assume-unknown zero takes them as 0). Exit
     status 1 when the
     --require condition is not met.
     """

@@ -15,6 +15,7 @@ from gyrovib.cli.common import (
     say,
     use_color,
 )
+from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
     budget_arguments,
     budget_options,
@@ -30,7 +31,6 @@ from gyrovib.cli.spec_options import (
     parse_spec_weights,
     spec_weights_option,
 )
-from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.yield_options import yield_options
 
 

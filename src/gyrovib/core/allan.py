@@ -62,7 +62,7 @@ def tau_grid(n: int, per_decade: int = PER_DECADE) -> IntArray:
     if n < 3:
         raise ValueError("the overlapping Allan deviation needs at least 3 samples")
     top = n // 3
-    count = max(2, int(math.ceil(per_decade * math.log10(top))) + 1) if top > 1 else 1
+    count = max(2, math.ceil(per_decade * math.log10(top)) + 1) if top > 1 else 1
     m = np.unique(np.round(np.logspace(0.0, math.log10(top), count)).astype(np.int64))
     return m[(m >= 1) & (m <= top)]
 
@@ -106,7 +106,8 @@ def oadev(rate: FloatArray, tau0: float, m: IntArray | None = None,
     :func:`tau_grid`."""
     y = np.asarray(rate, dtype=np.float64)
     grid = tau_grid(y.size) if m is None else np.asarray(m, dtype=np.int64)
-    return grid * tau0, oadev_from_angle(angle(y, tau0), tau0, grid, block)
+    tau = np.multiply(grid, tau0, dtype=np.float64)
+    return tau, oadev_from_angle(angle(y, tau0), tau0, grid, block)
 
 
 def edf(points: int, m: FloatArray, alpha: NDArray[np.int64]) -> FloatArray:
@@ -149,7 +150,9 @@ def _nnls3(a: FloatArray, b: FloatArray) -> FloatArray:
 
 def dominant(terms: FloatArray) -> NDArray[np.int64]:
     """The noise type α of the largest of the (N², B-floor, K²) terms per point."""
-    return np.array([WHITE, FLICKER, RANDOM_WALK])[np.argmax(terms, axis=1)]
+    kinds = np.array([WHITE, FLICKER, RANDOM_WALK], dtype=np.int64)
+    out: NDArray[np.int64] = kinds[np.argmax(terms, axis=1)]
+    return out
 
 
 def fit_terms(tau: FloatArray, adev: FloatArray, points: int,
