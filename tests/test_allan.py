@@ -91,3 +91,12 @@ def test_bias_instability_is_the_curve_minimum_over_0664() -> None:
     assert terms.bias_instability.value == float(adev.min()) / 0.664
     assert B_FACTOR == 0.664
     assert terms.bias_instability.tau == float(tau[np.argmin(adev)])
+
+
+def test_a_record_without_noise_reads_zero_not_an_error() -> None:
+    # a constant rate (a quantised sensor at rest that never flips a bit): σ = 0 at
+    # every τ, and every figure is 0 — not a failed fit
+    tau, adev = oadev(np.full(1000, 0.25), 0.1)
+    assert not adev.any()
+    terms = noise_terms(tau, adev, 1001, 0.1)
+    assert (terms.arw.value, terms.bias_instability.value, terms.rrw.value) == (0, 0, 0)

@@ -162,6 +162,9 @@ def fit_terms(tau: FloatArray, adev: FloatArray, points: int,
     start), and the EDF of each point under the fitted model."""
     design = _design(tau)
     var = adev ** 2
+    if not np.any(var > 0):  # a record without noise (constant, or quantised flat)
+        return np.zeros(3), edf(points, m, np.full(m.shape, WHITE))
+    var = np.maximum(var, var.max() * 1e-30)  # an exact 0 of σ would weigh infinitely
     coef = _nnls3(design / var[:, None], np.ones_like(var))
     nu = np.ones_like(var)
     for _ in range(3):
@@ -216,17 +219,17 @@ def noise_terms(tau: FloatArray, adev: FloatArray, points: int, tau0: float) -> 
     coef, nu = fit_terms(tau, adev, points, m)
     design = _design(tau)
     parts = design * coef
-    model = parts.sum(axis=1)
-    model = np.where(model > 0, model, adev ** 2)
-    arw = _slope_read(adev, tau, np.sqrt(tau), parts[:, 0] / model,
+    model = parts.sum(axis=1, keepdims=True)
+    model = np.where(model > 0, model, adev[:, None] ** 2)
+    share = np.divide(parts, model, out=np.zeros_like(parts), where=model > 0)
+    arw = _slope_read(adev, tau, np.sqrt(tau), share[:, 0],
                       edf(points, m, np.full(m.shape, WHITE)))
-    rrw = _slope_read(adev, tau, np.sqrt(3.0 / tau), parts[:, 2] / model,
+    rrw = _slope_read(adev, tau, np.sqrt(3.0 / tau), share[:, 2],
                       edf(points, m, np.full(m.shape, RANDOM_WALK)))
     low = int(np.argmin(adev))
     nu_low = float(edf(points, m[low:low + 1], np.array([FLICKER]))[0])
     b = float(adev[low]) / B_FACTOR
-    bias = Read(b, b / math.sqrt(2.0 * nu_low), float(tau[low]),
-                float(parts[low, 1] / model[low]))
+    bias = Read(b, b / math.sqrt(2.0 * nu_low), float(tau[low]), float(share[low, 1]))
     return NoiseTerms(arw, bias, rrw, coef, nu)
 
 
