@@ -6,6 +6,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 import yaml
 
 from gyrovib.core.allan import oadev
@@ -74,3 +75,13 @@ def test_a_short_record_is_refused_with_the_file_named(tmp_path: Path) -> None:
     out = invoke("allan", path)
     assert out.exit_code == 2
     assert "short.csv" in out.stderr and "needs 30" in out.stderr
+
+
+def test_bias_instability_is_the_reported_minimum_over_0664(tmp_path: Path) -> None:
+    path, _ = _record(tmp_path)
+    for unit in ("deg/h", "rad/s"):
+        doc = json.loads(invoke("allan", path, "--unit", unit, "--format", "json").stdout)
+        for axis in doc["axes"]:
+            b = axis["bias_instability"]["value"]                     # deg/h
+            lowest = min(axis["adev"]) * (1.0 if unit == "deg/h" else 3600 * 180 / math.pi)
+            assert b == pytest.approx(lowest / 0.664, rel=1e-12)
