@@ -121,10 +121,10 @@ def test_report_shows_the_budget_as_a_stacked_bar(tmp_path) -> None:  # type: ig
     path.write_text(CATALOGUE, encoding="utf-8")
     out = tmp_path / "r.html"
     result = invoke("report", path, "--budget", "10deg/h", "--mission", "two-hours",
-                    "--angle-budget", "3deg", "-o", out)
+                    "--angle-budget", "3deg", "--coverage", "2", "-o", out)
     assert result.exit_code == 0, result.stderr
     html = out.read_text(encoding="utf-8")
-    chart = html[html.index("Angle budget over two-hours"):]
+    chart = html[html.index("Angle budget over two-hours: |θ_V| + 2·RSS(noise)"):]
     chart = chart[:chart.index("</svg>")]
     # full: the vibration and the four noise parts; silent: its vibration and '≥ ?'
     for part in ("full: vibration |θ_V|", "full: angle random walk", "full: bias instability",

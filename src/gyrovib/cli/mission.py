@@ -145,7 +145,7 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
 
 def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
                     angle_budget: str | None, unit: str, peak_factor: float,
-                    assume_unknown: str = "none") -> str:
+                    assume_unknown: str = "none", coverage: float = 1.0) -> str:
     """``report --mission``: the HTML of the mission section."""
     from gyrovib import api
     from gyrovib.render.report_mission import mission_section as section
@@ -153,5 +153,5 @@ def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[s
     result = api.mission(
         catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
-        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown)
+        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage)
     return section(result)
