@@ -187,7 +187,7 @@ def test_the_one_of_rule_follows_the_mappings_other_problems():
         "production lot)",
         "c.yaml:3:15: sensors[0]: unknown key 'x'; allowed here: id, name, vendor, part, "
         "notes, range, coefficients, output_coefficients, specs, response, g2_sensitivity, vre, "
-        "uncertainty, lot",
+        "uncertainty, lot, noise",
     ]
 
 

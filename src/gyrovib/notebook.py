@@ -516,9 +516,10 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
             sensors: str | Sequence[str] = (), budget: float | str | None = None,
             angle_budget: str | None = None, unit: str | None = None,
             require: str = "any", placement: str | None = None,
-            peak_factor: float = 3.0, assume_unknown: str = "none") -> Any:
+            peak_factor: float = 3.0, assume_unknown: str = "none",
+            coverage: float = 1.0) -> Any:
     """Every sensor over every mission (docs/model.md section 12): mean error, angle θ_V,
-    mean RMS, worst segment.
+    mean RMS, worst segment, and the whole angle budget (section 15).
 
     Parameters
     ----------
@@ -529,7 +530,8 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     budget : float or str, optional
         Δ* on the mean RMS Δ̄_RMS: a number in ``unit`` or with a unit.
     angle_budget : str, optional
-        θ* on |θ_V| with an angle unit: ``"0.5deg"``, ``"2 mrad"``.
+        θ* on each row's budget total |θ_V| + k·RSS(noise) with an angle unit:
+        ``"0.5deg"``, ``"2 mrad"``.
     unit : str, optional
         Output rate unit; default the unit a budget string carries, else deg/s.
     require : {'any', 'all'}
@@ -540,8 +542,10 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
         κ of the saturation check (docs/model.md section 9), default 3.
     assume_unknown : {'none', 'zero'}
         'none': a datasheet part that passes on its published figures while an
-        unpublished one (VRE, m31, m32) can decide it is 'unverified' (row
-        ``status``); 'zero' takes them as 0.
+        unpublished one (VRE, m31, m32, a noise figure) can decide it is
+        'unverified' (row ``status``); 'zero' takes them as 0.
+    coverage : float
+        k of the noise terms in the budget's total (default 1).
 
     Returns
     -------
@@ -574,4 +578,5 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
         budget=None if budget is None else _quantity("budget", budget, unit, True),
         angle_budget=theta, unit=unit, require=_text("require", require, ("any", "all")),
         placement=where, peak_factor=_number("peak_factor", peak_factor, nonnegative=True),
-        assume_unknown=_text("assume_unknown", assume_unknown, ("none", "zero")))
+        assume_unknown=_text("assume_unknown", assume_unknown, ("none", "zero")),
+        coverage=_number("coverage", coverage, nonnegative=True))

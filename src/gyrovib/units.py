@@ -143,6 +143,27 @@ def quantity(value: str | float, unit: str, *, positive: bool = False) -> float:
 
 
 #: Standard gravity, m/s² per g (ISO 80000-3).
+#: The noise figures of a sensor (docs/model.md section 15): per figure, its default
+#: unit first, and every unit it may be written in with its factor to the default.
+#: 1 deg/s/√Hz = 1 deg/√s (a one-sided PSD's √ level) = 60 deg/√h; 1 deg/h/√Hz = 1/60
+#: deg/√h; deg/s of a bias is 3600 deg/h; 1 deg/s/√s = 216 000 deg/h/√h.
+NOISE_UNITS: dict[str, dict[str, float]] = {
+    "arw": {"deg/sqrt(h)": 1.0, "deg/√h": 1.0, "°/sqrt(h)": 1.0, "°/√h": 1.0,
+            "deg/s/sqrt(Hz)": 60.0, "deg/s/√Hz": 60.0, "°/s/sqrt(Hz)": 60.0, "°/s/√Hz": 60.0,
+            "deg/h/sqrt(Hz)": 1.0 / 60.0, "deg/h/√Hz": 1.0 / 60.0, "°/h/sqrt(Hz)": 1.0 / 60.0,
+            "°/h/√Hz": 1.0 / 60.0, "deg/sqrt(s)": 60.0, "deg/√s": 60.0},
+    "bias_instability": {"deg/h": 1.0, "°/h": 1.0, "deg/s": 3600.0, "°/s": 3600.0},
+    "rrw": {"deg/h/sqrt(h)": 1.0, "deg/h/√h": 1.0, "°/h/sqrt(h)": 1.0, "°/h/√h": 1.0,
+            "deg/s/sqrt(s)": 216_000.0, "deg/s/√s": 216_000.0},
+    "bias_repeatability": {"deg/h": 1.0, "°/h": 1.0, "deg/s": 3600.0, "°/s": 3600.0},
+}
+
+
+def noise_factor(figure: str, unit: str) -> float:
+    """The factor from ``unit`` to the default unit of noise ``figure``."""
+    return NOISE_UNITS[figure][unit]
+
+
 STANDARD_GRAVITY = 9.80665
 #: g per unit of each linear-acceleration unit a catalogue may use (``units.acceleration``).
 ACCELERATION_UNITS: dict[str, float] = {

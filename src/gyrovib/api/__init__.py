@@ -82,7 +82,7 @@ _WHERE: dict[str, str] = {
     "read_rate_table": "ratetable",
     "REQUIREMENTS": "commands.select",
     "PASS_RTOL": "commands.select",
-    "mission": "commands.mission",
+    "mission": "noise.mission",
     "MissionResult": "mission_results",
     "LotYields": "yields",
     "place_profile": "placement",

@@ -29,9 +29,6 @@ from gyrovib.api.commands.bounds import (
 from gyrovib.api.commands.fit import (
     fit as fit,
 )
-from gyrovib.api.commands.mission import (
-    mission as mission,
-)
 from gyrovib.api.commands.select import (
     CRITERIA as CRITERIA,
 )
@@ -91,6 +88,9 @@ from gyrovib.api.fit_results import (
 )
 from gyrovib.api.mission_results import (
     MissionResult as MissionResult,
+)
+from gyrovib.api.noise.mission import (
+    mission as mission,
 )
 from gyrovib.api.placement import (
     place_catalog as place_catalog,

@@ -11,6 +11,8 @@ from gyrovib.frozen import Frozen
 if TYPE_CHECKING:
     import pandas as pd
 
+    from gyrovib.api.noise.results import Budget
+
 
 @dataclass(frozen=True, eq=False, repr=False)
 class SegmentResult(Frozen):
@@ -40,7 +42,8 @@ class MissionRow(Frozen):
     unpublished datasheet figures that can matter in some segment (``vre``,
     ``m31``, ``m32``; docs/model.md section 11); ``unverified``: the row passes
     on the published figures but an unknown one can decide it (then ``passed``
-    is False), see :attr:`status`.
+    is False), see :attr:`status`. ``budget``: the whole angle budget in deg
+    (docs/model.md section 15; :mod:`gyrovib.api.noise`), None before it is computed.
     """
 
     sensor: str
@@ -60,6 +63,7 @@ class MissionRow(Frozen):
     worst_axis: str | None = None
     unknown: tuple[str, ...] = ()
     unverified: bool = False
+    budget: Budget | None = None
 
     @property
     def duration(self) -> float:
@@ -94,6 +98,8 @@ class MissionResult(Frozen):
     mission on every axis (None without a budget); ``requirement_met``: the
     ``require`` condition (any: one sensor passes; all: every sensor does);
     ``notes``: warnings about the input (a segment longer than 100 years).
+    ``coverage``: k of the rows' budgets (docs/model.md section 15), and then
+    ``angle_budget`` is judged on their total.
     """
 
     unit: str
@@ -108,6 +114,7 @@ class MissionResult(Frozen):
     requirement_met: bool
     assume_unknown: str = "none"
     notes: tuple[str, ...] = ()
+    coverage: float = 1.0
 
     def sensor_status(self, k: int) -> str | None:
         """Sensor ``k`` over every mission and axis: ``fail`` if a row fails on its
@@ -134,11 +141,25 @@ def _record(r: MissionRow) -> dict[str, Any]:
             "worst_segment": r.worst_index + 1, "worst_profile": r.worst_profile,
             "worst_total": r.worst_total, "duration": r.duration, "saturated": r.saturated,
             "source": r.source, "passed": r.passed, "status": r.status,
-            "unknown": " ".join(r.unknown)}
+            "unknown": " ".join(r.unknown), **budget_columns(r)}
+
+
+#: The budget's columns of the DataFrame and the CSV (deg; None where unknown).
+BUDGET_COLUMNS = ("theta_arw", "theta_bias_instability", "theta_rrw", "theta_repeatability",
+                  "budget_total", "coverage")
+
+
+def budget_columns(r: MissionRow) -> dict[str, float | None]:
+    """A row's budget as the DataFrame's columns (None: unknown, or not computed)."""
+    b = r.budget
+    if b is None:
+        return dict.fromkeys(BUDGET_COLUMNS)
+    return dict(zip(BUDGET_COLUMNS, (b.arw, b.bias_instability, b.rrw, b.repeatability,
+                                     b.total, b.coverage), strict=True))
 
 
 def frame_columns() -> tuple[str, ...]:
     """The DataFrame's (and the CSV's) column names, in order."""
     return ("sensor", "mission", "placement", "axis", "mean", "angle", "rms", "worst_segment",
             "worst_profile", "worst_total", "duration", "saturated", "source", "passed",
-            "status", "unknown")
+            "status", "unknown", *BUDGET_COLUMNS)

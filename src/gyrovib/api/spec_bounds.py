@@ -128,6 +128,12 @@ UNKNOWN_WORDS = {
            "x3, so m32·C32 can rectify; docs/model.md section 11)",
     "spread": "the lot's spread is not measured (too few units, or units without spread: "
               "its yield is not a measurement; docs/model.md section 14)",
+    # the noise figures of a mission's budget (docs/model.md section 15)
+    "arw": "angle random walk not given (N·√T)",
+    "bias_instability": "bias instability not given (B·T)",
+    "rrw": "rate random walk not given (K·T^1.5/√3)",
+    "bias_repeatability": "bias repeatability not given (R·T; 0 if the bias is calibrated "
+                          "at each start)",
 }
 
 

@@ -147,7 +147,7 @@ def _echo_interrupted(code: int) -> None:
 #: (or ``--help`` lists them all).
 _COMMANDS = {name: f"gyrovib.cli.{name}"
              for name in ("analyze", "bounds", "select", "sweep", "report", "validate", "schema",
-                          "fit", "profile", "catalog")}
+                          "fit", "profile", "allan", "catalog")}
 
 
 _COMMANDS["mission"] = "gyrovib.cli.mission"

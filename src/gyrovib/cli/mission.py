@@ -18,6 +18,12 @@ from gyrovib.cli.options import (
 )
 from gyrovib.cli.spec_options import assume_unknown_option
 
+#: ``--coverage K`` of ``mission`` and ``select --mission`` (docs/model.md section 15).
+coverage_option = click.option(
+    "--coverage", type=float, default=1.0, show_default=True, metavar="K",
+    help="Coverage factor k of the noise terms in each row's angle budget: total = |θ_V| + "
+         "k·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) (1: one standard deviation; 2: about 95 %).")
+
 
 @click.command()
 @files_argument
@@ -29,8 +35,9 @@ from gyrovib.cli.spec_options import assume_unknown_option
               help="Δ* on the mean RMS error Δ̄_RMS: a number in --unit, or with a unit "
                    "(36deg/h).")
 @click.option("--angle-budget", "angle_budget", metavar="A",
-              help="θ* on the accumulated angle |θ_V|, with an angle unit: 0.5deg, "
-                   "'2 mrad', 30arcmin.")
+              help="θ* on each row's budget total (|θ_V| plus the noise terms, "
+                   "--coverage), with an angle unit: 0.5deg, '2 mrad', 30arcmin.")
+@coverage_option
 @click.option("--unit", default=None, metavar="UNIT",
               help="Rate unit of every output rate (deg/s, deg/h, rad/s, rpm); default: "
                    "the unit --budget is written in, else deg/s. The angle is in deg for "
@@ -47,16 +54,22 @@ from gyrovib.cli.spec_options import assume_unknown_option
 def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...],
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
-            assume_unknown: str | None, require: str, fmt: str, output: str | None) -> None:
-    """Each sensor over each mission: mean error, angle θ_V, mean RMS, worst segment.
+            assume_unknown: str | None, require: str, fmt: str, output: str | None,
+            coverage: float) -> None:
+    """Each sensor over each mission: mean error, angle θ_V, mean RMS, worst segment,
+    and the whole angle budget.
 
     A mission is an ordered list of segments (profile, duration, optional
     carrier rate) in the catalogue's `missions:`. A sensor passes when no
-    segment saturates it and |θ_V| ≤ --angle-budget (or Δ̄_RMS ≤ --budget).
-    A datasheet sensor is taken at the worst conversion function over the
-    whole mission; one that passes on its published figures while an
-    unpublished one (VRE, m31, m32) can decide it is 'unverified', not
-    passing (--assume-unknown zero takes them as 0). Exit status 1 when the
+    segment saturates it and its budget total ≤ --angle-budget (or Δ̄_RMS ≤
+    --budget). The budget adds to |θ_V| the noise over the mission's duration T
+    (docs/model.md section 15): N·√T, B·T, K·T^1.5/√3 and R·T from the
+    sensor's noise: block, in quadrature, times --coverage; a figure not given
+    is unknown ('?'), the total a lower bound. A datasheet sensor is taken at
+    the worst conversion function over the whole mission; one that passes on
+    its published figures while an unpublished one (VRE, m31, m32, a noise
+    figure) can decide it is 'unverified', not passing (--assume-unknown zero takes them as 0). Exit
+    status 1 when the
     --require condition is not met.
     """
     from gyrovib import api, units
@@ -77,7 +90,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         budget=None if budget is None else parse_budget(budget, unit),
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
-        peak_factor=peak_factor, assume_unknown=assume_unknown or "none")
+        peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
     if fmt == "table":
@@ -95,9 +108,9 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
                    profiles: tuple[str, ...], budget: str | None, angle_budget: str | None,
                    unit: str | None, placement: str | None, peak_factor: float,
                    require: str, fmt: str, output: str | None,
-                   assume_unknown: str = "none") -> bool:
-    """``select --mission ID``: the mission's verdicts in select's formats; returns
-    whether the --require condition is met."""
+                   assume_unknown: str = "none", coverage: float = 1.0) -> bool:
+    """``select --mission ID``: the mission's verdicts in select's formats, the sensors
+    ranked on their budget total; returns whether the --require condition is met."""
     from gyrovib import api, units
     from gyrovib.cli.output import write_output
     from gyrovib.errors import OptionError
@@ -114,12 +127,14 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
         raise OptionError("--mission: use --format table, json, csv, markdown or junit")
     unit = parse_unit(unit) if unit is not None else (
         (units.quantity_unit(budget) if budget is not None else None) or "deg/s")
-    result = api.mission(
+    from gyrovib.api.noise import ranked
+
+    result = ranked(api.mission(
         load_catalog(files), missions=(mission_id,), sensors=sensors,
         budget=None if budget is None else parse_budget(budget, unit),
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
-        peak_factor=peak_factor, assume_unknown=assume_unknown)
+        peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage))
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
     if fmt == "table":
@@ -134,7 +149,7 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
 
 def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
                     angle_budget: str | None, unit: str, peak_factor: float,
-                    assume_unknown: str = "none") -> str:
+                    assume_unknown: str = "none", coverage: float = 1.0) -> str:
     """``report --mission``: the HTML of the mission section."""
     from gyrovib import api
     from gyrovib.render.report_mission import mission_section as section
@@ -142,5 +157,5 @@ def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[s
     result = api.mission(
         catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
-        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown)
+        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage)
     return section(result)

@@ -10,6 +10,30 @@ import click
 F = TypeVar("F", bound=Callable[..., Any])
 
 
+def reader_options(f: F) -> F:
+    """How a recording is read (INTERFACE.md, third round): its columns, units, topic and
+    sample rate; shared by ``profile``, ``analyze --recording`` and ``allan``."""
+    options = [
+        click.option("--topic", metavar="NAME",
+                     help="ULog topic (default sensor_combined)."),
+        click.option("--accel-unit", metavar="UNIT",
+                     help="Unit of the accelerations: g or m/s^2 (default g; ULog m/s^2)."),
+        click.option("--rate-unit", metavar="UNIT",
+                     help="Unit of the rates: deg/s, deg/h, rad/s, rpm (default deg/s; "
+                          "ULog rad/s)."),
+        click.option("--accel-columns", metavar="X,Y,Z",
+                     help="Acceleration columns: names or 0-based indices, - for none."),
+        click.option("--rate-columns", metavar="X,Y,Z",
+                     help="Rate columns: names or 0-based indices, - for an axis not "
+                          "recorded (default: the first three columns other than t/time)."),
+        click.option("--fs", type=float, metavar="HZ",
+                     help="Sample rate, Hz, for a recording without a time column."),
+    ]
+    for option in options:
+        f = option(f)
+    return f
+
+
 def recording_options(f: F) -> F:
     """The recording input and fit options of INTERFACE.md (third round)."""
     options = [
@@ -31,24 +55,10 @@ def recording_options(f: F) -> F:
                      metavar="DF", help="Frequency resolution of the Welch PSD, Hz."),
         click.option("--crossover", type=float, default=5.0, show_default=True, metavar="F",
                      help="f_c, Hz: below it the carrier's manoeuvres, above it vibration."),
-        click.option("--topic", metavar="NAME",
-                     help="ULog topic (default sensor_combined)."),
-        click.option("--accel-unit", metavar="UNIT",
-                     help="Unit of the accelerations: g or m/s^2 (default g; ULog m/s^2)."),
-        click.option("--rate-unit", metavar="UNIT",
-                     help="Unit of the rates: deg/s, deg/h, rad/s, rpm (default deg/s; "
-                          "ULog rad/s)."),
-        click.option("--accel-columns", metavar="X,Y,Z",
-                     help="Acceleration columns: names or 0-based indices, - for none."),
-        click.option("--rate-columns", metavar="X,Y,Z",
-                     help="Rate columns: names or 0-based indices, - for an axis not "
-                          "recorded (default: the first three columns other than t/time)."),
-        click.option("--fs", type=float, metavar="HZ",
-                     help="Sample rate, Hz, for a recording without a time column."),
     ]
     for option in options:
         f = option(f)
-    return f
+    return reader_options(f)
 
 
 def read(path: str, options: dict[str, Any]) -> Any:

@@ -14,6 +14,7 @@ from gyrovib.cli.options import (
     peak_factor_option,
     selection_options,
 )
+from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.recording import recording_options
 from gyrovib.cli.spec_options import assume_unknown_option
 from gyrovib.cli.yield_options import yield_options
@@ -46,16 +47,19 @@ DEFAULT_OUTPUT = "report.html"
                    "fitted profile joins the study's profiles.")
 @click.option("--mission", "missions", multiple=True, metavar="ID",
               help="Add a mission section (repeatable): per sensor the angle θ_V against "
-                   "--angle-budget and the per-segment breakdown (docs/model.md section 12).")
+                   "--angle-budget, the whole angle budget as a stacked bar and the "
+                   "per-segment breakdown (docs/model.md sections 12 and 15).")
 @click.option("--angle-budget", "angle_budget", metavar="A",
-              help="θ* of the mission section, with an angle unit (0.5deg, '2 mrad').")
+              help="θ* of the mission section, on each sensor's budget total, with an angle "
+                   "unit (0.5deg, '2 mrad').")
+@coverage_option
 @recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            missions: tuple[str, ...], angle_budget: str | None,
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, assume_unknown: str | None, require: str,
            rate_range: str | None, yield_target: float | None, seed: int, draws: int,
-           output: str, recording: str | None, **rec: Any) -> None:
+           output: str, recording: str | None, coverage: float, **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -87,7 +91,8 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
         from gyrovib.cli.mission import mission_section
 
         section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
-                                   peak_factor, assume_unknown=assume_unknown or "none")
+                                   peak_factor, assume_unknown=assume_unknown or "none",
+                                   coverage=coverage)
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,

@@ -15,6 +15,7 @@ from gyrovib.cli.common import (
     say,
     use_color,
 )
+from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
     budget_arguments,
     budget_options,
@@ -43,8 +44,10 @@ from gyrovib.cli.yield_options import yield_options
               help="Select on this mission instead of profiles (docs/model.md section 12): "
                    "--budget on the mean RMS Δ̄_RMS, or --angle-budget on |θ_V|.")
 @click.option("--angle-budget", "angle_budget", metavar="A",
-              help="With --mission: θ* on the accumulated angle, with an angle unit "
-                   "(0.5deg, '2 mrad'); --budget is then not needed.")
+              help="With --mission: θ* on the budget total (|θ_V| plus the noise terms; "
+                   "sensors ranked on it), with an angle unit (0.5deg, '2 mrad'); --budget "
+                   "is then not needed.")
+@coverage_option
 @click.option("--criterion", type=click.Choice(["bounds", "rms", "worst", "both"]),
               default="bounds", show_default=True,
               help="What a pass means: bounds: every coefficient within its bound (the "
@@ -68,7 +71,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            unit: str | None, allocation: str | None, peak_factor: float, criterion: str,
            spec_weights: str | None, assume_unknown: str | None, require: str,
            yield_target: float | None, seed: int, draws: int, fmt: str,
-           output: str | None) -> None:
+           output: str | None, coverage: float) -> None:
     """Check every sensor against a budget: a pass/fail table and a ranking.
 
     Each sensor's bounds include its frequency response where it acts at its
@@ -95,7 +98,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
 
         met = select_mission(files, mission, sensors, profiles, budget, angle_budget, unit,
                              placement, peak_factor, require, fmt, output,
-                             assume_unknown=assume_unknown or "none")
+                             assume_unknown=assume_unknown or "none", coverage=coverage)
         if not met:
             ctx.exit(1)
         return

@@ -24,6 +24,7 @@ from typing import Any
 
 from gyrovib.models.catalogue import VERSION, Allocation, Catalogue, Units
 from gyrovib.models.mission import AxisPlacement, Mission, Segment
+from gyrovib.models.noise import Noise, NoiseFigure
 from gyrovib.models.profile import (
     MAX_TONES,
     PSD,
@@ -69,6 +70,8 @@ __all__ = [
     "Harmonics",
     "Lot",
     "Mission",
+    "Noise",
+    "NoiseFigure",
     "Nonlinearity",
     "Order",
     "OutputCoefficients",

@@ -181,6 +181,8 @@ def one_of(*groups: Group) -> Any:
 
 # ---------------------------------------------------------------- numbers
 
+#: A number written in a text ("0.0004 deg/s/g^2", "0.12 deg/sqrt(h)"): a regular expression.
+NUMBER_TEXT = r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"
 #: A finite float (an integer is converted); no boolean, no text.
 Number = Annotated[float, Strict(), AllowInfNan(False)]
 #: A rate or acceleration magnitude of a profile, >= 0 (see MAX_MAGNITUDE).
@@ -318,6 +320,14 @@ def yaml_kind(value: Any) -> str | None:
     if isinstance(value, BaseModel):
         return "<mapping>"
     return None
+
+
+def value_kind(value: Any) -> str | None:
+    """As :func:`yaml_kind`, and ``<number>`` for a number (not a boolean): the tag of a
+    quantity written as a bare number, a text with its unit or a mapping."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return "<number>"
+    return yaml_kind(value)
 
 
 def by_kind(expected: str) -> Discriminator:

@@ -21,6 +21,7 @@ from gyrovib.models._types import (
     FREE_TEXT,
     ID_TEXT,
     MAX_MAGNITUDE,
+    NUMBER_TEXT,
     RATE,
     Group,
     Hint,
@@ -36,8 +37,9 @@ from gyrovib.models._types import (
     one_of,
     raise_at,
     rule_error,
-    yaml_kind,
+    value_kind,
 )
+from gyrovib.models.noise import Noise
 from gyrovib.models.uncertainty import LotSpread, Uncertainty
 
 #: Units a rate may be written in (``units.rate``).
@@ -136,7 +138,7 @@ G2Unit = Literal[
     "deg/s/g^2", "deg/s/g²", "deg/s/(m/s^2)^2", "deg/s/(m/s²)²", "deg/h/g^2", "deg/h/g²",
     "deg/h/(m/s^2)^2", "deg/h/(m/s²)²", "rad/s/g^2", "rad/s/g²", "rad/s/(m/s^2)^2",
     "rad/s/(m/s²)²", "rpm/g^2", "rpm/g²", "rpm/(m/s^2)^2", "rpm/(m/s²)²"]
-_NUMBER = r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"
+_NUMBER = NUMBER_TEXT
 #: A g² sensitivity written as text: a number, spaces, a unit ("0.0004 deg/s/g^2").
 G2_TEXT = (rf"^ *({_NUMBER}) +((?:{'|'.join(re.escape(r) for r in get_args(RateUnit))})/"
            rf"(?:{'|'.join(re.escape(a) for a in G2_PER)})) *$")
@@ -183,10 +185,7 @@ def _g2_text(value: str) -> G2Quantity:
     return G2Quantity(value=float(match.group(1)), unit=match.group(2))
 
 
-def _g2_kind(value: Any) -> str | None:
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        return "<number>"
-    return yaml_kind(value)
+_g2_kind = value_kind
 
 
 def _in_band(q: G2Quantity, low: float) -> G2Quantity:
@@ -428,6 +427,9 @@ class Sensor(Model):
     lot: Lot | None = Field(
         None, description="A production lot instead of one unit: the mean, standard "
         "deviations and correlations of its units' coefficients (docs/model.md section 14).")
+    noise: Noise | None = Field(
+        None, description="Noise figures at rest (docs/model.md section 15): arw, "
+        "bias_instability, rrw, bias_repeatability; an omitted one is unknown. Either form.")
 
     model_config = Model.model_config | {"json_schema_extra": {"allOf": [
         groups_schema(*_SENSOR_GROUPS), {"dependencies": {"uncertainty": ["coefficients"]}}]}}

@@ -20,7 +20,8 @@ def _verdict(row: MissionRow) -> str:
 
 def _budget_text(result: MissionResult) -> str:
     if result.angle_budget is not None:
-        return f"angle budget |θ_V| ≤ {fmt(result.angle_budget)} {result.angle_unit}"
+        return (f"angle budget: total |θ_V| + {fmt(result.coverage)}·RSS(noise) ≤ "
+                f"{fmt(result.angle_budget)} {result.angle_unit}")
     if result.budget is not None:
         return f"budget Δ̄_RMS ≤ {fmt(result.budget)} {result.unit}"
     return "no budget"
@@ -35,6 +36,9 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
     if row.saturated:
         bad = [str(k + 1) for k, s in enumerate(row.segments) if s.saturated]
         return f"saturated in segment {', '.join(bad)}"
+    if result.angle_budget is not None and row.budget is not None:
+        return (f"total {budget_total(row)} deg > {fmt(result.angle_budget)} "
+                f"{result.angle_unit}")
     if result.angle_budget is not None:
         return (f"|θ_V| = {fmt(abs(row.angle))} {result.angle_unit} > "
                 f"{fmt(result.angle_budget)} {result.angle_unit}")
@@ -42,7 +46,25 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
 
 
 _HEAD = ["sensor", "mission", "axis", "mean Δ̄_V", "angle θ_V", "mean RMS Δ̄_RMS",
+         "θ_ARW (deg)", "θ_B (deg)", "θ_RRW (deg)", "θ_R (deg)", "total (deg)",
          "worst segment", "verdict"]
+#: The budget's noise terms, in the order of the table's columns.
+_NOISE = ("arw", "bias_instability", "rrw", "repeatability")
+
+
+def budget_total(row: MissionRow) -> str:
+    """The budget's total: '≥ x' when a noise figure is unknown (a lower bound)."""
+    if row.budget is None:
+        return "-"
+    return ("≥ " if row.budget.lower_bound else "") + fmt(row.budget.total)
+
+
+def _noise_cells(row: MissionRow) -> list[str]:
+    """The noise terms in deg; '?' where the figure is unknown (never 0)."""
+    if row.budget is None:
+        return ["-"] * len(_NOISE)
+    values = [getattr(row.budget, name) for name in _NOISE]
+    return ["?" if v is None else fmt(v) for v in values]
 
 
 def _cells(result: MissionResult, row: MissionRow) -> list[str]:
@@ -50,6 +72,7 @@ def _cells(result: MissionResult, row: MissionRow) -> list[str]:
     axis = "-" if row.axis is None else row.axis + (" (worst)" if row.axis == row.worst_axis
                                                     else "")
     return [row.sensor, row.mission, axis, fmt(row.mean), fmt(row.angle), fmt(row.rms),
+            *_noise_cells(row), budget_total(row),
             f"{row.worst_index + 1} {w.profile} ({fmt(w.total)})",
             _verdict(row) + (" (saturated)" if row.saturated else "")]
 
@@ -76,28 +99,15 @@ def _unknown_notes(result: MissionResult) -> list[str]:
     return notes
 
 
-def to_table(result: MissionResult, width: int | None = None, color: bool = False,
-             ascii: bool = False) -> str:
-    """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
-    from rich.table import Table
-    from rich.text import Text
-
-    table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
-                  f"({_budget_text(result)})", title_justify="left")
-    head = [*_HEAD]
-    head[3] += f" ({result.unit})"
-    head[4] += f" ({result.angle_unit})"
-    head[5] += f" ({result.unit})"
-    keep = [k for k in range(len(head)) if k != 1 or len(result.missions) > 1]  # in the title
-    for k in keep:
-        table.add_column(head[k], justify="right" if 3 <= k <= 5 else "left", no_wrap=True)
-    for row in result.rows:
-        cells = _cells(result, row)
-        table.add_row(*(cells[k] for k in keep))
-    out: list[Any] = [table]
+def _table_notes(result: MissionResult) -> list[str]:
+    """The legend under the table: the definitions, then what applies to these rows."""
     notes = ["mean Δ̄_V = Σ T_s·Δ_V,s / Σ T_s; angle θ_V = Σ T_s·Δ_V,s; mean RMS = "
              "√(Σ T_s·Δ_V(RMS),s² / Σ T_s); worst segment: its number, profile and Δ_V,s "
-             "(docs/model.md section 12)."]
+             "(docs/model.md section 12). Budget over the mission's T hours (section 15): "
+             f"θ_ARW = N·√T, θ_B = B·T, θ_RRW = K·T^1.5/√3, θ_R = R·T; total = |θ_V| + "
+             f"{fmt(result.coverage)}·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) (coverage k = "
+             f"{fmt(result.coverage)}); '?': a noise figure the catalogue does not give, "
+             "unknown, so the total is a lower bound (≥)."]
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "
@@ -113,6 +123,29 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
         notes.append(f"{n} of {len(result.sensors)} sensors pass every mission{open_} "
                      f"(--require {result.require}: "
                      f"{'met' if result.requirement_met else 'NOT met'}).")
+    return notes
+
+
+def to_table(result: MissionResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
+    from rich.table import Table
+    from rich.text import Text
+
+    table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
+                  f"({_budget_text(result)})", title_justify="left")
+    head = [*_HEAD]
+    head[3] += f" ({result.unit})"
+    head[4] += f" ({result.angle_unit})"
+    head[5] += f" ({result.unit})"
+    keep = [k for k in range(len(head)) if k != 1 or len(result.missions) > 1]  # in the title
+    for k in keep:
+        table.add_column(head[k], justify="right" if 3 <= k <= 10 else "left", no_wrap=True)
+    for row in result.rows:
+        cells = _cells(result, row)
+        table.add_row(*(cells[k] for k in keep))
+    out: list[Any] = [table]
+    notes = _table_notes(result)
     out.append(Text(" ".join(notes), style="dim"))
     out.extend(Text(note) for note in _unknown_notes(result))
     return rich_text(out, width=width, color=color, ascii=ascii)
@@ -131,6 +164,14 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
         "unknown": list(row.unknown), "reason": _reason(result, row) or None,
         "source": row.source,
     }
+    if row.budget is not None:
+        b = row.budget
+        out["budget"] = {
+            "vibration": number(b.vibration),
+            **{name: None if getattr(b, name) is None else number(getattr(b, name))
+               for name in _NOISE},
+            "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
+            "lower_bound": b.lower_bound}
     if row.axis is not None:
         out["axis"] = row.axis
         out["worst_axis"] = row.worst_axis
@@ -169,14 +210,15 @@ def to_json(result: MissionResult) -> str:
 
 def to_csv(result: MissionResult) -> str:
     """One row per sensor × mission × axis; columns as :meth:`MissionResult.to_frame`."""
-    from gyrovib.api.mission_results import frame_columns
+    from gyrovib.api.mission_results import budget_columns, frame_columns
 
     def row(r: MissionRow) -> list[Any]:
         return [r.sensor, r.mission, r.placement, r.axis or "", r.mean, r.angle, r.rms,
                 r.worst_index + 1, r.worst_profile, r.worst_total, r.duration,
                 str(r.saturated).lower(), r.source,
                 "" if r.passed is None else str(r.passed).lower(), r.status or "",
-                " ".join(r.unknown)]
+                " ".join(r.unknown),
+                *("" if v is None else v for v in budget_columns(r).values())]
 
     return csv_text(frame_columns(), (row(r) for r in result.rows))
 
@@ -205,7 +247,8 @@ def to_junit(result: MissionResult) -> str:
         name = r.mission if r.axis is None else f"{r.mission} (x3 on {r.axis})"
         case = ET.SubElement(suite, "testcase", classname=r.sensor, name=name, time="0")
         out = ET.SubElement(case, "system-out")
-        out.text = (f"θ_V = {fmt(r.angle)} {result.angle_unit}, mean RMS = {fmt(r.rms)} "
+        out.text = (f"θ_V = {fmt(r.angle)} {result.angle_unit}, budget total "
+                    f"{budget_total(r)} deg, mean RMS = {fmt(r.rms)} "
                     f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})")
         if r.passed is False:
             reason = _reason(result, r)

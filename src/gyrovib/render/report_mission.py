@@ -8,7 +8,7 @@ from html import escape
 from typing import TYPE_CHECKING
 
 from gyrovib.render.common import fmt
-from gyrovib.render.svg import Marker, bar_chart
+from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
     from gyrovib.api.mission_results import MissionResult, MissionRow
@@ -48,6 +48,39 @@ def angle_chart(result: MissionResult, mission: str) -> str:
                      names, [abs(r.angle) for r in rows], [_fill(r) for r in rows], marker)
 
 
+#: The parts of a budget bar: |θ_V|, then k·RSS(noise) split by each term's share of RSS².
+BUDGET_PARTS = ("vibration |θ_V|", "angle random walk", "bias instability", "rate random walk",
+                "bias repeatability")
+_NOISE = ("arw", "bias_instability", "rrw", "repeatability")
+
+
+def budget_lengths(row: MissionRow) -> list[float]:
+    """A row's budget bar in deg: |θ_V|, then the k·RSS of the noise terms divided among
+    them in proportion to their squares (they add in quadrature, so each term's part of
+    the noise is its share of the variance); an unknown term has no part."""
+    b = row.budget
+    if b is None:
+        return [abs(row.angle)]
+    terms = [getattr(b, n) or 0.0 for n in _NOISE]
+    var = sum(t * t for t in terms)
+    noise = b.total - abs(b.vibration)
+    return [abs(b.vibration), *((noise * t * t / var) if var > 0 else 0.0 for t in terms)]
+
+
+def budget_chart(result: MissionResult, mission: str) -> str:
+    """The whole angle budget per sensor as a stacked bar: which term dominates."""
+    rows = _shown(result, mission)
+    names = [r.sensor + (f" ({r.axis})" if r.axis else "") for r in rows]
+    marker = (None if result.angle_budget is None or result.angle_unit != "deg" else
+              Marker(f"θ* = {fmt(result.angle_budget, 3)} deg", x=float(result.angle_budget)))
+    return stacked_bar_chart(
+        f"Angle budget over {mission}: |θ_V| + {fmt(result.coverage)}·RSS(noise)",
+        "deg; the noise part split by each term's share of the variance; ≥ ?: a noise "
+        "figure unknown, the total a lower bound", names, BUDGET_PARTS,
+        [budget_lengths(r) for r in rows],
+        [bool(r.budget and r.budget.lower_bound) for r in rows], marker)
+
+
 def _segments_table(result: MissionResult, row: MissionRow) -> str:
     head = ["#", "profile", "T_s (s)", f"Ω_K3 ({result.unit})", f"Δ_V,s ({result.unit})",
             f"T_s·Δ_V,s ({result.angle_unit})", f"Δ_V(RMS),s ({result.unit})", "saturated"]
@@ -82,11 +115,12 @@ def mission_section(result: MissionResult) -> str:
              "<h2>Missions</h2>",
              f"<p>Each sensor over each mission (docs/model.md section 12; {_e(budget)}): the "
              "accumulated angle θ_V = Σ T_s·Δ_V,s, and per sensor the segments that make "
-             "it up (the worst segment highlighted).</p>"]
+             "it up (the worst segment highlighted); and the whole angle budget, |θ_V| plus "
+             "the noise of each sensor's noise: figures over the mission (section 15).</p>"]
     for mission in result.missions:
         parts.append(f'<section class="mission"><h3>{_e(mission)}</h3>')
         parts.append(f'<div class="charts"><figure>{angle_chart(result, mission)}</figure>'
-                     "</div>")
+                     f"<figure>{budget_chart(result, mission)}</figure></div>")
         parts.extend(_segments_table(result, r) for r in _shown(result, mission))
         parts.append("</section>")
     return "\n".join(parts)

@@ -372,3 +372,60 @@ def share_chart(title: str, names: Sequence[str], parts: Sequence[str],
                "Δ_V(RMS)² (eq. 16)</text>")
     out.append("</svg>")
     return "\n".join(out)
+
+
+def stacked_bar_chart(title: str, xlabel: str, names: Sequence[str], parts: Sequence[str],
+                      lengths: Sequence[Sequence[float]], open_end: Sequence[bool],
+                      reference: Marker | None = None) -> str:
+    """Horizontal bars on a linear axis from 0, row k made of ``lengths[k]`` end to end
+    (one colour per part, legend at the right); ``open_end[k]``: the bar is a lower
+    bound, drawn with a '≥ ?' past its end. An optional vertical reference line."""
+    row = 18
+    top = TOP + 12
+    height = max(top + BOTTOM + row * max(len(names), 1), legend_bottom(len(parts), top))
+    left, right = 170, WIDTH - RIGHT - 10
+    totals = [sum(v for v in r if math.isfinite(v) and v > 0) for r in lengths]
+    hi = max([*totals, *([reference.x] if reference and reference.x is not None else []), 0.0])
+    out = _open(title, height)
+    if hi <= 0:
+        out.append(f'<text x="{left}" y="{top + 30}" class="lg">no value to plot</text></svg>')
+        return "\n".join(out)
+    x = Scale(0.0, hi * 1.08, left, right)
+    bottom = height - BOTTOM
+    out.append(f'<rect x="{left}" y="{top}" width="{right - left}" height="{bottom - top}" '
+               'class="frame"/>')
+    for t in x.ticks():
+        px = x(t)
+        out.append(f'<line x1="{px:.1f}" y1="{top}" x2="{px:.1f}" y2="{bottom}" class="grid"/>')
+        out.append(f'<text x="{px:.1f}" y="{bottom + 14}" class="tx">{escape(label(t))}</text>')
+    for k, name in enumerate(names):
+        out += _stacked_row(name, parts, lengths[k], open_end[k], x, top + row * k, row)
+    if reference is not None and reference.x is not None:
+        px = x(reference.x)
+        out.append(f'<line x1="{px:.1f}" y1="{top - 4}" x2="{px:.1f}" y2="{bottom}" '
+                   f'class="{reference.style}"/>')
+        out.append(_marker_label(reference.label, px, top - 6, WIDTH - 4))
+    out += _legend(list(parts), [(color(p), "") for p in range(len(parts))], top)
+    out.append(f'<text x="{(left + right) / 2:.0f}" y="{height - 6}" class="xl">'
+               f'{escape(fit(xlabel, right - left, SIZES["xl"]))}</text>')
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def _stacked_row(name: str, parts: Sequence[str], lengths: Sequence[float], open_end: bool,
+                 x: Scale, y: float, row: int) -> list[str]:
+    """One bar of :func:`stacked_bar_chart`: its name, its parts end to end, '≥ ?'."""
+    out = [f'<text x="{x.start - 5}" y="{y + 13}" class="ty">'
+           f'{escape(fit(name, x.start - 9, SIZES["ty"]))}</text>']
+    start = 0.0
+    for p, value in enumerate(lengths):
+        if not math.isfinite(value) or value <= 0:
+            continue
+        a, b = x(start), x(start + value)
+        out.append(f'<rect x="{a:.1f}" y="{y + 3}" width="{max(b - a, 0.5):.1f}" '
+                   f'height="{row - 6}" fill="{color(p)}"><title>{escape(name)}: '
+                   f'{escape(parts[p])} {escape(label(value))}</title></rect>')
+        start += value
+    if open_end:
+        out.append(f'<text x="{x(start) + 3:.1f}" y="{y + 13}" class="lg">≥ ?</text>')
+    return out

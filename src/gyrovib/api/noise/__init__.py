@@ -1,0 +1,32 @@
+"""The noise domain (docs/model.md section 15): the overlapping Allan deviation of a
+static recording, a sensor's noise figures, and the angle budget of a mission.
+
+=====================================  ===========================================
+name                                    what it is
+=====================================  ===========================================
+:func:`allan`                           a recording → :class:`AllanResult`
+:func:`noise_yaml`                      an Allan result as a ``noise:`` block
+:func:`noise_values`                    a sensor's ``noise:`` in the default units
+:func:`budget`                          one row's angle budget → :class:`Budget`
+:func:`mission`                         ``gyrovib mission`` with every row's budget
+:func:`ranked`                          a mission result, sensors by budget total
+=====================================  ===========================================
+"""
+
+from gyrovib.api.noise.allan import allan
+from gyrovib.api.noise.budget import budget, noise_angles
+from gyrovib.api.noise.figures import FIGURES, noise_values
+from gyrovib.api.noise.mission import check_coverage, mission, ranked
+from gyrovib.api.noise.results import (
+    BUDGET_TERMS,
+    FIGURE_UNITS,
+    AllanResult,
+    AxisAllan,
+    Budget,
+    Figure,
+)
+from gyrovib.api.noise.yaml import noise_yaml
+
+__all__ = ["BUDGET_TERMS", "FIGURES", "FIGURE_UNITS", "AllanResult", "AxisAllan", "Budget",
+           "Figure", "allan", "budget", "check_coverage", "mission", "noise_angles",
+           "noise_values", "noise_yaml", "ranked"]

@@ -1,0 +1,20 @@
+"""A sensor's ``noise:`` block in the default units (deg/√h, deg/h, deg/h/√h, deg/h)."""
+
+from __future__ import annotations
+
+from gyrovib import units
+from gyrovib.models.noise import WHAT, Noise
+
+#: The figures of a noise block, in order.
+FIGURES = tuple(WHAT)
+
+
+def noise_values(noise: Noise | None) -> dict[str, float | None]:
+    """Each figure in its default unit; None where it is not given (unknown)."""
+    out: dict[str, float | None] = dict.fromkeys(FIGURES)
+    if noise is None:
+        return out
+    for name, fig in noise.figures().items():
+        if fig is not None:
+            out[name] = fig.value * units.noise_factor(name, fig.unit)
+    return out

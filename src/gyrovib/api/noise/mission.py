@@ -1,0 +1,103 @@
+"""``gyrovib mission`` with the whole error budget (docs/model.md section 15): the
+vibration view of :mod:`gyrovib.api.commands.mission`, each row given its
+:class:`~gyrovib.api.noise.Budget`, and an angle budget judged on the total.
+
+A row passes ``--angle-budget`` θ* when no segment saturates the sensor and
+total = |θ_V| + k·RSS(noise) ≤ θ*. A noise figure the catalogue does not give is
+unknown, never 0: the total is then a lower bound, and a row that passes on it is
+``unverified`` (its names join the row's ``unknown``), unless
+``assume_unknown="zero"``, as for an unpublished VRE.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import Any
+
+from gyrovib.api import spec_bounds
+from gyrovib.api.commands.mission import mission as vibration_mission
+from gyrovib.api.mission_results import MissionResult, MissionRow
+from gyrovib.api.noise.budget import budget
+from gyrovib.api.noise.figures import FIGURES, noise_values
+from gyrovib.catalog.loader import Catalog
+from gyrovib.core.mission import ANGLE_IN_RAD
+from gyrovib.errors import OptionError
+
+#: Degrees per unit of a mission's angle (deg, rad, rev).
+_DEG_PER = {name: ANGLE_IN_RAD[name] / ANGLE_IN_RAD["deg"] for name in ("deg", "rad", "rev")}
+
+
+def check_coverage(coverage: float) -> float:
+    """The coverage factor k: finite and > 0."""
+    if not (math.isfinite(coverage) and coverage > 0):
+        raise OptionError(f"--coverage {coverage:g}: give a positive coverage factor "
+                          "(1: one standard deviation, 2: about 95 %)")
+    return float(coverage)
+
+
+def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | None = None,
+            **options: Any) -> MissionResult:
+    """Every chosen sensor over every chosen mission with its angle budget in deg.
+
+    The keywords are those of :func:`gyrovib.api.commands.mission.mission`;
+    ``angle_budget`` (radians) judges the budget's total; ``coverage`` is k.
+    """
+    k = check_coverage(coverage)
+    result = vibration_mission(catalog, angle_budget=angle_budget, **options)
+    figures = {e.sensor.id: noise_values(e.sensor.noise) for e in catalog.sensors}
+    per_deg = _DEG_PER[result.angle_unit]
+    rows = [_with_budget(r, figures[r.sensor], per_deg, k) for r in result.rows]
+    if result.angle_budget is not None:
+        theta = result.angle_budget * per_deg
+        rows = [_judged(r, theta, result.assume_unknown) for r in rows]
+    return _verdicts(result, rows, k)
+
+
+def _with_budget(row: MissionRow, figures: dict[str, float | None], per_deg: float,
+                 coverage: float) -> MissionRow:
+    return replace(row, budget=budget(row.angle * per_deg, figures, row.duration, coverage))
+
+
+def _judged(row: MissionRow, theta_deg: float, assume_unknown: str) -> MissionRow:
+    """The row's verdict on its total; noise figures not given join its unknown."""
+    assert row.budget is not None
+    names = row.unknown + tuple(n for n in FIGURES if _term(n) in row.budget.unknown)
+    passed = not row.saturated and row.budget.total <= theta_deg
+    open_ = spec_bounds.is_unverified(passed, names, assume_unknown)
+    return replace(row, passed=passed and not open_, unverified=open_, unknown=names)
+
+
+def _term(figure: str) -> str:
+    return "repeatability" if figure == "bias_repeatability" else figure
+
+
+def _verdicts(result: MissionResult, rows: Sequence[MissionRow], coverage: float
+              ) -> MissionResult:
+    judged = result.budget is not None or result.angle_budget is not None
+    sensor_pass = tuple(None if not judged else all(bool(r.passed) for r in rows
+                                                    if r.sensor == s)
+                        for s in result.sensors)
+    if not judged:
+        met = True
+    elif result.require == "all":
+        met = all(bool(p) for p in sensor_pass)
+    else:
+        met = any(bool(p) for p in sensor_pass)
+    return replace(result, rows=tuple(rows), sensor_pass=sensor_pass, requirement_met=met,
+                   coverage=coverage)
+
+
+def ranked(result: MissionResult) -> MissionResult:
+    """The sensors ordered by their largest budget total over the rows (smallest first;
+    ``select --mission``): the rows follow their sensor, in their own order."""
+    def worst(sensor: str) -> float:
+        totals = [r.budget.total for r in result.rows if r.sensor == sensor and r.budget]
+        return max(totals, default=math.inf)
+
+    order = sorted(range(len(result.sensors)), key=lambda k: worst(result.sensors[k]))
+    sensors = tuple(result.sensors[k] for k in order)
+    rows = tuple(r for s in sensors for r in result.rows if r.sensor == s)
+    return replace(result, sensors=sensors, rows=rows,
+                   sensor_pass=tuple(result.sensor_pass[k] for k in order))
