@@ -134,7 +134,7 @@ def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 
 def test_no_import_circle_in_the_package() -> None:
     graph = _graph()
-    assert graph["gyrovib.api.commands.select"] >= {"gyrovib.api.study"}  # the probe works
+    assert graph["gyrovib.api.commands.select"] >= {"gyrovib.api.study.study"}  # the probe works
     assert _cycles(graph) == []
 
 
@@ -176,9 +176,10 @@ def _complexity(function: ast.FunctionDef) -> int:
 
 #: The preparation and evaluation every command shares, and the views on it (select's
 #: view, selection_of, is not yet among them: it still judges every criterion inline).
-PIPELINE = ("api/study.py", "api/prepare.py", "api/evaluate.py", "api/commands/sweep.py",
+PIPELINE = ("api/study/study.py", "api/study/prepare.py", "api/evaluation/evaluate.py",
+            "api/commands/sweep.py",
             "api/commands/bounds.py:bounds_of", "api/commands/analyze.py:analysis_of",
-            "api/trade_study.py:trade_study")
+            "api/report/views.py:trade_study")
 
 
 def test_the_preparation_is_made_of_small_functions() -> None:
@@ -208,8 +209,8 @@ def test_the_error_loop_and_the_saturation_rule_are_written_once() -> None:
                         calls[call.func.id].append(
                             f"{path.relative_to(SRC / 'gyrovib')}:{node.name}")
     assert sorted(set(calls["vibration_error"])) == ["api/commands/analyze.py:_simulate",
-                                                      "api/evaluate.py:error"]
-    assert calls["saturated_at"] == ["api/evaluate.py:saturation"]
+                                                      "api/evaluation/evaluate.py:error"]
+    assert calls["saturated_at"] == ["api/evaluation/evaluate.py:saturation"]
 
 
 def test_one_immutability_mechanism_in_the_library() -> None:

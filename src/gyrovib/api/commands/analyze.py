@@ -9,10 +9,11 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api import specs
-from gyrovib.api.convert import error_arrays, to_unit
-from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, worst_case
-from gyrovib.api.prepare import (
+from gyrovib.api.datasheet import specs
+from gyrovib.api.evaluation.evaluate import ERROR_PARTS, errors, saturation, worst_case
+from gyrovib.api.evaluation.results import AnalysisResult
+from gyrovib.api.study.convert import error_arrays, to_unit
+from gyrovib.api.study.prepare import (
     Group,
     Prepared,
     check_finite,
@@ -20,8 +21,7 @@ from gyrovib.api.prepare import (
     profile_problem,
     without,
 )
-from gyrovib.api.results import AnalysisResult
-from gyrovib.api.study import Study, check_peak_factor
+from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.api.uncertainty import distributions, with_uncertainty
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
@@ -94,7 +94,7 @@ def analyze(
     ``progress(done, total)`` is called as samples are evaluated.
 
     A spec-form sensor (``specs:``) gets the worst case over its datasheet
-    envelope (:mod:`gyrovib.api.specs`): under ``exact`` or ``paper`` that
+    envelope (:mod:`gyrovib.api.datasheet.specs`): under ``exact`` or ``paper`` that
     method's multipliers feed the programme; under ``numeric`` the worst
     polynomial (found with the exact multipliers) is averaged by brute force,
     and ``rms`` stays the per-term bound.
@@ -120,7 +120,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
                 samples: int = DEFAULT_SAMPLES, seed: int = DEFAULT_SEED,
                 progress: ProgressCallback | None = None,
                 peak_factor: float = DEFAULT_PEAK_FACTOR) -> AnalysisResult:
-    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.Study`."""
+    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.study.Study`."""
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
     numeric = method == "numeric"

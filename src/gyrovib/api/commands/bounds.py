@@ -9,16 +9,16 @@ from typing import cast
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api.convert import bound_factors
-from gyrovib.api.prepare import (
+from gyrovib.api.evaluation.results import BoundsResult
+from gyrovib.api.study.convert import bound_factors
+from gyrovib.api.study.prepare import (
     TINY,
     Prepared,
     check_bounds,
     float_guard,
     overflow_problem,
 )
-from gyrovib.api.results import BoundsResult
-from gyrovib.api.study import Study
+from gyrovib.api.study.study import Study
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS
 from gyrovib.core.synthesis import (
@@ -110,7 +110,7 @@ def resolve_allocation(
 def check_vre_bound(vre: FloatArray | None, prepared: Prepared) -> None:
     """Refuse a VRE bound (docs/model.md section 8) that left floating-point range.
 
-    Like :func:`~gyrovib.api.prepare.check_bounds`: +inf (no linear
+    Like :func:`~gyrovib.api.study.prepare.check_bounds`: +inf (no linear
     vibration) or a positive normal number; anything else comes from an
     overflowed ⟨a_j²⟩ or an underflowed share.
     """
@@ -174,7 +174,8 @@ def bounds_of(study: Study, *, method: str = "exact", budget: float, unit: str =
               range_: float | None = None, nl_fit: str = "least-squares",
               nl_measure: str = "max", nl_of: str = "range",
               spec_weights: tuple[float, float] = (1.0, 1.0)) -> BoundsResult:
-    """:func:`bounds` as a view of a :class:`~gyrovib.api.study.Study` (its profiles alone)."""
+    """:func:`bounds` as a view of a :class:`~gyrovib.api.study.study.Study` (its profiles
+    alone)."""
     check_method_budget(method, budget)
     unit = units.canonical_unit(unit)
     constants = resolve_allocation(study.catalog, method, allocation)
@@ -182,7 +183,7 @@ def bounds_of(study: Study, *, method: str = "exact", budget: float, unit: str =
         prepared, _, scaled = profile_bounds(study, method, budget, constants, unit)
         datasheet = None
         if range_ is not None:
-            from gyrovib.api.spec_bounds import datasheet_bounds
+            from gyrovib.api.datasheet.spec_bounds import datasheet_bounds
 
             multipliers = prepared.groups[0].multipliers[method] if prepared.groups else None
             datasheet = datasheet_bounds(multipliers, len(prepared.profiles), budget, range_,

@@ -8,16 +8,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api import spec_bounds, specs
 from gyrovib.api.commands.bounds import (
     catalog_unit,
     check_method_budget,
     profile_bounds,
     resolve_allocation,
 )
-from gyrovib.api.convert import bound_factors
-from gyrovib.api.evaluate import errors, saturation, worst_case
-from gyrovib.api.prepare import (
+from gyrovib.api.datasheet import spec_bounds, specs
+from gyrovib.api.evaluation.evaluate import errors, saturation, worst_case
+from gyrovib.api.evaluation.results import Limit, SelectionResult
+from gyrovib.api.study.convert import bound_factors
+from gyrovib.api.study.prepare import (
     Group,
     Prepared,
     check_bounds,
@@ -25,9 +26,7 @@ from gyrovib.api.prepare import (
     float_guard,
     without,
 )
-from gyrovib.api.reasons import saturation_reasons
-from gyrovib.api.results import Limit, SelectionResult
-from gyrovib.api.study import Study, check_peak_factor
+from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.api.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
@@ -45,6 +44,7 @@ from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 from gyrovib.models import Allocation
+from gyrovib.presentation.reasons import saturation_reasons
 
 CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")
@@ -203,7 +203,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
                  yield_target: float | None = None,
                  seed: int = DEFAULT_SEED,
                  draws: int = DEFAULT_DRAWS) -> SelectionResult:
-    """:func:`select` as a view of a :class:`~gyrovib.api.study.Study`."""
+    """:func:`select` as a view of a :class:`~gyrovib.api.study.study.Study`."""
     _check_options(method, budget, criterion, require, assume_unknown, yield_target, seed,
                    draws)
     unit = units.canonical_unit(unit)

@@ -20,9 +20,9 @@ from pathlib import Path
 
 from gyrovib import api, units
 from gyrovib._version import __version__
-from gyrovib.api.linear import profile_linear
-from gyrovib.api.prepare import float_guard
-from gyrovib.api.study import Study
+from gyrovib.api.study.linear import profile_linear
+from gyrovib.api.study.prepare import float_guard
+from gyrovib.api.study.study import Study
 from gyrovib.catalog.loader import Catalog, ProfileEntry
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
@@ -185,7 +185,7 @@ def envelope(catalog: Catalog | Study, profiles: Sequence[str] = (),
 
     The peak is Σ tone amplitudes + the locked groups' peaks + 3σ of x3 (the
     saturation check's, κ = 3); 1 deg/s when every profile is still and
-    without vibration. Given a :class:`~gyrovib.api.study.Study`, its profiles
+    without vibration. Given a :class:`~gyrovib.api.study.study.Study`, its profiles
     as they reach a sensor without input-side response (computed once).
     """
     study = catalog if isinstance(catalog, Study) else Study.of(
@@ -220,7 +220,7 @@ def trade_study(
 ) -> TradeStudy:
     """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
 
-    Three views of one :class:`~gyrovib.api.study.Study`: each profile's
+    Three views of one :class:`~gyrovib.api.study.study.Study`: each profile's
     vibration is computed once and shared. ``sweep_rates`` default:
     :data:`SWEEP_POINTS` rates over ±:func:`envelope`. The sweep evaluates
     ``method`` only (the one the report draws); the other method's arrays are

@@ -12,7 +12,7 @@ the same interface (:class:`SensorForm`):
   its error terms are eq. (13)-(16) of its own polynomial;
 * :class:`DatasheetForm` — a datasheet (``specs:``): its error terms are those
   of the worst polynomial its envelope allows (docs/model.md section 11,
-  :mod:`gyrovib.api.specs`), its bound checks the datasheet figures against
+  :mod:`gyrovib.api.datasheet.specs`), its bound checks the datasheet figures against
   their spec bounds.
 
 A form answers for its own rows only; no form writes placeholder rows another
@@ -29,10 +29,10 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.api import specs
-from gyrovib.api.convert import sensor_ranges
-from gyrovib.api.prepare import Prepared
-from gyrovib.api.study import Study, omega_key
+from gyrovib.api.datasheet import specs
+from gyrovib.api.study.convert import sensor_ranges
+from gyrovib.api.study.prepare import Prepared
+from gyrovib.api.study.study import Study, omega_key
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import EXTRA_TERMS, vibration_error
 from gyrovib.core.saturation import saturated as saturated_at
@@ -52,7 +52,7 @@ class SensorForm(Protocol):
     :meth:`owns` picks its sensors; :meth:`error` writes their error terms
     (deg/s) into the (sensors, profiles[, rates]) arrays ``parts``.
     Saturation is the same rule for every form (:func:`saturation`), against
-    each sensor's own range (:func:`~gyrovib.api.convert.sensor_ranges`).
+    each sensor's own range (:func:`~gyrovib.api.study.convert.sensor_ranges`).
     """
 
     source: str

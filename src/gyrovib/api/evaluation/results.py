@@ -29,7 +29,7 @@ from gyrovib.frozen import Frozen
 
 if TYPE_CHECKING:
     from gyrovib.api import LotYields
-    from gyrovib.api.spec_bounds import DatasheetBounds
+    from gyrovib.api.datasheet.spec_bounds import DatasheetBounds
     from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 
 #: The keys of ``additive_terms`` in JSON, CSV, tables and frames, in this order:
@@ -69,8 +69,9 @@ class Result(Frozen):
         return (type(self), tuple(dict(v) if isinstance(v, Mapping) else v for v in values))
 
     def to_frame(self) -> Any:
-        """Tidy pandas DataFrame, columns named as the JSON keys (:mod:`gyrovib.api.frames`)."""
-        from gyrovib.api.frames import to_frame
+        """Tidy pandas DataFrame, columns named as the JSON keys
+        (:mod:`gyrovib.presentation.frames`)."""
+        from gyrovib.presentation.frames import to_frame
 
         return to_frame(self)
 
@@ -246,7 +247,7 @@ class BoundsResult(Result):
     bounds: CoefficientBounds
     allocation: AllocationConstants
     #: ``--range``: the allowable datasheet figures
-    #: (:class:`gyrovib.api.spec_bounds.DatasheetBounds`).
+    #: (:class:`gyrovib.api.datasheet.spec_bounds.DatasheetBounds`).
     spec_bounds: DatasheetBounds | None = None
     #: the rate unit tables write coefficient bounds in (the catalogue's own, so that
     #: k5 reads 6.7e-06 (deg/s)^-4 rather than 6e-23 (deg/h)^-4); None: :attr:`unit`.

@@ -2,7 +2,7 @@
 
 :func:`placed` runs ``analyze``, ``bounds``, ``select`` or ``sweep`` on the
 catalogue's profiles mapped into the sensor axes of a placement
-(:func:`gyrovib.api.placement.place_catalog`). Under the triad it runs the
+(:func:`gyrovib.api.placement.placement.place_catalog`). Under the triad it runs the
 command three times, x3 on +X, +Y and +Z, and returns a :class:`TriadResult`:
 the three results and, per sensor (per profile and coefficient for
 ``bounds``), the worst axis. An IMU has one sensor per axis, so a part passes
@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.placement import place_catalog
+from gyrovib.api.placement.placement import place_catalog
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.placement import Placement
 from gyrovib.frozen import Frozen

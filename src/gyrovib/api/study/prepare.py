@@ -1,9 +1,9 @@
-"""The pieces of the one preparation every command runs (:mod:`gyrovib.api.study`).
+"""The pieces of the one preparation every command runs (:mod:`gyrovib.api.study.study`).
 
 A profile's vibration at a sensor's nonlinear element, its phase-locked
 groups and saturation swing, one profile's multipliers, the sensors grouped
 by response, and the located wording of what overflowed or was refused; the
-:class:`Prepared` a :class:`~gyrovib.api.study.Study` hands to its views. All
+:class:`Prepared` a :class:`~gyrovib.api.study.study.Study` hands to its views. All
 under :func:`float_guard`. A value that leaves floating-point range (an amplitude of
 1e200, a rate of 1e308) or a profile a method cannot handle is reported here,
 once, at the profile's place in its file (:class:`~gyrovib.errors.RangeError`,
@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.linear import profile_linear
+from gyrovib.api.study.linear import profile_linear
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
 from gyrovib.core.analysis import BOUNDED, Multipliers, profile_multipliers
 from gyrovib.core.harmonics import LockedGroup, locked_group

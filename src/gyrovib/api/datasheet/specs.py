@@ -36,8 +36,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.convert import g2_value
-from gyrovib.api.prepare import Group, Prepared
+from gyrovib.api.study.convert import g2_value
+from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
 from gyrovib.core.transmissibility import FloatArray

@@ -1,7 +1,7 @@
 """The datasheet checks of ``select`` and the allowable figures of ``bounds --range``.
 
 Spec-form sensors (docs/model.md section 11) against their spec bounds, and the
-bounds themselves. Apart from :mod:`gyrovib.api.specs` (which still gives
+bounds themselves. Apart from :mod:`gyrovib.api.datasheet.specs` (which still gives
 their names) so that ``analyze`` does not define their classes.
 """
 
@@ -15,13 +15,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.prepare import Prepared
-from gyrovib.api.specs import (
+from gyrovib.api.datasheet.specs import (
     SpecResults,
     mean_square_acceleration,
     multipliers_of,
     terms_of,
 )
+from gyrovib.api.study.prepare import Prepared
 from gyrovib.core.analysis import Multipliers
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen

@@ -124,7 +124,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
         columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
     columns["source"] = [result.source(int(i)) for i in s_idx]
     if result.worst_coefficients is not None and result.rms_bound is not None:
-        from gyrovib.api.specs import WORST_COEFFICIENTS
+        from gyrovib.api.datasheet.specs import WORST_COEFFICIENTS
 
         worst = np.asarray(result.worst_coefficients)[s_idx, p_idx]
         for k, name in enumerate(WORST_COEFFICIENTS):
@@ -271,7 +271,7 @@ def selection_frame(result: SelectionResult) -> Any:
 
 
 def _reason(result: SelectionResult, i: int, j: int) -> str | None:
-    from gyrovib.api.reasons import reason
+    from gyrovib.presentation.reasons import reason
 
     return reason(result, i, j)
 

@@ -100,7 +100,7 @@ def unverified_text(names: Sequence[str], spec: bool = True) -> str:
     """The reason of an unverified verdict whose unpublished figures are ``names``
     (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
     sensor, whose missing g² figure is "not given" rather than "not published")."""
-    from gyrovib.api.spec_bounds import UNKNOWN_WORDS
+    from gyrovib.api.datasheet.spec_bounds import UNKNOWN_WORDS
 
     return ("unverified: passes on its published figures, but "
             + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS for n in names)
