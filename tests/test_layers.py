@@ -244,3 +244,18 @@ def test_the_api_face_lists_its_names_once_for_run_time_and_once_for_types() -> 
     assert typed == set(face._WHERE) == set(face.__all__)
     for name in sorted(typed):  # and each resolves at run time
         assert getattr(face, name) is not None
+
+
+def test_each_room_of_the_api_has_one_face() -> None:
+    # every package under gyrovib.api says what it holds, and the names of its face
+    # resolve (a module of the room renamed or a name dropped breaks this)
+    import importlib
+
+    rooms = sorted(p.parent for p in (SRC / "gyrovib" / "api").glob("*/__init__.py"))
+    assert {r.name for r in rooms} >= {"study", "datasheet", "evaluation", "commands",
+                                       "report", "placement"}
+    for room in rooms:
+        module = importlib.import_module(f"gyrovib.api.{room.name}")
+        assert (module.__doc__ or "").strip(), room.name
+        for name in getattr(module, "__all__", ()):
+            assert getattr(module, name) is not None, (room.name, name)

@@ -124,7 +124,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
         columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
     columns["source"] = [result.source(int(i)) for i in s_idx]
     if result.worst_coefficients is not None and result.rms_bound is not None:
-        from gyrovib.api.datasheet.specs import WORST_COEFFICIENTS
+        from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 
         worst = np.asarray(result.worst_coefficients)[s_idx, p_idx]
         for k, name in enumerate(WORST_COEFFICIENTS):

@@ -96,12 +96,21 @@ def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
     return unverified_text(result.unknown.get((i, j), ()), spec=result.source(i) == "specs")
 
 
+#: Why each unknown figure can matter, as a reason names it.
+UNKNOWN_WORDS = {
+    "vre": "VRE not published (the profile has linear vibration, so its g² term "
+           "G_jj·⟨a_j²⟩ can rectify; docs/model.md section 8)",
+    "m31": "m31 not published (the profile has cross-axis vibration x1 correlated with "
+           "x3, so m31·C31 can rectify; docs/model.md section 11)",
+    "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
+           "x3, so m32·C32 can rectify; docs/model.md section 11)",
+}
+
+
 def unverified_text(names: Sequence[str], spec: bool = True) -> str:
     """The reason of an unverified verdict whose unpublished figures are ``names``
     (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
     sensor, whose missing g² figure is "not given" rather than "not published")."""
-    from gyrovib.api.datasheet.spec_bounds import UNKNOWN_WORDS
-
     return ("unverified: passes on its published figures, but "
             + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS for n in names)
             + " -- ask the vendor, or --assume-unknown zero to take it as 0")

@@ -118,15 +118,6 @@ def merge_unknown(names: Iterable[Sequence[str]]) -> tuple[str, ...]:
     order of :data:`UNKNOWN_FIGURES`."""
     found = {n for group in names for n in group}
     return tuple(n for n in UNKNOWN_FIGURES if n in found)
-#: Why each unknown figure can matter, as a reason names it.
-UNKNOWN_WORDS = {
-    "vre": "VRE not published (the profile has linear vibration, so its g² term "
-           "G_jj·⟨a_j²⟩ can rectify; docs/model.md section 8)",
-    "m31": "m31 not published (the profile has cross-axis vibration x1 correlated with "
-           "x3, so m31·C31 can rectify; docs/model.md section 11)",
-    "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
-           "x3, so m32·C32 can rectify; docs/model.md section 11)",
-}
 
 
 @dataclass(frozen=True, eq=False, repr=False)
