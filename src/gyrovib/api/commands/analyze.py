@@ -10,7 +10,15 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.datasheet import specs
-from gyrovib.api.evaluation.evaluate import ERROR_PARTS, errors, saturation, worst_case
+from gyrovib.api.evaluation.evaluate import (
+    ERROR_PARTS,
+    errors,
+    numeric_done,
+    numeric_polynomials,
+    phase_worst,
+    saturation,
+    worst_case,
+)
 from gyrovib.api.evaluation.results import AnalysisResult
 from gyrovib.api.study.convert import error_arrays, to_unit
 from gyrovib.api.study.prepare import (
@@ -19,7 +27,6 @@ from gyrovib.api.study.prepare import (
     check_finite,
     float_guard,
     profile_problem,
-    without,
 )
 from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.api.uncertainty import distributions, with_uncertainty
@@ -202,7 +209,7 @@ def _closed_form(study: Study, prepared: Prepared, datasheet: Prepared, method: 
     worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
     if method == "exact":
         for group in prepared.groups:
-            worst.update(_worst_phases(prepared, group, parts, spec))
+            worst.update(_worst_phases(prepared, group, parts))
     return parts, worst
 
 
@@ -218,19 +225,17 @@ def _numeric(prepared: Prepared, spec: specs.SpecResults | None, samples: int, s
     parts = {name: np.zeros((n_s, n_p, *tail)) for name, tail in ERROR_PARTS.items()}
     stderr = np.zeros((n_s, n_p))
     tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
-    coeffs = prepared.coefficients
     for group in prepared.groups:
         idx = group.index
         for j, (p, v) in enumerate(zip(prepared.profiles, group.vibrations, strict=True)):
-            block = coeffs[idx] if spec is None else specs.numeric_rows(coeffs, idx, j, spec)
+            block = numeric_polynomials(prepared, idx, j, spec)
             err, stderr[idx, j] = _simulate(block, v, prepared.rates[j], samples,
                                             profile_generator(seed, p.profile.id),
                                             tracker, group.locked[j],
                                             linear=prepared.linear[j], g2=prepared.g2[idx])
             for name, array in parts.items():
                 array[idx, j] = getattr(err, name)
-    if spec is not None:
-        specs.place_analysis(parts, spec, numeric=True)
+    numeric_done(prepared, parts, spec)
     return parts, stderr
 
 
@@ -264,29 +269,18 @@ def _spec_prepared(study: Study, prepared: Prepared, method: str,
 
 
 def _worst_phases(prepared: Prepared, group: Group, parts: dict[str, FloatArray],
-                  spec: specs.SpecResults | None,
                   ) -> dict[tuple[int, int], tuple[dict[str, float], ...]]:
     """Profiles with ``phase: worst`` orders: the phases maximising |Δ_V| per sensor.
 
     Overwrites those profiles' columns of ``parts`` (deg/s) with the error at
-    the phases found; returns, per (sensor, profile), per locked group, the
-    phase (degrees, common to the axes) of each order written ``worst``.
+    the phases found (:func:`~gyrovib.api.evaluation.evaluate.phase_worst`: each
+    form searches its own rows, or none); returns, per (sensor, profile), per
+    locked group, the phase (degrees, common to the axes) of each order written
+    ``worst``.
     """
     out: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
-    coeffs, rates = prepared.coefficients, prepared.rates
-    # a datasheet row is the worst case over its envelope, not one polynomial's phases
-    idx = group.index if spec is None else without(group.index, spec.index)
-    if idx.size == 0:
-        return out
-    for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
-        if not any(g.worst.any() for g in locked):
-            continue
-        from gyrovib.core.phases import worst_phase_error  # only for phase: worst
-
-        linear = prepared.linear[j] if prepared.linear else None
-        found = worst_phase_error(coeffs[idx], v, locked, float(rates[j, 2]),
-                                  acceleration=None if linear is None else linear.moments(),
-                                  g2_sensitivity=None if linear is None else prepared.g2[idx])
+    for j, idx, found in phase_worst(prepared, group):
+        locked = group.locked[j]
         for name, array in parts.items():
             array[idx, j] = getattr(found.error, name)
         for k, sensor in enumerate(idx.tolist()):

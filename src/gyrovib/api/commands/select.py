@@ -15,7 +15,7 @@ from gyrovib.api.commands.bounds import (
     resolve_allocation,
 )
 from gyrovib.api.datasheet import spec_bounds, specs
-from gyrovib.api.evaluation.evaluate import errors, saturation, worst_case
+from gyrovib.api.evaluation.evaluate import errors, phase_worst, saturation, worst_case
 from gyrovib.api.evaluation.results import Limit, SelectionResult
 from gyrovib.api.study.convert import bound_factors
 from gyrovib.api.study.prepare import (
@@ -24,7 +24,6 @@ from gyrovib.api.study.prepare import (
     check_bounds,
     check_finite,
     float_guard,
-    without,
 )
 from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.api.yields import (
@@ -225,7 +224,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         spec = worst_case(study, prepared, method)
         if method == "exact":
             for group in prepared.groups:
-                _worst_phase_totals(prepared, group, total, spec)
+                _worst_phase_totals(prepared, group, total)
         # a datasheet sensor saturates against its datasheet range (specs.range)
         found = saturation(prepared)
         reach, ranges, saturated = found.reach, found.ranges, found.saturated
@@ -503,27 +502,14 @@ def _effective_vre(prepared: Prepared) -> FloatArray:
     return effective_vre(prepared.g2, moments)
 
 
-def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray,
-                        spec: specs.SpecResults | None) -> None:
+def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray) -> None:
     """|Δ_V| maximised over the phases of ``phase: worst`` orders (docs/model.md section 10).
 
     The synthesis multipliers take each moment at its largest magnitude, which
     fixes their signs; the direct test |Δ_V| ≤ Δ* needs, as ``analyze`` does,
-    the maximum of |Δ_V| over the free phases per sensor. Overwrites those
-    profiles' columns of ``total`` (deg/s).
+    the maximum of |Δ_V| over the free phases per sensor (each form searches its
+    own rows, :func:`~gyrovib.api.evaluation.evaluate.phase_worst`). Overwrites
+    those profiles' columns of ``total`` (deg/s).
     """
-    from gyrovib.core.phases import worst_phase_error
-
-    # a datasheet row is the worst case over its envelope already
-    idx = group.index if spec is None else without(group.index, spec.index)
-    if idx.size == 0:
-        return
-    for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
-        if not any(g.worst.any() for g in locked):
-            continue
-        linear = prepared.linear[j] if prepared.linear else None
-        found = worst_phase_error(prepared.coefficients[idx], v, locked,
-                                  float(prepared.rates[j, 2]),
-                                  acceleration=None if linear is None else linear.moments(),
-                                  g2_sensitivity=None if linear is None else prepared.g2[idx])
+    for j, idx, found in phase_worst(prepared, group):
         total[idx, j] = np.abs(found.error.total)

@@ -356,11 +356,14 @@ def place(parts: dict[str, FloatArray], spec: SpecResults) -> None:
 
 
 def numeric_rows(coefficients: FloatArray, index: NDArray[np.intp], profile: int,
-                 spec: SpecResults) -> FloatArray:
-    """A group's coefficient rows for brute force under one profile (specs: worst polynomial)."""
+                 spec: SpecResults, sensors: NDArray[np.intp] | None = None) -> FloatArray:
+    """A group's coefficient rows for brute force under one profile (specs: worst polynomial).
+
+    ``sensors``: the sensors of the rows ``index`` of ``coefficients`` (default ``index``
+    itself: ``coefficients`` has a row per sensor)."""
     out = np.array(coefficients[index], dtype=float)
     where = {int(i): k for k, i in enumerate(spec.index.tolist())}
-    for r, i in enumerate(index.tolist()):
+    for r, i in enumerate((index if sensors is None else sensors).tolist()):
         k = where.get(int(i))
         if k is not None:
             out[r] = coefficient_rows(spec.coefficients[k, profile])

@@ -22,7 +22,7 @@ in :data:`FORMS`.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -31,10 +31,11 @@ from numpy.typing import NDArray
 
 from gyrovib.api.datasheet import specs
 from gyrovib.api.study.convert import sensor_ranges
-from gyrovib.api.study.prepare import Prepared
+from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.api.study.study import Study, omega_key
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import EXTRA_TERMS, vibration_error
+from gyrovib.core.phases import WorstPhases, worst_phase_error
 from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
@@ -62,6 +63,15 @@ class SensorForm(Protocol):
     def error(self, study: Study, prepared: Prepared, rows: NDArray[np.intp], method: str,
               omega: FloatArray | None, parts: dict[str, FloatArray],
               rms_only: bool = False) -> None: ...
+
+    def phase_search(self, prepared: Prepared, group: Group,
+                     rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]: ...
+
+    def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
+                    profile: int, spec: specs.SpecResults | None) -> None: ...
+
+    def numeric_done(self, parts: dict[str, FloatArray],
+                     spec: specs.SpecResults | None) -> None: ...
 
 
 class CoefficientForm:
@@ -98,6 +108,27 @@ class CoefficientForm:
             for name, array in parts.items():
                 array[idx] = getattr(err, name)
 
+    def phase_search(self, prepared: Prepared, group: Group,
+                     rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]:
+        """Per profile with ``phase: worst`` orders, the phases maximising |Δ_V| of each of
+        ``rows`` (its sensors of ``group``) and the error there (docs/model.md section 10)."""
+        for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
+            if not any(g.worst.any() for g in locked):
+                continue
+            linear = prepared.linear[j] if prepared.linear else None
+            yield j, worst_phase_error(
+                prepared.coefficients[rows], v, locked, float(prepared.rates[j, 2]),
+                acceleration=None if linear is None else linear.moments(),
+                g2_sensitivity=None if linear is None else prepared.g2[rows])
+
+    def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
+                    profile: int, spec: specs.SpecResults | None) -> None:
+        """Its rows of a brute-force block are its own polynomials already."""
+
+    def numeric_done(self, parts: dict[str, FloatArray],
+                     spec: specs.SpecResults | None) -> None:
+        """Brute force gives its error terms as they are."""
+
 
 def _take_whole(err: Any, shape: tuple[int, ...], parts: dict[str, FloatArray],
                 kept: Any) -> None:
@@ -132,6 +163,25 @@ class DatasheetForm:
         if spec is not None:
             specs.place(parts, spec)
 
+    def phase_search(self, prepared: Prepared, group: Group,
+                     rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]:
+        """None: its rows are the worst case over the envelope, not one polynomial's
+        phases (the multipliers at their largest over the phases bound every one)."""
+        return iter(())
+
+    def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
+                    profile: int, spec: specs.SpecResults | None) -> None:
+        """Brute force averages the worst polynomial its envelope allows, per profile."""
+        if spec is not None:
+            block[at] = specs.numeric_rows(block[at], np.arange(at.size), profile, spec,
+                                           sensors)
+
+    def numeric_done(self, parts: dict[str, FloatArray],
+                     spec: specs.SpecResults | None) -> None:
+        """``total`` gets the g² part |v|·S; ``rms`` stays the per-term bound."""
+        if spec is not None:
+            specs.place_analysis(parts, spec, numeric=True)
+
 
 #: The forms, in the order they are asked whether a sensor is theirs.
 FORMS: tuple[SensorForm, ...] = (DatasheetForm(), CoefficientForm())
@@ -147,6 +197,42 @@ def form_rows(sensors: Sequence[SensorEntry]) -> list[tuple[SensorForm, NDArray[
         taken[rows] = True
         if rows.size:
             out.append((form, rows))
+    return out
+
+
+def phase_worst(prepared: Prepared, group: Group,
+                ) -> Iterator[tuple[int, NDArray[np.intp], WorstPhases]]:
+    """``phase: worst`` (docs/model.md section 10) in ``group``: per profile with such
+    orders and each form that searches them, the profile, the sensors and what was found."""
+    for form, rows in form_rows(prepared.sensors):
+        idx = group.index[_mask(len(prepared.sensors), rows)[group.index]]
+        if idx.size:
+            for j, found in form.phase_search(prepared, group, idx):
+                yield j, idx, found
+
+
+def numeric_polynomials(prepared: Prepared, idx: NDArray[np.intp], profile: int,
+                        spec: specs.SpecResults | None) -> FloatArray:
+    """The polynomials brute force averages for sensors ``idx`` under one profile: each
+    form writes its own rows (``spec``: the datasheet sensors' worst case)."""
+    block = np.array(prepared.coefficients[idx], dtype=float)
+    for form, rows in form_rows(prepared.sensors):
+        at = np.flatnonzero(_mask(len(prepared.sensors), rows)[idx])
+        if at.size:
+            form.polynomials(block, at, idx[at], profile, spec)
+    return block
+
+
+def numeric_done(prepared: Prepared, parts: dict[str, FloatArray],
+                 spec: specs.SpecResults | None) -> None:
+    """After brute force: each form completes its rows of ``parts``."""
+    for form, _ in form_rows(prepared.sensors):
+        form.numeric_done(parts, spec)
+
+
+def _mask(n: int, rows: NDArray[np.intp]) -> NDArray[np.bool_]:
+    out = np.zeros(n, dtype=bool)
+    out[rows] = True
     return out
 
 

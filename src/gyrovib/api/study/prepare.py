@@ -477,11 +477,3 @@ def check_bounds(stacked: FloatArray, prepared: Prepared) -> None:
                                          rate_given=prepared.rate_given))
     raise RangeError(problems)
 
-
-def without(index: NDArray[np.intp], drop: NDArray[np.intp]) -> NDArray[np.intp]:
-    """``index`` without the entries in ``drop`` (sensor indices), in order: a mask, not
-    np.setdiff1d, which imports numpy.ma (~15 ms of a first run)."""
-    keep = np.ones(int(max(index.max(initial=-1), drop.max(initial=-1))) + 1, dtype=bool)
-    keep[drop] = False
-    out: NDArray[np.intp] = index[keep[index]]
-    return out
