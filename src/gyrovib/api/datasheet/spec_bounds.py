@@ -96,6 +96,13 @@ UNKNOWN_FIGURES: tuple[str, ...] = ("vre", "m31", "m32")
 ASSUMPTIONS = ("none", "zero")
 
 
+def checks_of(prepared: Prepared, spec: SpecResults | None, method: str, budget: float,
+              weights: tuple[float, float] = (1.0, 1.0),
+              rtol: float = 1e-9) -> SpecChecks | None:
+    """:func:`spec_checks` of the datasheet sensors' worst case ``spec`` (None: none)."""
+    return None if spec is None else spec_checks(prepared, spec, method, budget, weights, rtol)
+
+
 def check_assumption(assume_unknown: str) -> None:
     """Refuse an ``assume_unknown`` that is not one of :data:`ASSUMPTIONS`."""
     from gyrovib.errors import OptionError

@@ -30,6 +30,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib.api.datasheet import specs
+from gyrovib.api.datasheet.spec_bounds import SpecChecks
+from gyrovib.api.evaluation.checks import (
+    BoundVerdict,
+    CoefficientChecks,
+    CoefficientVerdict,
+    DatasheetVerdict,
+)
 from gyrovib.api.study.convert import sensor_ranges
 from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.api.study.study import Study, omega_key
@@ -72,6 +79,9 @@ class SensorForm(Protocol):
 
     def numeric_done(self, parts: dict[str, FloatArray],
                      spec: specs.SpecResults | None) -> None: ...
+
+    def bound_checks(self, rows: NDArray[np.intp], checks: CoefficientChecks,
+                     own: SpecChecks | None) -> BoundVerdict: ...
 
 
 class CoefficientForm:
@@ -129,6 +139,11 @@ class CoefficientForm:
                      spec: specs.SpecResults | None) -> None:
         """Brute force gives its error terms as they are."""
 
+    def bound_checks(self, rows: NDArray[np.intp], checks: CoefficientChecks,
+                     own: SpecChecks | None) -> BoundVerdict:
+        """Each coefficient against eq. (23)/(25), the effective VRE against its bound."""
+        return CoefficientVerdict.of(rows, checks)
+
 
 def _take_whole(err: Any, shape: tuple[int, ...], parts: dict[str, FloatArray],
                 kept: Any) -> None:
@@ -182,6 +197,13 @@ class DatasheetForm:
         if spec is not None:
             specs.place_analysis(parts, spec, numeric=True)
 
+    def bound_checks(self, rows: NDArray[np.intp], checks: CoefficientChecks,
+                     own: SpecChecks | None) -> BoundVerdict:
+        """Its nonlinearity and VRE against their spec bounds (``own``: its rows' checks)."""
+        if own is None:
+            raise ValueError("datasheet sensors judged without their spec checks")
+        return DatasheetVerdict.of(rows, own)
+
 
 #: The forms, in the order they are asked whether a sensor is theirs.
 FORMS: tuple[SensorForm, ...] = (DatasheetForm(), CoefficientForm())
@@ -228,6 +250,12 @@ def numeric_done(prepared: Prepared, parts: dict[str, FloatArray],
     """After brute force: each form completes its rows of ``parts``."""
     for form, _ in form_rows(prepared.sensors):
         form.numeric_done(parts, spec)
+
+
+def bound_verdicts(prepared: Prepared, checks: CoefficientChecks,
+                   own: SpecChecks | None) -> list[BoundVerdict]:
+    """The bound checks of ``select``: each form's verdict on its own rows."""
+    return [form.bound_checks(rows, checks, own) for form, rows in form_rows(prepared.sensors)]
 
 
 def _mask(n: int, rows: NDArray[np.intp]) -> NDArray[np.bool_]:
