@@ -64,20 +64,9 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     if result.yields is not None and result.yields.is_lot(i):  # judged by its yield
         return reasons + yield_reason(result.yields, i, j)
     spec = result.source(i) == "specs"
-    if result.criterion in ("bounds", "both") and spec:
-        reasons.extend(_spec_failures(result, i, j))
-    elif result.criterion in ("bounds", "both"):
-        rate_unit = result.table_unit if table else result.unit
-        values = result.table_values if table else result.values
-        bounds = result.table_bounds if table else result.bounds
-        for b, name in enumerate(BOUNDED):
-            if not result.check_pass[i, j, b]:
-                unit = coefficient_unit(name, rate_unit)
-                tail = "" if unit == "1" else f" {unit}"
-                value, bound = float(values[i, j, b]), float(bounds[i, j, b])
-                reasons.append(f"|{name}| = {fmt(value)} exceeds its bound {fmt(bound)}{tail}")
-        if result.vre_pass is not None and not result.vre_pass[i, j]:
-            reasons.append(_vre_failure(result, i, j))
+    if result.criterion in ("bounds", "both"):
+        reasons.extend(_spec_failures(result, i, j) if spec
+                       else _coefficient_failures(result, i, j, table))
     if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
         value = float(result.rms[i, j])
         rms = "0" if table and abs(value) < NEGLIGIBLE * result.budget else fmt(value)
@@ -88,6 +77,23 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
         reasons.append(f"{what} = {fmt(result.total[i, j])} {result.unit} exceeds the budget "
                        f"{fmt(result.budget)} {result.unit}")
     return reasons
+
+
+def _coefficient_failures(result: SelectionResult, i: int, j: int, table: bool) -> list[str]:
+    """The coefficient checks a coefficient sensor fails under profile ``j``, and its VRE."""
+    out = []
+    rate_unit = result.table_unit if table else result.unit
+    values = result.table_values if table else result.values
+    bounds = result.table_bounds if table else result.bounds
+    for b, name in enumerate(BOUNDED):
+        if not result.check_pass[i, j, b]:
+            unit = coefficient_unit(name, rate_unit)
+            tail = "" if unit == "1" else f" {unit}"
+            value, bound = float(values[i, j, b]), float(bounds[i, j, b])
+            out.append(f"|{name}| = {fmt(value)} exceeds its bound {fmt(bound)}{tail}")
+    if result.vre_pass is not None and not result.vre_pass[i, j]:
+        out.append(_vre_failure(result, i, j))
+    return out
 
 
 def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
