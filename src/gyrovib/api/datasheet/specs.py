@@ -304,19 +304,8 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
         if not rows or not n_p:
             continue
         m = multipliers_of(group, prepared, method, omega)
-        sub = _subset(figs, rows)
-        # a sweep in blocks of rates: the envelope programmes of all its rates at
-        # once held 4 GB at 20,000 rates; a block's neighbours still polish each other
-        width = m.omega.shape[-1] if omega is None else _RATE_BLOCK
-        for lo in range(0, 1 if omega is None else m.omega.shape[-1], width):
-            at: tuple[Any, ...] = (rows,) if omega is None else (
-                rows, slice(None), slice(lo, lo + width))
-            result = worst(sub, m if omega is None else _rate_block(m, lo, width), total=total)
-            for name, array in parts.items():
-                array[at] = getattr(result.error, name)
-            coefficients[at] = result.coefficients
-            nonlinearity[at] = result.nonlinearity
-            g2[at] = result.g2
+        _fill(parts, {"coefficients": coefficients, "nonlinearity": nonlinearity, "g2": g2},
+              _subset(figs, rows), m, rows, omega is not None, total)
         cross |= cross_axis_warning(m)
     return SpecResults(index=index, figures=figs, error=VibrationError(**parts),
                        coefficients=coefficients, nonlinearity=nonlinearity, g2=g2,
@@ -325,6 +314,23 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
 
 #: Rates per call of the envelope programme in a sweep.
 _RATE_BLOCK = 500
+
+
+def _fill(parts: dict[str, FloatArray], worst_parts: dict[str, FloatArray], figs: SpecFigures,
+          m: Multipliers, rows: list[int], sweep: bool, total: bool) -> None:
+    """One group's worst case into ``rows`` of ``parts`` (its error) and ``worst_parts``
+    (its polynomial, nonlinearity and g² part). A sweep (``sweep``) in blocks of rates:
+    the envelope programmes of all its rates at once held 4 GB at 20,000 rates; a
+    block's neighbours still polish each other."""
+    n_rates = m.omega.shape[-1]
+    width = _RATE_BLOCK if sweep else n_rates
+    for lo in range(0, n_rates if sweep else 1, width):
+        at: tuple[Any, ...] = (rows, slice(None), slice(lo, lo + width)) if sweep else (rows,)
+        result = worst(figs, _rate_block(m, lo, width) if sweep else m, total=total)
+        for name, array in parts.items():
+            array[at] = getattr(result.error, name)
+        for name, array in worst_parts.items():
+            array[at] = getattr(result, name)
 
 
 def _rate_block(m: Multipliers, lo: int, width: int) -> Multipliers:
