@@ -38,6 +38,7 @@ from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError, OptionError
+from gyrovib.limits import MAX_SAMPLES
 
 #: Every method of :func:`analyze`: the closed forms, and brute force.
 ANALYZE_METHODS: tuple[str, ...] = (*METHODS, "numeric")
@@ -62,7 +63,6 @@ def _check_options(method: str, samples: int, seed: int) -> None:
     if method != "numeric":
         return
     from gyrovib.core.numeric import MIN_SAMPLES
-    from gyrovib.limits import MAX_SAMPLES
 
     if samples < MIN_SAMPLES:
         raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")

@@ -9,6 +9,7 @@ from typing import cast
 import numpy as np
 
 from gyrovib import units
+from gyrovib.api.datasheet.spec_bounds import datasheet_bounds
 from gyrovib.api.evaluation.results import BoundsResult
 from gyrovib.api.study.convert import bound_factors
 from gyrovib.api.study.prepare import (
@@ -194,8 +195,6 @@ def bounds_of(study: Study, *, method: str = "exact", budget: float, unit: str =
         prepared, _, scaled = profile_bounds(study, method, budget, constants, unit)
         datasheet = None
         if range_ is not None:
-            from gyrovib.api.datasheet.spec_bounds import datasheet_bounds
-
             multipliers = prepared.groups[0].multipliers[method] if prepared.groups else None
             datasheet = datasheet_bounds(multipliers, len(prepared.profiles), budget, range_,
                                          unit, nl_fit, nl_measure, nl_of, spec_weights)

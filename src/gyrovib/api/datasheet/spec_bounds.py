@@ -23,7 +23,9 @@ from gyrovib.api.datasheet.specs import (
 )
 from gyrovib.api.study.prepare import Prepared
 from gyrovib.core.analysis import Multipliers
+from gyrovib.core.linear import mean_square
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import OptionError
 from gyrovib.frozen import Frozen
 
 # ----------------------------------------------------------------- select
@@ -105,8 +107,6 @@ def checks_of(prepared: Prepared, spec: SpecResults | None, method: str, budget:
 
 def check_assumption(assume_unknown: str) -> None:
     """Refuse an ``assume_unknown`` that is not one of :data:`ASSUMPTIONS`."""
-    from gyrovib.errors import OptionError
-
     if assume_unknown not in ASSUMPTIONS:
         raise OptionError(f"unknown assumption {assume_unknown!r}; use one of "
                           f"{', '.join(ASSUMPTIONS)}")
@@ -163,8 +163,6 @@ def unknown_figures_at(prepared: Prepared, index: NDArray[np.intp], has_vre: NDA
                        method: str) -> UnknownFigures:
     """:func:`unknown_figures` of the spec sensors at ``index`` (rows of
     ``prepared.sensors``) whose VRE is published where ``has_vre``."""
-    from gyrovib.core.linear import mean_square
-
     m_count, n_p = index.size, len(prepared.profiles)
     msq = np.array([0.0 if v is None else float(mean_square(v.moments()))
                     for v in prepared.linear] if prepared.linear else [0.0] * n_p,

@@ -39,7 +39,14 @@ from gyrovib import units
 from gyrovib.api.study.convert import g2_value
 from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
-from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
+from gyrovib.core.analysis import (
+    COLUMN,
+    Multipliers,
+    VibrationError,
+    profile_multipliers,
+    stack_multipliers,
+)
+from gyrovib.core.linear import mean_square
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
@@ -123,8 +130,6 @@ def mean_square_acceleration(m: Multipliers) -> FloatArray:
     """S = Σ_j ⟨a_j²⟩ (g²) at each profile (× rate); 0 without a linear vibration."""
     if m.acceleration is None:
         return np.zeros(m.omega.shape)
-    from gyrovib.core.linear import mean_square
-
     return np.asarray(mean_square(m.acceleration), dtype=float)
 
 
@@ -249,8 +254,6 @@ def multipliers_of(group: Group, prepared: Prepared, method: str,
     found = group.multipliers.get(method)
     if found is not None:
         return found
-    from gyrovib.core.analysis import profile_multipliers, stack_multipliers
-
     items = [profile_multipliers(v, prepared.rates[j, 2] if omega is None else omega, method)
              for j, v in enumerate(group.vibrations)]
     return stack_multipliers(items)

@@ -23,7 +23,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from gyrovib import units
 from gyrovib.core.analysis import ALL_TERMS, VibrationError
+from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
@@ -186,8 +188,6 @@ def _rates_in(rates: FloatArray, unit: str, target: str) -> FloatArray:
     """Rates in ``unit`` converted to ``target``."""
     if target == unit:
         return rates
-    from gyrovib import units
-
     out: FloatArray = rates * units.scale(unit) / units.scale(target)
     return out
 
@@ -275,9 +275,6 @@ class BoundsResult(Result):
 
 def _coefficient_factors(unit: str, table_unit: str) -> dict[str, float]:
     """Each bounded coefficient's factor from ``unit`` powers to ``table_unit`` powers."""
-    from gyrovib import units
-    from gyrovib.core.synthesis import BOUNDED
-
     return {name: units.coefficient_factor(name, unit, table_unit) for name in BOUNDED}
 
 
@@ -442,8 +439,6 @@ class SelectionResult(SensorsByProfiles):
     def _in_table_unit(self, array: FloatArray) -> FloatArray:
         if self.table_unit == self.unit:
             return array
-        from gyrovib.core.synthesis import BOUNDED
-
         factors = _coefficient_factors(self.unit, self.table_unit)
         out: FloatArray = array * np.array([factors[name] for name in BOUNDED])
         return out

@@ -20,6 +20,7 @@ import numpy as np
 from gyrovib.api.placement.placement import place_catalog
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.placement import Placement
+from gyrovib.core.synthesis import BOUNDED
 from gyrovib.frozen import Frozen
 
 
@@ -60,8 +61,6 @@ def _worst(results: tuple[Any, ...], axes: tuple[str, ...]) -> tuple[dict[str, A
     first = results[0]
     name = type(first).__name__
     if name == "BoundsResult":
-        from gyrovib.core.synthesis import BOUNDED
-
         stacked = np.stack([r.bounds.stacked() for r in results])   # (3, P, 7)
         out: dict[str, Any] = {}
         for j, profile in enumerate(first.profiles):

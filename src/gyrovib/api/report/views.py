@@ -21,10 +21,13 @@ from typing import Any
 
 from gyrovib import api, units
 from gyrovib._version import __version__
+from gyrovib.api.commands.analyze import analysis_of
+from gyrovib.api.commands.select import selection_of
+from gyrovib.api.commands.sweep import sweep_of
 from gyrovib.api.study.linear import profile_linear
 from gyrovib.api.study.prepare import float_guard
 from gyrovib.api.study.study import Study
-from gyrovib.catalog.loader import Catalog, ProfileEntry
+from gyrovib.catalog.loader import Catalog, ProfileEntry, bundled_paths
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 from gyrovib.models import Allocation
@@ -108,8 +111,6 @@ def file_digest(name: str, text: str) -> InputFile:
 
 def _shown_name(name: str) -> str:
     """A bundled catalogue as ``gyrovib/catalogs/NAME (bundled)``, not the install path."""
-    from gyrovib.catalog.loader import bundled_paths
-
     path = Path(name)
     for bundled in bundled_paths():
         if path.name == bundled.name and path.resolve() == bundled.resolve():
@@ -245,10 +246,6 @@ def trade_study(
     (:func:`gyrovib.api.select`, docs/model.md section 14). Past
     :data:`SWEEP_SENSORS` sensors, only the best-ranked are swept.
     """
-    from gyrovib.api.commands.analyze import analysis_of
-    from gyrovib.api.commands.select import selection_of
-    from gyrovib.api.commands.sweep import sweep_of
-
     unit = units.canonical_unit(unit)
     study = Study.of(catalog, sensors=sensors, profiles=profiles, rate=rate)
     selection = selection_of(study, method=method, budget=budget, unit=unit,

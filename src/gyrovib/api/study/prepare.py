@@ -30,8 +30,9 @@ from gyrovib import units
 from gyrovib.api.study.linear import profile_linear
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
 from gyrovib.core.analysis import BOUNDED, Multipliers, profile_multipliers
-from gyrovib.core.harmonics import LockedGroup, locked_group
+from gyrovib.core.harmonics import MAX_GROUPS, LockedGroup, locked_group
 from gyrovib.core.linear import LinearVibration
+from gyrovib.core.phases import MAX_SEARCH_COST, search_cost, worst_phase_multipliers
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR, group_peak, saturation_reach
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
 from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp
@@ -266,8 +267,6 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
 
 def _too_many_groups(p: ProfileEntry) -> Problem | None:
     """More phase-locked groups than :data:`~gyrovib.core.harmonics.MAX_GROUPS`."""
-    from gyrovib.core.harmonics import MAX_GROUPS
-
     groups = p.profile.harmonic_groups
     if len(groups) <= MAX_GROUPS:
         return None
@@ -295,8 +294,6 @@ def _search_too_costly(p: ProfileEntry, rates: int, sensors: int,
              if o.worst_phase]
     if not worst:
         return None
-    from gyrovib.core.phases import MAX_SEARCH_COST, search_cost  # only for phase: worst
-
     dims, n_max = _search_size(groups)
     cost = search_cost(dims, (4 * rates if phase_search else 0) + sensors, n_max)
     if cost <= MAX_SEARCH_COST:
@@ -408,8 +405,6 @@ def multipliers_of_profile(vibration: Vibration, omega: FloatArray | float, meth
                  acceleration: FloatArray | None = None) -> Multipliers:
     """One profile's multipliers: with locked groups (section 10), and the worst phases."""
     if locked and method == "exact" and phase_search and any(g.worst.any() for g in locked):
-        from gyrovib.core.phases import worst_phase_multipliers
-
         return worst_phase_multipliers(vibration, locked, omega, acceleration=acceleration)
     return profile_multipliers(vibration, omega, method, locked=locked,
                                acceleration=acceleration)
