@@ -174,12 +174,11 @@ def _complexity(function: ast.FunctionDef) -> int:
     return count
 
 
-#: The preparation and evaluation every command shares, and the views on it (select's
-#: view, selection_of, is not yet among them: it still judges every criterion inline).
+#: The preparation and evaluation every command shares, and the views on it.
 PIPELINE = ("api/study/study.py", "api/study/prepare.py", "api/evaluation/evaluate.py",
-            "api/commands/sweep.py",
+            "api/evaluation/checks.py", "api/commands/sweep.py",
             "api/commands/bounds.py:bounds_of", "api/commands/analyze.py:analysis_of",
-            "api/report/views.py:trade_study")
+            "api/commands/select.py:selection_of", "api/report/views.py:trade_study")
 
 
 def test_the_preparation_is_made_of_small_functions() -> None:
@@ -259,3 +258,30 @@ def test_each_room_of_the_api_has_one_face() -> None:
         assert (module.__doc__ or "").strip(), room.name
         for name in getattr(module, "__all__", ()):
             assert getattr(module, name) is not None, (room.name, name)
+
+
+#: The rooms of the library by domain, and the presentation of its results: no function
+#: in them over complexity 15 (the house rule; radon counts the same decisions).
+ROOMS = ("api/study", "api/datasheet", "api/evaluation", "api/placement", "api/report",
+         "presentation", "api/commands/analyze.py", "api/commands/sweep.py",
+         "api/commands/bounds.py", "api/commands/select.py")
+
+
+def test_no_function_of_the_rooms_is_over_complexity_15() -> None:
+    over = {}
+    for room in ROOMS:
+        where = SRC / "gyrovib" / room
+        for path in sorted(where.glob("*.py")) if where.is_dir() else [where]:
+            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+                if isinstance(node, ast.FunctionDef) and _complexity(node) > 15:
+                    over[f"{path.relative_to(SRC / 'gyrovib')}:{node.name}"] = \
+                        _complexity(node)
+    assert len(ROOMS) > 5 and over == {}
+
+
+def test_the_complexity_probe_counts_decisions() -> None:
+    # the probe itself: 1 + an if, a for with a condition, a boolean and
+    code = "def f(x):\n    if x and x > 1:\n        return [y for y in x if y]\n    return 0\n"
+    function = ast.parse(code).body[0]
+    assert isinstance(function, ast.FunctionDef)
+    assert _complexity(function) == 1 + 1 + 1 + 2
