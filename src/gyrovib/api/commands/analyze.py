@@ -15,6 +15,7 @@ from gyrovib.api.evaluation.evaluate import (
     errors,
     numeric_done,
     numeric_polynomials,
+    phase_bound,
     phase_worst,
     saturation,
     worst_case,
@@ -138,13 +139,13 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         stderr = None
         if numeric:
             _refuse_unknown_phases(prepared)
-        datasheet = _spec_prepared(study, prepared, method, peak_factor)
+        datasheet = phase_bound(study, prepared, method, peak_factor)
         spec = worst_case(study, datasheet, "exact" if numeric else method)
         worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
         if numeric:
             parts, stderr = _numeric(prepared, spec, samples, seed, progress)
         else:
-            parts, worst = _closed_form(study, prepared, datasheet, method, spec)
+            parts, worst = _closed_form(study, prepared, datasheet, method)
         warnings = specs.with_unknown_g2(
             specs.with_cross_axis(_saturation(prepared, unit), spec, _shaken(prepared)),
             prepared.sensors, _shaken(prepared))
@@ -200,7 +201,6 @@ def _shared_unit(file_units: Sequence[str]) -> str | None:
 
 
 def _closed_form(study: Study, prepared: Prepared, datasheet: Prepared, method: str,
-                 spec: specs.SpecResults | None,
                  ) -> tuple[dict[str, FloatArray],
                             dict[tuple[int, int], tuple[dict[str, float], ...]]]:
     """Eq. (13)-(16) by ``method`` (deg/s); under ``exact``, profiles with ``phase:
@@ -250,22 +250,6 @@ def _refuse_unknown_phases(prepared: Prepared) -> None:
         if any(g.worst.any() for group in prepared.groups for g in group.locked[j])]
     if problems:
         raise ModelError(problems, reason="phase: worst with the numeric method")
-
-
-def _spec_prepared(study: Study, prepared: Prepared, method: str,
-                   peak_factor: float) -> Prepared:
-    """The preparation behind datasheet sensors' worst case (docs/model.md sections 10, 11).
-
-    With ``phase: worst`` orders, their worst case takes each multiplier at its
-    largest over the unknown phases (which bounds every phase's share), as
-    ``bounds`` and ``select`` do; otherwise ``prepared`` itself.
-    """
-    worst = any(g.worst.any() for group in prepared.groups for gs in group.locked
-                for g in gs)
-    if method != "exact" or not worst or not len(
-            specs.spec_index(prepared.sensors)):
-        return prepared
-    return study.prepare(methods=("exact",), peak_factor=peak_factor, phase_search=True)
 
 
 def _worst_phases(prepared: Prepared, group: Group, parts: dict[str, FloatArray],

@@ -64,6 +64,9 @@ class SensorForm(Protocol):
     """
 
     source: str
+    #: Whether its error is a bound over the unknown phases of ``phase: worst`` orders,
+    #: taken on multipliers at their largest over them (not a search of the phases).
+    bounds_phases: bool
 
     def owns(self, entry: SensorEntry) -> bool: ...
 
@@ -88,6 +91,7 @@ class CoefficientForm:
     """A sensor given by its conversion function's coefficients (eq. 2)."""
 
     source = "coefficients"
+    bounds_phases = False
 
     def owns(self, entry: SensorEntry) -> bool:
         return entry.sensor.specs is None
@@ -166,6 +170,7 @@ class DatasheetForm:
     """A sensor given by its datasheet: the worst case over its envelope (section 11)."""
 
     source = "specs"
+    bounds_phases = True
 
     def owns(self, entry: SensorEntry) -> bool:
         return entry.sensor.specs is not None
@@ -220,6 +225,20 @@ def form_rows(sensors: Sequence[SensorEntry]) -> list[tuple[SensorForm, NDArray[
         if rows.size:
             out.append((form, rows))
     return out
+
+
+def phase_bound(study: Study, prepared: Prepared, method: str,
+                peak_factor: float) -> Prepared:
+    """The preparation a form that bounds the phases (:attr:`SensorForm.bounds_phases`)
+    takes its error on (docs/model.md sections 10, 11): with ``phase: worst`` orders
+    under ``exact``, each multiplier at its largest over the unknown phases, which bounds
+    every phase's share, as ``bounds`` and ``select`` do; otherwise ``prepared`` itself."""
+    worst = any(g.worst.any() for group in prepared.groups for gs in group.locked
+                for g in gs)
+    if method != "exact" or not worst or not any(
+            form.bounds_phases for form, _ in form_rows(prepared.sensors)):
+        return prepared
+    return study.prepare(methods=("exact",), peak_factor=peak_factor, phase_search=True)
 
 
 def phase_worst(prepared: Prepared, group: Group,
@@ -309,7 +328,7 @@ def errors(study: Study, prepared: Prepared, method: str, omega: FloatArray | No
     if not whole:  # each form fills its own rows of zeros
         parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
     for form, rows in forms:
-        form.error(study, datasheet if datasheet is not None and form.source == "specs"
+        form.error(study, datasheet if datasheet is not None and form.bounds_phases
                    else prepared, rows, method, omega, parts, rms_only)
     if not parts:  # no profile (no group): nothing was computed
         parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
