@@ -16,8 +16,8 @@ from gyrovib.api.commands.bounds import (
     resolve_allocation,
 )
 from gyrovib.api.datasheet import spec_bounds, specs
+from gyrovib.api.evaluation.checks import PASS_RTOL as PASS_RTOL
 from gyrovib.api.evaluation.checks import (
-    PASS_RTOL,
     BoundVerdict,
     CoefficientChecks,
     at_most,

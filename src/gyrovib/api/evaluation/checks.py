@@ -77,8 +77,15 @@ class CoefficientChecks(Frozen):
 class BoundVerdict(Protocol):
     """One form's bound checks on its ``rows`` (sensor indices), (rows, profiles)."""
 
-    rows: NDArray[np.intp]
-    passed: NDArray[np.bool_]
+    @property
+    def rows(self) -> NDArray[np.intp]:
+        """Its sensors."""
+        ...
+
+    @property
+    def passed(self) -> NDArray[np.bool_]:
+        """Whether each of its cells passes the bound checks."""
+        ...
 
     @property
     def largest(self) -> FloatArray:
