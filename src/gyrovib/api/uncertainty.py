@@ -148,7 +148,7 @@ def uncertainty(prepared: Prepared, method: str,
 
 
 def with_uncertainty(prepared: Prepared, method: str, unit: str) -> dict[str, Any]:
-    """The fields of :class:`~gyrovib.api.evaluation.results.AnalysisResult` about distributions:
+    """The fields of :class:`~gyrovib.api.results.AnalysisResult` about distributions:
     ``uncertainty`` in ``unit`` (:func:`uncertainty`), ``lots``, ``notes`` (the warnings
     of lots too small for their correlations)."""
     found = distributions(prepared)

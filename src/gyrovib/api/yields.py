@@ -121,7 +121,7 @@ def _direct(multipliers: Multipliers, dist: Distribution,
             parts: Mapping[str, FloatArray], i: int) -> FloatArray:
     """(profiles, p + 1): g of Δ_V over the lot's coefficients and, last, the fixed part
     Δ_V(μ) − gᵀμ (deg/s); Δ_V(μ) is the view's own error of the lot's row ``i``
-    (``parts``, :func:`gyrovib.api.evaluation.evaluate.errors`: the lot at its mean)."""
+    (``parts``, :func:`gyrovib.api.evaluate.errors`: the lot at its mean)."""
     g = sensor_sensitivity(multipliers, dist)
     total = parts["total"][i]
     out: FloatArray = np.concatenate([g, (total - g @ dist.mean)[..., None]], axis=-1)
@@ -198,7 +198,7 @@ def lot_yields(prepared: Prepared, parts: Mapping[str, FloatArray], method: str,
     None when no chosen sensor is a lot.
 
     ``parts``: the view's error terms of every sensor in deg/s
-    (:func:`gyrovib.api.evaluation.evaluate.errors` on ``prepared`` under ``method``; a lot's
+    (:func:`gyrovib.api.evaluate.errors` on ``prepared`` under ``method``; a lot's
     row is the lot at its mean). ``budget`` Δ* in deg/s; ``limits_deg`` (sensors,
     profiles, :data:`BOUNDED`) each sensor's coefficient bounds in deg/s powers;
     ``vre_pass`` (sensors, profiles) the VRE check; ``rtol`` the slack of every ≤

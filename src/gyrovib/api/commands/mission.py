@@ -2,7 +2,7 @@
 
 Each segment s is a profile p_s flown for T_s seconds at the carrier rate
 Ω_K,s (the segment's ``rate``, else the profile's own), in the sensor axes of
-the mission's placement (:func:`gyrovib.api.placement.placement.place_profile`). The
+the mission's placement (:func:`gyrovib.api.placement.place_profile`). The
 distinct (placement, profile, rate) triples are evaluated together in one
 :func:`gyrovib.api.analyze` call (so a profile flown in several segments is
 prepared once per rate), and :func:`gyrovib.core.mission.totals` gives the
@@ -155,7 +155,7 @@ def mission(
     sensor that passes on its published figures while an unpublished one can
     decide it in some segment (the VRE under linear vibration; m31, m32 under
     cross-axis vibration correlated with x3) is ``unverified`` there, not
-    passing (:func:`gyrovib.api.datasheet.spec_bounds.is_unverified`), unless
+    passing (:func:`gyrovib.api.spec_bounds.is_unverified`), unless
     ``assume_unknown="zero"``.
     """
     from gyrovib.api.commands.analyze import analysis_of
@@ -274,7 +274,7 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
 
     One :func:`~gyrovib.core.envelope.worst_case` per sensor group and run, on the
     mission's functional Σ T_s c_s / Σ T_s and g² moment Σ T_s S_s / Σ T_s; the
-    unknown figures are :func:`gyrovib.api.datasheet.spec_bounds.unknown_figures_at` of the
+    unknown figures are :func:`gyrovib.api.spec_bounds.unknown_figures_at` of the
     run's segments, merged. The datasheet sensors are ``study`` narrowed to them (its
     vibrations computed once for the analysis and for this).
     """
