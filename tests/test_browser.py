@@ -35,7 +35,7 @@ from typing import Any
 import pytest
 
 from gyrovib import api
-from gyrovib.api.trade_study import trade_study
+from gyrovib.api.report.views import trade_study
 from gyrovib.render.report import to_html
 from gyrovib.render.svg import LineChart, Marker, Series, bar_chart, color, dash, share_chart
 

@@ -39,7 +39,7 @@ def test_every_bundled_vre_test_shakes_one_axis() -> None:
     catalog = gyrovib.load()
     tests = [e for e in catalog.profiles if e.profile.id.endswith("-vre-test")]
     assert {e.profile.id for e in tests} == {f"{part}-vre-test" for part in DATASHEET}
-    from gyrovib.api.linear import profile_linear
+    from gyrovib.api.study.linear import profile_linear
 
     for entry in tests:
         linear = profile_linear(entry)

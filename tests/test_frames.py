@@ -21,8 +21,8 @@ import pytest
 from click.testing import CliRunner
 
 import gyrovib
-from gyrovib.api.frames import column_name
 from gyrovib.cli.main import cli
+from gyrovib.presentation.frames import column_name
 
 pd = pytest.importorskip("pandas", reason="to_frame needs the pandas extra")
 
@@ -152,7 +152,7 @@ def test_sweep_frame_equals_json():
 
 
 def test_missing_pandas_names_the_extra(monkeypatch):
-    from gyrovib.api.frames import MissingDependency
+    from gyrovib.presentation.frames import MissingDependency
 
     result = gyrovib.bounds(budget=0.01, profiles="flat-random-hover")
     monkeypatch.setitem(sys.modules, "pandas", None)  # import pandas → ImportError

@@ -308,7 +308,7 @@ def test_a_report_over_many_sensors_charts_the_best_ranked(tmp_path: Path) -> No
     # 3,000 sensors: the report's sweep of every sensor held 2.9 million results
     # (refused by the sweep's size check); its charts now draw the SWEEP_SENSORS best
     import gyrovib
-    from gyrovib.api.trade_study import SWEEP_SENSORS
+    from gyrovib.api.report.views import SWEEP_SENSORS
 
     s = tmp_path / "s.yaml"
     p = tmp_path / "p.yaml"
@@ -319,7 +319,7 @@ def test_a_report_over_many_sensors_charts_the_best_ranked(tmp_path: Path) -> No
     s.write_text("".join(lines), encoding="utf-8")
     p.write_text(TWO_PROFILES, encoding="utf-8")
     catalog = gyrovib.load([s, p])
-    from gyrovib.api.trade_study import trade_study
+    from gyrovib.api.report.views import trade_study
 
     study = trade_study(catalog, budget=1.0)
     ranked = [study.selection.sensors[i] for i in study.selection.ranking[:SWEEP_SENSORS]]

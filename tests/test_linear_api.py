@@ -476,7 +476,7 @@ def test_bundled_isolation_mount_cuts_the_g2_term() -> None:
                      profiles=["cruise-hard-mounted", "cruise-isolated"])
     hard, isolated = result.error.extra_terms[0, :, 0]
     assert hard == pytest.approx(4e-4 * 3 * 5.97, rel=1e-12)
-    from gyrovib.api.linear import profile_linear
+    from gyrovib.api.study.linear import profile_linear
 
     entry = next(p for p in load().profiles if p.profile.id == "cruise-isolated")
     linear = profile_linear(entry)

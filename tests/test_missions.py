@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gyrovib import api
-from gyrovib.api.placement import place_catalog
+from gyrovib.api.placement.placement import place_catalog
 from gyrovib.catalog.loader import merge, parse_catalog
 from gyrovib.core.placement import Placement, parse
 from tests.conftest import invoke

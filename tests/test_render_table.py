@@ -50,7 +50,7 @@ def expected_rows(result: api.AnalysisResult, j: int) -> list[list[str]]:
                  for v in values]
         if render.unknown_term(result, i, j):
             # the g² term of a sensor whose g² figure is unknown reads "?", not 0
-            # (the unknown-figure notes of gyrovib.api.specs)
+            # (the unknown-figure notes of gyrovib.api.datasheet.specs)
             at = [t for k, t in enumerate(render.JSON_TERMS)
                   if k in render._shown(bool(result.has_linear), odd)].index("g2")
             cells[at] = "?"

@@ -15,7 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gyrovib import api
-from gyrovib.api.trade_study import envelope, trade_study
+from gyrovib.api.report.views import envelope, trade_study
 from gyrovib.cli.main import cli
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render import svg
@@ -205,16 +205,16 @@ def test_rate_range_option(catalog_file, tmp_path, monkeypatch):
     bad = run("report", catalog_file, "--budget", "0.01", "--rate-range", "1:2",
               "-o", tmp_path / "r.html")
     assert bad.exit_code == 2 and "START:STOP:COUNT" in bad.stderr
-    import gyrovib.api.trade_study
+    import gyrovib.api.report.views
 
     seen = {}
-    real = gyrovib.api.trade_study.trade_study
+    real = gyrovib.api.report.views.trade_study
 
     def spy(*args, **kwargs):
         seen.update(kwargs)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(gyrovib.api.trade_study, "trade_study", spy)
+    monkeypatch.setattr(gyrovib.api.report.views, "trade_study", spy)
     good = run("report", catalog_file, "--budget", "0.01", "--unit", "deg/h",
                "--rate-range", "-3deg/s:3deg/s:7", "-o", tmp_path / "r.html")
     assert good.exit_code == 0

@@ -16,7 +16,7 @@ import re
 
 import gyrovib
 from gyrovib import api
-from gyrovib.api.trade_study import trade_study
+from gyrovib.api.report.views import trade_study
 from gyrovib.render.bounds import shares_text
 from gyrovib.render.report import to_html
 from gyrovib.render.select import to_markdown

@@ -22,9 +22,9 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import gyrovib
-from gyrovib.api import specs
-from gyrovib.api.entries import load
-from gyrovib.api.study import prepare
+from gyrovib.api.datasheet import specs
+from gyrovib.api.study.entries import load
+from gyrovib.api.study.study import prepare
 from gyrovib.core.envelope import term_functionals, worst_case
 from tests.conftest import TONE_AND_NOISE
 from tests.conftest import invoke as run

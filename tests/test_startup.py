@@ -92,7 +92,7 @@ profiles:
 
 def test_first_analyze_imports_only_what_it_uses():
     modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze"])
-    assert "numpy" in modules and "gyrovib.api.results" in modules  # the probe works
+    assert "numpy" in modules and "gyrovib.api.evaluation.results" in modules  # the probe works
     assert sorted(set(NOT_FOR_ANALYZE) & set(modules)) == []
 
 
@@ -101,7 +101,7 @@ def test_csv_and_json_output_do_not_import_rich():
     # pay nothing for it
     for fmt in ("json", "csv"):
         modules = imported_modules(VIA_CLI_LATE_JSON, ["analyze", "--format", fmt])
-        assert "gyrovib.api.results" in modules  # the probe works
+        assert "gyrovib.api.evaluation.results" in modules  # the probe works
         assert "rich" not in modules, fmt
 
 

@@ -1,7 +1,7 @@
 """One Study, many views: every command's numbers are the Study's, and the report
 prepares each profile once.
 
-The expected numbers come from the Study itself (api/evaluate.py) and, for each
+The expected numbers come from the Study itself (api/evaluation/evaluate.py) and, for each
 sensor, from ``analyze`` of that sensor alone (its own one-sensor study: the
 grouping by response cannot change a sensor's numbers).
 """
@@ -16,11 +16,11 @@ import pytest
 
 import gyrovib
 from gyrovib import api
-from gyrovib.api import evaluate
-from gyrovib.api import study as study_module
-from gyrovib.api.prepare import float_guard, input_response
-from gyrovib.api.study import Study
-from gyrovib.api.trade_study import trade_study
+from gyrovib.api.evaluation import evaluate
+from gyrovib.api.report.views import trade_study
+from gyrovib.api.study import study as study_module
+from gyrovib.api.study.prepare import float_guard, input_response
+from gyrovib.api.study.study import Study
 
 #: Coefficients, output coefficients (with an input-side response: a second group),
 #: and a datasheet; a tone, a random profile and one with linear vibration, all at

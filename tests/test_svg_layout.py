@@ -15,7 +15,7 @@ import re
 import pytest
 
 from gyrovib import api
-from gyrovib.api.trade_study import trade_study
+from gyrovib.api.report.views import trade_study
 from gyrovib.render.report import to_html
 from gyrovib.render.svg import SIZES, WIDTH, fit, text_width
 

@@ -23,7 +23,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gyrovib.api import SweepResult
-from gyrovib.api.convert import to_unit
+from gyrovib.api.study.convert import to_unit
 from gyrovib.core.analysis import VibrationError
 from gyrovib.core.harmonics import _abs_excess, locked_abs_excess
 from gyrovib.render import sweep as render_sweep

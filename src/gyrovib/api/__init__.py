@@ -5,16 +5,19 @@ This layer joins the catalogue (:mod:`gyrovib.catalog`) to the numpy engines
 converted to deg/s on the way in, results to the requested output unit on the
 way out.
 
-=============================  ===============================================
-module                          what it holds
-=============================  ===============================================
-:mod:`gyrovib.api.entries`      ``load``, choosing entries, their file lines
-:mod:`gyrovib.api.convert`      unit conversions (deg/s in, output unit out)
-:mod:`gyrovib.api.linear`       linear vibration (g) and g²-sensitivities (docs/model.md 8)
-:mod:`gyrovib.api.prepare`      the one pipeline and its overflow checks
-:mod:`gyrovib.api.results`      the immutable result types
-:mod:`gyrovib.api.commands`     one module per command
-=============================  ===============================================
+=================================  ============================================
+package                            what it holds
+=================================  ============================================
+:mod:`gyrovib.api.study`           the Study: entries chosen, values in deg/s,
+                                   the one preparation and its overflow checks
+:mod:`gyrovib.api.datasheet`       the datasheet form: figures, worst case, the
+                                   spec checks and spec bounds
+:mod:`gyrovib.api.evaluation`      the model evaluated per sensor form, and the
+                                   immutable result types
+:mod:`gyrovib.api.commands`        one view of a Study per command
+:mod:`gyrovib.api.report`          ``gyrovib report``: three views of one Study
+:mod:`gyrovib.api.placement`       placements and the triad
+=================================  ============================================
 
 The names below are imported lazily, on first use; ``__init__.pyi`` gives
 them to type checkers.
@@ -30,38 +33,38 @@ from typing import Any
 
 _WHERE: dict[str, str] = {
     # entries
-    "load": "entries",
-    "select_entries": "entries",
-    "sensor_location": "entries",
-    "sensor_locations": "entries",
-    "profile_location": "entries",
-    "profile_locations": "entries",
+    "load": "study.entries",
+    "select_entries": "study.entries",
+    "sensor_location": "study.entries",
+    "sensor_locations": "study.entries",
+    "profile_location": "study.entries",
+    "profile_locations": "study.entries",
     # conversion
-    "coefficient_matrix": "convert",
-    "sensor_ranges": "convert",
-    "profile_rate": "convert",
-    "resolve_rate": "convert",
-    "to_unit": "convert",
+    "coefficient_matrix": "study.convert",
+    "sensor_ranges": "study.convert",
+    "profile_rate": "study.convert",
+    "resolve_rate": "study.convert",
+    "to_unit": "study.convert",
     # the pipeline
-    "prepare": "study",
-    "Study": "study",
-    "Prepared": "prepare",
-    "float_guard": "prepare",
-    "quiet_float": "prepare",
-    "check_finite": "prepare",
-    "check_bounds": "prepare",
-    "profile_vibration": "prepare",
-    "response_table": "prepare",
-    "response_groups": "prepare",
-    "vibration_peak": "prepare",
-    "vibration_swing": "prepare",
-    "profile_locked": "prepare",
+    "prepare": "study.study",
+    "Study": "study.study",
+    "Prepared": "study.prepare",
+    "float_guard": "study.prepare",
+    "quiet_float": "study.prepare",
+    "check_finite": "study.prepare",
+    "check_bounds": "study.prepare",
+    "profile_vibration": "study.prepare",
+    "response_table": "study.prepare",
+    "response_groups": "study.prepare",
+    "vibration_peak": "study.prepare",
+    "vibration_swing": "study.prepare",
+    "profile_locked": "study.prepare",
     # results
-    "AnalysisResult": "results",
-    "SweepResult": "results",
-    "BoundsResult": "results",
-    "SelectionResult": "results",
-    "Limit": "results",
+    "AnalysisResult": "evaluation.results",
+    "SweepResult": "evaluation.results",
+    "BoundsResult": "evaluation.results",
+    "SelectionResult": "evaluation.results",
+    "Limit": "evaluation.results",
     # commands
     "analyze": "commands.analyze",
     "ANALYZE_METHODS": "commands.analyze",
@@ -85,8 +88,8 @@ _WHERE: dict[str, str] = {
     "mission": "noise.mission",
     "MissionResult": "mission_results",
     "LotYields": "yields",
-    "place_profile": "placement",
-    "place_catalog": "placement",
+    "place_profile": "placement.placement",
+    "place_catalog": "placement.placement",
     # catalogue types, for annotations
     "Catalog": "gyrovib.catalog.loader",
     "ProfileEntry": "gyrovib.catalog.loader",

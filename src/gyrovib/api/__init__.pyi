@@ -50,38 +50,20 @@ from gyrovib.api.commands.sweep import (
 from gyrovib.api.commands.sweep import (
     sweep as sweep,
 )
-from gyrovib.api.convert import (
-    coefficient_matrix as coefficient_matrix,
+from gyrovib.api.evaluation.results import (
+    AnalysisResult as AnalysisResult,
 )
-from gyrovib.api.convert import (
-    profile_rate as profile_rate,
+from gyrovib.api.evaluation.results import (
+    BoundsResult as BoundsResult,
 )
-from gyrovib.api.convert import (
-    resolve_rate as resolve_rate,
+from gyrovib.api.evaluation.results import (
+    Limit as Limit,
 )
-from gyrovib.api.convert import (
-    sensor_ranges as sensor_ranges,
+from gyrovib.api.evaluation.results import (
+    SelectionResult as SelectionResult,
 )
-from gyrovib.api.convert import (
-    to_unit as to_unit,
-)
-from gyrovib.api.entries import (
-    load as load,
-)
-from gyrovib.api.entries import (
-    profile_location as profile_location,
-)
-from gyrovib.api.entries import (
-    profile_locations as profile_locations,
-)
-from gyrovib.api.entries import (
-    select_entries as select_entries,
-)
-from gyrovib.api.entries import (
-    sensor_location as sensor_location,
-)
-from gyrovib.api.entries import (
-    sensor_locations as sensor_locations,
+from gyrovib.api.evaluation.results import (
+    SweepResult as SweepResult,
 )
 from gyrovib.api.fit_results import (
     FitResult as FitResult,
@@ -92,44 +74,11 @@ from gyrovib.api.mission_results import (
 from gyrovib.api.noise.mission import (
     mission as mission,
 )
-from gyrovib.api.placement import (
+from gyrovib.api.placement.placement import (
     place_catalog as place_catalog,
 )
-from gyrovib.api.placement import (
+from gyrovib.api.placement.placement import (
     place_profile as place_profile,
-)
-from gyrovib.api.prepare import (
-    Prepared as Prepared,
-)
-from gyrovib.api.prepare import (
-    check_bounds as check_bounds,
-)
-from gyrovib.api.prepare import (
-    check_finite as check_finite,
-)
-from gyrovib.api.prepare import (
-    float_guard as float_guard,
-)
-from gyrovib.api.prepare import (
-    profile_locked as profile_locked,
-)
-from gyrovib.api.prepare import (
-    profile_vibration as profile_vibration,
-)
-from gyrovib.api.prepare import (
-    quiet_float as quiet_float,
-)
-from gyrovib.api.prepare import (
-    response_groups as response_groups,
-)
-from gyrovib.api.prepare import (
-    response_table as response_table,
-)
-from gyrovib.api.prepare import (
-    vibration_peak as vibration_peak,
-)
-from gyrovib.api.prepare import (
-    vibration_swing as vibration_swing,
 )
 from gyrovib.api.ratetable import (
     RateTable as RateTable,
@@ -137,25 +86,76 @@ from gyrovib.api.ratetable import (
 from gyrovib.api.ratetable import (
     read_rate_table as read_rate_table,
 )
-from gyrovib.api.results import (
-    AnalysisResult as AnalysisResult,
+from gyrovib.api.study.convert import (
+    coefficient_matrix as coefficient_matrix,
 )
-from gyrovib.api.results import (
-    BoundsResult as BoundsResult,
+from gyrovib.api.study.convert import (
+    profile_rate as profile_rate,
 )
-from gyrovib.api.results import (
-    Limit as Limit,
+from gyrovib.api.study.convert import (
+    resolve_rate as resolve_rate,
 )
-from gyrovib.api.results import (
-    SelectionResult as SelectionResult,
+from gyrovib.api.study.convert import (
+    sensor_ranges as sensor_ranges,
 )
-from gyrovib.api.results import (
-    SweepResult as SweepResult,
+from gyrovib.api.study.convert import (
+    to_unit as to_unit,
 )
-from gyrovib.api.study import (
+from gyrovib.api.study.entries import (
+    load as load,
+)
+from gyrovib.api.study.entries import (
+    profile_location as profile_location,
+)
+from gyrovib.api.study.entries import (
+    profile_locations as profile_locations,
+)
+from gyrovib.api.study.entries import (
+    select_entries as select_entries,
+)
+from gyrovib.api.study.entries import (
+    sensor_location as sensor_location,
+)
+from gyrovib.api.study.entries import (
+    sensor_locations as sensor_locations,
+)
+from gyrovib.api.study.prepare import (
+    Prepared as Prepared,
+)
+from gyrovib.api.study.prepare import (
+    check_bounds as check_bounds,
+)
+from gyrovib.api.study.prepare import (
+    check_finite as check_finite,
+)
+from gyrovib.api.study.prepare import (
+    float_guard as float_guard,
+)
+from gyrovib.api.study.prepare import (
+    profile_locked as profile_locked,
+)
+from gyrovib.api.study.prepare import (
+    profile_vibration as profile_vibration,
+)
+from gyrovib.api.study.prepare import (
+    quiet_float as quiet_float,
+)
+from gyrovib.api.study.prepare import (
+    response_groups as response_groups,
+)
+from gyrovib.api.study.prepare import (
+    response_table as response_table,
+)
+from gyrovib.api.study.prepare import (
+    vibration_peak as vibration_peak,
+)
+from gyrovib.api.study.prepare import (
+    vibration_swing as vibration_swing,
+)
+from gyrovib.api.study.study import (
     Study as Study,
 )
-from gyrovib.api.study import (
+from gyrovib.api.study.study import (
     prepare as prepare,
 )
 from gyrovib.api.yields import (

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units as rate_units
-from gyrovib.api.results import Result, freeze
+from gyrovib.api.evaluation.results import Result, freeze
 from gyrovib.core.fit import SIGNIFICANT_T, RateFit
 from gyrovib.core.lot import LotStatistics
 
@@ -88,7 +88,7 @@ class FitResult(Result):
         coefficient_unit, residual_rms, nonlinearity.least_squares_max,
         nonlinearity.endpoint_max, nonlinearity.range, points); the lot in
         ``frame.attrs["lot"]`` (the JSON's mapping) when there is one."""
-        from gyrovib.api.frames import _frame
+        from gyrovib.presentation.frames import _frame
 
         columns = fit_columns(self)
         attrs: dict[str, Any] = {"method": self.method, "unit": self.unit,

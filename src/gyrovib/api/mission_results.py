@@ -79,10 +79,10 @@ class MissionRow(Frozen):
 
     @property
     def reason(self) -> str | None:
-        """Why an unverified row is open (:func:`gyrovib.api.reasons.unverified_text`)."""
+        """Why an unverified row is open (:func:`gyrovib.presentation.reasons.unverified_text`)."""
         if not self.unverified:
             return None
-        from gyrovib.api.reasons import unverified_text
+        from gyrovib.presentation.reasons import unverified_text
 
         return unverified_text(self.unknown, spec=self.source == "specs")
 

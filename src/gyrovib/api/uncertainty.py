@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api.convert import unit_scales
-from gyrovib.api.prepare import Group, Prepared
+from gyrovib.api.study.convert import unit_scales
+from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import COEFFICIENTS, Multipliers
 from gyrovib.core.lot import (
@@ -157,7 +157,7 @@ def uncertainty(prepared: Prepared, method: str,
 
 
 def with_uncertainty(prepared: Prepared, method: str, unit: str) -> dict[str, Any]:
-    """The fields of :class:`~gyrovib.api.results.AnalysisResult` about distributions:
+    """The fields of :class:`~gyrovib.api.evaluation.results.AnalysisResult` about distributions:
     ``uncertainty`` in ``unit`` (:func:`uncertainty`), ``lots``, ``notes`` (the warnings
     of lots too small for their correlations)."""
     found = distributions(prepared)

@@ -31,9 +31,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.api.prepare import Prepared, profile_problem
-from gyrovib.api.results import Limit, Result
-from gyrovib.api.spec_bounds import is_unverified
+from gyrovib.api.evaluation.results import Limit, Result
+from gyrovib.api.study.prepare import Prepared, profile_problem
+from gyrovib.api.datasheet.spec_bounds import is_unverified
 from gyrovib.api.uncertainty import (
     Distribution,
     distributions,
@@ -125,7 +125,7 @@ def _direct(multipliers: Multipliers, dist: Distribution,
             parts: Mapping[str, FloatArray], i: int) -> FloatArray:
     """(profiles, p + 1): g of Δ_V over the lot's coefficients and, last, the fixed part
     Δ_V(μ) − gᵀμ (deg/s); Δ_V(μ) is the view's own error of the lot's row ``i``
-    (``parts``, :func:`gyrovib.api.evaluate.errors`: the lot at its mean)."""
+    (``parts``, :func:`gyrovib.api.evaluation.evaluate.errors`: the lot at its mean)."""
     g = sensor_sensitivity(multipliers, dist)
     total = parts["total"][i]
     out: FloatArray = np.concatenate([g, (total - g @ dist.mean)[..., None]], axis=-1)
@@ -202,7 +202,7 @@ def lot_yields(prepared: Prepared, parts: Mapping[str, FloatArray], method: str,
     None when no chosen sensor is a lot.
 
     ``parts``: the view's error terms of every sensor in deg/s
-    (:func:`gyrovib.api.evaluate.errors` on ``prepared`` under ``method``; a lot's
+    (:func:`gyrovib.api.evaluation.evaluate.errors` on ``prepared`` under ``method``; a lot's
     row is the lot at its mean). ``budget`` Δ* in deg/s; ``limits_deg`` (sensors,
     profiles, :data:`BOUNDED`) each sensor's coefficient bounds in deg/s powers;
     ``vre_pass`` (sensors, profiles) the VRE check; ``rtol`` the slack of every ≤
@@ -273,7 +273,7 @@ def open_lots(yields: LotYields, passed: NDArray[np.bool_], unverified: NDArray[
               questions: dict[int, tuple[str, ...]], assume_unknown: str) -> None:
     """In place, after :func:`judge`: a lot whose spread is not measured (``unmeasured``)
     has the unknown ``"spread"`` under every profile, and where its yield passes it is
-    ``unverified``, not passing (:func:`gyrovib.api.spec_bounds.is_unverified`, the one
+    ``unverified``, not passing (:func:`gyrovib.api.datasheet.spec_bounds.is_unverified`, the one
     rule of unknowns), with what would settle it among ``questions``;
     ``assume_unknown="zero"`` takes the lot as given (no unknown). A cell an unknown
     figure already left open stays open, whatever the yield."""

@@ -27,7 +27,7 @@ def export(directory: str, which: str, force: bool) -> None:
     import os
     import shutil
 
-    from gyrovib.api.entries import bundled_choice
+    from gyrovib.api.study.entries import bundled_choice
     from gyrovib.errors import OptionError
 
     sources = bundled_choice(which)

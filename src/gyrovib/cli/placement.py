@@ -16,7 +16,7 @@ def run_placed(command: Callable[..., Any], catalog: Any, placement: str | None,
     parsed = parse_placement(placement)
     if parsed is None:
         return command(catalog, **options)
-    from gyrovib.api.triad import placed
+    from gyrovib.api.placement.triad import placed
     from gyrovib.render.triad import TRIAD_FORMATS
 
     if isinstance(parsed, tuple) and fmt not in TRIAD_FORMATS:

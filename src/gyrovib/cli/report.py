@@ -69,7 +69,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     rate envelope and the profile's spectrum. Prints cleanly to PDF. Unlike
     `select`, the exit status is 0 whether or not the requirement is met.
     """
-    from gyrovib.api import trade_study as studies
+    from gyrovib.api.report import views as studies
     from gyrovib.cli.output import write_output
     from gyrovib.render.report import to_html
 

@@ -8,8 +8,8 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api import AnalysisResult
-from gyrovib.api.results import JSON_TERMS as _JSON_TERMS
-from gyrovib.api.specs import UNKNOWN_TERM_NOTES
+from gyrovib.api.datasheet.specs import UNKNOWN_TERM_NOTES
+from gyrovib.api.evaluation.results import JSON_TERMS as _JSON_TERMS
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
@@ -145,7 +145,7 @@ def _source_fields(result: AnalysisResult, i: int, j: int) -> dict[str, Any]:
     source = result.source(i)
     out: dict[str, Any] = {"source": source}
     if source == "specs" and result.worst_coefficients is not None:
-        from gyrovib.api.specs import WORST_COEFFICIENTS
+        from gyrovib.api.datasheet.specs import WORST_COEFFICIENTS
 
         assert result.rms_bound is not None
         x = result.worst_coefficients[i, j].tolist()
@@ -378,7 +378,7 @@ def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:
     term = dominant_term(result, i, j)
     if not term:
         return None
-    from gyrovib.api.reasons import coefficient_unit
+    from gyrovib.presentation.reasons import coefficient_unit
 
     x = dict(zip(_WORST, (float(v) for v in result.worst_coefficients[i, j]), strict=True))
     shown = [f"{name} = {fmt(x[name], 2)}"

@@ -9,7 +9,6 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api import BoundsResult
-from gyrovib.api.reasons import coefficient_unit as coefficient_unit
 from gyrovib.core.synthesis import (
     BOUNDED,
     ODD_PARTS,
@@ -17,6 +16,7 @@ from gyrovib.core.synthesis import (
     AllocationConstants,
     CoefficientBounds,
 )
+from gyrovib.presentation.reasons import coefficient_unit as coefficient_unit
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 

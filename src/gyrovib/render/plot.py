@@ -100,7 +100,7 @@ def envelope_png(result: SweepResult, *, dpi: int = 100) -> bytes | None:
     """
     import numpy as np
 
-    from gyrovib.api.specs import worst_residual
+    from gyrovib.api.datasheet.specs import worst_residual
 
     spec = [i for i in range(len(result.sensors)) if result.source(i) == "specs"]
     if not spec or result.worst_coefficients is None or not len(result.profiles):

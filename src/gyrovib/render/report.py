@@ -19,9 +19,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gyrovib.api.reasons import unknown_label
-from gyrovib.api.trade_study import Spectrum, TradeStudy
+from gyrovib.api.report.views import Spectrum, TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
+from gyrovib.presentation.reasons import unknown_label
 from gyrovib.render.bounds import shares_text
 from gyrovib.render.common import fmt
 from gyrovib.render.select import (

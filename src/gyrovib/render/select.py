@@ -10,9 +10,9 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api import SelectionResult
-from gyrovib.api.reasons import failures as _failures
-from gyrovib.api.reasons import reason, unknown_label
 from gyrovib.core.synthesis import BOUNDED
+from gyrovib.presentation.reasons import failures as _failures
+from gyrovib.presentation.reasons import reason, unknown_label
 from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import (
     coefficient_unit,
@@ -45,7 +45,7 @@ _CRITERION = {
 
 def failures(result: SelectionResult, i: int, j: int) -> list[str]:
     """Why sensor ``i`` fails under profile ``j``, as the tables write it
-    (:func:`gyrovib.api.reasons.failures` with coefficients in the catalogue's unit)."""
+    (:func:`gyrovib.presentation.reasons.failures` with coefficients in the catalogue's unit)."""
     return _failures(result, i, j, table=True)
 
 __all__ = ["failures", "limit_text", "reason", "to_csv", "to_github", "to_json", "to_junit",
@@ -74,7 +74,7 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "saturated":
         return f"its range under {profile}: {result.reasons[(i, j)]}"
     if limit.name == "yield" and result.yields is not None:
-        from gyrovib.api.reasons import yield_text
+        from gyrovib.presentation.reasons import yield_text
 
         return (f"yield {yield_text(result.yields, i, j)} under {profile}, below "
                 f"{result.yields.target:g}")

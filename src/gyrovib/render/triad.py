@@ -10,7 +10,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from gyrovib.api.triad import TriadResult
+    from gyrovib.api.placement.triad import TriadResult
 
 #: The formats a triad can be written in.
 TRIAD_FORMATS = ("table", "json", "csv", "markdown")

@@ -9,19 +9,27 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api import specs
-from gyrovib.api.convert import error_arrays, to_unit
-from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, worst_case
-from gyrovib.api.prepare import (
+from gyrovib.api.datasheet import specs
+from gyrovib.api.evaluation.evaluate import (
+    ERROR_PARTS,
+    errors,
+    numeric_done,
+    numeric_polynomials,
+    phase_bound,
+    phase_worst,
+    saturation,
+    worst_case,
+)
+from gyrovib.api.evaluation.results import AnalysisResult
+from gyrovib.api.study.convert import error_arrays, to_unit
+from gyrovib.api.study.prepare import (
     Group,
     Prepared,
     check_finite,
     float_guard,
     profile_problem,
-    without,
 )
-from gyrovib.api.results import AnalysisResult
-from gyrovib.api.study import Study, check_peak_factor
+from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.api.uncertainty import distributions, with_uncertainty
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
@@ -31,6 +39,7 @@ from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError, OptionError
+from gyrovib.limits import MAX_SAMPLES
 
 #: Every method of :func:`analyze`: the closed forms, and brute force.
 ANALYZE_METHODS: tuple[str, ...] = (*METHODS, "numeric")
@@ -55,7 +64,6 @@ def _check_options(method: str, samples: int, seed: int) -> None:
     if method != "numeric":
         return
     from gyrovib.core.numeric import MIN_SAMPLES
-    from gyrovib.limits import MAX_SAMPLES
 
     if samples < MIN_SAMPLES:
         raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")
@@ -94,7 +102,7 @@ def analyze(
     ``progress(done, total)`` is called as samples are evaluated.
 
     A spec-form sensor (``specs:``) gets the worst case over its datasheet
-    envelope (:mod:`gyrovib.api.specs`): under ``exact`` or ``paper`` that
+    envelope (:mod:`gyrovib.api.datasheet.specs`): under ``exact`` or ``paper`` that
     method's multipliers feed the programme; under ``numeric`` the worst
     polynomial (found with the exact multipliers) is averaged by brute force,
     and ``rms`` stays the per-term bound.
@@ -120,7 +128,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
                 samples: int = DEFAULT_SAMPLES, seed: int = DEFAULT_SEED,
                 progress: ProgressCallback | None = None,
                 peak_factor: float = DEFAULT_PEAK_FACTOR) -> AnalysisResult:
-    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.Study`."""
+    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.study.Study`."""
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
     numeric = method == "numeric"
@@ -131,13 +139,13 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         stderr = None
         if numeric:
             _refuse_unknown_phases(prepared)
-        datasheet = _spec_prepared(study, prepared, method, peak_factor)
+        datasheet = phase_bound(study, prepared, method, peak_factor)
         spec = worst_case(study, datasheet, "exact" if numeric else method)
         worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
         if numeric:
             parts, stderr = _numeric(prepared, spec, samples, seed, progress)
         else:
-            parts, worst = _closed_form(study, prepared, datasheet, method, spec)
+            parts, worst = _closed_form(study, prepared, datasheet, method)
         warnings = specs.with_unknown_g2(
             specs.with_cross_axis(_saturation(prepared, unit), spec, _shaken(prepared)),
             prepared.sensors, _shaken(prepared))
@@ -193,7 +201,6 @@ def _shared_unit(file_units: Sequence[str]) -> str | None:
 
 
 def _closed_form(study: Study, prepared: Prepared, datasheet: Prepared, method: str,
-                 spec: specs.SpecResults | None,
                  ) -> tuple[dict[str, FloatArray],
                             dict[tuple[int, int], tuple[dict[str, float], ...]]]:
     """Eq. (13)-(16) by ``method`` (deg/s); under ``exact``, profiles with ``phase:
@@ -202,7 +209,7 @@ def _closed_form(study: Study, prepared: Prepared, datasheet: Prepared, method: 
     worst: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
     if method == "exact":
         for group in prepared.groups:
-            worst.update(_worst_phases(prepared, group, parts, spec))
+            worst.update(_worst_phases(prepared, group, parts))
     return parts, worst
 
 
@@ -218,19 +225,17 @@ def _numeric(prepared: Prepared, spec: specs.SpecResults | None, samples: int, s
     parts = {name: np.zeros((n_s, n_p, *tail)) for name, tail in ERROR_PARTS.items()}
     stderr = np.zeros((n_s, n_p))
     tracker = _Tracker(progress, len(prepared.groups) * n_p * samples)
-    coeffs = prepared.coefficients
     for group in prepared.groups:
         idx = group.index
         for j, (p, v) in enumerate(zip(prepared.profiles, group.vibrations, strict=True)):
-            block = coeffs[idx] if spec is None else specs.numeric_rows(coeffs, idx, j, spec)
+            block = numeric_polynomials(prepared, idx, j, spec)
             err, stderr[idx, j] = _simulate(block, v, prepared.rates[j], samples,
                                             profile_generator(seed, p.profile.id),
                                             tracker, group.locked[j],
                                             linear=prepared.linear[j], g2=prepared.g2[idx])
             for name, array in parts.items():
                 array[idx, j] = getattr(err, name)
-    if spec is not None:
-        specs.place_analysis(parts, spec, numeric=True)
+    numeric_done(prepared, parts, spec)
     return parts, stderr
 
 
@@ -247,46 +252,19 @@ def _refuse_unknown_phases(prepared: Prepared) -> None:
         raise ModelError(problems, reason="phase: worst with the numeric method")
 
 
-def _spec_prepared(study: Study, prepared: Prepared, method: str,
-                   peak_factor: float) -> Prepared:
-    """The preparation behind datasheet sensors' worst case (docs/model.md sections 10, 11).
-
-    With ``phase: worst`` orders, their worst case takes each multiplier at its
-    largest over the unknown phases (which bounds every phase's share), as
-    ``bounds`` and ``select`` do; otherwise ``prepared`` itself.
-    """
-    worst = any(g.worst.any() for group in prepared.groups for gs in group.locked
-                for g in gs)
-    if method != "exact" or not worst or not len(
-            specs.spec_index(prepared.sensors)):
-        return prepared
-    return study.prepare(methods=("exact",), peak_factor=peak_factor, phase_search=True)
-
-
 def _worst_phases(prepared: Prepared, group: Group, parts: dict[str, FloatArray],
-                  spec: specs.SpecResults | None,
                   ) -> dict[tuple[int, int], tuple[dict[str, float], ...]]:
     """Profiles with ``phase: worst`` orders: the phases maximising |Δ_V| per sensor.
 
     Overwrites those profiles' columns of ``parts`` (deg/s) with the error at
-    the phases found; returns, per (sensor, profile), per locked group, the
-    phase (degrees, common to the axes) of each order written ``worst``.
+    the phases found (:func:`~gyrovib.api.evaluation.evaluate.phase_worst`: each
+    form searches its own rows, or none); returns, per (sensor, profile), per
+    locked group, the phase (degrees, common to the axes) of each order written
+    ``worst``.
     """
     out: dict[tuple[int, int], tuple[dict[str, float], ...]] = {}
-    coeffs, rates = prepared.coefficients, prepared.rates
-    # a datasheet row is the worst case over its envelope, not one polynomial's phases
-    idx = group.index if spec is None else without(group.index, spec.index)
-    if idx.size == 0:
-        return out
-    for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
-        if not any(g.worst.any() for g in locked):
-            continue
-        from gyrovib.core.phases import worst_phase_error  # only for phase: worst
-
-        linear = prepared.linear[j] if prepared.linear else None
-        found = worst_phase_error(coeffs[idx], v, locked, float(rates[j, 2]),
-                                  acceleration=None if linear is None else linear.moments(),
-                                  g2_sensitivity=None if linear is None else prepared.g2[idx])
+    for j, idx, found in phase_worst(prepared, group):
+        locked = group.locked[j]
         for name, array in parts.items():
             array[idx, j] = getattr(found.error, name)
         for k, sensor in enumerate(idx.tolist()):

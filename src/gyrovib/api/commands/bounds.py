@@ -9,17 +9,18 @@ from typing import cast
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api.convert import bound_factors
-from gyrovib.api.prepare import (
+from gyrovib.api.datasheet.spec_bounds import datasheet_bounds
+from gyrovib.api.evaluation.results import BoundsResult
+from gyrovib.api.study.convert import bound_factors
+from gyrovib.api.study.prepare import (
     TINY,
     Prepared,
     check_bounds,
     float_guard,
     overflow_problem,
 )
-from gyrovib.api.results import BoundsResult
-from gyrovib.api.study import Study
-from gyrovib.catalog.loader import Catalog
+from gyrovib.api.study.study import Study
+from gyrovib.catalog.loader import Catalog, CatalogSource
 from gyrovib.core.analysis import METHODS
 from gyrovib.core.synthesis import (
     DEFAULT_R,
@@ -55,32 +56,7 @@ def resolve_allocation(
     constants and therefore refuses any other allocation. Shares so unequal
     that one underflows floating point are refused.
     """
-    where = "--allocation"
-    source = None
-    if allocation is None:
-        chosen = catalog.allocation
-        if catalog.allocation is not None:
-            source = next((s for s in catalog.sources if s.model.allocation is not None), None)
-            where = f"the 'allocation:' section of {source.name}" if source else "the catalogue"
-    elif isinstance(allocation, Allocation) or hasattr(allocation, "r"):
-        chosen = cast(Allocation, allocation)
-    else:
-        values = [float(x) for x in allocation]
-        if not all(math.isfinite(x) and x > 0 for x in values):
-            raise OptionError("an allocation's r, w and v must be positive and finite")
-        if len(values) == 1:
-            chosen = Allocation(r=values[0])
-        elif len(values) in (9, 10):
-            n_w = len(values) - 4
-            chosen = Allocation(r=values[0], w=tuple(values[1:1 + n_w]),
-                                v=tuple(values[1 + n_w:]))
-        else:
-            raise OptionError(
-                "an allocation is r alone, 9 numbers r,w1,...,w5,v1,v2,v3 or 10 numbers "
-                f"r,w1,...,w6,v1,v2,v3 (w6: the g² term); got {len(values)}"
-            )
-    if chosen is None:
-        chosen = Allocation()
+    chosen, where, source = _chosen(catalog, allocation)
     if method == "paper":
         if not _is_default(chosen):
             raise OptionError(
@@ -93,6 +69,43 @@ def resolve_allocation(
         constants = allocation_constants(chosen.r, chosen.w, chosen.v)
     except ValueError as exc:
         raise OptionError(f"allocation: {exc}") from None
+    _check_shares(constants, where, source)
+    return constants
+
+
+def _chosen(catalog: Catalog, allocation: Allocation | Sequence[float] | None,
+            ) -> tuple[Allocation, str, CatalogSource | None]:
+    """The allocation that applies, where it was given (for messages), and the
+    catalogue file that gave it (None: the option, or the default)."""
+    if allocation is None:
+        if catalog.allocation is None:
+            return Allocation(), "--allocation", None
+        source = next((s for s in catalog.sources if s.model.allocation is not None), None)
+        where = f"the 'allocation:' section of {source.name}" if source else "the catalogue"
+        return catalog.allocation, where, source
+    if isinstance(allocation, Allocation) or hasattr(allocation, "r"):
+        return cast(Allocation, allocation), "--allocation", None
+    return _from_numbers([float(x) for x in allocation]), "--allocation", None
+
+
+def _from_numbers(values: list[float]) -> Allocation:
+    """r alone, or r, w1..w5[, w6], v1..v3."""
+    if not all(math.isfinite(x) and x > 0 for x in values):
+        raise OptionError("an allocation's r, w and v must be positive and finite")
+    if len(values) == 1:
+        return Allocation(r=values[0])
+    if len(values) in (9, 10):
+        n_w = len(values) - 4
+        return Allocation(r=values[0], w=tuple(values[1:1 + n_w]), v=tuple(values[1 + n_w:]))
+    raise OptionError(
+        "an allocation is r alone, 9 numbers r,w1,...,w5,v1,v2,v3 or 10 numbers "
+        f"r,w1,...,w6,v1,v2,v3 (w6: the g² term); got {len(values)}"
+    )
+
+
+def _check_shares(constants: AllocationConstants, where: str,
+                  source: CatalogSource | None) -> None:
+    """Refuse shares so unequal that one underflows floating point."""
     shares = np.concatenate([constants.alpha, constants.beta, [constants.k3],
                              constants.extra_weights[:1] * constants.c_additive
                              / math.hypot(float(np.linalg.norm(constants.weights)),
@@ -104,13 +117,12 @@ def resolve_allocation(
         if source is not None:
             raise GyrovibError(source.problem(message, ("allocation",)))
         raise OptionError(message)
-    return constants
 
 
 def check_vre_bound(vre: FloatArray | None, prepared: Prepared) -> None:
     """Refuse a VRE bound (docs/model.md section 8) that left floating-point range.
 
-    Like :func:`~gyrovib.api.prepare.check_bounds`: +inf (no linear
+    Like :func:`~gyrovib.api.study.prepare.check_bounds`: +inf (no linear
     vibration) or a positive normal number; anything else comes from an
     overflowed ⟨a_j²⟩ or an underflowed share.
     """
@@ -174,7 +186,8 @@ def bounds_of(study: Study, *, method: str = "exact", budget: float, unit: str =
               range_: float | None = None, nl_fit: str = "least-squares",
               nl_measure: str = "max", nl_of: str = "range",
               spec_weights: tuple[float, float] = (1.0, 1.0)) -> BoundsResult:
-    """:func:`bounds` as a view of a :class:`~gyrovib.api.study.Study` (its profiles alone)."""
+    """:func:`bounds` as a view of a :class:`~gyrovib.api.study.study.Study` (its profiles
+    alone)."""
     check_method_budget(method, budget)
     unit = units.canonical_unit(unit)
     constants = resolve_allocation(study.catalog, method, allocation)
@@ -182,8 +195,6 @@ def bounds_of(study: Study, *, method: str = "exact", budget: float, unit: str =
         prepared, _, scaled = profile_bounds(study, method, budget, constants, unit)
         datasheet = None
         if range_ is not None:
-            from gyrovib.api.spec_bounds import datasheet_bounds
-
             multipliers = prepared.groups[0].multipliers[method] if prepared.groups else None
             datasheet = datasheet_bounds(multipliers, len(prepared.profiles), budget, range_,
                                          unit, nl_fit, nl_measure, nl_of, spec_weights)

@@ -2,7 +2,7 @@
 
 Each segment s is a profile p_s flown for T_s seconds at the carrier rate
 Ω_K,s (the segment's ``rate``, else the profile's own), in the sensor axes of
-the mission's placement (:func:`gyrovib.api.placement.place_profile`). The
+the mission's placement (:func:`gyrovib.api.placement.placement.place_profile`). The
 distinct (placement, profile, rate) triples are evaluated together in one
 :func:`gyrovib.api.analyze` call (so a profile flown in several segments is
 prepared once per rate), and :func:`gyrovib.core.mission.totals` gives the
@@ -25,10 +25,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api import spec_bounds
+from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.mission_results import MissionResult, MissionRow, SegmentResult
-from gyrovib.api.placement import place_profile
-from gyrovib.api.study import Study
+from gyrovib.api.placement.placement import place_profile
+from gyrovib.api.study.study import Study
 from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry
 from gyrovib.core import placement as placements
 from gyrovib.core.mission import ANGLE_UNITS, combined_functional, totals
@@ -156,11 +156,11 @@ def mission(
     sensor that passes on its published figures while an unpublished one can
     decide it in some segment (the VRE under linear vibration; m31, m32 under
     cross-axis vibration correlated with x3) is ``unverified`` there, not
-    passing (:func:`gyrovib.api.spec_bounds.is_unverified`), unless
+    passing (:func:`gyrovib.api.datasheet.spec_bounds.is_unverified`), unless
     ``assume_unknown="zero"``.
     """
     from gyrovib.api.commands.analyze import analysis_of
-    from gyrovib.api.study import check_peak_factor
+    from gyrovib.api.study.study import check_peak_factor
 
     if budget is not None and angle_budget is not None:
         raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
@@ -320,11 +320,11 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
 
     One :func:`~gyrovib.core.envelope.worst_case` per sensor group and run, on the
     mission's functional Σ T_s c_s / Σ T_s and g² moment Σ T_s S_s / Σ T_s; the
-    unknown figures are :func:`gyrovib.api.spec_bounds.unknown_figures_at` of the
+    unknown figures are :func:`gyrovib.api.datasheet.spec_bounds.unknown_figures_at` of the
     run's segments, merged. The datasheet sensors are ``study`` narrowed to them (its
     vibrations computed once for the analysis and for this).
     """
-    from gyrovib.api import specs
+    from gyrovib.api.datasheet import specs
 
     out: dict[tuple[int, int], float] = {}
     unknown: dict[tuple[int, int], tuple[str, ...]] = {}
@@ -338,7 +338,7 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     rows = [i for i, src in enumerate(sources) if src == "specs"]
     if not rows:
         return out, unknown
-    from gyrovib.api.prepare import float_guard
+    from gyrovib.api.study.prepare import float_guard
     from gyrovib.core.envelope import worst_case
 
     where = {e.sensor.id: i for i, e in enumerate(study.sensors)}

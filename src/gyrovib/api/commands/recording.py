@@ -365,11 +365,11 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
     each histogram bin of Ω_K3, the bins weighted by their time, exactly as
     ``gyrovib mission`` computes it on the written YAML.
     """
-    from gyrovib.api.convert import coefficient_matrix, sensor_ranges
-    from gyrovib.api.entries import select_entries
-    from gyrovib.api.linear import g2_matrix
-    from gyrovib.api.prepare import input_response
-    from gyrovib.api.specs import figures, is_spec
+    from gyrovib.api.datasheet.specs import figures, is_spec
+    from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
+    from gyrovib.api.study.entries import select_entries
+    from gyrovib.api.study.linear import g2_matrix
+    from gyrovib.api.study.prepare import input_response
     from gyrovib.core.recording import recorded_error
     from gyrovib.core.transmissibility import as_table
 

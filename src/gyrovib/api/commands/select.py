@@ -2,32 +2,44 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api import spec_bounds, specs
 from gyrovib.api.commands.bounds import (
     catalog_unit,
     check_method_budget,
     profile_bounds,
     resolve_allocation,
 )
-from gyrovib.api.convert import bound_factors
-from gyrovib.api.evaluate import errors, saturation, worst_case
-from gyrovib.api.prepare import (
+from gyrovib.api.datasheet import spec_bounds, specs
+from gyrovib.api.evaluation.checks import PASS_RTOL as PASS_RTOL
+from gyrovib.api.evaluation.checks import (
+    BoundVerdict,
+    CoefficientChecks,
+    at_most,
+)
+from gyrovib.api.evaluation.evaluate import (
+    Saturation,
+    bound_verdicts,
+    errors,
+    phase_worst,
+    saturation,
+    worst_case,
+)
+from gyrovib.api.evaluation.results import Limit, SelectionResult
+from gyrovib.api.study.convert import bound_factors
+from gyrovib.api.study.prepare import (
     Group,
     Prepared,
     check_bounds,
     check_finite,
     float_guard,
-    without,
 )
-from gyrovib.api.reasons import saturation_reasons
-from gyrovib.api.results import Limit, SelectionResult
-from gyrovib.api.study import Study, check_peak_factor
+from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.api.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
@@ -42,73 +54,46 @@ from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import COEFFICIENTS
 from gyrovib.core.linear import effective_vre, mean_square
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
-from gyrovib.core.synthesis import BOUNDED, coefficient_bounds
+from gyrovib.core.synthesis import BOUNDED, AllocationConstants, coefficient_bounds
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 from gyrovib.models import Allocation
+from gyrovib.presentation.reasons import saturation_reasons
 
 CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")
 #: What an unpublished datasheet figure is taken as (:data:`spec_bounds.ASSUMPTIONS`).
 ASSUMPTIONS = spec_bounds.ASSUMPTIONS
-#: Relative slack of every ≤ comparison: a value at its bound, up to rounding
-#: (e.g. a bound printed in deg/h and read back), passes.
-PASS_RTOL = 1e-9
 
 
-def _at_most(value: FloatArray, bound: FloatArray | float) -> NDArray[np.bool_]:
-    out: NDArray[np.bool_] = value <= np.asarray(bound) * (1.0 + PASS_RTOL)
-    return out
-
-
-def _ratio(value: FloatArray, bound: FloatArray) -> FloatArray:
-    """value/bound: 0 for a zero value or an infinite bound, +inf for a zero bound."""
-    out: FloatArray = np.zeros(np.broadcast_shapes(value.shape, bound.shape))
-    v = np.broadcast_to(value, out.shape)
-    b = np.broadcast_to(bound, out.shape)
-    q = v / b
-    return np.where(v == 0, 0.0, np.where(b == 0, np.inf, np.where(np.isinf(b), 0.0, q)))
-
-
-#: Names of the bound checks: the coefficients of :data:`BOUNDED`, then the VRE.
-CHECKS: tuple[str, ...] = (*BOUNDED, "vre")
-
-
-def _limits(criterion: str, failing: NDArray[np.intp], ratios: FloatArray, rms: FloatArray,
-            budget: float, total: FloatArray | None = None,
-            spec_ratios: dict[int, dict[str, FloatArray]] | None = None,
-            saturated: NDArray[np.bool_] | None = None,
-            over: FloatArray | None = None) -> dict[int, Limit]:
+def _limits(criterion: str, failing: NDArray[np.intp], verdicts: Sequence[BoundVerdict],
+            rms: FloatArray, budget: float, total: FloatArray,
+            found: Saturation) -> dict[int, Limit]:
     """Per failing sensor, the largest value/bound ratio (or Δ_V(RMS)/Δ*) that counts.
 
-    ``ratios`` is indexed (sensor, profile, check of :data:`CHECKS`).
-    ``spec_ratios`` (spec-form sensors): their datasheet figures' ratios to
-    their spec bounds (``nonlinearity``, ``vre``), replacing the coefficient
-    ratios; ``total``: |Δ_V| for the ``worst`` criterion. Saturation comes
-    first: a sensor that saturates somewhere is limited by its range
-    (``"saturated"``, ratio reach/range ``over``, the worst profile).
+    Under ``bounds`` and ``both`` each form's verdict names its own candidates (a
+    coefficient sensor its worst check, a datasheet sensor its nonlinearity and VRE
+    against their spec bounds); ``total``: |Δ_V| for the ``worst`` criterion.
+    Saturation comes first: a sensor that saturates somewhere is limited by its
+    range (``"saturated"``, ratio reach/range, the worst profile).
     """
     limits: dict[int, Limit] = {}
-    own = spec_ratios or {}
+    over = found.reach / found.ranges[:, None]
+    where = {int(i): (v, r) for v in verdicts for r, i in enumerate(v.rows.tolist())}
     for i in failing.tolist():
-        if saturated is not None and over is not None and saturated[i].any():
-            js = np.flatnonzero(saturated[i])
+        if found.saturated[i].any():
+            js = np.flatnonzero(found.saturated[i])
             j = int(js[np.argmax(over[i, js])])
             limits[int(i)] = Limit("saturated", j, float(over[i, j]))
             continue
         candidates: list[Limit] = []
-        if criterion in ("bounds", "both") and i in own:
-            for name, ratio in own[i].items():
-                jr = int(np.argmax(ratio))
-                candidates.append(Limit(name, jr, float(ratio[jr])))
-        elif criterion in ("bounds", "both"):
-            jb = np.unravel_index(int(np.argmax(ratios[i])), ratios[i].shape)
-            j, b = int(jb[0]), int(jb[1])
-            candidates.append(Limit(CHECKS[b], j, float(ratios[i, j, b])))
+        if criterion in ("bounds", "both"):
+            verdict, row = where[int(i)]
+            candidates.extend(verdict.limits(row))
         if criterion in ("rms", "both"):
             jr = int(np.argmax(rms[i]))
             candidates.append(Limit("rms", jr, float(rms[i, jr] / budget)))
-        if criterion == "worst" and total is not None:
+        if criterion == "worst":
             jw = int(np.argmax(total[i]))
             candidates.append(Limit("worst", jw, float(total[i, jw] / budget)))
         limits[int(i)] = max(candidates, key=lambda c: c.ratio)
@@ -204,7 +189,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
                  yield_target: float | None = None,
                  seed: int = DEFAULT_SEED,
                  draws: int = DEFAULT_DRAWS) -> SelectionResult:
-    """:func:`select` as a view of a :class:`~gyrovib.api.study.Study`."""
+    """:func:`select` as a view of a :class:`~gyrovib.api.study.study.Study`."""
     _check_options(method, budget, criterion, require, assume_unknown, yield_target, seed,
                    draws)
     unit = units.canonical_unit(unit)
@@ -212,111 +197,49 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
     with float_guard():
         _, _, alone = profile_bounds(study, method, budget, constants, unit)
         prepared = study.prepare(methods=(method,), peak_factor=peak_factor)
-        coeffs = prepared.coefficients
-        n_s, n_p, n_b = len(prepared.sensors), len(prepared.profiles), len(BOUNDED)
-        limits_deg = np.full((n_s, n_p, n_b), np.inf)
-        vre_bound_deg = np.full((n_s, n_p), np.inf)
-        for group in prepared.groups:
-            cb = coefficient_bounds(group.multipliers[method], budget, constants)
-            limits_deg[group.index] = cb.stacked()[None]
-            if cb.vre is not None:
-                vre_bound_deg[group.index] = cb.vre[None]
-        parts = errors(study, prepared, method)
-        rms, total = parts["rms"], np.abs(parts["total"])
-        spec = worst_case(study, prepared, method)
-        if method == "exact":
-            for group in prepared.groups:
-                _worst_phase_totals(prepared, group, total, spec)
+        limits_deg, vre_bound_deg = _coefficient_limits(prepared, method, budget, constants)
+        parts, total, spec = _errors(study, prepared, method)
+        rms = parts["rms"]
         # a datasheet sensor saturates against its datasheet range (specs.range)
         found = saturation(prepared)
-        reach, ranges, saturated = found.reach, found.ranges, found.saturated
-        vre_deg = _effective_vre(prepared)
-        own = None
-        if spec is not None:
-            own = spec_bounds.spec_checks(prepared, spec, method, budget, spec_weights, PASS_RTOL)
-        check_finite([rms, total, vre_deg], prepared)
-        check_bounds(limits_deg, prepared)
-        factors = np.array([bound_factors(unit)[c] for c in BOUNDED])
-        values_deg = np.abs(coeffs[:, [COEFFICIENTS.index(c) for c in BOUNDED]])[:, None, :]
-        values_deg = np.broadcast_to(values_deg, (n_s, n_p, n_b))
-        values, limits_out = values_deg * factors, limits_deg * factors
-        check_finite([values], prepared, what=f"a coefficient in {unit}")
-        check_bounds(limits_out, prepared)
-        check_pass = _at_most(values_deg, limits_deg)
-        vre_pass = _at_most(vre_deg, vre_bound_deg)
-        bounds_pass = np.all(check_pass, axis=-1) & vre_pass
-        if spec is not None and own is not None:
-            bounds_pass[spec.index] = own.nl_pass & own.vre_pass
-        rms_pass = _at_most(rms, budget)
-        worst_pass = _at_most(total, budget)
+        checks = CoefficientChecks(_coefficient_values(prepared), limits_deg,
+                                   _effective_vre(prepared), vre_bound_deg)
+        own = spec_bounds.checks_of(prepared, spec, method, budget, spec_weights, PASS_RTOL)
+        values, limits_out = _checked(prepared, checks, rms, total, unit)
+        verdicts = bound_verdicts(prepared, checks, own)
+        tests = {"bounds": _joined(prepared, verdicts, lambda v: v.passed, False),
+                 "rms": at_most(rms, budget), "worst": at_most(total, budget)}
         # saturation fails a sensor whatever the criterion (docs/model.md section 9)
-        passed = {"bounds": bounds_pass, "rms": rms_pass, "worst": worst_pass,
-                  "both": bounds_pass & rms_pass}[criterion] & ~saturated
+        passed = _decided(criterion, tests) & ~found.saturated
         unknown, questions = _unknowns(prepared, spec, own, method, criterion, passed,
                                        budget, rms, total, unit)
         _unknown_g2(prepared, criterion, passed, budget, rms, total, vre_bound_deg, unit,
                     unknown, questions)
-        unverified = np.zeros(passed.shape, dtype=bool)
-        for (i, j), names in unknown.items():
-            if spec_bounds.is_unverified(bool(passed[i, j]), names, assume_unknown):
-                unverified[i, j] = True
-                passed[i, j] = False
-
+        unverified = _unverified(passed, unknown, assume_unknown)
         yields = None if yield_target is None else lot_yields(
-            prepared, parts, method, criterion, budget, limits_deg, vre_pass, yield_target,
-            seed=seed, draws=draws, rtol=PASS_RTOL)
+            prepared, parts, method, criterion, budget, limits_deg, checks.vre_pass,
+            yield_target, seed=seed, draws=draws, rtol=PASS_RTOL)
         if yields is not None:
-            passed = judge(yields, passed, saturated)
+            passed = judge(yields, passed, found.saturated)
             open_lots(yields, passed, unverified, unknown, questions, assume_unknown)
         sensor_pass = np.all(passed, axis=1)
         # a sensor that fails somewhere on its published figures (not only unverified)
         fails = np.any(~passed & ~unverified, axis=1)
-        open_ = ~sensor_pass & ~fails
-        judged = rms.copy() if criterion != "worst" else total.copy()
-        if spec is not None:
-            judged[spec.index] = total[spec.index]
-        margin = np.where(judged > 0, budget / np.where(judged > 0, judged, 1.0), np.inf)
-        worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
-        # an unverified sensor is not ranked on its margin: it follows the others
-        ranking = tuple(int(i) for i in sorted(range(n_s),
-                                               key=lambda i: (bool(open_[i]), -worst[i], i)))
-        ratios = np.concatenate([_ratio(values_deg, limits_deg),
-                                 _ratio(vre_deg, vre_bound_deg)[..., None]], axis=-1)
-        spec_ratios = None
-        if spec is not None and own is not None:
-            spec_ratios = {
-                int(i): {"nonlinearity": _ratio(own.nl_value[k], own.nl_bound[k]),
-                         "vre": _ratio(np.nan_to_num(own.vre_value[k]), own.vre_bound[k])}
-                for k, i in enumerate(spec.index.tolist())}
-        limits = _limits(criterion, np.nonzero(fails)[0], ratios, rms, budget, total,
-                         spec_ratios, saturated, reach / ranges[:, None])
-        # the margin of the test that decides each cell, and the tests that disagree
-        largest = ratios.max(axis=-1) if n_p else np.zeros((n_s, 0))
-        for i, own_ratios in (spec_ratios or {}).items():
-            largest[i] = np.maximum(own_ratios["nonlinearity"], own_ratios["vre"])
-        bounds_margin = np.where(largest > 0, 1.0 / np.where(largest > 0, largest, 1.0),
-                                 np.inf)
-        direct = {"rms": _inverse(rms, budget), "worst": _inverse(total, budget)}
-        criterion_margin = {"bounds": bounds_margin, "rms": direct["rms"],
-                            "worst": direct["worst"],
-                            "both": np.minimum(bounds_margin, direct["rms"])}[criterion]
-        disagrees = _disagreements(criterion, passed | unverified, saturated,
-                                   {"bounds": bounds_pass, "rms": rms_pass,
-                                    "worst": worst_pass})
-        reasons = saturation_reasons(saturated, reach, ranges, peak_factor, unit)
+        judged = _joined(prepared, verdicts, lambda v: v.judged(criterion, rms, total), 0.0)
+        margin, worst, ranking = _ranking(judged, budget, ~sensor_pass & ~fails)
+        limits = _limits(criterion, np.nonzero(fails)[0], verdicts, rms, budget, total, found)
+        largest = _joined(prepared, verdicts, lambda v: v.largest, 0.0)
+        disagrees = _disagreements(criterion, passed | unverified, found.saturated, tests)
+        reasons = saturation_reasons(found.saturated, found.reach, found.ranges, peak_factor,
+                                     unit)
         if yields is not None:
-            limits = yield_limits(yields, limits, sensor_pass, saturated)
+            limits = yield_limits(yields, limits, sensor_pass, found.saturated)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
-    fields = spec_bounds.selection_fields(n_s, n_p, spec, own, total, unit,
-                                          (vre_deg, vre_bound_deg, vre_pass))
-    if assume_unknown != "zero" and any("vre" in names for names in unknown.values()):
-        shown = np.array(fields["vre_pass"], dtype=bool)  # not shown to pass: not known
-        value = np.array(fields["vre_value"], dtype=float)  # nor shown as 0
-        for (i, j), names in unknown.items():
-            if "vre" in names:
-                shown[i, j] = False
-                value[i, j] = np.nan
-        fields["vre_pass"], fields["vre_value"] = shown, value
+    fields = spec_bounds.selection_fields(len(prepared.sensors), len(prepared.profiles), spec,
+                                          own, total, unit,
+                                          (checks.vre, vre_bound_deg, checks.vre_pass))
+    if assume_unknown != "zero":
+        _unknown_vre_shown(fields, unknown)
     s = units.scale(unit)
     return SelectionResult(
         method=method,
@@ -330,11 +253,11 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         profile_bounds=alone,
         values=values,
         bounds=limits_out,
-        check_pass=check_pass,
+        check_pass=checks.check_pass,
         rms=rms / s,
         margin=margin,
-        bounds_pass=bounds_pass,
-        rms_pass=rms_pass,
+        bounds_pass=tests["bounds"],
+        rms_pass=tests["rms"],
         passed=passed,
         sensor_pass=sensor_pass,
         worst_margin=worst,
@@ -343,11 +266,11 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         requirement_met=met,
         allocation=constants,
         **fields,
-        saturated=saturated,
+        saturated=found.saturated,
         reasons=reasons,
         peak_factor=peak_factor,
         unverified=unverified,
-        criterion_margin=criterion_margin,
+        criterion_margin=_criterion_margin(criterion, largest, rms, total, budget),
         disagrees=disagrees,
         unknown=unknown,
         questions=questions,
@@ -357,6 +280,122 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         yields=yields,
         notes=notes(prepared, yield_target, yields),
     )
+
+
+def _coefficient_limits(prepared: Prepared, method: str, budget: float,
+                        constants: AllocationConstants) -> tuple[FloatArray, FloatArray]:
+    """Each sensor's coefficient bounds, eq. (23)/(25), (sensors, profiles, BOUNDED), and
+    its ``vre`` bound (sensors, profiles), deg/s, under its own response."""
+    n_s, n_p = len(prepared.sensors), len(prepared.profiles)
+    limits = np.full((n_s, n_p, len(BOUNDED)), np.inf)
+    vre_bound = np.full((n_s, n_p), np.inf)
+    for group in prepared.groups:
+        cb = coefficient_bounds(group.multipliers[method], budget, constants)
+        limits[group.index] = cb.stacked()[None]
+        if cb.vre is not None:
+            vre_bound[group.index] = cb.vre[None]
+    return limits, vre_bound
+
+
+def _errors(study: Study, prepared: Prepared, method: str,
+            ) -> tuple[dict[str, FloatArray], FloatArray, specs.SpecResults | None]:
+    """Every sensor's error terms (deg/s); |Δ_V|, under ``exact`` at the worst phases of
+    ``phase: worst`` orders; and the datasheet sensors' worst case."""
+    parts = errors(study, prepared, method)
+    total = np.abs(parts["total"])
+    spec = worst_case(study, prepared, method)
+    if method == "exact":
+        for group in prepared.groups:
+            _worst_phase_totals(prepared, group, total)
+    return parts, total, spec
+
+
+def _coefficient_values(prepared: Prepared) -> FloatArray:
+    """|coefficient| of :data:`BOUNDED` per (sensor, profile), deg/s powers."""
+    n_s, n_p = len(prepared.sensors), len(prepared.profiles)
+    values = np.abs(prepared.coefficients[:, [COEFFICIENTS.index(c) for c in BOUNDED]])
+    out: FloatArray = np.broadcast_to(values[:, None, :], (n_s, n_p, len(BOUNDED)))
+    return out
+
+
+def _checked(prepared: Prepared, checks: CoefficientChecks, rms: FloatArray,
+             total: FloatArray, unit: str) -> tuple[FloatArray, FloatArray]:
+    """The coefficients and their bounds in ``unit``, every array checked finite first."""
+    check_finite([rms, total, checks.vre], prepared)
+    check_bounds(checks.limits, prepared)
+    factors = np.array([bound_factors(unit)[c] for c in BOUNDED])
+    values, limits = checks.values * factors, checks.limits * factors
+    check_finite([values], prepared, what=f"a coefficient in {unit}")
+    check_bounds(limits, prepared)
+    return values, limits
+
+
+def _joined(prepared: Prepared, verdicts: Sequence[BoundVerdict],
+            take: Callable[[BoundVerdict], NDArray[Any]], fill: float | bool) -> NDArray[Any]:
+    """One (sensors, profiles) array of what ``take`` reads from each form's verdict."""
+    out = np.full((len(prepared.sensors), len(prepared.profiles)), fill)
+    for verdict in verdicts:
+        out[verdict.rows] = take(verdict)
+    return out
+
+
+def _decided(criterion: str, tests: dict[str, NDArray[np.bool_]]) -> NDArray[np.bool_]:
+    """The verdict of ``criterion`` (``both``: bounds and rms)."""
+    out = np.ones_like(tests["bounds"])
+    for name in DECIDED_BY[criterion]:
+        out = out & tests[name]
+    return out
+
+
+def _unverified(passed: NDArray[np.bool_], unknown: dict[tuple[int, int], tuple[str, ...]],
+                assume_unknown: str) -> NDArray[np.bool_]:
+    """The cells that pass on their published figures but whose unknown ones can still
+    decide them (docs/model.md section 11); they no longer pass (``passed`` changed)."""
+    unverified = np.zeros(passed.shape, dtype=bool)
+    for (i, j), names in unknown.items():
+        if spec_bounds.is_unverified(bool(passed[i, j]), names, assume_unknown):
+            unverified[i, j] = True
+            passed[i, j] = False
+    return unverified
+
+
+def _ranking(judged: FloatArray, budget: float, open_: NDArray[np.bool_],
+             ) -> tuple[FloatArray, FloatArray, tuple[int, ...]]:
+    """The margins Δ*/x per cell, each sensor's worst, and the ranking by it (an
+    unverified sensor, ``open_``, is not ranked on its margin: it follows the others)."""
+    n_s, n_p = judged.shape
+    margin = np.where(judged > 0, budget / np.where(judged > 0, judged, 1.0), np.inf)
+    worst = margin.min(axis=1) if n_p else np.full(n_s, np.inf)
+    ranking = tuple(int(i) for i in sorted(range(n_s),
+                                           key=lambda i: (bool(open_[i]), -worst[i], i)))
+    return margin, worst, ranking
+
+
+def _criterion_margin(criterion: str, largest: FloatArray, rms: FloatArray,
+                      total: FloatArray, budget: float) -> FloatArray:
+    """The margin of the test that decides each cell: 1/largest ratio for the bounds,
+    Δ*/x for the direct tests (``both``: the lesser)."""
+    bounds_margin = np.where(largest > 0, 1.0 / np.where(largest > 0, largest, 1.0), np.inf)
+    margins = {"bounds": bounds_margin, "rms": _inverse(rms, budget),
+               "worst": _inverse(total, budget)}
+    out: FloatArray = margins[DECIDED_BY[criterion][0]]
+    for name in DECIDED_BY[criterion][1:]:
+        out = np.minimum(out, margins[name])
+    return out
+
+
+def _unknown_vre_shown(fields: dict[str, Any],
+                       unknown: dict[tuple[int, int], tuple[str, ...]]) -> None:
+    """A VRE that is not known is neither shown to pass nor shown as 0."""
+    if not any("vre" in names for names in unknown.values()):
+        return
+    shown = np.array(fields["vre_pass"], dtype=bool)
+    value = np.array(fields["vre_value"], dtype=float)
+    for (i, j), names in unknown.items():
+        if "vre" in names:
+            shown[i, j] = False
+            value[i, j] = np.nan
+    fields["vre_pass"], fields["vre_value"] = shown, value
 
 
 def _inverse(value: FloatArray, budget: float) -> FloatArray:
@@ -419,10 +458,7 @@ def _unknowns(prepared: Prepared, spec: specs.SpecResults | None,
             unknown[(i, j)] = names
             if not passed[i, j]:
                 continue  # it fails there on its published figures alone
-            left_worst = max(budget - float(total[i, j]), 0.0)
-            left_rms = float(np.sqrt(max(budget**2 - float(rms[i, j]) ** 2, 0.0)))
-            left = {"bounds": left_worst, "worst": left_worst, "rms": left_rms,
-                    "both": min(left_worst, left_rms)}[criterion]
+            left = _left(criterion, budget, float(rms[i, j]), float(total[i, j]))
             for name in names:
                 if name == "vre":
                     value = left / float(figs.mean_square[j]) / s
@@ -433,23 +469,39 @@ def _unknowns(prepared: Prepared, spec: specs.SpecResults | None,
                     value = left / c * factors[name]
                 if name not in limits or value < limits[name][0]:
                     limits[name] = (value, j)
-        asks = []
-        for name in spec_bounds.UNKNOWN_FIGURES:
-            if name not in limits:
-                continue
-            value, j = limits[name]
-            profile = prepared.profiles[j].profile.id
-            if name == "vre":
-                asks.append(f"VRE (vibration rectification, {unit}/g²): at most {value:.4g} "
-                            f"passes under {profile}")
-            else:
-                other = "m32" if name == "m31" else "m31"
-                asks.append(f"{name} (multiplicative cross-axis coefficient, ({rate_unit})^-1): "
-                            f"|{name}| at most {value:.4g} passes under {profile} "
-                            f"(with {other} = 0)")
+        asks = _asks(limits, prepared, unit, rate_unit)
         if asks:
-            questions[i] = tuple(asks)
+            questions[i] = asks
     return unknown, questions
+
+
+def _left(criterion: str, budget: float, rms: float, total: float) -> float:
+    """What is left of Δ* beside the worst case: |Δ_V| for ``worst`` (and ``bounds``),
+    in quadrature beside the RMS bound for ``rms``; ``both``: the lesser."""
+    left_worst = max(budget - total, 0.0)
+    left_rms = float(np.sqrt(max(budget**2 - rms**2, 0.0)))
+    return {"bounds": left_worst, "worst": left_worst, "rms": left_rms,
+            "both": min(left_worst, left_rms)}[criterion]
+
+
+def _asks(limits: dict[str, tuple[float, int]], prepared: Prepared, unit: str,
+          rate_unit: str) -> tuple[str, ...]:
+    """The questions for a vendor: per unknown figure, its largest value that passes."""
+    asks = []
+    for name in spec_bounds.UNKNOWN_FIGURES:
+        if name not in limits:
+            continue
+        value, j = limits[name]
+        profile = prepared.profiles[j].profile.id
+        if name == "vre":
+            asks.append(f"VRE (vibration rectification, {unit}/g²): at most {value:.4g} "
+                        f"passes under {profile}")
+        else:
+            other = "m32" if name == "m31" else "m31"
+            asks.append(f"{name} (multiplicative cross-axis coefficient, ({rate_unit})^-1): "
+                        f"|{name}| at most {value:.4g} passes under {profile} "
+                        f"(with {other} = 0)")
+    return tuple(asks)
 
 
 def _unknown_g2(prepared: Prepared, criterion: str, passed: NDArray[np.bool_], budget: float,
@@ -505,27 +557,14 @@ def _effective_vre(prepared: Prepared) -> FloatArray:
     return effective_vre(prepared.g2, moments)
 
 
-def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray,
-                        spec: specs.SpecResults | None) -> None:
+def _worst_phase_totals(prepared: Prepared, group: Group, total: FloatArray) -> None:
     """|Δ_V| maximised over the phases of ``phase: worst`` orders (docs/model.md section 10).
 
     The synthesis multipliers take each moment at its largest magnitude, which
     fixes their signs; the direct test |Δ_V| ≤ Δ* needs, as ``analyze`` does,
-    the maximum of |Δ_V| over the free phases per sensor. Overwrites those
-    profiles' columns of ``total`` (deg/s).
+    the maximum of |Δ_V| over the free phases per sensor (each form searches its
+    own rows, :func:`~gyrovib.api.evaluation.evaluate.phase_worst`). Overwrites
+    those profiles' columns of ``total`` (deg/s).
     """
-    from gyrovib.core.phases import worst_phase_error
-
-    # a datasheet row is the worst case over its envelope already
-    idx = group.index if spec is None else without(group.index, spec.index)
-    if idx.size == 0:
-        return
-    for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
-        if not any(g.worst.any() for g in locked):
-            continue
-        linear = prepared.linear[j] if prepared.linear else None
-        found = worst_phase_error(prepared.coefficients[idx], v, locked,
-                                  float(prepared.rates[j, 2]),
-                                  acceleration=None if linear is None else linear.moments(),
-                                  g2_sensitivity=None if linear is None else prepared.g2[idx])
+    for j, idx, found in phase_worst(prepared, group):
         total[idx, j] = np.abs(found.error.total)

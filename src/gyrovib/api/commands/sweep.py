@@ -7,12 +7,12 @@ from collections.abc import Sequence
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api import specs
-from gyrovib.api.convert import error_arrays, to_unit
-from gyrovib.api.evaluate import ERROR_PARTS, errors, saturation, sources, worst_case
-from gyrovib.api.prepare import check_finite, float_guard
-from gyrovib.api.results import SweepResult
-from gyrovib.api.study import Study, check_peak_factor
+from gyrovib.api.datasheet import specs
+from gyrovib.api.evaluation.evaluate import ERROR_PARTS, errors, saturation, sources, worst_case
+from gyrovib.api.evaluation.results import SweepResult
+from gyrovib.api.study.convert import error_arrays, to_unit
+from gyrovib.api.study.prepare import check_finite, float_guard
+from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS, VibrationError
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
@@ -112,7 +112,7 @@ def _rates(rates: Sequence[float] | FloatArray) -> FloatArray:
 def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "deg/s",
              peak_factor: float = DEFAULT_PEAK_FACTOR,
              methods: Sequence[str] = METHODS, rms_only: bool = False) -> SweepResult:
-    """:func:`sweep` as a view of a :class:`~gyrovib.api.study.Study`.
+    """:func:`sweep` as a view of a :class:`~gyrovib.api.study.study.Study`.
 
     ``methods``: the methods evaluated; a method left out (the report draws
     one) has NaN in its arrays — unknown, not zero. ``rms_only``: datasheet

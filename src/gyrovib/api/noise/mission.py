@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
-from gyrovib.api import spec_bounds
+from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.commands.mission import mission as vibration_mission
 from gyrovib.api.mission_results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import budget

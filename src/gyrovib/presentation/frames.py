@@ -35,8 +35,15 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from gyrovib._version import __version__
+from gyrovib.core.analysis import ALL_TERMS as JSON_TERMS
+from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
+from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
+from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 from gyrovib.errors import GyrovibError
+from gyrovib.presentation.reasons import reason
 
 if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
@@ -66,19 +73,38 @@ def column_name(kind: str, path: str) -> str:
         return "passed"
     if parts[0] == "rate" and len(parts) == 2:
         return f"rate_{parts[1]}"
-    if kind == "sweep" and path == "rate":
-        return "rate_x3"
-    if kind == "analyze" and len(parts) == 2 and parts[0] in ("additive_terms",
-                                                               "multiplicative_coefficients"):
+    own = _COLUMNS.get(kind)
+    named = None if own is None else own(parts)
+    return "_".join(parts) if named is None else named
+
+
+def _sweep_column(parts: list[str]) -> str | None:
+    return "rate_x3" if parts == ["rate"] else None
+
+
+def _analyze_column(parts: list[str]) -> str | None:
+    if len(parts) == 2 and parts[0] in ("additive_terms", "multiplicative_coefficients"):
         return f"{parts[0].split('_')[0]}_{parts[1]}"
-    if kind == "bounds" and len(parts) == 2 and parts[0] in ("bounds", "parts"):
+    return None
+
+
+def _bounds_column(parts: list[str]) -> str | None:
+    if len(parts) == 2 and parts[0] in ("bounds", "parts"):
         return parts[1]
-    if kind == "bounds" and parts[0] == "spec_bounds":
+    if parts[0] == "spec_bounds":
         rest = parts[1:-1] if parts[-1] == "value" else parts[1:]
         return "spec_" + "_".join(rest)
-    if kind == "select" and len(parts) == 3 and parts[0] == "checks":
-        return f"{parts[2]}_{parts[1]}"
-    return "_".join(parts)
+    return None
+
+
+def _select_column(parts: list[str]) -> str | None:
+    return f"{parts[2]}_{parts[1]}" if len(parts) == 3 and parts[0] == "checks" else None
+
+
+#: Each command's own column names, where they differ from the key path joined by ``_``.
+_COLUMNS: dict[str, Callable[[list[str]], str | None]] = {
+    "sweep": _sweep_column, "analyze": _analyze_column, "bounds": _bounds_column,
+    "select": _select_column}
 
 
 def _named(kind: str, columns: dict[str, Any]) -> dict[str, Any]:
@@ -98,11 +124,6 @@ def _rate_columns(rates: Any, rows: Any) -> dict[str, Any]:
 
 def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
-    import numpy as np
-
-    from gyrovib.core.analysis import ALL_TERMS as JSON_TERMS
-    from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
-
     n_s, n_p = len(result.sensors), len(result.profiles)
     p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
     err = result.error
@@ -123,22 +144,9 @@ def analysis_frame(result: AnalysisResult) -> Any:
     if result.stderr is not None:
         columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
     columns["source"] = [result.source(int(i)) for i in s_idx]
-    if result.worst_coefficients is not None and result.rms_bound is not None:
-        from gyrovib.api.specs import WORST_COEFFICIENTS
-
-        worst = np.asarray(result.worst_coefficients)[s_idx, p_idx]
-        for k, name in enumerate(WORST_COEFFICIENTS):
-            columns[f"envelope.worst_coefficients.{name}"] = worst[:, k]
-        columns["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
-    if result.uncertainty is not None:  # docs/model.md section 14: NaN where not known
-        columns["uncertainty_total"] = np.asarray(result.uncertainty)[s_idx, p_idx]
-        columns["lot_mean"] = [result.is_lot(int(i)) for i in s_idx]
+    columns.update(_envelope_columns(result, s_idx, p_idx))
     columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx]
-    if result.worst_phases:
-        columns["worst_phases"] = [
-            None if (int(i), int(j)) not in result.worst_phases
-            else [dict(g) for g in result.worst_phases[(int(i), int(j))]]
-            for i, j in zip(s_idx, p_idx, strict=True)]
+    columns.update(_phase_columns(result, s_idx, p_idx))
     columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
                            for i, j in zip(s_idx, p_idx, strict=True)]
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
@@ -147,11 +155,32 @@ def analysis_frame(result: AnalysisResult) -> Any:
     return _frame(_named("analyze", columns), attrs)
 
 
+def _envelope_columns(result: AnalysisResult, s_idx: Any, p_idx: Any) -> dict[str, Any]:
+    """A datasheet sensor's worst polynomial and RMS bound (section 11); a lot's
+    uncertainty (section 14): NaN where not known."""
+    out: dict[str, Any] = {}
+    if result.worst_coefficients is not None and result.rms_bound is not None:
+        worst = np.asarray(result.worst_coefficients)[s_idx, p_idx]
+        for k, name in enumerate(WORST_COEFFICIENTS):
+            out[f"envelope.worst_coefficients.{name}"] = worst[:, k]
+        out["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
+    if result.uncertainty is not None:
+        out["uncertainty_total"] = np.asarray(result.uncertainty)[s_idx, p_idx]
+        out["lot_mean"] = [result.is_lot(int(i)) for i in s_idx]
+    return out
+
+
+def _phase_columns(result: AnalysisResult, s_idx: Any, p_idx: Any) -> dict[str, Any]:
+    """The phases found for ``phase: worst`` orders (None elsewhere), when any were."""
+    if not result.worst_phases:
+        return {}
+    return {"worst_phases": [
+        None if (int(i), int(j)) not in result.worst_phases
+        else [dict(g) for g in result.worst_phases[(int(i), int(j))]]
+        for i, j in zip(s_idx, p_idx, strict=True)]}
+
+
 def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
-    import numpy as np
-
-    from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
-
     out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
     # the VRE bound (docs/model.md section 8): JSON null, here inf, without linear vibration
     vre = np.full(len(rows), np.inf) if bounds.vre is None else np.asarray(bounds.vre)[rows]
@@ -163,8 +192,6 @@ def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
 
 def bounds_frame(result: BoundsResult) -> Any:
     """``bounds``: one row per profile; an unconstrained bound is ``inf``."""
-    import numpy as np
-
     rows = np.arange(len(result.profiles))
     columns: dict[str, Any] = {
         "profile": list(result.profiles),
@@ -198,12 +225,9 @@ def selection_frame(result: SelectionResult) -> Any:
     ``status``; ``rate_*`` and ``profile_bounds_*`` are the profile's entry of
     the JSON's ``profiles`` list (its bounds for ν_sensor = 1).
     """
-    import numpy as np
-
-    from gyrovib.core.synthesis import BOUNDED
-
     n_s, n_p = len(result.sensors), len(result.profiles)
     s_idx, p_idx = (a.reshape(-1) for a in np.indices((n_s, n_p)))
+    cells = list(zip(s_idx.tolist(), p_idx.tolist(), strict=True))
     columns: dict[str, Any] = {
         "sensor": [result.sensors[i] for i in s_idx],
         "profile": [result.profiles[j] for j in p_idx],
@@ -211,54 +235,23 @@ def selection_frame(result: SelectionResult) -> Any:
         "sensor_status": [result.sensor_status(int(i)) for i in s_idx],
         # "passed", not the JSON's "pass": a Python keyword breaks df.query("not pass")
         "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
-        "status": [result.status(int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
-        "unknown": [list(result.unknown.get((int(i), int(j)), ()))
-                    for i, j in zip(s_idx, p_idx, strict=True)],
-        "criterion_margin": (np.asarray(result.margin) if result.criterion_margin is None
-                             else np.asarray(result.criterion_margin)).reshape(-1),
-        "disagrees": [list(result.disagrees.get((int(i), int(j)), ()))
-                      for i, j in zip(s_idx, p_idx, strict=True)],
+        "status": [result.status(i, j) for i, j in cells],
+        "unknown": [list(result.unknown.get((i, j), ())) for i, j in cells],
+        "criterion_margin": np.asarray(result.margin if result.criterion_margin is None
+                                       else result.criterion_margin).reshape(-1),
+        "disagrees": [list(result.disagrees.get((i, j), ())) for i, j in cells],
         "rms": np.asarray(result.rms).reshape(-1),
         "margin": np.asarray(result.margin).reshape(-1),
         "saturated": np.asarray(result.saturated, dtype=bool).reshape(-1),
-        "reason": [_reason(result, int(i), int(j)) for i, j in zip(s_idx, p_idx, strict=True)],
+        "reason": [reason(result, i, j) for i, j in cells],
     }
-    values = np.asarray(result.values).reshape(n_s * n_p, -1)
-    bounds = np.asarray(result.bounds).reshape(n_s * n_p, -1)
-    checks = np.asarray(result.check_pass, dtype=bool).reshape(n_s * n_p, -1)
     spec_rows = np.array([result.source(int(i)) == "specs" for i in s_idx], dtype=bool)
-    for b, name in enumerate(BOUNDED):
-        # a spec-form row has no coefficient checks (JSON: none; CSV: empty): NaN, None
-        columns[f"checks.{name}.value"] = np.where(spec_rows, np.nan, values[:, b])
-        columns[f"checks.{name}.bound"] = np.where(spec_rows, np.nan, bounds[:, b])
-        columns[f"checks.{name}.pass"] = (checks[:, b] if not spec_rows.any() else
-                                          [None if sp else bool(c) for sp, c in
-                                           zip(spec_rows, checks[:, b], strict=True)])
-    if result.vre_pass is not None:  # the VRE check, docs/model.md section 8
-        columns["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
-        columns["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
-        columns["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
+    columns.update(_coefficient_check_columns(result, spec_rows))
     columns["source"] = [result.source(int(i)) for i in s_idx]
     if result.total is not None:
         columns["total"] = np.asarray(result.total).reshape(-1)
-    columns["reason"] = [_reason(result, int(i), int(j)) for i, j in zip(s_idx, p_idx,
-                                                                          strict=True)]
-    if result.nl_value is not None:  # datasheet (spec-form) sensors: NaN on coefficient rows
-        for key, array in (("nonlinearity.value", result.nl_value),
-                           ("nonlinearity.bound", result.nl_bound)):
-            columns[f"checks.{key}"] = np.asarray(array).reshape(-1)
-        columns["checks.nonlinearity.pass"] = [
-            bool(v) if sp else None for sp, v in
-            zip(spec_rows, np.asarray(result.nl_pass).reshape(-1), strict=True)]
-        columns["checks.nonlinearity.unit"] = ["%FS" if result.source(int(i)) == "specs"
-                                               else None for i in s_idx]
-    if result.yields is not None:  # --yield (docs/model.md section 14): NaN off the lots
-        y = result.yields
-        columns["yield_value"] = np.asarray(y.value).reshape(-1)
-        columns["yield_method"] = [y.method if y.is_lot(int(i)) else None for i in s_idx]
-        columns["yield_interval_low"] = np.asarray(y.low).reshape(-1)
-        columns["yield_interval_high"] = np.asarray(y.high).reshape(-1)
-        columns["yield_draws"] = [y.draws if y.is_lot(int(i)) else None for i in s_idx]
+    columns.update(_datasheet_check_columns(result, spec_rows))
+    columns.update(_yield_columns(result, s_idx))
     columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
     for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
         columns[f"profile_{key}"] = column
@@ -270,10 +263,54 @@ def selection_frame(result: SelectionResult) -> Any:
     return _frame(_named("select", columns), attrs)
 
 
-def _reason(result: SelectionResult, i: int, j: int) -> str | None:
-    from gyrovib.api.reasons import reason
+def _coefficient_check_columns(result: SelectionResult, spec_rows: Any) -> dict[str, Any]:
+    """``checks.<coefficient>.value|bound|pass`` and the VRE check (docs/model.md
+    section 8); a spec-form row has no coefficient checks (JSON: none; CSV: empty): NaN,
+    None."""
+    rows = len(spec_rows)
+    values = np.asarray(result.values).reshape(rows, -1)
+    bounds = np.asarray(result.bounds).reshape(rows, -1)
+    checks = np.asarray(result.check_pass, dtype=bool).reshape(rows, -1)
+    out: dict[str, Any] = {}
+    for b, name in enumerate(BOUNDED):
+        out[f"checks.{name}.value"] = np.where(spec_rows, np.nan, values[:, b])
+        out[f"checks.{name}.bound"] = np.where(spec_rows, np.nan, bounds[:, b])
+        out[f"checks.{name}.pass"] = (checks[:, b] if not spec_rows.any() else
+                                      [None if sp else bool(c) for sp, c in
+                                       zip(spec_rows, checks[:, b], strict=True)])
+    if result.vre_pass is not None:
+        out["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
+        out["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
+        out["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
+    return out
 
-    return reason(result, i, j)
+
+def _datasheet_check_columns(result: SelectionResult, spec_rows: Any) -> dict[str, Any]:
+    """Datasheet (spec-form) sensors' nonlinearity check: NaN, None on coefficient rows."""
+    if result.nl_value is None:
+        return {}
+    return {
+        "checks.nonlinearity.value": np.asarray(result.nl_value).reshape(-1),
+        "checks.nonlinearity.bound": np.asarray(result.nl_bound).reshape(-1),
+        "checks.nonlinearity.pass": [
+            bool(v) if sp else None for sp, v in
+            zip(spec_rows, np.asarray(result.nl_pass).reshape(-1), strict=True)],
+        "checks.nonlinearity.unit": ["%FS" if sp else None for sp in spec_rows.tolist()],
+    }
+
+
+def _yield_columns(result: SelectionResult, s_idx: Any) -> dict[str, Any]:
+    """``--yield`` (docs/model.md section 14): NaN, None off the lots."""
+    y = result.yields
+    if y is None:
+        return {}
+    return {
+        "yield_value": np.asarray(y.value).reshape(-1),
+        "yield_method": [y.method if y.is_lot(int(i)) else None for i in s_idx],
+        "yield_interval_low": np.asarray(y.low).reshape(-1),
+        "yield_interval_high": np.asarray(y.high).reshape(-1),
+        "yield_draws": [y.draws if y.is_lot(int(i)) else None for i in s_idx],
+    }
 
 
 def sweep_frame(result: SweepResult) -> Any:
@@ -281,8 +318,6 @@ def sweep_frame(result: SweepResult) -> Any:
 
     Rows in the JSON's order: profiles outermost, then sensors, then rates.
     """
-    import numpy as np
-
     n_s, n_p, n_r = len(result.sensors), len(result.profiles), len(result.rates)
     p_idx, s_idx, r_idx = (a.reshape(-1) for a in np.indices((n_p, n_s, n_r)))
     columns: dict[str, Any] = {

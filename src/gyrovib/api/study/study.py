@@ -6,15 +6,15 @@ deg/s, the sensors' g² sensitivities, each profile's linear vibration — and
 computes on first demand, then keeps, what does:
 
 * the vibration of each profile at the nonlinear element of each distinct
-  input-side response ν_sensor(f) (:func:`~gyrovib.api.prepare.profile_vibration`,
+  input-side response ν_sensor(f) (:func:`~gyrovib.api.study.prepare.profile_vibration`,
   its phase-locked groups and its saturation swing), once per response;
 * the multipliers of a method at the profiles' own rates or over a rate array
   (a sweep), once per response, method and rates.
 
-:meth:`Study.prepare` assembles a :class:`~gyrovib.api.prepare.Prepared` from
+:meth:`Study.prepare` assembles a :class:`~gyrovib.api.study.prepare.Prepared` from
 these, and reports every profile that overflowed or that a method refused
 (one problem each, at the profile's place in its file) exactly as a single
-pass would. Call it under :func:`~gyrovib.api.prepare.float_guard`.
+pass would. Call it under :func:`~gyrovib.api.study.prepare.float_guard`.
 
 >>> from gyrovib import api
 >>> study = Study.of(api.load())                      # doctest: +SKIP
@@ -31,10 +31,10 @@ from typing import Any, TypeVar, cast
 
 import numpy as np
 
-from gyrovib.api.convert import coefficient_matrix, resolve_rate
-from gyrovib.api.entries import select_entries
-from gyrovib.api.linear import g2_matrix
-from gyrovib.api.prepare import (
+from gyrovib.api.study.convert import coefficient_matrix, resolve_rate
+from gyrovib.api.study.entries import select_entries
+from gyrovib.api.study.linear import g2_matrix
+from gyrovib.api.study.prepare import (
     FLOAT_FAILURES,
     Group,
     Prepared,
@@ -73,7 +73,7 @@ class Seen(Frozen):
 
     ``vibrations[j]`` None where profile j overflowed (``problems[j]`` says so);
     ``locked[j]`` its phase-locked groups; ``swing[j]`` its saturation swing at
-    the default κ (:func:`~gyrovib.api.prepare.vibration_swing`).
+    the default κ (:func:`~gyrovib.api.study.prepare.vibration_swing`).
     """
 
     response: Table | None

@@ -3,7 +3,7 @@
 The catalogue gives a profile's ``acceleration:`` block in its file's
 ``units.acceleration`` (g or m/s²) and a sensor's ``g2_sensitivity`` / ``vre``
 per g² (a bare number, in the file's rate unit) or with its own unit
-(:func:`gyrovib.api.convert.g2_value`). Here they become what the engines
+(:func:`gyrovib.api.study.convert.g2_value`). Here they become what the engines
 take: a :class:`~gyrovib.core.linear.LinearVibration` in g at the sensor's
 axes, and G_jk in deg/s per g².
 
@@ -23,7 +23,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api.convert import g2_value
+from gyrovib.api.study.convert import g2_value
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
 from gyrovib.core.linear import LinearVibration, linear_vibration
 from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp, psd_variance
@@ -80,7 +80,7 @@ def g2_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
     """G_jk of every sensor in deg/s per g², shape (sensors, 6), order G11, G22, G33, G12, G13, G23.
 
     A sensor gives G per g² in its file's rate unit (a bare number), or with its
-    own unit (:func:`gyrovib.api.convert.g2_value`). Zero where a sensor gives none.
+    own unit (:func:`gyrovib.api.study.convert.g2_value`). Zero where a sensor gives none.
     """
     out: FloatArray = np.array([[g2_value(g, e.unit) for g in e.sensor.g2] for e in entries],
                                dtype=float).reshape(len(entries), 6)

@@ -36,10 +36,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.convert import g2_value
-from gyrovib.api.prepare import Group, Prepared
+from gyrovib.api.study.convert import g2_value
+from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
-from gyrovib.core.analysis import COLUMN, Multipliers, VibrationError
+from gyrovib.core.analysis import (
+    COLUMN,
+    Multipliers,
+    VibrationError,
+    profile_multipliers,
+    stack_multipliers,
+)
+from gyrovib.core.linear import mean_square
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
@@ -123,8 +130,6 @@ def mean_square_acceleration(m: Multipliers) -> FloatArray:
     """S = Σ_j ⟨a_j²⟩ (g²) at each profile (× rate); 0 without a linear vibration."""
     if m.acceleration is None:
         return np.zeros(m.omega.shape)
-    from gyrovib.core.linear import mean_square
-
     return np.asarray(mean_square(m.acceleration), dtype=float)
 
 
@@ -249,8 +254,6 @@ def multipliers_of(group: Group, prepared: Prepared, method: str,
     found = group.multipliers.get(method)
     if found is not None:
         return found
-    from gyrovib.core.analysis import profile_multipliers, stack_multipliers
-
     items = [profile_multipliers(v, prepared.rates[j, 2] if omega is None else omega, method)
              for j, v in enumerate(group.vibrations)]
     return stack_multipliers(items)
@@ -304,19 +307,8 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
         if not rows or not n_p:
             continue
         m = multipliers_of(group, prepared, method, omega)
-        sub = _subset(figs, rows)
-        # a sweep in blocks of rates: the envelope programmes of all its rates at
-        # once held 4 GB at 20,000 rates; a block's neighbours still polish each other
-        width = m.omega.shape[-1] if omega is None else _RATE_BLOCK
-        for lo in range(0, 1 if omega is None else m.omega.shape[-1], width):
-            at: tuple[Any, ...] = (rows,) if omega is None else (
-                rows, slice(None), slice(lo, lo + width))
-            result = worst(sub, m if omega is None else _rate_block(m, lo, width), total=total)
-            for name, array in parts.items():
-                array[at] = getattr(result.error, name)
-            coefficients[at] = result.coefficients
-            nonlinearity[at] = result.nonlinearity
-            g2[at] = result.g2
+        _fill(parts, {"coefficients": coefficients, "nonlinearity": nonlinearity, "g2": g2},
+              _subset(figs, rows), m, rows, omega is not None, total)
         cross |= cross_axis_warning(m)
     return SpecResults(index=index, figures=figs, error=VibrationError(**parts),
                        coefficients=coefficients, nonlinearity=nonlinearity, g2=g2,
@@ -325,6 +317,23 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
 
 #: Rates per call of the envelope programme in a sweep.
 _RATE_BLOCK = 500
+
+
+def _fill(parts: dict[str, FloatArray], worst_parts: dict[str, FloatArray], figs: SpecFigures,
+          m: Multipliers, rows: list[int], sweep: bool, total: bool) -> None:
+    """One group's worst case into ``rows`` of ``parts`` (its error) and ``worst_parts``
+    (its polynomial, nonlinearity and g² part). A sweep (``sweep``) in blocks of rates:
+    the envelope programmes of all its rates at once held 4 GB at 20,000 rates; a
+    block's neighbours still polish each other."""
+    n_rates = m.omega.shape[-1]
+    width = _RATE_BLOCK if sweep else n_rates
+    for lo in range(0, n_rates if sweep else 1, width):
+        at: tuple[Any, ...] = (rows, slice(None), slice(lo, lo + width)) if sweep else (rows,)
+        result = worst(figs, _rate_block(m, lo, width) if sweep else m, total=total)
+        for name, array in parts.items():
+            array[at] = getattr(result.error, name)
+        for name, array in worst_parts.items():
+            array[at] = getattr(result, name)
 
 
 def _rate_block(m: Multipliers, lo: int, width: int) -> Multipliers:
@@ -356,11 +365,14 @@ def place(parts: dict[str, FloatArray], spec: SpecResults) -> None:
 
 
 def numeric_rows(coefficients: FloatArray, index: NDArray[np.intp], profile: int,
-                 spec: SpecResults) -> FloatArray:
-    """A group's coefficient rows for brute force under one profile (specs: worst polynomial)."""
+                 spec: SpecResults, sensors: NDArray[np.intp] | None = None) -> FloatArray:
+    """A group's coefficient rows for brute force under one profile (specs: worst polynomial).
+
+    ``sensors``: the sensors of the rows ``index`` of ``coefficients`` (default ``index``
+    itself: ``coefficients`` has a row per sensor)."""
     out = np.array(coefficients[index], dtype=float)
     where = {int(i): k for k, i in enumerate(spec.index.tolist())}
-    for r, i in enumerate(index.tolist()):
+    for r, i in enumerate((index if sensors is None else sensors).tolist()):
         k = where.get(int(i))
         if k is not None:
             out[r] = coefficient_rows(spec.coefficients[k, profile])

@@ -23,13 +23,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from gyrovib import units
 from gyrovib.core.analysis import ALL_TERMS, VibrationError
+from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 if TYPE_CHECKING:
     from gyrovib.api import LotYields
-    from gyrovib.api.spec_bounds import DatasheetBounds
+    from gyrovib.api.datasheet.spec_bounds import DatasheetBounds
     from gyrovib.core.synthesis import AllocationConstants, CoefficientBounds
 
 #: The keys of ``additive_terms`` in JSON, CSV, tables and frames, in this order:
@@ -69,8 +71,9 @@ class Result(Frozen):
         return (type(self), tuple(dict(v) if isinstance(v, Mapping) else v for v in values))
 
     def to_frame(self) -> Any:
-        """Tidy pandas DataFrame, columns named as the JSON keys (:mod:`gyrovib.api.frames`)."""
-        from gyrovib.api.frames import to_frame
+        """Tidy pandas DataFrame, columns named as the JSON keys
+        (:mod:`gyrovib.presentation.frames`)."""
+        from gyrovib.presentation.frames import to_frame
 
         return to_frame(self)
 
@@ -185,8 +188,6 @@ def _rates_in(rates: FloatArray, unit: str, target: str) -> FloatArray:
     """Rates in ``unit`` converted to ``target``."""
     if target == unit:
         return rates
-    from gyrovib import units
-
     out: FloatArray = rates * units.scale(unit) / units.scale(target)
     return out
 
@@ -246,7 +247,7 @@ class BoundsResult(Result):
     bounds: CoefficientBounds
     allocation: AllocationConstants
     #: ``--range``: the allowable datasheet figures
-    #: (:class:`gyrovib.api.spec_bounds.DatasheetBounds`).
+    #: (:class:`gyrovib.api.datasheet.spec_bounds.DatasheetBounds`).
     spec_bounds: DatasheetBounds | None = None
     #: the rate unit tables write coefficient bounds in (the catalogue's own, so that
     #: k5 reads 6.7e-06 (deg/s)^-4 rather than 6e-23 (deg/h)^-4); None: :attr:`unit`.
@@ -274,9 +275,6 @@ class BoundsResult(Result):
 
 def _coefficient_factors(unit: str, table_unit: str) -> dict[str, float]:
     """Each bounded coefficient's factor from ``unit`` powers to ``table_unit`` powers."""
-    from gyrovib import units
-    from gyrovib.core.synthesis import BOUNDED
-
     return {name: units.coefficient_factor(name, unit, table_unit) for name in BOUNDED}
 
 
@@ -441,8 +439,6 @@ class SelectionResult(SensorsByProfiles):
     def _in_table_unit(self, array: FloatArray) -> FloatArray:
         if self.table_unit == self.unit:
             return array
-        from gyrovib.core.synthesis import BOUNDED
-
         factors = _coefficient_factors(self.unit, self.table_unit)
         out: FloatArray = array * np.array([factors[name] for name in BOUNDED])
         return out

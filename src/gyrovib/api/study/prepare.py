@@ -1,9 +1,9 @@
-"""The pieces of the one preparation every command runs (:mod:`gyrovib.api.study`).
+"""The pieces of the one preparation every command runs (:mod:`gyrovib.api.study.study`).
 
 A profile's vibration at a sensor's nonlinear element, its phase-locked
 groups and saturation swing, one profile's multipliers, the sensors grouped
 by response, and the located wording of what overflowed or was refused; the
-:class:`Prepared` a :class:`~gyrovib.api.study.Study` hands to its views. All
+:class:`Prepared` a :class:`~gyrovib.api.study.study.Study` hands to its views. All
 under :func:`float_guard`. A value that leaves floating-point range (an amplitude of
 1e200, a rate of 1e308) or a profile a method cannot handle is reported here,
 once, at the profile's place in its file (:class:`~gyrovib.errors.RangeError`,
@@ -27,11 +27,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.linear import profile_linear
+from gyrovib.api.study.linear import profile_linear
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
 from gyrovib.core.analysis import BOUNDED, Multipliers, profile_multipliers
-from gyrovib.core.harmonics import LockedGroup, locked_group
+from gyrovib.core.harmonics import MAX_GROUPS, LockedGroup, locked_group
 from gyrovib.core.linear import LinearVibration
+from gyrovib.core.phases import MAX_SEARCH_COST, search_cost, worst_phase_multipliers
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR, group_peak, saturation_reach
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
 from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp
@@ -266,8 +267,6 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
 
 def _too_many_groups(p: ProfileEntry) -> Problem | None:
     """More phase-locked groups than :data:`~gyrovib.core.harmonics.MAX_GROUPS`."""
-    from gyrovib.core.harmonics import MAX_GROUPS
-
     groups = p.profile.harmonic_groups
     if len(groups) <= MAX_GROUPS:
         return None
@@ -295,8 +294,6 @@ def _search_too_costly(p: ProfileEntry, rates: int, sensors: int,
              if o.worst_phase]
     if not worst:
         return None
-    from gyrovib.core.phases import MAX_SEARCH_COST, search_cost  # only for phase: worst
-
     dims, n_max = _search_size(groups)
     cost = search_cost(dims, (4 * rates if phase_search else 0) + sensors, n_max)
     if cost <= MAX_SEARCH_COST:
@@ -408,8 +405,6 @@ def multipliers_of_profile(vibration: Vibration, omega: FloatArray | float, meth
                  acceleration: FloatArray | None = None) -> Multipliers:
     """One profile's multipliers: with locked groups (section 10), and the worst phases."""
     if locked and method == "exact" and phase_search and any(g.worst.any() for g in locked):
-        from gyrovib.core.phases import worst_phase_multipliers
-
         return worst_phase_multipliers(vibration, locked, omega, acceleration=acceleration)
     return profile_multipliers(vibration, omega, method, locked=locked,
                                acceleration=acceleration)
@@ -477,11 +472,3 @@ def check_bounds(stacked: FloatArray, prepared: Prepared) -> None:
                                          rate_given=prepared.rate_given))
     raise RangeError(problems)
 
-
-def without(index: NDArray[np.intp], drop: NDArray[np.intp]) -> NDArray[np.intp]:
-    """``index`` without the entries in ``drop`` (sensor indices), in order: a mask, not
-    np.setdiff1d, which imports numpy.ma (~15 ms of a first run)."""
-    keep = np.ones(int(max(index.max(initial=-1), drop.max(initial=-1))) + 1, dtype=bool)
-    keep[drop] = False
-    out: NDArray[np.intp] = index[keep[index]]
-    return out

@@ -2,7 +2,7 @@
 
 :func:`placed` runs ``analyze``, ``bounds``, ``select`` or ``sweep`` on the
 catalogue's profiles mapped into the sensor axes of a placement
-(:func:`gyrovib.api.placement.place_catalog`). Under the triad it runs the
+(:func:`gyrovib.api.placement.placement.place_catalog`). Under the triad it runs the
 command three times, x3 on +X, +Y and +Z, and returns a :class:`TriadResult`:
 the three results and, per sensor (per profile and coefficient for
 ``bounds``), the worst axis. An IMU has one sensor per axis, so a part passes
@@ -17,9 +17,10 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.placement import place_catalog
+from gyrovib.api.placement.placement import place_catalog
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.placement import Placement
+from gyrovib.core.synthesis import BOUNDED
 from gyrovib.frozen import Frozen
 
 
@@ -60,8 +61,6 @@ def _worst(results: tuple[Any, ...], axes: tuple[str, ...]) -> tuple[dict[str, A
     first = results[0]
     name = type(first).__name__
     if name == "BoundsResult":
-        from gyrovib.core.synthesis import BOUNDED
-
         stacked = np.stack([r.bounds.stacked() for r in results])   # (3, P, 7)
         out: dict[str, Any] = {}
         for j, profile in enumerate(first.profiles):

@@ -64,20 +64,9 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     if result.yields is not None and result.yields.is_lot(i):  # judged by its yield
         return reasons + yield_reason(result.yields, i, j)
     spec = result.source(i) == "specs"
-    if result.criterion in ("bounds", "both") and spec:
-        reasons.extend(_spec_failures(result, i, j))
-    elif result.criterion in ("bounds", "both"):
-        rate_unit = result.table_unit if table else result.unit
-        values = result.table_values if table else result.values
-        bounds = result.table_bounds if table else result.bounds
-        for b, name in enumerate(BOUNDED):
-            if not result.check_pass[i, j, b]:
-                unit = coefficient_unit(name, rate_unit)
-                tail = "" if unit == "1" else f" {unit}"
-                value, bound = float(values[i, j, b]), float(bounds[i, j, b])
-                reasons.append(f"|{name}| = {fmt(value)} exceeds its bound {fmt(bound)}{tail}")
-        if result.vre_pass is not None and not result.vre_pass[i, j]:
-            reasons.append(_vre_failure(result, i, j))
+    if result.criterion in ("bounds", "both"):
+        reasons.extend(_spec_failures(result, i, j) if spec
+                       else _coefficient_failures(result, i, j, table))
     if result.criterion in ("rms", "both") and not result.rms_pass[i, j]:
         value = float(result.rms[i, j])
         rms = "0" if table and abs(value) < NEGLIGIBLE * result.budget else fmt(value)
@@ -88,6 +77,23 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
         reasons.append(f"{what} = {fmt(result.total[i, j])} {result.unit} exceeds the budget "
                        f"{fmt(result.budget)} {result.unit}")
     return reasons
+
+
+def _coefficient_failures(result: SelectionResult, i: int, j: int, table: bool) -> list[str]:
+    """The coefficient checks a coefficient sensor fails under profile ``j``, and its VRE."""
+    out = []
+    rate_unit = result.table_unit if table else result.unit
+    values = result.table_values if table else result.values
+    bounds = result.table_bounds if table else result.bounds
+    for b, name in enumerate(BOUNDED):
+        if not result.check_pass[i, j, b]:
+            unit = coefficient_unit(name, rate_unit)
+            tail = "" if unit == "1" else f" {unit}"
+            value, bound = float(values[i, j, b]), float(bounds[i, j, b])
+            out.append(f"|{name}| = {fmt(value)} exceeds its bound {fmt(bound)}{tail}")
+    if result.vre_pass is not None and not result.vre_pass[i, j]:
+        out.append(_vre_failure(result, i, j))
+    return out
 
 
 def unverified_reason(result: SelectionResult, i: int, j: int) -> str:
@@ -109,12 +115,29 @@ def unmeasured_text(yields: LotYields, i: int, j: int) -> str:
             "or --assume-unknown zero to take the lot as given")
 
 
+#: Why each unknown figure can matter, as a reason names it.
+UNKNOWN_WORDS = {
+    "vre": "VRE not published (the profile has linear vibration, so its g² term "
+           "G_jj·⟨a_j²⟩ can rectify; docs/model.md section 8)",
+    "m31": "m31 not published (the profile has cross-axis vibration x1 correlated with "
+           "x3, so m31·C31 can rectify; docs/model.md section 11)",
+    "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
+           "x3, so m32·C32 can rectify; docs/model.md section 11)",
+    "spread": "the lot's spread is not measured (too few units, or units without spread: "
+              "its yield is not a measurement; docs/model.md section 14)",
+    # the noise figures of a mission's budget (docs/model.md section 15)
+    "arw": "angle random walk not given (N·√T)",
+    "bias_instability": "bias instability not given (B·T)",
+    "rrw": "rate random walk not given (K·T^1.5/√3)",
+    "bias_repeatability": "bias repeatability not given (R·T; 0 if the bias is calibrated "
+                          "at each start)",
+}
+
+
 def unverified_text(names: Sequence[str], spec: bool = True) -> str:
     """The reason of an unverified verdict whose unpublished figures are ``names``
     (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
     sensor, whose missing g² figure is "not given" rather than "not published")."""
-    from gyrovib.api.spec_bounds import UNKNOWN_WORDS
-
     return ("unverified: passes on its published figures, but "
             + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS for n in names)
             + " -- ask the vendor, or --assume-unknown zero to take it as 0")

@@ -17,13 +17,17 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from gyrovib import api, units
 from gyrovib._version import __version__
-from gyrovib.api.linear import profile_linear
-from gyrovib.api.prepare import float_guard
-from gyrovib.api.study import Study
-from gyrovib.catalog.loader import Catalog, ProfileEntry
+from gyrovib.api.commands.analyze import analysis_of
+from gyrovib.api.commands.select import selection_of
+from gyrovib.api.commands.sweep import sweep_of
+from gyrovib.api.study.linear import profile_linear
+from gyrovib.api.study.prepare import float_guard
+from gyrovib.api.study.study import Study
+from gyrovib.catalog.loader import Catalog, ProfileEntry, bundled_paths
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 from gyrovib.models import Allocation
@@ -107,8 +111,6 @@ def file_digest(name: str, text: str) -> InputFile:
 
 def _shown_name(name: str) -> str:
     """A bundled catalogue as ``gyrovib/catalogs/NAME (bundled)``, not the install path."""
-    from gyrovib.catalog.loader import bundled_paths
-
     path = Path(name)
     for bundled in bundled_paths():
         if path.name == bundled.name and path.resolve() == bundled.resolve():
@@ -116,24 +118,23 @@ def _shown_name(name: str) -> str:
     return name
 
 
+#: A PSD per axis: (axis, frequencies, levels).
+_Psd = list[tuple[str, tuple[float, ...], tuple[float, ...]]]
+#: Tones: (frequency, amplitude per axis).
+_Tones = tuple[tuple[float, tuple[float, float, float]], ...]
+
+
 def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
     """The profile's PSD, tones and mount with rates converted to ``unit``."""
     p = entry.profile
     f = units.scale(entry.unit) / units.scale(unit)
-    psd: list[tuple[str, tuple[float, ...], tuple[float, ...]]] = []
+    psd: _Psd = []
     rms = None
-    if p.random is not None:
-        if p.random.psd is not None:
-            for axis in ("x1", "x2", "x3"):
-                table = getattr(p.random.psd, axis)
-                if table is not None:
-                    psd.append((axis, tuple(float(a) for a, _ in table),
-                                tuple(float(b) * f * f for _, b in table)))
-        elif p.random.rms is not None:
-            a, b, c = (float(v) * f for v in p.random.rms)
-            rms = (a, b, c)
-    tones = tuple((float(t.frequency), (float(t.amplitude[0]) * f, float(t.amplitude[1]) * f,
-                                        float(t.amplitude[2]) * f)) for t in p.harmonic)
+    if p.random is not None and p.random.psd is not None:
+        psd = _psd_tables(p.random.psd, f * f)
+    elif p.random is not None and p.random.rms is not None:
+        a, b, c = (float(v) * f for v in p.random.rms)
+        rms = (a, b, c)
     mount = None
     if p.mount is not None:
         mount = (tuple(float(a) for a, _ in p.mount), tuple(float(b) for _, b in p.mount))
@@ -144,28 +145,42 @@ def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
         linear_rms = (x, y, z)
     locked = tuple(
         (float(group.fundamental),
-         tuple((int(o.order), (float(o.amplitude[0]) * f, float(o.amplitude[1]) * f,
-                               float(o.amplitude[2]) * f)) for o in group.orders))
+         tuple((int(o.order), _triple(o.amplitude, f)) for o in group.orders))
         for group in (getattr(p, "harmonics", None) or ()))
-    linear_psd: list[tuple[str, tuple[float, ...], tuple[float, ...]]] = []
-    linear_tones: tuple[tuple[float, tuple[float, float, float]], ...] = ()
-    block = getattr(p, "acceleration", None)
-    if block is not None:
-        random = getattr(block, "random", None)
-        table_of = getattr(random, "psd", None) if random is not None else None
-        for axis in ("x1", "x2", "x3"):
-            table = getattr(table_of, axis, None) if table_of is not None else None
-            if table is not None:
-                linear_psd.append((axis, tuple(float(a) for a, _ in table),
-                                   tuple(float(b) for _, b in table)))
-        linear_tones = tuple((float(t.frequency), (float(t.amplitude[0]),
-                                                   float(t.amplitude[1]),
-                                                   float(t.amplitude[2])))
-                             for t in (getattr(block, "harmonic", None) or ()))
-    return Spectrum(profile=p.id, name=p.name, notes=p.notes, psd=tuple(psd), tones=tones,
-                    rms=rms, mount=mount, linear_rms=linear_rms, locked=locked,
-                    linear_psd=tuple(linear_psd), linear_tones=linear_tones,
-                    linear_unit=str(entry.acceleration_unit))
+    linear_psd, linear_tones = _acceleration(getattr(p, "acceleration", None))
+    return Spectrum(profile=p.id, name=p.name, notes=p.notes, psd=tuple(psd),
+                    tones=_tones(p.harmonic, f), rms=rms, mount=mount,
+                    linear_rms=linear_rms, locked=locked, linear_psd=tuple(linear_psd),
+                    linear_tones=linear_tones, linear_unit=str(entry.acceleration_unit))
+
+
+def _triple(values: Sequence[float], scale: float) -> tuple[float, float, float]:
+    return float(values[0]) * scale, float(values[1]) * scale, float(values[2]) * scale
+
+
+def _tones(tones: Sequence[Any] | None, scale: float) -> _Tones:
+    return tuple((float(t.frequency), _triple(t.amplitude, scale)) for t in (tones or ()))
+
+
+def _psd_tables(tables: Any, scale: float) -> _Psd:
+    """Each axis's PSD table present in ``tables``, levels times ``scale``."""
+    out: _Psd = []
+    for axis in ("x1", "x2", "x3"):
+        table = None if tables is None else getattr(tables, axis, None)
+        if table is not None:
+            out.append((axis, tuple(float(a) for a, _ in table),
+                        tuple(float(b) * scale for _, b in table)))
+    return out
+
+
+def _acceleration(block: Any) -> tuple[_Psd, _Tones]:
+    """A profile's linear vibration (``acceleration:``): its PSD per axis and tones, in the
+    file's acceleration unit."""
+    if block is None:
+        return [], ()
+    random = getattr(block, "random", None)
+    tables = getattr(random, "psd", None) if random is not None else None
+    return _psd_tables(tables, 1.0), _tones(getattr(block, "harmonic", None), 1.0)
 
 
 def sensor_form(sensor: object) -> str:
@@ -185,7 +200,7 @@ def envelope(catalog: Catalog | Study, profiles: Sequence[str] = (),
 
     The peak is Σ tone amplitudes + the locked groups' peaks + 3σ of x3 (the
     saturation check's, κ = 3); 1 deg/s when every profile is still and
-    without vibration. Given a :class:`~gyrovib.api.study.Study`, its profiles
+    without vibration. Given a :class:`~gyrovib.api.study.study.Study`, its profiles
     as they reach a sensor without input-side response (computed once).
     """
     study = catalog if isinstance(catalog, Study) else Study.of(
@@ -220,7 +235,7 @@ def trade_study(
 ) -> TradeStudy:
     """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
 
-    Three views of one :class:`~gyrovib.api.study.Study`: each profile's
+    Three views of one :class:`~gyrovib.api.study.study.Study`: each profile's
     vibration is computed once and shared. ``sweep_rates`` default:
     :data:`SWEEP_POINTS` rates over ±:func:`envelope`. The sweep evaluates
     ``method`` only (the one the report draws); the other method's arrays are
@@ -231,10 +246,6 @@ def trade_study(
     (:func:`gyrovib.api.select`, docs/model.md section 14). Past
     :data:`SWEEP_SENSORS` sensors, only the best-ranked are swept.
     """
-    from gyrovib.api.commands.analyze import analysis_of
-    from gyrovib.api.commands.select import selection_of
-    from gyrovib.api.commands.sweep import sweep_of
-
     unit = units.canonical_unit(unit)
     study = Study.of(catalog, sensors=sensors, profiles=profiles, rate=rate)
     selection = selection_of(study, method=method, budget=budget, unit=unit,

@@ -12,7 +12,7 @@ the same interface (:class:`SensorForm`):
   its error terms are eq. (13)-(16) of its own polynomial;
 * :class:`DatasheetForm` — a datasheet (``specs:``): its error terms are those
   of the worst polynomial its envelope allows (docs/model.md section 11,
-  :mod:`gyrovib.api.specs`), its bound checks the datasheet figures against
+  :mod:`gyrovib.api.datasheet.specs`), its bound checks the datasheet figures against
   their spec bounds.
 
 A form answers for its own rows only; no form writes placeholder rows another
@@ -22,19 +22,27 @@ in :data:`FORMS`.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.api import specs
-from gyrovib.api.convert import sensor_ranges
-from gyrovib.api.prepare import Prepared
-from gyrovib.api.study import Study, omega_key
+from gyrovib.api.datasheet import specs
+from gyrovib.api.datasheet.spec_bounds import SpecChecks
+from gyrovib.api.evaluation.checks import (
+    BoundVerdict,
+    CoefficientChecks,
+    CoefficientVerdict,
+    DatasheetVerdict,
+)
+from gyrovib.api.study.convert import sensor_ranges
+from gyrovib.api.study.prepare import Group, Prepared
+from gyrovib.api.study.study import Study, omega_key
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core.analysis import EXTRA_TERMS, vibration_error
+from gyrovib.core.phases import WorstPhases, worst_phase_error
 from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
@@ -52,10 +60,13 @@ class SensorForm(Protocol):
     :meth:`owns` picks its sensors; :meth:`error` writes their error terms
     (deg/s) into the (sensors, profiles[, rates]) arrays ``parts``.
     Saturation is the same rule for every form (:func:`saturation`), against
-    each sensor's own range (:func:`~gyrovib.api.convert.sensor_ranges`).
+    each sensor's own range (:func:`~gyrovib.api.study.convert.sensor_ranges`).
     """
 
     source: str
+    #: Whether its error is a bound over the unknown phases of ``phase: worst`` orders,
+    #: taken on multipliers at their largest over them (not a search of the phases).
+    bounds_phases: bool
 
     def owns(self, entry: SensorEntry) -> bool: ...
 
@@ -63,11 +74,24 @@ class SensorForm(Protocol):
               omega: FloatArray | None, parts: dict[str, FloatArray],
               rms_only: bool = False) -> None: ...
 
+    def phase_search(self, prepared: Prepared, group: Group,
+                     rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]: ...
+
+    def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
+                    profile: int, spec: specs.SpecResults | None) -> None: ...
+
+    def numeric_done(self, parts: dict[str, FloatArray],
+                     spec: specs.SpecResults | None) -> None: ...
+
+    def bound_checks(self, rows: NDArray[np.intp], checks: CoefficientChecks,
+                     own: SpecChecks | None) -> BoundVerdict: ...
+
 
 class CoefficientForm:
     """A sensor given by its conversion function's coefficients (eq. 2)."""
 
     source = "coefficients"
+    bounds_phases = False
 
     def owns(self, entry: SensorEntry) -> bool:
         return entry.sensor.specs is None
@@ -98,6 +122,32 @@ class CoefficientForm:
             for name, array in parts.items():
                 array[idx] = getattr(err, name)
 
+    def phase_search(self, prepared: Prepared, group: Group,
+                     rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]:
+        """Per profile with ``phase: worst`` orders, the phases maximising |Δ_V| of each of
+        ``rows`` (its sensors of ``group``) and the error there (docs/model.md section 10)."""
+        for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
+            if not any(g.worst.any() for g in locked):
+                continue
+            linear = prepared.linear[j] if prepared.linear else None
+            yield j, worst_phase_error(
+                prepared.coefficients[rows], v, locked, float(prepared.rates[j, 2]),
+                acceleration=None if linear is None else linear.moments(),
+                g2_sensitivity=None if linear is None else prepared.g2[rows])
+
+    def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
+                    profile: int, spec: specs.SpecResults | None) -> None:
+        """Its rows of a brute-force block are its own polynomials already."""
+
+    def numeric_done(self, parts: dict[str, FloatArray],
+                     spec: specs.SpecResults | None) -> None:
+        """Brute force gives its error terms as they are."""
+
+    def bound_checks(self, rows: NDArray[np.intp], checks: CoefficientChecks,
+                     own: SpecChecks | None) -> BoundVerdict:
+        """Each coefficient against eq. (23)/(25), the effective VRE against its bound."""
+        return CoefficientVerdict.of(rows, checks)
+
 
 def _take_whole(err: Any, shape: tuple[int, ...], parts: dict[str, FloatArray],
                 kept: Any) -> None:
@@ -120,6 +170,7 @@ class DatasheetForm:
     """A sensor given by its datasheet: the worst case over its envelope (section 11)."""
 
     source = "specs"
+    bounds_phases = True
 
     def owns(self, entry: SensorEntry) -> bool:
         return entry.sensor.specs is not None
@@ -131,6 +182,32 @@ class DatasheetForm:
         spec = worst_case(study, prepared, method, omega, rms_only=rms_only)
         if spec is not None:
             specs.place(parts, spec)
+
+    def phase_search(self, prepared: Prepared, group: Group,
+                     rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]:
+        """None: its rows are the worst case over the envelope, not one polynomial's
+        phases (the multipliers at their largest over the phases bound every one)."""
+        return iter(())
+
+    def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
+                    profile: int, spec: specs.SpecResults | None) -> None:
+        """Brute force averages the worst polynomial its envelope allows, per profile."""
+        if spec is not None:
+            block[at] = specs.numeric_rows(block[at], np.arange(at.size), profile, spec,
+                                           sensors)
+
+    def numeric_done(self, parts: dict[str, FloatArray],
+                     spec: specs.SpecResults | None) -> None:
+        """``total`` gets the g² part |v|·S; ``rms`` stays the per-term bound."""
+        if spec is not None:
+            specs.place_analysis(parts, spec, numeric=True)
+
+    def bound_checks(self, rows: NDArray[np.intp], checks: CoefficientChecks,
+                     own: SpecChecks | None) -> BoundVerdict:
+        """Its nonlinearity and VRE against their spec bounds (``own``: its rows' checks)."""
+        if own is None:
+            raise ValueError("datasheet sensors judged without their spec checks")
+        return DatasheetVerdict.of(rows, own)
 
 
 #: The forms, in the order they are asked whether a sensor is theirs.
@@ -147,6 +224,62 @@ def form_rows(sensors: Sequence[SensorEntry]) -> list[tuple[SensorForm, NDArray[
         taken[rows] = True
         if rows.size:
             out.append((form, rows))
+    return out
+
+
+def phase_bound(study: Study, prepared: Prepared, method: str,
+                peak_factor: float) -> Prepared:
+    """The preparation a form that bounds the phases (:attr:`SensorForm.bounds_phases`)
+    takes its error on (docs/model.md sections 10, 11): with ``phase: worst`` orders
+    under ``exact``, each multiplier at its largest over the unknown phases, which bounds
+    every phase's share, as ``bounds`` and ``select`` do; otherwise ``prepared`` itself."""
+    worst = any(g.worst.any() for group in prepared.groups for gs in group.locked
+                for g in gs)
+    if method != "exact" or not worst or not any(
+            form.bounds_phases for form, _ in form_rows(prepared.sensors)):
+        return prepared
+    return study.prepare(methods=("exact",), peak_factor=peak_factor, phase_search=True)
+
+
+def phase_worst(prepared: Prepared, group: Group,
+                ) -> Iterator[tuple[int, NDArray[np.intp], WorstPhases]]:
+    """``phase: worst`` (docs/model.md section 10) in ``group``: per profile with such
+    orders and each form that searches them, the profile, the sensors and what was found."""
+    for form, rows in form_rows(prepared.sensors):
+        idx = group.index[_mask(len(prepared.sensors), rows)[group.index]]
+        if idx.size:
+            for j, found in form.phase_search(prepared, group, idx):
+                yield j, idx, found
+
+
+def numeric_polynomials(prepared: Prepared, idx: NDArray[np.intp], profile: int,
+                        spec: specs.SpecResults | None) -> FloatArray:
+    """The polynomials brute force averages for sensors ``idx`` under one profile: each
+    form writes its own rows (``spec``: the datasheet sensors' worst case)."""
+    block = np.array(prepared.coefficients[idx], dtype=float)
+    for form, rows in form_rows(prepared.sensors):
+        at = np.flatnonzero(_mask(len(prepared.sensors), rows)[idx])
+        if at.size:
+            form.polynomials(block, at, idx[at], profile, spec)
+    return block
+
+
+def numeric_done(prepared: Prepared, parts: dict[str, FloatArray],
+                 spec: specs.SpecResults | None) -> None:
+    """After brute force: each form completes its rows of ``parts``."""
+    for form, _ in form_rows(prepared.sensors):
+        form.numeric_done(parts, spec)
+
+
+def bound_verdicts(prepared: Prepared, checks: CoefficientChecks,
+                   own: SpecChecks | None) -> list[BoundVerdict]:
+    """The bound checks of ``select``: each form's verdict on its own rows."""
+    return [form.bound_checks(rows, checks, own) for form, rows in form_rows(prepared.sensors)]
+
+
+def _mask(n: int, rows: NDArray[np.intp]) -> NDArray[np.bool_]:
+    out = np.zeros(n, dtype=bool)
+    out[rows] = True
     return out
 
 
@@ -195,7 +328,7 @@ def errors(study: Study, prepared: Prepared, method: str, omega: FloatArray | No
     if not whole:  # each form fills its own rows of zeros
         parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}
     for form, rows in forms:
-        form.error(study, datasheet if datasheet is not None and form.source == "specs"
+        form.error(study, datasheet if datasheet is not None and form.bounds_phases
                    else prepared, rows, method, omega, parts, rms_only)
     if not parts:  # no profile (no group): nothing was computed
         parts = {name: np.zeros((*shape, *t)) for name, t in ERROR_PARTS.items()}

@@ -57,7 +57,7 @@ def coefficient_matrix(entries: Sequence[SensorEntry]) -> FloatArray:
 
     A spec-form sensor (``specs:``) has no single conversion function: its row
     is k1 = 1 and zeros, a placeholder the commands replace by the worst case
-    over its envelope (:mod:`gyrovib.api.specs`).
+    over its envelope (:mod:`gyrovib.api.datasheet.specs`).
     """
     raw = np.array(
         [_SPEC_ROW if e.sensor.specs is not None else _GET_COEFFICIENTS(e.sensor.rate_coefficients)

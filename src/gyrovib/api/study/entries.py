@@ -11,6 +11,8 @@ import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+import yaml
+
 from gyrovib.catalog.loader import (
     Catalog,
     ProfileEntry,
@@ -164,8 +166,6 @@ def _id_lines(text: str, section: str) -> dict[int, int]:
     The text is a catalogue that already passed validation, so composing it is
     safe; an item whose ``id`` is not a key of its own is left out.
     """
-    import yaml
-
     loader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
     try:
         root = yaml.compose(text, Loader=loader)
@@ -184,8 +184,6 @@ def _id_lines(text: str, section: str) -> dict[int, int]:
 
 def _value(node: Any, key: str) -> Any:
     """The value node of ``key`` in a mapping node (the last one, as YAML loads it)."""
-    import yaml
-
     if not isinstance(node, yaml.MappingNode):
         return None
     found = None

@@ -1,7 +1,7 @@
 """The datasheet checks of ``select`` and the allowable figures of ``bounds --range``.
 
 Spec-form sensors (docs/model.md section 11) against their spec bounds, and the
-bounds themselves. Apart from :mod:`gyrovib.api.specs` (which still gives
+bounds themselves. Apart from :mod:`gyrovib.api.datasheet.specs` (which still gives
 their names) so that ``analyze`` does not define their classes.
 """
 
@@ -15,15 +15,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.prepare import Prepared
-from gyrovib.api.specs import (
+from gyrovib.api.datasheet.specs import (
     SpecResults,
     mean_square_acceleration,
     multipliers_of,
     terms_of,
 )
+from gyrovib.api.study.prepare import Prepared
 from gyrovib.core.analysis import Multipliers
+from gyrovib.core.linear import mean_square
 from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import OptionError
 from gyrovib.frozen import Frozen
 
 # ----------------------------------------------------------------- select
@@ -96,10 +98,15 @@ UNKNOWN_FIGURES: tuple[str, ...] = ("vre", "m31", "m32")
 ASSUMPTIONS = ("none", "zero")
 
 
+def checks_of(prepared: Prepared, spec: SpecResults | None, method: str, budget: float,
+              weights: tuple[float, float] = (1.0, 1.0),
+              rtol: float = 1e-9) -> SpecChecks | None:
+    """:func:`spec_checks` of the datasheet sensors' worst case ``spec`` (None: none)."""
+    return None if spec is None else spec_checks(prepared, spec, method, budget, weights, rtol)
+
+
 def check_assumption(assume_unknown: str) -> None:
     """Refuse an ``assume_unknown`` that is not one of :data:`ASSUMPTIONS`."""
-    from gyrovib.errors import OptionError
-
     if assume_unknown not in ASSUMPTIONS:
         raise OptionError(f"unknown assumption {assume_unknown!r}; use one of "
                           f"{', '.join(ASSUMPTIONS)}")
@@ -118,23 +125,6 @@ def merge_unknown(names: Iterable[Sequence[str]]) -> tuple[str, ...]:
     order of :data:`UNKNOWN_FIGURES`."""
     found = {n for group in names for n in group}
     return tuple(n for n in UNKNOWN_FIGURES if n in found)
-#: Why each unknown figure can matter, as a reason names it.
-UNKNOWN_WORDS = {
-    "vre": "VRE not published (the profile has linear vibration, so its g² term "
-           "G_jj·⟨a_j²⟩ can rectify; docs/model.md section 8)",
-    "m31": "m31 not published (the profile has cross-axis vibration x1 correlated with "
-           "x3, so m31·C31 can rectify; docs/model.md section 11)",
-    "m32": "m32 not published (the profile has cross-axis vibration x2 correlated with "
-           "x3, so m32·C32 can rectify; docs/model.md section 11)",
-    "spread": "the lot's spread is not measured (too few units, or units without spread: "
-              "its yield is not a measurement; docs/model.md section 14)",
-    # the noise figures of a mission's budget (docs/model.md section 15)
-    "arw": "angle random walk not given (N·√T)",
-    "bias_instability": "bias instability not given (B·T)",
-    "rrw": "rate random walk not given (K·T^1.5/√3)",
-    "bias_repeatability": "bias repeatability not given (R·T; 0 if the bias is calibrated "
-                          "at each start)",
-}
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -173,8 +163,6 @@ def unknown_figures_at(prepared: Prepared, index: NDArray[np.intp], has_vre: NDA
                        method: str) -> UnknownFigures:
     """:func:`unknown_figures` of the spec sensors at ``index`` (rows of
     ``prepared.sensors``) whose VRE is published where ``has_vre``."""
-    from gyrovib.core.linear import mean_square
-
     m_count, n_p = index.size, len(prepared.profiles)
     msq = np.array([0.0 if v is None else float(mean_square(v.moments()))
                     for v in prepared.linear] if prepared.linear else [0.0] * n_p,

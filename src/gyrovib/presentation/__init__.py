@@ -1,0 +1,10 @@
+"""Presentation of results, apart from the library that computes them.
+
+======================================  ==========================================
+module                                  what it holds
+======================================  ==========================================
+:mod:`gyrovib.presentation.frames`      ``to_frame``: any result as a tidy pandas
+                                        DataFrame (``Result.to_frame()``)
+:mod:`gyrovib.presentation.reasons`     why a sensor fails ``select``, in words
+======================================  ==========================================
+"""
