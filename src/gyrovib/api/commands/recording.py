@@ -255,7 +255,8 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     with np.errstate(invalid="ignore", divide="ignore"):
         held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
     return FittedPart(tuple(tones), tuple(harmonics),
-                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held)
+                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held,
+                      random=random)
 
 
 # ----------------------------------------------------------------- analyze --recording
@@ -326,22 +327,44 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
     each histogram bin of Ω_K3, the bins weighted by their time, exactly as
     ``gyrovib mission`` computes it on the written YAML.
     """
-    from gyrovib.api.convert import coefficient_matrix, sensor_ranges
+    unit = units.canonical_unit(unit)
+    entries, tables = recording_responses(catalog, sensors)
+    fit = fit_recording(recording, crossover=crossover, resolution=resolution,
+                        tone_threshold=tone_threshold, breakpoints=breakpoints,
+                        independent_tones=independent_tones, profile_id=profile_id,
+                        responses=tables)
+    return analysis_of_fit(fit, catalog, entries, unit=unit)
+
+
+def recording_responses(catalog: Any, sensors: Sequence[str] = ()) -> tuple[list[Any],
+                                                                          tuple[Table, ...]]:
+    """The chosen sensor entries, and the distinct input-side responses among them (in
+    order of first use): what :func:`fit_recording` needs as ``responses`` for
+    :func:`analysis_of_fit` to find each sensor's Δ_V,rec moments."""
     from gyrovib.api.entries import select_entries
+    from gyrovib.api.prepare import input_response
+    from gyrovib.core.transmissibility import as_table
+
+    entries, _ = select_entries(catalog, sensors, (), need=("sensors",))
+    keys = [input_response(e) for e in entries]
+    distinct = [k for k in dict.fromkeys(keys) if k is not None]
+    return entries, tuple(as_table(k) for k in distinct)
+
+
+def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
+                    unit: str = "deg/s") -> RecordingAnalysis:
+    """:func:`analyze_recording` on a fit already made with the ``responses`` of
+    :func:`recording_responses` for the same ``entries`` (the fit can come from another
+    process: it holds the recording's moments, never its samples)."""
+    from gyrovib.api.convert import coefficient_matrix, sensor_ranges
     from gyrovib.api.linear import g2_matrix
     from gyrovib.api.prepare import input_response
     from gyrovib.api.specs import figures, is_spec
     from gyrovib.core.recording import recorded_error
-    from gyrovib.core.transmissibility import as_table
 
     unit = units.canonical_unit(unit)
-    entries, _ = select_entries(catalog, sensors, (), need=("sensors",))
-    keys: list[tuple[tuple[float, float], ...] | None] = [input_response(e) for e in entries]
+    keys = [input_response(e) for e in entries]
     distinct = [k for k in dict.fromkeys(keys) if k is not None]
-    fit = fit_recording(recording, crossover=crossover, resolution=resolution,
-                        tone_threshold=tone_threshold, breakpoints=breakpoints,
-                        independent_tones=independent_tones, profile_id=profile_id,
-                        responses=[as_table(k) for k in distinct])
     n = len(entries)
     coeffs = coefficient_matrix(entries)
     g2 = g2_matrix(entries)
