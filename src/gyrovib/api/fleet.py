@@ -503,3 +503,46 @@ def profile_recordings(paths: Sequence[str], options: RecordingOptions = Recordi
     return envelope(fits, breakpoints=options.breakpoints,
                     independent_tones=options.independent_tones,
                     profile_id=options.profile_id)
+
+
+# ----------------------------------------------------------------- analyze --recording A B …
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class RecordingsAnalysis(Frozen):
+    """``analyze --recording`` on several recordings: ``analyses`` in input order (the
+    same sensors in each), and per sensor ``worst`` the index of the recording with the
+    largest |Δ_V,rec| (-1 where no recording gives a finite one)."""
+
+    unit: str
+    sensors: tuple[str, ...]
+    analyses: tuple[Any, ...]
+    worst: tuple[int, ...]
+
+
+def worst_recordings(recorded: FloatArray) -> tuple[int, ...]:
+    """Per column of ``recorded`` (recordings × sensors) the row of the largest |value|;
+    the first such row on a tie, -1 where no value is finite."""
+    magnitude = np.where(np.isfinite(recorded), np.abs(recorded), -1.0)
+    rows = np.argmax(magnitude, axis=0)
+    return tuple(int(r) if magnitude[r, k] >= 0 else -1 for k, r in enumerate(rows))
+
+
+def analyze_recordings(paths: Sequence[str], catalog: Any, options: RecordingOptions, *,
+                       sensors: Sequence[str] = (), unit: str = "deg/s",
+                       jobs: int = 1) -> RecordingsAnalysis:
+    """Δ_V,rec of every chosen sensor on each recording, and each sensor's worst.
+
+    The fits run in ``jobs`` processes (:func:`run_recordings`), gathering the moments
+    of the chosen sensors' input responses (``options.responses`` is replaced by them);
+    each fit is then evaluated here as ``analyze --recording`` evaluates one.
+    """
+    from gyrovib import units
+    from gyrovib.api.commands.recording import analysis_of_fit, recording_responses
+
+    unit = units.canonical_unit(unit)
+    entries, responses = recording_responses(catalog, sensors)
+    fits = run_recordings(paths, dataclasses.replace(options, responses=responses), jobs=jobs)
+    analyses = tuple(analysis_of_fit(fit, catalog, entries, unit=unit) for fit in fits)
+    recorded = np.array([a.recorded for a in analyses], dtype=float).reshape(len(analyses), -1)
+    return RecordingsAnalysis(unit, analyses[0].sensors, analyses, worst_recordings(recorded))

@@ -1,4 +1,5 @@
-"""`gyrovib profile`: fit a catalogue profile to a recording (docs/model.md section 13)."""
+"""`gyrovib profile`: fit a catalogue profile to one recording or the envelope of several
+(docs/model.md section 13, docs/fleet.md)."""
 
 from __future__ import annotations
 
@@ -7,29 +8,48 @@ from typing import Any
 import click
 
 from gyrovib.cli.options import output_option
-from gyrovib.cli.recording import fit_options, read, recording_options
+from gyrovib.cli.recording import fit_options, jobs_option, read, recording_options, step_options
 
 
 @click.command()
-@click.argument("recording", metavar="RECORDING")
+@click.argument("recordings", metavar="RECORDING...", nargs=-1, required=True)
 @recording_options
-@click.option("--plot", metavar="PNG", help="Plot the measured PSD against the fit, per axis.")
+@jobs_option
+@click.option("--plot", metavar="PNG", help="Plot the measured PSD against the fit, per axis "
+                                            "(several recordings: their envelope).")
 @output_option
-def profile(recording: str, plot: str | None, output: str | None, **options: Any) -> None:
-    """Fit a profile (and its carrier mission) to a RECORDING.
+def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, output: str | None,
+            **options: Any) -> None:
+    """Fit a profile (and its carrier mission) to a RECORDING, or to the envelope of several.
 
     RECORDING: CSV with a header row (time column t/time in s, or --fs),
     .npy (2-D, columns), .npz, or PX4 ULog .ulg (pip install 'gyrovib[ulog]').
     Writes catalogue YAML (stdout, or -o FILE) that `gyrovib validate`
     accepts, with the fit's provenance as comments; the honesty table goes to
     standard error.
-    """
-    from gyrovib.api.commands.recording import fit_recording
-    from gyrovib.cli.output import write_output
-    from gyrovib.render.recording import honesty_table, plot_fit
 
-    fit = fit_recording(read(recording, options), **fit_options(options))
+    Several recordings give one envelope profile (docs/fleet.md): per frequency
+    bin the largest PSD of the recordings, each tone at its largest amplitude,
+    the missions joined; --id names it (default envelope-fitted), and each
+    recording's honesty table comes before the envelope's. --jobs N fits them
+    in N processes, with the same output.
+    """
+    from gyrovib.cli.output import write_output
+    from gyrovib.render.recording import plot_fit
+
+    if len(recordings) == 1:
+        from gyrovib.api.commands.recording import fit_recording
+        from gyrovib.render.recording import honesty_table
+
+        fit = fit_recording(read(recordings[0], options), **fit_options(options))
+        table = honesty_table(fit)
+    else:
+        from gyrovib.api.fleet import profile_recordings
+        from gyrovib.render.fleet import envelope_table
+
+        env = profile_recordings(recordings, step_options(options), jobs=jobs)
+        fit, table = env.fit, envelope_table(env)
     write_output(fit.yaml, output)
-    click.echo(honesty_table(fit), err=True, nl=False)
+    click.echo(table, err=True, nl=False)
     if plot is not None:
         plot_fit(fit, plot)
