@@ -247,22 +247,24 @@ def _lines_of(part: FittedPart) -> tuple[FloatArray, FloatArray, FloatArray]:
             np.array(phase, dtype=float).reshape(-1, 3))
 
 
-def _spectrum(part: FittedPart, *, rate: bool) -> SpectrumEnvelope:
-    from gyrovib.core.recording import LOBE_HALF_WIDTH
+def _spectrum(part: FittedPart, crossover: float, tone_threshold: float, *,
+              rate: bool) -> SpectrumEnvelope:
+    """The random PSD the fit's breakpoints were fitted to, found again as the fit finds
+    it: its lines' lobes (:func:`gyrovib.core.recording.find_lines` on the measured PSD,
+    which alone decides them) replaced by the running median."""
+    from gyrovib.api.commands.recording import _LINE_FLOOR
+    from gyrovib.core.recording import find_lines
 
     f = part.frequencies
     measured = np.array(part.measured, dtype=float)
-    median = np.array(part.median, dtype=float)
+    diagonal = np.zeros((3, 3, f.size), dtype=complex)
+    for j in range(3):
+        diagonal[j, j] = measured[j]
+    found, median = find_lines(f, diagonal, tone_threshold, fmin=_LINE_FLOOR * crossover)
+    random = measured.copy()
+    for line in found:
+        random[:, line.lo:line.hi] = median[:, line.lo:line.hi]
     lines, amps, phases = _lines_of(part)
-    if part.random is not None:
-        random = np.array(part.random, dtype=float)
-    else:  # a fit that did not keep it: each line's lobe, a bin wider, takes the median
-        random = measured.copy()
-        df = float(f[1] - f[0])
-        for freq in lines:
-            k = int(round(freq / df))
-            lo, hi = max(1, k - LOBE_HALF_WIDTH - 1), min(f.size - 1, k + LOBE_HALF_WIDTH + 2)
-            random[:, lo:hi] = median[:, lo:hi]
     unknown = ~np.isfinite(np.asarray(part.variance, dtype=float))
     for array in (random, measured, median):
         array[unknown] = np.nan
@@ -273,15 +275,19 @@ def _spectrum(part: FittedPart, *, rate: bool) -> SpectrumEnvelope:
                             float(weight) if math.isfinite(weight) else -math.inf)
 
 
-def envelope_part(fit: RecordingFit) -> EnvelopePart:
-    """One recording's fit as the start of an envelope."""
+def envelope_part(fit: RecordingFit, options: RecordingOptions = RecordingOptions()
+                  ) -> EnvelopePart:
+    """One recording's fit as the start of an envelope (``options``: those it was fitted
+    with; the tone threshold tells its lines' lobes again)."""
+    threshold = options.tone_threshold
     durations = np.asarray(fit.mission_durations, dtype=float)
     return EnvelopePart(
         crossover=fit.crossover,
         recordings=(Provenance(os.path.basename(fit.file), fit.sha256, fit.samples, fit.fs,
                                fit.duration),),
-        angular=_spectrum(fit.angular, rate=True),
-        linear=None if fit.linear is None else _spectrum(fit.linear, rate=False),
+        angular=_spectrum(fit.angular, fit.crossover, threshold, rate=True),
+        linear=(None if fit.linear is None
+                else _spectrum(fit.linear, fit.crossover, threshold, rate=False)),
         rate_time=np.asarray(fit.rate, dtype=float) * fit.duration,
         mission_rates=np.asarray(fit.mission_rates, dtype=float).reshape(-1, 3),
         mission_durations=durations, rate_axes=fit.rate_axes, segments=fit.segments)
@@ -427,9 +433,12 @@ def _honesty(variance: float, held: float) -> AxisHonesty:
     return AxisHonesty(**values)
 
 
-def fit_envelope(part: EnvelopePart, *, breakpoints: int = 12, independent_tones: bool = False,
-                 profile_id: str | None = None) -> Envelope:
-    """The catalogue profile of an envelope (see the module docstring), YAML included."""
+def fit_envelope(part: EnvelopePart, options: RecordingOptions = RecordingOptions()
+                 ) -> Envelope:
+    """The catalogue profile of an envelope (see the module docstring), YAML included:
+    ``options.breakpoints``, ``independent_tones`` and ``profile_id`` as for one."""
+    breakpoints, independent_tones = options.breakpoints, options.independent_tones
+    profile_id = options.profile_id
     from gyrovib.api.recording_yaml import profile_yaml
     from gyrovib.catalog.loader import parse_catalog
 
@@ -480,29 +489,33 @@ def _envelope_header(part: EnvelopePart) -> str:
     return "\n".join(lines) + "\n"
 
 
-def envelope(fits: Iterable[RecordingFit], *, breakpoints: int = 12,
-             independent_tones: bool = False, profile_id: str | None = None) -> Envelope:
-    """The envelope profile of several fitted recordings, in their order."""
+def envelope(fits: Iterable[RecordingFit], options: RecordingOptions = RecordingOptions()
+             ) -> Envelope:
+    """The envelope profile of several recordings fitted with ``options``, in their order
+    (``options.profile_id`` names it)."""
     fits = tuple(fits)
     if not fits:
         raise OptionError("an envelope needs at least one recording")
-    part = envelope_part(fits[0])
+    part = envelope_part(fits[0], options)
     for fit in fits[1:]:
-        part = combine(part, envelope_part(fit))
-    result = fit_envelope(part, breakpoints=breakpoints, independent_tones=independent_tones,
-                          profile_id=profile_id)
+        part = combine(part, envelope_part(fit, options))
+    result = fit_envelope(part, options)
     return dataclasses.replace(result, fits=fits)
+
+
+def envelope_step(path: str, options: RecordingOptions = RecordingOptions()) -> EnvelopePart:
+    """:func:`profile_one` then :func:`envelope_part`: what a fleet's worker returns when
+    only the envelope is wanted (docs/fleet.md)."""
+    return envelope_part(profile_one(path, dataclasses.replace(options, profile_id=None)),
+                         options)
 
 
 def profile_recordings(paths: Sequence[str], options: RecordingOptions = RecordingOptions(),
                        *, jobs: int = 1) -> Envelope:
     """``gyrovib profile A B …``: every recording fitted (``jobs`` processes), then the
     envelope profile (``options.profile_id`` names it; the recordings keep their own)."""
-    each = dataclasses.replace(options, profile_id=None)
-    fits = run_recordings(paths, each, jobs=jobs)
-    return envelope(fits, breakpoints=options.breakpoints,
-                    independent_tones=options.independent_tones,
-                    profile_id=options.profile_id)
+    fits = run_recordings(paths, dataclasses.replace(options, profile_id=None), jobs=jobs)
+    return envelope(fits, options)
 
 
 # ----------------------------------------------------------------- analyze --recording A B …

@@ -61,9 +61,6 @@ class FittedPart(Frozen):
     median: FloatArray
     variance: FloatArray
     held: FloatArray
-    #: (3, F) the PSD the breakpoints were fitted to: ``measured`` with each line's lobe
-    #: replaced by ``median`` (None: not kept).
-    random: FloatArray | None = None
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -255,8 +255,7 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     with np.errstate(invalid="ignore", divide="ignore"):
         held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
     return FittedPart(tuple(tones), tuple(harmonics),
-                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held,
-                      random=random)
+                      (tables[0], tables[1], tables[2]), coh, f, psd, median, variance, held)
 
 
 # ----------------------------------------------------------------- analyze --recording
@@ -382,9 +381,20 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
     s = units.scale(unit)
+    warnings = _warnings(fit, ratio, saturated, peak / s, ranges / s, unit)
+    return RecordingAnalysis(
+        unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
+        terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
+        ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
+        warnings=warnings)
+
+
+def _warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_],
+              peak: FloatArray, ranges: FloatArray, unit: str) -> dict[int, tuple[str, ...]]:
+    """Per sensor row the warnings of ``analyze --recording`` (peak and range in ``unit``)."""
     warnings: dict[int, tuple[str, ...]] = {}
     lo, hi = RATIO_RANGE
-    for i in range(n):
+    for i in range(ratio.size):
         w: list[str] = []
         if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
             worst = (" (the fitted harmonics take their worst relative phases, so the closed "
@@ -395,16 +405,12 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
                      f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
                      f"stationary, and Δ_V,rec is the number to trust{worst}")
         if saturated[i]:
-            w.append(f"max |ω3| = {peak[i] / s:.6g} {unit} on the recording exceeds the "
-                     f"sensor's range {ranges[i] / s:.6g} {unit}: the static model does not "
+            w.append(f"max |ω3| = {peak[i]:.6g} {unit} on the recording exceeds the "
+                     f"sensor's range {ranges[i]:.6g} {unit}: the static model does not "
                      "hold in saturation")
         if w:
             warnings[i] = tuple(w)
-    return RecordingAnalysis(
-        unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
-        terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
-        ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
-        warnings=warnings)
+    return warnings
 
 
 def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: FloatArray,
