@@ -44,7 +44,7 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, output: st
         fit = fit_recording(read(recordings[0], options), **fit_options(options))
         table = honesty_table(fit)
     else:
-        from gyrovib.api.fleet import profile_recordings
+        from gyrovib.api.recording_envelope import profile_recordings
         from gyrovib.render.fleet import envelope_table
 
         env = profile_recordings(recordings, step_options(options), jobs=jobs)
