@@ -79,7 +79,7 @@ def test_envelope_takes_the_largest_psd_and_the_loudest_tones(logs: list[Path]) 
     assert sorted(tones) == [31, 72]
     loud = {round(t.frequency): t for t in fits[1].angular.tones}
     np.testing.assert_array_equal(tones[31].amplitude, np.max(
-        [[t.amplitude for t in f.angular.tones if round(t.frequency) == 31][0] for f in fits],
+        [next(t.amplitude for t in f.angular.tones if round(t.frequency) == 31) for f in fits],
         axis=0))
     np.testing.assert_array_equal(tones[72].amplitude, loud[72].amplitude)
     assert env.fit.mission_durations.sum() == pytest.approx(sum(f.duration for f in fits))

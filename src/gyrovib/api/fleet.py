@@ -50,7 +50,11 @@ class RecordingOptions(Frozen):
     responses: tuple[Table, ...] = ()
 
 
-def profile_one(path: str, options: RecordingOptions = RecordingOptions()) -> RecordingFit:
+#: The options' defaults (those of ``gyrovib profile``).
+DEFAULTS = RecordingOptions()
+
+
+def profile_one(path: str, options: RecordingOptions = DEFAULTS) -> RecordingFit:
     """Read and fit one recording: the one-recording step, a pure function of its
     arguments (the same file and options give the same fit, in any process)."""
     from gyrovib.api.commands.recording import fit_recording
@@ -91,7 +95,7 @@ def _guarded(step: Callable[[str, Any], Any], path: str, options: Any) -> Any:
         return _Failed(type(exc), exc.problems)
 
 
-def run_recordings(paths: Sequence[str], options: Any = RecordingOptions(), *, jobs: int = 1,
+def run_recordings(paths: Sequence[str], options: Any = DEFAULTS, *, jobs: int = 1,
                    step: Callable[[str, Any], Any] = profile_one,
                    label: str = "recordings") -> tuple[Any, ...]:
     """``step(path, options)`` for every path, in input order.

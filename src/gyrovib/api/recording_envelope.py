@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.fleet import RecordingOptions, profile_one, run_recordings
+from gyrovib.api.fleet import DEFAULTS, RecordingOptions, profile_one, run_recordings
 from gyrovib.api.recording_results import (
     AxisHonesty,
     FittedHarmonics,
@@ -136,7 +136,7 @@ def _spectrum(part: FittedPart, crossover: float, tone_threshold: float, *,
                             float(weight) if math.isfinite(weight) else -math.inf)
 
 
-def envelope_part(fit: RecordingFit, options: RecordingOptions = RecordingOptions()
+def envelope_part(fit: RecordingFit, options: RecordingOptions = DEFAULTS
                   ) -> EnvelopePart:
     """One recording's fit as the start of an envelope (``options``: those it was fitted
     with; the tone threshold tells its lines' lobes again)."""
@@ -170,7 +170,7 @@ def _common_grid(a: FloatArray, b: FloatArray) -> FloatArray:
         return a
     df = max(float(a[1] - a[0]), float(b[1] - b[0]))
     top = max(float(a[-1]), float(b[-1]))
-    return df * np.arange(int(math.floor(top / df * (1 + 1e-12))) + 1)
+    return df * np.arange(math.floor(top / df * (1 + 1e-12)) + 1, dtype=float)
 
 
 def _join_spectra(a: SpectrumEnvelope | None,
@@ -294,7 +294,7 @@ def _honesty(variance: float, held: float) -> AxisHonesty:
     return AxisHonesty(**values)
 
 
-def fit_envelope(part: EnvelopePart, options: RecordingOptions = RecordingOptions()
+def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
                  ) -> Envelope:
     """The catalogue profile of an envelope (see the module docstring), YAML included:
     ``options.breakpoints``, ``independent_tones`` and ``profile_id`` as for one."""
@@ -350,7 +350,7 @@ def _envelope_header(part: EnvelopePart) -> str:
     return "\n".join(lines) + "\n"
 
 
-def envelope(fits: Iterable[RecordingFit], options: RecordingOptions = RecordingOptions()
+def envelope(fits: Iterable[RecordingFit], options: RecordingOptions = DEFAULTS
              ) -> Envelope:
     """The envelope profile of several recordings fitted with ``options``, in their order
     (``options.profile_id`` names it)."""
@@ -364,14 +364,14 @@ def envelope(fits: Iterable[RecordingFit], options: RecordingOptions = Recording
     return dataclasses.replace(result, fits=fits)
 
 
-def envelope_step(path: str, options: RecordingOptions = RecordingOptions()) -> EnvelopePart:
+def envelope_step(path: str, options: RecordingOptions = DEFAULTS) -> EnvelopePart:
     """:func:`profile_one` then :func:`envelope_part`: what a fleet's worker returns when
     only the envelope is wanted (docs/fleet.md)."""
     return envelope_part(profile_one(path, dataclasses.replace(options, profile_id=None)),
                          options)
 
 
-def profile_recordings(paths: Sequence[str], options: RecordingOptions = RecordingOptions(),
+def profile_recordings(paths: Sequence[str], options: RecordingOptions = DEFAULTS,
                        *, jobs: int = 1) -> Envelope:
     """``gyrovib profile A B …``: every recording fitted (``jobs`` processes), then the
     envelope profile (``options.profile_id`` names it; the recordings keep their own)."""

@@ -14,11 +14,12 @@ from gyrovib.render import recording as one
 from gyrovib.render.common import dumps, header
 
 if TYPE_CHECKING:
-    from gyrovib.api.fleet import Envelope, RecordingsAnalysis
+    from gyrovib.api.fleet import RecordingsAnalysis
+    from gyrovib.api.recording_envelope import Envelope
 
 
 def _name(analysis: Any) -> str:
-    return os.path.basename(analysis.fit.file)
+    return os.path.basename(str(analysis.fit.file))
 
 
 def _saturated_on(result: RecordingsAnalysis, k: int) -> list[str]:
