@@ -335,7 +335,7 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
     return analysis_of_fit(fit, catalog, entries, unit=unit)
 
 
-def recording_responses(catalog: Any, sensors: Sequence[str] = ()) -> tuple[list[Any],
+def recording_responses(catalog: Any, sensors: Sequence[str] = ()) -> tuple[Sequence[Any],
                                                                           tuple[Table, ...]]:
     """The chosen sensor entries, and the distinct input-side responses among them (in
     order of first use): what :func:`fit_recording` needs as ``responses`` for
