@@ -175,3 +175,16 @@ def test_the_envelope_on_dask(logs: list[Path]) -> None:
     part = bag.from_sequence(paths, npartitions=2).map(envelope_step, options).fold(
         combine).compute(scheduler="synchronous")
     assert fit_envelope(part, options).fit.yaml == profile_recordings(paths, options).fit.yaml
+
+
+def test_progress_counts_the_recordings_in_order(logs: list[Path]) -> None:
+    """run_recordings reports each recording done through gyrovib.progress (the bar a
+    terminal draws), and its results come in input order."""
+    from gyrovib.api.fleet import RecordingOptions, run_recordings
+    from gyrovib.progress import receiving
+
+    calls: list[tuple[str, int, int]] = []
+    with receiving(lambda *call: calls.append(call)):
+        fits = run_recordings([str(p) for p in logs[:2]], RecordingOptions(fs=FS))
+    assert calls == [("recordings", 1, 2), ("recordings", 2, 2)]
+    assert [Path(f.file).name for f in fits] == ["a.npy", "b.npy"]
