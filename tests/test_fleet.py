@@ -126,6 +126,9 @@ def test_jobs_give_the_same_bytes_and_errors_stay_located(logs: list[Path],
     out = tmp_path / "env.gyrovib.yaml"
     out.write_text(one.stdout)
     assert invoke("validate", out).exit_code == 0
+    doc = json.loads(invoke(*args, "--format", "json", "--jobs", 2).stdout)
+    assert [r["file"] for r in doc["recordings"]] == ["a.npy", "b.npy", "c.npy"]
+    assert doc["envelope"]["recordings"] == 3 and doc["profile"] == one.stdout
     bad = tmp_path / "bad.xyz"
     bad.write_text("x")
     r = invoke("profile", logs[0], bad, tmp_path / "missing.npy", "--fs", FS, "--jobs", 2)

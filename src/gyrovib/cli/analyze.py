@@ -83,6 +83,10 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
 
     unit = parse_unit(unit)
     catalog = load_catalog(files)
+    if jobs != 1 and not recordings:
+        from gyrovib.errors import OptionError
+
+        raise OptionError("--jobs runs recordings in processes: give it with --recording")
     if recordings:
         from gyrovib.cli.recording import analyze_recording, refuse_with_recording
 

@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.options import output_option
+from gyrovib.cli.options import format_option, output_option
 from gyrovib.cli.recording import fit_options, jobs_option, read, recording_options, step_options
 
 
@@ -17,9 +17,10 @@ from gyrovib.cli.recording import fit_options, jobs_option, read, recording_opti
 @jobs_option
 @click.option("--plot", metavar="PNG", help="Plot the measured PSD against the fit, per axis "
                                             "(several recordings: their envelope).")
+@format_option("yaml", "json")
 @output_option
-def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, output: str | None,
-            **options: Any) -> None:
+def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
+            output: str | None, **options: Any) -> None:
     """Fit a profile (and its carrier mission) to a RECORDING, or to the envelope of several.
 
     RECORDING: CSV with a header row (time column t/time in s, or --fs),
@@ -33,9 +34,14 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, output: st
     the missions joined; --id names it (default envelope-fitted), and each
     recording's honesty table comes before the envelope's. --jobs N fits them
     in N processes, with the same output.
+
+    --format json writes, instead of the YAML, the honesty figures of each
+    recording (and of the envelope) with the YAML as one string (docs/output.md).
     """
     from gyrovib.cli.output import write_output
     from gyrovib.render.recording import plot_fit
+
+    from gyrovib.render import fleet as render
 
     if len(recordings) == 1:
         from gyrovib.api.commands.recording import fit_recording
@@ -43,13 +49,14 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, output: st
 
         fit = fit_recording(read(recordings[0], options), **fit_options(options))
         table = honesty_table(fit)
+        document = render.profile_json(fit) if fmt == "json" else fit.yaml
     else:
         from gyrovib.api.recording_envelope import profile_recordings
-        from gyrovib.render.fleet import envelope_table
 
         env = profile_recordings(recordings, step_options(options), jobs=jobs)
-        fit, table = env.fit, envelope_table(env)
-    write_output(fit.yaml, output)
+        fit, table = env.fit, render.envelope_table(env)
+        document = render.envelope_json(env) if fmt == "json" else fit.yaml
+    write_output(document, output)
     click.echo(table, err=True, nl=False)
     if plot is not None:
         plot_fit(fit, plot)

@@ -15,6 +15,7 @@ from gyrovib.render.common import dumps, header
 
 if TYPE_CHECKING:
     from gyrovib.api.fleet import RecordingsAnalysis
+    from gyrovib.api.recording_results import RecordingFit
     from gyrovib.api.recording_envelope import Envelope
 
 
@@ -121,3 +122,33 @@ def envelope_table(env: Envelope) -> str:
     lines.append("variance: of the envelope spectrum over f_c…fs/2 and its lines; held: the "
                  "share of it the fitted profile holds")
     return "\n".join(parts) + "\n" + "\n".join(lines) + "\n"
+
+
+def _envelope_axes(fit: RecordingFit) -> dict[str, Any]:
+    return {a: {"variance": one._num(h.variance), "held": one._num(h.held)}
+            for a, h in zip(one.AXES, fit.honesty, strict=True)}
+
+
+def profile_json(fit: RecordingFit) -> str:
+    """``gyrovib profile RECORDING --format json``: ``recording`` (as ``analyze
+    --recording`` writes it), the fit's ``warnings`` and the catalogue text ``profile``."""
+    document = header("profile", "deg/s")
+    document.update({"recording": one.recording_info(fit), "warnings": list(fit.warnings),
+                     "profile_id": fit.profile_id, "profile": fit.yaml})
+    return dumps(document)
+
+
+def envelope_json(env: Envelope) -> str:
+    """``gyrovib profile A B … --format json``: ``recordings`` (one entry each, as one
+    recording's ``recording`` with its ``profile_id`` and ``warnings``), ``envelope``
+    (what its fit holds per axis) and the catalogue text ``profile``."""
+    fit = env.fit
+    document = header("profile", "deg/s")
+    document["recordings"] = [{**one.recording_info(f), "profile_id": f.profile_id,
+                               "warnings": list(f.warnings)} for f in env.fits]
+    document["envelope"] = {"recordings": len(env.recordings), "profile_id": fit.profile_id,
+                            "crossover": fit.crossover, "duration": fit.duration,
+                            "mission_segments": len(fit.mission_durations),
+                            "axes": _envelope_axes(fit)}
+    document["profile"] = fit.yaml
+    return dumps(document)
