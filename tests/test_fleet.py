@@ -3,6 +3,7 @@ recordings, and the same reduction on Dask."""
 
 from __future__ import annotations
 
+import functools
 import json
 from pathlib import Path
 
@@ -62,19 +63,26 @@ def test_envelope_takes_the_largest_psd_and_the_loudest_tones(logs: list[Path]) 
     """Per bin the largest random PSD; the shared tone at the amplitude of the recording
     where it is largest, the other tone kept; the missions joined."""
     from gyrovib.api.fleet import RecordingOptions, profile_one
-    from gyrovib.api.recording_envelope import envelope, envelope_part
+    from gyrovib.api.recording_envelope import combine, envelope, envelope_part
 
     options = RecordingOptions(fs=FS)
     fits = [profile_one(str(p), options) for p in logs]
     env = envelope(fits, options)
     parts = [envelope_part(f, options) for f in fits]
     largest = np.max([p.angular.random for p in parts], axis=0)
-    joined = envelope_part(fits[0], options)
-    from gyrovib.api.recording_envelope import combine
-
+    joined = parts[0]
     for p in parts[1:]:
         joined = combine(joined, p)
     np.testing.assert_array_equal(joined.angular.random, largest)
+    # the balanced tree of envelope() joins in the order a left fold does
+    from gyrovib.api.recording_envelope import reduce_parts
+
+    five = [*parts, *parts[:2]]
+    tree, fold = reduce_parts(five), functools.reduce(combine, five)
+    for name in ("mission_rates", "mission_durations"):
+        np.testing.assert_array_equal(getattr(tree, name), getattr(fold, name))
+    np.testing.assert_array_equal(tree.angular.lines, fold.angular.lines)
+    assert tree.recordings == fold.recordings
     tones = {round(t.frequency): t for t in env.fit.angular.tones}
     assert sorted(tones) == [31, 72]
     loud = {round(t.frequency): t for t in fits[1].angular.tones}

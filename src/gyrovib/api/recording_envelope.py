@@ -357,11 +357,26 @@ def envelope(fits: Iterable[RecordingFit], options: RecordingOptions = DEFAULTS
     fits = tuple(fits)
     if not fits:
         raise OptionError("an envelope needs at least one recording")
-    part = envelope_part(fits[0], options)
-    for fit in fits[1:]:
-        part = combine(part, envelope_part(fit, options))
-    result = fit_envelope(part, options)
+    result = fit_envelope(reduce_parts(envelope_part(fit, options) for fit in fits), options)
     return dataclasses.replace(result, fits=fits)
+
+
+def reduce_parts(parts: Iterable[EnvelopePart]) -> EnvelopePart:
+    """:func:`combine` over ``parts`` in order, as a balanced tree (two of one size are
+    joined as soon as both are there): the joined missions and lines are copied
+    O(n log n) times, not O(n²), and at most log₂ n parts are held at once."""
+    stack: list[tuple[int, EnvelopePart]] = []
+    for part in parts:
+        level = 0
+        while stack and stack[-1][0] == level:
+            part, level = combine(stack.pop()[1], part), level + 1
+        stack.append((level, part))
+    if not stack:
+        raise OptionError("an envelope needs at least one recording")
+    part = stack.pop()[1]
+    while stack:
+        part = combine(stack.pop()[1], part)
+    return part
 
 
 def envelope_step(path: str, options: RecordingOptions = DEFAULTS) -> EnvelopePart:
