@@ -39,9 +39,8 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
     recording (and of the envelope) with the YAML as one string (docs/output.md).
     """
     from gyrovib.cli.output import write_output
-    from gyrovib.render.recording import plot_fit
-
     from gyrovib.render import fleet as render
+    from gyrovib.render.recording import plot_fit
 
     if len(recordings) == 1:
         from gyrovib.api.commands.recording import fit_recording

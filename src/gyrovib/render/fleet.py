@@ -15,8 +15,8 @@ from gyrovib.render.common import dumps, header
 
 if TYPE_CHECKING:
     from gyrovib.api.fleet import RecordingsAnalysis
-    from gyrovib.api.recording_results import RecordingFit
     from gyrovib.api.recording_envelope import Envelope
+    from gyrovib.api.recording_results import RecordingFit
 
 
 def _name(analysis: Any) -> str:
