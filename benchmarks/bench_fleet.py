@@ -17,7 +17,9 @@ LOG... --fs 250 --jobs N -o envelope.yaml``; the wall-clock time includes the
 interpreter's and the workers' start-up. Reported with it: the 1-minute load
 average before and after (the machine may be shared), the largest resident set
 of the command and of any of its workers (``ru_maxrss`` of the reaped
-children), and whether every ``--jobs`` wrote the same bytes.
+children), the CPU time of the command and its workers together (on a quiet
+machine the wall time approaches it divided by ``--jobs``), and whether every
+``--jobs`` wrote the same bytes.
 """
 
 from __future__ import annotations
@@ -90,13 +92,15 @@ def main() -> None:
         outputs = set()
         for jobs in args.jobs:
             before = os.getloadavg()[0]
+            used = resource.getrusage(resource.RUSAGE_CHILDREN)
             seconds, text = run(paths, jobs, os.path.join(folder, f"envelope-{jobs}.yaml"))
             after = os.getloadavg()[0]
-            rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+            usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu = usage.ru_utime + usage.ru_stime - used.ru_utime - used.ru_stime
             outputs.add(hashlib.sha256(text).hexdigest())
-            print(f"--jobs {jobs}: {seconds:.1f} s, {seconds / args.logs:.2f} s per log; "
-                  f"load average {before:.1f} before, {after:.1f} after; largest process "
-                  f"so far {rss:.0f} MB")
+            print(f"--jobs {jobs}: {seconds:.1f} s wall, {cpu:.1f} s CPU (all processes), "
+                  f"{seconds / args.logs:.2f} s per log; load average {before:.1f} before, "
+                  f"{after:.1f} after; largest process so far {usage.ru_maxrss / 1024:.0f} MB")
         if len(args.jobs) > 1:
             print("same output for every --jobs:", len(outputs) == 1)
 
