@@ -164,6 +164,8 @@ def test_analyze_several_recordings_reports_each_and_the_worst(logs: list[Path])
     table = invoke("analyze", "--recording", logs[0], "--recording", logs[1], "--fs", FS,
                    "--sensor", "generic-rate-mems")
     assert "worst recording per sensor" in table.stdout
+    refused = invoke("analyze", "--jobs", 2)
+    assert refused.exit_code == 2 and "--jobs" in refused.stderr
 
 
 def test_the_envelope_on_dask(logs: list[Path]) -> None:
