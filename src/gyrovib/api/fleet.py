@@ -6,8 +6,9 @@ The one-recording step is :func:`profile_one`, a pure function of a path and a
 (:func:`gyrovib.api.commands.recording.fit_recording`) and returns the
 :class:`~gyrovib.api.recording_results.RecordingFit` — spectra on the Welch grid,
 lines, carrier histogram, moments and honesty figures: tens of kB at 250 Hz, growing
-with fs/Δf and never with the recording's length; never its samples. It pickles, so it can run in another process
-(:func:`run_recordings`, ``--jobs N``) or on another machine (Dask, docs/fleet.md).
+with fs/Δf and never with the recording's length; never its samples. It pickles, so
+it can run in another process (:func:`run_recordings`, ``--jobs N``) or on another
+machine (Dask, docs/fleet.md).
 Their envelope profile is :mod:`gyrovib.api.recording_envelope`;
 :func:`analyze_recordings` is ``analyze --recording A --recording B``.
 """
