@@ -47,6 +47,13 @@ from gyrovib.frozen import Frozen
 ENVELOPE_ID = "envelope-fitted"
 
 
+def _read_only(result: Any) -> None:
+    for f in dataclasses.fields(result):
+        value = getattr(result, f.name)
+        if isinstance(value, np.ndarray):
+            value.setflags(write=False)
+
+
 @dataclass(frozen=True, eq=False, repr=False)
 class Provenance(Frozen):
     """One recording of an envelope: its file (base name), SHA-256, size and rate."""
@@ -78,6 +85,9 @@ class SpectrumEnvelope(Frozen):
     coherence: FloatArray
     weight: float
 
+    def __post_init__(self) -> None:
+        _read_only(self)
+
 
 @dataclass(frozen=True, eq=False, repr=False)
 class EnvelopePart(Frozen):
@@ -93,6 +103,9 @@ class EnvelopePart(Frozen):
     mission_durations: FloatArray
     rate_axes: tuple[bool, bool, bool]
     segments: int
+
+    def __post_init__(self) -> None:
+        _read_only(self)
 
 
 def _lines_of(part: FittedPart) -> tuple[FloatArray, FloatArray, FloatArray]:
