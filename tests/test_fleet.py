@@ -44,7 +44,7 @@ def logs(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
 
 def test_envelope_of_one_recording_is_its_own_profile(logs: list[Path]) -> None:
     """The envelope reduction on a recording and itself gives back the one-recording fit
-    (profile body identical but for the id and name; its mission twice)."""
+    (profile body identical but for the id and name; its mission's time twice)."""
     from gyrovib.api.fleet import RecordingOptions, profile_one
     from gyrovib.api.recording_envelope import envelope
 
@@ -56,7 +56,31 @@ def test_envelope_of_one_recording_is_its_own_profile(logs: list[Path]) -> None:
     assert both[both.index("profiles:"):both.index("missions:")] == body.replace(
         fit.profile_id, "envelope-fitted").replace("Fitted from a.npy",
                                                    "Fitted from envelope of 2 recordings")
-    assert len(env.fit.mission_durations) == 2 * len(fit.mission_durations)
+    # the joined mission, re-binned: its time and its time-weighted mean rate kept
+    assert env.fit.mission_durations.sum() == pytest.approx(2 * fit.mission_durations.sum())
+    np.testing.assert_allclose(env.fit.mission_durations @ env.fit.mission_rates,
+                               2 * fit.mission_durations @ fit.mission_rates, rtol=1e-12)
+
+
+def test_the_fleet_mission_is_a_carrier_histogram() -> None:
+    """At most 16 segments are written as they are; more become at most 16 bins of Ω_K3,
+    each with its segments' total time at their time-weighted mean rate (worked here by
+    hand: 20 segments at Ω_K3 = 0…19 deg/s, 1 s each, except 3 s at 19)."""
+    from gyrovib.api.recording_envelope import fleet_mission
+
+    rates = np.zeros((20, 3))
+    rates[:, 2] = np.arange(20.0)
+    rates[:, 0] = 1.0
+    durations = np.ones(20)
+    durations[-1] = 3.0
+    same = fleet_mission(rates[:16], durations[:16])
+    assert np.array_equal(same[0], rates[:16]) and np.array_equal(same[1], durations[:16])
+    binned, time = fleet_mission(rates, durations)
+    # edges 0, 19/16, 2·19/16, …: bins of width 1.1875 take one or two of the integers
+    assert time.sum() == 22.0 and len(time) == 16
+    assert time[0] == 2.0 and binned[0, 2] == 0.5  # 0 and 1 (1 < 1.1875)
+    assert time[-1] == 4.0 and binned[-1, 2] == (18 + 3 * 19) / 4  # 18 and 19 (3 s)
+    np.testing.assert_allclose(binned[:, 0], 1.0)
 
 
 def test_envelope_takes_the_largest_psd_and_the_loudest_tones(logs: list[Path]) -> None:

@@ -16,7 +16,8 @@ part as :func:`fit_recording` fits one recording:
   recording unless ``independent_tones``;
 * the coherences of the recording with the largest x3 (or, for accelerations, total)
   vibration variance — one recording's, so they stay a correlation matrix;
-* the mission: every recording's carrier-histogram segments, in order.
+* the mission: every recording's carrier-histogram segments, in order — as written,
+  their own carrier histogram once they number more than 16 (:func:`fleet_mission`).
 """
 
 from __future__ import annotations
@@ -289,6 +290,30 @@ def _fitted(s: SpectrumEnvelope, crossover: float, breakpoints: int, independent
                       variance=variance, held=held)
 
 
+def fleet_mission(rates: FloatArray, durations: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The joined missions' segments (rates (k, 3) deg/s, durations (k,) s) as written:
+    unchanged while k ≤ 16, else their carrier histogram — at most 16 bins of Ω_K3 of
+    equal width over the joined range (the one-recording rule), each bin the total time
+    of the segments it takes at their time-weighted mean rate."""
+    from gyrovib.core.recording import MISSION_BINS
+
+    if durations.size <= MISSION_BINS:
+        return rates, durations
+    c = rates[:, 2]
+    lo, hi = float(c.min()), float(c.max())
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):  # one carrier rate, up to rounding
+        idx = np.zeros(c.size, dtype=np.intp)
+    else:
+        edges = np.linspace(lo, hi, MISSION_BINS + 1)
+        idx = np.clip(np.searchsorted(edges, c, side="right") - 1, 0, MISSION_BINS - 1)
+    time = np.bincount(idx, weights=durations, minlength=MISSION_BINS)
+    keep = time > 0
+    mean = np.column_stack([np.bincount(idx, weights=durations * rates[:, j],
+                                        minlength=MISSION_BINS)[keep] / time[keep]
+                            for j in range(3)])
+    return mean, time[keep]
+
+
 @dataclass(frozen=True, eq=False, repr=False)
 class Envelope(Frozen):
     """Several recordings and their envelope profile: ``fits`` in input order (empty when
@@ -321,6 +346,8 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
                                                       True, rate=False)
     duration = float(np.sum([r.duration for r in part.recordings]))
     pid = profile_id or ENVELOPE_ID
+    mission_rates, mission_durations = fleet_mission(part.mission_rates,
+                                                     part.mission_durations)
     identity = hashlib.sha256("\n".join(r.sha256 for r in part.recordings).encode())
     n = len(part.recordings)
     fit = RecordingFit(
@@ -329,7 +356,7 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
         fs=max(r.fs for r in part.recordings), crossover=part.crossover,
         segments=part.segments, duration=duration, profile_id=pid,
         rate=part.rate_time / duration if duration > 0 else np.zeros(3),
-        mission_rates=part.mission_rates, mission_durations=part.mission_durations,
+        mission_rates=mission_rates, mission_durations=mission_durations,
         angular=angular, linear=linear,
         honesty=tuple(_honesty(float(angular.variance[j]), float(angular.held[j]))
                       for j in range(3)),  # type: ignore[arg-type]
@@ -352,7 +379,8 @@ def _envelope_header(part: EnvelopePart) -> str:
         "(docs/fleet.md):",
         "# per frequency bin the largest PSD of the recordings, each line at its largest "
         "amplitude,",
-        "# the mission every recording's carrier histogram in turn.",
+        "# the mission every recording's carrier histogram joined (re-binned to at most 16 "
+        "bins of Omega_K3).",
         f"# crossover f_c: {_num(part.crossover)} Hz; segments: {part.segments}; duration "
         f"analysed: {_num(sum(r.duration for r in part.recordings))} s",
         "# Rates in deg/s (PSD in (deg/s)^2/Hz), accelerations in g (PSD in g^2/Hz).",
