@@ -311,7 +311,7 @@ def fleet_mission(rates: FloatArray, durations: FloatArray) -> tuple[FloatArray,
     mean = np.column_stack([np.bincount(idx, weights=durations * rates[:, j],
                                         minlength=MISSION_BINS)[keep] / time[keep]
                             for j in range(3)])
-    return mean, time[keep]
+    return mean, np.asarray(time[keep], dtype=float)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
