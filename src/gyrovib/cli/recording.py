@@ -55,7 +55,7 @@ def jobs_option(f: F) -> F:
              "memory grows with N, one recording per worker).")(f)
 
 
-def step_options(options: dict[str, Any], responses: tuple[Any, ...] = ()) -> Any:
+def step_options(options: dict[str, Any]) -> Any:
     """The parsed options as the one-recording step's :class:`RecordingOptions`."""
     from gyrovib.api.fleet import RecordingOptions
     from gyrovib.api.recordings import parse_columns
@@ -65,7 +65,7 @@ def step_options(options: dict[str, Any], responses: tuple[Any, ...] = ()) -> An
         rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
         accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
         rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
-        topic=options["topic"], responses=responses, **fit_options(options))
+        topic=options["topic"], **fit_options(options))
 
 
 def read(path: str, options: dict[str, Any]) -> Any:
