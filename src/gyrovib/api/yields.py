@@ -31,9 +31,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from gyrovib.api.datasheet.spec_bounds import is_unverified
 from gyrovib.api.evaluation.results import Limit, Result
 from gyrovib.api.study.prepare import Prepared, profile_problem
-from gyrovib.api.datasheet.spec_bounds import is_unverified
 from gyrovib.api.uncertainty import (
     Distribution,
     distributions,

@@ -27,7 +27,7 @@ from gyrovib.cli.options import (
     selection_options,
     unit_option,
 )
-from gyrovib.cli.recording import recording_options
+from gyrovib.cli.recording import jobs_option, recording_options
 
 
 @click.command()
@@ -52,15 +52,18 @@ from gyrovib.cli.recording import recording_options
                    "dominant terms (the default with more).")
 @format_option("table", "json", "csv", "markdown")
 @output_option
-@click.option("--recording", metavar="RECORDING",
+@click.option("--recording", "recordings", metavar="RECORDING", multiple=True,
               help="Δ_V,rec of every sensor on a recording (docs/model.md section 13), beside "
-                   "the fitted profile's closed form; see `gyrovib profile` for its options.")
+                   "the fitted profile's closed form; see `gyrovib profile` for its options. "
+                   "Repeat it for several recordings: each is reported, then each sensor's "
+                   "worst.")
 @recording_options
+@jobs_option
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
             placement: str | None,
             method: str, samples: int, seed: int, rate: str | None, unit: str,
             peak_factor: float, detail: bool | None, fmt: str,
-            output: str | None, recording: str | None, **rec: Any) -> None:
+            output: str | None, recordings: tuple[str, ...], jobs: int, **rec: Any) -> None:
     """The direct problem: the vibration error of every sensor under every profile.
 
     Computes the additive terms Δ0 (eq. 14/15), Δ_VA, Δ_VM, the total Δ_V
@@ -80,7 +83,11 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
 
     unit = parse_unit(unit)
     catalog = load_catalog(files)
-    if recording is not None:
+    if jobs != 1 and not recordings:
+        from gyrovib.errors import OptionError
+
+        raise OptionError("--jobs runs recordings in processes: give it with --recording")
+    if recordings:
         from gyrovib.cli.recording import analyze_recording, refuse_with_recording
 
         refuse_with_recording(profiles=profiles, rate=rate, method=method)
@@ -89,7 +96,7 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
 
             raise OptionError("--placement maps catalogue profiles; with --recording give "
                               "the recording's columns in sensor axes (--rate-columns)")
-        analyze_recording(recording, catalog, sensors, unit, fmt, output, rec)
+        analyze_recording(recordings, catalog, sensors, unit, fmt, output, rec, jobs)
         return
     from gyrovib.cli.placement import is_triad, run_placed, write_triad
 

@@ -1,4 +1,5 @@
-"""`gyrovib profile`: fit a catalogue profile to a recording (docs/model.md section 13)."""
+"""`gyrovib profile`: fit a catalogue profile to one recording or the envelope of several
+(docs/model.md section 13, docs/fleet.md)."""
 
 from __future__ import annotations
 
@@ -6,18 +7,21 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.options import output_option
-from gyrovib.cli.recording import fit_options, read, recording_options
+from gyrovib.cli.options import format_option, output_option
+from gyrovib.cli.recording import fit_options, jobs_option, read, recording_options, step_options
 
 
 @click.command()
-@click.argument("recording", metavar="RECORDING")
+@click.argument("recordings", metavar="RECORDING...", nargs=-1, required=True)
 @recording_options
+@jobs_option
 @click.option("--plot", metavar="PNG", help="Plot the measured PSD against the fit, per axis, "
-              "each panel titled with its shape figures.")
+              "each panel titled with its shape figures (several recordings: their envelope).")
+@format_option("yaml", "json")
 @output_option
-def profile(recording: str, plot: str | None, output: str | None, **options: Any) -> None:
-    """Fit a profile (and its carrier mission) to a RECORDING.
+def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
+            output: str | None, **options: Any) -> None:
+    """Fit a profile (and its carrier mission) to a RECORDING, or to the envelope of several.
 
     RECORDING: CSV with a header row (time column t/time in s, or --fs),
     .npy (2-D, columns; read from the file a block at a time, never whole),
@@ -30,13 +34,34 @@ def profile(recording: str, plot: str | None, output: str | None, **options: Any
     standard error. Its "shape dB" is the power-weighted mean distance between the
     fitted and the measured random PSD, "off 3 dB" the share of the power more than
     3 dB out; an axis past 2 dB or 20 % is warned of.
-    """
-    from gyrovib.api.commands.recording import fit_recording
-    from gyrovib.cli.output import write_output
-    from gyrovib.render.recording import honesty_table, plot_fit
 
-    fit = fit_recording(read(recording, options), **fit_options(options))
-    write_output(fit.yaml, output)
-    click.echo(honesty_table(fit), err=True, nl=False)
+    Several recordings give one envelope profile (docs/fleet.md): per frequency
+    bin the largest PSD of the recordings, each tone at its largest amplitude,
+    the missions joined; --id names it (default envelope-fitted), and each
+    recording's honesty table comes before the envelope's. --jobs N fits them
+    in N processes, with the same output.
+
+    --format json writes, instead of the YAML, the honesty figures of each
+    recording (and of the envelope) with the YAML as one string (docs/output.md).
+    """
+    from gyrovib.cli.output import write_output
+    from gyrovib.render import fleet as render
+    from gyrovib.render.recording import plot_fit
+
+    if len(recordings) == 1:
+        from gyrovib.api.commands.recording import fit_recording
+        from gyrovib.render.recording import honesty_table
+
+        fit = fit_recording(read(recordings[0], options), **fit_options(options))
+        table = honesty_table(fit)
+        document = render.profile_json(fit) if fmt == "json" else fit.yaml
+    else:
+        from gyrovib.api.recording_envelope import profile_recordings
+
+        env = profile_recordings(recordings, step_options(options), jobs=jobs)
+        fit, table = env.fit, render.envelope_table(env)
+        document = render.envelope_json(env) if fmt == "json" else fit.yaml
+    write_output(document, output)
+    click.echo(table, err=True, nl=False)
     if plot is not None:
         plot_fit(fit, plot)

@@ -61,6 +61,28 @@ def recording_options(f: F) -> F:
     return reader_options(f)
 
 
+def jobs_option(f: F) -> F:
+    """``--jobs N``: recordings fitted in N worker processes (INTERFACE.md, fourth round)."""
+    return click.option(
+        "--jobs", type=click.IntRange(min=1), default=1, show_default=True, metavar="N",
+        help="Fit the recordings in N worker processes (the output is the same as with 1; "
+             "memory grows with N, one recording per worker).")(f)
+
+
+def step_options(options: dict[str, Any]) -> Any:
+    """The parsed options as the one-recording step's :class:`RecordingOptions`."""
+    from gyrovib.api.fleet import RecordingOptions
+    from gyrovib.api.recordings import parse_columns
+
+    return RecordingOptions(
+        fs=options["fs"],
+        rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
+        accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
+        rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
+        topic=options["topic"], strict=options.get("strict", False),
+        **fit_options(options))
+
+
 def read(path: str, options: dict[str, Any]) -> Any:
     """The recording named on the command line, read with the options given."""
     from gyrovib.api.recordings import parse_columns, read_recording
@@ -79,21 +101,33 @@ def fit_options(options: dict[str, Any]) -> dict[str, Any]:
                                     "independent_tones", "profile_id")}
 
 
-def analyze_recording(path: str, catalog: Any, sensors: tuple[str, ...], unit: str, fmt: str,
-                      output: str | None, options: dict[str, Any]) -> None:
-    """``gyrovib analyze --recording``: one library call, then the renderer."""
-    from gyrovib.api.commands.recording import analyze_recording as run
+def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, ...], unit: str,
+                      fmt: str, output: str | None, options: dict[str, Any],
+                      jobs: int = 1) -> None:
+    """``gyrovib analyze --recording`` (once or more): one library call, then the renderer."""
     from gyrovib.cli.output import write_output
-    from gyrovib.render import recording as render
 
-    result = run(read(path, options), catalog, sensors=sensors, unit=unit,
-                 **fit_options(options))
-    if fmt != "table" or output is not None:  # the table on the terminal lists them itself
-        for warning in result.fit.warnings:
-            click.echo(f"gyrovib: warning: {warning}", err=True)
-    renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
-                 "markdown": render.to_markdown}
-    write_output(renderers[fmt](result), output)
+    if len(paths) == 1:
+        from gyrovib.api.commands.recording import analyze_recording as run
+        from gyrovib.render import recording as render
+
+        result = run(read(paths[0], options), catalog, sensors=sensors, unit=unit,
+                     **fit_options(options))
+        if fmt != "table" or output is not None:  # the table on the terminal lists them itself
+            for warning in result.fit.warnings:
+                click.echo(f"gyrovib: warning: {warning}", err=True)
+        renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
+                     "markdown": render.to_markdown}
+        write_output(renderers[fmt](result), output)
+        return
+    from gyrovib.api.fleet import analyze_recordings
+    from gyrovib.render import fleet as render_many
+
+    many = analyze_recordings(paths, catalog, step_options(options),
+                              sensors=sensors, unit=unit, jobs=jobs)
+    many_renderers = {"table": render_many.to_table, "json": render_many.to_json,
+                      "csv": render_many.to_csv, "markdown": render_many.to_markdown}
+    write_output(many_renderers[fmt](many), output)
 
 
 def refuse_with_recording(**given: Any) -> None:

@@ -7,6 +7,7 @@ from typing import Any
 import click
 
 from gyrovib.cli.common import load_catalog, say
+from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
     budget_arguments,
     budget_options,
@@ -14,7 +15,6 @@ from gyrovib.cli.options import (
     peak_factor_option,
     selection_options,
 )
-from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.recording import recording_options
 from gyrovib.cli.spec_options import assume_unknown_option
 from gyrovib.cli.yield_options import yield_options

@@ -214,7 +214,7 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
         random[:, line.lo:line.hi] = median[:, line.lo:line.hi]
         in_line[line.lo:line.hi] = True
     band = (f >= crossover) & (f < f[-1])
-    tables, sigma2, shape = _random_tables(f[band], random[:, band], variance, breakpoints)
+    tables, sigma2, shape = random_tables(f[band], random[:, band], variance, breakpoints)
     coh = _coherences(psd, spectra, band & ~in_line, df, rate)
     tones, harmonics = _tones(lines, grouped=not independent and rate)
     tone_var = sum((ln.amplitude**2 / 2 for ln in lines), np.zeros(3))
@@ -224,7 +224,7 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
                       shape_db=shape[0], off_3db=shape[1])
 
 
-def _random_tables(f: FloatArray, random: FloatArray, variance: FloatArray,
+def random_tables(f: FloatArray, random: FloatArray, variance: FloatArray,
                    breakpoints: int) -> tuple[tuple[Table | None, Table | None, Table | None],
                                               FloatArray, FloatArray]:
     """Per axis the fitted breakpoints of the random PSD over the band ``f`` (None where
@@ -365,22 +365,44 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
     each histogram bin of Ω_K3, the bins weighted by their time, exactly as
     ``gyrovib mission`` computes it on the written YAML.
     """
-    from gyrovib.api.datasheet.specs import figures, is_spec
-    from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
-    from gyrovib.api.study.entries import select_entries
-    from gyrovib.api.study.linear import g2_matrix
-    from gyrovib.api.study.prepare import input_response
-    from gyrovib.core.recording import recorded_error
-    from gyrovib.core.transmissibility import as_table
-
     unit = units.canonical_unit(unit)
-    entries, _ = select_entries(catalog, sensors, (), need=("sensors",))
-    keys: list[tuple[tuple[float, float], ...] | None] = [input_response(e) for e in entries]
-    distinct = [k for k in dict.fromkeys(keys) if k is not None]
+    entries, tables = recording_responses(catalog, sensors)
     fit = fit_recording(recording, crossover=crossover, resolution=resolution,
                         tone_threshold=tone_threshold, breakpoints=breakpoints,
                         independent_tones=independent_tones, profile_id=profile_id,
-                        responses=[as_table(k) for k in distinct])
+                        responses=tables)
+    return analysis_of_fit(fit, catalog, entries, unit=unit)
+
+
+def recording_responses(catalog: Any, sensors: Sequence[str] = ()) -> tuple[Sequence[Any],
+                                                                          tuple[Table, ...]]:
+    """The chosen sensor entries, and the distinct input-side responses among them (in
+    order of first use): what :func:`fit_recording` needs as ``responses`` for
+    :func:`analysis_of_fit` to find each sensor's Δ_V,rec moments."""
+    from gyrovib.api.study.entries import select_entries
+    from gyrovib.api.study.prepare import input_response
+    from gyrovib.core.transmissibility import as_table
+
+    entries, _ = select_entries(catalog, sensors, (), need=("sensors",))
+    keys = [input_response(e) for e in entries]
+    distinct = [k for k in dict.fromkeys(keys) if k is not None]
+    return entries, tuple(as_table(k) for k in distinct)
+
+
+def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
+                    unit: str = "deg/s") -> RecordingAnalysis:
+    """:func:`analyze_recording` on a fit already made with the ``responses`` of
+    :func:`recording_responses` for the same ``entries`` (the fit can come from another
+    process: it holds the recording's moments, never its samples)."""
+    from gyrovib.api.datasheet.specs import figures, is_spec
+    from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
+    from gyrovib.api.study.linear import g2_matrix
+    from gyrovib.api.study.prepare import input_response
+    from gyrovib.core.recording import recorded_error
+
+    unit = units.canonical_unit(unit)
+    keys = [input_response(e) for e in entries]
+    distinct = [k for k in dict.fromkeys(keys) if k is not None]
     n = len(entries)
     coeffs = coefficient_matrix(entries)
     g2 = g2_matrix(entries)
@@ -398,9 +420,20 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
     s = units.scale(unit)
+    warnings = _warnings(fit, ratio, saturated, peak / s, ranges / s, unit)
+    return RecordingAnalysis(
+        unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
+        terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
+        ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
+        warnings=warnings)
+
+
+def _warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_],
+              peak: FloatArray, ranges: FloatArray, unit: str) -> dict[int, tuple[str, ...]]:
+    """Per sensor row the warnings of ``analyze --recording`` (peak and range in ``unit``)."""
     warnings: dict[int, tuple[str, ...]] = {}
     lo, hi = RATIO_RANGE
-    for i in range(n):
+    for i in range(ratio.size):
         w: list[str] = []
         if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
             worst = (" (the fitted harmonics take their worst relative phases, so the closed "
@@ -411,16 +444,12 @@ def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[s
                      f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
                      f"stationary, and Δ_V,rec is the number to trust{worst}")
         if saturated[i]:
-            w.append(f"max |ω3| = {peak[i] / s:.6g} {unit} on the recording exceeds the "
-                     f"sensor's range {ranges[i] / s:.6g} {unit}: the static model does not "
+            w.append(f"max |ω3| = {peak[i]:.6g} {unit} on the recording exceeds the "
+                     f"sensor's range {ranges[i]:.6g} {unit}: the static model does not "
                      "hold in saturation")
         if w:
             warnings[i] = tuple(w)
-    return RecordingAnalysis(
-        unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
-        terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
-        ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
-        warnings=warnings)
+    return warnings
 
 
 def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: FloatArray,

@@ -16,8 +16,8 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
-from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.commands.mission import mission as vibration_mission
+from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.mission_results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import budget
 from gyrovib.api.noise.figures import FIGURES, noise_values

@@ -1,0 +1,154 @@
+"""Renderers of several recordings (docs/fleet.md): ``analyze --recording A --recording B``
+as table, JSON, CSV and markdown (each recording as for one, then each sensor's worst),
+and the envelope's summary of ``gyrovib profile A B …`` (keys: docs/output.md)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+from typing import TYPE_CHECKING, Any
+
+from gyrovib.render import recording as one
+from gyrovib.render.common import dumps, header
+
+if TYPE_CHECKING:
+    from gyrovib.api.fleet import RecordingsAnalysis
+    from gyrovib.api.recording_envelope import Envelope
+    from gyrovib.api.recording_results import RecordingFit
+
+
+def _name(analysis: Any) -> str:
+    return os.path.basename(str(analysis.fit.file))
+
+
+def _saturated_on(result: RecordingsAnalysis, k: int) -> list[str]:
+    return [_name(a) for a in result.analyses if bool(a.saturated[k])]
+
+
+def to_json(result: RecordingsAnalysis) -> str:
+    """``analyze --recording A --recording B --format json``: ``recordings`` (each as the
+    one-recording document's ``results``, ``recording``, ``warnings``) and ``worst``."""
+    from gyrovib import units
+
+    scale = units.scale(result.unit)
+    document = header("recording", result.unit)
+    document["recordings"] = [
+        {"results": one._rows(a), "recording": one.recording_info(a.fit, scale),
+         "warnings": list(a.fit.warnings)} for a in result.analyses]
+    worst = []
+    for k, sensor in enumerate(result.sensors):
+        i = result.worst[k]
+        row = one._rows(result.analyses[i])[k] if i >= 0 else {"sensor": sensor}
+        worst.append({**row, "recording": _name(result.analyses[i]) if i >= 0 else None,
+                      "index": i if i >= 0 else None,
+                      "saturated_on": _saturated_on(result, k)})
+    document["worst"] = worst
+    return dumps(document)
+
+
+def to_csv(result: RecordingsAnalysis) -> str:
+    """One row per recording × sensor: the one-recording columns after ``recording``."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    for n, analysis in enumerate(result.analyses):
+        rows = list(csv.reader(io.StringIO(one.to_csv(analysis))))
+        if n == 0:
+            w.writerow(["recording", *rows[0]])
+        for row in rows[1:]:
+            w.writerow([_name(analysis), *row])
+    return buf.getvalue()
+
+
+_WORST_HEAD = ["sensor", "worst Δ_V,rec", "recording", "fitted Δ̄_V", "ratio", "saturated on"]
+
+
+def _worst_rows(result: RecordingsAnalysis) -> list[list[str]]:
+    rows = []
+    for k, sensor in enumerate(result.sensors):
+        i = result.worst[k]
+        sat = ", ".join(_saturated_on(result, k)) or "—"
+        if i < 0:
+            rows.append([sensor, "—", "—", "—", "—", sat])
+            continue
+        a = result.analyses[i]
+        rows.append([sensor, one._fmt(a.recorded[k]), _name(a), one._fmt(a.fitted[k]),
+                     one._fmt(a.ratio[k], 3), sat])
+    return rows
+
+
+def to_table(result: RecordingsAnalysis) -> str:
+    """Each recording's table and honesty table, then each sensor's worst recording."""
+    n = len(result.analyses)
+    parts = [f"recording {i + 1} of {n}: {_name(a)}\n{one.to_table(a)}"
+             for i, a in enumerate(result.analyses)]
+    rows = [_WORST_HEAD, *_worst_rows(result)]
+    widths = [max(len(r[k]) for r in rows) for k in range(len(_WORST_HEAD))]
+    out = [f"worst recording per sensor (largest |Δ_V,rec|), {result.unit}"]
+    for m, r in enumerate(rows):
+        out.append("  ".join(c.ljust(widths[k]) if k in (0, 2, 5) else c.rjust(widths[k])
+                             for k, c in enumerate(r)).rstrip())
+        if m == 0:
+            out.append("  ".join("-" * w for w in widths))
+    return "\n".join(parts) + "\n" + "\n".join(out) + "\n"
+
+
+def to_markdown(result: RecordingsAnalysis) -> str:
+    """Each recording's markdown, then the worst per sensor."""
+    out = [one.to_markdown(a) for a in result.analyses]
+    table = [f"Worst recording per sensor (largest |Δ_V,rec|, {result.unit})", "",
+             "| " + " | ".join(_WORST_HEAD) + " |", "|" + "---|" * len(_WORST_HEAD)]
+    table += ["| " + " | ".join(r) + " |" for r in _worst_rows(result)]
+    return "\n".join(out) + "\n" + "\n".join(table) + "\n"
+
+
+def envelope_table(env: Envelope) -> str:
+    """``gyrovib profile A B …`` on standard error: each recording's honesty table, then
+    what the envelope profile holds of the envelope spectrum, per axis."""
+    fit = env.fit
+    n = len(env.recordings)
+    parts = [f"recording {i + 1} of {n}\n{one.honesty_table(f)}" for i, f in enumerate(env.fits)]
+    lines = [f"envelope of {n} recordings: profile {fit.profile_id}, f_c {fit.crossover:g} Hz, "
+             f"{fit.duration:.6g} s analysed in all",
+             f"{'axis':<5} {'variance (deg/s)²':>18} {'held':>8}"]
+    for axis, h in zip(one.AXES, fit.honesty, strict=True):
+        held = "—" if not math.isfinite(h.held) else f"{100 * h.held:.1f} %"
+        lines.append(f"{axis:<5} {one._fmt(h.variance):>18} {held:>8}")
+    part = fit.angular
+    lines.append(f"fitted: {len(part.tones)} tone(s), {len(part.harmonics)} harmonic group(s), "
+                 f"mission of {len(fit.mission_rates)} segment(s), mean rate Ω_K = "
+                 f"[{', '.join(f'{v:.4g}' for v in fit.rate)}] deg/s")
+    lines.append("variance: of the envelope spectrum over f_c…fs/2 and its lines; held: the "
+                 "share of it the fitted profile holds")
+    return "\n".join(parts) + "\n" + "\n".join(lines) + "\n"
+
+
+def _envelope_axes(fit: RecordingFit) -> dict[str, Any]:
+    return {a: {"variance": one._num(h.variance), "held": one._num(h.held)}
+            for a, h in zip(one.AXES, fit.honesty, strict=True)}
+
+
+def profile_json(fit: RecordingFit) -> str:
+    """``gyrovib profile RECORDING --format json``: ``recording`` (as ``analyze
+    --recording`` writes it), the fit's ``warnings`` and the catalogue text ``profile``."""
+    document = header("profile", "deg/s")
+    document.update({"recording": one.recording_info(fit), "warnings": list(fit.warnings),
+                     "profile_id": fit.profile_id, "profile": fit.yaml})
+    return dumps(document)
+
+
+def envelope_json(env: Envelope) -> str:
+    """``gyrovib profile A B … --format json``: ``recordings`` (one entry each, as one
+    recording's ``recording`` with its ``profile_id`` and ``warnings``), ``envelope``
+    (what its fit holds per axis) and the catalogue text ``profile``."""
+    fit = env.fit
+    document = header("profile", "deg/s")
+    document["recordings"] = [{**one.recording_info(f), "profile_id": f.profile_id,
+                               "warnings": list(f.warnings)} for f in env.fits]
+    document["envelope"] = {"recordings": len(env.recordings), "profile_id": fit.profile_id,
+                            "crossover": fit.crossover, "duration": fit.duration,
+                            "mission_segments": len(fit.mission_durations),
+                            "axes": _envelope_axes(fit)}
+    document["profile"] = fit.yaml
+    return dumps(document)
