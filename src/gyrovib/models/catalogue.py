@@ -7,6 +7,7 @@ from pydantic import BeforeValidator, Field, ValidationError, model_validator
 from pydantic_core import InitErrorDetails, PydanticCustomError
 
 from gyrovib import units as rate_units
+from gyrovib.units import STANDARD_GRAVITY
 from gyrovib.models._types import Model, Named, Number, rule_error
 from gyrovib.models.mission import Mission
 from gyrovib.models.profile import Profile
@@ -176,8 +177,6 @@ def _range_problems(sensor: Sensor, unit: str) -> list[tuple[tuple[str, ...], fl
 def _bare_g2(loc: tuple[str, ...], value: float, rate: str, acceleration: str) -> str:
     """Why a bare g² sensitivity is refused in a file whose acceleration unit is not g:
     both readings, and how to write the one meant."""
-    from gyrovib.units import STANDARD_GRAVITY
-
     ratio = STANDARD_GRAVITY**2
     key = loc[-1]
     return (f"a bare g² sensitivity is read per g², but this file's accelerations are in "
