@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import Any
 
 import click
 
@@ -88,7 +89,6 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     from gyrovib.cli.output import write_output
     from gyrovib.render import select as render
 
-    text: str | Iterator[str]  # the JSON document is streamed
     github_errors(fmt == "github")
     if mission is not None or angle_budget is not None:
         from gyrovib.cli.mission import select_mission
@@ -120,20 +120,29 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
         return
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
-    if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
-        note_slow_table(2 * len(result.sensors))
-        text = render.to_table(result, color=use_color(output), width=page_width(output),
-                               ascii=plain_ascii(output))
-    elif fmt == "github":
-        text = render.to_github(result, api.sensor_locations(catalog, result.sensors))
-    elif fmt == "json":
-        text = render.to_json_chunks(result)  # streamed: never the whole document at once
-    else:
-        text = {"csv": render.to_csv, "markdown": render.to_markdown,
-                "junit": render.to_junit}[fmt](result)
+    text = _rendered(result, fmt, catalog, output)
     write_output(text, output)
     if not result.requirement_met:
         ctx.exit(1)
+
+
+def _rendered(result: Any, fmt: str, catalog: Any, output: str | None) -> str | Iterator[str]:
+    """The selection in ``fmt``; the JSON document is streamed, never whole at once."""
+    from gyrovib import api
+    from gyrovib.render import select as render
+
+    if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
+        note_slow_table(2 * len(result.sensors))
+        return render.to_table(result, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output))
+    if fmt in ("github", "junit"):  # the CI formats
+        from gyrovib.render import select_ci
+
+        return (select_ci.to_github(result, api.sensor_locations(catalog, result.sensors))
+                if fmt == "github" else select_ci.to_junit(result))
+    if fmt == "json":
+        return render.to_json_chunks(result)
+    return {"csv": render.to_csv, "markdown": render.to_markdown}[fmt](result)
 
 
 for _param in select.params:  # --budget is not needed with --mission --angle-budget
