@@ -26,7 +26,6 @@ from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.progress import advance
 
-
 #: Most pieces per rate of :func:`two_groups_excess` (the second group's period split
 #: where the first group's excess has a kink); beyond, the mean is taken on a grid.
 MAX_PAIR_PIECES = 512

@@ -7,11 +7,11 @@ from pydantic import BeforeValidator, Field, ValidationError, model_validator
 from pydantic_core import InitErrorDetails, PydanticCustomError
 
 from gyrovib import units as rate_units
-from gyrovib.units import STANDARD_GRAVITY
 from gyrovib.models._types import Model, Named, Number, rule_error
 from gyrovib.models.mission import Mission
 from gyrovib.models.profile import Profile
 from gyrovib.models.sensor import RANGE_BAND, RANGE_WHY, RateUnit, Sensor
+from gyrovib.units import STANDARD_GRAVITY
 
 #: The acceleration units in which a bare g² sensitivity would be ambiguous.
 _NOT_G = ("m/s^2", "m/s2")

@@ -15,7 +15,6 @@ positive semi-definite matrix. k1 is 1 in eq. (2): it has no uncertainty.
 from typing import Annotated, Any
 
 import numpy as np
-
 from pydantic import Field, Strict, model_validator
 
 from gyrovib.models._types import AsInteger, Model, Number, Text, raise_at, rule_error

@@ -42,6 +42,7 @@ from gyrovib.render.analysis_table import (  # noqa: F401  (the face of the rend
 )
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number
 
+
 def _to_json_rows(result: AnalysisResult) -> str:
     """``analyze --format json`` (docs/output.md), one dict per row (the reference form)."""
     e = result.error
