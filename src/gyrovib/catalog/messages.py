@@ -10,14 +10,14 @@ file (line and column) is added by :mod:`gyrovib.catalog.locate`.
 
 from __future__ import annotations
 
+import difflib
 import re
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import Any, NamedTuple
+
+from pydantic import ValidationError
 
 from gyrovib.models import introspect
-
-if TYPE_CHECKING:
-    from pydantic import ValidationError
 
 #: The top-level key holding the format version.
 VERSION_KEY = "gyrovib"
@@ -244,8 +244,6 @@ def describe(value: Any) -> str:
 
 
 def _unknown_key(e: Error, prefix: str, at: str, text: str | None) -> str:
-    import difflib  # only on the error path: its import is slow
-
     key = str(e.loc[-1])
     fields = list(e.ctx["fields"])
     message = f"{prefix}unknown key {key!r}"

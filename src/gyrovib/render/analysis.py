@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api import AnalysisResult
+from gyrovib.api.specs import WORST_COEFFICIENTS
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.render.analysis_cells import (  # noqa: F401  (the face of the renderers)
     _SPECS_NOTE,
@@ -91,8 +92,6 @@ def _source_fields(result: AnalysisResult, i: int, j: int) -> dict[str, Any]:
     source = result.source(i)
     out: dict[str, Any] = {"source": source}
     if source == "specs" and result.worst_coefficients is not None:
-        from gyrovib.api.specs import WORST_COEFFICIENTS
-
         assert result.rms_bound is not None
         x = result.worst_coefficients[i, j].tolist()
         out["envelope"] = {"worst_coefficients": dict(zip(WORST_COEFFICIENTS, x, strict=True)),

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import csv
 import io
 import itertools
 import math
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from gyrovib._version import __version__
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
@@ -48,9 +51,6 @@ def fmt_budget(value: float | None, budget: float | None, digits: int = 4) -> st
 
 def csv_text(header_row: Iterable[str], rows: Iterable[Iterable[Any]]) -> str:
     """CSV with a header row, numbers written with full precision."""
-    import csv
-    import io
-
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(list(header_row))
@@ -64,9 +64,6 @@ def csv_cell(text: str) -> str:
     """One text cell as :func:`csv_text` writes it (quoted only when it must be)."""
     if not text or not any(c in text for c in ',"\r\n'):
         return text
-    import csv
-    import io
-
     buffer = io.StringIO()
     csv.writer(buffer, lineterminator="\n").writerow([text, ""])
     return buffer.getvalue()[:-2]
@@ -76,8 +73,6 @@ def float_cells(values: Any) -> list[str]:
     """The cells of a float column (any array-like), each ``repr`` of the float as
     :func:`csv_text` writes it. A column of one value throughout (bit for bit: a
     sweep's exact zeros) is written once and its cell repeated."""
-    import numpy as np
-
     a = np.ascontiguousarray(values, dtype=float).reshape(-1)
     if a.size > 1:
         bits = a.view(np.int64)

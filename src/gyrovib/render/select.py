@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import gc
+import json
 import math
 from collections.abc import Iterator
 from typing import Any
 
 from gyrovib.api import SelectionResult
 from gyrovib.api.reasons import failures as _failures
-from gyrovib.api.reasons import reason, unknown_label
+from gyrovib.api.reasons import reason, unknown_label, yield_text
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import (
@@ -71,8 +72,6 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "saturated":
         return f"its range under {profile}: {result.reasons[(i, j)]}"
     if limit.name == "yield" and result.yields is not None:
-        from gyrovib.api.reasons import yield_text
-
         return (f"yield {yield_text(result.yields, i, j)} under {profile}, below "
                 f"{result.yields.target:g}")
     if limit.name == "rms":
@@ -219,8 +218,6 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     ``"".join(to_json_chunks(result))`` is the whole document; only one block of
     sensor entries (:func:`_sensor_entries`) exists as Python objects at a time.
     """
-    import json
-
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
