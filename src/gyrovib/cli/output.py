@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import select
 import stat
 import sys
 from collections.abc import Iterable, Iterator
@@ -125,8 +126,6 @@ def _write_all(stream: TextIO, text: str) -> None:
     while data:
         written = buffer.write(data)
         if written is None:  # non-blocking and full: wait until writable
-            import select
-
             select.select([], [buffer], [])
             continue
         data = data[written:]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from gyrovib import units
 from gyrovib.cli.lazy import runs
 from gyrovib.cli.options import (
     budget_unit_option,
@@ -21,8 +22,6 @@ DEFAULT_RANGE = "-200:200:401"
 
 def parse_rate_range(text: str, unit: str) -> tuple[float, float, int]:
     """``START:STOP:COUNT`` with START, STOP in ``unit`` → (start, stop in deg/s, count)."""
-    from gyrovib import units
-
     pieces = text.replace(" ", "").split(":")
     if len(pieces) != 3 or not all(pieces):
         raise OptionError(f"--rate-range {text!r}: write START:STOP:COUNT, e.g. {DEFAULT_RANGE}")
