@@ -27,9 +27,10 @@ def runs(name: str) -> Callable[[F], F]:
     def declare(declared: F) -> F:
         @functools.wraps(declared)
         def run(*args: Any, **kwargs: Any) -> Any:
-            body = getattr(importlib.import_module(f"{BODIES}.{name}"), declared.__name__)
+            body = getattr(importlib.import_module(run.body_module), declared.__name__)
             return body(*args, **kwargs)
 
+        run.body_module = f"{BODIES}.{name}"  # type: ignore[attr-defined]
         return cast(F, run)
 
     return declare
