@@ -360,7 +360,8 @@ def test_locked_mixture_excess_matches_brute_force() -> None:
     import numpy as np
     from scipy import special
 
-    from gyrovib.core.harmonics import locked_group, locked_mixture_excess
+    from gyrovib.core.harmonic_mixtures import locked_mixture_excess
+    from gyrovib.core.harmonics import locked_group
 
     g1 = locked_group([1, 2, 3, 4], [[0, 0, 1.0], [0, 0, 0.6], [0, 0, 0.35], [0, 0, 0.2]],
                       [[0, 0, 10], [0, 0, 75], [0, 0, -30], [0, 0, 160]])

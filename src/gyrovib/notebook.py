@@ -26,18 +26,24 @@ from __future__ import annotations
 import math
 import operator
 import os
+import sys
 from collections.abc import Iterable, Sequence
 from numbers import Real
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
-from gyrovib import units
+from gyrovib import api, units
+from gyrovib.api.commands.mission import angle_in_rad
+from gyrovib.catalog.loader import Catalog, merge, model_source
+from gyrovib.core.envelope import OF
+from gyrovib.core.envelope_basis import FITS, MEASURES
+from gyrovib.core.placement import parse
 from gyrovib.errors import ArgumentError, ArgumentTypeError, OptionError
 from gyrovib.limits import MAX_SAMPLES
+from gyrovib.models import Catalogue
 
 if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
-    from gyrovib.catalog.loader import Catalog
 
 __all__ = ["analyze", "bounds", "load", "mission", "select", "sweep"]
 
@@ -238,41 +244,29 @@ def load(*paths: str | Path | Sequence[str | Path], bundled: str | None = None) 
     >>> [e.sensor.id for e in catalog.sensors][:2]
     ['adxrs645', 'adis16460']
     """
-    from gyrovib import api
-
     if bundled is not None:
         bundled = _text("bundled", bundled, ("sensors", "profiles", "all"))
     return api.load(_paths(paths), bundled=bundled)
 
 
 def _catalog(catalog: CatalogLike) -> Catalog:
-    from gyrovib.catalog.loader import Catalog
-
     if isinstance(catalog, Catalog):
         return catalog
     if catalog is None:
         return load()
     models = _models(catalog)
     if models is not None:
-        from gyrovib.catalog.loader import merge, model_source
-
         return merge([model_source(m, f"<gyrovib.models.Catalogue #{i + 1}>" if len(models) > 1
                                    else "<gyrovib.models.Catalogue>")
                       for i, m in enumerate(models)])
-    from gyrovib import api
-
     return api.load(_paths([catalog], "catalog"))
 
 
 def _models(catalog: Any) -> list[Any] | None:
     """``catalog`` as a list of :class:`gyrovib.models.Catalogue`, if it is one or a list
     of them (pydantic is imported only when the value may be one)."""
-    import sys
-
     if "gyrovib.models" not in sys.modules:  # no model was ever built
         return None
-    from gyrovib.models import Catalogue
-
     if isinstance(catalog, Catalogue):
         return [catalog]
     if isinstance(catalog, (list, tuple)) and catalog \
@@ -325,8 +319,6 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
     >>> r = gyrovib.analyze(sensors="adxrs645", profiles="flat-random-hover", unit="deg/h")
     >>> r.to_frame()[["sensor", "rms"]]  # doctest: +SKIP
     """
-    from gyrovib import api
-
     unit = _unit("unit", unit)
     extra: dict[str, Any] = {"seed": _integer("seed", seed, 0),
                              "peak_factor": _number("peak_factor", peak_factor,
@@ -377,10 +369,6 @@ def bounds(catalog: CatalogLike = None, *, budget: float | str,
     gyrovib.api.BoundsResult
         ``to_frame()`` gives one row per profile; an unconstrained bound is inf.
     """
-    from gyrovib import api
-    from gyrovib.core.envelope import OF
-    from gyrovib.core.envelope_basis import FITS, MEASURES
-
     unit = _budget_unit(unit, budget)
     arguments: dict[str, Any] = {
         "profiles": _ids("profiles", profiles), "method": _text("method", method, METHODS),
@@ -452,8 +440,6 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
     >>> s = gyrovib.select(budget="10deg/h")
     >>> [s.sensors[i] for i in s.ranking][:1]  # doctest: +SKIP
     """
-    from gyrovib import api
-
     unit = _budget_unit(unit, budget)
     arguments: dict[str, Any] = {
         "sensors": _ids("sensors", sensors), "profiles": _ids("profiles", profiles),
@@ -493,8 +479,6 @@ def sweep(catalog: CatalogLike = None, rates: Sequence[float | str] | Any = (-20
     gyrovib.api.SweepResult
         ``to_frame()`` gives one row per sensor × profile × rate.
     """
-    from gyrovib import api
-
     unit = _unit("unit", unit)
     items = _sequence("rates", rates, "(start, stop) or a sequence of rates")
     if not 1 <= len(items) <= api.MAX_SWEEP_POINTS:
@@ -552,17 +536,12 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     gyrovib.api.MissionResult
         ``to_frame()`` gives one row per sensor × mission × axis.
     """
-    from gyrovib import api
-    from gyrovib.core.placement import parse
-
     if unit is not None:
         unit = _unit("unit", unit)
     else:
         unit = (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/s"
     theta = None
     if angle_budget is not None:
-        from gyrovib.api.commands.mission import angle_in_rad
-
         try:
             theta = angle_in_rad(_text("angle_budget", angle_budget))
         except ValueError as exc:

@@ -222,6 +222,44 @@ def _skip_value(get: Any) -> None:
             return
 
 
+def _new_value(event: Any, kind: type, depth: int) -> Any:
+    """The value a scalar event gives, or the empty container a collection starts
+    (at ``depth`` open collections); a tag or an anchor is unusual."""
+    if event.anchor is not None or event.tag is not None:
+        raise _Unusual
+    if kind is yaml.ScalarEvent:
+        return _scalar(event)
+    if depth >= MAX_DEPTH:
+        raise _too_deep(event.start_mark)
+    return {} if kind is yaml.MappingStartEvent else []
+
+
+def _attach(stack: list[list[Any]], value: Any, get: Any, skip: frozenset[str]) -> None:
+    """Put ``value`` into the innermost open collection: an item of a list, a key
+    waiting for its value or the value of the waiting key. A top-level key in
+    ``skip`` is read past with its value."""
+    top = stack[-1]
+    if not top[1]:
+        top[0].append(value)
+        return
+    key = top[2]
+    if key is not _NO_KEY:
+        top[0][key] = value
+        top[2] = _NO_KEY
+        return
+    if type(value) in (dict, list) or value in top[0]:
+        raise _Unusual
+    if skip and len(stack) == 1 and value in skip:
+        _skip_value(get)
+        return
+    top[2] = value
+
+
+#: The events that open a value (an alias, the one other kind of value, is unusual).
+_VALUE_EVENTS = (yaml.ScalarEvent, yaml.MappingStartEvent, yaml.SequenceStartEvent)
+_END_EVENTS = (yaml.MappingEndEvent, yaml.SequenceEndEvent)
+
+
 def _stream(loader: Any, skip: frozenset[str] = frozenset()) -> Any:
     """Plain data of the single document of ``loader``, built from its events.
 
@@ -236,49 +274,25 @@ def _stream(loader: Any, skip: frozenset[str] = frozenset()) -> Any:
     get()  # StreamStartEvent
     if type(get()) is yaml.StreamEndEvent:  # no document at all
         return None
-    scalar_event, map_start, seq_start = yaml.ScalarEvent, yaml.MappingStartEvent, \
-        yaml.SequenceStartEvent
+    scalar_event, map_start = yaml.ScalarEvent, yaml.MappingStartEvent
     # one entry per open collection: [container, is_mapping, key waiting for its value]
     stack: list[list[Any]] = []
     root: Any = None
     while True:
         event = get()
         kind = type(event)
-        if kind is scalar_event:
-            if event.anchor is not None or event.tag is not None:
-                raise _Unusual
-            value = _scalar(event)
-        elif kind is map_start or kind is seq_start:
-            if event.anchor is not None or event.tag is not None:
-                raise _Unusual
-            if len(stack) >= MAX_DEPTH:
-                raise _too_deep(event.start_mark)
-            value = {} if kind is map_start else []
-        elif kind is yaml.MappingEndEvent or kind is yaml.SequenceEndEvent:
+        if kind in _END_EVENTS:
             stack.pop()
             continue
-        elif kind is yaml.DocumentEndEvent:
+        if kind is yaml.DocumentEndEvent:
             if type(get()) is not yaml.StreamEndEvent:
                 raise _Unusual  # a second document: the composer says so, located
             return root
-        else:  # an alias
+        if kind not in _VALUE_EVENTS:  # an alias
             raise _Unusual
+        value = _new_value(event, kind, len(stack))
         if stack:
-            top = stack[-1]
-            if top[1]:
-                key = top[2]
-                if key is _NO_KEY:
-                    if type(value) in (dict, list) or value in top[0]:
-                        raise _Unusual
-                    if skip and len(stack) == 1 and value in skip:
-                        _skip_value(get)
-                        continue
-                    top[2] = value
-                else:
-                    top[0][key] = value
-                    top[2] = _NO_KEY
-            else:
-                top[0].append(value)
+            _attach(stack, value, get, skip)
         else:
             root = value
         if kind is not scalar_event:

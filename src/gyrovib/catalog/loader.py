@@ -14,11 +14,14 @@ from __future__ import annotations
 import os
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
+from difflib import get_close_matches
+from pathlib import Path
 from types import SimpleNamespace
-from typing import TYPE_CHECKING, Any, NamedTuple, cast
+from typing import Any, NamedTuple, cast
 
 from pydantic import ValidationError
 
+from gyrovib.catalog import messages
 from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
     MAX_DEPTH,
     MAX_EXPANDED_NODES,
@@ -32,9 +35,6 @@ from gyrovib.catalog.messages import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY, 
 from gyrovib.errors import CatalogError, Problem
 from gyrovib.frozen import Frozen
 from gyrovib.models import Allocation, Catalogue, Mission, Profile, Sensor, validate_document
-
-if TYPE_CHECKING:
-    from pathlib import Path
 
 _Loader = Loader
 
@@ -88,8 +88,6 @@ class CatalogSource(Frozen):
 
 
 def _error_problems(errors: list[Error], data: Any, index: Index, name: str) -> list[Problem]:
-    from gyrovib.catalog import messages  # only on the error path
-
     problems = []
     for error in errors:
         node, place = index.find(error.loc, want_key=error.kind in ("unknown_key", "bad_key"))
@@ -151,8 +149,6 @@ def parse_catalog(text: str, name: str = "<string>",
         with _gc_paused():
             model = validate_document(data)
     except ValidationError as exc:
-        from gyrovib.catalog import messages  # only on the error path
-
         found = messages.errors(exc, data)
         index = Index(text)
         shown = _error_problems(found[:MAX_PROBLEMS], data, index, name)
@@ -195,7 +191,7 @@ def model_source(model: Catalogue, name: str = "<gyrovib.models.Catalogue>") -> 
     """A catalogue built in Python as a source: its text is the model as JSON (a YAML
     document; it identifies the content in a study's digest), and nothing is placed
     in it (a problem names ``name`` alone)."""
-    import json
+    import json  # not at import time: a first analyze does without it
 
     text = json.dumps(model.model_dump(mode="json", exclude_defaults=True), indent=1) + "\n"
     return CatalogSource(name=name, text=text, model=model, index=Index(""))
@@ -237,14 +233,11 @@ def read_catalog(path: str | Path | Source, skip: Collection[str] = ()) -> Catal
 def _native(path: str | Path) -> str:
     """The name :meth:`pathlib.Path.open` would open for ``path``: ``path`` itself when
     pathlib would not change it (a POSIX name without empty or ``.`` parts, nor a
-    trailing slash), else ``str(Path(path))``. pathlib is imported only then: its
-    import (with urllib.parse) is ~3 ms of a first run."""
+    trailing slash), else ``str(Path(path))``: a plain name is not rebuilt."""
     if isinstance(path, str) and os.sep == "/" and os.altsep is None:
         parts = path.split("/")
         if path and "." not in parts and "" not in parts[1:]:
             return path
-    from pathlib import Path
-
     return str(Path(path))
 
 
@@ -447,8 +440,6 @@ def _unknown_profiles(missions: Sequence[MissionEntry], known: set[str]) -> list
         for k, segment in enumerate(entry.mission.segments):
             if segment.profile in known:
                 continue
-            from difflib import get_close_matches
-
             near = get_close_matches(segment.profile, sorted(known), n=1)
             hint = f" (did you mean {near[0]!r}?)" if near else (
                 " (give the file that defines it too)" if not known else "")
@@ -490,8 +481,6 @@ def load_catalog(paths: Sequence[str | Path | Source], skip: Collection[str] = (
 
 def bundled_paths() -> list[Path]:
     """The catalogues shipped with gyrovib, in name order."""
-    from pathlib import Path
-
     return [Path(p) for p in bundled_files()]
 
 
@@ -502,8 +491,7 @@ def bundled_files() -> list[str]:
     if os.path.isdir(here):
         return sorted(os.path.join(here, name) for name in os.listdir(here)
                       if name.endswith((".yaml", ".yml")))
-    from importlib.resources import files
-    from pathlib import Path
+    from importlib.resources import files  # a zipped install only: a slow import
 
     root = files("gyrovib") / "catalogs"
     return [str(p) for p in

@@ -10,12 +10,14 @@ file (line and column) is added by :mod:`gyrovib.catalog.locate`.
 
 from __future__ import annotations
 
+import difflib
 import re
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import Any, NamedTuple
 
-if TYPE_CHECKING:
-    from pydantic import ValidationError
+from pydantic import ValidationError
+
+from gyrovib.models import introspect
 
 #: The top-level key holding the format version.
 VERSION_KEY = "gyrovib"
@@ -58,65 +60,104 @@ def _value(data: Any, loc: Sequence[Any]) -> Any:
     return data
 
 
-def _error(e: Any, data: Any) -> Error:
-    """One pydantic error as an :class:`Error`."""
-    from gyrovib.models import introspect
+def _short_list(e: Any, loc: tuple[Any, ...], data: Any) -> Error | None:
+    """A missing value of a fixed-length list: the list is too short."""
+    if not (loc and isinstance(loc[-1], int)):
+        return None
+    given = _value(data, loc[:-1])
+    return Error("too_few", loc[:-1], given, {"n": introspect.at(loc[:-1]).size,
+                                              "have": len(given), "exact": True})
 
-    loc = tuple(p for p in e["loc"] if p not in introspect.TAGS)
-    kind, value, ctx = e["type"], e["input"], e.get("ctx") or {}
-    if kind in ("rule", "version"):
-        return Error(kind, loc, value, dict(ctx))
-    if kind == "missing" and loc and isinstance(loc[-1], int):  # a short fixed-length list
-        given = _value(data, loc[:-1])
-        return Error("too_few", loc[:-1], given, {"n": introspect.at(loc[:-1]).size,
-                                                  "have": len(given), "exact": True})
-    if kind == "missing":
-        return Error("missing", loc, None, {})
-    if kind == "extra_forbidden":
-        fields = introspect.fields(loc[:-1])
-        return Error("unknown_key" if isinstance(loc[-1], str) else "bad_key", loc, loc[-1],
-                     {"fields": fields})
-    if kind == "invalid_key":
-        return Error("bad_key", loc, value, {"fields": ()})
-    if kind == "float_type" and type(value) is int:
-        return Error("finite", loc, value, {})  # an integer too large for a float
-    if kind == "finite_number":
-        return Error("finite", loc, value, {})
-    if kind in _TYPES:
-        return Error("type", loc, value, {"expected": _TYPES[kind]})
-    if kind == "kind":  # a union chosen by the kind of value written
-        return Error("type", loc, value, {"expected": e["msg"]})
-    if kind in _BOUNDS:
-        op, key = _BOUNDS[kind]
-        return Error("bound", loc, value, {"op": op, "bound": ctx[key],
-                                           "hint": introspect.at(loc).hint})
-    if kind in ("too_short", "too_long") and ctx.get("field_type") == "Tuple" \
-            and isinstance(value, (list, tuple)):
-        node = introspect.at(loc)
+
+def _missing_key(e: Any, loc: tuple[Any, ...], data: Any) -> Error:
+    return _short_list(e, loc, data) or Error("missing", loc, None, {})
+
+
+def _extra(e: Any, loc: tuple[Any, ...], data: Any) -> Error:
+    fields = introspect.fields(loc[:-1])
+    return Error("unknown_key" if isinstance(loc[-1], str) else "bad_key", loc, loc[-1],
+                 {"fields": fields})
+
+
+def _float_type(e: Any, loc: tuple[Any, ...], data: Any) -> Error:
+    if type(e["input"]) is int:
+        return Error("finite", loc, e["input"], {})  # an integer too large for a float
+    return Error("type", loc, e["input"], {"expected": _TYPES["float_type"]})
+
+
+def _bound(e: Any, loc: tuple[Any, ...], data: Any) -> Error:
+    op, key = _BOUNDS[e["type"]]
+    return Error("bound", loc, e["input"], {"op": op, "bound": _ctx(e)[key],
+                                            "hint": introspect.at(loc).hint})
+
+
+def _length_words(low: int, high: int) -> Any:
+    """How many values a list of ``low`` to ``high`` values holds, in words."""
+    if low == high:
+        return low
+    return f"{low} or {high}" if high == low + 1 else f"{low} to {high}"
+
+
+def _length(e: Any, loc: tuple[Any, ...], data: Any) -> Error:
+    kind, value, ctx = e["type"], e["input"], _ctx(e)
+    node = introspect.at(loc)
+    exact = ctx.get("field_type") == "Tuple"
+    if exact and isinstance(value, (list, tuple)):
         low, high = node.lengths or (node.size, node.size)
         if low and low <= len(value) <= high:  # counted after its bad values were dropped
             return Error("ignored", loc, value, {})
-    if kind in ("too_short", "too_long"):
-        node = introspect.at(loc)
-        exact = ctx.get("field_type") == "Tuple"
-        n: Any = ctx.get("min_length" if kind == "too_short" else "max_length")
-        if exact and node.lengths is not None:
-            low, high = node.lengths
-            n = low if low == high else f"{low} or {high}" if high == low + 1 \
-                else f"{low} to {high}"
-        have = len(value) if isinstance(value, (list, tuple)) else ctx.get("actual_length")
-        return Error("too_few" if kind == "too_short" else "too_many", loc, value,
-                     {"n": n, "have": have, "exact": exact})
-    if kind == "literal_error":
-        node = introspect.at(loc)
-        return Error("choice", loc, value, {"values": node.choices, "what": node.what})
-    if kind == "string_pattern_mismatch":
-        return Error("id_pattern", loc, value, {})
-    if kind == "string_too_short":
-        return Error("id_empty", loc, value, {})
-    if kind == "string_too_long":
-        return Error("text_long", loc, value, {"max": ctx["max_length"]})
-    return Error("rule", loc, value, {"message": e["msg"]})  # pragma: no cover - a new kind
+    n: Any = ctx.get("min_length" if kind == "too_short" else "max_length")
+    if exact and node.lengths is not None:
+        n = _length_words(*node.lengths)
+    have = len(value) if isinstance(value, (list, tuple)) else ctx.get("actual_length")
+    return Error("too_few" if kind == "too_short" else "too_many", loc, value,
+                 {"n": n, "have": have, "exact": exact})
+
+
+def _literal(e: Any, loc: tuple[Any, ...], data: Any) -> Error:
+    node = introspect.at(loc)
+    return Error("choice", loc, e["input"], {"values": node.choices, "what": node.what})
+
+
+def _ctx(e: Any) -> dict[str, Any]:
+    return e.get("ctx") or {}
+
+
+def _simple(kind: str, ctx: Callable[[Any], dict[str, Any]] = lambda e: {}
+            ) -> Callable[[Any, tuple[Any, ...], Any], Error]:
+    """A handler that names the kind ``kind``, with the details ``ctx(e)``."""
+    return lambda e, loc, data: Error(kind, loc, e["input"], ctx(e))
+
+
+#: pydantic's error types (and the models' own), each to the handler of its kind.
+_HANDLERS: dict[str, Callable[[Any, tuple[Any, ...], Any], Error]] = {
+    "rule": lambda e, loc, data: Error(e["type"], loc, e["input"], dict(_ctx(e))),
+    "version": lambda e, loc, data: Error(e["type"], loc, e["input"], dict(_ctx(e))),
+    "missing": _missing_key,
+    "extra_forbidden": _extra,
+    "invalid_key": _simple("bad_key", lambda e: {"fields": ()}),
+    "finite_number": _simple("finite"),
+    **{kind: _simple("type", lambda e: {"expected": _TYPES[e["type"]]}) for kind in _TYPES},
+    "float_type": _float_type,
+    "kind": _simple("type", lambda e: {"expected": e["msg"]}),  # a union chosen by the
+    # kind of value written
+    **{kind: _bound for kind in _BOUNDS},
+    "too_short": _length,
+    "too_long": _length,
+    "literal_error": _literal,
+    "string_pattern_mismatch": _simple("id_pattern"),
+    "string_too_short": _simple("id_empty"),
+    "string_too_long": _simple("text_long", lambda e: {"max": _ctx(e)["max_length"]}),
+}
+
+
+def _error(e: Any, data: Any) -> Error:
+    """One pydantic error as an :class:`Error`."""
+    loc = tuple(p for p in e["loc"] if p not in introspect.TAGS)
+    handler = _HANDLERS.get(e["type"])
+    if handler is None:  # pragma: no cover - a new kind
+        return Error("rule", loc, e["input"], {"message": e["msg"]})
+    return handler(e, loc, data)
 
 
 def _order(data: Any, loc: tuple[Any, ...]) -> tuple[int, ...]:
@@ -160,20 +201,24 @@ def errors(exc: ValidationError, data: Any) -> list[Error]:
 _LAST = 1 << 62
 
 
+def _item_name(loc: Sequence[Any], data: Any) -> str:
+    """``sensor 'fog-a'`` if ``loc`` starts at an item of a section with a showable id."""
+    if not (len(loc) >= 2 and loc[0] in _SECTIONS and isinstance(loc[1], int)
+            and isinstance(data, dict)):
+        return ""
+    items = data.get(loc[0])
+    item = items[loc[1]] if isinstance(items, list) and loc[1] < len(items) else None
+    ident = item.get(ID_KEY) if isinstance(item, dict) else None
+    if isinstance(ident, str) and _SHOWN_ID.fullmatch(ident):
+        return f"{_SECTIONS[loc[0]]} {ident!r}"
+    return ""
+
+
 def where(loc: Sequence[Any], data: Any) -> str:
     """A readable path: ``sensor 'fog-a': coefficients.k2``, ``profiles[2].rate[1]``."""
-    head = ""
-    start = 0
-    if (len(loc) >= 2 and loc[0] in _SECTIONS and isinstance(loc[1], int)
-            and isinstance(data, dict)):
-        items = data.get(loc[0])
-        item = items[loc[1]] if isinstance(items, list) and loc[1] < len(items) else None
-        ident = item.get(ID_KEY) if isinstance(item, dict) else None
-        if isinstance(ident, str) and _SHOWN_ID.fullmatch(ident):
-            head = f"{_SECTIONS[loc[0]]} {ident!r}"
-            start = 2
+    head = _item_name(loc, data)
     text = ""
-    for part in loc[start:]:
+    for part in loc[2 if head else 0:]:
         text += f"[{part}]" if isinstance(part, int) else ("." if text else "") + str(part)
     if head and text:
         return f"{head}: {text}"
@@ -199,8 +244,6 @@ def describe(value: Any) -> str:
 
 
 def _unknown_key(e: Error, prefix: str, at: str, text: str | None) -> str:
-    import difflib  # only on the error path: its import is slow
-
     key = str(e.loc[-1])
     fields = list(e.ctx["fields"])
     message = f"{prefix}unknown key {key!r}"

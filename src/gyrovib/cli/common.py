@@ -2,13 +2,20 @@
 
 from __future__ import annotations
 
+import contextlib
+import importlib
 import os
+import shutil
 import sys
+import types
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 import click
+
+from gyrovib.cli.options import BUNDLED_KEY
+from gyrovib.errors import CatalogError, OptionError, Problem
 
 
 @dataclass
@@ -76,8 +83,6 @@ def say(line: str) -> None:
 
 def silence_stderr() -> None:
     """Point standard error (the descriptor and ``sys.stderr``) at the null device."""
-    import contextlib
-
     with contextlib.suppress(OSError, ValueError):
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, 2)
@@ -125,8 +130,6 @@ def page_width(output: str | None = None) -> int | None:
     if output is None or output == "-":
         try:
             if sys.stdout.isatty():
-                import shutil
-
                 return max(shutil.get_terminal_size().columns, 40)
         except (AttributeError, ValueError, OSError):
             pass
@@ -169,16 +172,12 @@ def _no_pydantic_plugins() -> None:
     name = "pydantic.plugin._loader"
     if os.environ["PYDANTIC_DISABLE_PLUGINS"] != "__all__" or name in sys.modules:
         return
-    import types
-
     stub = types.ModuleType(name)
 
     def real(attr: str) -> Any:
         if attr.startswith("__"):  # the import system's questions (__path__, ...)
             raise AttributeError(attr)
         del sys.modules[name]
-        import importlib
-
         return getattr(importlib.import_module(name), attr)
 
     stub.get_plugins = lambda: ()  # type: ignore[attr-defined]
@@ -195,8 +194,6 @@ def load_catalog(files: tuple[str, ...]) -> Any:
     refuses, every command refuses at the same place.
     """
     from gyrovib.api import load
-    from gyrovib.errors import OptionError
-
     _no_pydantic_plugins()
     bundled = _bundled()
     if STDIN not in files:
@@ -212,8 +209,6 @@ def load_catalog(files: tuple[str, ...]) -> Any:
 
 def _bundled() -> str | None:
     """The command's ``--bundled`` choice (:func:`gyrovib.cli.options.bundled_option`)."""
-    from gyrovib.cli.options import BUNDLED_KEY
-
     ctx = click.get_current_context(silent=True)
     found = None if ctx is None else ctx.meta.get(BUNDLED_KEY)
     return found if isinstance(found, str) else None
@@ -222,8 +217,6 @@ def _bundled() -> str | None:
 def _read_stdin() -> bytes:
     """Standard input's bytes, at most one more than a catalogue may have."""
     from gyrovib.catalog.loader import MAX_FILE_BYTES
-    from gyrovib.errors import CatalogError, Problem
-
     stream = sys.stdin
     if stream is None:
         raise CatalogError(Problem("standard input is closed", STDIN_NAME))

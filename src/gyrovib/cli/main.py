@@ -29,6 +29,7 @@ escaped (:func:`~gyrovib.cli.common.printable`).
 
 from __future__ import annotations
 
+import importlib
 import os
 import signal
 import sys
@@ -38,9 +39,11 @@ from typing import Any, NoReturn
 import click
 
 from gyrovib._version import __version__
-from gyrovib.cli.common import Settings, say
+from gyrovib.cli.common import Settings, say, silence_stderr
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
+from gyrovib.cli.progress import terminal_progress
 from gyrovib.errors import GyrovibError
+from gyrovib.render.github import annotation, problems_to_github
 
 EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 EXIT_WRITE_FAILED = 74  # EX_IOERR of sysexits.h
@@ -117,8 +120,6 @@ def _report(exc: GyrovibError, settings: Settings | None) -> None:
     for problem in exc.problems:
         say(f"gyrovib: error: {problem}" if problem.file is None else str(problem))
     if settings is not None and settings.github:
-        from gyrovib.render.github import problems_to_github
-
         try:
             sys.stdout.write(problems_to_github(exc.problems))
             sys.stdout.flush()
@@ -138,8 +139,6 @@ def _echo_interrupted(code: int) -> None:
         sys.stderr.write(f"\ngyrovib: {word}\n")
         sys.stderr.flush()
     except (OSError, AttributeError, ValueError):
-        from gyrovib.cli.common import silence_stderr
-
         silence_stderr()
 
 
@@ -168,8 +167,6 @@ class _Group(click.Group):
 
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
         if cmd_name not in self.commands and cmd_name in _COMMANDS:
-            import importlib
-
             module = importlib.import_module(_COMMANDS[cmd_name])
             self.add_command(getattr(module, cmd_name))
         return self.commands.get(cmd_name)
@@ -181,8 +178,6 @@ class _Group(click.Group):
     def invoke(self, ctx: click.Context) -> Any:
         start_run()
         try:
-            from gyrovib.cli.progress import terminal_progress
-
             with warnings.catch_warnings(), terminal_progress():
                 # numpy overflow warnings: results are checked for finiteness instead.
                 warnings.filterwarnings("ignore", category=RuntimeWarning,
@@ -193,8 +188,6 @@ class _Group(click.Group):
             ctx.exit(EXIT_BAD_INPUT)
         except click.exceptions.UsageError as exc:
             if _wants_github(sys.argv[1:] if self._argv is None else self._argv):
-                from gyrovib.render.github import annotation
-
                 try:
                     sys.stdout.write(annotation(exc.format_message(), title="gyrovib usage")
                                      + "\n")
@@ -270,8 +263,6 @@ def main(args: list[str] | None = None) -> NoReturn:
         try:
             exc.show()
         except (OSError, ValueError, AttributeError):
-            from gyrovib.cli.common import silence_stderr
-
             silence_stderr()
         code = exc.exit_code
     except KeyboardInterrupt as exc:

@@ -12,12 +12,16 @@ from __future__ import annotations
 
 import contextlib
 import os
+import select
 import stat
 import sys
 from collections.abc import Iterable, Iterator
-from typing import BinaryIO, TextIO
+from typing import TYPE_CHECKING, BinaryIO, TextIO
 
 from gyrovib.errors import OptionError
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 
 class WriteFailure(Exception):
@@ -122,8 +126,6 @@ def _write_all(stream: TextIO, text: str) -> None:
     while data:
         written = buffer.write(data)
         if written is None:  # non-blocking and full: wait until writable
-            import select
-
             select.select([], [buffer], [])
             continue
         data = data[written:]
@@ -152,7 +154,6 @@ def _replace(path: str, data: bytes | Iterable[bytes], what: str,
     from then on is let pass, so a status of 130 or 143 always means that
     ``path`` was left as it was, and 0 that it holds the new output.
     """
-    global _in_place
     if not path:
         raise OptionError(f"{what}give a file name")
     from pathlib import Path  # not at import time: ~3 ms of every start-up
@@ -168,16 +169,29 @@ def _replace(path: str, data: bytes | Iterable[bytes], what: str,
     except (OSError, ValueError) as exc:
         raise OptionError(f"{what}cannot write {path!r}: {_reason(exc)}") from None
     if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
-        try:
-            with open(target, "wb") as handle:
-                _write_pieces(handle, data)
-        except OSError as exc:
-            raise WriteFailure(f"{what}cannot write {path!r}: {_reason(exc)}") from None
+        _write_device(target, data, path, what)
         return
     if not directory_exists:
         raise OptionError(f"{what}directory {str(directory)!r} of {path!r} does not exist")
     if mode is not None and stat.S_ISDIR(mode):
         raise OptionError(f"{what}{path!r} is a directory")
+    _write_through_temporary(target, directory, data, path, what, final)
+
+
+def _write_device(target: Path, data: bytes | Iterable[bytes], path: str, what: str) -> None:
+    """Write to what is not a regular file (``/dev/null``, a FIFO) directly."""
+    try:
+        with open(target, "wb") as handle:
+            _write_pieces(handle, data)
+    except OSError as exc:
+        raise WriteFailure(f"{what}cannot write {path!r}: {_reason(exc)}") from None
+
+
+def _write_through_temporary(target: Path, directory: Path, data: bytes | Iterable[bytes],
+                             path: str, what: str, final: bool) -> None:
+    """Write a temporary file in ``directory``, give it ``target``'s permissions (a
+    new file: the umask's), rename it over ``target``; remove it on any failure."""
+    global _in_place
     import tempfile  # not at import time: it costs ~7 ms of start-up
 
     try:  # the temporary name stays short, whatever the length of the target's

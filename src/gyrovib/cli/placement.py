@@ -7,6 +7,7 @@ from collections.abc import Callable
 from typing import Any
 
 from gyrovib.cli.options import parse_placement
+from gyrovib.cli.output import write_output
 from gyrovib.errors import OptionError
 
 
@@ -33,7 +34,6 @@ def write_triad(result: Any, draw: Callable[[Any], Any], fmt: str,
                 output: str | None) -> None:
     """The triad's document; ``draw`` renders one axis's result in ``fmt`` (text, or
     pieces of text that are joined)."""
-    from gyrovib.cli.output import write_output
     from gyrovib.render.triad import render
 
     def text(one: Any) -> str:

@@ -15,6 +15,8 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
+from gyrovib.progress import advance, receiving
+
 #: Seconds a command runs before its progress is drawn.
 DELAY = 1.0
 
@@ -29,8 +31,6 @@ def _is_terminal() -> bool:
 @contextmanager
 def terminal_progress() -> Iterator[None]:
     """Draw the :func:`gyrovib.progress.advance` reports made inside the block on stderr."""
-    from gyrovib.progress import receiving
-
     if not _is_terminal():
         yield
         return
@@ -79,8 +79,6 @@ def progress_bar(description: str, enabled: bool = True) -> Iterator[Callable[[i
     """Yield a ``progress(done, total)`` callback reporting ``description`` through
     :func:`gyrovib.progress.advance` (drawn by :func:`terminal_progress`); a no-op
     when ``enabled`` is false."""
-    from gyrovib.progress import advance
-
     if not enabled:
         yield lambda done, total: None
         return

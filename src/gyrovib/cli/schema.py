@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import click
 
+from gyrovib.cli.lazy import runs
 from gyrovib.cli.options import output_option
 
 
 @click.command()
 @output_option
+@runs("schema")
 def schema(output: str | None) -> None:
     """Print the JSON Schema (draft-07) of the catalogue format.
 
@@ -18,7 +20,3 @@ def schema(output: str | None) -> None:
     \b
         # yaml-language-server: $schema=./gyrovib.schema.json
     """
-    from gyrovib.cli.output import write_output
-    from gyrovib.models.schema import schema_text
-
-    write_output(schema_text(), output)

@@ -2,22 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import click
 
-from gyrovib.cli.common import (
-    github_errors,
-    load_catalog,
-    note_slow_table,
-    page_width,
-    plain_ascii,
-    say,
-    use_color,
-)
+from gyrovib.cli.lazy import runs
 from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
-    budget_arguments,
     budget_options,
     files_argument,
     format_option,
@@ -28,7 +17,6 @@ from gyrovib.cli.options import (
 )
 from gyrovib.cli.spec_options import (
     assume_unknown_option,
-    parse_spec_weights,
     spec_weights_option,
 )
 from gyrovib.cli.yield_options import yield_options
@@ -65,6 +53,7 @@ from gyrovib.cli.yield_options import yield_options
 @format_option("table", "json", "csv", "markdown", "junit", "github")
 @output_option
 @click.pass_context
+@runs("select")
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            placement: str | None, mission: str | None, angle_budget: str | None,
            profiles: tuple[str, ...], budget: str | None, method: str, rate: str | None,
@@ -87,56 +76,6 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     probability that a part drawn from it passes is at least Y (docs/model.md section 14).
     Exit status 1 when the --require condition is not met.
     """
-    from gyrovib import api
-    from gyrovib.cli.output import write_output
-    from gyrovib.render import select as render
-
-    text: str | Iterator[str]  # the JSON document is streamed
-    github_errors(fmt == "github")
-    if mission is not None or angle_budget is not None:
-        from gyrovib.cli.mission import select_mission
-
-        met = select_mission(files, mission, sensors, profiles, budget, angle_budget, unit,
-                             placement, peak_factor, require, fmt, output,
-                             assume_unknown=assume_unknown or "none", coverage=coverage)
-        if not met:
-            ctx.exit(1)
-        return
-    if budget is None:
-        raise click.UsageError("Missing option '--budget'.", ctx)
-    catalog = load_catalog(files)
-    split = budget_arguments(budget, unit, rate, allocation)
-    from gyrovib.cli.placement import is_triad, run_placed, write_triad
-
-    result = run_placed(api.select, catalog, placement, fmt, sensors=sensors,
-                        profiles=profiles, method=method, **split, criterion=criterion,
-                        require=require, spec_weights=parse_spec_weights(spec_weights),
-                        peak_factor=peak_factor, assume_unknown=assume_unknown or "none",
-                        yield_target=yield_target, seed=seed, draws=draws)
-    if is_triad(result):  # table, json, csv or markdown, per axis, and the worst axes
-        write_triad(result, lambda one: render.to_table(
-            one, color=use_color(output), width=page_width(output), ascii=plain_ascii(output))
-            if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
-                                    "markdown": render.to_markdown}[fmt](one), fmt, output)
-        if not result.requirement_met:
-            ctx.exit(1)
-        return
-    for note in result.notes:
-        say(f"gyrovib: warning: {note}")
-    if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
-        note_slow_table(2 * len(result.sensors))
-        text = render.to_table(result, color=use_color(output), width=page_width(output),
-                               ascii=plain_ascii(output))
-    elif fmt == "github":
-        text = render.to_github(result, api.sensor_locations(catalog, result.sensors))
-    elif fmt == "json":
-        text = render.to_json_chunks(result)  # streamed: never the whole document at once
-    else:
-        text = {"csv": render.to_csv, "markdown": render.to_markdown,
-                "junit": render.to_junit}[fmt](result)
-    write_output(text, output)
-    if not result.requirement_met:
-        ctx.exit(1)
 
 
 for _param in select.params:  # --budget is not needed with --mission --angle-budget

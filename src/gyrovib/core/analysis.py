@@ -42,17 +42,19 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from gyrovib.core.harmonics import (
+from gyrovib.core.harmonic_mixtures import (
     MAX_MIXTURE_NODES,
     MAX_SHIFT_TABLE,
+    locked_mixture_excess,
+    table_size,
+    two_groups_excess,
+)
+from gyrovib.core.harmonics import (
     LockedGroup,
     combine_moments,
     group_moments,
     group_signal,
-    locked_mixture_excess,
     locked_rectified_excess,
-    table_size,
-    two_groups_excess,
 )
 from gyrovib.core.statistics import (
     PAPER_RANDOM_ASYMMETRY,
@@ -223,24 +225,33 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
         [np.sum(np.asarray(x)) for x in parts] for parts in (p2, p3, p4, p5)))
     c31 = vibration.cross(1) + sum(float(mo.c31) for mo in moments)
     c32 = vibration.cross(2) + sum(float(mo.c32) for mo in moments)
+    asym = _locked_asymmetry(w, locked, a, s3)
+    return Multipliers(
+        asymmetry=asym, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
+        omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
+        acceleration=_acceleration(acceleration, w.shape),
+    )
+
+
+def _locked_asymmetry(w: FloatArray, locked: Sequence[LockedGroup], a: FloatArray,
+                      s3: float) -> FloatArray:
+    """Half the excess E(Ω) of locked groups with tones of amplitudes ``a`` and a
+    Gaussian part of standard deviation ``s3``, by the quickest exact route."""
     if len(locked) == 2 and a.size == 0 and s3 <= 0:
         # two groups alone: the second's period split at the first's kinks (1e-6 asked)
-        asym2 = 0.5 * two_groups_excess(w, locked[0], locked[1])
-        return Multipliers(
-            asymmetry=asym2, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
-            omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
-            acceleration=_acceleration(acceleration, w.shape),
-        )
+        return 0.5 * two_groups_excess(w, locked[0], locked[1])
     if s3 > 0 and (len(locked) > 1 or (a.size and table_size(a, s3) <= MAX_SHIFT_TABLE)):
         # tones and the Gaussian part tabulated once, the groups' periods on a grid (one
         # group with tones on a random part too narrow for the table: the group's grid
         # of direct evaluations below, as before)
-        asym = 0.5 * locked_mixture_excess(w, locked, a, s3)
-        return Multipliers(
-            asymmetry=asym, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
-            omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
-            acceleration=_acceleration(acceleration, w.shape),
-        )
+        return 0.5 * locked_mixture_excess(w, locked, a, s3)
+    return _grid_asymmetry(w, locked, a, s3)
+
+
+def _grid_asymmetry(w: FloatArray, locked: Sequence[LockedGroup], a: FloatArray,
+                    s3: float) -> FloatArray:
+    """Half of E(Ω): the first group against the independent tones, or alone, averaged
+    over the further groups' phases on a grid of :data:`_EXTRA_GROUP_NODES` each."""
     if len(locked) > 1 and w.size * _EXTRA_GROUP_NODES * (1 << 14) > MAX_MIXTURE_NODES:
         raise ModelError(reason=(
             "E(Ω) for two phase-locked groups with independent tones and no random part "
@@ -250,7 +261,6 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
             f"{MAX_MIXTURE_NODES:,} gyrovib allows; give at most "
             f"{MAX_MIXTURE_NODES // (_EXTRA_GROUP_NODES << 14)} rates, the smaller group's "
             "orders as independent tones, or the tones as orders of a group"))
-    # E(Ω): the group against the independent tones, or alone
     shift = np.zeros(1)
     for g in locked[1:]:
         theta = 2.0 * math.pi * (np.arange(_EXTRA_GROUP_NODES) + 0.5) / _EXTRA_GROUP_NODES
@@ -262,12 +272,8 @@ def _locked_multipliers(vibration: Vibration, w: FloatArray, locked: Sequence[Lo
     if shift.size > 1:
         # E(Ω) = <E_1(Ω + s)> + <|Ω + s|> − |Ω| over the further groups' phases s
         e = e + np.abs(shifted) - np.abs(flat)[:, None]
-    asym = 0.5 * e.mean(axis=1).reshape(w.shape)
-    return Multipliers(
-        asymmetry=asym, m2=m2 * ones, m4=m4 * ones, c31=c31 * ones, c32=c32 * ones,
-        omega=w.copy(), m3=m3 * ones, m5=m5 * ones,
-        acceleration=_acceleration(acceleration, w.shape),
-    )
+    result: FloatArray = 0.5 * e.mean(axis=1).reshape(w.shape)
+    return result
 
 
 _OPTIONAL = ("m3", "m5", "acceleration")

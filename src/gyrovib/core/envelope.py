@@ -197,6 +197,40 @@ class WorstCase(Frozen):
     gap: FloatArray
 
 
+def _sensor_specs(range_: ArrayLike, limit: ArrayLike, asymmetry: ArrayLike | None,
+                  vre: ArrayLike | None) -> tuple[FloatArray, ...]:
+    """Each sensor's range R, nonlinearity limit b, asymmetry a_max (inf: no spec) and
+    VRE (0: no spec) as arrays of one length, checked."""
+    r = np.atleast_1d(np.asarray(range_, dtype=float))
+    n = r.size
+    b = np.broadcast_to(np.asarray(limit, dtype=float), (n,))
+    a_max = np.full(n, np.inf) if asymmetry is None else np.broadcast_to(
+        np.asarray(asymmetry, dtype=float), (n,))
+    v = np.zeros(n) if vre is None else np.broadcast_to(np.asarray(vre, dtype=float), (n,))
+    if not (np.all(np.isfinite(r)) and np.all(r > 0)):
+        raise ModelError("a sensor's range must be positive and finite")
+    if not (np.all(np.isfinite(b)) and np.all(b >= 0)):
+        raise ModelError("a nonlinearity limit must be finite and not negative")
+    if np.any(np.isnan(a_max)) or np.any(a_max < 0):
+        raise ModelError("an asymmetry spec must be a number, not negative")
+    if not np.all(np.isfinite(v)):
+        raise ModelError("a VRE spec must be a finite number")
+    return r, b, a_max, v
+
+
+def _solve_in_order(f: np.ndarray, ms: np.ndarray, ratio: FloatArray, r: FloatArray,
+                    d: FloatArray) -> tuple[FloatArray, ...]:
+    """:func:`_solve` with the sensors sorted by envelope (fit, measure, asymmetry
+    ratio) and range, so that neighbours in its order polish each other's
+    programmes; the results back in the sensors' order."""
+    order = np.lexsort((r, ratio, ms, f))
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    h, y, line, gap = _solve(f[order, None, None], ms[order, None, None],
+                             ratio[order, None, None], d[order])
+    return h[back], y[back], line[back], gap[back]
+
+
 def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayLike,
                fit: str | Sequence[str] = "least-squares",
                measure: str | Sequence[str] = "max",
@@ -221,20 +255,8 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
     if t.ndim != 3 or t.shape[1:] != (8, 5):
         raise ValueError(f"terms must have shape (P, 8, 5), not {t.shape}")
     s = np.broadcast_to(np.asarray(g2, dtype=float), t.shape[:1])
-    r = np.atleast_1d(np.asarray(range_, dtype=float))
+    r, b, a_max, v = _sensor_specs(range_, limit, asymmetry, vre)
     n = r.size
-    b = np.broadcast_to(np.asarray(limit, dtype=float), (n,))
-    a_max = np.full(n, np.inf) if asymmetry is None else np.broadcast_to(
-        np.asarray(asymmetry, dtype=float), (n,))
-    v = np.zeros(n) if vre is None else np.broadcast_to(np.asarray(vre, dtype=float), (n,))
-    if not (np.all(np.isfinite(r)) and np.all(r > 0)):
-        raise ModelError("a sensor's range must be positive and finite")
-    if not (np.all(np.isfinite(b)) and np.all(b >= 0)):
-        raise ModelError("a nonlinearity limit must be finite and not negative")
-    if np.any(np.isnan(a_max)) or np.any(a_max < 0):
-        raise ModelError("an asymmetry spec must be a number, not negative")
-    if not np.all(np.isfinite(v)):
-        raise ModelError("a VRE spec must be a finite number")
     if not np.all(np.isfinite(t)) or not np.all(np.isfinite(s)):
         raise ModelError("the vibration multipliers must be finite")
     f = _codes("fit", fit, FITS, n)
@@ -247,14 +269,7 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
     c = t.sum(axis=1)                                            # (P, 5)
     directions = [c[:, None, :], t] if total else [t]
     d = np.concatenate(directions, axis=1)[None] * scale[:, None, None, :]
-    # sensors sorted by envelope (fit, measure, asymmetry ratio) and range: neighbours
-    # in _solve's order polish each other's programmes
-    order = np.lexsort((r, ratio, ms, f))
-    back = np.empty_like(order)
-    back[order] = np.arange(order.size)
-    h, y, line, gap = _solve(f[order, None, None], ms[order, None, None],
-                             ratio[order, None, None], d[order])
-    h, y, line, gap = h[back], y[back], line[back], gap[back]
+    h, y, line, gap = _solve_in_order(f, ms, ratio, r, d)
     if not total:  # the whole error's direction left unsolved: unknown
         h, y, line, gap = (np.concatenate([np.full((*a.shape[:2], 1, *a.shape[3:]), np.nan), a],
                                           axis=2) for a in (h, y, line, gap))

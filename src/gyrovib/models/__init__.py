@@ -22,6 +22,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from pydantic import ValidationError
+
+from gyrovib.models._types import TAGS
 from gyrovib.models.catalogue import VERSION, Allocation, Catalogue, Units
 from gyrovib.models.mission import AxisPlacement, Mission, Segment
 from gyrovib.models.noise import Noise, NoiseFigure
@@ -96,8 +99,6 @@ def validate_document(data: Any) -> Catalogue:
     An integer beyond 64 bits is a number too when a float holds it (2**70): pydantic
     refuses it as a float, so on that refusal alone such integers are converted and
     the document validated again (the path of valid files pays nothing)."""
-    from pydantic import ValidationError
-
     try:
         return Catalogue.model_validate(data)
     except ValidationError as exc:
@@ -120,8 +121,6 @@ def _fits(value: int) -> bool:
 def _with_floats(data: Any, paths: list[tuple[Any, ...]]) -> Any:
     """``data`` with the integers at ``paths`` as floats (the containers on the way
     copied, the rest shared)."""
-    from gyrovib.models._types import TAGS
-
     def put(node: Any, path: tuple[Any, ...]) -> Any:
         if not path:
             return float(node)

@@ -11,6 +11,7 @@ from gyrovib.models._types import Model, Named, Number, rule_error
 from gyrovib.models.mission import Mission
 from gyrovib.models.profile import Profile
 from gyrovib.models.sensor import RANGE_BAND, RANGE_WHY, RateUnit, Sensor
+from gyrovib.units import STANDARD_GRAVITY
 
 #: The acceleration units in which a bare g² sensitivity would be ambiguous.
 _NOT_G = ("m/s^2", "m/s2")
@@ -176,8 +177,6 @@ def _range_problems(sensor: Sensor, unit: str) -> list[tuple[tuple[str, ...], fl
 def _bare_g2(loc: tuple[str, ...], value: float, rate: str, acceleration: str) -> str:
     """Why a bare g² sensitivity is refused in a file whose acceleration unit is not g:
     both readings, and how to write the one meant."""
-    from gyrovib.units import STANDARD_GRAVITY
-
     ratio = STANDARD_GRAVITY**2
     key = loc[-1]
     return (f"a bare g² sensitivity is read per g², but this file's accelerations are in "

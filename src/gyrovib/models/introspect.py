@@ -12,6 +12,7 @@ from annotated_types import MaxLen, MinLen
 from pydantic import BaseModel
 
 from gyrovib.models._types import TAGS, Hint, Named
+from gyrovib.models.catalogue import Catalogue
 
 __all__ = ["TAGS", "Node", "at", "fields"]
 
@@ -43,8 +44,6 @@ def _leaves(t: Any, meta: list[Any]) -> list[tuple[Any, list[Any]]]:
 
 
 def _root() -> list[tuple[Any, list[Any]]]:
-    from gyrovib.models.catalogue import Catalogue
-
     return [(Catalogue, [])]
 
 
@@ -83,6 +82,26 @@ def fields(loc: Sequence[Any]) -> tuple[str, ...]:
     return ()
 
 
+def _words(meta: list[Any], what: str, hint: str) -> tuple[str, str]:
+    """The first name (:class:`Named`) and hint (:class:`Hint`) met, ``meta`` after the
+    ones already found."""
+    for m in meta:
+        if isinstance(m, Named):
+            what = what or m.what
+        elif isinstance(m, Hint):
+            hint = hint or m.text
+    return what, hint
+
+
+def _lengths(t: Any, meta: list[Any]) -> tuple[int, int] | None:
+    """(fewest, most) values of a tuple of variable length, when both are set."""
+    low = next((m.min_length for m in meta if isinstance(m, MinLen)), None)
+    high = next((m.max_length for m in meta if isinstance(m, MaxLen)), None)
+    if low is not None and high is not None and get_origin(t) is tuple:
+        return (low, high)
+    return None
+
+
 def at(loc: Sequence[Any]) -> Node:
     """What the models say of the value at ``loc``."""
     choices: tuple[str, ...] = ()
@@ -95,13 +114,6 @@ def at(loc: Sequence[Any]) -> Node:
             size = size or len(args)
         if get_origin(t) is Literal:
             choices += tuple(str(a) for a in get_args(t))
-        for m in meta:
-            if isinstance(m, Named):
-                what = what or m.what
-            elif isinstance(m, Hint):
-                hint = hint or m.text
-        low = next((m.min_length for m in meta if isinstance(m, MinLen)), None)
-        high = next((m.max_length for m in meta if isinstance(m, MaxLen)), None)
-        if low is not None and high is not None and get_origin(t) is tuple:
-            lengths = (low, high)
+        what, hint = _words(meta, what, hint)
+        lengths = _lengths(t, meta) or lengths
     return Node(choices, what, hint, lengths, size)

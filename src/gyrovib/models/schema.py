@@ -20,6 +20,8 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from gyrovib.models.catalogue import Catalogue
+
 DRAFT_07 = "http://json-schema.org/draft-07/schema#"
 #: Largest finite float: the bound of a number without one.
 FLOAT_MAX = 1.7976931348623157e308
@@ -34,6 +36,26 @@ def _number(node: dict[str, Any]) -> None:
         node["maximum"] = FLOAT_MAX
 
 
+def _convert_entry(key: str, value: Any, node: dict[str, Any], out: dict[str, Any]) -> None:
+    """Put the draft-07 form of ``node[key]`` into ``out`` (titles are dropped)."""
+    if key == "title":
+        return
+    if key in _DATA:
+        out[key] = value
+    elif key == "properties":
+        out[key] = {name: _convert(v) for name, v in value.items()}
+    elif key == "$ref":
+        out[key] = value.replace("#/$defs/", "#/definitions/")
+    elif key == "prefixItems":
+        out["items"] = _convert(value)
+        if node.get("maxItems") == len(value) or "items" not in node:
+            out["additionalItems"] = False
+    elif key == "items" and "prefixItems" in node:
+        out["additionalItems"] = _convert(value)
+    else:
+        out[key] = _convert(value)
+
+
 def _convert(node: Any) -> Any:
     if isinstance(node, list):
         return [_convert(x) for x in node]
@@ -41,22 +63,7 @@ def _convert(node: Any) -> Any:
         return node
     out: dict[str, Any] = {}
     for key, value in node.items():
-        if key == "title":
-            continue
-        if key in _DATA:
-            out[key] = value
-        elif key == "properties":
-            out[key] = {name: _convert(v) for name, v in value.items()}
-        elif key == "$ref":
-            out[key] = value.replace("#/$defs/", "#/definitions/")
-        elif key == "prefixItems":
-            out["items"] = _convert(value)
-            if node.get("maxItems") == len(value) or "items" not in node:
-                out["additionalItems"] = False
-        elif key == "items" and "prefixItems" in node:
-            out["additionalItems"] = _convert(value)
-        else:
-            out[key] = _convert(value)
+        _convert_entry(key, value, node, out)
     if out.get("type") == "number":
         _number(out)
     if "$ref" in out and len(out) > 1:
@@ -77,8 +84,6 @@ def draft_07(schema: dict[str, Any]) -> dict[str, Any]:
 
 def catalog_schema() -> dict[str, Any]:
     """The JSON Schema (draft-07) of one catalogue file, as a dict."""
-    from gyrovib.models.catalogue import Catalogue
-
     body = draft_07(Catalogue.model_json_schema(mode="validation"))
     return {
         "$schema": DRAFT_07,

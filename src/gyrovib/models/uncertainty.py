@@ -14,6 +14,7 @@ positive semi-definite matrix. k1 is 1 in eq. (2): it has no uncertainty.
 
 from typing import Annotated, Any
 
+import numpy as np
 from pydantic import Field, Strict, model_validator
 
 from gyrovib.models._types import AsInteger, Model, Number, Text, raise_at, rule_error
@@ -93,8 +94,6 @@ def pair_problems(names: list[str], pairs: dict[str, float]) -> tuple[str, str] 
 
 def smallest_eigenvalue(names: list[str], pairs: dict[str, float]) -> float:
     """The smallest eigenvalue of the correlation matrix of ``names`` (identity plus pairs)."""
-    import numpy as np
-
     index = {n: i for i, n in enumerate(names)}
     r = np.eye(len(names))
     for key, value in pairs.items():

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import csv
 import io
 import itertools
 import math
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from gyrovib._version import __version__
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
@@ -48,9 +51,6 @@ def fmt_budget(value: float | None, budget: float | None, digits: int = 4) -> st
 
 def csv_text(header_row: Iterable[str], rows: Iterable[Iterable[Any]]) -> str:
     """CSV with a header row, numbers written with full precision."""
-    import csv
-    import io
-
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(list(header_row))
@@ -64,9 +64,6 @@ def csv_cell(text: str) -> str:
     """One text cell as :func:`csv_text` writes it (quoted only when it must be)."""
     if not text or not any(c in text for c in ',"\r\n'):
         return text
-    import csv
-    import io
-
     buffer = io.StringIO()
     csv.writer(buffer, lineterminator="\n").writerow([text, ""])
     return buffer.getvalue()[:-2]
@@ -76,8 +73,6 @@ def float_cells(values: Any) -> list[str]:
     """The cells of a float column (any array-like), each ``repr`` of the float as
     :func:`csv_text` writes it. A column of one value throughout (bit for bit: a
     sweep's exact zeros) is written once and its cell repeated."""
-    import numpy as np
-
     a = np.ascontiguousarray(values, dtype=float).reshape(-1)
     if a.size > 1:
         bits = a.view(np.int64)
@@ -204,40 +199,55 @@ def _styled_title(title: Text) -> Text:
     return title
 
 
-def _groups(table: Table, page: int, cell: Callable[[Any], Text]) -> list[Table]:
-    """``table`` as rich tables of today's look, one per column group that fits ``page``."""
-    from rich import box
-    from rich.table import Table
-
+def _measured(table: Table, cell: Callable[[Any], Text]
+              ) -> tuple[list[Text], list[list[Text]], list[int], bool]:
+    """The headers and cells of ``table`` as texts, each column's width, and whether
+    every cell is on one line (no line break, no tab)."""
     columns = table.columns
     headers = [cell(c.header) for c in columns]
     cells = [[cell(x) for x in c.cells] for c in columns]
     widths = [max([h.cell_len, c.min_width or 0, *(x.cell_len for x in column)])
               for h, c, column in zip(headers, columns, cells, strict=True)]
-    drawn = []
-    # every cell on one line (no line break, no tab): the cells of a group that fits
-    # can be handed to rich already padded (:func:`_fitted`)
     one_line = all("\n" not in t.plain and "\t" not in t.plain
                    for t in itertools.chain(headers, *cells))
+    return headers, cells, widths, one_line
+
+
+def _wrapping(table: Table, group: list[int], headers: list[Text], cells: list[list[Text]],
+              widths: list[int], squeezed: bool) -> Table:
+    """The columns ``group`` of ``table`` as a rich table that may wrap its cells; a
+    ``squeezed`` group (wider than the page) may wrap any column but the key."""
+    from rich import box
+    from rich.table import Table
+
+    part = Table(box=box.HEAVY_HEAD, show_edge=True, pad_edge=True, collapse_padding=False,
+                 header_style=table.header_style or "bold", highlight=False)
+    for k in group:
+        c = table.columns[k]
+        part.add_column(headers[k], justify=c.justify, style=c.style,
+                        no_wrap=c.no_wrap and not (squeezed and k != group[0]),
+                        overflow="fold", min_width=c.min_width,
+                        # a group that fits: its widths measured here once, not by rich
+                        width=None if squeezed else widths[k])
+    for row in zip(*(cells[k] for k in group), strict=True):
+        part.add_row(*row)
+    return part
+
+
+def _groups(table: Table, page: int, cell: Callable[[Any], Text]) -> list[Table]:
+    """``table`` as rich tables of today's look, one per column group that fits ``page``."""
+    headers, cells, widths, one_line = _measured(table, cell)
+    drawn = []
     for group in column_groups(widths, page):
         # a group still wider than the page (the key and one wide column) may wrap any
         # column but the key, so that rich narrows those and crops no value
         squeezed = 1 + sum(widths[k] + 3 for k in group) > page
+        # every cell on one line: the cells of a group that fits can be handed to rich
+        # already padded (:func:`_fitted`)
         if one_line and not squeezed:
             drawn.append(_fitted(table, group, headers, cells, widths))
-            continue
-        part = Table(box=box.HEAVY_HEAD, show_edge=True, pad_edge=True, collapse_padding=False,
-                     header_style=table.header_style or "bold", highlight=False)
-        for k in group:
-            c = columns[k]
-            part.add_column(headers[k], justify=c.justify, style=c.style,
-                            no_wrap=c.no_wrap and not (squeezed and k != group[0]),
-                            overflow="fold", min_width=c.min_width,
-                            # a group that fits: its widths measured here once, not by rich
-                            width=None if squeezed else widths[k])
-        for row in zip(*(cells[k] for k in group), strict=True):
-            part.add_row(*row)
-        drawn.append(part)
+        else:
+            drawn.append(_wrapping(table, group, headers, cells, widths, squeezed))
     return drawn
 
 

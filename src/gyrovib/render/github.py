@@ -69,9 +69,20 @@ def capped(items: Sequence[Item], limit: int = GITHUB_LIMIT,
     counts = {level: sum(1 for item in items if item[4] == level) for level in LEVELS}
     if all(n <= limit for n in counts.values()):
         return list(items), []
+    keep = _worst_of_each_level(items, order, limit)
+    kept = [item for k, item in enumerate(items) if k in keep]
+    dropped = [item for k, item in enumerate(items) if k not in keep]
+    kept.append(_left_out_notice(dropped, limit))
+    return kept, dropped
+
+
+def _worst_of_each_level(items: Sequence[Item], order: list[float], limit: int) -> set[int]:
+    """The indices of the ``limit`` items of each level of lowest ``order`` (NaN last),
+    one notice fewer: the closing notice takes its place."""
     room = {level: limit for level in LEVELS}
     room["notice"] = limit - 1  # the closing notice
     keep: set[int] = set()
+
     def key(k: int) -> tuple[float, int]:
         return (order[k] if order[k] == order[k] else float("inf"), k)  # NaN last
 
@@ -80,15 +91,17 @@ def capped(items: Sequence[Item], limit: int = GITHUB_LIMIT,
         if room[level] > 0:
             keep.add(k)
             room[level] -= 1
-    kept = [item for k, item in enumerate(items) if k in keep]
-    dropped = [item for k, item in enumerate(items) if k not in keep]
+    return keep
+
+
+def _left_out_notice(dropped: list[Item], limit: int) -> Item:
+    """The closing notice: how many annotations of each level were left out."""
     left = ", ".join(f"{n} {level}(s)" for level in LEVELS
                      if (n := sum(1 for item in dropped if item[4] == level)))
-    kept.append((None, None, "gyrovib: more than GitHub shows",
-                 f"{left} more not annotated: GitHub shows at most {limit} annotations of "
-                 "each level per step; the worst are annotated and the rest follow in the log",
-                 "notice"))
-    return kept, dropped
+    return (None, None, "gyrovib: more than GitHub shows",
+            f"{left} more not annotated: GitHub shows at most {limit} annotations of "
+            "each level per step; the worst are annotated and the rest follow in the log",
+            "notice")
 
 
 def _plain(item: Item) -> str:

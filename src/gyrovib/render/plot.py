@@ -10,7 +10,10 @@ from __future__ import annotations
 import io
 from typing import Any
 
+import numpy as np
+
 from gyrovib.api import SweepResult
+from gyrovib.api.datasheet.specs import worst_residual
 from gyrovib.errors import GyrovibError
 
 MISSING_MATPLOTLIB = (
@@ -82,8 +85,6 @@ def sweep_png(result: SweepResult, budget: float | None = None, *, log: bool = F
 
 
 def _linthresh(result: SweepResult, j: int) -> float:
-    import numpy as np
-
     values = np.abs(result.exact.total[:, j])
     positive = values[values > 0]
     return float(positive.min()) if positive.size else 1.0
@@ -98,10 +99,6 @@ def envelope_png(result: SweepResult, *, dpi: int = 100) -> bytes | None:
     band ±b the datasheet allows (docs/model.md section 11). None when the sweep has
     no spec-form sensor.
     """
-    import numpy as np
-
-    from gyrovib.api.datasheet.specs import worst_residual
-
     spec = [i for i in range(len(result.sensors)) if result.source(i) == "specs"]
     if not spec or result.worst_coefficients is None or not len(result.profiles):
         return None

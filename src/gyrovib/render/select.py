@@ -3,16 +3,15 @@
 from __future__ import annotations
 
 import gc
+import json
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from typing import Any
-
-import numpy as np
 
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.presentation.reasons import failures as _failures
-from gyrovib.presentation.reasons import reason, unknown_label
+from gyrovib.presentation.reasons import reason, unknown_label, yield_text
 from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import (
     coefficient_unit,
@@ -48,8 +47,7 @@ def failures(result: SelectionResult, i: int, j: int) -> list[str]:
     (:func:`gyrovib.presentation.reasons.failures` with coefficients in the catalogue's unit)."""
     return _failures(result, i, j, table=True)
 
-__all__ = ["failures", "limit_text", "reason", "to_csv", "to_github", "to_json", "to_junit",
-           "to_markdown", "to_table"]
+__all__ = ["failures", "limit_text", "reason", "to_csv", "to_json", "to_markdown", "to_table"]
 
 
 def _vre(result: SelectionResult, i: int, j: int) -> tuple[float, float]:
@@ -74,8 +72,6 @@ def limit_text(result: SelectionResult, i: int) -> str:
     if limit.name == "saturated":
         return f"its range under {profile}: {result.reasons[(i, j)]}"
     if limit.name == "yield" and result.yields is not None:
-        from gyrovib.presentation.reasons import yield_text
-
         return (f"yield {yield_text(result.yields, i, j)} under {profile}, below "
                 f"{result.yields.target:g}")
     if limit.name == "rms":
@@ -222,8 +218,6 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     ``"".join(to_json_chunks(result))`` is the whole document; only one block of
     sensor entries (:func:`_sensor_entries`) exists as Python objects at a time.
     """
-    import json
-
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
@@ -557,90 +551,3 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
                     else "bold red"))
     out.append(Text(_legend(result), style="dim"))
     return rich_text(out, width=width, color=color, ascii=ascii)
-
-
-# ------------------------------------------------------------------ JUnit
-
-
-def to_junit(result: SelectionResult) -> str:
-    """JUnit XML: one testcase per sensor × profile (classname = sensor, name = profile)."""
-    import xml.etree.ElementTree as ET
-
-    n_cases = len(result.sensors) * len(result.profiles)
-    n_fail = int((~result.passed.astype(bool)).sum())  # an unverified case fails too
-    suites = ET.Element("testsuites", name="gyrovib select", tests=str(n_cases),
-                        failures=str(n_fail), errors="0")
-    suite = ET.SubElement(
-        suites, "testsuite",
-        name=f"gyrovib select: budget {fmt(result.budget)} {result.unit}, method "
-             f"{result.method}, criterion {result.criterion}",
-        tests=str(n_cases), failures=str(n_fail), errors="0", skipped="0",
-    )
-    for i, sensor in enumerate(result.sensors):
-        for j, profile in enumerate(result.profiles):
-            case = ET.SubElement(suite, "testcase", classname=sensor, name=profile, time="0")
-            out = ET.SubElement(case, "system-out")
-            names = ", ".join(_unknown_names(result, i, j))
-            if result.is_unverified(i, j):
-                out.text = (f"unverified ({names} unknown); on the published figures "
-                            f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}")
-            else:
-                out.text = (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}, "
-                            f"margin {_margin(result.margin[i, j])}"
-                            + (f" (assumed {names} = 0: --assume-unknown zero)" if names
-                               else ""))
-            if not result.passed[i, j]:
-                reasons = failures(result, i, j)
-                kind = "Unverified" if result.is_unverified(i, j) else "BudgetExceeded"
-                failure = ET.Element("failure", message="; ".join(reasons), type=kind)
-                failure.text = "\n".join(reasons)
-                case.insert(0, failure)
-    ET.indent(suites)
-    return ET.tostring(suites, encoding="unicode", xml_declaration=True) + "\n"
-
-
-def to_github(
-    result: SelectionResult, locations: Sequence[tuple[str | None, int | None]]
-) -> str:
-    """GitHub workflow annotations: one ``::error`` per failing sensor at its catalogue line,
-    a ``::notice`` per passing sensor, and a closing summary notice.
-
-    GitHub shows 10 of each level per step: past that the worst are annotated,
-    one notice counts the rest, and those follow as plain log lines.
-
-    ``locations[i]`` is the (file, line) of sensor ``i``'s ``id:``.
-    """
-    from gyrovib.render.github import annotations
-
-    items: list[tuple[str | None, int | None, str | None, str, str]] = []
-    rank: list[float] = []  # GitHub shows 10 of each level: the smallest margins first
-    for i, sensor in enumerate(result.sensors):
-        file, line = locations[i]
-        rank.append(float(result.worst_margin[i]))
-        if result.sensor_pass[i]:
-            worst = _margin(float(result.worst_margin[i]))
-            met = (f"meets Δ* = {fmt(result.budget)} {result.unit} under every profile; worst "
-                   f"margin {worst}")
-            if result.yields is not None and result.yields.is_lot(i):
-                lowest = fmt(float(np.nanmin(result.yields.value[i])), 4)
-                met = (f"(a production lot) has a yield of at least {result.yields.target:g} "
-                       f"under every profile (lowest {lowest}) against Δ* = "
-                       f"{fmt(result.budget)} {result.unit}")
-            items.append((file, line, f"{sensor} passes", f"{sensor} {met}", "notice"))
-            continue
-        reasons = [f"{result.profiles[j]}: {'; '.join(failures(result, i, j))}"
-                   for j in range(len(result.profiles)) if not result.passed[i, j]]
-        if result.sensor_status(i) == "unverified":
-            asks = "; ".join(result.questions.get(i, ()))
-            items.append((file, line, f"{sensor} is unverified",
-                          f"{sensor} passes Δ* = {fmt(result.budget)} {result.unit} on its "
-                          "published figures, but an unpublished one can decide it. Ask the "
-                          f"vendor: {asks}. " + " | ".join(reasons), "error"))
-            continue
-        items.append((file, line, f"{sensor} fails the budget",
-                      f"{sensor} fails Δ* = {fmt(result.budget)} {result.unit} "
-                      f"({_CRITERION[result.criterion]}). Limited by {limit_text(result, i)}. "
-                      + " | ".join(reasons), "error"))
-    items.append((None, None, "gyrovib select", _summary(result), "notice"))
-    rank.append(-math.inf)  # the summary is always shown
-    return annotations(items, rank=rank)

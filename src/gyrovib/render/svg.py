@@ -227,10 +227,14 @@ class LineChart:
     ylog: bool = False
     markers: Sequence[Marker] = field(default_factory=tuple)
 
-    def svg(self) -> str:
+    def _extents(self) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
+        """The ranges of the axes: every series' points and every marker's place."""
         xs = [v for s in self.series for v in s.x] + [m.x for m in self.markers if m.x is not None]
         ys = [v for s in self.series for v in s.y] + [m.y for m in self.markers if m.y is not None]
-        xr, yr = extent(xs, self.xlog), extent(ys, self.ylog)
+        return extent(xs, self.xlog), extent(ys, self.ylog)
+
+    def svg(self) -> str:
+        xr, yr = self._extents()
         # below the plot the right column is free: a long legend runs on there
         out = _open(self.title, max(HEIGHT, legend_bottom(len(self.series))))
         if xr is None or yr is None:
@@ -241,33 +245,47 @@ class LineChart:
         y = Scale(*yr, HEIGHT - BOTTOM, TOP, self.ylog)
         out += _axes(x, y, self.xlabel, self.ylabel)
         for s in self.series:
-            for segment in _segments(s, self.xlog, self.ylog):
-                points = " ".join(f"{x(a):.1f},{y(b):.1f}" for a, b in segment)
-                extra = f' stroke-dasharray="{s.pattern}"' if s.pattern else ""
-                if len(segment) == 1:
-                    (a, b), = segment
-                    out.append(f'<circle cx="{x(a):.1f}" cy="{y(b):.1f}" r="2.5" '
-                               f'fill="{s.stroke}"/>')
-                else:
-                    out.append(f'<polyline points="{points}" fill="none" stroke="{s.stroke}" '
-                               f'stroke-width="1.8"{extra}/>')
+            out += _series_svg(s, x, y, self.xlog, self.ylog)
         for m in self.markers:
-            if m.x is not None and x.lo <= m.x <= x.hi:
-                px = x(m.x)
-                out.append(f'<line x1="{px:.1f}" y1="{TOP}" x2="{px:.1f}" '
-                           f'y2="{HEIGHT - BOTTOM}" class="{m.style}"/>')
-                out.append(_marker_label(m.label, px, TOP + 11 + 11 * m.row,
-                                         WIDTH - RIGHT))
-            if m.y is not None and y.lo <= m.y <= y.hi:
-                py = y(m.y)
-                out.append(f'<line x1="{LEFT}" y1="{py:.1f}" x2="{WIDTH - RIGHT}" '
-                           f'y2="{py:.1f}" class="{m.style}"/>')
-                text = fit(m.label, WIDTH - LEFT - RIGHT - 6, SIZES["mr"])
-                out.append(f'<text x="{WIDTH - RIGHT - 3}" y="{py - 4:.1f}" class="mr">'
-                           f'{escape(text)}</text>')
+            out += _marker_svg(m, x, y)
         out += _legend([s.name for s in self.series], [(s.stroke, s.pattern) for s in self.series])
         out.append("</svg>")
         return "\n".join(out)
+
+
+def _series_svg(s: Series, x: Scale, y: Scale, xlog: bool, ylog: bool) -> list[str]:
+    """A series as polylines, one per run of plottable points (a lone point: a dot)."""
+    out = []
+    for segment in _segments(s, xlog, ylog):
+        points = " ".join(f"{x(a):.1f},{y(b):.1f}" for a, b in segment)
+        extra = f' stroke-dasharray="{s.pattern}"' if s.pattern else ""
+        if len(segment) == 1:
+            (a, b), = segment
+            out.append(f'<circle cx="{x(a):.1f}" cy="{y(b):.1f}" r="2.5" '
+                       f'fill="{s.stroke}"/>')
+        else:
+            out.append(f'<polyline points="{points}" fill="none" stroke="{s.stroke}" '
+                       f'stroke-width="1.8"{extra}/>')
+    return out
+
+
+def _marker_svg(m: Marker, x: Scale, y: Scale) -> list[str]:
+    """A marker's vertical line (at ``m.x``) and horizontal line (at ``m.y``), each
+    with its label, where they fall within the axes."""
+    out = []
+    if m.x is not None and x.lo <= m.x <= x.hi:
+        px = x(m.x)
+        out.append(f'<line x1="{px:.1f}" y1="{TOP}" x2="{px:.1f}" '
+                   f'y2="{HEIGHT - BOTTOM}" class="{m.style}"/>')
+        out.append(_marker_label(m.label, px, TOP + 11 + 11 * m.row, WIDTH - RIGHT))
+    if m.y is not None and y.lo <= m.y <= y.hi:
+        py = y(m.y)
+        out.append(f'<line x1="{LEFT}" y1="{py:.1f}" x2="{WIDTH - RIGHT}" '
+                   f'y2="{py:.1f}" class="{m.style}"/>')
+        text = fit(m.label, WIDTH - LEFT - RIGHT - 6, SIZES["mr"])
+        out.append(f'<text x="{WIDTH - RIGHT - 3}" y="{py - 4:.1f}" class="mr">'
+                   f'{escape(text)}</text>')
+    return out
 
 
 def _marker_label(text: str, px: float, y: float, right: float) -> str:

@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
+import numpy as np
+
 from gyrovib.api import SweepResult
 from gyrovib.render.common import (
     csv_cell,
@@ -22,8 +24,6 @@ METHODS = ("exact", "paper")
 
 
 def _saturated(result: SweepResult) -> Any:
-    import numpy as np
-
     sat = result.saturated
     if sat is None:
         return np.zeros((len(result.sensors), len(result.profiles), len(result.rates)), bool)

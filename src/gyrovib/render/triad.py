@@ -6,6 +6,7 @@ in one document, each result tagged with its ``axis``, and the ``worst_axis`` su
 
 from __future__ import annotations
 
+import json
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -45,8 +46,6 @@ def to_json(result: TriadResult, draw: Callable[[Any], str]) -> str:
     """One document: the first axis's header keys, every list of results of the three
     axes concatenated with ``"axis"`` added to each entry, ``"placement": "triad"``,
     ``"axes"`` and ``"worst_axis"``."""
-    import json  # not at import time: analyze without a triad never needs it
-
     docs = [json.loads(draw(one)) for one in result.results]
     merged: dict[str, Any] = {}
     for key, value in docs[0].items():

@@ -1,0 +1,264 @@
+"""Locked groups mixed with other components (docs/model.md section 10): two groups
+alone (:func:`two_groups_excess`), and one or two groups with independent tones on
+a Gaussian part (:func:`locked_mixture_excess`, the tones' and the Gaussian part's
+excess tabulated once). The groups themselves are :mod:`gyrovib.core.harmonics`."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from gyrovib.core.harmonics import (
+    ComplexArray,
+    LockedGroup,
+    _x3_at,
+    _x3_coefficients,
+    locked_abs_excess,
+    locked_peak,
+    monotone_roots,
+    stationary_points,
+)
+from gyrovib.core.statistics import rectified_excess, stretched_rule
+from gyrovib.core.transmissibility import FloatArray
+from gyrovib.errors import ModelError
+from gyrovib.progress import advance
+
+#: Most pieces per rate of :func:`two_groups_excess` (the second group's period split
+#: where the first group's excess has a kink); beyond, the mean is taken on a grid.
+MAX_PAIR_PIECES = 512
+
+
+def two_groups_excess(omega: ArrayLike, first: LockedGroup, second: LockedGroup) -> FloatArray:
+    """``E(Ω) = <|Ω + x3(θ1) + y3(θ2)|> − |Ω|`` for two independent locked groups alone.
+
+    ``omega``: any shape (rate); returns the same shape. With E1 and E2 each
+    group's excess alone (:func:`locked_abs_excess`),
+
+        E(Ω) = <E1(Ω + y3(θ2))>_θ2 + E2(Ω)
+
+    (the mean of |Ω + y3| − |Ω| over θ2 is E2), both terms ≥ 0, so E keeps
+    its relative precision. E1(s) is smooth except where s = 0 (the kink of
+    −|s|) and where s = −x3(θ*) at a stationary point θ* of x3 (a (·)^{3/2}
+    edge); the second group's period is split where Ω + y3(θ2) reaches one of
+    those values (:func:`monotone_roots`) and on a uniform grid of 8·n_max
+    points, and each piece gets the stretched
+    Gauss-Legendre rule of :func:`gyrovib.core.statistics.stretched_rule`, which
+    converges geometrically across such end-point singularities (a uniform grid
+    over θ2 converges only algebraically: 256 nodes left 6e-6 relative).
+    Falls back to a 4096-node grid over θ2 when the pieces would exceed
+    :data:`MAX_PAIR_PIECES` per rate (high orders).
+    """
+    w = np.asarray(omega, dtype=float)
+    flat = w.ravel()
+    n1, p1 = _x3_coefficients(first)
+    n2, p2 = _x3_coefficients(second)
+    if n1.size == 0 or n2.size == 0:
+        n, p = (n2, p2) if n1.size == 0 else (n1, p1)
+        return locked_abs_excess(w, n, p) if n.size else np.zeros(w.shape)
+    t1 = stationary_points(n1, p1)
+    t2 = stationary_points(n2, p2)
+    values = _x3_at(n1.astype(float), p1, t1)[0]
+    targets = np.concatenate([[0.0], values])
+    second_alone = locked_abs_excess(flat, n2, p2)
+    if targets.size * t2.size > MAX_PAIR_PIECES:
+        m = 4096
+        theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
+        y3 = _x3_at(n2.astype(float), p2, theta)[0]
+        out = np.empty(flat.size)
+        step = max(1, (1 << 20) // m)
+        for lo in range(0, flat.size, step):
+            s = flat[lo:lo + step, None] + y3[None, :]
+            out[lo:lo + step] = locked_abs_excess(s, n1, p1).mean(axis=1)
+        return (out + second_alone).reshape(w.shape)
+    stretch, stretch_weight = stretched_rule()
+    # pieces no longer than 2π/(8·n_max): between the kinks the integrand is
+    # analytic but oscillates with y3, and one 24-node rule over a long piece
+    # left 3e-7; with these cuts the rule is converged to rounding
+    uniform = 2.0 * math.pi * np.arange(8 * int(n2.max()) + 1) / (8 * int(n2.max()))
+    out = np.empty(flat.size)
+    per_rate = (targets.size * t2.size + uniform.size) * stretch.size
+    step = max(1, (1 << 18) // per_rate)
+    for lo in range(0, flat.size, step):
+        advance("E(Ω) of locked harmonics", lo, flat.size)
+        part = flat[lo:lo + step]
+        offsets = (part[:, None] + targets[None, :]).ravel()
+        roots = monotone_roots(n2, p2, offsets, t2).reshape(part.size, -1)
+        cuts = np.concatenate([np.broadcast_to(uniform, (part.size, uniform.size)),
+                               np.where(np.isnan(roots), 2.0 * math.pi, roots)], axis=1)
+        cuts.sort(axis=1)
+        length = np.diff(cuts, axis=1)[..., None]  # (W, B, 1)
+        theta = cuts[:, :-1, None] + length * stretch  # (W, B, G)
+        weight = length * stretch_weight / (2.0 * math.pi)
+        s = part[:, None, None] + _x3_at(n2.astype(float), p2, theta)[0]
+        e1 = locked_abs_excess(s, n1, p1)
+        out[lo:lo + step] = np.sum(e1 * weight, axis=(1, 2))
+    advance("E(Ω) of locked harmonics", flat.size, flat.size)
+    result: FloatArray = (out + second_alone).reshape(w.shape)
+    return result
+
+
+#: Most grid nodes × rates :func:`locked_mixture_excess` evaluates (about 0.3 µs
+#: each: a few seconds); beyond, the profile is refused with the reason.
+MAX_MIXTURE_NODES = 1 << 24
+#: Table steps per σ and the points of the local Lagrange interpolation of
+#: :func:`_excess_table` (error ~(1/16)^8 of log E's scale: below 1e-12).
+_TABLE_PER_SIGMA = 16
+_STENCIL = 8
+
+
+#: Most values of E_Y in the table of :func:`_excess_table` ((Σa + 40σ)·16/σ): a
+#: Gaussian part narrow against the tones needs more (up to ~0.25 ms each).
+MAX_SHIFT_TABLE = 1 << 15
+
+
+def table_size(amplitudes: ArrayLike, sigma: float) -> float:
+    """Values :func:`_excess_table` computes for tones ``amplitudes`` on σ > 0 (a float:
+    it may be huge)."""
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    return (math.fsum(a[a > 0].tolist()) + 40.0 * sigma) * _TABLE_PER_SIGMA / sigma + _STENCIL
+
+
+def _excess_table(amplitudes: FloatArray, sigma: float) -> tuple[float, float, FloatArray]:
+    """``log E_Y(c)`` on c = 0, h, 2h, … for Y = Σ a_k·sin φ_k + σZ (σ > 0), with h and
+    the reach beyond which E_Y underflows (Σa + 40σ).
+
+    E_Y(c) = <|c + Y|> − |c| is even, smooth on c ≥ 0 at the scale σ (the Gaussian
+    part smooths the tones' kinks) and decays like a Gaussian past Σa: its
+    logarithm is tabulated, so that interpolation keeps relative precision in
+    the tail.
+    """
+    reach = math.fsum(amplitudes.tolist()) + 40.0 * sigma
+    h = sigma / _TABLE_PER_SIGMA
+    c = h * np.arange(math.ceil(reach / h) + _STENCIL + 1)
+    e = rectified_excess(c, amplitudes, sigma)
+    log: FloatArray = np.log(np.maximum(e, 1e-300))
+    return h, reach, log
+
+
+def _interpolate(c: FloatArray, h: float, reach: float, log: FloatArray) -> FloatArray:
+    """E_Y(|c|) from :func:`_excess_table` by Lagrange interpolation on 8 table points."""
+    x = np.abs(c) / h
+    last = log.size - _STENCIL
+    base = np.clip(np.floor(x).astype(np.int64) - (_STENCIL // 2 - 1), 0, last)
+    t = x - base
+    total = np.zeros_like(x)
+    for j in range(_STENCIL):
+        weight = np.ones_like(x)
+        for k in range(_STENCIL):
+            if k != j:
+                weight *= (t - k) / (j - k)
+        total += weight * log[base + j]
+    with np.errstate(over="ignore", invalid="ignore"):  # (past the reach: extrapolated, unused)
+        out: FloatArray = np.where(np.abs(c) < reach, np.exp(total), 0.0)
+    return out
+
+
+def mixture_nodes(groups: Sequence[LockedGroup], amplitudes: ArrayLike,
+                  sigma: float) -> list[int]:
+    """Midpoint nodes per group period for :func:`locked_mixture_excess` (σ > 0).
+
+    The integrand is analytic at the scale σ, so the midpoint rule converges
+    geometrically once each group has ``1.25·n_max·(8·peak/σ + (swing +
+    peak)·peak/σ²) + 64`` nodes (the kernel's width against the group's swing,
+    and the curvature of its Gaussian tail; the rule of the single group of
+    :func:`locked_rectified_excess`), capped at 2^14.
+    """
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    peaks = [locked_peak(*_x3_coefficients(g)) for g in groups]
+    swing = sum(peaks) + float(np.sum(a[a > 0]))
+    out = []
+    for g, peak in zip(groups, peaks, strict=True):
+        need = 1.25 * g.n_max * (8.0 * peak / sigma + (swing + peak) * peak / sigma**2) + 64
+        out.append(int(min(max(need, 64), 1 << 14)) if peak > 0 else 1)
+    return out
+
+
+def _mixture_cost_checked(live: list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]],
+                          a: FloatArray, sigma: float, near: NDArray[np.bool_],
+                          nodes: list[int]) -> None:
+    """Refuse, before any work, a table of E_Y or a grid larger than gyrovib allows."""
+    total = math.prod(nodes) * int(np.count_nonzero(near))
+    if near.any() and table_size(a, sigma) > MAX_SHIFT_TABLE:
+        raise ModelError(
+            reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
+            f"with {a.size} independent tone{'s' if a.size != 1 else ''} (largest "
+            f"{float(a[0]) if a.size else 0.0:.4g}) on a random part of RMS {sigma:.4g} would "
+            f"tabulate {table_size(a, sigma):,.0f} values of the tones' excess on the random "
+            f"part (16 per σ), more than the {MAX_SHIFT_TABLE:,} gyrovib allows: the random part "
+            "is too narrow against the tones to matter, yet too large to drop; drop it, "
+            "or give the tones as orders of a group")
+    if total > MAX_MIXTURE_NODES:
+        raise ModelError(
+            reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
+            f"with {a.size} independent tone{'s' if a.size != 1 else ''} on a random part of "
+            f"RMS {sigma:.4g} at {total // math.prod(nodes)} rate"
+            f"{'s' if total != math.prod(nodes) else ''} within its reach would take "
+            f"{total:,} grid points (the groups' periods on "
+            f"{' × '.join(str(m) for m in nodes)} nodes, as the random part is narrow "
+            f"against their swing), more than the {MAX_MIXTURE_NODES:,} gyrovib allows; "
+            "give fewer rates, or the smaller group's orders as independent tones")
+
+
+def _phase_shifts(live: list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]],
+                  nodes: list[int]) -> FloatArray:
+    """x3 + y3 at every combination of the groups' midpoint nodes."""
+    shift = np.zeros(1)
+    for (_, n, p), m in zip(live, nodes, strict=True):
+        theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
+        x3 = _x3_at(n.astype(float), p, theta)[0]
+        shift = (shift[:, None] + x3[None, :]).ravel()
+    return shift
+
+
+def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
+                          amplitudes: ArrayLike, sigma: float) -> FloatArray:
+    """``E(Ω) = <|Ω + x3(θ1) [+ y3(θ2)] + Y|> − |Ω|``: one or two locked groups, with
+    independent tones ``amplitudes`` and a Gaussian part ``sigma`` > 0 in Y.
+
+    The Gaussian part and the tones are integrated first, once: E_Y(c) =
+    <|c + Y|> − |c| (:func:`~gyrovib.core.statistics.rectified_excess`) is
+    tabulated in c (log E_Y, 16 steps per σ, local 8-point Lagrange
+    interpolation) — it depends on c alone, not on the rate or the groups'
+    phases. The mean over the groups' phases of the smooth F(s) = E_Y(s) + |s|
+    at s = Ω + x3 + y3 is then a midpoint rule on the groups' periods
+    (:func:`mixture_nodes`, geometric convergence): ``mean F − |Ω|`` where Ω
+    + x3 + y3 may cross 0, ``mean E_Y`` (no cancellation) where it cannot.
+    Cost: (Σa + 40σ)·16/σ values of E_Y, and rates × the product of the
+    nodes interpolations; above :data:`MAX_MIXTURE_NODES` a
+    :class:`~gyrovib.errors.ModelError` says so before any work (a Gaussian
+    part tiny against the groups' swing).
+    """
+    w = np.asarray(omega, dtype=float)
+    flat = w.ravel()
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    a = np.sort(a[a > 0])[::-1]
+    coefficients = [_x3_coefficients(g) for g in groups]
+    live = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True) if n.size]
+    nodes = mixture_nodes([g for g, _, _ in live], a, sigma)
+    peak = sum(locked_peak(n, p) for _, n, p in live)
+    # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
+    near = np.abs(flat) < peak + math.fsum(a.tolist()) + 40.0 * sigma
+    _mixture_cost_checked(live, a, sigma, near, nodes)
+    out = np.zeros(flat.size)
+    if not near.any():
+        return out.reshape(w.shape)
+    h, reach, log = _excess_table(a, sigma)
+    shift = _phase_shifts(live, nodes)
+    todo = flat[near]
+    done = np.empty(todo.size)
+    step = max(1, (1 << 20) // shift.size)
+    for lo in range(0, todo.size, step):
+        advance("E(Ω) of locked harmonics", lo, todo.size)
+        part = todo[lo:lo + step]
+        s = part[:, None] + shift[None, :]
+        e = _interpolate(s, h, reach, log)
+        crossing = np.abs(part) < peak
+        inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
+        done[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
+    advance("E(Ω) of locked harmonics", todo.size, todo.size)
+    out[near] = done
+    result: FloatArray = out.reshape(w.shape)
+    return result
