@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -37,6 +38,10 @@ from gyrovib.errors import ModelError, OptionError
 from gyrovib.frozen import Frozen
 from gyrovib.models import Mission
 from gyrovib.models.mission import MAX_DURATION, MAX_DURATION_YEARS
+
+if TYPE_CHECKING:
+    from gyrovib.api.evaluation.results import AnalysisResult
+    from gyrovib.api.study.prepare import Group, Prepared
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -159,19 +164,78 @@ def mission(
     passing (:func:`gyrovib.api.datasheet.spec_bounds.is_unverified`), unless
     ``assume_unknown="zero"``.
     """
-    from gyrovib.api.commands.analyze import analysis_of
-    from gyrovib.api.study.study import check_peak_factor
+    _check_options(budget, angle_budget, require, assume_unknown)
+    unit = units.canonical_unit(unit)
+    a_unit, a_factor = ANGLE_UNITS[unit]
+    chosen = chosen_missions(catalog, missions)
+    notes = duration_notes(chosen)
+    runs, evaluated = _evaluate(catalog, chosen, sensors, placement, unit, peak_factor)
+    limits = _Limits(
+        theta=None if angle_budget is None else angle_budget / _rad_per(a_unit),
+        rms=None if budget is None else budget / units.scale(unit))
+    rows: list[MissionRow] = []
+    for i in range(len(evaluated.result.sensors)):
+        rows.extend(_with_worst_axis(
+            [_mission_row(evaluated, i, r, run, a_factor, limits, assume_unknown)
+             for r, run in enumerate(runs)]))
+    check_angles(rows, chosen)
+    sensor_pass, met = _requirement(rows, evaluated.result.sensors,
+                                    budget is None and angle_budget is None, require)
+    return MissionResult(unit=unit, angle_unit=a_unit, budget=limits.rms,
+                         angle_budget=limits.theta, require=require,
+                         sensors=evaluated.result.sensors,
+                         missions=tuple(m.mission.id for m in chosen), rows=tuple(rows),
+                         sensor_pass=sensor_pass, requirement_met=met,
+                         assume_unknown=assume_unknown, notes=notes)
 
+
+def _check_options(budget: float | None, angle_budget: float | None, require: str,
+                   assume_unknown: str) -> None:
+    """The option errors of :func:`mission`, in the order the user reads them."""
     if budget is not None and angle_budget is not None:
         raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
                           "not both")
     if require not in ("any", "all"):
         raise OptionError(f"--require {require!r}: use any or all")
     spec_bounds.check_assumption(assume_unknown)
-    unit = units.canonical_unit(unit)
-    a_unit, a_factor = ANGLE_UNITS[unit]
-    chosen = chosen_missions(catalog, missions)
-    notes = duration_notes(chosen)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class _Evaluated(Frozen):
+    """The analysis of the runs' distinct placed profiles (a column each), per sensor:
+    its saturation flags, each sensor's source, and the spec-form sensors' mission
+    worst means and unknown figures per (sensor, run) (:func:`_spec_means`)."""
+
+    result: AnalysisResult
+    saturated: np.ndarray
+    sources: tuple[str, ...]
+    spec_mean: dict[tuple[int, int], float]
+    unknown: dict[tuple[int, int], tuple[str, ...]]
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class _Limits(Frozen):
+    """The budget in the output units: θ* on |θ_V| or Δ* on Δ̄_RMS (or neither)."""
+
+    theta: float | None
+    rms: float | None
+
+    def passed(self, saturated: bool, angle: float, rms: float) -> bool | None:
+        """Whether a row meets the budget (None: no budget)."""
+        if self.theta is not None:
+            return not saturated and abs(angle) <= self.theta
+        if self.rms is not None:
+            return not saturated and rms <= self.rms
+        return None
+
+
+def _evaluate(catalog: Catalog, chosen: Sequence[MissionEntry], sensors: Sequence[str],
+              placement: Placement | tuple[Placement, ...] | None, unit: str,
+              peak_factor: float) -> tuple[list[_Run], _Evaluated]:
+    """The runs of the chosen missions and one analysis of all their segments."""
+    from gyrovib.api.commands.analyze import analysis_of
+    from gyrovib.api.study.study import check_peak_factor
+
     entries, runs = _segment_entries(catalog, chosen, placement)
     derived = Catalog(catalog.sources, catalog.sensors, tuple(entries), catalog.allocation,
                       catalog.missions)
@@ -180,67 +244,64 @@ def mission(
     # datasheet sensors' mission worst cases share its vibrations
     study = Study.of(derived, sensors=sensors, profiles=[e.profile.id for e in entries])
     result = analysis_of(study, unit=unit, peak_factor=peak_factor)
-    total, rms = result.error.total, result.error.rms
-    saturated = (np.zeros(total.shape, dtype=bool) if result.saturated is None
+    saturated = (np.zeros(result.error.total.shape, dtype=bool) if result.saturated is None
                  else np.asarray(result.saturated))
-    sources = result.sources or ("coefficients",) * len(result.sensors)
+    sources = tuple(result.sources or ("coefficients",) * len(result.sensors))
     spec_mean, unknown = _spec_means(study, sources, runs, unit)
-    theta_budget = None if angle_budget is None else (
-        angle_budget / _rad_per(a_unit))
-    budget_out = None if budget is None else budget / units.scale(unit)
-    rows: list[MissionRow] = []
-    for i, sensor in enumerate(result.sensors):
-        per_sensor: list[MissionRow] = []
-        for r, run in enumerate(runs):
-            cols = list(run.columns)
-            agg = totals(run.durations, total[i, cols], rms[i, cols], a_factor)
-            mean = float(agg.mean)
-            if (i, r) in spec_mean:
-                mean = spec_mean[(i, r)]
-            angle = mean * agg.duration * a_factor
-            sat = bool(np.any(saturated[i, cols]))
-            segs = tuple(
-                SegmentResult(profile=seg.profile, duration=float(seg.duration),
-                              rate=(float(result.rates[c, 0]), float(result.rates[c, 1]),
-                                    float(result.rates[c, 2])),
-                              total=float(total[i, c]), rms=float(rms[i, c]),
-                              saturated=bool(saturated[i, c]))
-                for seg, c in zip(run.mission.segments, cols, strict=True))
-            passed: bool | None = None
-            if theta_budget is not None:
-                passed = not sat and abs(angle) <= theta_budget
-            elif budget_out is not None:
-                passed = not sat and float(agg.rms) <= budget_out
-            names = unknown.get((i, r), ())
-            open_ = passed is not None and spec_bounds.is_unverified(passed, names,
-                                                                     assume_unknown)
-            if open_:
-                passed = False
-            w = int(agg.worst_index)
-            per_sensor.append(MissionRow(
-                sensor=sensor, mission=run.mission.id,
-                placement="triad" if run.triad else str(run.placement),
-                axis=run.placement.axis if run.triad else None,
-                mean=mean, angle=angle, rms=float(agg.rms), worst_index=w,
-                worst_profile=run.mission.segments[w].profile,
-                worst_total=float(agg.worst_total), segments=segs, saturated=sat,
-                passed=passed, source=sources[i], unknown=names, unverified=open_))
-        rows.extend(_with_worst_axis(per_sensor))
-    check_angles(rows, chosen)
-    sensor_pass = tuple(
-        None if budget is None and angle_budget is None else
-        all(bool(r.passed) for r in rows if r.sensor == s) for s in result.sensors)
-    if budget is None and angle_budget is None:
-        met = True
-    elif require == "all":
-        met = all(bool(p) for p in sensor_pass)
-    else:
-        met = any(bool(p) for p in sensor_pass)
-    return MissionResult(unit=unit, angle_unit=a_unit, budget=budget_out,
-                         angle_budget=theta_budget, require=require, sensors=result.sensors,
-                         missions=tuple(m.mission.id for m in chosen), rows=tuple(rows),
-                         sensor_pass=sensor_pass, requirement_met=met,
-                         assume_unknown=assume_unknown, notes=notes)
+    return runs, _Evaluated(result, saturated, sources, spec_mean, unknown)
+
+
+def _segment_results(evaluated: _Evaluated, i: int, run: _Run) -> tuple[SegmentResult, ...]:
+    """Sensor ``i``'s result in each segment of ``run``."""
+    result, saturated = evaluated.result, evaluated.saturated
+    total, rms = result.error.total, result.error.rms
+    return tuple(
+        SegmentResult(profile=seg.profile, duration=float(seg.duration),
+                      rate=(float(result.rates[c, 0]), float(result.rates[c, 1]),
+                            float(result.rates[c, 2])),
+                      total=float(total[i, c]), rms=float(rms[i, c]),
+                      saturated=bool(saturated[i, c]))
+        for seg, c in zip(run.mission.segments, run.columns, strict=True))
+
+
+def _mission_row(evaluated: _Evaluated, i: int, r: int, run: _Run, a_factor: float,
+                 limits: _Limits, assume_unknown: str) -> MissionRow:
+    """Sensor ``i`` over run ``r``: its mean, angle, mean RMS, worst segment and verdict."""
+    cols = list(run.columns)
+    error = evaluated.result.error
+    agg = totals(run.durations, error.total[i, cols], error.rms[i, cols], a_factor)
+    mean = float(agg.mean)
+    if (i, r) in evaluated.spec_mean:
+        mean = evaluated.spec_mean[(i, r)]
+    angle = mean * agg.duration * a_factor
+    sat = bool(np.any(evaluated.saturated[i, cols]))
+    passed = limits.passed(sat, angle, float(agg.rms))
+    names = evaluated.unknown.get((i, r), ())
+    open_ = passed is not None and spec_bounds.is_unverified(passed, names, assume_unknown)
+    if open_:
+        passed = False
+    w = int(agg.worst_index)
+    return MissionRow(
+        sensor=evaluated.result.sensors[i], mission=run.mission.id,
+        placement="triad" if run.triad else str(run.placement),
+        axis=run.placement.axis if run.triad else None,
+        mean=mean, angle=angle, rms=float(agg.rms), worst_index=w,
+        worst_profile=run.mission.segments[w].profile,
+        worst_total=float(agg.worst_total), segments=_segment_results(evaluated, i, run),
+        saturated=sat, passed=passed, source=evaluated.sources[i], unknown=names,
+        unverified=open_)
+
+
+def _requirement(rows: Sequence[MissionRow], sensors: Sequence[str], no_budget: bool,
+                 require: str) -> tuple[tuple[bool | None, ...], bool]:
+    """Whether each sensor passes every mission (None: no budget), and whether the
+    ``require`` condition (any or all of them) is met (always, with no budget)."""
+    if no_budget:
+        return tuple(None for _ in sensors), True
+    sensor_pass = tuple(all(bool(r.passed) for r in rows if r.sensor == s) for s in sensors)
+    if require == "all":
+        return sensor_pass, all(sensor_pass)
+    return sensor_pass, any(sensor_pass)
 
 
 def _duration_place(entry: MissionEntry, segment: int) -> tuple[object, ...]:
@@ -324,52 +385,80 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     run's segments, merged. The datasheet sensors are ``study`` narrowed to them (its
     vibrations computed once for the analysis and for this).
     """
-    from gyrovib.api.datasheet import specs
-
     out: dict[tuple[int, int], float] = {}
-    unknown: dict[tuple[int, int], tuple[str, ...]] = {}
-    # a coefficient-form sensor that gives no g² figure: its g² term is unknown, not
-    # zero, in a run with linear vibration in some segment (as select reads it)
-    for i, e in enumerate(study.sensors):
-        if sources[i] != "specs" and specs.g2_unknown(e.sensor):
-            for r, run in enumerate(runs):
-                if any(study.linear[c] is not None for c in run.columns):
-                    unknown[(i, r)] = ("vre",)
+    unknown = _g2_unknown(study, sources, runs)
     rows = [i for i, src in enumerate(sources) if src == "specs"]
     if not rows:
         return out, unknown
     from gyrovib.api.study.prepare import float_guard
-    from gyrovib.core.envelope import worst_case
 
     where = {e.sensor.id: i for i, e in enumerate(study.sensors)}
     scale = units.scale(unit)
     with float_guard():
         prepared = study.narrowed(rows).prepare(methods=("exact",), phase_search=True)
-        figures_unknown = spec_bounds.unknown_figures_at(
-            prepared, np.arange(len(prepared.sensors)),
-            specs.figures(list(prepared.sensors)).has_vre, "exact")
-        for k, e in enumerate(prepared.sensors):
-            for r, run in enumerate(runs):
-                names = spec_bounds.merge_unknown(figures_unknown.names(k, c)
-                                                  for c in run.columns)
-                if names:
-                    unknown[(where[e.sensor.id], r)] = names
+        unknown.update(_spec_unknown(prepared, runs, where))
         for group in prepared.groups:
-            members = [prepared.sensors[int(i)] for i in group.index.tolist()]
-            if not members:
-                continue
-            m = specs.multipliers_of(group, prepared, "exact")
-            t = specs.terms_of(m)                                   # (P, 8, 5)
-            s2 = specs.mean_square_acceleration(m)                  # (P,)
-            figs = specs.figures(members)
-            for r, run in enumerate(runs):
-                cols = list(run.columns)
-                tm = combined_functional(run.durations, t[cols])
-                sm = combined_functional(run.durations, s2[cols])
-                wc = worst_case(tm[None], np.atleast_1d(sm), figs.range, figs.limit,
-                                figs.fit, figs.measure, asymmetry=figs.asymmetry,
-                                vre=figs.vre)
-                values = np.asarray(wc.total, dtype=float).reshape(len(members), -1)[:, 0]
-                for e, v in zip(members, values.tolist(), strict=True):
-                    out[(where[e.sensor.id], r)] = v / scale
+            out.update(_group_means(prepared, group, runs, where, scale))
     return out, unknown
+
+
+def _g2_unknown(study: Study, sources: Sequence[str], runs: Sequence[_Run]
+                ) -> dict[tuple[int, int], tuple[str, ...]]:
+    """A coefficient-form sensor that gives no g² figure: its g² term is unknown, not
+    zero, in a run with linear vibration in some segment (as select reads it)."""
+    from gyrovib.api.datasheet import specs
+
+    unknown: dict[tuple[int, int], tuple[str, ...]] = {}
+    for i, e in enumerate(study.sensors):
+        if sources[i] != "specs" and specs.g2_unknown(e.sensor):
+            for r, run in enumerate(runs):
+                if any(study.linear[c] is not None for c in run.columns):
+                    unknown[(i, r)] = ("vre",)
+    return unknown
+
+
+def _spec_unknown(prepared: Prepared, runs: Sequence[_Run], where: dict[str, int]
+                  ) -> dict[tuple[int, int], tuple[str, ...]]:
+    """The unpublished figures that can decide each datasheet sensor in some segment
+    of each run (none: no entry), keyed by the sensor's index in the whole study."""
+    from gyrovib.api.datasheet import specs
+
+    unknown: dict[tuple[int, int], tuple[str, ...]] = {}
+    figures_unknown = spec_bounds.unknown_figures_at(
+        prepared, np.arange(len(prepared.sensors)),
+        specs.figures(list(prepared.sensors)).has_vre, "exact")
+    for k, e in enumerate(prepared.sensors):
+        for r, run in enumerate(runs):
+            names = spec_bounds.merge_unknown(figures_unknown.names(k, c)
+                                              for c in run.columns)
+            if names:
+                unknown[(where[e.sensor.id], r)] = names
+    return unknown
+
+
+def _group_means(prepared: Prepared, group: Group, runs: Sequence[_Run], where: dict[str, int],
+                 scale: float) -> dict[tuple[int, int], float]:
+    """The worst mean error over each whole run of one group's datasheet sensors, in the
+    output unit (``scale`` of it in deg/s), keyed by (sensor in the study, run)."""
+    from gyrovib.api.datasheet import specs
+    from gyrovib.core.envelope import worst_case
+
+    out: dict[tuple[int, int], float] = {}
+    members = [prepared.sensors[int(i)] for i in group.index.tolist()]
+    if not members:
+        return out
+    m = specs.multipliers_of(group, prepared, "exact")
+    t = specs.terms_of(m)                                   # (P, 8, 5)
+    s2 = specs.mean_square_acceleration(m)                  # (P,)
+    figs = specs.figures(members)
+    for r, run in enumerate(runs):
+        cols = list(run.columns)
+        tm = combined_functional(run.durations, t[cols])
+        sm = combined_functional(run.durations, s2[cols])
+        wc = worst_case(tm[None], np.atleast_1d(sm), figs.range, figs.limit,
+                        figs.fit, figs.measure, asymmetry=figs.asymmetry,
+                        vre=figs.vre)
+        values = np.asarray(wc.total, dtype=float).reshape(len(members), -1)[:, 0]
+        for e, v in zip(members, values.tolist(), strict=True):
+            out[(where[e.sensor.id], r)] = v / scale
+    return out
