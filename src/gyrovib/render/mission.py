@@ -178,28 +178,52 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
     return out
 
 
-def to_json(result: MissionResult) -> str:
-    """The JSON document of INTERFACE.md (third round): one entry per sensor × mission
-    (× axis), then each triad's summary and each sensor's verdict."""
+def _group_status(group: list[MissionRow], passed: bool | None) -> str | None:
+    """A triad's status: None without a budget, else its axes' worst (fail, then
+    unverified, then pass)."""
+    if passed is None:
+        return None
+    statuses = {r.status for r in group}
+    for status in ("fail", "unverified"):
+        if status in statuses:
+            return status
+    return "pass"
+
+
+def _triad_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
+    """The summary of the triad (a sensor × mission on several axes) ``row`` opens."""
+    key = (row.sensor, row.mission)
+    group = [r for r in result.rows if (r.sensor, r.mission) == key]
+    passed = None if row.passed is None else all(bool(r.passed) for r in group)
+    return {"sensor": row.sensor, "mission": row.mission, "worst_axis": row.worst_axis,
+            "pass": passed, "status": _group_status(group, passed)}
+
+
+def _triads_json(result: MissionResult) -> list[dict[str, Any]]:
+    """One summary per triad, in the order of its first row."""
     triads = []
     seen: set[tuple[str, str]] = set()
     for row in result.rows:
         if row.axis is not None and (row.sensor, row.mission) not in seen:
             seen.add((row.sensor, row.mission))
-            group = [r for r in result.rows if (r.sensor, r.mission) == (row.sensor, row.mission)]
-            passed = (None if row.passed is None else all(bool(r.passed) for r in group))
-            statuses = {r.status for r in group}
-            status = (None if passed is None else "fail" if "fail" in statuses
-                      else "unverified" if "unverified" in statuses else "pass")
-            triads.append({"sensor": row.sensor, "mission": row.mission,
-                           "worst_axis": row.worst_axis, "pass": passed, "status": status})
+            triads.append(_triad_json(result, row))
+    return triads
+
+
+def _optional_number(value: float | None) -> float | None:
+    return None if value is None else number(value)
+
+
+def to_json(result: MissionResult) -> str:
+    """The JSON document of INTERFACE.md (third round): one entry per sensor × mission
+    (× axis), then each triad's summary and each sensor's verdict."""
     document = {
         **header("exact", result.unit), "angle_unit": result.angle_unit,
-        "budget": None if result.budget is None else number(result.budget),
-        "angle_budget": None if result.angle_budget is None else number(result.angle_budget),
+        "budget": _optional_number(result.budget),
+        "angle_budget": _optional_number(result.angle_budget),
         "require": result.require, "assume_unknown": result.assume_unknown,
         "mission": [_row_json(result, r) for r in result.rows],
-        "triads": triads,
+        "triads": _triads_json(result),
         "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k)}
                     for k, (s, p) in enumerate(zip(result.sensors, result.sensor_pass,
                                                    strict=True))],

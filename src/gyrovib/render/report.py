@@ -19,11 +19,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gyrovib.api.report.views import Spectrum, TradeStudy
+from gyrovib.api.report.views import TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.presentation.reasons import unknown_label
 from gyrovib.render.bounds import shares_text
 from gyrovib.render.common import fmt
+from gyrovib.render.report_spectrum import spectrum_charts, spectrum_text
 from gyrovib.render.select import (
     CELL_MARGIN,
     DISAGREE_MARK,
@@ -205,58 +206,86 @@ def _yield_input(y: LotYields) -> str:
     return f"pass where the yield is at least {y.target:g} ({how}; docs/model.md section 14)"
 
 
-def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str:
+def _sensor_cells(study: TradeStudy, i: int) -> list[str]:
+    """The matrix row's first two cells: the sensor (with its form, unless given as
+    coefficients) and its overall status."""
+    overall = study.selection.sensor_status(i)
+    form = study.sensor_forms[i]
+    tag = f'<br><span class="small">{_e(FORM_TAGS.get(form, form))}</span>' if (
+        form != "coefficients") else ""
+    return [f"<td><b>{_e(study.selection.sensors[i])}</b>{tag}</td>",
+            f'<td class="{overall}">{STATUS_TEXT[overall]}</td>']
+
+
+def _unverified_cell(study: TradeStudy, i: int, j: int, klass: str,
+                     notes: Sequence[str]) -> str:
+    """An unverified cell: no margin, it hangs on figures not published (named)."""
     s = study.selection
-    warnings = study.analysis.warnings
-    head = ["sensor", "overall", *s.profiles]
-    rows = []
-    for i, sensor in enumerate(s.sensors):
-        overall = s.sensor_status(i)
-        form = study.sensor_forms[i]
-        tag = f'<br><span class="small">{_e(FORM_TAGS.get(form, form))}</span>' if (
-            form != "coefficients") else ""
-        cells = [f"<td><b>{_e(sensor)}</b>{tag}</td>",
-                 f'<td class="{overall}">{STATUS_TEXT[overall]}</td>']
-        for j in range(len(s.profiles)):
-            ok = bool(s.passed[i, j])
-            status = s.status(i, j)
-            notes = warnings.get((i, j), ())
-            klass = status + (" warn" if notes else "")
-            if status == "unverified":  # no margin: it hangs on figures not published
-                unknown = ", ".join(unknown_label(s, i, n) for n in s.unknown.get((i, j), ()))
-                cells.append(f'<td class="{klass}"{_tip(notes)}>? unverified<br>'
-                             f'<span class="small">{_e(unknown)} unknown</span></td>')
-                continue
-            tip = _tip(notes)
-            mark = " ⚠" if notes else ""
-            saturates = ('<br><span class="small"><b>saturates</b></span>'
-                         if s.saturated is not None and s.saturated[i, j] else "")
-            other = s.disagrees.get((i, j))
-            disagree = (f' <span class="small">{DISAGREE_MARK}{_e(",".join(other))}</span>'
-                        if other else "")
-            shown = (f"yield {fmt(float(s.yields.value[i, j]), 4)}"
-                     if s.yields is not None and s.yields.is_lot(i)
-                     else fmt(cell_margin(s, i, j), 3))
-            cells.append(
-                f'<td class="num {klass}"{tip}>{"✓" if ok else "✗"} '
-                f'{_e(shown)}{disagree}'
-                f'{mark}<br><span class="small">{_e(_dominant(squares[i, j], names))}</span>'
-                f'{_uncertainty(study, i, j)}{saturates}</td>'
-            )
-        rows.append(cells)
+    unknown = ", ".join(unknown_label(s, i, n) for n in s.unknown.get((i, j), ()))
+    return (f'<td class="{klass}"{_tip(notes)}>? unverified<br>'
+            f'<span class="small">{_e(unknown)} unknown</span></td>')
+
+
+def _cell_value(study: TradeStudy, i: int, j: int) -> str:
+    """The number a decided cell shows: a lot's yield, else the deciding margin."""
+    s = study.selection
+    if s.yields is not None and s.yields.is_lot(i):
+        return f"yield {fmt(float(s.yields.value[i, j]), 4)}"
+    return fmt(cell_margin(s, i, j), 3)
+
+
+def _decided_cell(study: TradeStudy, i: int, j: int, klass: str, notes: Sequence[str],
+                  dominant: str) -> str:
+    """A pass or fail cell: the mark, the value, the tests that disagree, the dominant
+    term, the uncertainty and whether the sensor saturates."""
+    s = study.selection
+    mark = " ⚠" if notes else ""
+    saturates = ('<br><span class="small"><b>saturates</b></span>'
+                 if s.saturated is not None and s.saturated[i, j] else "")
+    other = s.disagrees.get((i, j))
+    disagree = (f' <span class="small">{DISAGREE_MARK}{_e(",".join(other))}</span>'
+                if other else "")
+    return (f'<td class="num {klass}"{_tip(notes)}>{"✓" if s.passed[i, j] else "✗"} '
+            f'{_e(_cell_value(study, i, j))}{disagree}'
+            f'{mark}<br><span class="small">{_e(dominant)}</span>'
+            f'{_uncertainty(study, i, j)}{saturates}</td>')
+
+
+def _matrix_cell(study: TradeStudy, i: int, j: int, squares: np.ndarray,
+                 names: Sequence[str]) -> str:
+    """The cell of sensor ``i`` under profile ``j``."""
+    notes = study.analysis.warnings.get((i, j), ())
+    status = study.selection.status(i, j)
+    klass = status + (" warn" if notes else "")
+    if status == "unverified":
+        return _unverified_cell(study, i, j, klass, notes)
+    return _decided_cell(study, i, j, klass, notes, _dominant(squares[i, j], names))
+
+
+def _split_matrix(head: list[str], rows: list[list[str]], n_profiles: int) -> str:
+    """The matrix as tables of at most MATRIX_PROFILES profile columns, the sensor
+    columns repeated in each."""
     # many profiles: a compact table that scrolls rather than widening the page
     # at most MATRIX_PROFILES profile columns per table, so that each fits a printed
     # A4 landscape page: more profiles make more tables, the sensor columns repeated
     tables = []
-    n_p = len(s.profiles)
-    for start in range(0, max(n_p, 1), MATRIX_PROFILES):
-        stop = min(start + MATRIX_PROFILES, n_p)
+    for start in range(0, max(n_profiles, 1), MATRIX_PROFILES):
+        stop = min(start + MATRIX_PROFILES, n_profiles)
         part_head = [*head[:2], *head[2 + start:2 + stop]]
         part_rows = [[*row[:2], *row[2 + start:2 + stop]] for row in rows]
         table = _table(part_head, part_rows, raw=True).replace(
             "<table>", '<table class="matrix">', 1)
         tables.append(f'<div class="scroll">{table}</div>')
     return "".join(tables)
+
+
+def _matrix(study: TradeStudy, squares: np.ndarray, names: Sequence[str]) -> str:
+    """The pass/fail matrix: a row per sensor, a column per profile."""
+    s = study.selection
+    rows = [[*_sensor_cells(study, i),
+             *(_matrix_cell(study, i, j, squares, names) for j in range(len(s.profiles)))]
+            for i in range(len(s.sensors))]
+    return _split_matrix(["sensor", "overall", *s.profiles], rows, len(s.profiles))
 
 
 def _tip(notes: Sequence[str]) -> str:
@@ -396,83 +425,6 @@ def sweep_chart(study: TradeStudy, j: int) -> str:
     ).svg()
 
 
-def spectrum_charts(spectrum: Spectrum, unit: str) -> list[str]:
-    charts = []
-    # phase-locked orders (docs/model.md section 10) are lines at n·f0, like tones
-    tones = [*spectrum.tones,
-             *((n * f0, amp) for f0, orders in spectrum.locked for n, amp in orders)]
-    if spectrum.psd or tones:
-        series = [Series(f"PSD {axis}", list(f), list(g), color(k), dash(k))
-                  for k, (axis, f, g) in enumerate(spectrum.psd)]
-        markers = [Marker(f"{fmt(freq, 3)} Hz, a3 = {fmt(amp[2], 3)}", x=freq, style="tone",
-                          row=k % 3)
-                   for k, (freq, amp) in enumerate(tones)]
-        if not series:  # tones only: their x3 amplitudes on the y axis, as dots
-            nan = float("nan")
-            series = [Series("tone amplitude x3",
-                             [v for t in tones for v in (t[0], nan)],
-                             [v for t in tones for v in (t[1][2], nan)], color(0))]
-            ylabel = f"amplitude ({unit})"
-        else:
-            ylabel = f"PSD ({unit})²/Hz"
-        charts.append(LineChart(f"Spectrum: {spectrum.profile}", "frequency (Hz)", ylabel,
-                                series, xlog=True, ylog=True, markers=markers).svg())
-    if spectrum.rms is not None and not spectrum.psd:  # random given as RMS: no spectrum
-        charts.append(bar_chart(f"Spectrum: {spectrum.profile} (random given as RMS per axis)",
-                                f"σ ({unit}, log)", ["x1", "x2", "x3"], list(spectrum.rms),
-                                [color(k) for k in range(3)]))
-    if spectrum.linear_psd or spectrum.linear_tones:  # the linear vibration, own axes
-        lu = spectrum.linear_unit
-        series = [Series(f"PSD {axis}", list(f), list(g), color(k), dash(k))
-                  for k, (axis, f, g) in enumerate(spectrum.linear_psd)]
-        markers = [Marker(f"{fmt(freq, 3)} Hz, a3 = {fmt(amp[2], 3)} {lu}", x=freq,
-                          style="tone", row=k % 3)
-                   for k, (freq, amp) in enumerate(spectrum.linear_tones)]
-        if series:
-            charts.append(LineChart(f"Linear vibration: {spectrum.profile}", "frequency (Hz)",
-                                    f"PSD ({lu})²/Hz", series, xlog=True, ylog=True,
-                                    markers=markers).svg())
-        else:
-            nan = float("nan")
-            dots = [Series("tone amplitude a3",
-                           [v for t in spectrum.linear_tones for v in (t[0], nan)],
-                           [v for t in spectrum.linear_tones for v in (t[1][2], nan)],
-                           color(0))]
-            charts.append(LineChart(f"Linear vibration: {spectrum.profile}", "frequency (Hz)",
-                                    f"amplitude ({lu})", dots, xlog=True, ylog=True,
-                                    markers=markers).svg())
-    if spectrum.mount is not None:
-        f, nu = spectrum.mount
-        charts.append(LineChart(f"Isolation mount ν(f): {spectrum.profile}", "frequency (Hz)",
-                                "transmissibility ν", [Series("mount", list(f), list(nu))],
-                                xlog=True, ylog=True).svg())
-    return charts
-
-
-def _spectrum_text(spectrum: Spectrum, unit: str) -> str:
-    parts = []
-    if spectrum.tones:
-        parts.append("tones: " + "; ".join(
-            f"{fmt(f, 4)} Hz, amplitude ({', '.join(fmt(a, 3) for a in amp)}) {unit}"
-            for f, amp in spectrum.tones))
-    if spectrum.rms is not None:
-        parts.append(f"random, σ = ({', '.join(fmt(v, 3) for v in spectrum.rms)}) {unit} "
-                     "(given as RMS, no spectrum)")
-    if spectrum.psd:
-        parts.append("random PSD on " + ", ".join(a for a, _, _ in spectrum.psd))
-    if spectrum.mount is not None:
-        parts.append("isolation mount")
-    if spectrum.locked:
-        parts.append("phase-locked harmonics: " + "; ".join(
-            f"f0 = {fmt(f0, 4)} Hz, orders " + ", ".join(
-                f"{n} (a3 = {fmt(amp[2], 3)} {unit})" for n, amp in orders)
-            for f0, orders in spectrum.locked))
-    if spectrum.linear_rms is not None:
-        parts.append("linear vibration, RMS at the sensor ("
-                     + ", ".join(fmt(v, 3) for v in spectrum.linear_rms) + ") g")
-    return "; ".join(parts) or "no vibration"
-
-
 def _figure(svg: str, caption: str = "") -> str:
     tail = f"<figcaption>{_e(caption)}</figcaption>" if caption else ""
     return f"<figure>{svg}{tail}</figure>"
@@ -507,7 +459,7 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
     return (f'<section class="profile" id="p{j}"><div class="profile-head">'
             f"<h3>{_e(title)}</h3>{notes}"
             f'<p class="sub">Ω_K = ({_e(rate)}) {_e(rate_unit)}; '
-            f"{_e(_spectrum_text(spectrum, rate_unit))}</p></div>"
+            f"{_e(spectrum_text(spectrum, rate_unit))}</p></div>"
             f"<div class=\"charts\">{''.join(figures)}</div></section>")
 
 
