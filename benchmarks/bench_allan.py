@@ -49,7 +49,7 @@ print(json.dumps({"seconds": elapsed, "cpu": cpu, "traced_peak": peak, "max_rss"
 CASES = {
     "kernel": ("y = np.load({path!r})[:, 0].copy()\nfrom gyrovib.core.allan import oadev",
                "tau, adev = oadev(y, 0.01)"),
-    "allan": ("from gyrovib.api.recordings import read_recording\n"
+    "allan": ("from gyrovib.api.recordings.reading import read_recording\n"
               "from gyrovib.api.noise import allan",
               "r = allan(read_recording({path!r}, fs=100.0))"),
     "allantools": ("y = np.load({path!r})[:, 0].copy()\nimport allantools\n"

@@ -45,8 +45,8 @@ def logs(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
 def test_envelope_of_one_recording_is_its_own_profile(logs: list[Path]) -> None:
     """The envelope reduction on a recording and itself gives back the one-recording fit
     (profile body identical but for the id and name; its mission's time twice)."""
-    from gyrovib.api.fleet import RecordingOptions, profile_one
-    from gyrovib.api.recording_envelope import envelope
+    from gyrovib.api.fleet.envelope import envelope
+    from gyrovib.api.fleet.run import RecordingOptions, profile_one
 
     options = RecordingOptions(fs=FS)
     fit = profile_one(str(logs[0]), options)
@@ -66,7 +66,7 @@ def test_the_fleet_mission_is_a_carrier_histogram() -> None:
     """At most 16 segments are written as they are; more become at most 16 bins of Ω_K3,
     each with its segments' total time at their time-weighted mean rate (worked here by
     hand: 20 segments at Ω_K3 = 0…19 deg/s, 1 s each, except 3 s at 19)."""
-    from gyrovib.api.recording_envelope import fleet_mission
+    from gyrovib.api.fleet.envelope import fleet_mission
 
     rates = np.zeros((20, 3))
     rates[:, 2] = np.arange(20.0)
@@ -86,8 +86,8 @@ def test_the_fleet_mission_is_a_carrier_histogram() -> None:
 def test_envelope_takes_the_largest_psd_and_the_loudest_tones(logs: list[Path]) -> None:
     """Per bin the largest random PSD; the shared tone at the amplitude of the recording
     where it is largest, the other tone kept; the missions joined."""
-    from gyrovib.api.fleet import RecordingOptions, profile_one
-    from gyrovib.api.recording_envelope import combine, envelope, envelope_part
+    from gyrovib.api.fleet.envelope import combine, envelope, envelope_part
+    from gyrovib.api.fleet.run import RecordingOptions, profile_one
 
     options = RecordingOptions(fs=FS)
     fits = [profile_one(str(p), options) for p in logs]
@@ -99,7 +99,7 @@ def test_envelope_takes_the_largest_psd_and_the_loudest_tones(logs: list[Path]) 
         joined = combine(joined, p)
     np.testing.assert_array_equal(joined.angular.random, largest)
     # the balanced tree of envelope() joins in the order a left fold does
-    from gyrovib.api.recording_envelope import reduce_parts
+    from gyrovib.api.fleet.envelope import reduce_parts
 
     five = [*parts, *parts[:2]]
     tree, fold = reduce_parts(five), functools.reduce(combine, five)
@@ -127,8 +127,8 @@ def test_envelope_takes_the_largest_psd_and_the_loudest_tones(logs: list[Path]) 
 def test_recordings_on_different_grids(tmp_path: Path) -> None:
     """A 500 Hz and a 250.3 Hz recording: the common grid is the coarser Δf up to the
     higher Nyquist frequency, and above 125 Hz only the 500 Hz recording is known."""
-    from gyrovib.api.fleet import RecordingOptions, profile_one
-    from gyrovib.api.recording_envelope import combine, envelope_part
+    from gyrovib.api.fleet.envelope import combine, envelope_part
+    from gyrovib.api.fleet.run import RecordingOptions, profile_one
 
     rng = np.random.default_rng(5)
     fast = _write(tmp_path / "fast.npy", rng, sigma=0.1, tones=[], fs=500.0, seconds=20.0)
@@ -195,13 +195,13 @@ def test_analyze_several_recordings_reports_each_and_the_worst(logs: list[Path])
 def test_the_envelope_on_dask(logs: list[Path]) -> None:
     """docs/fleet.md's pipeline on Dask's synchronous scheduler gives the CLI's profile."""
     bag = pytest.importorskip("dask.bag")
-    from gyrovib.api.fleet import RecordingOptions
-    from gyrovib.api.recording_envelope import (
+    from gyrovib.api.fleet.envelope import (
         combine,
         envelope_step,
         fit_envelope,
         profile_recordings,
     )
+    from gyrovib.api.fleet.run import RecordingOptions
 
     options = RecordingOptions(fs=FS)
     paths = [str(p) for p in logs]
@@ -213,7 +213,7 @@ def test_the_envelope_on_dask(logs: list[Path]) -> None:
 def test_progress_counts_the_recordings_in_order(logs: list[Path]) -> None:
     """run_recordings reports each recording done through gyrovib.progress (the bar a
     terminal draws), and its results come in input order."""
-    from gyrovib.api.fleet import RecordingOptions, run_recordings
+    from gyrovib.api.fleet.run import RecordingOptions, run_recordings
     from gyrovib.progress import receiving
 
     calls: list[tuple[str, int, int]] = []

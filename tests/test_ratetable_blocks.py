@@ -1,7 +1,7 @@
 """Large rate tables: the reader in blocks and the fit in blocks give what one pass gives.
 
 The reader reads plain blocks of rows at once and any other line one by one
-(gyrovib.api.ratetable); the fit factors the design block by block (CholeskyQR2,
+(gyrovib.api.ratetable.reading); the fit factors the design block by block (CholeskyQR2,
 Householder QR when ill-conditioned; gyrovib.core.fit). The expected values here are
 the same table read or fitted in one block (the block sizes made large), and the
 line numbers of the file as written.
@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gyrovib.api import ratetable
-from gyrovib.api.ratetable import RateTableError, read_rate_table
+from gyrovib.api.ratetable import reading as ratetable
+from gyrovib.api.ratetable.reading import RateTableError, read_rate_table
 from gyrovib.core import fit as core_fit
 from tests.conftest import invoke
 

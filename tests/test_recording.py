@@ -74,7 +74,7 @@ def test_recorded_error_matches_the_definition(tmp_path: Path) -> None:
     butter/sosfiltfilt, over two segments split by a gap, with accelerations in m/s²."""
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     rng = np.random.default_rng(7)
     fs, fc = 400.0, 5.0
@@ -197,7 +197,7 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
                       _sensor_file(tmp_path), "--format", fmt).exit_code == 0
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     frame = analyze_recording(read_recording(str(tmp_path / "syn.npy"), fs=fs),
                               load([_sensor_file(tmp_path)])).to_frame()
@@ -208,7 +208,7 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
 
 def test_gaps_split_and_short_segments_are_dropped(tmp_path: Path) -> None:
     """An interval > 1.5 median intervals splits; a segment < 4/f_c s is dropped, warned."""
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     fs = 200.0
     t = np.concatenate([np.arange(0, 2000), np.arange(2003, 2100), np.arange(2200, 4200)]) / fs
@@ -289,7 +289,7 @@ def test_input_response_is_a_zero_phase_gain(tmp_path: Path) -> None:
     against the gain applied here bin by bin (log-log interpolation written out)."""
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     rng = np.random.default_rng(11)
     fs, fc, n = 500.0, 5.0, 6000
@@ -319,7 +319,7 @@ def test_spec_form_worst_case_scales_with_the_nonlinearity(tmp_path: Path) -> No
     (docs/model.md section 11): doubling NL doubles it; with no VRE nothing else adds."""
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     rate, fs = _synthetic(np.random.default_rng(5), seconds=20.0)
     np.save(tmp_path / "s.npy", rate)
@@ -429,7 +429,7 @@ def test_honesty_moments_are_scipys() -> None:
 
 def test_csv_with_bom_crlf_blank_lines_and_short_rows(tmp_path: Path) -> None:
     """A spreadsheet's CSV (UTF-8 BOM, CRLF, blank lines) reads; a short row is named."""
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     rows = ["\ufefftime,gx,gy,gz", *(f"{k / 100!r},0.1,0.2,{k!r}" for k in range(50)), ""]
     path = tmp_path / "sheet.csv"
@@ -474,7 +474,7 @@ def test_a_recording_without_vibration(tmp_path: Path) -> None:
 
 def test_npz_with_one_2d_array(tmp_path: Path) -> None:
     """An .npz holding one 2-D array reads like an .npy: columns by index, --fs."""
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     a = np.arange(300.0).reshape(100, 3)
     np.savez_compressed(tmp_path / "a.npz", data=a)
@@ -489,7 +489,7 @@ def test_npz_with_one_2d_array(tmp_path: Path) -> None:
 def test_ulog_another_topic_by_column_names() -> None:
     """--topic with --rate-columns: vehicle_attitude's body rates (rad/s), timestamps in µs."""
     pyulog = pytest.importorskip("pyulog", reason="the ULog path needs gyrovib[ulog]")
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     rec = read_recording(str(ULOG), topic="vehicle_attitude",
                          rate_columns=("rollspeed", "pitchspeed", "yawspeed"))
@@ -553,7 +553,7 @@ def test_rounded_coherences_stay_a_correlation_matrix() -> None:
     """Nearly singular coherences (x1 = x3 and x2 = x3 but for a trace of noise) round to
     6 figures into a matrix that would not be positive semi-definite; the written ρ12 is
     held inside ρ31·ρ32 ± √((1-ρ31²)(1-ρ32²)), so the file still validates."""
-    from gyrovib.api.recording_yaml import _coherence
+    from gyrovib.api.recordings.yaml import _coherence
     from gyrovib.models.profile import correlation_problem
 
     r31, r32 = 0.99999949, 0.99999951
@@ -586,7 +586,7 @@ def test_the_fitted_shape_is_reported_and_warned(tmp_path: Path,
     only 2 breakpoints
     the straight line misses the resonance and the warning says so."""
     from gyrovib.api.commands.recording import fit_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     np.save(tmp_path / "res.npy", _shaped_noise(np.random.default_rng(30), 1000.0, 30.0))
     fit = fit_recording(read_recording(str(tmp_path / "res.npy"), fs=1000.0))

@@ -25,7 +25,7 @@ def test_ulog_recorded_error_is_float64_from_the_raw_samples(tmp_path: Path) -> 
     pyulog = pytest.importorskip("pyulog", reason="the ULog path needs gyrovib[ulog]")
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     fc = 2.0
     (tmp_path / "s.gyrovib.yaml").write_text(SENSOR)
@@ -70,7 +70,7 @@ def test_ulog_recorded_error_is_float64_from_the_raw_samples(tmp_path: Path) -> 
 def test_npy_of_any_dtype_is_promoted_before_scaling(tmp_path: Path, dtype: str) -> None:
     """The samples are float64(stored value) × scale, exactly, whatever the stored dtype and
     byte order, in C and in Fortran order."""
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     rng = np.random.default_rng(3)
     raw = (rng.normal(0, 300, (500, 4))).astype(dtype)
@@ -91,7 +91,7 @@ def test_npy_of_any_dtype_is_promoted_before_scaling(tmp_path: Path, dtype: str)
 def test_npy_read_by_blocks_reports_the_first_bad_sample(tmp_path: Path,
                                                          monkeypatch: pytest.MonkeyPatch) -> None:
     """A non-finite sample is found wherever it lies among the blocks read."""
-    from gyrovib.api import readers
+    from gyrovib.api.recordings import readers
 
     monkeypatch.setattr(readers, "NPY_BLOCK", 3 * 8 * 10)  # 10 rows per block
     arr = np.ones((95, 3))
@@ -154,9 +154,9 @@ def test_the_block_wise_filter_is_scipys_sosfiltfilt(n: int, block: int) -> None
 def test_a_npy_read_from_the_file_fits_as_the_same_samples_in_memory(tmp_path: Path) -> None:
     """The .npy store (read from the file a block at a time, samples never held whole) and the
     .npz store (arrays in memory) give the same sums bit for bit, over two segments."""
-    from gyrovib.api import readers
     from gyrovib.api.commands.recording import fit_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings import readers
+    from gyrovib.api.recordings.reading import read_recording
 
     rng = np.random.default_rng(5)
     data = rng.normal(0.0, 2.0, (6000, 6)) + np.array([0, 0, 3.0, 0, 0, 1.0])

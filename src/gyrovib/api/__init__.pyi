@@ -65,10 +65,10 @@ from gyrovib.api.evaluation.results import (
 from gyrovib.api.evaluation.results import (
     SweepResult as SweepResult,
 )
-from gyrovib.api.fit_results import (
-    FitResult as FitResult,
+from gyrovib.api.lots.yields import (
+    LotYields as LotYields,
 )
-from gyrovib.api.mission_results import (
+from gyrovib.api.missions.results import (
     MissionResult as MissionResult,
 )
 from gyrovib.api.noise.mission import (
@@ -80,11 +80,14 @@ from gyrovib.api.placement.placement import (
 from gyrovib.api.placement.placement import (
     place_profile as place_profile,
 )
-from gyrovib.api.ratetable import (
+from gyrovib.api.ratetable.reading import (
     RateTable as RateTable,
 )
-from gyrovib.api.ratetable import (
+from gyrovib.api.ratetable.reading import (
     read_rate_table as read_rate_table,
+)
+from gyrovib.api.ratetable.results import (
+    FitResult as FitResult,
 )
 from gyrovib.api.study.convert import (
     coefficient_matrix as coefficient_matrix,
@@ -157,9 +160,6 @@ from gyrovib.api.study.study import (
 )
 from gyrovib.api.study.study import (
     prepare as prepare,
-)
-from gyrovib.api.yields import (
-    LotYields as LotYields,
 )
 from gyrovib.catalog.loader import (
     Catalog as Catalog,

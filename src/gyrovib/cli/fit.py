@@ -43,14 +43,14 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
     warning naming it: select --yield calls it unverified.
     """
     from gyrovib import api
-    from gyrovib.api.ratetable import STDIN, STDIN_NAME, read_rate_table_bytes
+    from gyrovib.api.ratetable.reading import STDIN, STDIN_NAME, read_rate_table_bytes
     from gyrovib.cli.output import write_binary, write_output
     from gyrovib.render import fit as render
 
     if table == STDIN:
         import sys
 
-        from gyrovib.api.ratetable import MAX_BYTES
+        from gyrovib.api.ratetable.reading import MAX_BYTES
 
         raw = sys.stdin.buffer.read(MAX_BYTES + 1) if sys.stdin is not None else b""
         data = read_rate_table_bytes(raw, STDIN_NAME, rate_unit, output_unit)

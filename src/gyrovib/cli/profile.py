@@ -56,7 +56,7 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
         table = honesty_table(fit)
         document = render.profile_json(fit) if fmt == "json" else fit.yaml
     else:
-        from gyrovib.api.recording_envelope import profile_recordings
+        from gyrovib.api.fleet.envelope import profile_recordings
 
         env = profile_recordings(recordings, step_options(options), jobs=jobs)
         fit, table = env.fit, render.envelope_table(env)

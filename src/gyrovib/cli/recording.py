@@ -71,8 +71,8 @@ def jobs_option(f: F) -> F:
 
 def step_options(options: dict[str, Any]) -> Any:
     """The parsed options as the one-recording step's :class:`RecordingOptions`."""
-    from gyrovib.api.fleet import RecordingOptions
-    from gyrovib.api.recordings import parse_columns
+    from gyrovib.api.fleet.run import RecordingOptions
+    from gyrovib.api.recordings.reading import parse_columns
 
     return RecordingOptions(
         fs=options["fs"],
@@ -85,7 +85,7 @@ def step_options(options: dict[str, Any]) -> Any:
 
 def read(path: str, options: dict[str, Any]) -> Any:
     """The recording named on the command line, read with the options given."""
-    from gyrovib.api.recordings import parse_columns, read_recording
+    from gyrovib.api.recordings.reading import parse_columns, read_recording
 
     return read_recording(
         path, fs=options["fs"],
@@ -120,7 +120,7 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
                      "markdown": render.to_markdown}
         write_output(renderers[fmt](result), output)
         return
-    from gyrovib.api.fleet import analyze_recordings
+    from gyrovib.api.fleet.run import analyze_recordings
     from gyrovib.render import fleet as render_many
 
     many = analyze_recordings(paths, catalog, step_options(options),
@@ -151,7 +151,7 @@ def report_recording(path: str, catalog: Any, sensors: tuple[str, ...],
     """``gyrovib report --recording``: the catalogue with the fitted profile added, the
     profiles to study (the fitted one too when some were named), and the HTML section."""
     from gyrovib.api.commands.recording import analyze_recording as run
-    from gyrovib.api.recording_yaml import with_fitted_profile
+    from gyrovib.api.recordings.yaml import with_fitted_profile
     from gyrovib.render.recording import report_section
 
     result = run(read(path, options), catalog, sensors=sensors, unit=unit,

@@ -10,7 +10,7 @@ import click
 
 F = TypeVar("F", bound=Callable[..., Any])
 
-#: Defaults, as gyrovib.api.yields and gyrovib.core.lot have them (not imported here:
+#: Defaults, as gyrovib.api.lots.yields and gyrovib.core.lot have them (not imported here:
 #: `gyrovib --help` imports no numpy).
 DRAWS = 100_000
 SEED = 0

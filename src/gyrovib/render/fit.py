@@ -8,7 +8,7 @@ import math
 from typing import Any
 
 from gyrovib._version import __version__
-from gyrovib.api.fit_results import (
+from gyrovib.api.ratetable.results import (
     FIT_COLUMNS,
     FitResult,
     fit_columns,

@@ -14,9 +14,9 @@ from gyrovib.render import recording as one
 from gyrovib.render.common import dumps, header
 
 if TYPE_CHECKING:
-    from gyrovib.api.fleet import RecordingsAnalysis
-    from gyrovib.api.recording_envelope import Envelope
-    from gyrovib.api.recording_results import RecordingFit
+    from gyrovib.api.fleet.envelope import Envelope
+    from gyrovib.api.fleet.run import RecordingsAnalysis
+    from gyrovib.api.recordings.results import RecordingFit
 
 
 def _name(analysis: Any) -> str:

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 if TYPE_CHECKING:
-    from gyrovib.api.mission_results import MissionResult, MissionRow
+    from gyrovib.api.missions.results import MissionResult, MissionRow
 
 
 #: The verdict cell of each row status (None: no budget).
@@ -234,7 +234,7 @@ def to_json(result: MissionResult) -> str:
 
 def to_csv(result: MissionResult) -> str:
     """One row per sensor × mission × axis; columns as :meth:`MissionResult.to_frame`."""
-    from gyrovib.api.mission_results import budget_columns, frame_columns
+    from gyrovib.api.missions.results import budget_columns, frame_columns
 
     def row(r: MissionRow) -> list[Any]:
         return [r.sensor, r.mission, r.placement, r.axis or "", r.mean, r.angle, r.rms,

@@ -13,7 +13,7 @@ from gyrovib.render.common import dumps, header
 
 if TYPE_CHECKING:
     from gyrovib.api.commands.recording import RecordingAnalysis
-    from gyrovib.api.recording_results import AxisHonesty, RecordingFit
+    from gyrovib.api.recordings.results import AxisHonesty, RecordingFit
 
 AXES = ("X", "Y", "Z")
 _TERMS = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")

@@ -45,7 +45,7 @@ from gyrovib.render.svg import (
 )
 
 if TYPE_CHECKING:
-    from gyrovib.api.yields import LotYields
+    from gyrovib.api.lots.yields import LotYields
 
 PASS_FILL, FAIL_FILL, OPEN_FILL = "#2ca02c", "#d62728", "#7b5ea7"
 #: Profile columns per pass/fail table: more are split into further tables.

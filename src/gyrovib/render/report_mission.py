@@ -11,7 +11,7 @@ from gyrovib.render.common import fmt
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
-    from gyrovib.api.mission_results import MissionResult, MissionRow
+    from gyrovib.api.missions.results import MissionResult, MissionRow
 
 PASS_FILL, FAIL_FILL, NO_BUDGET_FILL = "#2ca02c", "#d62728", "#1f77b4"
 #: Unverified (hangs on an unpublished datasheet figure): its own colour, as in select.

@@ -316,6 +316,58 @@ def _get(array: Any, i: int, j: int) -> Any:
     return array[i, j]
 
 
+def _csv_checks(result: SelectionResult, sensor: str, profile: str, i: int,
+                j: int) -> list[Any]:
+    """The CSV's verdict, RMS, margin and coefficient-check columns of one cell."""
+    row: list[Any] = [sensor, profile, bool(result.passed[i, j]), bool(result.sensor_pass[i]),
+                      float(result.rms[i, j]), float(result.margin[i, j])]
+    spec = result.source(i) == "specs"
+    for b in range(len(BOUNDED)):
+        row += (["", "", ""] if spec else
+                [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
+                 bool(result.check_pass[i, j, b])])
+    return row
+
+
+def _csv_specs(result: SelectionResult, i: int, j: int, with_specs: bool,
+               vre: bool) -> list[Any]:
+    """The datasheet columns (source, total, nonlinearity) and the VRE check of one cell."""
+    spec = result.source(i) == "specs"
+    row: list[Any] = []
+    if with_specs:
+        row += [result.source(i), float(_get(result.total, i, j))]
+        row += ([float(_get(result.nl_value, i, j)), float(_get(result.nl_bound, i, j)),
+                 bool(_get(result.nl_pass, i, j))] if spec else [""] * 3)
+    if spec:
+        value = float(_get(result.vre_value, i, j))
+        row += ["" if math.isnan(value) else value, float(_get(result.vre_bound, i, j)),
+                bool(_get(result.vre_pass, i, j))]
+    elif vre:
+        row += [("" if math.isnan(v) else v) for v in _vre(result, i, j)]
+        row += [bool(_get(result.vre_pass, i, j))]
+    elif with_specs:
+        row += [""] * 3
+    return row
+
+
+def _csv_yield(result: SelectionResult, i: int, j: int) -> list[Any]:
+    """The yield columns of one cell (none without --yield; empty for a sensor not a lot)."""
+    y = result.yields
+    if y is None:
+        return []
+    if not y.is_lot(i):
+        return [""] * 5
+    interval = ["", ""] if y.method == "exact" else [float(y.low[i, j]), float(y.high[i, j])]
+    return [float(y.value[i, j]), y.method, *interval, y.draws]
+
+
+def _csv_verdict(result: SelectionResult, i: int, j: int) -> list[Any]:
+    """Saturation, status, unknowns, margin under the criterion, disagreements, reason."""
+    return [_sat(result, i, j), result.status(i, j), " ".join(result.unknown.get((i, j), ())),
+            cell_margin(result, i, j), " ".join(result.disagrees.get((i, j), ())),
+            reason(result, i, j) or ""]
+
+
 def to_csv(result: SelectionResult) -> str:
     """One row per sensor × profile; an unconstrained bound or margin is ``inf``.
 
@@ -342,38 +394,9 @@ def to_csv(result: SelectionResult) -> str:
     def rows() -> Iterator[list[Any]]:
         for i, sensor in enumerate(result.sensors):
             for j, profile in enumerate(result.profiles):
-                row: list[Any] = [sensor, profile, bool(result.passed[i, j]),
-                                  bool(result.sensor_pass[i]), float(result.rms[i, j]),
-                                  float(result.margin[i, j])]
-                spec = result.source(i) == "specs"
-                for b in range(len(BOUNDED)):
-                    row += (["", "", ""] if spec else
-                            [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
-                             bool(result.check_pass[i, j, b])])
-                if with_specs:
-                    row += [result.source(i), float(_get(result.total, i, j))]
-                    row += ([float(_get(result.nl_value, i, j)),
-                             float(_get(result.nl_bound, i, j)),
-                             bool(_get(result.nl_pass, i, j))] if spec else [""] * 3)
-                if spec:
-                    value = float(_get(result.vre_value, i, j))
-                    row += ["" if math.isnan(value) else value,
-                            float(_get(result.vre_bound, i, j)),
-                            bool(_get(result.vre_pass, i, j))]
-                elif vre:
-                    row += [("" if math.isnan(v) else v) for v in _vre(result, i, j)]
-                    row += [bool(_get(result.vre_pass, i, j))]
-                elif with_specs:
-                    row += [""] * 3
-                if y is not None:
-                    row += ([float(y.value[i, j]), y.method,
-                             *(["", ""] if y.method == "exact"
-                               else [float(y.low[i, j]), float(y.high[i, j])]), y.draws]
-                            if y.is_lot(i) else [""] * 5)
-                row += [_sat(result, i, j), result.status(i, j),
-                        " ".join(result.unknown.get((i, j), ())), cell_margin(result, i, j),
-                        " ".join(result.disagrees.get((i, j), ())), reason(result, i, j) or ""]
-                yield row
+                yield [*_csv_checks(result, sensor, profile, i, j),
+                       *_csv_specs(result, i, j, with_specs, vre),
+                       *_csv_yield(result, i, j), *_csv_verdict(result, i, j)]
 
     return csv_text(head, rows())
 

@@ -21,6 +21,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import AnalysisResult
+from gyrovib.api.lots.uncertainty import distributions, with_uncertainty
 from gyrovib.api.study.convert import error_arrays, to_unit
 from gyrovib.api.study.prepare import (
     Group,
@@ -30,7 +31,6 @@ from gyrovib.api.study.prepare import (
     profile_problem,
 )
 from gyrovib.api.study.study import Study, check_peak_factor
-from gyrovib.api.uncertainty import distributions, with_uncertainty
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
 from gyrovib.core.harmonics import LockedGroup
@@ -181,8 +181,9 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
 
 def _spread(study: Study, prepared: Prepared, method: str, unit: str,
             peak_factor: float) -> dict[str, Any]:
-    """The uncertainty fields of the result (:func:`~gyrovib.api.uncertainty.with_uncertainty`);
-    under ``numeric``, g comes from the Study's exact multipliers (the closed form's)."""
+    """The uncertainty fields of the result
+    (:func:`~gyrovib.api.lots.uncertainty.with_uncertainty`); under ``numeric``, g comes
+    from the Study's exact multipliers (the closed form's)."""
     if method == "numeric" and any(d is not None for d in distributions(prepared)):
         prepared = study.prepare(methods=("exact",), peak_factor=peak_factor,
                                  phase_search=False)

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from gyrovib.api.fit_results import FitResult, lot_name
-from gyrovib.api.ratetable import MAX_PROBLEMS, RateTable, read_rate_table
+from gyrovib.api.ratetable.reading import MAX_PROBLEMS, RateTable, read_rate_table
+from gyrovib.api.ratetable.results import FitResult, lot_name
 from gyrovib.core.fit import DEFAULT_ORDER, MAX_ORDER, IdentificationError, RateFit, fit_rate_table
 from gyrovib.core.lot import LotStatistics, lot_statistics, unmeasured_warning
 from gyrovib.errors import OptionError, Problem

@@ -27,7 +27,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.datasheet import spec_bounds
-from gyrovib.api.mission_results import MissionResult, MissionRow, SegmentResult
+from gyrovib.api.missions.results import MissionResult, MissionRow, SegmentResult
 from gyrovib.api.placement.placement import place_profile
 from gyrovib.api.study.study import Study
 from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry

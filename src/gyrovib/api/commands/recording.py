@@ -20,15 +20,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.recording_pass import RatePass, accel_pass, carrier3, rate_pass
-from gyrovib.api.recording_results import (
+from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier3, rate_pass
+from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
+from gyrovib.api.recordings.results import (
     AxisHonesty,
     FittedHarmonics,
     FittedPart,
     FittedTone,
     RecordingFit,
 )
-from gyrovib.api.recordings import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.core.transmissibility import FloatArray, Table
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
@@ -167,7 +167,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         honesty=honesty,  # type: ignore[arg-type]
         rate_axes=recording.rate_axes, warnings=tuple(warnings), yaml="", peak=peak,
         moments=moments, g2_moments=g2_moments)
-    from gyrovib.api.recording_yaml import profile_yaml
+    from gyrovib.api.recordings.yaml import profile_yaml
     from gyrovib.catalog.loader import parse_catalog
 
     text = profile_yaml(fit, independent_tones=independent_tones)
@@ -494,7 +494,7 @@ def _fitted_mission(fit: RecordingFit, catalog: Any,
     function for every bin.
     """
     from gyrovib.api.commands.mission import mission
-    from gyrovib.api.recording_yaml import mission_id, with_fitted_profile
+    from gyrovib.api.recordings.yaml import mission_id, with_fitted_profile
 
     combined = with_fitted_profile(catalog, fit)
     result = mission(combined, missions=(mission_id(fit),), sensors=sensor_ids, unit="deg/s")

@@ -31,16 +31,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import Limit, SelectionResult
-from gyrovib.api.study.convert import bound_factors
-from gyrovib.api.study.prepare import (
-    Group,
-    Prepared,
-    check_bounds,
-    check_finite,
-    float_guard,
-)
-from gyrovib.api.study.study import Study, check_peak_factor
-from gyrovib.api.yields import (
+from gyrovib.api.lots.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
     check_yield_options,
@@ -50,6 +41,15 @@ from gyrovib.api.yields import (
     open_lots,
     yield_limits,
 )
+from gyrovib.api.study.convert import bound_factors
+from gyrovib.api.study.prepare import (
+    Group,
+    Prepared,
+    check_bounds,
+    check_finite,
+    float_guard,
+)
+from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import COEFFICIENTS
 from gyrovib.core.linear import effective_vre, mean_square
@@ -153,7 +153,7 @@ def select(
 
     ``yield_target`` Y (0 < Y < 1): a production lot (``lot:``) passes a profile when
     the yield of a part drawn from it is at least Y (docs/model.md section 14,
-    :mod:`gyrovib.api.yields`: exact under ``worst``, else Monte Carlo with ``draws``
+    :mod:`gyrovib.api.lots.yields`: exact under ``worst``, else Monte Carlo with ``draws``
     draws seeded by ``seed``); without it a lot is judged at its mean.
     """
     _check_options(method, budget, criterion, require, assume_unknown, yield_target, seed,

@@ -9,7 +9,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.noise.results import FIGURE_UNITS, AllanResult, AxisAllan, Figure
-from gyrovib.api.recordings import AXES, Recording, RecordingError
+from gyrovib.api.recordings.reading import AXES, Recording, RecordingError
 from gyrovib.core import allan as kernel
 from gyrovib.errors import OptionError, Problem
 

@@ -18,7 +18,7 @@ from typing import Any
 
 from gyrovib.api.commands.mission import mission as vibration_mission
 from gyrovib.api.datasheet import spec_bounds
-from gyrovib.api.mission_results import MissionResult, MissionRow
+from gyrovib.api.missions.results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import budget
 from gyrovib.api.noise.figures import FIGURES, noise_values
 from gyrovib.catalog.loader import Catalog

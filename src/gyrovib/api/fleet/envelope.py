@@ -33,8 +33,8 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api.commands.recording import random_tables
-from gyrovib.api.fleet import DEFAULTS, RecordingOptions, profile_one, run_recordings
-from gyrovib.api.recording_results import (
+from gyrovib.api.fleet.run import DEFAULTS, RecordingOptions, profile_one, run_recordings
+from gyrovib.api.recordings.results import (
     AxisHonesty,
     FittedHarmonics,
     FittedPart,
@@ -330,7 +330,7 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
     ``options.breakpoints``, ``independent_tones`` and ``profile_id`` as for one."""
     breakpoints, independent_tones = options.breakpoints, options.independent_tones
     profile_id = options.profile_id
-    from gyrovib.api.recording_yaml import profile_yaml
+    from gyrovib.api.recordings.yaml import profile_yaml
     from gyrovib.catalog.loader import parse_catalog
 
     angular = _fitted(part.angular, part.crossover, breakpoints, independent_tones, rate=True)
@@ -364,7 +364,7 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
 
 
 def _envelope_header(part: EnvelopePart) -> str:
-    from gyrovib.api.recording_yaml import _num
+    from gyrovib.api.recordings.yaml import _num
 
     lines = [
         f"# Envelope of {len(part.recordings)} recordings, fitted by `gyrovib profile` "

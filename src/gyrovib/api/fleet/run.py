@@ -4,12 +4,12 @@ many recordings in worker processes.
 The one-recording step is :func:`profile_one`, a pure function of a path and a
 :class:`RecordingOptions`: it reads the recording, fits it
 (:func:`gyrovib.api.commands.recording.fit_recording`) and returns the
-:class:`~gyrovib.api.recording_results.RecordingFit` — spectra on the Welch grid,
+:class:`~gyrovib.api.recordings.results.RecordingFit` — spectra on the Welch grid,
 lines, carrier histogram, moments and honesty figures: tens of kB at 250 Hz, growing
 with fs/Δf and never with the recording's length; never its samples. It pickles, so
 it can run in another process (:func:`run_recordings`, ``--jobs N``) or on another
 machine (Dask, docs/fleet.md).
-Their envelope profile is :mod:`gyrovib.api.recording_envelope`;
+Their envelope profile is :mod:`gyrovib.api.fleet.envelope`;
 :func:`analyze_recordings` is ``analyze --recording A --recording B``.
 """
 
@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.recording_results import RecordingFit
+from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core.transmissibility import FloatArray, Table
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
@@ -60,7 +60,7 @@ def profile_one(path: str, options: RecordingOptions = DEFAULTS) -> RecordingFit
     """Read and fit one recording: the one-recording step, a pure function of its
     arguments (the same file and options give the same fit, in any process)."""
     from gyrovib.api.commands.recording import fit_recording
-    from gyrovib.api.recordings import read_recording
+    from gyrovib.api.recordings.reading import read_recording
 
     recording = read_recording(
         path, fs=options.fs, rate_columns=options.rate_columns,

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
-    from gyrovib.api.recording_results import FittedPart, RecordingFit
+    from gyrovib.api.recordings.results import FittedPart, RecordingFit
     from gyrovib.core.transmissibility import Table
 
 

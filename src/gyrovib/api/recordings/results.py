@@ -3,7 +3,7 @@ the honesty of the fit per axis, the fitted mission.
 
 Result types of the recording view, apart from :mod:`gyrovib.api.commands.recording`
 (which computes them, and still gives their names) so that
-:mod:`gyrovib.api.recording_yaml`, which writes a fit as catalogue text, imports
+:mod:`gyrovib.api.recordings.yaml`, which writes a fit as catalogue text, imports
 them without importing the command.
 """
 

@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.recordings import Recording
+from gyrovib.api.recordings.reading import Recording
 from gyrovib.core import recording as core
 from gyrovib.core.transmissibility import FloatArray, Table
 

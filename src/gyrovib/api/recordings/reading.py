@@ -1,7 +1,7 @@
 """Recordings: CSV, NumPy ``.npy``/``.npz`` and PX4 ULog (docs/model.md section 13).
 
 :func:`read_recording` opens a file with the reader of its format
-(:mod:`gyrovib.api.readers`: one parser per format behind one interface),
+(:mod:`gyrovib.api.recordings.readers`: one parser per format behind one interface),
 chooses its columns and units, and returns a :class:`Recording`: the
 samples as float64 in deg/s and g (held in memory, or for a ``.npy`` read
 from the file when asked), the sample rate fs and the contiguous segments
@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.readers import (
+from gyrovib.api.recordings.readers import (
     TIME_NAMES,
     ULOG_ACCEL,
     ULOG_RATE,

@@ -1,6 +1,6 @@
 """The yield of a production lot under ``select --yield`` (docs/model.md section 14).
 
-A part drawn from a lot has c ~ N(μ, Σ) (:mod:`gyrovib.api.uncertainty`: μ
+A part drawn from a lot has c ~ N(μ, Σ) (:mod:`gyrovib.api.lots.uncertainty`: μ
 the lot's mean, Σ from its sigma and correlations, the diagonal only for a lot
 of n ≤ p units). Its yield under a profile is the probability that it passes
 the criterion of ``select``:
@@ -33,8 +33,7 @@ from numpy.typing import NDArray
 
 from gyrovib.api.datasheet.spec_bounds import is_unverified
 from gyrovib.api.evaluation.results import Limit, Result
-from gyrovib.api.study.prepare import Prepared, profile_problem
-from gyrovib.api.uncertainty import (
+from gyrovib.api.lots.uncertainty import (
     Distribution,
     distributions,
     group_multipliers,
@@ -42,6 +41,7 @@ from gyrovib.api.uncertainty import (
     lot_warnings,
     sensor_sensitivity,
 )
+from gyrovib.api.study.prepare import Prepared, profile_problem
 from gyrovib.core.analysis import COEFFICIENTS, Multipliers
 from gyrovib.core.lot import DEFAULT_DRAWS as DEFAULT_DRAWS
 from gyrovib.core.lot import (

@@ -1,0 +1,31 @@
+"""Recordings (docs/model.md section 13): a vehicle's own angular rate, read and split.
+
+=====================  =========================================================
+module                 what it holds
+=====================  =========================================================
+``readers``            one reader per format (CSV, ``.npy``/``.npz``, PX4 ULog)
+                       behind one interface, chosen by suffix; samples in float64
+``reading``            ``read_recording``: columns, units, gaps -> a ``Recording``
+``passes``             the pass over the segments (the split into carrier and
+                       vibration a column at a time, the sums of Δ_V,rec)
+``results``            what a fit gives: ``RecordingFit`` and its parts
+``yaml``               a fit written as catalogue text
+=====================  =========================================================
+
+The fit and ``analyze --recording`` are the command view
+:mod:`gyrovib.api.commands.recording`; many recordings at once are
+:mod:`gyrovib.api.fleet`.
+"""
+
+from __future__ import annotations
+
+from gyrovib.api.recordings.reading import (
+    Recording,
+    iter_segments,
+    parse_columns,
+    read_recording,
+)
+from gyrovib.api.recordings.results import AxisHonesty, FittedPart, RecordingFit
+
+__all__ = ["AxisHonesty", "FittedPart", "Recording", "RecordingFit", "iter_segments",
+           "parse_columns", "read_recording"]
