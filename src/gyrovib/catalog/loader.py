@@ -44,7 +44,6 @@ MAX_PROBLEMS = 50
 MAX_FILE_BYTES = 16 * 1024 * 1024
 
 
-
 def _capped(problems: list[Problem]) -> list[Problem]:
     """At most :data:`MAX_PROBLEMS` problems per file, in file order, then a summary."""
     by_file: dict[str | None, list[Problem]] = {}  # in order of first appearance

@@ -37,7 +37,6 @@ PAPER_TONE_ASYMMETRY = 0.673
 PAPER_RANDOM_ASYMMETRY = 0.5
 
 
-
 @dataclass(frozen=True, eq=False, repr=False)
 class Vibration(Frozen):
     """The vibration at the sensor, after transmissibility.
@@ -427,7 +426,6 @@ _GL24_W = (
     0.10744427011596562, 0.09761865210411391, 0.08619016153195322, 0.07334648141108027,
     0.05929858491543666, 0.044277438817419676, 0.02853138862893381, 0.012341229799987334,
 )
-
 
 
 @functools.cache

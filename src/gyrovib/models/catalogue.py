@@ -145,7 +145,6 @@ class Catalogue(Model):
         return "m/s^2" if self.units.acceleration == "m/s2" else self.units.acceleration
 
 
-
 def _range_problems(sensor: Sensor, unit: str) -> list[tuple[tuple[str, ...], float, str]]:
     """(where, value, message) of every range outside :data:`RANGE_BAND` and every
     absolute nonlinearity larger than its range, ``unit`` the file's rate unit."""

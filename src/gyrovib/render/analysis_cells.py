@@ -96,7 +96,6 @@ def _rows(result: AnalysisResult) -> Iterator[tuple[int, int]]:
             yield i, j
 
 
-
 #: Below this fraction of a row's largest value, a number is rounding noise: shown as 0.
 NEGLIGIBLE_IN_ROW = 1e-12
 
@@ -107,7 +106,6 @@ def row_cells(values: list[float], digits: int = 4) -> list[str]:
     scale = max(finite, default=0.0)
     return ["0" if v == v and scale > 0 and abs(v) < NEGLIGIBLE_IN_ROW * scale
             else fmt(v, digits) for v in values]
-
 
 
 def grouped_warnings(result: AnalysisResult) -> list[tuple[str, list[tuple[int, int]]]]:
@@ -136,7 +134,6 @@ def cells_text(result: AnalysisResult, cells: list[tuple[int, int]]) -> str:
                  else ", ".join(result.profiles[j] for j in profiles))
         parts.append(f"{', '.join(result.sensors[i] for i in sensors)} under {where}")
     return "; ".join(parts)
-
 
 
 _SPECS_NOTE = ("Datasheet (spec-form) sensors: Δ_V is the worst |Δ_V| over every conversion "

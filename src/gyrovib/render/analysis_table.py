@@ -91,12 +91,10 @@ def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:
     return f"{result.sensors[i]}: {what}; the datasheet figure that would shrink it most: {ask}"
 
 
-
 def next_step(result: AnalysisResult) -> str:
     """The one line that says what to run next after the matrix."""
     return ("Next: `gyrovib select --budget B` (e.g. 10deg/h) checks every sensor against "
             "your budget; `--detail`, or one or two `--profile ID`, shows each term.")
-
 
 
 def _phase_notes(result: AnalysisResult) -> dict[tuple[int, int], str]:

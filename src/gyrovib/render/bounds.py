@@ -175,7 +175,6 @@ def shares(constants: AllocationConstants, linear: bool = False, m3: bool = Fals
     }
 
 
-
 def shares_text(constants: AllocationConstants, linear: bool = False) -> str:
     """The shares of Δ*, each printed once: ``A1 α1 = 0.4447, …``.
 

@@ -19,20 +19,24 @@ never larger than the duration-weighted sum of the per-segment worst cases.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api.datasheet import spec_bounds
+from gyrovib.api.commands.analyze import analysis_of
+from gyrovib.api.datasheet import spec_bounds, specs
 from gyrovib.api.missions.results import MissionResult, MissionRow, SegmentResult
 from gyrovib.api.placement.placement import place_profile
-from gyrovib.api.study.study import Study
+from gyrovib.api.study.prepare import float_guard
+from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry
 from gyrovib.core import placement as placements
-from gyrovib.core.mission import ANGLE_UNITS, combined_functional, totals
+from gyrovib.core.envelope import worst_case
+from gyrovib.core.mission import ANGLE_IN_RAD, ANGLE_UNITS, combined_functional, totals
 from gyrovib.core.placement import Placement
 from gyrovib.errors import ModelError, OptionError
 from gyrovib.frozen import Frozen
@@ -115,9 +119,6 @@ def _segment_entries(catalog: Catalog, chosen: Sequence[MissionEntry],
 def angle_in_rad(text: str) -> float:
     """An angle with its unit (``"0.5deg"``, ``"2 mrad"``, ``"30 arcmin"``) in radians;
     positive and finite. Raises :class:`ValueError` with a message for the user."""
-    import re
-
-    from gyrovib.core.mission import ANGLE_IN_RAD
 
     m = re.match(r"^\s*([-+]?(?:[0-9]*\.?[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*([A-Za-zµ]+)\s*$",
                  text)
@@ -233,8 +234,6 @@ def _evaluate(catalog: Catalog, chosen: Sequence[MissionEntry], sensors: Sequenc
               placement: Placement | tuple[Placement, ...] | None, unit: str,
               peak_factor: float) -> tuple[list[_Run], _Evaluated]:
     """The runs of the chosen missions and one analysis of all their segments."""
-    from gyrovib.api.commands.analyze import analysis_of
-    from gyrovib.api.study.study import check_peak_factor
 
     entries, runs = _segment_entries(catalog, chosen, placement)
     derived = Catalog(catalog.sources, catalog.sensors, tuple(entries), catalog.allocation,
@@ -348,14 +347,12 @@ def check_angles(rows: Sequence[MissionRow], chosen: Sequence[MissionEntry]) -> 
 
 
 def _rad_per(angle_unit_name: str) -> float:
-    from gyrovib.core.mission import ANGLE_IN_RAD
 
     return ANGLE_IN_RAD[angle_unit_name]
 
 
 def _with_worst_axis(rows: list[MissionRow]) -> list[MissionRow]:
     """A triad's three rows of one mission name the axis of the largest |θ_V|."""
-    from dataclasses import replace
 
     out: list[MissionRow] = []
     k = 0
@@ -390,7 +387,6 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     rows = [i for i, src in enumerate(sources) if src == "specs"]
     if not rows:
         return out, unknown
-    from gyrovib.api.study.prepare import float_guard
 
     where = {e.sensor.id: i for i, e in enumerate(study.sensors)}
     scale = units.scale(unit)
@@ -406,7 +402,6 @@ def _g2_unknown(study: Study, sources: Sequence[str], runs: Sequence[_Run]
                 ) -> dict[tuple[int, int], tuple[str, ...]]:
     """A coefficient-form sensor that gives no g² figure: its g² term is unknown, not
     zero, in a run with linear vibration in some segment (as select reads it)."""
-    from gyrovib.api.datasheet import specs
 
     unknown: dict[tuple[int, int], tuple[str, ...]] = {}
     for i, e in enumerate(study.sensors):
@@ -421,7 +416,6 @@ def _spec_unknown(prepared: Prepared, runs: Sequence[_Run], where: dict[str, int
                   ) -> dict[tuple[int, int], tuple[str, ...]]:
     """The unpublished figures that can decide each datasheet sensor in some segment
     of each run (none: no entry), keyed by the sensor's index in the whole study."""
-    from gyrovib.api.datasheet import specs
 
     unknown: dict[tuple[int, int], tuple[str, ...]] = {}
     figures_unknown = spec_bounds.unknown_figures_at(
@@ -440,8 +434,6 @@ def _group_means(prepared: Prepared, group: Group, runs: Sequence[_Run], where: 
                  scale: float) -> dict[tuple[int, int], float]:
     """The worst mean error over each whole run of one group's datasheet sensors, in the
     output unit (``scale`` of it in deg/s), keyed by (sensor in the study, run)."""
-    from gyrovib.api.datasheet import specs
-    from gyrovib.core.envelope import worst_case
 
     out: dict[tuple[int, int], float] = {}
     members = [prepared.sensors[int(i)] for i in group.index.tolist()]

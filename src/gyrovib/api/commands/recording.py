@@ -10,6 +10,7 @@ carrier histogram (the fitted mission), and their ratio.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from collections.abc import Sequence
@@ -20,6 +21,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.commands.mission import mission
+from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier3, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.api.recordings.results import (
@@ -29,7 +32,17 @@ from gyrovib.api.recordings.results import (
     FittedTone,
     RecordingFit,
 )
-from gyrovib.core.transmissibility import FloatArray, Table
+from gyrovib.api.recordings.yaml import mission_id, profile_yaml, with_fitted_profile
+from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
+from gyrovib.api.study.entries import select_entries
+from gyrovib.api.study.linear import g2_matrix
+from gyrovib.api.study.prepare import input_response
+from gyrovib.catalog.loader import parse_catalog
+from gyrovib.core import recording as core
+from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
+from gyrovib.core.envelope import worst_case
+from gyrovib.core.recording import MOMENTS, recorded_error
+from gyrovib.core.transmissibility import FloatArray, Table, as_table, psd_variance
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
 
@@ -48,8 +61,6 @@ _LINE_FLOOR = 2.0
 #: power off by 3 dB is warned of.
 SHAPE_DB_LIMIT = 2.0
 OFF_3DB_LIMIT = 0.2
-
-
 
 
 def _check(crossover: float, resolution: float, threshold: float, breakpoints: int) -> None:
@@ -89,7 +100,6 @@ def _kept(recording: Recording, crossover: float) -> tuple[list[tuple[int, int]]
 def _statistics(measured: RatePass, n_total: int, axes: tuple[bool, bool, bool],
                 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Variance, skewness and excess kurtosis of x per axis (NaN on an axis not recorded)."""
-    from gyrovib.core import recording as core
 
     var, skew, kurt = core.central_moments(measured.raw, n_total)
     # a vibration below 1e-10 of the signal's rms is the filter's rounding, not a vibration
@@ -104,7 +114,6 @@ def _statistics(measured: RatePass, n_total: int, axes: tuple[bool, bool, bool],
 def _linear_variance(segments: list[FloatArray], n_total: int,
                      axes: tuple[bool, bool, bool]) -> FloatArray:
     """The variance of a − A per axis (0 when it is rounding, NaN where not recorded)."""
-    from gyrovib.core import recording as core
 
     raw_a = np.zeros((2, 3))
     for xa in segments:
@@ -126,7 +135,6 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     wanted besides the plain ones (``moments[None]``); each gets
     ``moments[i]`` and ``peak[i + 1]`` (``peak[0]``: max |ω3| as recorded).
     """
-    from gyrovib.core import recording as core
 
     _check(crossover, resolution, tone_threshold, breakpoints)
     fs = recording.fs
@@ -167,8 +175,6 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         honesty=honesty,  # type: ignore[arg-type]
         rate_axes=recording.rate_axes, warnings=tuple(warnings), yaml="", peak=peak,
         moments=moments, g2_moments=g2_moments)
-    from gyrovib.api.recordings.yaml import profile_yaml
-    from gyrovib.catalog.loader import parse_catalog
 
     text = profile_yaml(fit, independent_tones=independent_tones)
     try:  # what is written must validate: an --id the format refuses is said here
@@ -180,7 +186,6 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
 
 
 def _replace_yaml(fit: RecordingFit, text: str) -> RecordingFit:
-    import dataclasses
 
     return dataclasses.replace(fit, yaml=text)
 
@@ -195,7 +200,6 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
               breakpoints: int, independent: bool, crossover: float, variance: FloatArray,
               *, rate: bool) -> FittedPart:
     """Tones, harmonics, PSD breakpoints and coherences of one kind of vibration."""
-    from gyrovib.core import recording as core
 
     f, spectra, windows = core.welch_spectra(segments, fs, resolution)
     silent = ~(variance > 0)  # not recorded, or negligible: no spectrum to fit
@@ -230,8 +234,6 @@ def random_tables(f: FloatArray, random: FloatArray, variance: FloatArray,
     """Per axis the fitted breakpoints of the random PSD over the band ``f`` (None where
     the axis has no vibration), their variances, and their shape figures (2, 3):
     shape_db and off_3db (docs/model.md section 13)."""
-    from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
-    from gyrovib.core.transmissibility import psd_variance
 
     tables: list[Table | None] = [None, None, None]
     sigma2 = np.zeros(3)
@@ -263,7 +265,6 @@ def _tones(lines: Sequence[Any], *, grouped: bool,
            ) -> tuple[tuple[FittedTone, ...], tuple[FittedHarmonics, ...]]:
     """The lines as tones, those at integer multiples of a fundamental as phase-locked
     groups when ``grouped``."""
-    from gyrovib.core import recording as core
 
     harmonics: list[FittedHarmonics] = []
     taken: set[int] = set()
@@ -330,8 +331,6 @@ class RecordingAnalysis(Frozen):
         """One row per sensor (pandas DataFrame); columns as the CSV output's."""
         import pandas as pd
 
-        from gyrovib.core.recording import MOMENTS
-
         data: dict[str, Any] = {"sensor": list(self.sensors), "recorded": self.recorded}
         for k, name in enumerate(MOMENTS):
             data[f"recorded_{name}"] = self.terms[:, k]
@@ -379,9 +378,6 @@ def recording_responses(catalog: Any, sensors: Sequence[str] = ()) -> tuple[Sequ
     """The chosen sensor entries, and the distinct input-side responses among them (in
     order of first use): what :func:`fit_recording` needs as ``responses`` for
     :func:`analysis_of_fit` to find each sensor's Δ_V,rec moments."""
-    from gyrovib.api.study.entries import select_entries
-    from gyrovib.api.study.prepare import input_response
-    from gyrovib.core.transmissibility import as_table
 
     entries, _ = select_entries(catalog, sensors, (), need=("sensors",))
     keys = [input_response(e) for e in entries]
@@ -394,11 +390,6 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     """:func:`analyze_recording` on a fit already made with the ``responses`` of
     :func:`recording_responses` for the same ``entries`` (the fit can come from another
     process: it holds the recording's moments, never its samples)."""
-    from gyrovib.api.datasheet.specs import figures, is_spec
-    from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
-    from gyrovib.api.study.linear import g2_matrix
-    from gyrovib.api.study.prepare import input_response
-    from gyrovib.core.recording import recorded_error
 
     unit = units.canonical_unit(unit)
     keys = [input_response(e) for e in entries]
@@ -462,7 +453,6 @@ def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: Flo
     k1 = 1 and m31 = m32 = 0 (datasheets do not give them); each row of c is
     handed to :func:`gyrovib.core.envelope.worst_case` as a diagonal term matrix.
     """
-    from gyrovib.core.envelope import worst_case
 
     total, terms, g2_part = total.copy(), terms.copy(), g2_part.copy()
     idx = np.flatnonzero(spec)
@@ -493,8 +483,6 @@ def _fitted_mission(fit: RecordingFit, catalog: Any,
     is the worst case over its envelope of the whole mission — one conversion
     function for every bin.
     """
-    from gyrovib.api.commands.mission import mission
-    from gyrovib.api.recordings.yaml import mission_id, with_fitted_profile
 
     combined = with_fitted_profile(catalog, fit)
     result = mission(combined, missions=(mission_id(fit),), sensors=sensor_ids, unit="deg/s")

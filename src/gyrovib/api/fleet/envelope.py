@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.commands.recording import random_tables
+from gyrovib.api.commands.recording import _LINE_FLOOR, random_tables
 from gyrovib.api.fleet.run import DEFAULTS, RecordingOptions, profile_one, run_recordings
 from gyrovib.api.recordings.results import (
     AxisHonesty,
@@ -41,6 +41,10 @@ from gyrovib.api.recordings.results import (
     FittedTone,
     RecordingFit,
 )
+from gyrovib.api.recordings.yaml import _num, profile_yaml
+from gyrovib.catalog.loader import parse_catalog
+from gyrovib.core import recording as core
+from gyrovib.core.recording import HARMONIC_TOLERANCE, MISSION_BINS, find_lines
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import GyrovibError, OptionError
 from gyrovib.frozen import Frozen
@@ -128,8 +132,6 @@ def _spectrum(part: FittedPart, crossover: float, tone_threshold: float, *,
     """The random PSD the fit's breakpoints were fitted to, found again as the fit finds
     it: its lines' lobes (:func:`gyrovib.core.recording.find_lines` on the measured PSD,
     which alone decides them) replaced by the running median."""
-    from gyrovib.api.commands.recording import _LINE_FLOOR
-    from gyrovib.core.recording import find_lines
 
     f = part.frequencies
     measured = np.array(part.measured, dtype=float)
@@ -223,7 +225,6 @@ def combine(a: EnvelopePart, b: EnvelopePart) -> EnvelopePart:
 def _merged_lines(s: SpectrumEnvelope) -> list[tuple[float, FloatArray, FloatArray]]:
     """Lines within max(Δf, 1 % of f) of the first of a run are one line: per axis its
     largest amplitude; frequency and phases where its amplitude is largest."""
-    from gyrovib.core.recording import HARMONIC_TOLERANCE
 
     df = float(s.frequencies[1] - s.frequencies[0])
     order = np.argsort(s.lines, kind="stable").tolist()
@@ -246,7 +247,6 @@ def _merged_lines(s: SpectrumEnvelope) -> list[tuple[float, FloatArray, FloatArr
 
 def _fitted(s: SpectrumEnvelope, crossover: float, breakpoints: int, independent: bool,
             *, rate: bool) -> FittedPart:
-    from gyrovib.core import recording as core
 
     f = s.frequencies
     df = float(f[1] - f[0])
@@ -283,7 +283,6 @@ def fleet_mission(rates: FloatArray, durations: FloatArray) -> tuple[FloatArray,
     unchanged while k ≤ 16, else their carrier histogram — at most 16 bins of Ω_K3 of
     equal width over the joined range (the one-recording rule), each bin the total time
     of the segments it takes at their time-weighted mean rate."""
-    from gyrovib.core.recording import MISSION_BINS
 
     if durations.size <= MISSION_BINS:
         return rates, durations
@@ -330,8 +329,6 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
     ``options.breakpoints``, ``independent_tones`` and ``profile_id`` as for one."""
     breakpoints, independent_tones = options.breakpoints, options.independent_tones
     profile_id = options.profile_id
-    from gyrovib.api.recordings.yaml import profile_yaml
-    from gyrovib.catalog.loader import parse_catalog
 
     angular = _fitted(part.angular, part.crossover, breakpoints, independent_tones, rate=True)
     linear = None if part.linear is None else _fitted(part.linear, part.crossover, breakpoints,
@@ -364,7 +361,6 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
 
 
 def _envelope_header(part: EnvelopePart) -> str:
-    from gyrovib.api.recordings.yaml import _num
 
     lines = [
         f"# Envelope of {len(part.recordings)} recordings, fitted by `gyrovib profile` "

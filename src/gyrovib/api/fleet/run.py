@@ -22,10 +22,14 @@ from typing import Any
 
 import numpy as np
 
+from gyrovib import units
+from gyrovib.api.commands.recording import analysis_of_fit, fit_recording, recording_responses
+from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core.transmissibility import FloatArray, Table
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -59,8 +63,6 @@ DEFAULTS = RecordingOptions()
 def profile_one(path: str, options: RecordingOptions = DEFAULTS) -> RecordingFit:
     """Read and fit one recording: the one-recording step, a pure function of its
     arguments (the same file and options give the same fit, in any process)."""
-    from gyrovib.api.commands.recording import fit_recording
-    from gyrovib.api.recordings.reading import read_recording
 
     recording = read_recording(
         path, fs=options.fs, rate_columns=options.rate_columns,
@@ -108,7 +110,6 @@ def run_recordings(paths: Sequence[str], options: Any = DEFAULTS, *, jobs: int =
     step's result. The first user error in input order is raised, as with
     ``jobs = 1``; progress goes to :func:`gyrovib.progress.advance` under ``label``.
     """
-    from gyrovib.progress import advance
 
     if jobs < 1:
         raise OptionError(f"--jobs {jobs}: give at least 1")
@@ -130,8 +131,6 @@ def _in_processes(paths: Sequence[str], options: Any, jobs: int,
                   step: Callable[[str, Any], Any], label: str) -> list[Any]:
     import multiprocessing
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-
-    from gyrovib.progress import advance
 
     method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
     total = len(paths)
@@ -194,8 +193,6 @@ def analyze_recordings(paths: Sequence[str], catalog: Any, options: RecordingOpt
     of the chosen sensors' input responses (``options.responses`` is replaced by them);
     each fit is then evaluated here as ``analyze --recording`` evaluates one.
     """
-    from gyrovib import units
-    from gyrovib.api.commands.recording import analysis_of_fit, recording_responses
 
     unit = units.canonical_unit(unit)
     entries, responses = recording_responses(catalog, sensors)

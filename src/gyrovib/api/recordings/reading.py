@@ -35,6 +35,7 @@ from gyrovib.api.recordings.readers import (
     problem,
     reader_for,
 )
+from gyrovib.core.recording import gap_segments
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 from gyrovib.frozen import Frozen
@@ -172,7 +173,6 @@ def _recorded(axes: Axes | None) -> tuple[bool, bool, bool]:
 def _timing(path: str, time: FloatArray | None, fs: float | None,
             time_scale: float, n: int) -> tuple[float, NDArray[np.intp]]:
     """fs and the segments: from the timestamps (gaps split), else from --fs."""
-    from gyrovib.core.recording import gap_segments
 
     if time is None:
         if fs is None:

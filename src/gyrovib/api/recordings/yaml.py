@@ -15,6 +15,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from gyrovib.catalog.loader import merge, parse_catalog
+from gyrovib.errors import GyrovibError, OptionError
+from gyrovib.models.profile import correlation_problem
+
 if TYPE_CHECKING:
     from gyrovib.api.recordings.results import FittedPart, RecordingFit
     from gyrovib.core.transmissibility import Table
@@ -43,7 +47,6 @@ def _coherence(values: object) -> str:
     inside its feasible interval ρ31·ρ32 ± √((1−ρ31²)(1−ρ32²)) and written
     with more figures.
     """
-    from gyrovib.models.profile import correlation_problem
 
     r31, r32, r12 = (float(v) for v in np.asarray(values, dtype=float))
     text = _triple((r31, r32, r12))
@@ -161,8 +164,6 @@ def _quote(text: str) -> str:
 def with_fitted_profile(catalog: Any, fit: RecordingFit) -> Any:
     """``catalog`` with the fitted profile added (its source named after the recording);
     an id already in the catalogue is refused with a pointer to ``--id``."""
-    from gyrovib.catalog.loader import merge, parse_catalog
-    from gyrovib.errors import GyrovibError, OptionError
 
     source = parse_catalog(fit.yaml, f"<fitted from {os.path.basename(fit.file)}>",
                            skip=("sensors",))
