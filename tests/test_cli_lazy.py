@@ -38,7 +38,8 @@ def _declarations() -> list[tuple[str, object]]:
 
 
 def test_the_commands_of_this_package_are_declared_lazily():
-    assert {"analyze", "bounds", "select", "sweep", "report", "schema", "catalog"} <= set(LAZY)
+    assert {"analyze", "bounds", "select", "sweep", "report", "schema", "catalog", "allan", "fit",
+            "mission", "profile"} <= set(LAZY)
 
 
 @pytest.mark.parametrize("path, command", _declarations(), ids=lambda x: str(x)[:20])

@@ -17,7 +17,6 @@ from gyrovib.cli.options import parse_rate_option, parse_unit
 from gyrovib.cli.output import write_output
 from gyrovib.cli.placement import is_triad, run_placed, write_triad
 from gyrovib.cli.progress import progress_bar
-from gyrovib.cli.recording import analyze_recording, refuse_with_recording
 from gyrovib.errors import OptionError
 from gyrovib.render import analysis as render
 
@@ -33,6 +32,10 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     if jobs != 1 and not recordings:
         raise OptionError("--jobs runs recordings in processes: give it with --recording")
     if recordings:
+        # lazy: the recording stack (readers, fit, fleet) is not loaded by a first analyze
+        # of the catalogue (tests/test_startup.py)
+        from gyrovib.cli.run.recording import analyze_recording, refuse_with_recording
+
         refuse_with_recording(profiles=profiles, rate=rate, method=method)
         if placement is not None:
             raise OptionError("--placement maps catalogue profiles; with --recording give "

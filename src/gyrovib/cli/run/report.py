@@ -7,10 +7,10 @@ from typing import Any
 from gyrovib import api
 from gyrovib.api.report import views as studies
 from gyrovib.cli.common import load_catalog, say
-from gyrovib.cli.mission import mission_section
 from gyrovib.cli.options import budget_arguments
 from gyrovib.cli.output import write_output
-from gyrovib.cli.recording import report_recording
+from gyrovib.cli.run.mission import mission_section
+from gyrovib.cli.run.recording import report_recording
 from gyrovib.cli.sweep import parse_rate_range
 from gyrovib.render.report import to_html
 

@@ -17,10 +17,10 @@ from gyrovib.cli.common import (
     say,
     use_color,
 )
-from gyrovib.cli.mission import select_mission
 from gyrovib.cli.options import budget_arguments
 from gyrovib.cli.output import write_output
 from gyrovib.cli.placement import is_triad, run_placed, write_triad
+from gyrovib.cli.run.mission import select_mission
 from gyrovib.cli.spec_options import parse_spec_weights
 from gyrovib.render import select as render
 from gyrovib.render import select_ci
