@@ -42,6 +42,7 @@ __all__ = ["__version__", *_NOTEBOOK]
 def __getattr__(name: str) -> Any:
     """``gyrovib.load`` & co.: import :mod:`gyrovib.notebook` on first use."""
     if name in _NOTEBOOK:
+        # lazy (PEP 562): `import gyrovib` stays light; the notebook face loads on use
         from gyrovib import notebook
 
         value = getattr(notebook, name)

@@ -28,6 +28,7 @@ def main() -> None:
             signal.signal(signum, _early_exit)
             early.append(signum)
     try:
+        # lazy: after the early handlers, so a signal while it loads exits in one line
         from gyrovib.cli.main import main as run
     except KeyboardInterrupt:
         sys.stderr.write("\ngyrovib: interrupted\n")

@@ -193,6 +193,7 @@ def load_catalog(files: tuple[str, ...]) -> Any:
     is validated whole, whatever the command uses of it: what ``validate``
     refuses, every command refuses at the same place.
     """
+    # lazy: this module is loaded by --help, which must not load pydantic
     from gyrovib.api import load
     _no_pydantic_plugins()
     bundled = _bundled()
@@ -200,6 +201,7 @@ def load_catalog(files: tuple[str, ...]) -> Any:
         return load(files, bundled=bundled)
     if files.count(STDIN) > 1:
         raise OptionError("'-' (standard input) can be given only once")
+    # lazy: this module is loaded by --help, which must not load pydantic
     from gyrovib.catalog.loader import Source
 
     # standard input is one more source, read through the loader every file goes through
@@ -216,6 +218,7 @@ def _bundled() -> str | None:
 
 def _read_stdin() -> bytes:
     """Standard input's bytes, at most one more than a catalogue may have."""
+    # lazy: this module is loaded by --help, which must not load pydantic
     from gyrovib.catalog.loader import MAX_FILE_BYTES
     stream = sys.stdin
     if stream is None:

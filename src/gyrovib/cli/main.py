@@ -105,6 +105,7 @@ def _debug() -> bool:
 def _traceback() -> None:
     if not _debug():
         return
+    # lazy: only on an internal error
     import traceback
 
     try:

@@ -222,6 +222,7 @@ def parse_placement(text: str | None) -> Any:
     or None (the one parser: :func:`gyrovib.core.placement.parse`)."""
     if text is None:
         return None
+    # lazy: this module is loaded by --help, which must not load numpy
     from gyrovib.core.placement import parse
 
     try:
@@ -232,6 +233,7 @@ def parse_placement(text: str | None) -> Any:
 
 def parse_angle_budget(text: str) -> float:
     """``--angle-budget`` (``0.5deg``, ``2 mrad``) → θ* in radians; positive, finite."""
+    # lazy: this module is loaded by --help, which must not load numpy
     from gyrovib.api.commands.mission import angle_in_rad
 
     try:

@@ -60,6 +60,7 @@ def encodable(text: str, encoding: str | None) -> str:
     try:
         text.encode(encoding or "utf-8")
     except UnicodeEncodeError:
+        # lazy: this module is loaded by --help, which must not load numpy
         from gyrovib.render.common import to_ascii
 
         return to_ascii(text)

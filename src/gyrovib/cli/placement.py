@@ -17,6 +17,7 @@ def run_placed(command: Callable[..., Any], catalog: Any, placement: str | None,
     parsed = parse_placement(placement)
     if parsed is None:
         return command(catalog, **options)
+    # lazy: --placement only; a first analyze does without it
     from gyrovib.api.placement.triad import placed
     from gyrovib.render.triad import TRIAD_FORMATS
 
@@ -34,6 +35,7 @@ def write_triad(result: Any, draw: Callable[[Any], Any], fmt: str,
                 output: str | None) -> None:
     """The triad's document; ``draw`` renders one axis's result in ``fmt`` (text, or
     pieces of text that are joined)."""
+    # lazy: --placement only; a first analyze does without it
     from gyrovib.render.triad import render
 
     def text(one: Any) -> str:

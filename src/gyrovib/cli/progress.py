@@ -42,6 +42,7 @@ def terminal_progress() -> Iterator[None]:
         if bar is None:
             if time.monotonic() - started < DELAY:
                 return
+            # lazy: rich only draws tables; csv and json output never load it
             from rich.console import Console
             from rich.progress import (
                 BarColumn,

@@ -37,6 +37,7 @@ def sosfiltfilt_into(sos: FloatArray, x: FloatArray, out: FloatArray,
     overlap ``x``. Raises ValueError as scipy does when ``x`` is not longer
     than the padding.
     """
+    # lazy: scipy only where a recording is filtered
     from scipy.signal import sosfilt, sosfilt_zi
 
     n = x.shape[0]

@@ -48,6 +48,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.polynomial import polynomial as P
 from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.transmissibility import FloatArray
@@ -554,7 +555,6 @@ def _max_abs_piecewise(coefficients: FloatArray, kink: float, line: tuple[float,
                        ) -> float:
     """max over u ∈ [−1, 1] of |q(u) − a − b·u|, q as in :func:`_moment_line`: on each half
     the residual is a polynomial, so its maximum is at ±1, 0 or a root of its derivative."""
-    from numpy.polynomial import polynomial as P
 
     best = 0.0
     for side in (1.0, -1.0):

@@ -57,6 +57,7 @@ class Model:
                  value: np.ndarray, row_lower: np.ndarray, row_upper: np.ndarray,
                  col_lower: np.ndarray, col_upper: np.ndarray,
                  options: dict[str, float | str] | None = None) -> None:
+        # lazy: highspy only where a datasheet envelope needs the LP
         import highspy
 
         cost = np.ascontiguousarray(cost, dtype=float)

@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core.filtfilt import sosfiltfilt_into
@@ -66,6 +67,7 @@ def lowpass(signal: ArrayLike, fs: float, crossover: float,
     A(t) for accelerations), same shape as ``signal``, written into ``out``
     when given (float64, same shape, not overlapping ``signal``).
     """
+    # lazy: scipy only where a recording is filtered
     from scipy.signal import butter
 
     x = np.asarray(signal, dtype=float)
@@ -182,7 +184,6 @@ def welch_spectra(segments: Sequence[FloatArray], fs: float,
     a block of windows at a time, so the temporaries stay small. Segments
     shorter than one window are left out; ``windows`` = 0 when none is long enough.
     """
-    from numpy.lib.stride_tricks import sliding_window_view
 
     nper = max(8, round(fs / resolution))
     step = nper - nper // 2
@@ -220,6 +221,7 @@ def welch_spectra(segments: Sequence[FloatArray], fs: float,
 
 def running_median(psd: ArrayLike, half_width: int = MEDIAN_HALF_WIDTH) -> FloatArray:
     """The median over ±``half_width`` bins of each bin (edges: nearest value repeated)."""
+    # lazy: scipy only where a recording is filtered
     from scipy.ndimage import median_filter
 
     out: FloatArray = median_filter(np.asarray(psd, dtype=float), size=2 * half_width + 1,

@@ -59,6 +59,7 @@ class MissingDependency(GyrovibError, ImportError):
 
 def _pandas() -> Any:
     try:
+        # lazy: pandas is optional (pip install 'gyrovib[pandas]')
         import pandas
     except ImportError:
         raise MissingDependency(MISSING_PANDAS) from None

@@ -3,9 +3,15 @@
 
 from __future__ import annotations
 
+import io
 import os
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+from rich.table import Table
+from rich.text import Text
+
+from gyrovib import units
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
 
 if TYPE_CHECKING:
@@ -58,8 +64,6 @@ def _legend() -> str:
 def to_table(result: AllanResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """The figures per axis, then a short σ(τ) table per axis (one point a decade)."""
-    from rich.table import Table
-    from rich.text import Text
 
     items: list[Any] = [Text(_summary(result))]
     figures = Table(title="noise figures", header_style="bold")
@@ -80,7 +84,6 @@ def to_table(result: AllanResult, width: int | None = None, color: bool = False,
 
 def _decade_points(ax: AxisAllan) -> list[int]:
     """About one grid point a decade, and the curve's minimum."""
-    import numpy as np
 
     logs = np.log10(ax.tau)
     marks = np.arange(np.ceil(logs[0]), np.floor(logs[-1]) + 1)
@@ -90,7 +93,6 @@ def _decade_points(ax: AxisAllan) -> list[int]:
 
 
 def _curve_table(ax: AxisAllan) -> Any:
-    from rich.table import Table
 
     table = Table(title=f"axis {ax.axis}: σ(τ), {ax.unit} ({ax.tau.size} points in the "
                         "JSON output)", header_style="bold")
@@ -106,15 +108,12 @@ def _curve_table(ax: AxisAllan) -> Any:
 def plot(result: AllanResult) -> bytes:
     """The Allan deviation per axis, log-log, with the fitted terms' lines and the three
     figures' slope lines (PNG bytes)."""
-    import io
 
+    # lazy: matplotlib is optional, for --plot only
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import numpy as np
-
-    from gyrovib import units
 
     fig, axes = plt.subplots(len(result.axes), 1, figsize=(8, 3.2 * len(result.axes)),
                              squeeze=False)

@@ -114,7 +114,7 @@ _BLOCK = 4096
 
 def _row_template(with_stderr: bool) -> str:
     """The text of one result row with ``%s`` for every value, keys as json writes them."""
-    import json
+    import json  # not at import time: the tables do without it
 
     def obj(pairs: list[tuple[str, str]]) -> str:
         return "{" + ", ".join(f"{json.dumps(k)}: {v}" for k, v in pairs) + "}"

@@ -72,6 +72,7 @@ def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:
     term = dominant_term(result, i, j)
     if not term:
         return None
+    # lazy: a datasheet part's explanation only
     from gyrovib.presentation.reasons import coefficient_unit
 
     x = dict(zip(_WORST, (float(v) for v in result.worst_coefficients[i, j]), strict=True))
@@ -131,6 +132,7 @@ class _Detail:
 
     def name(self, i: int, j: int) -> Any:
         """The sensor's cell: its name, the warnings' marks, SAT, the worst phases' note."""
+        # lazy: rich only draws tables; csv and json output never load it
         from rich.text import Text
 
         result = self.result
@@ -158,6 +160,7 @@ class _Detail:
 
     def table(self, j: int) -> Any:
         """The table of profile ``j``: a row per sensor, a column per term."""
+        # lazy: rich only draws tables; csv and json output never load it
         from rich.table import Table
 
         result = self.result
@@ -196,6 +199,7 @@ def _detail_legend(result: AnalysisResult) -> str:
 
 def _detail_notes(detail: _Detail) -> list[Any]:
     """The lines under the per-profile tables: the legend, the notes, the warnings."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.text import Text
 
     result = detail.result
@@ -229,6 +233,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
         detail = len(result.profiles) <= 2
     if not detail:
         return _matrix(result, width=width, color=color, ascii=ascii)
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.text import Text
 
     tables = _Detail(result)
@@ -246,6 +251,7 @@ def to_table(result: AnalysisResult, width: int | None = None, color: bool = Fal
 def _matrix_cell(result: AnalysisResult, i: int, j: int, number_of: dict[str, int]) -> Any:
     """Sensor ``i`` under profile ``j`` in the matrix: the error, its dominant term,
     the warnings' marks and SAT."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.text import Text
 
     value = result.error.total[i, j] if result.source(i) == "specs" else result.error.rms[i, j]
@@ -277,6 +283,7 @@ def _matrix(result: AnalysisResult, width: int | None = None, color: bool = Fals
             ascii: bool = False) -> str:
     """The compact form: a row per profile, a column per sensor, each cell the error
     (Δ_V(RMS); a datasheet part's worst |Δ_V|) and its dominant term."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.table import Table
     from rich.text import Text
 

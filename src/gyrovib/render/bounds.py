@@ -7,6 +7,8 @@ from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
+from rich.table import Table
+from rich.text import Text
 
 from gyrovib.api import BoundsResult
 from gyrovib.core.synthesis import (
@@ -321,8 +323,6 @@ def to_markdown(result: BoundsResult) -> str:
 def to_table(result: BoundsResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One table per profile, one row per bounded coefficient."""
-    from rich.table import Table
-    from rich.text import Text
 
     def table(head: list[str], rows: list[list[str]], **title: Any) -> Any:
         """A table whose second column, the bound, is bold and right-aligned."""

@@ -134,6 +134,7 @@ def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
     texts transliterated (:func:`to_ascii`) before the layout, the box drawn by
     rich's ASCII fallback.
     """
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.console import Console
     from rich.table import Table
 
@@ -160,6 +161,7 @@ def rich_text(renderables: Iterable[Table | Text], width: int | None = None,
 
 def _cell(value: Any) -> Text:
     """A cell as rich ``Text`` (a ``str`` taken literally: no markup, no highlighting)."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.text import Text
 
     return value if isinstance(value, Text) else Text(str(value))
@@ -167,6 +169,7 @@ def _cell(value: Any) -> Text:
 
 def _ascii_cell(value: Any) -> Text:
     """:func:`_cell` transliterated by :func:`to_ascii`, each styled piece keeping its style."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.text import Text
 
     text = _cell(value)
@@ -217,6 +220,7 @@ def _wrapping(table: Table, group: list[int], headers: list[Text], cells: list[l
               widths: list[int], squeezed: bool) -> Table:
     """The columns ``group`` of ``table`` as a rich table that may wrap its cells; a
     ``squeezed`` group (wider than the page) may wrap any column but the key."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich import box
     from rich.table import Table
 
@@ -261,6 +265,7 @@ def _fitted(table: Table, group: list[int], headers: list[Text], cells: list[lis
     own, with line splitting and cropping, per cell) is what is saved; rich still
     lays out the box, the rows and the styles. Only for single-line cells in a
     group that fits the page (nothing to wrap)."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich import box
     from rich.table import Table
 
@@ -291,6 +296,7 @@ class _Line:
         return self.text.render(console)
 
     def __rich_measure__(self, console: Console, options: ConsoleOptions) -> Measurement:
+        # lazy: rich only draws tables; csv and json output never load it
         from rich.measure import Measurement
 
         width = self.text.cell_len
@@ -302,6 +308,7 @@ def _pad(text: Text, width: int, justify: str) -> Text:
     out: the two spaces of padding unstyled, the text's spans kept, and its base style
     kept as a span, over the justification's fill too when rich's justify pads the
     text itself ("left", "right", "center"; "default" pads outside it)."""
+    # lazy: rich only draws tables; csv and json output never load it
     from rich.text import Text
 
     gap = width - text.cell_len

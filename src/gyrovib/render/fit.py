@@ -7,6 +7,9 @@ import io
 import math
 from typing import Any
 
+from rich.table import Table
+from rich.text import Text
+
 from gyrovib._version import __version__
 from gyrovib.api.ratetable.results import (
     FIT_COLUMNS,
@@ -20,6 +23,7 @@ from gyrovib.core.fit import SIGNIFICANT_T
 from gyrovib.core.lot import YieldEstimate
 from gyrovib.errors import GyrovibError
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.plot import _figure_class
 
 
 def _numbers(names: tuple[str, ...], values: Any) -> dict[str, float | None]:
@@ -123,8 +127,6 @@ def _legend(result: FitResult) -> str:
 def to_table(result: FitResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One table per unit (coefficients, σ, t), then the lot's mean and spread."""
-    from rich.table import Table
-    from rich.text import Text
 
     def table(head: list[str], rows: list[list[str]], title: str | None) -> Table:
         out = Table(title=title, header_style="bold")
@@ -283,7 +285,6 @@ def to_catalog(result: FitResult) -> str:
 
 def residuals_png(result: FitResult, dpi: int = 100) -> bytes:
     """Residuals U − Û against the rate, one panel per unit (matplotlib, optional)."""
-    from gyrovib.render.plot import _figure_class
 
     figure_class = _figure_class()
     n = len(result.units)

@@ -10,6 +10,7 @@ import math
 import os
 from typing import TYPE_CHECKING, Any
 
+from gyrovib import units
 from gyrovib.render import recording as one
 from gyrovib.render.common import dumps, header
 
@@ -30,7 +31,6 @@ def _saturated_on(result: RecordingsAnalysis, k: int) -> list[str]:
 def to_json(result: RecordingsAnalysis) -> str:
     """``analyze --recording A --recording B --format json``: ``recordings`` (each as the
     one-recording document's ``results``, ``recording``, ``warnings``) and ``worst``."""
-    from gyrovib import units
 
     scale = units.scale(result.unit)
     document = header("recording", result.unit)

@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
 from typing import TYPE_CHECKING, Any
 
+from rich.table import Table
+from rich.text import Text
+
+from gyrovib.api.missions.results import budget_columns, frame_columns
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 if TYPE_CHECKING:
@@ -129,8 +134,6 @@ def _table_notes(result: MissionResult) -> list[str]:
 def to_table(result: MissionResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
-    from rich.table import Table
-    from rich.text import Text
 
     table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
                   f"({_budget_text(result)})", title_justify="left")
@@ -234,7 +237,6 @@ def to_json(result: MissionResult) -> str:
 
 def to_csv(result: MissionResult) -> str:
     """One row per sensor × mission × axis; columns as :meth:`MissionResult.to_frame`."""
-    from gyrovib.api.missions.results import budget_columns, frame_columns
 
     def row(r: MissionRow) -> list[Any]:
         return [r.sensor, r.mission, r.placement, r.axis or "", r.mean, r.angle, r.rms,
@@ -259,7 +261,6 @@ def to_markdown(result: MissionResult) -> str:
 
 def to_junit(result: MissionResult) -> str:
     """JUnit XML: one testcase per sensor × mission × axis (classname = sensor)."""
-    import xml.etree.ElementTree as ET
 
     n = len(result.rows)
     n_fail = sum(1 for r in result.rows if r.passed is False)

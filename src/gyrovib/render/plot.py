@@ -23,6 +23,7 @@ MISSING_MATPLOTLIB = (
 
 def _figure_class() -> Any:
     try:
+        # lazy: matplotlib is optional, for --plot only
         from matplotlib.figure import Figure
     except ImportError:
         raise GyrovibError(MISSING_MATPLOTLIB) from None

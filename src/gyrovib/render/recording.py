@@ -7,9 +7,14 @@ import csv
 import io
 import math
 import os
+from html import escape
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
+from gyrovib import units
 from gyrovib.render.common import dumps, header
+from gyrovib.render.svg import LineChart, Marker, Series, color
 
 if TYPE_CHECKING:
     from gyrovib.api.commands.recording import RecordingAnalysis
@@ -96,7 +101,6 @@ def _rows(result: RecordingAnalysis) -> list[dict[str, Any]]:
 
 def to_json(result: RecordingAnalysis) -> str:
     """``analyze --recording --format json``."""
-    from gyrovib import units
 
     document = header("recording", result.unit)
     document["results"] = _rows(result)
@@ -160,11 +164,11 @@ def to_markdown(result: RecordingAnalysis) -> str:
 
 def plot_fit(fit: RecordingFit, path: str) -> None:
     """Measured PSD against the fitted breakpoints and tones, one panel per axis (PNG)."""
+    # lazy: matplotlib is optional, for --plot only
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import numpy as np
 
     part = fit.angular
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
@@ -205,7 +209,6 @@ def plot_fit(fit: RecordingFit, path: str) -> None:
 
 def _thin(f: Any, s: Any, points: int = 400) -> tuple[list[float], list[float]]:
     """At most ``points`` log-spaced bins of a PSD (f > 0), for a chart."""
-    import numpy as np
 
     ok = np.flatnonzero((f > 0) & (s > 0))
     if ok.size <= points:
@@ -217,9 +220,6 @@ def _thin(f: Any, s: Any, points: int = 400) -> tuple[list[float], list[float]]:
 def report_section(result: RecordingAnalysis) -> str:
     """The recording's part of ``gyrovib report --recording`` (HTML): its PSD against the
     fitted profile per axis, the honesty table, and Δ_V,rec beside the closed form."""
-    from html import escape
-
-    from gyrovib.render.svg import LineChart, Marker, Series, color
 
     fit = result.fit
     part = fit.angular
@@ -269,7 +269,6 @@ def report_section(result: RecordingAnalysis) -> str:
 
 
 def _html_table(head: list[str], rows: list[list[str]]) -> str:
-    from html import escape
 
     cells = "".join(f"<th>{escape(h)}</th>" for h in head)
     body = "".join("<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>"

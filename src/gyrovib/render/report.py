@@ -19,9 +19,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gyrovib import units
 from gyrovib.api.report.views import TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.presentation.reasons import unknown_label
+from gyrovib.render.analysis import cells_text, grouped_warnings, worst_case_text
 from gyrovib.render.bounds import shares_text
 from gyrovib.render.common import fmt
 from gyrovib.render.report_spectrum import spectrum_charts, spectrum_text
@@ -355,7 +357,6 @@ def _warnings(study: TradeStudy) -> str:
     a = study.analysis
     if not a.warnings:
         return ""
-    from gyrovib.render.analysis import cells_text, grouped_warnings
 
     items = "".join(f"<li>{_e(message)} <b>({_e(cells_text(a, cells))})</b></li>"
                     for message, cells in grouped_warnings(a))
@@ -435,13 +436,11 @@ def _profile_section(study: TradeStudy, j: int, squares: np.ndarray,
     s = study.selection
     spectrum = study.spectra[j]
     rate_unit = study.rate_unit or s.unit  # the vehicle in its own unit, errors in Δ*'s
-    from gyrovib import units
 
     to_rate = units.scale(s.unit) / units.scale(rate_unit)
     rate = ", ".join(fmt(float(v) * to_rate, 4) for v in s.rates[j])
     title = spectrum.profile + (f" — {spectrum.name}" if spectrum.name else "")
     notes = f'<p class="notes">{_e(spectrum.notes)}</p>' if spectrum.notes else ""
-    from gyrovib.render.analysis import worst_case_text
 
     why = [w for w in (worst_case_text(study.analysis, i, j)
                        for i in range(len(study.analysis.sensors))) if w]

@@ -7,6 +7,7 @@ from __future__ import annotations
 from html import escape
 from typing import TYPE_CHECKING
 
+from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
@@ -84,7 +85,6 @@ def budget_chart(result: MissionResult, mission: str) -> str:
 def _segments_table(result: MissionResult, row: MissionRow) -> str:
     head = ["#", "profile", "T_s (s)", f"Ω_K3 ({result.unit})", f"Δ_V,s ({result.unit})",
             f"T_s·Δ_V,s ({result.angle_unit})", f"Δ_V(RMS),s ({result.unit})", "saturated"]
-    from gyrovib.core.mission import ANGLE_UNITS
 
     factor = ANGLE_UNITS[result.unit][1]
     body = []

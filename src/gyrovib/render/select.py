@@ -8,6 +8,9 @@ import math
 from collections.abc import Iterator
 from typing import Any
 
+from rich.table import Table
+from rich.text import Text
+
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.presentation.reasons import failures as _failures
@@ -525,8 +528,6 @@ def to_markdown(result: SelectionResult) -> str:
 def to_table(result: SelectionResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """Tables: pass/fail matrix (failing cells red), ranking, limiting coefficients."""
-    from rich.table import Table
-    from rich.text import Text
 
     out: list[Any] = [Text(_heading(result), style="bold")]
     matrix = Table(header_style="bold")

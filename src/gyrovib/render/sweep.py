@@ -6,6 +6,8 @@ from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
+from rich.table import Table
+from rich.text import Text
 
 from gyrovib.api import SweepResult
 from gyrovib.render.common import (
@@ -104,8 +106,6 @@ def to_table(result: SweepResult, budget: float | None = None, width: int | None
              color: bool = False,
              ascii: bool = False) -> str:
     """One table per profile × sensor: the rates as rows, exact and paper side by side."""
-    from rich.table import Table
-    from rich.text import Text
 
     out: list[Any] = []
     any_saturated = False

@@ -329,6 +329,7 @@ class RecordingAnalysis(Frozen):
 
     def to_frame(self) -> Any:
         """One row per sensor (pandas DataFrame); columns as the CSV output's."""
+        # lazy: pandas is optional (pip install 'gyrovib[pandas]')
         import pandas as pd
 
         data: dict[str, Any] = {"sensor": list(self.sensors), "recorded": self.recorded}

@@ -28,6 +28,7 @@ from gyrovib.core.analysis import ALL_TERMS, VibrationError
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
+from gyrovib.presentation.frames import to_frame
 
 if TYPE_CHECKING:
     from gyrovib.api import LotYields
@@ -73,7 +74,6 @@ class Result(Frozen):
     def to_frame(self) -> Any:
         """Tidy pandas DataFrame, columns named as the JSON keys
         (:mod:`gyrovib.presentation.frames`)."""
-        from gyrovib.presentation.frames import to_frame
 
         return to_frame(self)
 

@@ -129,6 +129,7 @@ def run_recordings(paths: Sequence[str], options: Any = DEFAULTS, *, jobs: int =
 
 def _in_processes(paths: Sequence[str], options: Any, jobs: int,
                   step: Callable[[str, Any], Any], label: str) -> list[Any]:
+    # lazy: the process pool of --jobs only
     import multiprocessing
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from gyrovib.frozen import Frozen
+from gyrovib.presentation.reasons import unverified_text
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -82,7 +83,6 @@ class MissionRow(Frozen):
         """Why an unverified row is open (:func:`gyrovib.presentation.reasons.unverified_text`)."""
         if not self.unverified:
             return None
-        from gyrovib.presentation.reasons import unverified_text
 
         return unverified_text(self.unknown, spec=self.source == "specs")
 
@@ -130,6 +130,7 @@ class MissionResult(Frozen):
 
     def to_frame(self) -> pd.DataFrame:
         """One row per sensor × mission × axis (pandas): the columns of the CSV."""
+        # lazy: pandas is optional (pip install 'gyrovib[pandas]')
         import pandas as pd
 
         return pd.DataFrame([_record(r) for r in self.rows])

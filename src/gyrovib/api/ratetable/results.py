@@ -16,6 +16,7 @@ from gyrovib import units as rate_units
 from gyrovib.api.evaluation.results import Result, freeze
 from gyrovib.core.fit import SIGNIFICANT_T, RateFit
 from gyrovib.core.lot import LotStatistics
+from gyrovib.presentation.frames import _frame
 
 
 def coefficient_unit(name: str, rate_unit: str) -> str:
@@ -88,7 +89,6 @@ class FitResult(Result):
         coefficient_unit, residual_rms, nonlinearity.least_squares_max,
         nonlinearity.endpoint_max, nonlinearity.range, points); the lot in
         ``frame.attrs["lot"]`` (the JSON's mapping) when there is one."""
-        from gyrovib.presentation.frames import _frame
 
         columns = fit_columns(self)
         attrs: dict[str, Any] = {"method": self.method, "unit": self.unit,

@@ -481,6 +481,7 @@ class _Watched(io.BufferedReader):
 def open_ulog(path: str, topic: str | None = None) -> Columns:
     """A PX4 ULog's topic (pyulog), with a warning when the file is cut or corrupt."""
     try:
+        # lazy: pyulog is optional (gyrovib[ulog])
         from pyulog import ULog
     except ImportError:
         raise problem(path, "reading PX4 ULog needs pyulog: pip install 'gyrovib[ulog]'") \
