@@ -35,7 +35,6 @@ from gyrovib.catalog.loader import Catalog
 from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
 from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.linear import LinearVibration
-from gyrovib.core.numeric import MIN_SAMPLES, simulate
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.statistics import Vibration
 from gyrovib.core.transmissibility import FloatArray
@@ -64,6 +63,8 @@ def _check_options(method: str, samples: int, seed: int) -> None:
         raise OptionError(f"unknown method {method!r}; use one of {', '.join(ANALYZE_METHODS)}")
     if method != "numeric":
         return
+    # lazy: the brute force only with --method numeric
+    from gyrovib.core.numeric import MIN_SAMPLES
 
     if samples < MIN_SAMPLES:
         raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")
@@ -330,6 +331,8 @@ def _simulate(coefficients: FloatArray, vibration: Vibration, rate: FloatArray, 
     ``linear`` (g) with ``g2`` (deg/s per g²): the profile's linear vibration,
     whose g² term the brute force averages too (docs/model.md section 8).
     """
+    # lazy: the brute force only with --method numeric
+    from gyrovib.core.numeric import simulate
 
     before = tracker.done
     estimate = simulate(coefficients, vibration, rate, samples=samples, rng=rng,

@@ -23,7 +23,6 @@ from gyrovib.api.datasheet.specs import (
 )
 from gyrovib.api.study.prepare import Prepared
 from gyrovib.core.analysis import Multipliers
-from gyrovib.core.envelope import spec_bounds, spec_bounds_many
 from gyrovib.core.linear import mean_square
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
@@ -59,6 +58,8 @@ def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: floa
     the sensor's own range, fit, measure and ``of``, under its own response
     (every distinct datasheet definition of a group in one call).
     """
+    # lazy: the datasheet envelope (and HiGHS) only for datasheet sensors
+    from gyrovib.core.envelope import spec_bounds_many
 
     figs = spec.figures
     m_count, n_p = spec.index.size, len(prepared.profiles)
@@ -258,6 +259,8 @@ def datasheet_bounds(m: Multipliers | None, n_profiles: int, budget: float, rang
     ``budget`` and ``range_`` in deg/s; ``m`` the profiles' multipliers (the
     profile alone, ν_sensor = 1), None when there are no profiles.
     """
+    # lazy: the datasheet envelope (and HiGHS) only for datasheet sensors
+    from gyrovib.core.envelope import spec_bounds
 
     s = units.scale(unit)
     if m is None or n_profiles == 0:

@@ -46,8 +46,6 @@ from gyrovib.core.analysis import (
     profile_multipliers,
     stack_multipliers,
 )
-from gyrovib.core.envelope import residual, term_functionals, worst_case
-from gyrovib.core.envelope_lp import minimax_line
 from gyrovib.core.linear import mean_square
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
@@ -137,6 +135,8 @@ def mean_square_acceleration(m: Multipliers) -> FloatArray:
 
 def terms_of(m: Multipliers) -> FloatArray:
     """The eight term functionals (shape + (8, 5)) of :func:`core.envelope.term_functionals`."""
+    # lazy: the datasheet envelope (and HiGHS) only for datasheet sensors
+    from gyrovib.core.envelope import term_functionals
 
     zero = np.zeros(m.omega.shape)
     return term_functionals(m.asymmetry, m.m2, zero if m.m3 is None else m.m3, m.m4,
@@ -168,6 +168,8 @@ def worst(figs: SpecFigures, m: Multipliers, *, total: bool = True) -> SpecWorst
     ``total`` False: the per-term RMS bound only (``error.rms``); the rest is
     NaN, unknown (:func:`gyrovib.core.envelope.worst_case`).
     """
+    # lazy: the datasheet envelope (and HiGHS) only for datasheet sensors
+    from gyrovib.core.envelope import worst_case
 
     shape = m.omega.shape
     t = terms_of(m).reshape(-1, 8, 5)
@@ -497,6 +499,9 @@ def worst_residual(result: Any, i: int, j: int, r: int,
     (:func:`gyrovib.core.envelope.residual` with the line recomputed here, in
     the result's unit).
     """
+    # lazy: the datasheet envelope (and HiGHS) only for datasheet sensors
+    from gyrovib.core.envelope import residual
+    from gyrovib.core.envelope_lp import minimax_line
 
     x = np.asarray(result.worst_coefficients[i, j, r], dtype=float)
     big_r = float(result.nl_range[i])

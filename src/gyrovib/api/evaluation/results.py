@@ -28,7 +28,6 @@ from gyrovib.core.analysis import ALL_TERMS, VibrationError
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
-from gyrovib.presentation.frames import to_frame
 
 if TYPE_CHECKING:
     from gyrovib.api import LotYields
@@ -74,6 +73,8 @@ class Result(Frozen):
     def to_frame(self) -> Any:
         """Tidy pandas DataFrame, columns named as the JSON keys
         (:mod:`gyrovib.presentation.frames`)."""
+        # lazy: the DataFrame (pandas) only on request
+        from gyrovib.presentation.frames import to_frame
 
         return to_frame(self)
 
