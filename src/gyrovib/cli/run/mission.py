@@ -6,6 +6,7 @@ from __future__ import annotations
 import click
 
 from gyrovib import api, units
+from gyrovib.api.missions import MissionResult
 from gyrovib.api.noise import ranked
 from gyrovib.cli.common import load_catalog, page_width, plain_ascii, say, use_color
 from gyrovib.cli.options import (
@@ -41,6 +42,14 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
+    _show(result, fmt, output)
+    if not result.requirement_met:
+        ctx.exit(1)
+
+
+def _show(result: MissionResult, fmt: str, output: str | None) -> None:
+    """The result's notes on standard error, then the result in ``fmt`` (table, json, csv,
+    markdown or junit) to standard output or ``output``."""
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
     if fmt == "table":
@@ -50,8 +59,6 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
                 "junit": render.to_junit}[fmt](result)
     write_output(text, output)
-    if not result.requirement_met:
-        ctx.exit(1)
 
 
 def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tuple[str, ...],
@@ -80,15 +87,7 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage))
-    for note in result.notes:
-        say(f"gyrovib: warning: {note}")
-    if fmt == "table":
-        text = render.to_table(result, color=use_color(output), width=page_width(output),
-                               ascii=plain_ascii(output))
-    else:
-        text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
-                "junit": render.to_junit}[fmt](result)
-    write_output(text, output)
+    _show(result, fmt, output)
     return result.requirement_met
 
 
