@@ -177,3 +177,22 @@ def test_a_npy_read_from_the_file_fits_as_the_same_samples_in_memory(tmp_path: P
                 if "r.np" not in ln and "sha256" not in ln]
 
     assert text(a) == text(b)
+
+
+def test_a_recording_without_scipy_says_what_to_install(tmp_path: Path,
+                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    # scipy is an optional extra (gyrovib[recording]); the README's first command installs
+    # gyrovib without it, and `profile` must then say so at the file, exit 2, no traceback
+    import importlib.util
+
+    from gyrovib.api.commands import recording
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(recording.importlib.util, "find_spec",
+                        lambda name, *a: None if name == "scipy" else real(name, *a))
+    path = tmp_path / "rec.npy"
+    np.save(path, np.random.default_rng(0).normal(size=(4000, 3)))
+    result = invoke("profile", path, "--fs", "250")
+    assert result.exit_code == 2
+    assert "needs scipy" in result.stderr and "gyrovib[recording]" in result.stderr
+    assert result.stderr.startswith(str(path))

@@ -11,6 +11,7 @@ carrier histogram (the fitted mission), and their ratio.
 from __future__ import annotations
 
 import dataclasses
+import importlib.util
 import math
 import os
 from collections.abc import Sequence
@@ -123,6 +124,15 @@ def _linear_variance(segments: list[FloatArray], n_total: int,
     return np.where(np.array(axes), var_a, np.nan)
 
 
+def _need_scipy(recording: Recording) -> None:
+    """The split and the Welch spectra are scipy's, an optional dependency: without it,
+    the user is told what to install (not a traceback)."""
+    if importlib.util.find_spec("scipy") is None:
+        raise RecordingError(Problem(
+            "fitting a recording needs scipy (the zero-phase split and the Welch spectra): "
+            "pip install 'gyrovib[recording]'", recording.file))
+
+
 def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                   resolution: float = DEFAULT_RESOLUTION,
                   tone_threshold: float = DEFAULT_THRESHOLD,
@@ -137,6 +147,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     """
 
     _check(crossover, resolution, tone_threshold, breakpoints)
+    _need_scipy(recording)
     fs = recording.fs
     kept, warnings = _kept(recording, crossover)
     n_total = sum(hi - lo for lo, hi in kept)
