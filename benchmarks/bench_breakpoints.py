@@ -7,7 +7,7 @@ Run on demand (it is not part of the test suite)::
 One axis of `gyrovib profile` fits its random PSD once
 (:func:`gyrovib.core.breakpoints.fit_breakpoints`: candidates, pair costs,
 the dynamic programme, the variance-constrained levels). The spectra are
-issue 30's plateau 2–150 Hz with a resonance at 80 Hz and an anti-alias
+a plateau 2–150 Hz with a resonance at 80 Hz and an anti-alias
 roll-off, scattered as a 60-window Welch estimate, over f_c = 5 Hz … fs/2 at
 Δf = 0.5 Hz: 240 bins at fs = 250 Hz, 990 at 1 kHz and 7990 at 8 kHz. Each
 line reports the median and the largest of ``--repeat`` timings, with the

@@ -12,7 +12,7 @@ older gyrovib: ``DIR/src`` and ``DIR/catalogs``) each command is also run on
 that code, in the same run, under a ``--limit-mb`` address-space limit and a
 ``--timeout``, so that a run out of memory or time is reported, not waited for.
 
-Targets (issue 14):
+Targets:
 
 * **mixtures**: ``gyrovib analyze`` of 8 sensors (8 distinct frequency
   responses, so the profile statistics are computed 8 times) on a profile of

@@ -6,7 +6,7 @@ Run on demand (it is not part of the test suite)::
     python benchmarks/bench_fit_large.py --rows 200000    # a quicker look
     python benchmarks/bench_fit_large.py --units 8 --rows 1500000   # 8 units (16 MiB)
 
-The table of issue 33: 2 M rows of ``rate,output`` (about 15.5 MB, under the
+The table: 2 M rows of ``rate,output`` (about 15.5 MB, under the
 16 MiB a rate table may have), the rates drawn from nine levels in ±4 deg/s,
 the output eq. (1) with stated coefficients plus noise, two decimals. It is
 written once into a temporary directory; ``gyrovib fit TABLE`` then runs

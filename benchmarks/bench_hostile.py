@@ -1,4 +1,4 @@
-"""Hostile-input cost benchmark (issue 26): each case within 10 s and 400 MB, or refused.
+"""Hostile-input cost benchmark: each case within 10 s and 400 MB, or refused.
 
 Run on demand (it is not part of the test suite)::
 

@@ -5,7 +5,7 @@ Run on demand (it is not part of the test suite)::
     python benchmarks/bench_recording.py                 # 10 min, 8 kHz, 6 channels
     python benchmarks/bench_recording.py --minutes 1     # a quicker look
 
-The recording of issue 24: 10 minutes at 8 kHz of rate and acceleration on
+The recording: 10 minutes at 8 kHz of rate and acceleration on
 three axes each, 28.8 M samples (a 230 MB float64 array), written once as a
 .npy (and ``--csv-minutes`` of it as a CSV with a time column). Each
 measurement runs in a fresh subprocess and reports its wall-clock time and

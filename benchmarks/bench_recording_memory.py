@@ -3,7 +3,7 @@
 Run on demand (not part of the test suite), one size at a time on a quiet machine::
 
     python benchmarks/bench_recording_memory.py                  # 4.8 M rows × 6 (230 MB)
-    python benchmarks/bench_recording_memory.py --rows 28800000  # issue 33: 1.38 GB
+    python benchmarks/bench_recording_memory.py --rows 28800000  # 1.38 GB
     python benchmarks/bench_recording_memory.py --csv-rows 2000000  # a CSV as well
     python benchmarks/bench_recording_memory.py --rows 0 --ulog-rows 2000000  # a ULog
 

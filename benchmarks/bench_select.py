@@ -13,7 +13,7 @@ measurements, each in a fresh subprocess with its peak resident memory
 (``ru_maxrss``):
 
 * ``gyrovib select CAT --budget 0.01 --format json -o /dev/null`` end to end
-  (target of issue 14: under 1.5 GB peak);
+  (target: under 1.5 GB peak);
 * the same in phases, in one child: import, load (YAML + validation),
   ``api.select``, ``render.select.to_json``, writing, each with its time, the
   resident memory after it and the peak so far, to show where memory goes;

@@ -21,7 +21,7 @@ from gyrovib.core.breakpoints import (
 )
 from gyrovib.core.transmissibility import loglog_interp, psd_variance
 
-#: The acceptance figures of issue 30: within 2 dB power-weighted, at most 20 % of the
+#: The acceptance figures of a breakpoint fit: within 2 dB power-weighted, at most 20 % of the
 #: power off by more than 3 dB.
 SHAPE_DB, OFF_3DB = 2.0, 0.2
 
@@ -76,7 +76,7 @@ def _welch_like(rng: np.random.Generator, true: np.ndarray, windows: int = 60) -
 
 
 def _plateau_resonance(f: np.ndarray, fs: float) -> np.ndarray:
-    """Issue 30's synthetic spectrum: a plateau 2–150 Hz, a resonance at 80 Hz that holds
+    """The synthetic reference spectrum: a plateau 2–150 Hz, a resonance at 80 Hz that holds
     most of the power, and an anti-alias roll-off from 0.42·fs."""
     plateau = 0.01 / (1 + (2 / f) ** 8) / (1 + (f / 150) ** 8)
     resonance = 0.3 / (1 + ((f - 80) / 2) ** 2)
@@ -85,7 +85,7 @@ def _plateau_resonance(f: np.ndarray, fs: float) -> np.ndarray:
 
 @pytest.mark.parametrize("fs", [1000.0, 250.0])
 def test_plateau_resonance_and_roll_off(fs: float) -> None:
-    """The shape holds (issue 30's figures), the resonance is a peak of the random PSD with
+    """The shape holds (SHAPE_DB, OFF_3DB), the resonance is a peak of the random PSD with
     knots on both sides, the roll-off (≈ 1e-6 of the power) takes no knot but the band's
     end, and the variance is held exactly (Σ S·Δf of the bins)."""
     rng = np.random.default_rng(int(fs))
@@ -111,7 +111,7 @@ def test_random_shapes_hold(seed: int) -> None:
     """Spectra drawn at random from a seeded generator: a log-log outline of 2–8 levels over
     60 dB, 0–3 resonances (Q 3–100, up to 30 dB), an anti-alias roll-off of order 4–32,
     sampled at 200–2000 Hz and scattered as a 60-window Welch estimate: 12 breakpoints
-    hold the shape within issue 30's figures and the variance exactly."""
+    hold the shape within SHAPE_DB and OFF_3DB and the variance exactly."""
     rng = np.random.default_rng(seed)
     fs = float(rng.choice([200.0, 250.0, 500.0, 1000.0, 2000.0]))
     f = np.arange(2.0, fs / 2, 0.5)

@@ -1,6 +1,6 @@
 """Hostile catalogues at the library level: nesting refused alike by libyaml and
 PyYAML's pure-Python parser, and duplicate ids located in linear time, capped,
-and reported next to other errors (issues 14 and 15)."""
+and reported next to other errors."""
 
 from __future__ import annotations
 

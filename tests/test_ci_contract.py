@@ -48,7 +48,7 @@ def _requirement(lines: list[str], name: str) -> str:
 
 def test_published_highspy_range_is_the_checked_one() -> None:
     # core/highs.py uses highspy's private base class _Highs: a user's install must not
-    # resolve to a highspy release the suite has not run against (issue 20)
+    # resolve to a highspy release the suite has not run against
     import tomllib
 
     meta = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))

@@ -14,7 +14,7 @@ def test_last_place_is_one_unit_of_the_last_printed_digit() -> None:
 
 
 def test_numbers_match_up_to_their_rounding() -> None:
-    # the fit's k2 printed on two machines (issue 32): 12 significant digits, BLAS rounding
+    # the fit's k2 as printed on two machines: 12 significant digits, BLAS rounding
     assert same_token("3.2541818864e-08", "3.25418188644e-08")
     # one unit of the shown last digit either way is rounding
     assert same_token("0.9806", "0.9805") and same_token("0.9806", "0.9807")

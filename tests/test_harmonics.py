@@ -116,7 +116,7 @@ def brute_abs_excess(omega: float, x3: np.ndarray) -> float:
 @pytest.mark.parametrize("orders", [(1,), (1, 2), (1, 2, 3), (1, 2, 3, 4), (2, 3)])
 @pytest.mark.parametrize("where", [0.0, 0.3, -0.6, 0.95, -1.05, 2.5])
 def test_group_alone_e_matches_brute_force(orders: tuple[int, ...], where: float) -> None:
-    """E(Ω) through the zero crossings vs a 2²¹-point period average (1e-7; Done-when of 13).
+    """E(Ω) through the zero crossings vs a 2²¹-point period average (1e-7).
 
     ``where`` is Ω as a fraction of the group's peak (inside < 1 < outside).
     """
@@ -149,7 +149,7 @@ def folded_excess(omega: float, s: np.ndarray, sigma: float) -> float:
 
 @pytest.mark.parametrize("where", [0.0, 0.4, -0.8, 1.2, -1.6])
 def test_e_with_a_random_part_and_a_tone_matches_brute_force(where: float) -> None:
-    """Group + independent tone + Gaussian: E to 1e-9 relative (Done-when of issue 13).
+    """Group + independent tone + Gaussian: E to 1e-9 relative.
 
     Brute force: the folded-normal mean averaged over a 1024 × 1024 grid of the group's
     and the tone's phases (analytic integrand: the midpoint rule converges geometrically).

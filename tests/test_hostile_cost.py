@@ -1,4 +1,4 @@
-"""Cost bounded by the input's size (issue 26): what the format allows either
+"""Cost bounded by the input's size: what the format allows either
 runs quickly or is refused before any computation, at the offending key.
 
 The timed sizes (and the before/after figures) are in benchmarks/bench_hostile.py;

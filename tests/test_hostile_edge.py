@@ -1,4 +1,4 @@
-"""Hostile input at the command line's edge (issue 26): every command validates
+"""Hostile input at the command line's edge: every command validates
 every file whole, output names and signals, standard error that cannot be
 written, ``GYROVIB_DEBUG``; and the notebook API's checks of its arguments."""
 

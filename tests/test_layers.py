@@ -261,14 +261,14 @@ def test_each_room_of_the_api_has_one_face() -> None:
             assert getattr(module, name) is not None, (room.name, name)
 
 
-#: The house rules for every module of the package (issue 32): no function over this
+#: The house rules for every module of the package: no function over this
 #: cyclomatic complexity (radon counts the same decisions), no module over so many lines.
 MAX_COMPLEXITY = 15
 MAX_LINES = 600
 
 
 def test_no_function_in_the_package_is_over_complexity_15() -> None:
-    # radon's own count (the measure issue 32 names), methods and closures included
+    # radon's own count (the measure the house rule names), methods and closures included
     from radon.complexity import cc_visit
     from radon.visitors import Class
 

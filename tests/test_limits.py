@@ -1,5 +1,5 @@
-"""Physical limits of the catalogue format (issue 26, "validate accepts files that
-analyze refuses"): what ``gyrovib validate`` accepts every command computes
+"""Physical limits of the catalogue format (nothing that validate accepts
+may analyze refuse): what ``gyrovib validate`` accepts every command computes
 without overflow, and what it refuses every command refuses at the same
 FILE:LINE:COL, exit 2.
 

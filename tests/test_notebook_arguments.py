@@ -1,4 +1,4 @@
-"""The notebook API checks its arguments at its face (issue 26): a wrong type is an
+"""The notebook API checks its arguments at its face: a wrong type is an
 ArgumentTypeError (a TypeError), a wrong value an ArgumentError (a ValueError), both
 under gyrovib's one error root and naming the argument, raised before any work; and
 the command line's caps (samples, sweep points, rates) hold there too.

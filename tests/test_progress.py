@@ -1,4 +1,4 @@
-"""Progress of long work (issue 26): one mechanism, reported by the library, drawn on a
+"""Progress of long work: one mechanism, reported by the library, drawn on a
 terminal only (gyrovib/progress.py, cli/progress.py)."""
 
 from __future__ import annotations

@@ -278,7 +278,7 @@ def test_ulog_end_to_end(tmp_path: Path) -> None:
     doc = json.loads(r.stdout)
     assert doc["recording"]["samples"] == 2373
     assert doc["recording"]["fs"] == pytest.approx(250.0, rel=1e-6)
-    for axis in doc["recording"]["axes"].values():  # issue 30's figures on a real log
+    for axis in doc["recording"]["axes"].values():  # the breakpoint fit's figures on a real log
         assert axis["shape_db"] <= 2.0 and axis["off_3db"] <= 0.2, axis
     r = invoke("profile", ULOG, "--topic", "no_such_topic")
     assert r.exit_code == 2 and "no topic 'no_such_topic'" in r.stderr
@@ -566,7 +566,7 @@ def test_rounded_coherences_stay_a_correlation_matrix() -> None:
 
 
 def _shaped_noise(rng: np.random.Generator, fs: float, seconds: float) -> np.ndarray:
-    """Three axes of white noise shaped in the frequency domain to issue 30's spectrum:
+    """Three axes of white noise shaped in the frequency domain to the reference spectrum:
     a plateau 2–150 Hz, a resonance at 80 Hz holding most of the power, an anti-alias
     roll-off from 0.42·fs (tests/test_breakpoints.py has the same outline)."""
     from tests.test_breakpoints import _plateau_resonance
@@ -580,7 +580,7 @@ def _shaped_noise(rng: np.random.Generator, fs: float, seconds: float) -> np.nda
 
 def test_the_fitted_shape_is_reported_and_warned(tmp_path: Path,
                                                  monkeypatch: pytest.MonkeyPatch) -> None:
-    """End to end on a synthetic recording: every axis within issue 30's figures (≤ 2 dB,
+    """End to end on a synthetic recording: every axis within the breakpoint fit's figures (≤ 2 dB,
     ≤ 20 % of the power off by 3 dB), the resonance left in the random PSD (no tone),
     the figures in the YAML's comments, the plot's titles and the honesty table; with
     only 2 breakpoints

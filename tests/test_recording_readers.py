@@ -21,7 +21,7 @@ def test_ulog_recorded_error_is_float64_from_the_raw_samples(tmp_path: Path) -> 
     evaluated here in float64 from pyulog's own float32 arrays: promoted first, then
     rad/s → deg/s and m/s² → g, split at gaps of 1.5 median intervals, segments shorter
     than 4/f_c dropped, scipy's butter/sosfiltfilt. Converting in float32 instead is
-    2e-6 away (issue 30), far outside 1e-9."""
+    2e-6 away, far outside 1e-9."""
     pyulog = pytest.importorskip("pyulog", reason="the ULog path needs gyrovib[ulog]")
     from gyrovib.api import load
     from gyrovib.api.commands.recording import analyze_recording
@@ -34,7 +34,7 @@ def test_ulog_recorded_error_is_float64_from_the_raw_samples(tmp_path: Path) -> 
 
     log = pyulog.ULog(str(ULOG), ["sensor_combined"])
     data = next(d for d in log.data_list if d.name == "sensor_combined").data
-    assert data["gyro_rad[0]"].dtype == np.float32  # the case of the issue
+    assert data["gyro_rad[0]"].dtype == np.float32  # a float32 log, as PX4 writes it
     w = np.column_stack([data[f"gyro_rad[{j}]"].astype(np.float64) for j in range(3)])
     w *= 180.0 / np.pi
     g = np.column_stack([data[f"accelerometer_m_s2[{j}]"].astype(np.float64)
@@ -74,7 +74,7 @@ def test_npy_of_any_dtype_is_promoted_before_scaling(tmp_path: Path, dtype: str)
 
     rng = np.random.default_rng(3)
     raw = (rng.normal(0, 300, (500, 4))).astype(dtype)
-    scale = np.pi / 180.0  # rad/s → deg/s is 1/scale: the float32 trap of issue 30
+    scale = np.pi / 180.0  # rad/s → deg/s is 1/scale: converting in float32 would lose digits
     for name, arr in (("c.npy", raw), ("f.npy", np.asfortranarray(raw))):
         np.save(tmp_path / name, arr)
         rec = read_recording(str(tmp_path / name), fs=100.0, rate_columns=(2, None, 0),
@@ -112,7 +112,7 @@ def _cut(tmp_path: Path, size: int, name: str = "cut.ulg") -> Path:
 @pytest.mark.parametrize("share", [None, 0.5, 0.9])
 def test_a_cut_ulog_is_said_and_refused_under_strict(tmp_path: Path,
                                                      share: float | None) -> None:
-    """issue 33: `head -c 405336`, and cuts at 50 % and 90 % of the file, each end inside
+    """A log cut short as `head -c 405336` cuts it, and cuts at 50 % and 90 % of the file, each end inside
     a message: a warning names the file, its bytes and the seconds read; --strict makes it
     exit status 2 on profile and analyze --recording."""
     pytest.importorskip("pyulog", reason="the ULog path needs gyrovib[ulog]")

@@ -163,7 +163,7 @@ def test_validate_and_schema_agree(path, schema_validator):
 
 
 @pytest.mark.parametrize(("edit", "valid"), [
-    # issue 15: a null conversion function is "not given" for both
+    # a null conversion function is "not given" for both
     ({"coefficients": None}, True),
     ({"output_coefficients": None}, False),
     ({"coefficients": None, "output_coefficients": None}, False),

@@ -1,6 +1,6 @@
-"""The report describes and plots every profile, and prints each warning once (issue 22:
-rotor-harmonics was "no vibration" without a chart, linear spectra were never plotted,
-44 identical warnings)."""
+"""The report describes and plots every profile, and prints each warning once: a
+locked-harmonic profile is charted (not called "no vibration"), linear spectra are plotted, and
+a warning shared by many sensors is not repeated for each."""
 
 from __future__ import annotations
 

@@ -187,7 +187,7 @@ def test_the_bundled_lot_against_core_lot() -> None:
 
 
 def test_fit_then_select_on_the_bundled_data(tmp_path: Path) -> None:
-    """Done when (issue 25): `gyrovib fit` on the bundled data writes a catalogue that
+    """The whole chain: `gyrovib fit` on the bundled data writes a catalogue that
     `validate` accepts and `select --yield 0.99 --criterion worst` uses."""
     fitted = tmp_path / "gx100.gyrovib.yaml"
     result = invoke("fit", EXAMPLE, "--output-unit", "mV", "-o", fitted)

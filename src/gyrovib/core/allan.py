@@ -48,7 +48,7 @@ IntArray = NDArray[np.int64]
 BLOCK = 1 << 13
 #: √(2 ln 2/π): the flat floor of the Allan deviation of flicker noise per unit B.
 FLICKER_FLOOR = math.sqrt(2.0 * math.log(2.0) / math.pi)
-#: B = σ_min / 0.664 (the rounded constant the issue and the datasheets use).
+#: B = σ_min / 0.664 (the rounded constant the datasheets use).
 B_FACTOR = 0.664
 #: Points of the τ grid per decade (fewer where there are not as many cluster sizes).
 PER_DECADE = 10
