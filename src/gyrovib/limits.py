@@ -1,4 +1,4 @@
-"""Caps shared by the command line and the library, each defined once.
+"""Caps and defaults shared by the command line and the library, each defined once.
 
 Plain constants, no imports: ``gyrovib.cli.options`` reads them while
 ``gyrovib --help`` is drawn, and the library and the notebook API enforce the
@@ -12,3 +12,11 @@ from __future__ import annotations
 #: takes per sensor × profile: 10^8 evaluations of eq. (2) take minutes; more is a
 #: typo, not a study.
 MAX_SAMPLES = 100_000_000
+#: The fewest samples ``analyze --method numeric`` takes: two for each of the 16
+#: shifted copies of the phase grid whose spread gives the standard error
+#: (:mod:`gyrovib.core.numeric`).
+MIN_SAMPLES = 32
+
+#: κ of docs/model.md section 9, the peak factor of a random vibration's saturation
+#: check (``--peak-factor``, ``peak_factor=``).
+DEFAULT_PEAK_FACTOR = 3.0

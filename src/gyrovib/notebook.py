@@ -39,7 +39,7 @@ from gyrovib.core.envelope import OF
 from gyrovib.core.envelope_basis import FITS, MEASURES
 from gyrovib.core.placement import parse
 from gyrovib.errors import ArgumentError, ArgumentTypeError, OptionError
-from gyrovib.limits import MAX_SAMPLES
+from gyrovib.limits import DEFAULT_PEAK_FACTOR, MAX_SAMPLES, MIN_SAMPLES
 from gyrovib.models import Catalogue
 
 if TYPE_CHECKING:
@@ -52,9 +52,6 @@ METHODS = ("exact", "paper")
 
 CatalogLike = Any  # None | str | Path | Sequence[str | Path] | Catalog | models.Catalogue(s)
 
-#: The fewest samples of ``method='numeric'`` (core.numeric.MIN_SAMPLES; the
-#: library refuses fewer too).
-_MIN_SAMPLES = 32
 
 
 # ----------------------------------------------------------------- argument checks
@@ -286,7 +283,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
             profiles: str | Sequence[str] = (), method: str = "exact",
             rate: float | str | Sequence[float | str] | None = None, unit: str = "deg/s",
             samples: int | None = None, seed: int = 0,
-            peak_factor: float = 3.0) -> AnalysisResult:
+            peak_factor: float = DEFAULT_PEAK_FACTOR) -> AnalysisResult:
     """The vibration error of every sensor under every profile, eq. (13)-(16).
 
     Parameters
@@ -324,7 +321,7 @@ def analyze(catalog: CatalogLike = None, *, sensors: str | Sequence[str] = (),
                              "peak_factor": _number("peak_factor", peak_factor,
                                                     nonnegative=True)}
     if samples is not None:
-        extra["samples"] = _integer("samples", samples, _MIN_SAMPLES, MAX_SAMPLES)
+        extra["samples"] = _integer("samples", samples, MIN_SAMPLES, MAX_SAMPLES)
     arguments: dict[str, Any] = {
         "sensors": _ids("sensors", sensors), "profiles": _ids("profiles", profiles),
         "method": _text("method", method, api.ANALYZE_METHODS),
@@ -387,7 +384,7 @@ def select(catalog: CatalogLike = None, *, budget: float | str,
            unit: str | None = None, criterion: str = "bounds", require: str = "any",
            allocation: Sequence[float] | None = None,
            spec_weights: tuple[float, float] = (1.0, 1.0),
-           peak_factor: float = 3.0, assume_unknown: str = "none",
+           peak_factor: float = DEFAULT_PEAK_FACTOR, assume_unknown: str = "none",
            yield_target: float | None = None, seed: int = 0,
            draws: int = 100_000) -> SelectionResult:
     """Which sensors meet the budget: bound checks and eq. (17), ranked by margin.
@@ -500,7 +497,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
             sensors: str | Sequence[str] = (), budget: float | str | None = None,
             angle_budget: str | None = None, unit: str | None = None,
             require: str = "any", placement: str | None = None,
-            peak_factor: float = 3.0, assume_unknown: str = "none",
+            peak_factor: float = DEFAULT_PEAK_FACTOR, assume_unknown: str = "none",
             coverage: float = 1.0) -> Any:
     """Every sensor over every mission (docs/model.md section 12): mean error, angle θ_V,
     mean RMS, worst segment, and the whole angle budget (section 15).

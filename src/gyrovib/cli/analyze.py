@@ -19,6 +19,7 @@ from gyrovib.cli.options import (
     unit_option,
 )
 from gyrovib.cli.recording import jobs_option, recording_options
+from gyrovib.limits import MIN_SAMPLES
 
 
 @click.command()
@@ -28,9 +29,10 @@ from gyrovib.cli.recording import jobs_option, recording_options
               show_default=True,
               help="exact: exact moments; paper: the paper's printed formulas; "
                    "numeric: brute-force average of eq. (2) (total ± stderr).")
-@click.option("--samples", type=click.IntRange(min=32, max=SAMPLES_MAX), default=200_000,
+@click.option("--samples", type=click.IntRange(min=MIN_SAMPLES, max=SAMPLES_MAX), default=200_000,
               show_default=True, metavar="N",
-              help=f"numeric: evaluations of eq. (2) per sensor × profile, 32 to {SAMPLES_MAX:,}.")
+              help=f"numeric: evaluations of eq. (2) per sensor × profile, "
+                   f"{MIN_SAMPLES} to {SAMPLES_MAX:,}.")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               metavar="S", help="numeric: random seed; the same seed gives the same numbers.")
 @rate_option

@@ -10,7 +10,7 @@ import click
 
 from gyrovib import units
 from gyrovib.errors import OptionError
-from gyrovib.limits import MAX_SAMPLES
+from gyrovib.limits import DEFAULT_PEAK_FACTOR, MAX_SAMPLES
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -77,7 +77,7 @@ def resolve_unit(unit: str | None, budget: str) -> str:
 
 def peak_factor_option(f: F) -> F:
     return click.option(
-        "--peak-factor", "peak_factor", type=click.FloatRange(min=0.0), default=3.0,
+        "--peak-factor", "peak_factor", type=click.FloatRange(min=0.0), default=DEFAULT_PEAK_FACTOR,
         show_default=True, metavar="K",
         help="κ of the saturation check (docs/model.md section 9): a sensor saturates when "
              "|Ω_K3| + Σ tone amplitudes + locked-harmonic peaks + κ·σ3, at its nonlinear "

@@ -38,7 +38,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-FloatArray = NDArray[np.float64]
+from gyrovib.core._types import FloatArray
+
 IntArray = NDArray[np.int64]
 
 #: k values summed at once: the working memory is a few blocks of this many floats

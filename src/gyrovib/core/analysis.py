@@ -42,6 +42,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from gyrovib.coefficients import ADDITIVE_TERMS as ADDITIVE_TERMS
+from gyrovib.coefficients import ALL_TERMS as ALL_TERMS
+from gyrovib.coefficients import BOUNDED as BOUNDED
+from gyrovib.coefficients import COEFFICIENTS as COEFFICIENTS
+from gyrovib.coefficients import EXTRA_TERMS as EXTRA_TERMS
+from gyrovib.core._types import FloatArray
 from gyrovib.core.harmonic_mixtures import (
     MAX_MIXTURE_NODES,
     MAX_SHIFT_TABLE,
@@ -62,22 +68,10 @@ from gyrovib.core.statistics import (
     Vibration,
     rectified_excess,
 )
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 
-#: Column order of a coefficient matrix (eq. 2).
-COEFFICIENTS: tuple[str, ...] = ("k0", "k1", "A1", "k2", "k3", "k4", "k5", "m1", "m2", "m31", "m32")
 COLUMN: dict[str, int] = {name: i for i, name in enumerate(COEFFICIENTS)}
-#: The coefficients that receive a bound (:mod:`gyrovib.core.synthesis`), in report order.
-BOUNDED: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
-#: Names of the additive terms Δ0(1..5): the coefficient each is proportional to.
-ADDITIVE_TERMS: tuple[str, ...] = ("A1", "k2", "k4", "m31", "m32")
-#: Names of the additive terms of docs/model.md sections 8 and 10: Δ0(6) = ΣG_jk·⟨a_j a_k⟩
-#: (``g2``), k3·M3 (``k3``) and k5·M5 (``k5``), in ``VibrationError.extra_terms``.
-EXTRA_TERMS: tuple[str, ...] = ("g2", "k3", "k5")
-#: Every additive term, in the order results show them: ADDITIVE_TERMS, then EXTRA_TERMS.
-ALL_TERMS: tuple[str, ...] = (*ADDITIVE_TERMS, *EXTRA_TERMS)
 #: Names of the multiplicative coefficients Δ(1..3).
 MULTIPLICATIVE_TERMS: tuple[str, ...] = ("q1", "q2", "q3")
 

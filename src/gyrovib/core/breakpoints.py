@@ -46,7 +46,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.core.transmissibility import FloatArray, loglog_interp
+from gyrovib.core._types import FloatArray
+from gyrovib.core.transmissibility import loglog_interp
 from gyrovib.errors import ModelError
 
 #: At most this many candidate knots, log-spaced between the band's ends.

@@ -28,13 +28,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.coefficients import POLYNOMIAL
+from gyrovib.core._types import FloatArray
 from gyrovib.core.envelope_lp import FITS, MEASURES, support, without_idle_cuts
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 
 #: The coefficients of the envelope, in the order of x.
-COEFFICIENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5")
+COEFFICIENTS = POLYNOMIAL
 #: The eight terms of Δ_V: Δ0(1) A1, Δ0 of k2…k5, Δ(1)·Ω, Δ(2)·Ω², Δ(3)·Ω³.
 TERMS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5", "q1", "q2", "q3")
 #: What the nonlinearity value is relative to: % of R, % of 2R, or a rate.

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 
 FITS: tuple[str, ...] = ("least-squares", "minimax", "endpoint")
 MEASURES: tuple[str, ...] = ("max", "rms")

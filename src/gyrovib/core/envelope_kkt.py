@@ -29,8 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gyrovib.core._types import FloatArray
 from gyrovib.core.envelope_basis import MINIMAX, SLOPE, basis, true_max
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 #: Newton iterations before a pair is left to the grid exchange.

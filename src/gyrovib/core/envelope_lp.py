@@ -16,6 +16,7 @@ import itertools
 import numpy as np
 
 from gyrovib.core import envelope_kkt, highs
+from gyrovib.core._types import FloatArray
 from gyrovib.core.envelope_basis import (
     FITS,
     MEASURES,
@@ -27,7 +28,6 @@ from gyrovib.core.envelope_basis import (
     residual_normalised,
     true_max,
 )
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.progress import advance
 
 __all__ = ["FITS", "MEASURES", "basis", "gram", "minimax_line", "residual_normalised", "support",

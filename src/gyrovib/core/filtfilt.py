@@ -13,10 +13,7 @@ scipy is imported inside the function (a lazy boundary of the package).
 
 from __future__ import annotations
 
-import numpy as np
-from numpy.typing import NDArray
-
-FloatArray = NDArray[np.float64]
+from gyrovib.core._types import FloatArray
 
 #: Samples filtered per call of sosfilt.
 BLOCK = 1 << 18

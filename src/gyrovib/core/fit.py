@@ -51,7 +51,7 @@ import numpy as np
 from numpy.polynomial import polynomial as P
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 

@@ -11,6 +11,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.core._types import FloatArray
 from gyrovib.core.harmonics import (
     ComplexArray,
     LockedGroup,
@@ -22,7 +23,6 @@ from gyrovib.core.harmonics import (
     stationary_points,
 )
 from gyrovib.core.statistics import rectified_excess, stretched_rule
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.progress import advance
 

@@ -28,8 +28,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.core._types import FloatArray
 from gyrovib.core.statistics import rectified_excess
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 from gyrovib.frozen import Frozen
 
 #: Tolerances of the envelope's grid LPs (HiGHS defaults are 1e-7).

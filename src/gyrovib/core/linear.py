@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 from gyrovib.frozen import Frozen
 
 #: Order of the g²-sensitivities G_jk and of the second moments ⟨a_j·a_k⟩.

@@ -32,9 +32,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, Multipliers, vibration_error
 from gyrovib.core.special import erfc
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 

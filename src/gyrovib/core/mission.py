@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-FloatArray = NDArray[np.float64]
+from gyrovib.core._types import FloatArray
 
 #: An angle accumulated from each rate unit over seconds, and its factor:
 #: θ[angle unit] = factor · Σ T_s[s] · Δ_s[rate unit].

@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 from gyrovib.errors import ModelError
 from gyrovib.progress import advance
 

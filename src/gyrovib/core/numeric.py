@@ -75,12 +75,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import COEFFICIENTS, COLUMN, Multipliers
 from gyrovib.core.harmonics import LockedGroup, group_signal, locked_peak
 from gyrovib.core.linear import PAIRS, LinearVibration
 from gyrovib.core.statistics import Vibration
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
+from gyrovib.limits import MIN_SAMPLES
 
 #: Evaluation points per block of the sample stream (fixed: results must not
 #: depend on how many sensors share the samples).
@@ -89,10 +90,9 @@ BLOCK = 1 << 15
 MAX_ELEMENTS = 1 << 20
 #: Fewest nodes per tone of a product grid: > 5 makes it exact for eq. (2)'s polynomial.
 MIN_GRID_NODES = 6
-#: Independently shifted copies of the phase grid (their spread gives the stderr).
-REPLICATES = 16
-#: Fewest evaluation points accepted.
-MIN_SAMPLES = 2 * REPLICATES
+#: Independently shifted copies of the phase grid (their spread gives the stderr):
+#: two points each at the fewest samples accepted (:data:`gyrovib.limits.MIN_SAMPLES`).
+REPLICATES = MIN_SAMPLES // 2
 
 Progress = Callable[[int], None]
 

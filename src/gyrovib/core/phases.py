@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import (
     Multipliers,
     VibrationError,
@@ -39,7 +40,6 @@ from gyrovib.core.analysis import (
 )
 from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.statistics import Vibration
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
 

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-FloatArray = NDArray[np.float64]
+from gyrovib.core._types import FloatArray
 
 #: Vehicle axis names, in index order.
 AXES = ("X", "Y", "Z")

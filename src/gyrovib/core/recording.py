@@ -17,8 +17,10 @@ import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.coefficients import BOUNDED
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.filtfilt import sosfiltfilt_into
-from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp
+from gyrovib.core.transmissibility import loglog_interp
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 
@@ -35,7 +37,7 @@ MISSION_BINS = 16
 #: The six products a_j·a_k of the g² term, in the order of core.linear.G2_TERMS.
 G2_PAIRS: tuple[tuple[int, int], ...] = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
 #: Columns of :func:`recorded_moments`: ½⟨|ω3|−|Ω3|⟩, ⟨ω3ⁿ−Ω3ⁿ⟩ (n = 2…5), C31, C32.
-MOMENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
+MOMENTS = BOUNDED
 _CHUNK = 1 << 20
 
 

@@ -16,15 +16,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from gyrovib.core._types import BoolArray, FloatArray
 from gyrovib.core.harmonics import LockedGroup, locked_peak
-from gyrovib.core.transmissibility import FloatArray
-
-BoolArray = NDArray[np.bool_]
-
-#: κ of docs/model.md section 9 (the CLI's peak factor), default 3.
-DEFAULT_PEAK_FACTOR = 3.0
+from gyrovib.limits import DEFAULT_PEAK_FACTOR as DEFAULT_PEAK_FACTOR
 
 
 def group_peak(group: LockedGroup) -> float:

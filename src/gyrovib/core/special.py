@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 
 _THRESH = 0.46875
 #: Past this, erfc(x) < 4.9e-324, the smallest subnormal: 0.

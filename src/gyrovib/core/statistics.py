@@ -23,9 +23,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.mixtures import _contour_excess
 from gyrovib.core.special import erfc
-from gyrovib.core.transmissibility import FloatArray, Table, loglog_interp, psd_variance
+from gyrovib.core.transmissibility import loglog_interp, psd_variance
 from gyrovib.errors import ModelError
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance

@@ -54,9 +54,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import BOUNDED as BOUNDED  # defined there: analyze needs no synthesis
 from gyrovib.core.analysis import Multipliers
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 #: The two candidates behind the k4 and k5 bounds.

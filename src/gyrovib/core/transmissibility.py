@@ -11,10 +11,9 @@ end is zero inside. Past the ends a transmissibility is held constant
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-FloatArray = NDArray[np.float64]
-Table = tuple[FloatArray, FloatArray]
+from gyrovib.core._types import FloatArray, Table
 
 
 def as_table(table: ArrayLike) -> Table:

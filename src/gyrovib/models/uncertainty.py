@@ -17,10 +17,9 @@ from typing import Annotated, Any
 import numpy as np
 from pydantic import Field, Strict, model_validator
 
+from gyrovib.coefficients import UNCERTAIN as UNCERTAIN
 from gyrovib.models._types import AsInteger, Model, Number, Text, raise_at, rule_error
 
-#: The coefficients that may carry an uncertainty, in the order of eq. (2) (k1 = 1 has none).
-UNCERTAIN: tuple[str, ...] = ("k0", "A1", "k2", "k3", "k4", "k5", "m1", "m2", "m31", "m32")
 #: A correlation matrix whose smallest eigenvalue is below −this has no distribution
 #: (gyrovib.core.lot.PSD_TOLERANCE: the same test).
 PSD_TOLERANCE = 1e-8

@@ -14,8 +14,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.core._types import FloatArray
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
 

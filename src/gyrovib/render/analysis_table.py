@@ -9,6 +9,7 @@ import numpy as np
 
 from gyrovib.api import AnalysisResult
 from gyrovib.api.datasheet.specs import UNKNOWN_TERM_NOTES
+from gyrovib.coefficients import POLYNOMIAL
 from gyrovib.render.analysis_cells import (
     _SPECS_NOTE,
     _UNCERTAINTY_NOTE,
@@ -55,7 +56,7 @@ def dominant_term(result: AnalysisResult, i: int, j: int) -> str:
 #: Which worst-polynomial coefficients make each dominant term.
 _MADE_OF = {"A1": ("A1",), "k2": ("k2",), "k4": ("k4",), "k3·M3": ("k3",), "k5·M5": ("k5",),
             "Δ(1)·Ω": ("k3", "k5"), "Δ(2)·Ω²": ("k4",), "Δ(3)·Ω³": ("k5",)}
-_WORST = ("A1", "k2", "k3", "k4", "k5")
+_WORST = POLYNOMIAL
 
 
 def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:

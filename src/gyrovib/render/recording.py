@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from gyrovib import units
+from gyrovib.coefficients import BOUNDED
 from gyrovib.render.common import dumps, header
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
@@ -21,7 +22,7 @@ if TYPE_CHECKING:
     from gyrovib.api.recordings.results import AxisHonesty, RecordingFit
 
 AXES = ("X", "Y", "Z")
-_TERMS = ("A1", "k2", "k3", "k4", "k5", "m31", "m32")
+_TERMS = BOUNDED
 
 
 def _num(v: float) -> float | None:

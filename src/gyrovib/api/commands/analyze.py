@@ -32,14 +32,14 @@ from gyrovib.api.study.prepare import (
 )
 from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import METHODS, VibrationError, vibration_error
 from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.linear import LinearVibration
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.statistics import Vibration
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError, OptionError
-from gyrovib.limits import MAX_SAMPLES
+from gyrovib.limits import MAX_SAMPLES, MIN_SAMPLES
 
 #: Every method of :func:`analyze`: the closed forms, and brute force.
 ANALYZE_METHODS: tuple[str, ...] = (*METHODS, "numeric")
@@ -63,9 +63,6 @@ def _check_options(method: str, samples: int, seed: int) -> None:
         raise OptionError(f"unknown method {method!r}; use one of {', '.join(ANALYZE_METHODS)}")
     if method != "numeric":
         return
-    # lazy: the brute force only with --method numeric
-    from gyrovib.core.numeric import MIN_SAMPLES
-
     if samples < MIN_SAMPLES:
         raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")
     if samples > MAX_SAMPLES:

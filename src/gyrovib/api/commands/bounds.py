@@ -21,6 +21,7 @@ from gyrovib.api.study.prepare import (
 )
 from gyrovib.api.study.study import Study
 from gyrovib.catalog.loader import Catalog, CatalogSource
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import METHODS
 from gyrovib.core.synthesis import (
     DEFAULT_R,
@@ -32,7 +33,6 @@ from gyrovib.core.synthesis import (
     allocation_constants,
     coefficient_bounds,
 )
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import GyrovibError, OptionError, RangeError
 from gyrovib.models import Allocation
 

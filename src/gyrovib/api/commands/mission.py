@@ -40,6 +40,7 @@ from gyrovib.core.mission import ANGLE_IN_RAD, ANGLE_UNITS, combined_functional,
 from gyrovib.core.placement import Placement
 from gyrovib.errors import ModelError, OptionError
 from gyrovib.frozen import Frozen
+from gyrovib.limits import DEFAULT_PEAK_FACTOR
 from gyrovib.models import Mission
 from gyrovib.models.mission import MAX_DURATION, MAX_DURATION_YEARS
 
@@ -146,7 +147,7 @@ def mission(
     unit: str = "deg/s",
     require: str = "any",
     placement: Placement | tuple[Placement, ...] | None = None,
-    peak_factor: float = 3.0,
+    peak_factor: float = DEFAULT_PEAK_FACTOR,
     assume_unknown: str = "none",
 ) -> MissionResult:
     """Every chosen sensor over every chosen mission (docs/model.md section 12).

@@ -40,10 +40,11 @@ from gyrovib.api.study.linear import g2_matrix
 from gyrovib.api.study.prepare import input_response
 from gyrovib.catalog.loader import parse_catalog
 from gyrovib.core import recording as core
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
 from gyrovib.core.envelope import worst_case
 from gyrovib.core.recording import MOMENTS, recorded_error
-from gyrovib.core.transmissibility import FloatArray, Table, as_table, psd_variance
+from gyrovib.core.transmissibility import as_table, psd_variance
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
 

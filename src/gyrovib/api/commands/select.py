@@ -51,11 +51,11 @@ from gyrovib.api.study.prepare import (
 )
 from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import COEFFICIENTS
 from gyrovib.core.linear import effective_vre, mean_square
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.synthesis import BOUNDED, AllocationConstants, coefficient_bounds
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 from gyrovib.models import Allocation
 from gyrovib.presentation.reasons import saturation_reasons

@@ -14,9 +14,9 @@ from gyrovib.api.study.convert import error_arrays, to_unit
 from gyrovib.api.study.prepare import check_finite, float_guard
 from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import METHODS, VibrationError
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 
 #: Most rates in one sweep: several tones cost about 10^4 kernel values per rate.

@@ -22,9 +22,9 @@ from gyrovib.api.datasheet.specs import (
     terms_of,
 )
 from gyrovib.api.study.prepare import Prepared
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import Multipliers
 from gyrovib.core.linear import mean_square
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 from gyrovib.frozen import Frozen
 

@@ -39,6 +39,8 @@ from gyrovib import units
 from gyrovib.api.study.convert import g2_value
 from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
+from gyrovib.coefficients import POLYNOMIAL
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import (
     COLUMN,
     Multipliers,
@@ -47,11 +49,10 @@ from gyrovib.core.analysis import (
     stack_multipliers,
 )
 from gyrovib.core.linear import mean_square
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 #: Order of the worst polynomial's coefficients (core.envelope.COEFFICIENTS).
-WORST_COEFFICIENTS: tuple[str, ...] = ("A1", "k2", "k3", "k4", "k5")
+WORST_COEFFICIENTS = POLYNOMIAL
 #: Rate powers of (A1, k2…k5): a coefficient in U is q[deg/s]·s**(-p).
 _POWERS = np.array([0.0, -1.0, -2.0, -3.0, -4.0])
 #: The words the nonlinearity's ``of`` may take when the value is %FS.

@@ -20,8 +20,8 @@ from numpy.typing import NDArray
 
 from gyrovib.api.datasheet.spec_bounds import SpecChecks
 from gyrovib.api.evaluation.results import Limit
+from gyrovib.core._types import FloatArray
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 #: Relative slack of every ≤ comparison: a value at its bound, up to rounding

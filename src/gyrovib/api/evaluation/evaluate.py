@@ -41,10 +41,10 @@ from gyrovib.api.study.convert import sensor_ranges
 from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.api.study.study import Study, omega_key
 from gyrovib.catalog.loader import SensorEntry
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import EXTRA_TERMS, vibration_error
 from gyrovib.core.phases import WorstPhases, worst_phase_error
 from gyrovib.core.saturation import saturated as saturated_at
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 #: The arrays of a :class:`~gyrovib.core.analysis.VibrationError` and their trailing shapes.

@@ -24,10 +24,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import ALL_TERMS, VibrationError
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
+from gyrovib.limits import DEFAULT_PEAK_FACTOR
 
 if TYPE_CHECKING:
     from gyrovib.api import LotYields
@@ -145,7 +146,7 @@ class AnalysisResult(SensorsByProfiles):
     #: (sensors, profiles): the saturation reach exceeds the sensor's range (docs/model.md 9).
     saturated: NDArray[np.bool_] | None = None
     #: κ of the saturation reach.
-    peak_factor: float = 3.0
+    peak_factor: float = DEFAULT_PEAK_FACTOR
     #: per profile: whether it has phase-locked harmonic groups (docs/model.md 10).
     locked: tuple[bool, ...] = ()
     #: (sensor, profile) → per locked group, {order: phase found (deg)} of the
@@ -224,7 +225,7 @@ class SweepResult(SensorsByProfiles):
     #: (sensors, profiles, rates): the sensor saturates at that Ω_K3 (docs/model.md section 9).
     saturated: NDArray[np.bool_] | None = None
     #: κ of the saturation reach.
-    peak_factor: float = 3.0
+    peak_factor: float = DEFAULT_PEAK_FACTOR
 
     def _shape(self) -> tuple[int, ...]:
         return (len(self.sensors), len(self.profiles), len(self.rates))
@@ -355,7 +356,7 @@ class SelectionResult(SensorsByProfiles):
     #: (sensor, profile) → why it fails there beyond the criterion (one line).
     reasons: Mapping[tuple[int, int], str] = field(default_factory=dict)
     #: κ of the saturation reach.
-    peak_factor: float = 3.0
+    peak_factor: float = DEFAULT_PEAK_FACTOR
     #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.
     coefficient_unit: str | None = None
     #: (sensors, profiles): the sensor would pass there on its published figures, but

@@ -44,8 +44,8 @@ from gyrovib.api.recordings.results import (
 from gyrovib.api.recordings.yaml import _num, profile_yaml
 from gyrovib.catalog.loader import parse_catalog
 from gyrovib.core import recording as core
+from gyrovib.core._types import FloatArray
 from gyrovib.core.recording import HARMONIC_TOLERANCE, MISSION_BINS, find_lines
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import GyrovibError, OptionError
 from gyrovib.frozen import Frozen
 

@@ -26,7 +26,7 @@ from gyrovib import units
 from gyrovib.api.commands.recording import analysis_of_fit, fit_recording, recording_responses
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
-from gyrovib.core.transmissibility import FloatArray, Table
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance

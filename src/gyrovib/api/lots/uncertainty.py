@@ -26,6 +26,7 @@ from gyrovib import units
 from gyrovib.api.study.convert import unit_scales
 from gyrovib.api.study.prepare import Group, Prepared
 from gyrovib.catalog.loader import SensorEntry
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import COEFFICIENTS, Multipliers
 from gyrovib.core.lot import (
     correlation_from_pairs,
@@ -36,7 +37,6 @@ from gyrovib.core.lot import (
     spread_problem,
     unmeasured_warning,
 )
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.frozen import Frozen
 
 

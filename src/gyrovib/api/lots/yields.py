@@ -42,6 +42,7 @@ from gyrovib.api.lots.uncertainty import (
     sensor_sensitivity,
 )
 from gyrovib.api.study.prepare import Prepared, profile_problem
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import COEFFICIENTS, Multipliers
 from gyrovib.core.lot import DEFAULT_DRAWS as DEFAULT_DRAWS
 from gyrovib.core.lot import (
@@ -52,7 +53,6 @@ from gyrovib.core.lot import (
     term_matrix,
 )
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import ModelError, OptionError
 
 #: Seed of the Monte-Carlo yields unless told otherwise.

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 from gyrovib.frozen import Frozen
 
 #: The reported unit of each noise figure (its default in the catalogue).

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units as rate_units
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 from gyrovib.errors import GyrovibError, Problem
 from gyrovib.frozen import Frozen
 

@@ -26,7 +26,7 @@ import numpy as np
 
 from gyrovib.api.recordings.reading import Recording
 from gyrovib.core import recording as core
-from gyrovib.core.transmissibility import FloatArray, Table
+from gyrovib.core._types import FloatArray, Table
 
 #: Samples summed at once: core.recording's own chunk, so the sums are its sums.
 BLOCK = 1 << 20

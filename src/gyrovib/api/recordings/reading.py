@@ -35,8 +35,8 @@ from gyrovib.api.recordings.readers import (
     problem,
     reader_for,
 )
+from gyrovib.core._types import FloatArray
 from gyrovib.core.recording import gap_segments
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 from gyrovib.frozen import Frozen
 

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.core.transmissibility import FloatArray, Table
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.frozen import Frozen
 
 

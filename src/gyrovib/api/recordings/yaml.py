@@ -21,7 +21,7 @@ from gyrovib.models.profile import correlation_problem
 
 if TYPE_CHECKING:
     from gyrovib.api.recordings.results import FittedPart, RecordingFit
-    from gyrovib.core.transmissibility import Table
+    from gyrovib.core._types import Table
 
 
 def _num(v: float) -> str:

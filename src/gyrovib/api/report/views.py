@@ -28,8 +28,9 @@ from gyrovib.api.study.linear import profile_linear
 from gyrovib.api.study.prepare import float_guard
 from gyrovib.api.study.study import Study
 from gyrovib.catalog.loader import Catalog, ProfileEntry, bundled_paths
-from gyrovib.core.transmissibility import FloatArray
+from gyrovib.core._types import FloatArray
 from gyrovib.frozen import Frozen
+from gyrovib.limits import DEFAULT_PEAK_FACTOR
 from gyrovib.models import Allocation
 
 #: Points of the default rate sweep (odd: Ω_K3 = 0 is one of them).
@@ -227,7 +228,7 @@ def trade_study(
     allocation: Allocation | Sequence[float] | None = None,
     sweep_rates: Sequence[float] | FloatArray | None = None,
     created: _dt.datetime | None = None,
-    peak_factor: float = 3.0,
+    peak_factor: float = DEFAULT_PEAK_FACTOR,
     assume_unknown: str = "none",
     yield_target: float | None = None,
     seed: int = 0,

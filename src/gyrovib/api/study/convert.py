@@ -13,8 +13,8 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
+from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, VibrationError
-from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
 from gyrovib.models.sensor import G2Quantity
 

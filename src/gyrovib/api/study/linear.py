@@ -25,8 +25,9 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api.study.convert import g2_value
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.linear import LinearVibration, linear_vibration
-from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp, psd_variance
+from gyrovib.core.transmissibility import as_table, loglog_interp, psd_variance
 
 _AXES = ("x1", "x2", "x3")
 

@@ -29,13 +29,14 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.study.linear import profile_linear
 from gyrovib.catalog.loader import ProfileEntry, SensorEntry
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.analysis import BOUNDED, Multipliers, profile_multipliers
 from gyrovib.core.harmonics import MAX_GROUPS, LockedGroup, locked_group
 from gyrovib.core.linear import LinearVibration
 from gyrovib.core.phases import MAX_SEARCH_COST, search_cost, worst_phase_multipliers
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR, group_peak, saturation_reach
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
-from gyrovib.core.transmissibility import FloatArray, Table, as_table, loglog_interp
+from gyrovib.core.transmissibility import as_table, loglog_interp
 from gyrovib.errors import Problem, RangeError
 from gyrovib.frozen import Frozen
 

@@ -52,12 +52,12 @@ from gyrovib.api.study.prepare import (
     vibration_swing,
 )
 from gyrovib.catalog.loader import Catalog, ProfileEntry, SensorEntry
+from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.analysis import Multipliers, stack_multipliers
 from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.linear import LinearVibration
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.statistics import Vibration
-from gyrovib.core.transmissibility import FloatArray, Table
 from gyrovib.errors import ModelError, OptionError, Problem, RangeError
 from gyrovib.frozen import Frozen
 
