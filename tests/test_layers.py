@@ -232,9 +232,9 @@ def test_one_immutability_mechanism_in_the_library() -> None:
     assert odd == []
 
 
-def test_the_api_face_lists_its_names_once_for_run_time_and_once_for_types() -> None:
-    # __init__.py imports each name of _WHERE on first use; __init__.pyi gives the same
-    # names their types (a name in one and not the other is a broken face)
+def test_the_api_face_lists_its_names_once_for_run_time_and_types() -> None:
+    # __init__.pyi is the one listing: type checkers read its imports, and __init__.py
+    # reads the same lines to import each name on first use
     import gyrovib.api as face
 
     stub = ast.parse((SRC / "gyrovib" / "api" / "__init__.pyi").read_text(encoding="utf-8"))
