@@ -2,7 +2,7 @@
 program of the same stack and shape (click, PyYAML's CSafeLoader, a dozen pydantic
 models validating the bundled catalogue files, numpy, one rich table).
 
-Targets (docs/performance.md, "Start-up against the floor"): at most 1.3× the
+Targets (docs/performance.md, "Start-up"): at most 1.3× the
 floor for the bundled coefficient-form sensors, at most 1.5× for the whole
 bundled catalogue (the datasheet sensors add their envelope programmes). Each
 pair (gyrovib, floor) is given the same sensors and runs ``--repeat`` times,
