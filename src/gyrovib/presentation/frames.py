@@ -37,33 +37,19 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from gyrovib._version import __version__
+from gyrovib.api.evaluation.dataframe import MISSING_PANDAS as MISSING_PANDAS
+from gyrovib.api.evaluation.dataframe import MissingDependency as MissingDependency
+from gyrovib.api.evaluation.dataframe import dataframe
 from gyrovib.core.analysis import ALL_TERMS as JSON_TERMS
 from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
 from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
-from gyrovib.errors import GyrovibError
 from gyrovib.presentation.reasons import reason
 
 if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
 
-MISSING_PANDAS = "DataFrames need pandas, which is not installed: pip install 'gyrovib[pandas]'"
-
 AXES = ("x1", "x2", "x3")
-
-
-class MissingDependency(GyrovibError, ImportError):
-    """An optional dependency is not installed (the message names the extra)."""
-
-
-def _pandas() -> Any:
-    try:
-        # lazy: pandas is optional (pip install 'gyrovib[pandas]')
-        import pandas
-    except ImportError:
-        raise MissingDependency(MISSING_PANDAS) from None
-    return pandas
 
 
 def column_name(kind: str, path: str) -> str:
@@ -112,12 +98,6 @@ def _named(kind: str, columns: dict[str, Any]) -> dict[str, Any]:
     return {column_name(kind, key): value for key, value in columns.items()}
 
 
-def _frame(columns: dict[str, Any], attrs: dict[str, Any]) -> Any:
-    frame = _pandas().DataFrame(columns)
-    frame.attrs.update({"tool": "gyrovib", "version": __version__, **attrs})
-    return frame
-
-
 def _rate_columns(rates: Any, rows: Any) -> dict[str, Any]:
     """``rate.x1..x3`` of Ω_K per profile (``rates`` (profiles, 3)), taken at ``rows``."""
     return {f"rate.{axis}": rates[rows, k] for k, axis in enumerate(AXES)}
@@ -153,7 +133,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
     if result.samples is not None:
         attrs.update(samples=result.samples, seed=result.seed)
-    return _frame(_named("analyze", columns), attrs)
+    return dataframe(_named("analyze", columns), attrs)
 
 
 def _envelope_columns(result: AnalysisResult, s_idx: Any, p_idx: Any) -> dict[str, Any]:
@@ -211,7 +191,7 @@ def bounds_frame(result: BoundsResult) -> Any:
             "spec_bounds.nonlinearity.range": [sb.range] * n,
             "spec_bounds.vre": np.asarray(sb.vre)[rows],
         })
-    return _frame(_named("bounds", columns), {"method": result.method, "unit": result.unit,
+    return dataframe(_named("bounds", columns), {"method": result.method, "unit": result.unit,
                                               "budget": result.budget})
 
 
@@ -261,7 +241,7 @@ def selection_frame(result: SelectionResult) -> Any:
              "requirement_met": result.requirement_met}
     if result.yields is not None:
         attrs.update({"yield": result.yields.target, "seed": result.yields.seed})
-    return _frame(_named("select", columns), attrs)
+    return dataframe(_named("select", columns), attrs)
 
 
 def _coefficient_check_columns(result: SelectionResult, spec_rows: Any) -> dict[str, Any]:
@@ -331,7 +311,7 @@ def sweep_frame(result: SweepResult) -> Any:
         for name in ("total", "rms"):
             columns[f"{method}.{name}"] = np.asarray(getattr(err, name))[s_idx, p_idx, r_idx]
     columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx, r_idx]
-    return _frame(_named("sweep", columns), {"method": "exact", "unit": result.unit,
+    return dataframe(_named("sweep", columns), {"method": "exact", "unit": result.unit,
                             "methods": ["exact", "paper"],
                             "paper_refused": dict(result.paper_refused)})
 

@@ -11,10 +11,8 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.core._types import FloatArray
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.formatting import NEGLIGIBLE as NEGLIGIBLE
 from gyrovib.formatting import fmt as fmt
@@ -38,14 +36,12 @@ def saturation_reason(reach: float, range_: float, peak_factor: float, unit: str
             f"{reach:.6g} {unit} exceeds the range {range_:.6g} {unit}")
 
 
-def saturation_reasons(saturated: NDArray[np.bool_], reach: FloatArray, ranges: FloatArray,
-                       peak_factor: float, unit: str) -> dict[tuple[int, int], str]:
-    """Per saturating (sensor, profile): :func:`saturation_reason`; ``reach`` (sensors,
-    profiles) and ``ranges`` (sensors,) in deg/s, written in ``unit``."""
-    s = units.scale(unit)
-    return {(i, j): saturation_reason(float(reach[i, j]) / s, float(ranges[i]) / s,
-                                      peak_factor, unit)
-            for i, j in (tuple(int(v) for v in ij) for ij in np.argwhere(saturated))}
+def saturation_text(result: SelectionResult, i: int, j: int) -> str | None:
+    """Why sensor ``i`` saturates under profile ``j`` (None where it does not)."""
+    found = result.saturation.get((i, j))
+    if found is None:
+        return None
+    return saturation_reason(found[0], found[1], result.peak_factor, result.unit)
 
 
 def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) -> list[str]:
@@ -59,8 +55,9 @@ def failures(result: SelectionResult, i: int, j: int, *, table: bool = False) ->
     reasons: list[str] = []
     if result.is_unverified(i, j):
         reasons.append(unverified_reason(result, i, j))
-    if (i, j) in result.reasons:
-        reasons.append(result.reasons[(i, j)])
+    saturated = saturation_text(result, i, j)
+    if saturated is not None:
+        reasons.append(saturated)
     if result.yields is not None and result.yields.is_lot(i):  # judged by its yield
         return reasons + yield_reason(result.yields, i, j)
     spec = result.source(i) == "specs"

@@ -9,6 +9,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api.missions.results import budget_columns, frame_columns
+from gyrovib.presentation.reasons import unverified_text
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 
 if TYPE_CHECKING:
@@ -32,12 +33,20 @@ def _budget_text(result: MissionResult) -> str:
     return "no budget"
 
 
+def unverified_reason(row: MissionRow) -> str | None:
+    """Why an unverified row is open (the unpublished figures that can decide it); None
+    when the row is not unverified."""
+    if not row.unverified:
+        return None
+    return unverified_text(row.unknown, spec=row.source == "specs")
+
+
 def _reason(result: MissionResult, row: MissionRow) -> str:
     """Why a row fails, in one line ('' when it passes or has no budget)."""
     if row.passed is None or row.passed:
         return ""
     if row.unverified:
-        return row.reason or ""
+        return unverified_reason(row) or ""
     if row.saturated:
         bad = [str(k + 1) for k, s in enumerate(row.segments) if s.saturated]
         return f"saturated in segment {', '.join(bad)}"
@@ -88,8 +97,9 @@ def _unknown_notes(result: MissionResult) -> list[str]:
     notes: list[str] = []
     seen: dict[tuple[str, str], None] = {}
     for r in result.rows:
-        if r.unverified and r.reason:
-            seen[(r.sensor, r.reason)] = None
+        reason = unverified_reason(r)
+        if reason:
+            seen[(r.sensor, reason)] = None
     notes.extend(f"{sensor}: {reason}." for sensor, reason in seen)
     if result.assume_unknown == "zero":
         taken: dict[str, dict[str, None]] = {}

@@ -14,7 +14,7 @@ from rich.text import Text
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.presentation.reasons import failures as _failures
-from gyrovib.presentation.reasons import reason, unknown_label, yield_text
+from gyrovib.presentation.reasons import reason, saturation_text, unknown_label, yield_text
 from gyrovib.render.analysis import SATURATED_MARK
 from gyrovib.render.bounds import (
     coefficient_unit,
@@ -73,7 +73,7 @@ def limit_text(result: SelectionResult, i: int) -> str:
     profile = result.profiles[j]
     ratio = fmt(limit.ratio, 3)
     if limit.name == "saturated":
-        return f"its range under {profile}: {result.reasons[(i, j)]}"
+        return f"its range under {profile}: {saturation_text(result, i, j)}"
     if limit.name == "yield" and result.yields is not None:
         return (f"yield {yield_text(result.yields, i, j)} under {profile}, below "
                 f"{result.yields.target:g}")

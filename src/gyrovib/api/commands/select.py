@@ -58,7 +58,6 @@ from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.synthesis import BOUNDED, AllocationConstants, coefficient_bounds
 from gyrovib.errors import OptionError
 from gyrovib.models import Allocation
-from gyrovib.presentation.reasons import saturation_reasons
 
 CRITERIA = ("bounds", "rms", "worst", "both")
 REQUIREMENTS = ("any", "all")
@@ -141,7 +140,7 @@ def select(
     A sensor that saturates under a profile (docs/model.md section 9: |Ω_K3| +
     Σ tone amplitudes + locked peaks + κσ3 at its nonlinear element above its
     range, κ = ``peak_factor``) fails there whatever the criterion: the
-    static model behind both tests does not hold (:attr:`SelectionResult.reasons`).
+    static model behind both tests does not hold (:attr:`SelectionResult.saturation`).
 
     An unpublished datasheet figure is unknown, not zero (docs/model.md section 11):
     where a spec-form sensor passes on its published figures but one it lacks
@@ -230,8 +229,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         limits = _limits(criterion, np.nonzero(fails)[0], verdicts, rms, budget, total, found)
         largest = _joined(prepared, verdicts, lambda v: v.largest, 0.0)
         disagrees = _disagreements(criterion, passed | unverified, found.saturated, tests)
-        reasons = saturation_reasons(found.saturated, found.reach, found.ranges, peak_factor,
-                                     unit)
+        saturating = _saturating(found.saturated, found.reach, found.ranges, unit)
         if yields is not None:
             limits = yield_limits(yields, limits, sensor_pass, found.saturated)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
@@ -267,7 +265,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         allocation=constants,
         **fields,
         saturated=found.saturated,
-        reasons=reasons,
+        saturation=saturating,
         peak_factor=peak_factor,
         unverified=unverified,
         criterion_margin=_criterion_margin(criterion, largest, rms, total, budget),
@@ -357,6 +355,15 @@ def _unverified(passed: NDArray[np.bool_], unknown: dict[tuple[int, int], tuple[
             unverified[i, j] = True
             passed[i, j] = False
     return unverified
+
+
+def _saturating(saturated: NDArray[np.bool_], reach: FloatArray, ranges: FloatArray,
+                unit: str) -> dict[tuple[int, int], tuple[float, float]]:
+    """Per saturating (sensor, profile): its reach and range, from deg/s (``reach``
+    (sensors, profiles), ``ranges`` (sensors,)) into ``unit``."""
+    s = units.scale(unit)
+    return {(i, j): (float(reach[i, j]) / s, float(ranges[i]) / s)
+            for i, j in (tuple(int(v) for v in ij) for ij in np.argwhere(saturated))}
 
 
 def _ranking(judged: FloatArray, budget: float, open_: NDArray[np.bool_],

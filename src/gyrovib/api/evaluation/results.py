@@ -353,8 +353,10 @@ class SelectionResult(SensorsByProfiles):
     nl_pass: NDArray[np.bool_] | None = None
     #: (sensors, profiles): saturates there (docs/model.md section 9), which fails it.
     saturated: NDArray[np.bool_] | None = None
-    #: (sensor, profile) → why it fails there beyond the criterion (one line).
-    reasons: Mapping[tuple[int, int], str] = field(default_factory=dict)
+    #: (sensor, profile) → (saturation reach, range) in :attr:`unit` where the sensor
+    #: saturates (docs/model.md section 9): the reach |Ω_K3| + Σ tone amplitudes + locked
+    #: peaks + κσ3 (κ: :attr:`peak_factor`) exceeds the range.
+    saturation: Mapping[tuple[int, int], tuple[float, float]] = field(default_factory=dict)
     #: κ of the saturation reach.
     peak_factor: float = DEFAULT_PEAK_FACTOR
     #: as :attr:`BoundsResult.coefficient_unit`, for coefficient values and bounds in tables.

@@ -1,5 +1,5 @@
 """The result of ``gyrovib mission`` (docs/model.md section 12): immutable rows, one per
-sensor × mission × axis, each with its segments."""
+sensor × mission × axis, each with its segments and its angle budget (section 15)."""
 
 from __future__ import annotations
 
@@ -7,12 +7,35 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from gyrovib.frozen import Frozen
-from gyrovib.presentation.reasons import unverified_text
 
 if TYPE_CHECKING:
     import pandas as pd
 
-    from gyrovib.api.noise.results import Budget
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Budget(Frozen):
+    """A mission's angle budget in deg for one sensor and axis (docs/model.md section 15).
+
+    ``vibration`` θ_V (signed); ``arw`` N√T, ``bias_instability`` B·T, ``rrw``
+    K·T^{3/2}/√3, ``repeatability`` R·T, each None where the catalogue does not give the
+    figure (unknown, never 0); ``total`` = |θ_V| + k·RSS of the known noise terms, a
+    lower bound when one is unknown (``unknown`` names them); ``coverage`` k.
+    """
+
+    vibration: float
+    arw: float | None
+    bias_instability: float | None
+    rrw: float | None
+    repeatability: float | None
+    total: float
+    coverage: float
+    unknown: tuple[str, ...]
+    unit: str = "deg"
+
+    @property
+    def lower_bound(self) -> bool:
+        """Whether ``total`` is only a lower bound (a noise figure is unknown)."""
+        return bool(self.unknown)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -77,14 +100,6 @@ class MissionRow(Frozen):
         if self.passed is None:
             return None
         return "unverified" if self.unverified else "pass" if self.passed else "fail"
-
-    @property
-    def reason(self) -> str | None:
-        """Why an unverified row is open (:func:`gyrovib.presentation.reasons.unverified_text`)."""
-        if not self.unverified:
-            return None
-
-        return unverified_text(self.unknown, spec=self.source == "specs")
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from gyrovib.api.missions.results import Budget as Budget
 from gyrovib.core._types import FloatArray
 from gyrovib.frozen import Frozen
 
@@ -55,29 +56,3 @@ class AllanResult(Frozen):
     samples: int
     segments: int
     axes: tuple[AxisAllan, ...]
-
-
-@dataclass(frozen=True, eq=False, repr=False)
-class Budget(Frozen):
-    """A mission's angle budget in deg for one sensor and axis (docs/model.md section 15).
-
-    ``vibration`` θ_V (signed); ``arw`` N√T, ``bias_instability`` B·T, ``rrw``
-    K·T^{3/2}/√3, ``repeatability`` R·T, each None where the catalogue does not give the
-    figure (unknown, never 0); ``total`` = |θ_V| + k·RSS of the known noise terms, a
-    lower bound when one is unknown (``unknown`` names them); ``coverage`` k.
-    """
-
-    vibration: float
-    arw: float | None
-    bias_instability: float | None
-    rrw: float | None
-    repeatability: float | None
-    total: float
-    coverage: float
-    unknown: tuple[str, ...]
-    unit: str = "deg"
-
-    @property
-    def lower_bound(self) -> bool:
-        """Whether ``total`` is only a lower bound (a noise figure is unknown)."""
-        return bool(self.unknown)

@@ -13,10 +13,10 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units as rate_units
+from gyrovib.api.evaluation.dataframe import dataframe
 from gyrovib.api.evaluation.results import Result, freeze
 from gyrovib.core.fit import SIGNIFICANT_T, RateFit
 from gyrovib.core.lot import LotStatistics
-from gyrovib.presentation.frames import _frame
 
 
 def coefficient_unit(name: str, rate_unit: str) -> str:
@@ -96,7 +96,7 @@ class FitResult(Result):
                                  "file": self.file}
         if self.lot is not None:
             attrs["lot"] = lot_mapping(self)
-        return _frame(columns, attrs)
+        return dataframe(columns, attrs)
 
 
 #: The columns of the fit's CSV and DataFrame, in order.
