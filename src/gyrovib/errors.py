@@ -8,7 +8,7 @@ line per problem on standard error and exits with status 2.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 from gyrovib.frozen import Frozen
@@ -51,7 +51,39 @@ class CatalogError(GyrovibError):
 
 
 class OptionError(GyrovibError):
-    """A command-line option or library argument is not valid."""
+    """A library argument (a command-line option) is not valid.
+
+    Raised with ``argument`` (the library's parameter name), ``value`` (its value as
+    written) and ``reason``, the message names the argument: ``samples=10: give at
+    least 32``. A reason that points to other arguments writes each as ``{name}``
+    and lists them in ``others``. The command line names the options instead
+    (``--samples 10: …``), from the same fields (:func:`gyrovib.cli.options.as_option`).
+    Without them, the message is given whole.
+    """
+
+    def __init__(self, problems: str | Problem | Iterable[Problem] | None = None, *,
+                 argument: str | None = None, value: str | None = None,
+                 reason: str | None = None, others: tuple[str, ...] = ()) -> None:
+        self.argument = argument
+        self.value = value
+        self.template = reason
+        self.others = others
+        self.reason = self.worded(lambda name: name)
+        if problems is None:
+            problems = self.worded(lambda name: name, head=True)
+        super().__init__(problems)
+
+    def worded(self, name: Callable[[str], str], head: bool = False) -> str:
+        """The reason with each argument written by ``name`` (an option, or as is);
+        ``head``: after the argument and its value, ``NAME=VALUE: reason``."""
+        reason = (self.template or "").format_map({n: name(n) for n in self.others})
+        if not head or self.argument is None:
+            return reason
+        who = name(self.argument)
+        if self.value is None:
+            return f"{who}: {reason}"
+        return f"{who}={self.value}: {reason}" if who == self.argument else \
+            f"{who} {self.value}: {reason}"
 
 
 class ArgumentError(OptionError, ValueError):

@@ -40,6 +40,7 @@ import click
 
 from gyrovib._version import __version__
 from gyrovib.cli.common import Settings, say, silence_stderr
+from gyrovib.cli.options import as_option
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
 from gyrovib.cli.progress import terminal_progress
 from gyrovib.errors import GyrovibError
@@ -185,7 +186,7 @@ class _Group(click.Group):
                                         module=r"(gyrovib|numpy)(\..*)?$")
                 return super().invoke(ctx)
         except GyrovibError as exc:
-            _report(exc, ctx.find_object(Settings))
+            _report(as_option(exc), ctx.find_object(Settings))
             ctx.exit(EXIT_BAD_INPUT)
         except click.exceptions.UsageError as exc:
             if _wants_github(sys.argv[1:] if self._argv is None else self._argv):

@@ -9,7 +9,7 @@ from typing import Any, TypeVar
 import click
 
 from gyrovib import units
-from gyrovib.errors import OptionError
+from gyrovib.errors import GyrovibError, OptionError
 from gyrovib.limits import DEFAULT_PEAK_FACTOR, MAX_SAMPLES
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -19,6 +19,24 @@ UNIT_CHOICES = tuple(units.RATE_UNITS)
 #: The most samples ``analyze --method numeric`` takes per sensor × profile
 #: (:data:`gyrovib.limits.MAX_SAMPLES`, which the library enforces too).
 SAMPLES_MAX = MAX_SAMPLES
+
+
+#: The option of each library argument whose flag is not ``--`` + its name with dashes.
+FLAGS = {"yield_target": "--yield", "profile_id": "--id", "rates": "--rate-range",
+         "profiles": "--profile", "sensors": "--sensor"}
+
+
+def flag(argument: str) -> str:
+    """The command-line option of a library argument: ``per_decade`` → ``--per-decade``."""
+    return FLAGS.get(argument, "--" + argument.replace("_", "-"))
+
+
+def as_option(exc: GyrovibError) -> GyrovibError:
+    """A library error that names arguments, worded with the options that set them
+    (``samples=10: …`` → ``--samples 10: …``); any other error as it is."""
+    if not isinstance(exc, OptionError) or exc.argument is None:
+        return exc
+    return OptionError(exc.worded(flag, head=True))
 
 
 #: Where ``--bundled`` leaves its choice for :func:`gyrovib.cli.common.load_catalog`.

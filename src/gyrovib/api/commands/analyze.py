@@ -64,12 +64,15 @@ def _check_options(method: str, samples: int, seed: int) -> None:
     if method != "numeric":
         return
     if samples < MIN_SAMPLES:
-        raise OptionError(f"--samples {samples}: give at least {MIN_SAMPLES}")
+        raise OptionError(argument="samples", value=str(samples),
+                          reason=f"give at least {MIN_SAMPLES}")
     if samples > MAX_SAMPLES:
-        raise OptionError(f"--samples {samples}: give at most {MAX_SAMPLES:,} (10^8 "
-                          "evaluations of eq. 2 already take minutes)")
+        raise OptionError(argument="samples", value=str(samples),
+                          reason=f"give at most {MAX_SAMPLES:,} (10^8 evaluations of eq. 2 "
+                                 "already take minutes)")
     if seed < 0:
-        raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
+        raise OptionError(argument="seed", value=str(seed),
+                          reason="the seed must be a non-negative integer")
 
 
 def analyze(

@@ -33,7 +33,8 @@ def fit(table: RateTable | str | Path, order: int = DEFAULT_ORDER, *, rate_unit:
     """
     if isinstance(order, bool) or not isinstance(order, int | np.integer) or not (
             1 <= order <= MAX_ORDER):
-        raise OptionError(f"--order {order!r}: eq. (1) has orders 1 to {MAX_ORDER}")
+        raise OptionError(argument="order", value=repr(order),
+                          reason=f"eq. (1) has orders 1 to {MAX_ORDER}")
     if not isinstance(table, RateTable):
         table = read_rate_table(table, rate_unit, output_unit)
     fits = _fit_units(table, int(order))

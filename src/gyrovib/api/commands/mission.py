@@ -198,7 +198,7 @@ def _check_options(budget: float | None, angle_budget: float | None, require: st
         raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
                           "not both")
     if require not in ("any", "all"):
-        raise OptionError(f"--require {require!r}: use any or all")
+        raise OptionError(argument="require", value=repr(require), reason="use any or all")
     spec_bounds.check_assumption(assume_unknown)
 
 

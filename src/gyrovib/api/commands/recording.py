@@ -67,13 +67,16 @@ OFF_3DB_LIMIT = 0.2
 
 def _check(crossover: float, resolution: float, threshold: float, breakpoints: int) -> None:
     if not (math.isfinite(crossover) and crossover > 0):
-        raise OptionError(f"--crossover {crossover:g}: give a positive frequency in Hz")
+        raise OptionError(argument="crossover", value=f"{crossover:g}",
+                          reason="give a positive frequency in Hz")
     if not (math.isfinite(resolution) and resolution > 0):
-        raise OptionError(f"--resolution {resolution:g}: give a positive frequency in Hz")
+        raise OptionError(argument="resolution", value=f"{resolution:g}",
+                          reason="give a positive frequency in Hz")
     if not math.isfinite(threshold) or threshold <= 0:
-        raise OptionError(f"--tone-threshold {threshold:g}: give a positive number of dB")
+        raise OptionError(argument="tone_threshold", value=f"{threshold:g}",
+                          reason="give a positive number of dB")
     if breakpoints < 2:
-        raise OptionError(f"--breakpoints {breakpoints}: give at least 2")
+        raise OptionError(argument="breakpoints", value=str(breakpoints), reason="give at least 2")
 
 
 def _kept(recording: Recording, crossover: float) -> tuple[list[tuple[int, int]], list[str]]:
@@ -192,8 +195,9 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     try:  # what is written must validate: an --id the format refuses is said here
         parse_catalog(text, "<fitted profile>")
     except GyrovibError as exc:
-        raise OptionError(f"--id {pid!r}: the fitted profile does not validate: "
-                          f"{exc.problems[0].message}") from None
+        raise OptionError(argument="profile_id", value=repr(pid),
+                          reason="the fitted profile does not validate: "
+                                 f"{exc.problems[0].message}") from None
     return _replace_yaml(fit, text)
 
 

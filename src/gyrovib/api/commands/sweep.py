@@ -36,20 +36,22 @@ def check_sweep_size(n_sensors: int, n_spec: int, n_profiles: int, n_rates: int)
     cells = n_sensors * n_profiles * n_rates
     if cells > MAX_SWEEP_CELLS:
         most = max(1, MAX_SWEEP_CELLS // max(1, n_sensors * n_profiles))
-        raise OptionError(
-            f"--rate-range: {n_rates:,} rates × {n_profiles} profiles × {n_sensors} sensors "
+        raise OptionError(argument="rates", reason=(
+            f"{n_rates:,} rates × {n_profiles} profiles × {n_sensors} sensors "
             f"are {cells:,} results, more than the {MAX_SWEEP_CELLS:,} one sweep holds "
             f"(~16 values each per method, to stay under 400 MB); sweep at most {most:,} "
-            "rates here, or fewer profiles (--profile) or sensors (--sensor)")
+            "rates here, or fewer profiles ({profiles}) or sensors ({sensors})"),
+            others=("profiles", "sensors"))
     programmes = n_spec * n_profiles * n_rates * len(METHODS)
     if programmes > MAX_SWEEP_PROGRAMMES:
         most = max(1, MAX_SWEEP_PROGRAMMES // max(1, n_spec * n_profiles * len(METHODS)))
-        raise OptionError(
-            f"--rate-range: {n_rates:,} rates × {n_profiles} profiles × {n_spec} datasheet "
+        raise OptionError(argument="rates", reason=(
+            f"{n_rates:,} rates × {n_profiles} profiles × {n_spec} datasheet "
             f"sensors need {programmes:,} worst cases over their envelopes (a linear "
             f"programme each, both methods), more than the {MAX_SWEEP_PROGRAMMES:,} "
             f"(about 10 s) one sweep may take; sweep at most {most:,} rates here, or fewer "
-            "profiles (--profile) or datasheet sensors (--sensor)")
+            "profiles ({profiles}) or datasheet sensors ({sensors})"),
+            others=("profiles", "sensors"))
 
 
 def _check_size(study: Study, n_rates: int, rms_only: bool) -> None:

@@ -355,8 +355,9 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
     try:
         parse_catalog(text, "<envelope profile>")
     except GyrovibError as exc:
-        raise OptionError(f"--id {pid!r}: the envelope profile does not validate: "
-                          f"{exc.problems[0].message}") from None
+        raise OptionError(argument="profile_id", value=repr(pid),
+                          reason="the envelope profile does not validate: "
+                                 f"{exc.problems[0].message}") from None
     return Envelope(dataclasses.replace(fit, yaml=text), part.recordings)
 
 

@@ -112,7 +112,7 @@ def run_recordings(paths: Sequence[str], options: Any = DEFAULTS, *, jobs: int =
     """
 
     if jobs < 1:
-        raise OptionError(f"--jobs {jobs}: give at least 1")
+        raise OptionError(argument="jobs", value=str(jobs), reason="give at least 1")
     total = len(paths)
     if jobs == 1 or total <= 1:
         results = []

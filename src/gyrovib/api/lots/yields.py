@@ -99,12 +99,14 @@ class LotYields(Result):
 def check_yield_options(target: float, draws: int, seed: int) -> None:
     """0 < Y < 1, 1 ≤ draws ≤ :data:`MAX_DRAWS`, seed ≥ 0."""
     if not (0.0 < target < 1.0):
-        raise OptionError(f"--yield {target:g}: give a probability between 0 and 1 "
-                          "(exclusive), e.g. 0.99 or 0.9973 for 3σ")
+        raise OptionError(argument="yield_target", value=f"{target:g}",
+                          reason="give a probability between 0 and 1 (exclusive), e.g. 0.99 "
+                                 "or 0.9973 for 3σ")
     if isinstance(draws, bool) or not (1 <= draws <= MAX_DRAWS):
-        raise OptionError(f"--draws {draws}: give 1 to {MAX_DRAWS:,}")
+        raise OptionError(argument="draws", value=str(draws), reason=f"give 1 to {MAX_DRAWS:,}")
     if seed < 0:
-        raise OptionError(f"--seed {seed}: the seed must be a non-negative integer")
+        raise OptionError(argument="seed", value=str(seed),
+                          reason="the seed must be a non-negative integer")
 
 
 def lot_generator(seed: int, sensor_id: str) -> np.random.Generator:

@@ -56,7 +56,7 @@ def allan(recording: Recording, unit: str = "deg/h",
     N, B, K with their uncertainties, from its longest contiguous segment."""
     unit = units.canonical_unit(unit)
     if per_decade < 1:
-        raise OptionError(f"--per-decade {per_decade}: give at least 1")
+        raise OptionError(argument="per_decade", value=str(per_decade), reason="give at least 1")
     lo, hi = longest_segment(recording)
     if hi - lo < MIN_SAMPLES:
         raise RecordingError(Problem(

@@ -32,8 +32,9 @@ _DEG_PER = {name: ANGLE_IN_RAD[name] / ANGLE_IN_RAD["deg"] for name in ("deg", "
 def check_coverage(coverage: float) -> float:
     """The coverage factor k: finite and > 0."""
     if not (math.isfinite(coverage) and coverage > 0):
-        raise OptionError(f"--coverage {coverage:g}: give a positive coverage factor "
-                          "(1: one standard deviation, 2: about 95 %)")
+        raise OptionError(argument="coverage", value=f"{coverage:g}",
+                          reason="give a positive coverage factor "
+                                 "(1: one standard deviation, 2: about 95 %)")
     return float(coverage)
 
 

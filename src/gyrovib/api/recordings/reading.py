@@ -94,20 +94,22 @@ def file_sha256(path: str) -> str:
     return h.hexdigest()
 
 
-def parse_columns(text: str | None, option: str) -> tuple[str | int | None, ...] | None:
-    """``X,Y,Z`` of ``--rate-columns``/``--accel-columns``: names, 0-based indices, or
-    ``-`` for an axis not recorded; None when the option is not given."""
+def parse_columns(text: str | None, argument: str) -> tuple[str | int | None, ...] | None:
+    """``X,Y,Z`` of ``rate_columns``/``accel_columns`` (named ``argument`` in an error):
+    names, 0-based indices, or ``-`` for an axis not recorded; None when not given."""
     if text is None:
         return None
     parts = [p.strip() for p in text.split(",")]
     if len(parts) != 3 or any(p == "" for p in parts):
-        raise OptionError(f"{option} {text!r}: give three columns X,Y,Z (a name, a 0-based "
-                          "index, or - for an axis not recorded)")
+        raise OptionError(argument=argument, value=repr(text),
+                          reason="give three columns X,Y,Z (a name, a 0-based index, or - "
+                                 "for an axis not recorded)")
     out: list[str | int | None] = []
     for p in parts:
         out.append(None if p == "-" else int(p) if p.isdigit() else p)
     if all(p is None for p in out):
-        raise OptionError(f"{option} {text!r}: at least one axis must be recorded")
+        raise OptionError(argument=argument, value=repr(text),
+                          reason="at least one axis must be recorded")
     return tuple(out)
 
 
@@ -144,14 +146,15 @@ def read_recording(path: str, *, fs: float | None = None,
 def _format(path: str, fs: float | None, topic: str | None) -> tuple[str, Opener]:
     """The checks before a file is opened, and its format's reader."""
     if fs is not None and not (np.isfinite(fs) and fs > 0):
-        raise OptionError(f"--fs {fs:g}: give a positive sample rate in Hz")
+        raise OptionError(argument="fs", value=f"{fs:g}",
+                          reason="give a positive sample rate in Hz")
     if not os.path.exists(path):
         raise problem(path, "no such file")
     if os.path.isdir(path):
         raise problem(path, "is a directory, not a recording")
     kind, opener = reader_for(path)
     if topic is not None and kind != "ulog":
-        raise OptionError("--topic applies only to a ULog (.ulg) recording")
+        raise OptionError(argument="topic", reason="applies only to a ULog (.ulg) recording")
     return kind, opener
 
 

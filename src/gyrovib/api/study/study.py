@@ -286,7 +286,8 @@ def omega_key(omega: FloatArray | None) -> Any:
 def check_peak_factor(peak_factor: float) -> None:
     """κ must be a finite number ≥ 0."""
     if not (np.isfinite(peak_factor) and peak_factor >= 0):
-        raise OptionError(f"--peak-factor {peak_factor:g}: give a finite number ≥ 0")
+        raise OptionError(argument="peak_factor", value=f"{peak_factor:g}",
+                          reason="give a finite number ≥ 0")
 
 
 def _see(profiles: Sequence[ProfileEntry], response: Table | None) -> Seen:

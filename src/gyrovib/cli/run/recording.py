@@ -24,8 +24,8 @@ def step_options(options: dict[str, Any]) -> Any:
 
     return RecordingOptions(
         fs=options["fs"],
-        rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
-        accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
+        rate_columns=parse_columns(options["rate_columns"], "rate_columns"),
+        accel_columns=parse_columns(options["accel_columns"], "accel_columns"),
         rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
         topic=options["topic"], strict=options.get("strict", False),
         **fit_options(options))
@@ -36,8 +36,8 @@ def read(path: str, options: dict[str, Any]) -> Any:
 
     return read_recording(
         path, fs=options["fs"],
-        rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
-        accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
+        rate_columns=parse_columns(options["rate_columns"], "rate_columns"),
+        accel_columns=parse_columns(options["accel_columns"], "accel_columns"),
         rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
         topic=options["topic"], strict=options.get("strict", False))
 
