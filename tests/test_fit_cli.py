@@ -104,14 +104,14 @@ def test_catalogue_output(table: Path, tmp_path: Path) -> None:
         assert set(sensor) == {"id", "coefficients", "uncertainty"}
         for name, value in unit["coefficients"].items():
             sigma = unit["uncertainty"]["sigma"][name]
-            # written to the decimal place of σ's third significant digit (render/fit.py's
+            # written to the decimal place of σ's third significant digit (catalog/writer.py's
             # quantum_of): within half that place of the full-precision JSON value
             place = 10.0 ** (np.floor(np.log10(sigma)) - 2)
             assert sensor["coefficients"][name] == pytest.approx(value, abs=place / 2 * 1.001)
             # σ to three significant digits, not the machine's twelve
             assert sensor["uncertainty"]["sigma"][name] == float(f"{sigma:.3g}")
         for pair, value in unit["uncertainty"]["correlation"].items():
-            # nine decimal places (render/fit.py's CORRELATION_PLACES)
+            # nine decimal places (catalog/writer.py's CORRELATION_PLACES)
             assert sensor["uncertainty"]["correlation"][pair] == pytest.approx(value,
                                                                                abs=5.001e-10)
     lot = sensors[-1]["lot"]

@@ -4,24 +4,21 @@ table, JSON, CSV, Markdown, the catalogue YAML of ``-o`` and the residual plot."
 from __future__ import annotations
 
 import io
-import math
 from typing import Any
 
 from rich.table import Table
 from rich.text import Text
 
-from gyrovib._version import __version__
 from gyrovib.api.ratetable.results import (
     FIT_COLUMNS,
     FitResult,
     fit_columns,
     lot_mapping,
-    lot_name,
+    output_unit,
     pairs,
 )
 from gyrovib.core.fit import SIGNIFICANT_T
 from gyrovib.core.lot import YieldEstimate
-from gyrovib.errors import GyrovibError
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
 from gyrovib.render.plot import _figure_class
 
@@ -69,13 +66,9 @@ def to_csv(result: FitResult) -> str:
                                   for row in rows))
 
 
-def _output_unit(result: FitResult) -> str:
-    return result.output_unit or "output units"
-
-
 def _title(result: FitResult, i: int) -> str:
     f = result.fits[i]
-    out = _output_unit(result)
+    out = output_unit(result)
     return (f"{result.units[i]}: {f.points} points, K1 = {fmt(f.scale_factor, 6)} ± "
             f"{fmt(f.scale_factor_sigma, 2)} {out} per {result.unit}, residual rms "
             f"{fmt(f.residual_rms, 3)} {out}")
@@ -177,109 +170,6 @@ def yield_document(estimate: YieldEstimate, index: tuple[int, ...] = ()) -> dict
 # --------------------------------------------------------------------------- catalogue YAML
 
 
-#: Significant digits of a standard uncertainty in the catalogue ``-o`` writes; a value is
-#: written to the same decimal place as its uncertainty (GUM 7.2.6 keeps two; one more
-#: digit guards the rounding). Beyond them the digits are the machine's rounding, not the data's.
-SIGMA_DIGITS = 3
-#: Decimal places of a written correlation: rounding each of the at most 45 pairs by
-#: 5e-10 moves the matrix's eigenvalues by less than gyrovib.models' PSD_TOLERANCE (1e-8),
-#: so a valid correlation matrix stays valid once written.
-CORRELATION_PLACES = 9
-
-
-def yaml_number(value: float, quantum: float | None = None) -> str:
-    """A float as YAML 1.2 and 1.1 both read it (``1.5e-06`` with a dot in the mantissa:
-    ``1e-06`` would be a string to YAML 1.1), rounded to a multiple of ``quantum`` (a power
-    of ten) when one is given, else to 12 significant digits."""
-    v = float(value)
-    if not math.isfinite(v):
-        raise GyrovibError(f"cannot write the non-finite value {v!r} into a catalogue")
-    text = format(v, ".12g")
-    if quantum is not None and v != 0:
-        digits = max(1, min(12, math.floor(math.log10(abs(v))) - round(math.log10(quantum)) + 1))
-        text = format(v, f".{digits}g") if abs(v) >= quantum / 2 else "0"
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        if "." not in mantissa:
-            mantissa += ".0"
-        return f"{mantissa}e{exponent}"
-    return text if "." in text else text + ".0"
-
-
-def quantum_of(sigma: float) -> float | None:
-    """The decimal place a value with standard uncertainty ``sigma`` is written to: that of
-    the uncertainty's :data:`SIGMA_DIGITS`-th significant digit (``None``, twelve significant
-    digits, where the uncertainty is zero or not finite)."""
-    s = float(sigma)
-    if not math.isfinite(s) or s <= 0:
-        return None
-    return 10.0 ** (math.floor(math.log10(s)) - SIGMA_DIGITS + 1)
-
-
-def _flow(mapping: dict[str, float], sigma: dict[str, float] | None = None) -> str:
-    """``{k: v, ...}``; values to the place their ``sigma`` supports, or σ itself to
-    :data:`SIGMA_DIGITS` significant digits when ``sigma`` is None."""
-    def written(k: str, v: float) -> str:
-        quantum = quantum_of(sigma[k] if sigma is not None else v)
-        return yaml_number(v, quantum)
-
-    return "{" + ", ".join(f"{k}: {written(k, v)}" for k, v in mapping.items()) + "}"
-
-
-def _block(mapping: dict[str, float], indent: str) -> list[str]:
-    """Correlation pairs, one a line, to :data:`CORRELATION_PLACES` decimal places."""
-    if not mapping:
-        return [" {}"]
-    quantum = 10.0 ** -CORRELATION_PLACES
-    return [""] + [f"{indent}{k}: {yaml_number(v, quantum)}" for k, v in mapping.items()]
-
-
-def to_catalog(result: FitResult) -> str:
-    """The catalogue ``-o`` writes (INTERFACE.md, third round): one coefficient-form
-    sensor per unit with its ``uncertainty`` (σ and every correlation pair), and with
-    two or more units a ``lot`` entry (mean, σ, correlation pairs unless the lot is
-    too small for them). Values in the table's rate unit, each to the decimal place its
-    uncertainty supports (:func:`quantum_of`), correlations to :data:`CORRELATION_PLACES`
-    places: the digits beyond are rounding, which differs from one machine's BLAS to the
-    next."""
-    names = result.names
-    lines = [
-        f"# Written by gyrovib {__version__} fit from {result.file}: least squares of eq. (1),",
-        f"# order {result.order}, {sum(f.points for f in result.fits)} points; eq. (2) "
-        "coefficients (k1 = 1) with standard uncertainties",
-        "# and correlations (docs/model.md section 14).",
-        "gyrovib: 1",
-        "units:",
-        f"  rate: {result.unit}",
-        "sensors:",
-    ]
-    for name, f in zip(result.units, result.fits, strict=True):
-        sigma = dict(zip(names, map(float, f.sigma), strict=True))
-        values = dict(zip(names, map(float, f.values), strict=True))
-        lines += [
-            f"  - id: {name}",
-            f"    # K1 = {fmt(f.scale_factor, 8)} ± {fmt(f.scale_factor_sigma, 2)} "
-            f"{_output_unit(result)} per {result.unit}, {f.points} points, residual rms "
-            f"{fmt(f.residual_rms, 3)}",
-            f"    coefficients: {_flow(values, sigma)}",
-            "    uncertainty:",
-            f"      sigma: {_flow(sigma)}",
-            "      correlation:" + "\n".join(_block(pairs(names, f.correlation), " " * 8)),
-        ]
-    if result.lot is not None:
-        lot = lot_mapping(result)
-        lines += [f"  - id: {lot_name(result.file)}"]
-        lines += [f"    # {w}" for w in result.warnings]
-        lines += [
-            "    lot:",
-            f"      units: {lot['units']}",
-            f"      mean: {_flow(lot['mean'], lot['sigma'])}",
-            f"      sigma: {_flow(lot['sigma'])}",
-            "      correlation:" + "\n".join(_block(lot["correlation"], " " * 8)),
-        ]
-    return "\n".join(lines) + "\n"
-
-
 # --------------------------------------------------------------------------- plot
 
 
@@ -292,7 +182,7 @@ def residuals_png(result: FitResult, dpi: int = 100) -> bytes:
     rows = (n + columns - 1) // columns
     fig = figure_class(figsize=(5.0 * columns, 1.0 + 2.4 * rows), dpi=dpi, layout="constrained")
     axes = fig.subplots(rows, columns, squeeze=False, sharex=True)
-    out = _output_unit(result)
+    out = output_unit(result)
     for k, (name, f) in enumerate(zip(result.units, result.fits, strict=True)):
         ax = axes[k // columns][k % columns]
         ax.axhline(0.0, color="0.6", lw=0.8)

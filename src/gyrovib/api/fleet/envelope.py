@@ -41,8 +41,9 @@ from gyrovib.api.recordings.results import (
     FittedTone,
     RecordingFit,
 )
-from gyrovib.api.recordings.yaml import _num, profile_yaml
+from gyrovib.api.recordings.yaml import profile_yaml
 from gyrovib.catalog.loader import parse_catalog
+from gyrovib.catalog.writer import measured
 from gyrovib.core import recording as core
 from gyrovib.core._types import FloatArray
 from gyrovib.core.recording import HARMONIC_TOLERANCE, MISSION_BINS, find_lines
@@ -370,12 +371,12 @@ def _envelope_header(part: EnvelopePart) -> str:
         "amplitude,",
         "# the mission every recording's carrier histogram joined (re-binned to at most 16 "
         "bins of Omega_K3).",
-        f"# crossover f_c: {_num(part.crossover)} Hz; segments: {part.segments}; duration "
-        f"analysed: {_num(sum(r.duration for r in part.recordings))} s",
+        f"# crossover f_c: {measured(part.crossover)} Hz; segments: {part.segments}; duration "
+        f"analysed: {measured(sum(r.duration for r in part.recordings))} s",
         "# Rates in deg/s (PSD in (deg/s)^2/Hz), accelerations in g (PSD in g^2/Hz).",
         "# recordings (file, sha256, samples, fs Hz, duration s):",
     ]
-    lines += [f"#   {r.file}  {r.sha256}  {r.samples}  {_num(r.fs)}  {_num(r.duration)}"
+    lines += [f"#   {r.file}  {r.sha256}  {r.samples}  {measured(r.fs)}  {measured(r.duration)}"
               for r in part.recordings]
     return "\n".join(lines) + "\n"
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 import os
 
 from gyrovib.api.noise.results import AllanResult
+from gyrovib.catalog.writer import number
 
 
 def _number(x: float) -> str:
-    return f"{x:.4g}" if x != 0 else "0"
+    return number(x, 4, typed=False)
 
 
 def noise_yaml(result: AllanResult) -> str:

@@ -1,6 +1,6 @@
 """Rate-table tests (docs/model.md section 14): the table read a block at a time
-(``reading``) and what ``gyrovib fit`` gives (``results``: ``FitResult``). The fit
-itself is the command view :mod:`gyrovib.api.commands.fit` on ``core.fit`` and
+(``reading``), what ``gyrovib fit`` gives (``results``: ``FitResult``) and the catalogue
+its ``-o`` writes (``yaml``: ``fit_catalog``). The fit itself is the command view :mod:`gyrovib.api.commands.fit` on ``core.fit`` and
 ``core.lot``.
 """
 

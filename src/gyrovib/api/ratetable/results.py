@@ -19,6 +19,11 @@ from gyrovib.core.fit import SIGNIFICANT_T, RateFit
 from gyrovib.core.lot import LotStatistics
 
 
+def output_unit(result: FitResult) -> str:
+    """The unit of the output the fit read (``output units`` when the table did not say)."""
+    return result.output_unit or "output units"
+
+
 def coefficient_unit(name: str, rate_unit: str) -> str:
     """The unit of an eq. (2) coefficient built on ``rate_unit``: k0 in it, kn in
     rate^(1−n), m3i in 1/rate, A1 and mi dimensionless ("1")."""

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from gyrovib.catalog.loader import merge, parse_catalog
+from gyrovib.catalog.writer import flow_list, measured, measured_list, measured_table, quoted
 from gyrovib.errors import GyrovibError, OptionError
 from gyrovib.models.profile import correlation_problem
 
@@ -24,18 +25,12 @@ if TYPE_CHECKING:
     from gyrovib.core._types import Table
 
 
-def _num(v: float) -> str:
-    text = f"{float(v):.6g}"
-    return "0" if text in ("-0", "0") else text
-
-
 def _triple(values: object) -> str:
-    return "[" + ", ".join(_num(v) for v in np.asarray(values, dtype=float)) + "]"
+    return measured_list(np.asarray(values, dtype=float).tolist())
 
 
 def _table(table: Table) -> str:
-    f, s = table
-    return "[" + ", ".join(f"[{_num(a)}, {_num(b)}]" for a, b in zip(f, s, strict=True)) + "]"
+    return measured_table(*table)
 
 
 def _coherence(values: object) -> str:
@@ -57,7 +52,7 @@ def _coherence(values: object) -> str:
     centre = r31 * r32
     half = float(np.sqrt(max((1.0 - r31 * r31) * (1.0 - r32 * r32), 0.0)))
     r12 = float(np.clip(r12, centre - half * (1 - 1e-9), centre + half * (1 - 1e-9)))
-    return "[" + ", ".join(_num(v) for v in (r31, r32)) + f", {r12:.15g}]"
+    return flow_list((measured(r31), measured(r32), f"{r12:.15g}"))
 
 
 def _read(text: str) -> tuple[float, float, float]:
@@ -70,12 +65,12 @@ def _part(part: FittedPart, indent: str, *, rate: bool) -> list[str]:
     if part.tones:
         out.append(f"{indent}harmonic:")
         for t in part.tones:
-            out.append(f"{indent}  - {{frequency: {_num(t.frequency)}, amplitude: "
+            out.append(f"{indent}  - {{frequency: {measured(t.frequency)}, amplitude: "
                        f"{_triple(t.amplitude)}, phase: {_triple(t.phase)}}}")
     if rate and part.harmonics:
         out.append(f"{indent}harmonics:")
         for h in part.harmonics:
-            out.append(f"{indent}  - fundamental: {_num(h.fundamental)}")
+            out.append(f"{indent}  - fundamental: {measured(h.fundamental)}")
             out.append(f"{indent}    orders:")
             for order, amp in zip(h.orders, h.amplitude, strict=True):
                 out.append(f"{indent}      - {{order: {order}, amplitude: {_triple(amp)}, "
@@ -98,8 +93,9 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         "# Fitted by `gyrovib profile` from a recording (docs/model.md section 13).",
         f"# file: {base}",
         f"# sha256: {fit.sha256}",
-        f"# samples: {fit.samples}; fs: {_num(fit.fs)} Hz; crossover f_c: {_num(fit.crossover)}"
-        f" Hz; segments: {fit.segments}; duration analysed: {_num(fit.duration)} s",
+        f"# samples: {fit.samples}; fs: {measured(fit.fs)} Hz; crossover f_c: "
+        f"{measured(fit.crossover)} Hz; segments: {fit.segments}; duration analysed: "
+        f"{measured(fit.duration)} s",
         "# Rates in deg/s (PSD in (deg/s)^2/Hz), accelerations in g (PSD in g^2/Hz).",
         *_shape_comments(fit),
     ]
@@ -120,7 +116,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         "",
         "profiles:",
         f"  - id: {fit.profile_id}",
-        f"    name: {_quote('Fitted from ' + base)}",
+        f"    name: {quoted('Fitted from ' + base)}",
         f"    rate: {_triple(fit.rate)}",
     ]
     lines += _part(fit.angular, "    ", rate=True)
@@ -130,7 +126,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         lines += _part(fit.linear, "      ", rate=False)
     lines += ["", "missions:", f"  - id: {mission_id(fit)}", "    segments:"]
     for rate, t in zip(fit.mission_rates, fit.mission_durations, strict=True):
-        lines.append(f"      - {{profile: {fit.profile_id}, duration: {_num(t)}, "
+        lines.append(f"      - {{profile: {fit.profile_id}, duration: {measured(t)}, "
                      f"rate: {_triple(rate)}}}")
     return "\n".join(lines) + "\n"
 
@@ -155,10 +151,6 @@ def _shape_comments(fit: RecordingFit) -> list[str]:
 def mission_id(fit: RecordingFit) -> str:
     """The id of the fitted mission: the profile's, with ``-mission``."""
     return f"{fit.profile_id}-mission"
-
-
-def _quote(text: str) -> str:
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
 
 
 def with_fitted_profile(catalog: Any, fit: RecordingFit) -> Any:

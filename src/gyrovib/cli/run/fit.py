@@ -6,6 +6,7 @@ import sys
 
 from gyrovib import api
 from gyrovib.api.ratetable.reading import MAX_BYTES, STDIN, STDIN_NAME, read_rate_table_bytes
+from gyrovib.api.ratetable.yaml import fit_catalog
 from gyrovib.cli.common import page_width, plain_ascii, say, use_color
 from gyrovib.cli.output import write_binary, write_output
 from gyrovib.render import fit as render
@@ -27,7 +28,7 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
     if plot is not None:
         write_binary(render.residuals_png(result), plot)
     if output is not None:
-        write_output(render.to_catalog(result), output)
+        write_output(fit_catalog(result), output)
         if output == "-":
             return
     if fmt == "table":
