@@ -115,11 +115,12 @@ def parse_rate(text: str, default_unit: str) -> float:
 
 
 class NotPositive(OptionError):
-    """A quantity that had to be positive was not (its text or number in ``value``)."""
+    """A quantity that had to be positive was not (its text or number in ``value``, as
+    written by ``repr``)."""
 
     def __init__(self, value: object) -> None:
         super().__init__(f"{value!r} must be positive")
-        self.value = value
+        self.value = repr(value)
 
 
 def quantity(value: str | float, unit: str, *, positive: bool = False) -> float:
