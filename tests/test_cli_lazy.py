@@ -1,62 +1,50 @@
-"""The command line's one lazy boundary (gyrovib/cli/lazy.py): each command is declared
-in a light module and runs a body of the same name and signature from gyrovib.cli.run."""
+"""The command line: one module per command, registered once (gyrovib/cli/main.py,
+COMMANDS); a command imports the library and the renderers inside its function, so that
+listing the commands (``--help``) loads click's declarations only."""
 
 from __future__ import annotations
 
 import importlib
-import inspect
+import pkgutil
 import subprocess
 import sys
 from pathlib import Path
 
-import pytest
+import click
 
-from gyrovib.cli.lazy import BODIES
-from gyrovib.cli.main import _COMMANDS, cli
-
-
-def _is_lazy(command: object) -> bool:
-    return hasattr(getattr(command, "callback", None), "body_module") or any(
-        _is_lazy(c) for c in getattr(command, "commands", {}).values())
+import gyrovib.cli
+from gyrovib.cli.main import COMMANDS, cli
 
 
-#: The declarations whose bodies live in gyrovib.cli.run, by command path.
-LAZY = {name: command for name in _COMMANDS
-        if (command := cli.get_command(None, name)) is not None  # type: ignore[arg-type]
-        and _is_lazy(command)}
+def test_every_command_is_registered_once_from_its_own_module():
+    names = [c.name for c in COMMANDS]
+    assert len(names) == len(set(names)) and len(names) >= 12  # the probe works
+    assert list(cli.commands) == names  # --help lists them in this order
+    for command in COMMANDS:  # cli/NAME.py declares `gyrovib NAME`
+        module = importlib.import_module(f"gyrovib.cli.{command.name}")
+        assert getattr(module, command.name) is command
 
 
-def _declarations() -> list[tuple[str, object]]:
-    found = []
-    for name, command in LAZY.items():
-        if _is_lazy(command) and hasattr(command.callback, "body_module"):
-            found.append((name, command))
-        for sub, child in getattr(command, "commands", {}).items():
-            if hasattr(child.callback, "body_module"):
-                found.append((f"{name} {sub}", child))
-    return found
+def test_no_command_is_declared_outside_the_registry():
+    registered = {id(c) for c in COMMANDS}
+    for info in pkgutil.iter_modules(gyrovib.cli.__path__):
+        module = importlib.import_module(f"gyrovib.cli.{info.name}")
+        for value in vars(module).values():
+            if isinstance(value, click.Command) and value.__module__ == module.__name__:
+                assert id(value) in registered or value.name in ("cli", "export"), \
+                    f"{module.__name__}.{value.name} is not registered in COMMANDS"
 
 
-def test_the_commands_of_this_package_are_declared_lazily():
-    assert {"analyze", "bounds", "select", "sweep", "report", "schema", "catalog", "allan", "fit",
-            "mission", "profile"} <= set(LAZY)
-
-
-@pytest.mark.parametrize("path, command", _declarations(), ids=lambda x: str(x)[:20])
-def test_each_body_has_the_declarations_name_and_signature(path, command):
-    declared = command.callback.__wrapped__
-    body = getattr(importlib.import_module(command.callback.body_module), declared.__name__)
-    assert inspect.signature(body) == inspect.signature(declared)
-    assert command.callback.__doc__ == declared.__doc__  # the help is the declaration's
-
-
-def test_help_loads_no_body():
+def test_help_loads_neither_the_library_nor_a_renderer():
     probe = ("import contextlib, io, sys\n"
              "from gyrovib.cli.main import cli\n"
-             "for args in (['--help'], ['analyze', '--help'], ['select', '--help']):\n"
+             "for args in (['--help'], ['analyze', '--help'], ['select', '--help'],\n"
+             "             ['profile', '--help'], ['catalog', 'export', '--help']):\n"
              "    with contextlib.redirect_stdout(io.StringIO()):\n"
              "        cli.main(args, prog_name='gyrovib', standalone_mode=False)\n"
-             f"print(sorted(m for m in sys.modules if m.startswith({BODIES!r})))\n")
+             "print(sorted(m for m in sys.modules if m.startswith(('gyrovib.api', "
+             "'gyrovib.render.', 'gyrovib.core', 'gyrovib.models', 'gyrovib.catalog'))\n"
+             "             and m != 'gyrovib.render.github'))\n")
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                           check=True, timeout=60)
     assert done.stdout.strip() == "[]"

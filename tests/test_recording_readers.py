@@ -112,9 +112,9 @@ def _cut(tmp_path: Path, size: int, name: str = "cut.ulg") -> Path:
 @pytest.mark.parametrize("share", [None, 0.5, 0.9])
 def test_a_cut_ulog_is_said_and_refused_under_strict(tmp_path: Path,
                                                      share: float | None) -> None:
-    """A log cut short as `head -c 405336` cuts it, and cuts at 50 % and 90 % of the file, each end inside
-    a message: a warning names the file, its bytes and the seconds read; --strict makes it
-    exit status 2 on profile and analyze --recording."""
+    """A log cut short as `head -c 405336` cuts it, and at 50 % and 90 % of the file, each
+    end inside a message: a warning names the file, its bytes and the seconds read;
+    --strict makes it exit status 2 on profile and analyze --recording."""
     pytest.importorskip("pyulog", reason="the ULog path needs gyrovib[ulog]")
     size = 405336 if share is None else int(share * ULOG.stat().st_size)
     path = _cut(tmp_path, size)

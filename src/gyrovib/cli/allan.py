@@ -7,8 +7,9 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import page_width, plain_ascii, use_color
 from gyrovib.cli.options import format_option
+from gyrovib.cli.output import write_binary, write_output
 from gyrovib.cli.recording import reader_options
 
 
@@ -28,7 +29,6 @@ from gyrovib.cli.recording import reader_options
               help="Write the figures as a noise: block (YAML) to paste into a sensor "
                    "('-': standard output instead of the table).")
 @format_option("table", "json")
-@runs("allan")
 def allan(recording: str, unit: str, per_decade: int, plot: str | None, output: str | None,
           fmt: str, **options: Any) -> None:
     """The Allan deviation of a static RECORDING and N, B, K with their uncertainties.
@@ -43,3 +43,22 @@ def allan(recording: str, unit: str, per_decade: int, plot: str | None, output: 
     RECORDING: as for `gyrovib profile` (CSV with a header row, .npy, .npz,
     PX4 .ulg), with the same column, unit and sample-rate options.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib.api.noise import allan as run
+    from gyrovib.api.noise import noise_yaml
+    from gyrovib.cli.recording import read
+    from gyrovib.render import allan as render
+
+    result = run(read(recording, options), unit=unit, per_decade=per_decade)
+    if plot is not None:
+        write_binary(render.plot(result), plot)
+    if output is not None:
+        write_output(noise_yaml(result), output)
+        if output == "-":
+            return
+    if fmt == "json":
+        text = render.to_json(result)
+    else:
+        text = render.to_table(result, color=use_color(), width=page_width(),
+                               ascii=plain_ascii())
+    write_output(text, None)

@@ -6,19 +6,37 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import (
+    load_catalog,
+    note_slow_table,
+    page_width,
+    plain_ascii,
+    say,
+    use_color,
+)
 from gyrovib.cli.options import (
     SAMPLES_MAX,
     files_argument,
     format_option,
     output_option,
+    parse_rate_option,
+    parse_unit,
     peak_factor_option,
     placement_option,
     rate_option,
     selection_options,
     unit_option,
 )
-from gyrovib.cli.recording import jobs_option, recording_options
+from gyrovib.cli.output import write_output
+from gyrovib.cli.placement import is_triad, run_placed, write_triad
+from gyrovib.cli.progress import progress_bar
+from gyrovib.cli.recording import (
+    analyze_recording,
+    jobs_option,
+    recording_options,
+    refuse_with_recording,
+)
+from gyrovib.errors import OptionError
 from gyrovib.limits import MIN_SAMPLES
 
 
@@ -52,7 +70,6 @@ from gyrovib.limits import MIN_SAMPLES
                    "worst.")
 @recording_options
 @jobs_option
-@runs("analyze")
 def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
             placement: str | None,
             method: str, samples: int, seed: int, rate: str | None, unit: str,
@@ -70,3 +87,41 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     A sensor driven past its range (|Ω_K3| + Σ tone amplitudes + locked
     peaks + κσ3 > range, κ = --peak-factor) is marked saturated.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib import api
+    from gyrovib.render import analysis as render
+
+    unit = parse_unit(unit)
+    catalog = load_catalog(files)
+    if jobs != 1 and not recordings:
+        raise OptionError("--jobs runs recordings in processes: give it with --recording")
+    if recordings:
+        refuse_with_recording(profiles=profiles, rate=rate, method=method)
+        if placement is not None:
+            raise OptionError("--placement maps catalogue profiles; with --recording give "
+                              "the recording's columns in sensor axes (--rate-columns)")
+        analyze_recording(recordings, catalog, sensors, unit, fmt, output, rec, jobs)
+        return
+
+    with progress_bar("brute force", enabled=method == "numeric") as advance:
+        result = run_placed(api.analyze, catalog, placement, fmt, sensors=sensors,
+                            profiles=profiles, method=method,
+                            rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
+                            seed=seed, progress=advance, peak_factor=peak_factor)
+    if is_triad(result):
+        write_triad(result, lambda r: render.to_table(r, color=use_color(output),
+                                                      width=page_width(output),
+                                                      ascii=plain_ascii(output))
+                    if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
+                                            "markdown": render.to_markdown}[fmt](r),
+                    fmt, output)
+        return
+    for note in result.notes:
+        say(f"gyrovib: warning: {note}")
+    if fmt == "table":
+        note_slow_table(len(result.sensors) * len(result.profiles))
+        write_output(render.to_table(result, color=use_color(output), width=page_width(output),
+                                     ascii=plain_ascii(output), detail=detail), output)
+        return
+    renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
+    write_output(renderers[fmt](result), output)

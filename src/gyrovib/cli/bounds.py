@@ -4,15 +4,20 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
 from gyrovib.cli.options import (
+    budget_arguments,
     budget_options,
     files_argument,
     format_option,
     output_option,
     placement_option,
 )
+from gyrovib.cli.output import write_output
+from gyrovib.cli.placement import is_triad, run_placed, write_triad
 from gyrovib.cli.spec_options import (
+    parse_range,
+    parse_spec_weights,
     range_options,
     spec_weights_option,
 )
@@ -28,7 +33,6 @@ from gyrovib.cli.spec_options import (
 @placement_option
 @format_option("table", "json", "csv", "markdown")
 @output_option
-@runs("bounds")
 def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, method: str,
            rate: str | None, unit: str | None, allocation: str | None, range_: str | None,
            nl_fit: str, nl_measure: str, nl_of: str, spec_weights: str | None,
@@ -46,3 +50,26 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
     figures: the nonlinearity in %FS of R (as --nl-fit / --nl-measure read it) and
     the VRE.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib import api
+    from gyrovib.render import bounds as render
+
+    catalog = load_catalog(files)  # validated whole; the bounds use the profiles only
+    split = budget_arguments(budget, unit, rate, allocation)
+
+    result = run_placed(api.bounds, catalog, placement, fmt, profiles=profiles, method=method,
+                        **split, range_=parse_range(range_, split["unit"]), nl_fit=nl_fit,
+                        nl_measure=nl_measure, nl_of=nl_of,
+                        spec_weights=parse_spec_weights(spec_weights))
+
+    def draw(one: api.BoundsResult) -> str:
+        if fmt == "table":
+            return render.to_table(one, color=use_color(output), width=page_width(output),
+                                   ascii=plain_ascii(output))
+        return {"json": render.to_json, "csv": render.to_csv,
+                "markdown": render.to_markdown}[fmt](one)
+
+    if is_triad(result):
+        write_triad(result, draw, fmt, output)
+        return
+    write_output(draw(result), output)

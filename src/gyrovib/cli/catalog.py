@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import os
+import shutil
+
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.errors import OptionError
 
 
 @click.group()
@@ -19,7 +22,6 @@ def catalog() -> None:
 @click.option("--force", is_flag=True,
               help="Replace files of the same name in DIR (by default they are kept and "
                    "the command fails).")
-@runs("catalog")
 def export(directory: str, which: str, force: bool) -> None:
     """Write the bundled catalogues into DIR (created if missing), to edit as your own.
 
@@ -27,3 +29,20 @@ def export(directory: str, which: str, force: bool) -> None:
     its comments, the sources of every figure. Give the copies to any command
     in place of the bundled ones.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib.api.study.entries import bundled_choice
+
+    sources = bundled_choice(which)
+    targets = [os.path.join(directory, os.path.basename(s)) for s in sources]
+    if os.path.exists(directory) and not os.path.isdir(directory):
+        raise OptionError(f"{directory}: not a directory")
+    clash = [t for t in targets if os.path.exists(t)]
+    if clash and not force:
+        raise OptionError(f"{clash[0]} exists; --force replaces it")
+    try:
+        os.makedirs(directory, exist_ok=True)
+        for source, target in zip(sources, targets, strict=True):
+            shutil.copyfile(source, target)
+            click.echo(f"gyrovib: wrote {target}", err=True)
+    except OSError as exc:
+        raise OptionError(f"{directory}: cannot write ({exc.strerror or exc})") from None

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import sys
+
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import page_width, plain_ascii, say, use_color
 from gyrovib.cli.options import format_option
+from gyrovib.cli.output import write_binary, write_output
 
 
 @click.command()
@@ -25,7 +28,6 @@ from gyrovib.cli.options import format_option
 @click.option("--plot", metavar="PNG",
               help="Write the residuals against the rate, one panel per unit (matplotlib).")
 @format_option("table", "json", "csv", "markdown")
-@runs("fit")
 def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit: str | None,
         plot: str | None, fmt: str) -> None:
     """Fit rate-table data: each unit's coefficients with their uncertainty, and the lot.
@@ -43,3 +45,31 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
     coefficients, identical units, a singular covariance) is written with a
     warning naming it: select --yield calls it unverified.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib import api
+    from gyrovib.api.ratetable.reading import MAX_BYTES, STDIN, STDIN_NAME, read_rate_table_bytes
+    from gyrovib.api.ratetable.yaml import fit_catalog
+    from gyrovib.render import fit as render
+
+    if table == STDIN:
+
+        raw = sys.stdin.buffer.read(MAX_BYTES + 1) if sys.stdin is not None else b""
+        data = read_rate_table_bytes(raw, STDIN_NAME, rate_unit, output_unit)
+    else:
+        data = api.read_rate_table(table, rate_unit, output_unit)
+    result = api.fit(data, order)
+    for warning in result.warnings:
+        say(f"gyrovib: warning: {warning}")
+    if plot is not None:
+        write_binary(render.residuals_png(result), plot)
+    if output is not None:
+        write_output(fit_catalog(result), output)
+        if output == "-":
+            return
+    if fmt == "table":
+        text = render.to_table(result, color=use_color(), width=page_width(),
+                               ascii=plain_ascii())
+    else:
+        text = {"json": render.to_json, "csv": render.to_csv,
+                "markdown": render.to_markdown}[fmt](result)
+    write_output(text, None)

@@ -29,7 +29,6 @@ escaped (:func:`~gyrovib.cli.common.printable`).
 
 from __future__ import annotations
 
-import importlib
 import os
 import signal
 import sys
@@ -39,10 +38,22 @@ from typing import Any, NoReturn
 import click
 
 from gyrovib._version import __version__
+from gyrovib.cli.allan import allan
+from gyrovib.cli.analyze import analyze
+from gyrovib.cli.bounds import bounds
+from gyrovib.cli.catalog import catalog
 from gyrovib.cli.common import Settings, say, silence_stderr
+from gyrovib.cli.fit import fit
+from gyrovib.cli.mission import mission
 from gyrovib.cli.options import as_option
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
+from gyrovib.cli.profile import profile
 from gyrovib.cli.progress import terminal_progress
+from gyrovib.cli.report import report
+from gyrovib.cli.schema import schema
+from gyrovib.cli.select import select
+from gyrovib.cli.sweep import sweep
+from gyrovib.cli.validate import validate
 from gyrovib.errors import GyrovibError
 from gyrovib.render.github import annotation, problems_to_github
 
@@ -144,16 +155,6 @@ def _echo_interrupted(code: int) -> None:
         silence_stderr()
 
 
-#: Each command lives in its own module, imported only when that command runs
-#: (or ``--help`` lists them all).
-_COMMANDS = {name: f"gyrovib.cli.{name}"
-             for name in ("analyze", "bounds", "select", "sweep", "report", "validate", "schema",
-                          "fit", "profile", "allan", "catalog")}
-
-
-_COMMANDS["mission"] = "gyrovib.cli.mission"
-
-
 class _Group(click.Group):
     """Catches the one error root and turns it into lines on stderr and exit 2.
 
@@ -165,13 +166,7 @@ class _Group(click.Group):
     _argv: list[str] | None = None
 
     def list_commands(self, ctx: click.Context) -> list[str]:
-        return list(_COMMANDS)
-
-    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
-        if cmd_name not in self.commands and cmd_name in _COMMANDS:
-            module = importlib.import_module(_COMMANDS[cmd_name])
-            self.add_command(getattr(module, cmd_name))
-        return self.commands.get(cmd_name)
+        return list(self.commands)  # in the order registered (COMMANDS), not sorted
 
     def main(self, args: Any = None, *rest: Any, **extra: Any) -> Any:
         self._argv = None if args is None else [str(a) for a in args]
@@ -251,6 +246,15 @@ def cli(ctx: click.Context, color: str) -> None:
     143 terminated, 141 standard output closed early.
     """
     ctx.obj = Settings(color=color)
+
+
+#: Every command, registered once, in the order ``gyrovib --help`` lists them. A command
+#: module declares its options at import and imports the library and the renderers only
+#: inside its function, so listing them all costs click's declarations alone.
+COMMANDS: tuple[click.Command, ...] = (analyze, bounds, select, sweep, report, validate,
+                                       schema, fit, profile, allan, catalog, mission)
+for _command in COMMANDS:
+    cli.add_command(_command)
 
 
 def main(args: list[str] | None = None) -> NoReturn:

@@ -2,17 +2,28 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import load_catalog, page_width, plain_ascii, say, use_color
 from gyrovib.cli.options import (
     files_argument,
     format_option,
     output_option,
+    parse_angle_budget,
+    parse_budget,
+    parse_placement,
+    parse_unit,
     peak_factor_option,
     placement_option,
 )
+from gyrovib.cli.output import write_output
 from gyrovib.cli.spec_options import assume_unknown_option
+from gyrovib.errors import OptionError
+
+if TYPE_CHECKING:
+    from gyrovib.api.missions import MissionResult
 
 #: ``--coverage K`` of ``mission`` and ``select --mission`` (docs/model.md section 15).
 coverage_option = click.option(
@@ -47,7 +58,6 @@ coverage_option = click.option(
 @format_option("table", "json", "csv", "markdown", "junit")
 @output_option
 @click.pass_context
-@runs("mission")
 def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...],
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
@@ -69,3 +79,88 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
     status 1 when the
     --require condition is not met.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib import api, units
+
+    if budget is not None and angle_budget is not None:
+        raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
+                          "not both")
+    if unit is not None:
+        unit = parse_unit(unit)
+    else:
+        unit = (units.quantity_unit(budget) if budget is not None else None) or "deg/s"
+    catalog = load_catalog(files)
+    result = api.mission(
+        catalog, missions=missions, sensors=sensors,
+        budget=None if budget is None else parse_budget(budget, unit),
+        angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
+        unit=unit, require=require, placement=parse_placement(placement),
+        peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
+    _show(result, fmt, output)
+    if not result.requirement_met:
+        ctx.exit(1)
+
+
+def _show(result: MissionResult, fmt: str, output: str | None) -> None:
+    """The result's notes on standard error, then the result in ``fmt`` (table, json, csv,
+    markdown or junit) to standard output or ``output``."""
+    # lazy: the library and the renderers load when it runs, not for --help
+    from gyrovib.render import mission as render
+
+    for note in result.notes:
+        say(f"gyrovib: warning: {note}")
+    if fmt == "table":
+        text = render.to_table(result, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output))
+    else:
+        text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
+                "junit": render.to_junit}[fmt](result)
+    write_output(text, output)
+
+
+def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tuple[str, ...],
+                   profiles: tuple[str, ...], budget: str | None, angle_budget: str | None,
+                   unit: str | None, placement: str | None, peak_factor: float,
+                   require: str, fmt: str, output: str | None,
+                   assume_unknown: str = "none", coverage: float = 1.0) -> bool:
+    """``select --mission ID``: the mission's verdicts in select's formats, the sensors
+    ranked on their budget total; returns whether the --require condition is met."""
+    # lazy: the library and the renderers load when it runs, not for --help
+    from gyrovib import api, units
+    from gyrovib.api.noise import ranked
+
+    if mission_id is None:
+        raise OptionError("--angle-budget needs --mission ID (select on a mission)")
+    if profiles:
+        raise OptionError("--mission selects on the mission's own profiles: drop --profile")
+    if (budget is None) == (angle_budget is None):
+        raise OptionError("with --mission give --budget (on the mean RMS) or --angle-budget "
+                          "(on the angle), one of them")
+    if fmt == "github":
+        raise OptionError("--mission: use --format table, json, csv, markdown or junit")
+    unit = parse_unit(unit) if unit is not None else (
+        (units.quantity_unit(budget) if budget is not None else None) or "deg/s")
+
+    result = ranked(api.mission(
+        load_catalog(files), missions=(mission_id,), sensors=sensors,
+        budget=None if budget is None else parse_budget(budget, unit),
+        angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
+        unit=unit, require=require, placement=parse_placement(placement),
+        peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage))
+    _show(result, fmt, output)
+    return result.requirement_met
+
+
+def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
+                    angle_budget: str | None, unit: str, peak_factor: float,
+                    assume_unknown: str = "none", coverage: float = 1.0) -> str:
+    """``report --mission``: the HTML of the mission section."""
+    # lazy: the library and the renderers load when it runs, not for --help
+    from gyrovib import api
+    from gyrovib.render.report_mission import mission_section as section
+
+    result = api.mission(
+        catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
+        angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
+        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage)
+    return section(result)

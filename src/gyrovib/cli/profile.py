@@ -7,9 +7,9 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.lazy import runs
 from gyrovib.cli.options import format_option, output_option
-from gyrovib.cli.recording import jobs_option, recording_options
+from gyrovib.cli.output import write_output
+from gyrovib.cli.recording import fit_options, jobs_option, recording_options
 
 
 @click.command()
@@ -20,7 +20,6 @@ from gyrovib.cli.recording import jobs_option, recording_options
               "each panel titled with its shape figures (several recordings: their envelope).")
 @format_option("yaml", "json")
 @output_option
-@runs("profile")
 def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
             output: str | None, **options: Any) -> None:
     """Fit a profile (and its carrier mission) to a RECORDING, or to the envelope of several.
@@ -46,3 +45,24 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
     --format json writes, instead of the YAML, the honesty figures of each
     recording (and of the envelope) with the YAML as one string (docs/output.md).
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib.api.commands.recording import fit_recording
+    from gyrovib.api.fleet.envelope import profile_recordings
+    from gyrovib.cli.recording import read, step_options
+    from gyrovib.render import fleet as render
+    from gyrovib.render.recording import honesty_table, plot_fit
+
+    if len(recordings) == 1:
+
+        fit = fit_recording(read(recordings[0], options), **fit_options(options))
+        table = honesty_table(fit)
+        document = render.profile_json(fit) if fmt == "json" else fit.yaml
+    else:
+
+        env = profile_recordings(recordings, step_options(options), jobs=jobs)
+        fit, table = env.fit, render.envelope_table(env)
+        document = render.envelope_json(env) if fmt == "json" else fit.yaml
+    write_output(document, output)
+    click.echo(table, err=True, nl=False)
+    if plot is not None:
+        plot_fit(fit, plot)

@@ -6,16 +6,19 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import load_catalog, say
 from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
+    budget_arguments,
     budget_options,
     files_argument,
     peak_factor_option,
     selection_options,
 )
+from gyrovib.cli.output import write_output
 from gyrovib.cli.recording import recording_options
 from gyrovib.cli.spec_options import assume_unknown_option
+from gyrovib.cli.sweep import parse_rate_range
 from gyrovib.cli.yield_options import yield_options
 
 DEFAULT_OUTPUT = "report.html"
@@ -53,7 +56,6 @@ DEFAULT_OUTPUT = "report.html"
                    "unit (0.5deg, '2 mrad').")
 @coverage_option
 @recording_options
-@runs("report")
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            missions: tuple[str, ...], angle_budget: str | None,
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
@@ -69,3 +71,31 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     rate envelope and the profile's spectrum. Prints cleanly to PDF. Unlike
     `select`, the exit status is 0 whether or not the requirement is met.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib import api
+    from gyrovib.api.report import views as studies
+    from gyrovib.cli.mission import mission_section
+    from gyrovib.cli.recording import report_recording
+    from gyrovib.render.report import to_html
+
+    split = budget_arguments(budget, unit, rate, allocation)
+    sweep_rates = None
+    if rate_range is not None:
+        sweep_rates = api.rate_range(*parse_rate_range(rate_range, split["unit"]))
+    catalog = load_catalog(files)
+    section = ""
+    if recording is not None:
+        catalog, profiles, section = report_recording(recording, catalog, sensors, profiles,
+                                                      split["unit"], rec)
+    if missions:  # after the recording's section, before the profiles
+        section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
+                                   peak_factor, assume_unknown=assume_unknown or "none",
+                                   coverage=coverage)
+    result = studies.trade_study(
+        catalog, sensors=sensors, profiles=profiles, method=method, **split,
+        criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,
+        assume_unknown=assume_unknown or "none", yield_target=yield_target, seed=seed,
+        draws=draws)
+    write_output(to_html(result, section), output)
+    if output not in ("-", ""):
+        say(f"gyrovib: wrote {output}")

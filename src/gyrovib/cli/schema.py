@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.lazy import runs
 from gyrovib.cli.options import output_option
+from gyrovib.cli.output import write_output
 
 
 @click.command()
 @output_option
-@runs("schema")
 def schema(output: str | None) -> None:
     """Print the JSON Schema (draft-07) of the catalogue format.
 
@@ -20,3 +19,7 @@ def schema(output: str | None) -> None:
     \b
         # yaml-language-server: $schema=./gyrovib.schema.json
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib.models.schema import schema_text
+
+    write_output(schema_text(), output)

@@ -2,11 +2,23 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from typing import Any
+
 import click
 
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import (
+    github_errors,
+    load_catalog,
+    note_slow_table,
+    page_width,
+    plain_ascii,
+    say,
+    use_color,
+)
 from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
+    budget_arguments,
     budget_options,
     files_argument,
     format_option,
@@ -15,8 +27,11 @@ from gyrovib.cli.options import (
     placement_option,
     selection_options,
 )
+from gyrovib.cli.output import write_output
+from gyrovib.cli.placement import is_triad, run_placed, write_triad
 from gyrovib.cli.spec_options import (
     assume_unknown_option,
+    parse_spec_weights,
     spec_weights_option,
 )
 from gyrovib.cli.yield_options import yield_options
@@ -53,7 +68,6 @@ from gyrovib.cli.yield_options import yield_options
 @format_option("table", "json", "csv", "markdown", "junit", "github")
 @output_option
 @click.pass_context
-@runs("select")
 def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
            placement: str | None, mission: str | None, angle_budget: str | None,
            profiles: tuple[str, ...], budget: str | None, method: str, rate: str | None,
@@ -76,8 +90,64 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
     probability that a part drawn from it passes is at least Y (docs/model.md section 14).
     Exit status 1 when the --require condition is not met.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib import api
+    from gyrovib.cli.mission import select_mission
+    from gyrovib.render import select as render
+
+    github_errors(fmt == "github")
+    if mission is not None or angle_budget is not None:
+        met = select_mission(files, mission, sensors, profiles, budget, angle_budget, unit,
+                             placement, peak_factor, require, fmt, output,
+                             assume_unknown=assume_unknown or "none", coverage=coverage)
+        if not met:
+            ctx.exit(1)
+        return
+    if budget is None:
+        raise click.UsageError("Missing option '--budget'.", ctx)
+    catalog = load_catalog(files)
+    split = budget_arguments(budget, unit, rate, allocation)
+
+    result = run_placed(api.select, catalog, placement, fmt, sensors=sensors,
+                        profiles=profiles, method=method, **split, criterion=criterion,
+                        require=require, spec_weights=parse_spec_weights(spec_weights),
+                        peak_factor=peak_factor, assume_unknown=assume_unknown or "none",
+                        yield_target=yield_target, seed=seed, draws=draws)
+    if is_triad(result):  # table, json, csv or markdown, per axis, and the worst axes
+        write_triad(result, lambda one: render.to_table(
+            one, color=use_color(output), width=page_width(output), ascii=plain_ascii(output))
+            if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
+                                    "markdown": render.to_markdown}[fmt](one), fmt, output)
+        if not result.requirement_met:
+            ctx.exit(1)
+        return
+    for note in result.notes:
+        say(f"gyrovib: warning: {note}")
+    text = _rendered(result, fmt, catalog, output)
+    write_output(text, output)
+    if not result.requirement_met:
+        ctx.exit(1)
 
 
 for _param in select.params:  # --budget is not needed with --mission --angle-budget
     if _param.name == "budget":
         _param.required = False
+
+
+def _rendered(result: Any, fmt: str, catalog: Any, output: str | None) -> str | Iterator[str]:
+    """The selection in ``fmt``; the JSON document is streamed, never whole at once."""
+    # lazy: the library and the renderers load when it runs, not for --help
+    from gyrovib import api
+    from gyrovib.render import select as render
+    from gyrovib.render import select_ci
+
+    if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
+        note_slow_table(2 * len(result.sensors))
+        return render.to_table(result, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output))
+    if fmt in ("github", "junit"):  # the CI formats
+        return (select_ci.to_github(result, api.sensor_locations(catalog, result.sensors))
+                if fmt == "github" else select_ci.to_junit(result))
+    if fmt == "json":
+        return render.to_json_chunks(result)
+    return {"csv": render.to_csv, "markdown": render.to_markdown}[fmt](result)

@@ -5,16 +5,27 @@ from __future__ import annotations
 import click
 
 from gyrovib import units
-from gyrovib.cli.lazy import runs
+from gyrovib.cli.common import (
+    load_catalog,
+    note_slow_table,
+    page_width,
+    plain_ascii,
+    say,
+    use_color,
+)
 from gyrovib.cli.options import (
     budget_unit_option,
     files_argument,
     format_option,
     output_option,
+    parse_budget,
     peak_factor_option,
     placement_option,
+    resolve_unit,
     selection_options,
 )
+from gyrovib.cli.output import write_binary, write_output
+from gyrovib.cli.placement import is_triad, run_placed, write_triad
 from gyrovib.errors import OptionError
 
 DEFAULT_RANGE = "-200:200:401"
@@ -66,7 +77,6 @@ def envelope_path(plot: str) -> str:
 @placement_option
 @format_option("table", "json", "csv")
 @output_option
-@runs("sweep")
 def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
           rate_range: str, budget: str | None, plot: str | None, log_scale: bool,
           unit: str | None, peak_factor: float, placement: str | None,
@@ -78,3 +88,44 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
     rate. Where the paper's formulas do not cover a profile (several tones, or
     tones with random vibration) its paper columns are left empty.
     """
+    # lazy: the library and the renderers load when the command runs, not for --help
+    from gyrovib import api, units
+    from gyrovib.render import sweep as render
+    from gyrovib.render.plot import envelope_png, sweep_png
+
+    unit = resolve_unit(unit, budget or "")
+    start, stop, count = parse_rate_range(rate_range, unit)
+    budget_value = parse_budget(budget, unit) / units.scale(unit) if budget is not None else None
+
+    result = run_placed(api.sweep, load_catalog(files), placement, fmt,
+                        rates=api.rate_range(start, stop, count), sensors=sensors,
+                        profiles=profiles, unit=unit, peak_factor=peak_factor)
+    if is_triad(result):
+        if plot is not None:
+            raise OptionError("--plot draws one placement: give --placement x1=..,x2=..,x3=..")
+        write_triad(result, lambda r: render.to_table(r, budget_value, width=page_width(output),
+                                                      color=use_color(output),
+                                                      ascii=plain_ascii(output))
+                    if fmt == "table" else {"json": render.to_json,
+                                            "csv": render.to_csv_chunks}[fmt](r, budget_value),
+                    fmt, output)
+        return
+    if result.paper_refused:
+        listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
+        say(f"gyrovib: note: the paper's columns are empty for {listed}")
+    if plot is not None:
+        if plot == "-":
+            raise OptionError("--plot writes a PNG file: give a file name, not '-'")
+
+        write_binary(sweep_png(result, budget_value, log=log_scale), plot)
+        envelope = envelope_png(result)
+        if envelope is not None:  # datasheet sensors: their worst polynomials, a second PNG
+            write_binary(envelope, envelope_path(plot))
+    if fmt == "table":  # a table per sensor × profile, a row per rate
+        note_slow_table(len(result.sensors) * len(result.profiles) * len(result.rates))
+        write_output(render.to_table(result, budget_value, width=page_width(output),
+                                     color=use_color(output),
+                                     ascii=plain_ascii(output)), output)
+        return
+    renderers = {"json": render.to_json, "csv": render.to_csv_chunks}
+    write_output(renderers[fmt](result, budget_value), output)

@@ -1,4 +1,4 @@
-"""Presentation of results, apart from the library that computes them.
+"""Presentation of results in words and frames, above the library that computes them.
 
 ======================================  ==========================================
 module                                  what it holds

@@ -1,7 +1,8 @@
 """Why a sensor fails a selection, in words (``select``'s ``reason``, the tables, JUnit).
 
-Kept in the library, not the renderers, so that the JSON's ``reason`` and the
-DataFrame's ``reason`` column are the same text. Numbers are written with 4
+One wording for the renderers and the DataFrames alike, so that the JSON's
+``reason`` and the DataFrame's ``reason`` column are the same text; the results carry
+the numbers (a saturating sensor's reach and range, the unknown figures) and no words. Numbers are written with 4
 significant figures, as in the tables.
 """
 

@@ -1,7 +1,7 @@
 """Rate-table tests (docs/model.md section 14): the table read a block at a time
 (``reading``), what ``gyrovib fit`` gives (``results``: ``FitResult``) and the catalogue
-its ``-o`` writes (``yaml``: ``fit_catalog``). The fit itself is the command view :mod:`gyrovib.api.commands.fit` on ``core.fit`` and
-``core.lot``.
+its ``-o`` writes (``yaml``: ``fit_catalog``). The fit itself is the command view
+:mod:`gyrovib.api.commands.fit` on ``core.fit`` and ``core.lot``.
 """
 
 from __future__ import annotations
