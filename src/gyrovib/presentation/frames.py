@@ -37,14 +37,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from gyrovib.api.evaluation.dataframe import MISSING_PANDAS as MISSING_PANDAS
-from gyrovib.api.evaluation.dataframe import MissingDependency as MissingDependency
-from gyrovib.api.evaluation.dataframe import dataframe
 from gyrovib.core.analysis import ALL_TERMS as JSON_TERMS
 from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
 from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 from gyrovib.presentation.reasons import reason
+from gyrovib.records import MISSING_PANDAS as MISSING_PANDAS
+from gyrovib.records import MissingDependency as MissingDependency
+from gyrovib.records import dataframe
 
 if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult

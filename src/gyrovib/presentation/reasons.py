@@ -2,8 +2,8 @@
 
 One wording for the renderers and the DataFrames alike, so that the JSON's
 ``reason`` and the DataFrame's ``reason`` column are the same text; the results carry
-the numbers (a saturating sensor's reach and range, the unknown figures) and no words. Numbers are written with 4
-significant figures, as in the tables.
+the numbers (a saturating sensor's reach and range, the unknown figures) and no words.
+Numbers are written with 4 significant figures, as in the tables.
 """
 
 from __future__ import annotations

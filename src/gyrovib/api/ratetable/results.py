@@ -13,10 +13,10 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units as rate_units
-from gyrovib.api.evaluation.dataframe import dataframe
 from gyrovib.api.evaluation.results import Result, freeze
 from gyrovib.core.fit import SIGNIFICANT_T, RateFit
 from gyrovib.core.lot import LotStatistics
+from gyrovib.records import dataframe
 
 
 def output_unit(result: FitResult) -> str:

@@ -1,0 +1,71 @@
+"""A result's records declared once: its columns in order, each with its unit and how to
+read it from one row; and the pandas DataFrame of them (optional extra ``gyrovib[pandas]``).
+
+A result that declares its columns (:class:`Column`) gets its CSV
+(:func:`gyrovib.render.formats.csv_of`) and its DataFrame (:func:`frame_of`) from the same
+tuple, so a column added, removed or moved changes both alike. pandas is imported only
+when a frame is built.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
+from typing import Any, Generic, TypeVar
+
+from gyrovib._version import __version__
+from gyrovib.errors import GyrovibError
+
+MISSING_PANDAS = "DataFrames need pandas, which is not installed: pip install 'gyrovib[pandas]'"
+
+Row = TypeVar("Row")
+
+
+class MissingDependency(GyrovibError, ImportError):
+    """An optional dependency is not installed (the message names the extra)."""
+
+
+@dataclass(frozen=True)
+class Column(Generic[Row]):
+    """One column of a result's records: its ``name`` (the CSV header, the DataFrame
+    column), its ``unit`` (``None``: a name, a count, a flag) and ``value``, how to read it
+    from one row (``None``: unknown, written empty in CSV, kept as None in a frame)."""
+
+    name: str
+    unit: str | None
+    value: Callable[[Row], Any]
+
+
+def names(columns: Sequence[Column[Any]]) -> tuple[str, ...]:
+    """The columns' names, in order."""
+    return tuple(c.name for c in columns)
+
+
+def records(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[list[Any]]:
+    """Every row's values, in the columns' order."""
+    return [[c.value(row) for c in columns] for row in rows]
+
+
+def pandas() -> Any:
+    """The pandas module, or :class:`MissingDependency` naming the extra to install."""
+    try:
+        # lazy: pandas is optional (pip install 'gyrovib[pandas]')
+        import pandas
+    except ImportError:
+        raise MissingDependency(MISSING_PANDAS) from None
+    return pandas
+
+
+def dataframe(columns: dict[str, Any], attrs: dict[str, Any]) -> Any:
+    """A DataFrame of ``columns`` (name → values, in order), with the tool, its version
+    and ``attrs`` in ``frame.attrs``."""
+    frame = pandas().DataFrame(columns)
+    frame.attrs.update({"tool": "gyrovib", "version": __version__, **attrs})
+    return frame
+
+
+def frame_of(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> Any:
+    """The DataFrame of the records: one row per row, the columns in order."""
+    values = records(columns, rows)
+    return pandas().DataFrame({c.name: [v[k] for v in values]
+                               for k, c in enumerate(columns)})
