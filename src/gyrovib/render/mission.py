@@ -8,9 +8,9 @@ from typing import TYPE_CHECKING, Any
 from rich.table import Table
 from rich.text import Text
 
-from gyrovib.api.missions.results import budget_columns, frame_columns
 from gyrovib.presentation.reasons import unverified_text
-from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.formats import csv_of
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
@@ -246,17 +246,9 @@ def to_json(result: MissionResult) -> str:
 
 
 def to_csv(result: MissionResult) -> str:
-    """One row per sensor × mission × axis; columns as :meth:`MissionResult.to_frame`."""
-
-    def row(r: MissionRow) -> list[Any]:
-        return [r.sensor, r.mission, r.placement, r.axis or "", r.mean, r.angle, r.rms,
-                r.worst_index + 1, r.worst_profile, r.worst_total, r.duration,
-                str(r.saturated).lower(), r.source,
-                "" if r.passed is None else str(r.passed).lower(), r.status or "",
-                " ".join(r.unknown),
-                *("" if v is None else v for v in budget_columns(r).values())]
-
-    return csv_text(frame_columns(), (row(r) for r in result.rows))
+    """One row per sensor × mission × axis: the result's records
+    (:meth:`MissionResult.records`), as its DataFrame has them."""
+    return csv_of(result.records(), result.rows)
 
 
 def to_markdown(result: MissionResult) -> str:

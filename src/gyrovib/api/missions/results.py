@@ -3,10 +3,12 @@ sensor × mission × axis, each with its segments and its angle budget (section 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from gyrovib.frozen import Frozen
+from gyrovib.records import Column, frame_of
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -143,39 +145,45 @@ class MissionResult(Frozen):
                 return status
         return "pass"
 
+    def records(self) -> tuple[Column[MissionRow], ...]:
+        """The columns of the CSV and the DataFrame, in order, with their units: one
+        row per sensor × mission × axis (:data:`COLUMNS`)."""
+        return COLUMNS
+
     def to_frame(self) -> pd.DataFrame:
         """One row per sensor × mission × axis (pandas): the columns of the CSV."""
-        # lazy: pandas is optional (pip install 'gyrovib[pandas]')
-        import pandas as pd
-
-        return pd.DataFrame([_record(r) for r in self.rows])
+        return frame_of(self.records(), self.rows)
 
 
-def _record(r: MissionRow) -> dict[str, Any]:
-    return {"sensor": r.sensor, "mission": r.mission, "placement": r.placement,
-            "axis": r.axis, "mean": r.mean, "angle": r.angle, "rms": r.rms,
-            "worst_segment": r.worst_index + 1, "worst_profile": r.worst_profile,
-            "worst_total": r.worst_total, "duration": r.duration, "saturated": r.saturated,
-            "source": r.source, "passed": r.passed, "status": r.status,
-            "unknown": " ".join(r.unknown), **budget_columns(r)}
+def _budget(name: str) -> Callable[[MissionRow], float | None]:
+    """A figure of a row's budget (None: unknown, or no budget computed)."""
+    return lambda r: None if r.budget is None else getattr(r.budget, name)
 
 
-#: The budget's columns of the DataFrame and the CSV (deg; None where unknown).
-BUDGET_COLUMNS = ("theta_arw", "theta_bias_instability", "theta_rrw", "theta_repeatability",
-                  "budget_total", "coverage")
-
-
-def budget_columns(r: MissionRow) -> dict[str, float | None]:
-    """A row's budget as the DataFrame's columns (None: unknown, or not computed)."""
-    b = r.budget
-    if b is None:
-        return dict.fromkeys(BUDGET_COLUMNS)
-    return dict(zip(BUDGET_COLUMNS, (b.arw, b.bias_instability, b.rrw, b.repeatability,
-                                     b.total, b.coverage), strict=True))
-
-
-def frame_columns() -> tuple[str, ...]:
-    """The DataFrame's (and the CSV's) column names, in order."""
-    return ("sensor", "mission", "placement", "axis", "mean", "angle", "rms", "worst_segment",
-            "worst_profile", "worst_total", "duration", "saturated", "source", "passed",
-            "status", "unknown", *BUDGET_COLUMNS)
+#: The records of a mission result, declared once: the CSV's header and cells and the
+#: DataFrame's columns come from here. Units: ``rate`` is the result's unit, ``angle``
+#: its angle unit; the budget's figures are in deg.
+COLUMNS: tuple[Column[MissionRow], ...] = (
+    Column("sensor", None, lambda r: r.sensor),
+    Column("mission", None, lambda r: r.mission),
+    Column("placement", None, lambda r: r.placement),
+    Column("axis", None, lambda r: r.axis),
+    Column("mean", "rate", lambda r: r.mean),
+    Column("angle", "angle", lambda r: r.angle),
+    Column("rms", "rate", lambda r: r.rms),
+    Column("worst_segment", None, lambda r: r.worst_index + 1),
+    Column("worst_profile", None, lambda r: r.worst_profile),
+    Column("worst_total", "rate", lambda r: r.worst_total),
+    Column("duration", "s", lambda r: r.duration),
+    Column("saturated", None, lambda r: r.saturated),
+    Column("source", None, lambda r: r.source),
+    Column("passed", None, lambda r: r.passed),
+    Column("status", None, lambda r: r.status),
+    Column("unknown", None, lambda r: " ".join(r.unknown)),
+    Column("theta_arw", "deg", _budget("arw")),
+    Column("theta_bias_instability", "deg", _budget("bias_instability")),
+    Column("theta_rrw", "deg", _budget("rrw")),
+    Column("theta_repeatability", "deg", _budget("repeatability")),
+    Column("budget_total", "deg", _budget("total")),
+    Column("coverage", None, _budget("coverage")),
+)

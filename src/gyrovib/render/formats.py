@@ -1,0 +1,27 @@
+"""The generic writers over a result's declared records (:mod:`gyrovib.records`): CSV now;
+one writer for every result that declares its columns, so its header and cells cannot
+drift from its DataFrame."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import Any, TypeVar
+
+from gyrovib.records import Column, names, records
+from gyrovib.render.common import csv_text
+
+Row = TypeVar("Row")
+
+
+def _cell(value: Any) -> Any:
+    """A value as a CSV cell: empty for unknown, ``true``/``false`` for a flag (floats are
+    written with full precision by :func:`~gyrovib.render.common.csv_text`)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return value
+
+
+def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> str:
+    """CSV of the records: the columns' names as the header, one line per row."""
+    return csv_text(names(columns), ([_cell(v) for v in values]
+                                     for values in records(columns, rows)))
