@@ -67,3 +67,22 @@ def test_a_column_moved_in_the_declaration_moves_in_csv_and_frame(mission_result
     header = _csv(csv_of(moved, rows))[0]
     assert tuple(header) == names(moved) == tuple(frame_of(moved, rows).columns)
     assert header[0] == "coverage" and header[-1] == "sensor"
+
+
+@pytest.mark.parametrize("kwargs", [{}, {"sensors": "adxrs453", "method": "numeric",
+                                         "samples": 1000}])
+def test_analyze_csv_and_frame_come_from_one_declaration(kwargs: dict) -> None:
+    # analyze declares its records once (presentation.frames.analysis_columns): the CSV
+    # takes its columns, the frame the same ones plus the frame-only ones, in one order
+    from gyrovib.presentation.frames import analysis_columns
+    from gyrovib.render import analysis as render_analysis
+
+    result = gyrovib.analyze(**kwargs)
+    table = _csv(render_analysis.to_csv(result))
+    frame = result.to_frame()
+    assert tuple(table[0]) == names(analysis_columns(result, csv=True))
+    assert tuple(frame.columns) == names(analysis_columns(result, csv=False))
+    in_csv = [c for c in frame.columns if c in table[0]]
+    assert in_csv == table[0]  # the CSV's columns are the frame's, in the frame's order
+    assert len(table) - 1 == len(frame) == len(result.sensors) * len(result.profiles)
+    assert ("stderr" in table[0]) == ("method" in kwargs)  # the probe sees the numeric case

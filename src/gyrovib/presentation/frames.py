@@ -32,6 +32,7 @@ is missing the error names the extra to install.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -43,13 +44,16 @@ from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 from gyrovib.presentation.reasons import reason
 from gyrovib.records import MISSING_PANDAS as MISSING_PANDAS
+from gyrovib.records import Column, dataframe, records
 from gyrovib.records import MissingDependency as MissingDependency
-from gyrovib.records import dataframe
 
 if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
 
 AXES = ("x1", "x2", "x3")
+
+#: A row of a sensors × profiles result: (sensor index, profile index).
+Cell = tuple[int, int]
 
 
 def column_name(kind: str, path: str) -> str:
@@ -103,62 +107,110 @@ def _rate_columns(rates: Any, rows: Any) -> dict[str, Any]:
     return {f"rate.{axis}": rates[rows, k] for k, axis in enumerate(AXES)}
 
 
+def _of_cell(values: list[Any], k: int | None = None) -> Callable[[Cell], Any]:
+    """Read a (sensors, profiles[, k]) nested list at a row (and its ``k``-th entry)."""
+    if k is None:
+        return lambda c: values[c[0]][c[1]]
+    return lambda c: values[c[0]][c[1]][k]
+
+
+def _of_profile(values: list[Any], k: int) -> Callable[[Cell], Any]:
+    """Read a (profiles, k) nested list at a row's profile."""
+    return lambda c: values[c[1]][k]
+
+
+def analysis_columns(result: AnalysisResult, *, csv: bool) -> tuple[Column[Cell], ...]:
+    """``analyze``'s records, declared once, one row per sensor × profile (profiles
+    outermost, the JSON's order): the columns of ``--format csv`` (``csv``) or of the
+    DataFrame, in order. The frame has every term (``additive_g2`` with or without linear
+    vibration) and, beyond the CSV, ``source``, a datasheet sensor's ``envelope_*`` and
+    the ``worst_phases`` found; a value that is not known is None (CSV: empty)."""
+    return (*_value_columns(result, csv), *_tail_columns(result, csv))
+
+
+def _value_columns(result: AnalysisResult, csv: bool) -> list[Column[Cell]]:
+    """The row's names, its carrier rate and its numbers: terms, coefficients, the error."""
+    e = result.error
+    terms = [[[*t, *g] for t, g in zip(ts, gs, strict=True)]
+             for ts, gs in zip(e.additive_terms.tolist(), e.extra_terms.tolist(), strict=True)]
+    qs = e.multiplicative_coefficients.tolist()
+    rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
+    parts = {name: np.asarray(getattr(e, name)).tolist()
+             for name in ("additive", "multiplicative", "total", "rms")}
+    shown = [k for k, t in enumerate(JSON_TERMS) if not csv or t != "g2" or result.has_linear]
+    columns: list[Column[Cell]] = [
+        Column("sensor", None, lambda c: result.sensors[c[0]]),
+        Column("profile", None, lambda c: result.profiles[c[1]]),
+        *(Column(f"rate_{axis}", "rate", _of_profile(rates, k))
+          for k, axis in enumerate(AXES)),
+        *(Column(f"additive_{JSON_TERMS[k]}", "rate", _of_cell(terms, k))
+          for k in shown),
+        *(Column(f"multiplicative_{q}", "rate", _of_cell(qs, k))
+          for k, q in enumerate(MULTIPLICATIVE_TERMS[:e.multiplicative_coefficients.shape[-1]])),
+        *(Column(name, "rate", _of_cell(values))
+          for name, values in parts.items()),
+    ]
+    if result.stderr is not None:
+        stderr = np.asarray(result.stderr).tolist()
+        columns.append(Column("stderr", "rate", lambda c: stderr[c[0]][c[1]]))
+    return columns
+
+
+def _tail_columns(result: AnalysisResult, csv: bool) -> list[Column[Cell]]:
+    """What follows the numbers: the sensor's form and envelope (frame only), its lot's
+    uncertainty, saturation, the phases found (frame only) and the warnings."""
+    columns: list[Column[Cell]] = []
+    if not csv:
+        columns.append(Column("source", None, lambda c: result.source(c[0])))
+        columns += _envelope_columns(result)
+    if result.uncertainty is not None:
+        u = np.asarray(result.uncertainty).tolist()
+        columns.append(Column("uncertainty_total", "rate", (lambda c: _known(u[c[0]][c[1]]))
+                              if csv else (lambda c: u[c[0]][c[1]])))  # CSV: unknown empty
+        columns.append(Column("lot_mean", None, lambda c: result.is_lot(c[0])))
+    saturated = result.saturated
+    columns.append(Column("saturated", None,
+                          lambda c: bool(saturated is not None and saturated[c[0], c[1]])))
+    if result.worst_phases and not csv:
+        columns.append(Column("worst_phases", None, lambda c: None if c not in
+                              result.worst_phases else [dict(g) for g in
+                                                        result.worst_phases[c]]))
+    columns.append(Column("warnings", None, lambda c: tuple(result.warnings.get(c, ()))))
+    return columns
+
+
+def _known(value: float) -> float | None:
+    """A finite number, or None (unknown)."""
+    return value if math.isfinite(value) else None
+
+
+def analysis_cells(result: AnalysisResult) -> list[Cell]:
+    """The rows of ``analyze``'s records: (sensor, profile), profiles outermost."""
+    return [(i, j) for j in range(len(result.profiles)) for i in range(len(result.sensors))]
+
+
 def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
-    n_s, n_p = len(result.sensors), len(result.profiles)
-    p_idx, s_idx = (a.reshape(-1) for a in np.indices((n_p, n_s)))
-    err = result.error
-    terms = np.asarray(err.additive_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
-    qs = np.asarray(err.multiplicative_coefficients)[s_idx, p_idx].reshape(n_s * n_p, -1)
-    columns: dict[str, Any] = {
-        "sensor": [result.sensors[i] for i in s_idx],
-        "profile": [result.profiles[j] for j in p_idx],
-        **_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx),
-    }
-    extra = np.asarray(err.extra_terms)[s_idx, p_idx].reshape(n_s * n_p, -1)
-    values = np.concatenate([terms, extra], axis=1)
-    columns.update({f"additive_terms.{t}": values[:, k] for k, t in enumerate(JSON_TERMS)})
-    columns.update({f"multiplicative_coefficients.{q}": qs[:, k] for k, q in
-                    enumerate(MULTIPLICATIVE_TERMS[:qs.shape[1]])})
-    for name in ("additive", "multiplicative", "total", "rms"):
-        columns[name] = np.asarray(getattr(err, name))[s_idx, p_idx]
-    if result.stderr is not None:
-        columns["stderr"] = np.asarray(result.stderr)[s_idx, p_idx]
-    columns["source"] = [result.source(int(i)) for i in s_idx]
-    columns.update(_envelope_columns(result, s_idx, p_idx))
-    columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx]
-    columns.update(_phase_columns(result, s_idx, p_idx))
-    columns["warnings"] = [tuple(result.warnings.get((int(i), int(j)), ()))
-                           for i, j in zip(s_idx, p_idx, strict=True)]
+    columns = analysis_columns(result, csv=False)
+    values = records(columns, analysis_cells(result))
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
     if result.samples is not None:
         attrs.update(samples=result.samples, seed=result.seed)
-    return dataframe(_named("analyze", columns), attrs)
+    return dataframe({c.name: [row[k] for row in values] for k, c in enumerate(columns)},
+                     attrs)
 
 
-def _envelope_columns(result: AnalysisResult, s_idx: Any, p_idx: Any) -> dict[str, Any]:
-    """A datasheet sensor's worst polynomial and RMS bound (section 11); a lot's
-    uncertainty (section 14): NaN where not known."""
-    out: dict[str, Any] = {}
-    if result.worst_coefficients is not None and result.rms_bound is not None:
-        worst = np.asarray(result.worst_coefficients)[s_idx, p_idx]
-        for k, name in enumerate(WORST_COEFFICIENTS):
-            out[f"envelope.worst_coefficients.{name}"] = worst[:, k]
-        out["envelope.rms_bound"] = np.asarray(result.rms_bound)[s_idx, p_idx]
-    if result.uncertainty is not None:
-        out["uncertainty_total"] = np.asarray(result.uncertainty)[s_idx, p_idx]
-        out["lot_mean"] = [result.is_lot(int(i)) for i in s_idx]
-    return out
-
-
-def _phase_columns(result: AnalysisResult, s_idx: Any, p_idx: Any) -> dict[str, Any]:
-    """The phases found for ``phase: worst`` orders (None elsewhere), when any were."""
-    if not result.worst_phases:
-        return {}
-    return {"worst_phases": [
-        None if (int(i), int(j)) not in result.worst_phases
-        else [dict(g) for g in result.worst_phases[(int(i), int(j))]]
-        for i, j in zip(s_idx, p_idx, strict=True)]}
+def _envelope_columns(result: AnalysisResult) -> list[Column[Cell]]:
+    """A datasheet sensor's worst polynomial and RMS bound (section 11): NaN where not
+    known."""
+    if result.worst_coefficients is None or result.rms_bound is None:
+        return []
+    worst = np.asarray(result.worst_coefficients).tolist()
+    bound = np.asarray(result.rms_bound).tolist()
+    return [*(Column(f"envelope_worst_coefficients_{name}", None,
+                     _of_cell(worst, k))
+              for k, name in enumerate(WORST_COEFFICIENTS)),
+            Column("envelope_rms_bound", "rate", lambda c: bound[c[0]][c[1]])]
 
 
 def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:

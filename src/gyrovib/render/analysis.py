@@ -4,7 +4,6 @@ the terminal tables in :mod:`gyrovib.render.analysis_table`, the cells they shar
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -12,6 +11,7 @@ import numpy as np
 from gyrovib.api import AnalysisResult
 from gyrovib.api.datasheet.specs import WORST_COEFFICIENTS
 from gyrovib.core.analysis import ADDITIVE_TERMS, MULTIPLICATIVE_TERMS
+from gyrovib.presentation.frames import analysis_cells, analysis_columns
 from gyrovib.render.analysis_cells import (  # noqa: F401  (the face of the renderers)
     _SPECS_NOTE,
     _UNCERTAINTY_NOTE,
@@ -41,7 +41,8 @@ from gyrovib.render.analysis_table import (  # noqa: F401  (the face of the rend
     to_table,
     worst_case_text,
 )
-from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number
+from gyrovib.render.common import dumps, fmt, header, markdown_table, number
+from gyrovib.render.formats import csv_of
 
 
 def _to_json_rows(result: AnalysisResult) -> str:
@@ -204,48 +205,16 @@ def to_json(result: AnalysisResult) -> str:
     return f"{head}, \"results\": [{', '.join(blocks)}]}}\n"
 
 
-def _csv_header(with_stderr: bool = False, linear: bool = False,
-                uncertainty: bool = False) -> list[str]:
-    return (["sensor", "profile", "rate_x1", "rate_x2", "rate_x3"]
-            + [f"additive_{JSON_TERMS[k]}" for k in _shown(linear, True)]
-            + [f"multiplicative_{q}" for q in MULTIPLICATIVE_TERMS]
-            + ["additive", "multiplicative", "total", "rms"]
-            + (["stderr"] if with_stderr else [])
-            + (["uncertainty_total", "lot_mean"] if uncertainty else [])
-            + ["saturated", "warnings"])
-
-
 def to_csv(result: AnalysisResult) -> str:
-    """One row per sensor × profile, every number at full precision.
+    """One row per sensor × profile, every number at full precision: ``analyze``'s
+    records (:func:`gyrovib.presentation.frames.analysis_columns`, which the DataFrame
+    shares).
 
-    With the numeric method a ``stderr`` column (of ``total``) precedes ``warnings``;
+    With the numeric method a ``stderr`` column (of ``total``) follows ``rms``;
     when some profile has a linear vibration, ``additive_g2`` (Δ0(6)) follows
     ``additive_m32``.
     """
-    e = result.error
-    extra = getattr(result, "stderr", None)
-
-    def rows() -> Iterator[list[Any]]:
-        for i, j in _rows(result):
-            yield [
-                result.sensors[i], result.profiles[j], *map(float, result.rates[j]),
-                *_terms(result, i, j, True),
-                *map(float, e.multiplicative_coefficients[i, j]),
-                float(e.additive[i, j]), float(e.multiplicative[i, j]), float(e.total[i, j]),
-                float(e.rms[i, j]), *([float(extra[i, j])] if extra is not None else []),
-                *([_csv_u(result, i, j), "true" if result.is_lot(i) else "false"]
-                  if result.uncertainty is not None else []),
-                "true" if _saturated(result, i, j) else "false",
-                "; ".join(result.warnings.get((i, j), ())),
-            ]
-
-    return csv_text(_csv_header(extra is not None, result.has_linear,
-                                result.uncertainty is not None), rows())
-
-
-def _csv_u(result: AnalysisResult, i: int, j: int) -> float | str:
-    u = _u(result, i, j)
-    return "" if u is None else u
+    return csv_of(analysis_columns(result, csv=True), analysis_cells(result))
 
 
 def _markdown_row(result: AnalysisResult, i: int, j: int, odd: bool,

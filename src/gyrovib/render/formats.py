@@ -14,10 +14,13 @@ Row = TypeVar("Row")
 
 
 def _cell(value: Any) -> Any:
-    """A value as a CSV cell: empty for unknown, ``true``/``false`` for a flag (floats are
-    written with full precision by :func:`~gyrovib.render.common.csv_text`)."""
+    """A value as a CSV cell: empty for unknown, ``true``/``false`` for a flag, a tuple of
+    texts (a row's warnings) joined by ``; `` (floats are written with full precision by
+    :func:`~gyrovib.render.common.csv_text`)."""
     if isinstance(value, bool):
         return "true" if value else "false"
+    if isinstance(value, tuple):
+        return "; ".join(value)
     return value
 
 
