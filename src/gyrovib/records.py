@@ -64,8 +64,11 @@ def dataframe(columns: dict[str, Any], attrs: dict[str, Any]) -> Any:
     return frame
 
 
+def columns_of(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> dict[str, list[Any]]:
+    """Every column's values over the rows, by name, in the columns' order."""
+    return {c.name: [c.value(row) for row in rows] for c in columns}
+
+
 def frame_of(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> Any:
     """The DataFrame of the records: one row per row, the columns in order."""
-    values = records(columns, rows)
-    return pandas().DataFrame({c.name: [v[k] for v in values]
-                               for k, c in enumerate(columns)})
+    return pandas().DataFrame(columns_of(columns, rows))

@@ -44,7 +44,7 @@ from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 from gyrovib.presentation.reasons import reason
 from gyrovib.records import MISSING_PANDAS as MISSING_PANDAS
-from gyrovib.records import Column, dataframe, records
+from gyrovib.records import Column, columns_of, dataframe
 from gyrovib.records import MissingDependency as MissingDependency
 
 if TYPE_CHECKING:
@@ -191,13 +191,11 @@ def analysis_cells(result: AnalysisResult) -> list[Cell]:
 
 def analysis_frame(result: AnalysisResult) -> Any:
     """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
-    columns = analysis_columns(result, csv=False)
-    values = records(columns, analysis_cells(result))
+    cells = analysis_cells(result)
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
     if result.samples is not None:
         attrs.update(samples=result.samples, seed=result.seed)
-    return dataframe({c.name: [row[k] for row in values] for k, c in enumerate(columns)},
-                     attrs)
+    return dataframe(columns_of(analysis_columns(result, csv=False), cells), attrs)
 
 
 def _envelope_columns(result: AnalysisResult) -> list[Column[Cell]]:
