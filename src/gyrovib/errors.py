@@ -55,10 +55,10 @@ class OptionError(GyrovibError):
 
     Raised with ``argument`` (the library's parameter name), ``value`` (its value as
     written) and ``reason``, the message names the argument: ``samples=10: give at
-    least 32``. A reason that points to other arguments writes each as ``{name}``
-    and lists them in ``others``. The command line names the options instead
-    (``--samples 10: …``), from the same fields (:func:`gyrovib.cli.options.as_option`).
-    Without them, the message is given whole.
+    least 32``. A reason that points to arguments writes each as ``{name}`` and lists
+    them in ``others`` (``argument`` may then be None: a message about several). The
+    command line names the options instead (``--samples 10: …``), from the same fields
+    (:func:`gyrovib.cli.options.as_option`). Without them, the message is given whole.
     """
 
     def __init__(self, problems: str | Problem | Iterable[Problem] | None = None, *,
@@ -68,15 +68,20 @@ class OptionError(GyrovibError):
         self.value = value
         self.template = reason
         self.others = others
-        self.reason = self.worded(lambda name: name)
+        self.problems = ()
         if problems is None:
             problems = self.worded(lambda name: name, head=True)
         super().__init__(problems)
+        self.reason = self.worded(lambda name: name)
 
     def worded(self, name: Callable[[str], str], head: bool = False) -> str:
         """The reason with each argument written by ``name`` (an option, or as is);
         ``head``: after the argument and its value, ``NAME=VALUE: reason``."""
-        reason = (self.template or "").format_map({n: name(n) for n in self.others})
+        if self.template is None:
+            return self.problems[0].message if self.problems else ""
+        reason = self.template
+        for other in self.others:  # only these: any other brace is the user's text
+            reason = reason.replace("{" + other + "}", name(other))
         if not head or self.argument is None:
             return reason
         who = name(self.argument)

@@ -34,7 +34,7 @@ def flag(argument: str) -> str:
 def as_option(exc: GyrovibError) -> GyrovibError:
     """A library error that names arguments, worded with the options that set them
     (``samples=10: …`` → ``--samples 10: …``); any other error as it is."""
-    if not isinstance(exc, OptionError) or exc.argument is None:
+    if not isinstance(exc, OptionError) or exc.template is None:
         return exc
     return OptionError(exc.worded(flag, head=True))
 

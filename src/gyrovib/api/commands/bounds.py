@@ -59,11 +59,10 @@ def resolve_allocation(
     chosen, where, source = _chosen(catalog, allocation)
     if method == "paper":
         if not _is_default(chosen):
-            raise OptionError(
-                f"--method paper uses the paper's printed shares (0.44, 0.22, 0.49, 0.24, 0.35) "
-                f"and cannot honour the custom allocation given by {where}; "
-                "use --method exact, or drop the allocation"
-            )
+            raise OptionError(reason=(
+                "{method} paper uses the paper's printed shares (0.44, 0.22, 0.49, 0.24, "
+                f"0.35) and cannot honour the custom allocation given by {where}; "
+                "use {method} exact, or drop the allocation"), others=("method", "allocation"))
         return PAPER_CONSTANTS
     try:
         constants = allocation_constants(chosen.r, chosen.w, chosen.v)
@@ -79,13 +78,13 @@ def _chosen(catalog: Catalog, allocation: Allocation | Sequence[float] | None,
     catalogue file that gave it (None: the option, or the default)."""
     if allocation is None:
         if catalog.allocation is None:
-            return Allocation(), "--allocation", None
+            return Allocation(), "{allocation}", None
         source = next((s for s in catalog.sources if s.model.allocation is not None), None)
         where = f"the 'allocation:' section of {source.name}" if source else "the catalogue"
         return catalog.allocation, where, source
     if isinstance(allocation, Allocation) or hasattr(allocation, "r"):
-        return cast(Allocation, allocation), "--allocation", None
-    return _from_numbers([float(x) for x in allocation]), "--allocation", None
+        return cast(Allocation, allocation), "{allocation}", None
+    return _from_numbers([float(x) for x in allocation]), "{allocation}", None
 
 
 def _from_numbers(values: list[float]) -> Allocation:
@@ -116,7 +115,7 @@ def _check_shares(constants: AllocationConstants, where: str,
                    "and v within a few hundred orders of magnitude of each other")
         if source is not None:
             raise GyrovibError(source.problem(message, ("allocation",)))
-        raise OptionError(message)
+        raise OptionError(reason=message, others=("allocation",))
 
 
 def check_vre_bound(vre: FloatArray | None, prepared: Prepared) -> None:

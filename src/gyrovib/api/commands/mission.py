@@ -195,8 +195,8 @@ def _check_options(budget: float | None, angle_budget: float | None, require: st
                    assume_unknown: str) -> None:
     """The option errors of :func:`mission`, in the order the user reads them."""
     if budget is not None and angle_budget is not None:
-        raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
-                          "not both")
+        raise OptionError(reason="give {budget} (on the mean RMS) or {angle_budget} (on the "
+                                 "angle), not both", others=("budget", "angle_budget"))
     if require not in ("any", "all"):
         raise OptionError(argument="require", value=repr(require), reason="use any or all")
     spec_bounds.check_assumption(assume_unknown)

@@ -162,6 +162,7 @@ def with_fitted_profile(catalog: Any, fit: RecordingFit) -> Any:
     try:
         return merge([*catalog.sources, source])
     except GyrovibError as exc:
-        raise OptionError(f"the fitted profile's id {fit.profile_id!r} (or its mission's, "
-                          f"{mission_id(fit)!r}) is already used in the catalogue: choose "
-                          "another with --id") from exc
+        raise OptionError(reason=f"the fitted profile's id {fit.profile_id!r} (or its "
+                                 f"mission's, {mission_id(fit)!r}) is already used in the "
+                                 "catalogue: choose another with {profile_id}",
+                          others=("profile_id",)) from exc

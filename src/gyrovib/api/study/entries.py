@@ -78,11 +78,11 @@ def select_entries(
     missing = [kind for kind in need if not getattr(catalog, kind)]
     if missing:
         files = ", ".join(s.name for s in catalog.sources) or "the catalogue"
-        raise OptionError(
+        raise OptionError(reason=(
             f"no {' and no '.join(missing)} in {files}: give a file that has them too, "
-            f"or add the bundled ones (--bundled {missing[0] if len(missing) == 1 else 'all'}), "
-            "or no FILE at all for the bundled catalogues"
-        )
+            "or add the bundled ones ({bundled} "
+            f"{missing[0] if len(missing) == 1 else 'all'}), "
+            "or no FILE at all for the bundled catalogues"), others=("bundled",))
     s_ids = [e.sensor.id for e in catalog.sensors]
     p_ids = [e.profile.id for e in catalog.profiles]
     s_idx = _pick(s_ids, sensors, "sensor")
