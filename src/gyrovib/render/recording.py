@@ -50,7 +50,8 @@ def shape_text(h: AxisHonesty) -> str:
 def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
     """The ``"recording"`` object of the JSON; variances in (output unit)²."""
     return {
-        "file": os.path.basename(fit.file), "sha256": fit.sha256, "samples": fit.samples,
+        "file": os.path.basename(fit.file), "topic": fit.topic, "instance": fit.instance,
+        "sha256": fit.sha256, "samples": fit.samples,
         "fs": fit.fs, "crossover": fit.crossover, "segments": fit.segments,
         "duration": fit.duration,
         "axes": {a: {"variance": _num(h.variance / scale**2), "held": _num(h.held),
@@ -62,7 +63,8 @@ def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
 
 def honesty_table(fit: RecordingFit) -> str:
     """The honesty of the fit (docs/model.md section 13), one row per axis, as plain text."""
-    lines = [f"recording {os.path.basename(fit.file)}: {fit.samples} samples, "
+    source = "" if fit.source is None else f" ({fit.source})"
+    lines = [f"recording {os.path.basename(fit.file)}{source}: {fit.samples} samples, "
              f"fs {fit.fs:.6g} Hz, f_c {fit.crossover:g} Hz, {fit.segments} segment(s), "
              f"{fit.duration:.6g} s analysed",
              f"{'axis':<5} {'variance (deg/s)²':>18} {'held':>8} {'skewness':>9} "
