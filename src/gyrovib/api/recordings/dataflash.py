@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 
 from gyrovib.api.recordings.quiet import as_notes, captured
 from gyrovib.api.recordings.readers import ArrayColumns, Columns, problem
+from gyrovib.frozen import Frozen
 
 #: The DataFlash sources and the columns they give.
 DF_TOPIC, DF_BATCH = "IMU", "batch"
@@ -51,8 +52,8 @@ _NUMPY = {"b": "i1", "B": "u1", "e": "<f2", "h": "<i2", "H": "<u2", "i": "<i4", 
           "64s": "S64"}
 
 
-@dataclass
-class _Type:
+@dataclass(frozen=True, eq=False, repr=False)
+class _Type(Frozen):
     """One message type of the log: its numpy record, offsets and name."""
 
     name: str
@@ -215,7 +216,7 @@ def _choose(path: str, what: str, instance: int | None,
             found: dict[int, tuple[float, int]]) -> int:
     """The instance asked for, or the only one; several without a choice are refused
     with each one's rate and length."""
-    shown = ", ".join(f"instance {i} ({rate:.6g} Hz, {n} samples = {n / rate:.6g} s)"
+    shown = ", ".join(f"instance {i} ({rate:.6g} Hz, {n / rate:.6g} s, {n} samples)"
                       for i, (rate, n) in sorted(found.items()))
     if instance is not None:
         if instance not in found:
@@ -230,8 +231,8 @@ def _choose(path: str, what: str, instance: int | None,
 # ----------------------------------------------------------------- batch sampler
 
 
-@dataclass
-class _Batch:
+@dataclass(frozen=True, eq=False, repr=False)
+class _Batch(Frozen):
     """One batch: its header's fields and its samples (j -> row of the data)."""
 
     seq: int
@@ -289,24 +290,33 @@ def _batch(log: _Log, instance: int | None) -> tuple[dict[str, NDArray[Any]], in
         raise problem(log.path, "the batch sampler logged no gyro batch in this log")
     chosen = _choose(log.path, "the batch sampler", instance, found)
     mine = [b for b in gyro if b.instance == chosen]
-    accel = [b for b in batches if b.sensor == ISB_ACCEL and b.instance == chosen]
-    notes = []
+    damage = []
     missing = sum(int((~b.have).sum()) for b in mine)
     if missing:
-        notes.append(f"{missing} gyro sample(s) of the batch sampler's instance {chosen} "
-                     "were never logged (data messages lost)")
+        damage.append(f"{missing} gyro sample(s) of the batch sampler's instance {chosen} "
+                      "were never logged (data messages lost)")
     times = np.concatenate([b.start + np.flatnonzero(b.have) * 1e6 / b.rate for b in mine])
     gyro_samples = np.concatenate([b.samples[b.have] for b in mine])
     columns: dict[str, NDArray[Any]] = {"TimeUS": times}
     columns.update({name: gyro_samples[:, j] for j, name in enumerate(DF_RATE)})
-    pairs = [_pair(b, accel) for b in mine]
-    if accel and all(p is not None for p in pairs):
-        acc = np.concatenate([p.samples[b.have] for b, p in zip(mine, pairs, strict=True)
-                              if p is not None])
-        columns.update({name: acc[:, j] for j, name in enumerate(DF_ACCEL)})
-    elif accel:
+    accel = [b for b in batches if b.sensor == ISB_ACCEL and b.instance == chosen]
+    columns.update(_paired_accel(log, mine, accel))
+    return columns, chosen, damage
+
+
+def _paired_accel(log: _Log, gyro: Sequence[_Batch],
+                  accel: Sequence[_Batch]) -> dict[str, NDArray[Any]]:
+    """The accelerometer columns, each gyro batch's pair sample for sample; none (and a
+    note) when some gyro batch has no pair."""
+    if not accel:
+        return {}
+    pairs = [_pair(b, accel) for b in gyro]
+    if any(p is None for p in pairs):
         log.unpaired = True
-    return columns, chosen, notes
+        return {}
+    acc = np.concatenate([p.samples[b.have] for b, p in zip(gyro, pairs, strict=True)
+                          if p is not None])
+    return {name: acc[:, j] for j, name in enumerate(DF_ACCEL)}
 
 
 def _pair(gyro: _Batch, accel: Sequence[_Batch]) -> _Batch | None:

@@ -122,16 +122,21 @@ def check_format_cost(path: str) -> None:
 
 
 class _Watched(io.BufferedReader):
-    """A file that remembers its last read: ``(asked, got, position after)``. The
-    log is cut short when pyulog's last read found fewer bytes than asked at the end
-    of the file (not when a search for sync in the middle reached the end)."""
+    """A file that remembers a read that found fewer bytes than asked at the end of the
+    file, inside a message (``(asked, got, size)``), until a later read finds all it
+    asked: the log is cut short when pyulog's reading ended so, not when a search for
+    sync in the middle of the log reached the end and the reading went on."""
 
-    last: tuple[int, int, int] = (0, 0, 0)
+    short: tuple[int, int, int] | None = None
 
     def read(self, size: int | None = -1, /) -> bytes:
         data = super().read(size)
         if size is not None and size > 0:
-            self.last = (size, len(data), self.tell())
+            if 0 < len(data) == size:
+                self.short = None
+            elif len(data) < size and (len(data) > 0 or size != 3) \
+                    and self.tell() >= os.fstat(self.fileno()).st_size:
+                self.short = (size, len(data), self.tell())
         return data
 
 
@@ -168,7 +173,7 @@ def open_ulog(path: str, topic: str | None = None, instance: int | None = None) 
         names = ["timestamp", *[k for k in data if k != "timestamp"]]
         columns = {k: data[k] for k in names}
     stamps = columns["timestamp"]
-    warnings = (_damage(path, topic, fh.last, bool(log.file_corruption), stamps)
+    warnings = (_damage(path, topic, fh.short, bool(log.file_corruption), stamps)
                 + _clipping(log, data, multi_id))
     out = UlogColumns(path, list(columns), list(columns.values()), time_scale=1e-6,
                       warnings=warnings)
@@ -250,14 +255,13 @@ def _fifo_columns(path: str, log: Any, data: dict[str, NDArray[np.generic]],
     return columns
 
 
-def _damage(path: str, topic: str, last: tuple[int, int, int], corrupt: bool,
+def _damage(path: str, topic: str, short: tuple[int, int, int] | None, corrupt: bool,
             stamps: NDArray[np.generic]) -> tuple[str, ...]:
     """The warnings of a cut (the last message incomplete) or corrupt log."""
     seconds = (float(stamps[-1]) - float(stamps[0])) * 1e-6 if len(stamps) > 1 else 0.0
     read = f"{len(stamps)} samples = {seconds:.6g} s of {topic} read"
     out = []
-    asked, got, where = last
-    if got < asked and (got > 0 or asked != 3) and where >= os.path.getsize(path):
+    if short is not None:
         out.append(f"the log looks cut short: it ends inside a message after "
                    f"{os.path.getsize(path)} bytes; {read}, and the flight may have run longer")
     if corrupt:
@@ -268,24 +272,36 @@ def _damage(path: str, topic: str, last: tuple[int, int, int], corrupt: bool,
 def _clipping(log: Any, data: dict[str, NDArray[np.generic]], multi_id: int) -> tuple[str, ...]:
     """Clipped samples that ``vehicle_imu_status`` counted for this sensor (matched by
     device id where both give it, else by instance), per axis."""
-    status = [d for d in log.data_list if d.name == IMU_STATUS]
     device = data.get("device_id")
     out = []
-    for d in status:
+    for d in (d for d in log.data_list if d.name == IMU_STATUS):
         for kind in ("gyro", "accel"):
-            ids = d.data.get(f"{kind}_device_id")
-            same = (device is not None and ids is not None and len(ids) and len(device)
-                    and int(ids[-1]) == int(device[-1]))
-            if not same and not (device is None and d.multi_id == multi_id):
+            if not _same_sensor(d, kind, device, multi_id):
                 continue
-            counts = [d.data.get(f"{kind}_clipping[{j}]") for j in range(3)]
-            clipped = [int(c.astype(np.float64).max() - c.astype(np.float64).min())
-                       if c is not None and len(c) else 0 for c in counts]
+            clipped = [_counted(d.data.get(f"{kind}_clipping[{j}]")) for j in range(3)]
             if any(clipped):
                 out.append(f"{IMU_STATUS} instance {d.multi_id} counted clipped {kind} "
                            f"samples during the log (X {clipped[0]}, Y {clipped[1]}, "
                            f"Z {clipped[2]}): those samples are not the motion")
     return tuple(out)
+
+
+def _same_sensor(status: Any, kind: str, device: NDArray[np.generic] | None,
+                 multi_id: int) -> bool:
+    """Whether a ``vehicle_imu_status`` instance speaks of the sensor read."""
+    ids = status.data.get(f"{kind}_device_id")
+    if device is None:
+        return bool(status.multi_id == multi_id)
+    return (ids is not None and len(ids) > 0 and len(device) > 0
+            and int(ids[-1]) == int(device[-1]))
+
+
+def _counted(counter: NDArray[np.generic] | None) -> int:
+    """What a cumulative counter counted during the log."""
+    if counter is None or len(counter) == 0:
+        return 0
+    values = counter.astype(np.float64)
+    return int(values.max() - values.min())
 
 
 class UlogColumns(ArrayColumns):
