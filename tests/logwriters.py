@@ -19,6 +19,23 @@ from pathlib import Path
 import numpy as np
 
 SYNTHETIC = "synthetic data written by gyrovib's tests"
+G0 = 9.80665
+D2R = np.pi / 180.0
+
+
+def motion(n: int, fs: float, seed: int, tone: float, amp: float,
+           sigma: float) -> tuple[np.ndarray, np.ndarray]:
+    """Rates (n, 3) deg/s: slow manoeuvres (< 0.3 Hz), a tone of amplitude ``amp`` at
+    ``tone`` Hz on every axis and white noise of standard deviation ``sigma``; and
+    specific force (n, 3) in g: gravity, a slow sway and a smaller noise."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) / fs
+    slow = np.column_stack([20 * np.sin(2 * np.pi * 0.3 * t), 10 * np.cos(2 * np.pi * 0.2 * t),
+                            30 + 15 * np.sin(2 * np.pi * 0.25 * t)])
+    rate = slow + amp * np.sin(2 * np.pi * tone * t)[:, None] + rng.normal(0, sigma, (n, 3))
+    force = np.column_stack([0.1 * np.sin(2 * np.pi * 0.2 * t), np.zeros(n), -np.ones(n)])
+    force = force + rng.normal(0, 0.05, (n, 3))
+    return rate, force
 
 # ----------------------------------------------------------------- DataFlash
 
@@ -208,3 +225,70 @@ def betaflight_csv(path: Path, t_us: np.ndarray, gyro_degs: np.ndarray,
         lines.append(", ".join(row))
     path.write_text("\n".join(lines) + "\n")
     return path
+
+
+# ----------------------------------------------------------------- the docs' examples
+
+#: The FIFO's int16 scales (float32, as PX4 logs them): ±2000 deg/s and ±16 g full scale.
+GYRO_SCALE = float(np.float32(np.radians(2000.0) / 32767))
+ACCEL_SCALE = float(np.float32(16 * G0 / 32767))
+
+
+def fifo_example(path: Path, seconds: float = 20.0, **kw: object
+                 ) -> tuple[Path, list[np.ndarray], list[np.ndarray]]:
+    """sensor_gyro_fifo and sensor_accel_fifo at 4 kHz, 16 samples a message, two
+    instances: 0 with a 210 Hz tone of 3 deg/s and 1 deg/s of noise, 1 with 345 Hz,
+    8 deg/s and 2.5 deg/s."""
+    fs, n = 4000.0, int(seconds * 4000)
+    gyro, accel = [], []
+    for i, (tone, amp, sigma) in enumerate(((210.0, 3.0, 1.0), (345.0, 8.0, 2.5))):
+        w, g = motion(n, fs, 20 + i, tone, amp, sigma)
+        gyro.append(np.round(w * D2R / GYRO_SCALE).astype(np.int16))
+        accel.append(np.round(g * G0 / ACCEL_SCALE).astype(np.int16))
+    out = ulog_fifo(path, 250.0, 16, gyro, accel, GYRO_SCALE, ACCEL_SCALE,
+                    **kw)  # type: ignore[arg-type]
+    return out, gyro, accel
+
+
+def batch_example(path: Path, count: int = 2048, batches: int = 12) -> Path:
+    """The batch sampler at 2 kHz as ArduPilot logs it: an accelerometer batch, then
+    the gyro batch of the same instance 1.2 s later, every 3 s; a 310 Hz tone of 5 deg/s
+    and 1.5 deg/s of noise."""
+    fs, mul_g, mul_a = 2000.0, 16384 / 35.0, 32767 / (16 * G0)
+    out: list[tuple[int, int, float, float, float, np.ndarray]] = []
+    start = 1e6
+    for b in range(batches):
+        w, g = motion(count, fs, 10 + b, 310.0, 5.0, 1.5)
+        out.append((0, 0, mul_a, fs, start, np.round(g * G0 * mul_a).astype(np.int16)))
+        out.append((1, 0, mul_g, fs, start + 1.2e6,
+                    np.round(w * D2R * mul_g).astype(np.int16)))
+        start += 3e6
+    return dataflash_batches(path, out)
+
+
+def betaflight_example(path: Path) -> Path:
+    """20 s at 2 kHz: a 260 Hz tone of 4 deg/s and 1.2 deg/s of noise, gyroADC rounded
+    to whole deg/s as the firmware logs it, accSmooth decoded in g."""
+    fs, n = 2000.0, 40000
+    w, g = motion(n, fs, 5, 260.0, 4.0, 1.2)
+    return betaflight_csv(path, np.round(np.arange(n) * 1e6 / fs), np.round(w), g)
+
+
+def main(directory: str) -> None:
+    """Write the docs' synthetic logs (docs/recordings.md) into ``directory``, each
+    written beside and then moved into place whole."""
+    import os
+
+    where = Path(directory)
+    where.mkdir(parents=True, exist_ok=True)
+    part = f".part{os.getpid()}"
+    for name, write in (("fifo.ulg", fifo_example), ("batch.bin", batch_example),
+                        ("betaflight.csv", betaflight_example)):
+        write(where / (name + part))  # type: ignore[operator]
+        os.replace(where / (name + part), where / name)
+
+
+if __name__ == "__main__":
+    import sys
+
+    main(sys.argv[1] if len(sys.argv) > 1 else "/tmp/gyrovib-logs")

@@ -21,12 +21,17 @@ import pytest
 
 from tests.conftest import invoke
 from tests.logwriters import (
+    ACCEL_SCALE,
+    D2R,
+    G0,
+    GYRO_SCALE,
     SYNTHETIC,
     UlogWriter,
+    batch_example,
     betaflight_csv,
-    dataflash_batches,
     dataflash_imu,
-    ulog_fifo,
+    fifo_example,
+    motion,
 )
 from tests.recording_oracle import recorded_error
 from tests.test_recording import SENSOR
@@ -34,23 +39,6 @@ from tests.test_recording import SENSOR
 pytest.importorskip("scipy.signal")
 DATA = Path(__file__).parent / "data"
 TEST_BIN = DATA / "test.BIN"
-G0 = 9.80665
-D2R = np.pi / 180.0
-
-
-def _motion(n: int, fs: float, seed: int, tone: float, amp: float,
-            sigma: float) -> tuple[np.ndarray, np.ndarray]:
-    """Rates (n, 3) deg/s: slow manoeuvres (< 0.3 Hz), a tone of amplitude ``amp`` at
-    ``tone`` Hz on every axis and white noise of standard deviation ``sigma``; and
-    specific force (n, 3) in g: gravity, a slow sway and a smaller noise."""
-    rng = np.random.default_rng(seed)
-    t = np.arange(n) / fs
-    slow = np.column_stack([20 * np.sin(2 * np.pi * 0.3 * t), 10 * np.cos(2 * np.pi * 0.2 * t),
-                            30 + 15 * np.sin(2 * np.pi * 0.25 * t)])
-    rate = slow + amp * np.sin(2 * np.pi * tone * t)[:, None] + rng.normal(0, sigma, (n, 3))
-    force = np.column_stack([0.1 * np.sin(2 * np.pi * 0.2 * t), np.zeros(n), -np.ones(n)])
-    force = force + rng.normal(0, 0.05, (n, 3))
-    return rate, force
 
 
 def _sensor(tmp_path: Path) -> Path:
@@ -128,8 +116,8 @@ def test_dataflash_imu_two_instances(tmp_path: Path) -> None:
 
     fs, n, fc = 400.0, 12000, 5.0
     t_us = np.round(np.arange(n) * 1e6 / fs) + 5e6
-    w0, g0 = _motion(n, fs, 1, 90.0, 4.0, 1.0)
-    w1, g1 = _motion(n, fs, 2, 130.0, 6.0, 2.0)
+    w0, g0 = motion(n, fs, 1, 90.0, 4.0, 1.0)
+    w1, g1 = motion(n, fs, 2, 130.0, 6.0, 2.0)
     gyro = [(w * D2R).astype(np.float32) for w in (w0, w1)]
     accel = [(g * G0).astype(np.float32) for g in (g0, g1)]
     path = dataflash_imu(tmp_path / "imu.bin", t_us, gyro, accel, clips=(0, 7))
@@ -163,19 +151,17 @@ def test_dataflash_batch_sampler(tmp_path: Path) -> None:
     from gyrovib.api.recordings.reading import read_recording
 
     fs, count, fc, mul_g, mul_a = 2000.0, 2048, 8.0, 16384 / 35.0, 32767 / (16 * G0)
-    batches, truth_w, truth_g, times = [], [], [], []
+    truth_w, truth_g, times = [], [], []
     start = 1e6
-    for b in range(12):
-        w, g = _motion(count, fs, 10 + b, 310.0, 5.0, 1.5)
+    for b in range(12):  # the samples batch_example writes, as stored
+        w, g = motion(count, fs, 10 + b, 310.0, 5.0, 1.5)
         raw_w = np.round(w * D2R * mul_g).astype(np.int16)
         raw_g = np.round(g * G0 * mul_a).astype(np.int16)
-        batches.append((0, 0, mul_a, fs, start, raw_g))
-        batches.append((1, 0, mul_g, fs, start + 1.2e6, raw_w))
         truth_w.append(raw_w.astype(np.float64) / np.float64(int(mul_g)) * (180 / np.pi))
         truth_g.append(raw_g.astype(np.float64) / np.float64(int(mul_a)) / G0)
         times.append(start + 1.2e6 + np.arange(count) * 1e6 / fs)
         start += 3e6
-    path = dataflash_batches(tmp_path / "batch.BIN", batches)
+    path = batch_example(tmp_path / "batch.BIN")
     rec = read_recording(str(path), topic="batch")
     assert rec.source == "batch instance 0" and rec.segments.shape[0] == 12
     w, g, t = np.concatenate(truth_w), np.concatenate(truth_g), np.concatenate(times) * 1e-6
@@ -187,19 +173,7 @@ def test_dataflash_batch_sampler(tmp_path: Path) -> None:
 
 
 def _fifo(tmp_path: Path, **kw: object) -> tuple[Path, list[np.ndarray], list[np.ndarray]]:
-    fs, n = 4000.0, 80000
-    gyro, accel = [], []
-    for i, (tone, amp, sigma) in enumerate(((210.0, 3.0, 1.0), (345.0, 8.0, 2.5))):
-        w, g = _motion(n, fs, 20 + i, tone, amp, sigma)
-        gyro.append(np.round(w * D2R / GYRO_SCALE).astype(np.int16))
-        accel.append(np.round(g * G0 / ACCEL_SCALE).astype(np.int16))
-    path = ulog_fifo(tmp_path / "fifo.ulg", 250.0, 16, gyro, accel,
-                     GYRO_SCALE, ACCEL_SCALE, **kw)  # type: ignore[arg-type]
-    return path, gyro, accel
-
-
-GYRO_SCALE = float(np.float32(np.radians(2000.0) / 32767))
-ACCEL_SCALE = float(np.float32(16 * G0 / 32767))
+    return fifo_example(tmp_path / "fifo.ulg", **kw)
 
 
 def test_px4_fifo_two_instances(tmp_path: Path) -> None:
@@ -309,7 +283,7 @@ def test_betaflight_preset(tmp_path: Path) -> None:
     from gyrovib.api.recordings.reading import read_recording
 
     fs, n, fc = 2000.0, 40000, 5.0
-    w, g = _motion(n, fs, 5, 260.0, 4.0, 1.2)
+    w, g = motion(n, fs, 5, 260.0, 4.0, 1.2)
     w = np.round(w)  # blackbox_decode writes integers
     t_us = np.round(np.arange(n) * 1e6 / fs)
     path = betaflight_csv(tmp_path / "bb.csv", t_us, w, g)
