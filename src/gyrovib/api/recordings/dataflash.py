@@ -80,6 +80,7 @@ class _Log:
                 self.clock = None
 
         self.path = path
+        self.struct: dict[str, tuple[str, Any, Any]] = DFReader.FORMAT_TO_STRUCT
         self.lines: list[str] = []
         #: Some gyro batch had no accelerometer batch to pair with.
         self.unpaired = False
@@ -98,14 +99,12 @@ class _Log:
         self.raw = np.memmap(path, np.uint8, mode="r") if self.size else np.zeros(0, np.uint8)
 
     def _type(self, fmt: Any, offsets: Sequence[int]) -> _Type:
-        from pymavlink.DFReader import FORMAT_TO_STRUCT
-
         fields: list[tuple[Any, ...]] = []
         for name, code in zip(fmt.columns, fmt.format, strict=False):
             if code == "a":
                 fields.append((name, "<i2", (32,)))
             else:
-                fields.append((name, _NUMPY[FORMAT_TO_STRUCT[code][0]]))
+                fields.append((name, _NUMPY[self.struct[code][0]]))
         dtype = np.dtype(fields)
         return _Type(fmt.name, dtype, np.asarray(offsets, dtype=np.int64), int(fmt.len))
 
