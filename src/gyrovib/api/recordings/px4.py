@@ -214,45 +214,51 @@ def _listing(topic: str, found: Sequence[Any]) -> str:
     return ", ".join(parts)
 
 
-def fifo_samples(data: dict[str, NDArray[np.generic]], prefix: str = ""
-                 ) -> tuple[FloatArray, FloatArray]:
-    """A FIFO topic's samples, oldest first: times in µs (n,) and the three axes (n, 3)
-    in its unit, each ``float64(raw) · float64(scale)``."""
+def fifo_samples(data: dict[str, NDArray[np.generic]]) -> tuple[FloatArray, FloatArray]:
+    """A FIFO topic's samples in the order logged: times in µs (n,) and the three axes
+    (n, 3) in its unit, each ``float64(raw) · float64(scale)``. The raw arrays are taken
+    out of ``data`` as they are used, so that they go as soon as they are converted."""
     stamp = data["timestamp_sample" if "timestamp_sample" in data else "timestamp"]
-    t_last = stamp.astype(np.float64)
-    dt = data["dt"].astype(np.float64)
-    scale = data["scale"].astype(np.float64)
     count = data["samples"].astype(np.intp)
     width = sum(1 for k in data if k.startswith("x["))
     k = np.arange(width)
     valid = k[None, :] < count[:, None]
-    times = t_last[:, None] - (count[:, None] - 1 - k[None, :]) * dt[:, None]
-    axes = []
-    for axis in "xyz":
-        raw = np.column_stack([data[f"{axis}[{j}]"] for j in range(width)])
-        values = raw.astype(np.float64)
-        values *= scale[:, None]
-        axes.append(values[valid])
-    return times[valid], np.column_stack(axes)
+    times = (stamp.astype(np.float64)[:, None]
+             - (count[:, None] - 1 - k[None, :]) * data["dt"].astype(np.float64)[:, None])[valid]
+    scale = data["scale"].astype(np.float64)[:, None]
+    out = np.empty((times.size, 3))
+    for axis, name in enumerate("xyz"):
+        values = np.column_stack([data.pop(f"{name}[{j}]") for j in range(width)]
+                                 ).astype(np.float64)
+        values *= scale
+        out[:, axis] = values[valid]
+        del values
+    return times, out
 
 
 def _fifo_columns(path: str, log: Any, data: dict[str, NDArray[np.generic]],
                   multi_id: int) -> dict[str, NDArray[np.generic]]:
     """The gyro FIFO's samples (rad/s) and, where the same instance logged one, the
-    accelerometer FIFO's (m/s²) interpolated onto the gyro's times."""
-    times, rate = fifo_samples(data)
-    order = np.argsort(times, kind="stable")
-    times, rate = times[order], rate[order]
+    accelerometer FIFO's (m/s²) interpolated onto the gyro's times (taken as they are
+    where both have the same times)."""
+    times, rate = _in_order(*fifo_samples(data))
     columns: dict[str, NDArray[np.generic]] = {"timestamp": times}
     columns.update({name: rate[:, j] for j, name in enumerate(FIFO_RATE)})
     accel = [d for d in log.data_list if d.name == FIFO_ACCEL and d.multi_id == multi_id]
     if accel:
-        a_times, a = fifo_samples(accel[0].data)
-        a_order = np.argsort(a_times, kind="stable")
-        a_times, a = a_times[a_order], a[a_order]
+        a_times, a = _in_order(*fifo_samples(accel[0].data))
+        same = a_times.shape == times.shape and bool(np.array_equal(a_times, times))
         for j, name in enumerate(FIFO_ACCEL_COLUMNS):
-            columns[name] = np.interp(times, a_times, a[:, j])
+            columns[name] = a[:, j] if same else np.interp(times, a_times, a[:, j])
     return columns
+
+
+def _in_order(times: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Samples sorted by time (a copy only when they are not already)."""
+    if times.size < 2 or bool(np.all(times[1:] >= times[:-1])):
+        return times, values
+    order = np.argsort(times, kind="stable")
+    return times[order], values[order]
 
 
 def _damage(path: str, topic: str, short: tuple[int, int, int] | None, corrupt: bool,

@@ -354,11 +354,14 @@ class ArrayColumns(Columns):
         return super().time_index()
 
     def rows(self) -> int:
-        return int(self.columns[0].shape[0]) if self.columns else 0
+        if not hasattr(self, "count"):  # counted once: fill lets the columns go as it copies
+            self.count = int(self.columns[0].shape[0]) if self.columns else 0
+        return self.count
 
     def fill(self, targets: list[tuple[int, FloatArray, int, float]],
              time: FloatArray | None, time_col: int | None) -> int:
         n = self.rows()
+        uses = {c: sum(1 for t in targets if t[0] == c) for c, *_ in targets}
         for c, array, axis, scale in targets:
             col = _numeric(self.path, self.names[c], self.columns[c])
             promote(col, scale, array[:n, axis])
@@ -366,6 +369,9 @@ class ArrayColumns(Columns):
             if bad.size:
                 raise problem(self.path, f"column {self.names[c]!r}, sample {int(bad[0])}: "
                                          "not a finite number")
+            uses[c] -= 1
+            if uses[c] == 0 and c != time_col:  # copied: the original can go now
+                self.columns[c] = np.empty(0, col.dtype)
         if time is not None and time_col is not None:
             column = self.columns[time_col]
             if not np.issubdtype(column.dtype, np.number):
