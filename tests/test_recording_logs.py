@@ -297,3 +297,32 @@ def test_betaflight_preset(tmp_path: Path) -> None:
     r = invoke("profile", path, "--preset", "betaflight", "--format", "json")
     assert r.exit_code == 0, r.stderr
     assert invoke("profile", path).exit_code == 2  # no t/time column without the preset
+
+
+@pytest.mark.parametrize(("junk", "said"), [
+    (b"\x00" * 40, "40 byte(s) inside the log are not part of any message"),
+    (b"\x00junk\xa3\x95\xee", "of the log, after byte 108208, were not read: pymavlink "
+                              "found no message it knows there (corrupt data)"),
+])
+def test_a_corrupt_dataflash_log_is_said(tmp_path: Path, junk: bytes, said: str) -> None:
+    """Bytes that are no message in the middle of a log: skipped and counted, or (a
+    message type the log never declared) the end of what pymavlink indexes, said with
+    where the reading stopped. pymavlink's own prints ("bad header…", from its compiled
+    indexer too) come back as warnings on standard error, the JSON on standard output
+    intact; --strict refuses the file."""
+    pytest.importorskip("pymavlink")
+    fs, n = 400.0, 4000
+    w, g = motion(n, fs, 1, 90.0, 3.0, 1.0)
+    path = dataflash_imu(tmp_path / "whole.bin", np.round(np.arange(n) * 1e6 / fs) + 1e6,
+                         [(w * D2R).astype(np.float32)], [(g * G0).astype(np.float32)])
+    data = path.read_bytes()
+    at = data.index(b"\xa3\x95", len(data) // 2)
+    bad = tmp_path / "bad.bin"
+    bad.write_bytes(data[:at] + junk + data[at:])
+    r = invoke("profile", bad, "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    json.loads(r.stdout)
+    assert said in r.stderr and "warning: bad.bin: " in r.stderr, r.stderr
+    assert "bad.bin: pymavlink said: bad header" in r.stderr
+    strict = invoke("profile", bad, "--strict")
+    assert strict.exit_code == 2 and "refused under --strict" in strict.stderr

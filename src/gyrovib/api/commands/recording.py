@@ -354,6 +354,7 @@ class RecordingAnalysis(Frozen):
         frame = pd.DataFrame(data)
         fit = self.fit
         frame.attrs.update({"unit": self.unit, "file": os.path.basename(fit.file),
+                            "topic": fit.topic, "instance": fit.instance,
                             "sha256": fit.sha256, "samples": fit.samples, "fs": fit.fs,
                             "crossover": fit.crossover, "segments": fit.segments,
                             "duration": fit.duration})

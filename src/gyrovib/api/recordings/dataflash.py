@@ -44,6 +44,9 @@ DF_RATE = ("GyrX", "GyrY", "GyrZ")
 DF_ACCEL = ("AccX", "AccY", "AccZ")
 #: Messages decoded at once.
 DF_BLOCK = 1 << 16
+#: Bytes at the end of a log that may be a storage block's padding, not damage
+#: (pymavlink's own allowance for the garbage at the end of a log).
+PADDING = 528
 #: The batch sampler's sensor types.
 ISB_ACCEL, ISB_GYRO = 0, 1
 #: struct codes of pymavlink's formats as numpy types (little-endian, packed).
@@ -130,7 +133,9 @@ class _Log:
         return out
 
     def damage(self) -> list[str]:
-        """A log that ends inside a message; bytes that belong to no message."""
+        """A log that ends inside a message; bytes that belong to no message, inside the
+        log or after the last message pymavlink indexed (it stops at a message type
+        it does not know); the last :data:`PADDING` bytes of a log may be padding."""
         out = []
         ends = [int(k.offsets[-1]) + k.length for k in self.types.values() if k.offsets.size]
         covered = sum(self.complete(k).size * k.length for k in self.types.values())
@@ -143,6 +148,10 @@ class _Log:
         if skipped > 0:
             out.append(f"{skipped} byte(s) inside the log are not part of any message "
                        "(corrupt data, skipped)")
+        if self.size - last_end >= PADDING and not (ends and max(ends) > self.size):
+            out.append(f"the last {self.size - last_end} byte(s) of the log, after byte "
+                       f"{last_end}, were not read: pymavlink found no message it knows "
+                       "there (corrupt data); the flight may have run longer")
         return out
 
 

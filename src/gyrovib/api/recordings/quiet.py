@@ -2,11 +2,12 @@
 
 pyulog and pymavlink report what they notice ("Warning: no subscription found…",
 "bad header 0x.. at N", "Skipped N bad bytes…") with ``print``, on standard output
-and standard error. gyrovib's standard output carries its document and nothing
-else, so a reader runs the library inside :func:`captured`: Python's
-``sys.stdout`` and ``sys.stderr`` are swapped for buffers, and file descriptor 1
-itself is pointed at a temporary file (a message written below Python, by compiled
-code, is caught too). What was captured comes back as lines, which the reader
+and standard error (pymavlink's compiled indexer with C's ``fprintf``).
+gyrovib's standard output carries its document and nothing else, and its standard
+error says things in its own located form, so a reader runs the library inside
+:func:`captured`: Python's ``sys.stdout`` and ``sys.stderr`` are swapped for
+buffers, and file descriptors 1 and 2 themselves are pointed at temporary files (a
+message written below Python, by compiled code, is caught too). What was captured comes back as lines, which the reader
 turns into warnings that name the file (:func:`as_notes`).
 """
 
@@ -28,13 +29,14 @@ def captured(lines: list[str]) -> Iterator[None]:
     """Run the body with standard output and error captured; append their lines to
     ``lines`` (blank lines dropped) when the body ends, normally or not."""
     out, err = io.StringIO(), io.StringIO()
-    with tempfile.TemporaryFile() as raw, _fd_redirected(1, raw), \
+    with tempfile.TemporaryFile() as raw_out, tempfile.TemporaryFile() as raw_err, \
+            _fd_redirected(1, raw_out), _fd_redirected(2, raw_err), \
             contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         try:
             yield
         finally:
             lines.extend(_lines(out.getvalue()) + _lines(err.getvalue()))
-            lines.extend(_lines(_read(raw)))
+            lines.extend(_lines(_read(raw_out)) + _lines(_read(raw_err)))
 
 
 @contextlib.contextmanager
@@ -48,6 +50,7 @@ def _fd_redirected(fd: int, target: io.BufferedRandom) -> Iterator[None]:
         return
     with contextlib.suppress(Exception):
         sys.stdout.flush()
+        sys.stderr.flush()
     try:
         os.dup2(target.fileno(), fd)
         yield
