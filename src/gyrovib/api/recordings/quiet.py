@@ -7,8 +7,9 @@ gyrovib's standard output carries its document and nothing else, and its standar
 error says things in its own located form, so a reader runs the library inside
 :func:`captured`: Python's ``sys.stdout`` and ``sys.stderr`` are swapped for
 buffers, and file descriptors 1 and 2 themselves are pointed at temporary files (a
-message written below Python, by compiled code, is caught too). What was captured comes back as lines, which the reader
-turns into warnings that name the file (:func:`as_notes`).
+message written below Python, by compiled code, is caught too). What was captured
+comes back as lines, which the reader turns into warnings that name the file
+(:func:`as_notes`).
 """
 
 from __future__ import annotations
