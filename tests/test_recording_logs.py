@@ -202,6 +202,10 @@ def test_px4_fifo_two_instances(tmp_path: Path) -> None:
     doc = json.loads(r.stdout)
     assert doc["recording"]["topic"] == "sensor_gyro_fifo"
     assert doc["recording"]["instance"] == 0
+    block = invoke("allan", path, "--topic", "sensor_gyro_fifo", "--instance", "0", "-o", "-")
+    assert block.stdout.startswith("# from gyrovib allan fifo.ulg, sensor_gyro_fifo instance 0 ")
+    table = invoke("allan", path, "--topic", "sensor_gyro_fifo", "--instance", "0")
+    assert "recording fifo.ulg (sensor_gyro_fifo instance 0): " in table.stdout
     r = invoke("allan", path, "--topic", "sensor_gyro_fifo", "--instance", "1", "--strict")
     assert r.exit_code == 2 and "refused under --strict" in r.stderr
 
