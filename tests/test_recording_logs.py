@@ -330,3 +330,19 @@ def test_a_corrupt_dataflash_log_is_said(tmp_path: Path, junk: bytes, said: str)
     assert "bad.bin: pymavlink said: bad header" in r.stderr
     strict = invoke("profile", bad, "--strict")
     assert strict.exit_code == 2 and "refused under --strict" in strict.stderr
+
+
+def test_log_options_are_refused_where_they_mean_nothing(tmp_path: Path) -> None:
+    """--topic and --instance name a log's topic and instance, --preset a CSV's writer:
+    given to another format they are refused, not ignored."""
+    csv = tmp_path / "r.csv"
+    csv.write_text("t,gx,gy,gz\n" + "".join(f"{k / 100},0,0,{k % 3}\n" for k in range(300)))
+    r = invoke("profile", csv, "--instance", "1")
+    assert r.exit_code == 2 and "--instance applies only to a PX4 ULog" in r.stderr
+    r = invoke("profile", csv, "--topic", "IMU")
+    assert r.exit_code == 2 and "--topic applies only to a PX4 ULog" in r.stderr
+    pytest.importorskip("pymavlink")
+    r = invoke("profile", TEST_BIN, "--preset", "betaflight")
+    assert r.exit_code == 2 and "--preset betaflight" in r.stderr and "CSV" in r.stderr
+    r = invoke("profile", TEST_BIN, "--topic", "GPS")
+    assert r.exit_code == 2 and "a DataFlash log is read as IMU" in r.stderr
