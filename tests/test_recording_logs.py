@@ -346,3 +346,19 @@ def test_log_options_are_refused_where_they_mean_nothing(tmp_path: Path) -> None
     assert r.exit_code == 2 and "--preset betaflight" in r.stderr and "CSV" in r.stderr
     r = invoke("profile", TEST_BIN, "--topic", "GPS")
     assert r.exit_code == 2 and "a DataFlash log is read as IMU" in r.stderr
+
+
+def test_a_log_is_known_by_its_first_bytes_whatever_its_name(tmp_path: Path) -> None:
+    """INTERFACE.md: readers by content or extension. A ULog and a DataFlash log named
+    .log are read as what they are."""
+    pytest.importorskip("pyulog")
+    pytest.importorskip("pymavlink")
+    from gyrovib.api.recordings.reading import read_recording
+    from tests.test_recording import ULOG
+
+    ulog = tmp_path / "flight.log"
+    ulog.write_bytes(ULOG.read_bytes())
+    assert read_recording(str(ulog)).source == "sensor_combined instance 0"
+    bin_log = tmp_path / "00000042.log"
+    bin_log.write_bytes(TEST_BIN.read_bytes())
+    assert read_recording(str(bin_log), instance=1).source == "IMU instance 1"
