@@ -50,6 +50,8 @@ def allan(recording: str, unit: str, per_decade: int, plot: str | None, output: 
     from gyrovib.render import allan as render
 
     result = run(read(recording, options), unit=unit, per_decade=per_decade)
+    for warning in result.warnings:  # a log's damage, said as profile says it
+        click.echo(f"gyrovib: warning: {warning}", err=True)
     if plot is not None:
         write_binary(render.plot(result), plot)
     if output is not None:

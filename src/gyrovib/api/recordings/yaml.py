@@ -92,6 +92,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
     lines = [
         "# Fitted by `gyrovib profile` from a recording (docs/model.md section 13).",
         f"# file: {base}",
+        *([f"# source: {fit.source}"] if fit.source is not None else []),
         f"# sha256: {fit.sha256}",
         f"# samples: {fit.samples}; fs: {measured(fit.fs)} Hz; crossover f_c: "
         f"{measured(fit.crossover)} Hz; segments: {fit.segments}; duration analysed: "
