@@ -177,11 +177,11 @@ def _format(path: str, fs: float | None, topic: str | None, instance: int | None
         raise OptionError(argument="preset", value=preset,
                           reason=f"the presets are {', '.join(PRESETS)}, for a CSV recording")
     if topic is not None and kind not in LOGS:
-        raise OptionError(argument="topic", reason="applies only to a PX4 ULog (.ulg) or an "
-                                                   "ArduPilot DataFlash (.bin) recording")
+        raise OptionError(reason="{topic} applies only to a PX4 ULog (.ulg) or an ArduPilot "
+                                 "DataFlash (.bin) recording", others=("topic",))
     if instance is not None and kind not in LOGS:
-        raise OptionError(argument="instance", reason="applies only to a PX4 ULog (.ulg) or "
-                                                      "an ArduPilot DataFlash (.bin) recording")
+        raise OptionError(reason="{instance} applies only to a PX4 ULog (.ulg) or an "
+                                 "ArduPilot DataFlash (.bin) recording", others=("instance",))
     return kind, opener
 
 
