@@ -24,6 +24,7 @@ an unexpected exception or a worker that died (:class:`Crashed`, raised as
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import os
 import pickle
 import signal
@@ -111,13 +112,27 @@ class RemoteTraceback(Exception):
         return "\n" + str(self.args[0]).rstrip("\n")
 
 
+def located(exc: GyrovibError, path: str) -> GyrovibError:
+    """``exc`` with its problems that name no file placed at ``path`` (the recording whose
+    step raised it): among many recordings, the message says which."""
+    if all(p.file is not None for p in exc.problems):
+        return exc
+    return Failed(type(exc), _placed(exc.problems, path)).error(path)
+
+
+def _placed(problems: tuple[Problem, ...], path: str) -> tuple[Problem, ...]:
+    return tuple(p if p.file is not None else dataclasses.replace(p, file=path)
+                 for p in problems)
+
+
 def outcome(step: Callable[[str, Any], Any], path: str, options: Any) -> Any:
-    """``step(path, options)``, or what went wrong as a :class:`Failed` or :class:`Crashed`
-    (a ``KeyboardInterrupt`` or ``SystemExit`` still propagates)."""
+    """``step(path, options)``, or what went wrong as a :class:`Failed` (its problems
+    placed at ``path`` when they name no file) or a :class:`Crashed` (a
+    ``KeyboardInterrupt`` or ``SystemExit`` still propagates)."""
     try:
         return step(path, options)
     except GyrovibError as exc:
-        return Failed(type(exc), exc.problems)
+        return Failed(type(exc), _placed(exc.problems, path))
     except Exception as exc:
         return Crashed(type(exc).__name__, str(exc), traceback.format_exc())
 
@@ -167,13 +182,15 @@ def _serve(conn: Any, step: Callable[[str, Any], Any], options: Any) -> None:
                 return
 
 
-@dataclass(eq=False)
 class _Worker:
     """A worker process, its end of the connection and the indices it was given."""
 
-    process: Any
-    conn: Any
-    tasks: deque[int]
+    __slots__ = ("conn", "process", "tasks")
+
+    def __init__(self, process: Any, conn: Any) -> None:
+        self.process = process
+        self.conn = conn
+        self.tasks: deque[int] = deque()
 
 
 def _context() -> Any:
@@ -205,18 +222,18 @@ def _start(count: int, step: Callable[[str, Any], Any], options: Any) -> list[_W
     if context.get_start_method() == "fork":
         load_step_modules()  # once here, not once per worker
     workers: list[_Worker] = []
-    with _signals_blocked():
-        try:
+    try:
+        with _signals_blocked():  # a signal held back here is raised as the block ends
             for _ in range(count):
                 mine, theirs = context.Pipe()
                 process = context.Process(target=_serve, args=(theirs, step, options),
                                           daemon=True, name="gyrovib-worker")
-                workers.append(_Worker(process, mine, deque()))
+                workers.append(_Worker(process, mine))
                 process.start()
                 theirs.close()
-        except BaseException:
-            _stop(workers, at_once=True)
-            raise
+    except BaseException:
+        _stop(workers, at_once=True)
+        raise
     return workers
 
 

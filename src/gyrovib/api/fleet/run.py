@@ -24,7 +24,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.commands.recording import analysis_of_fit, fit_recording, recording_responses
-from gyrovib.api.fleet.pool import one_thread, raise_failure, run_in_processes
+from gyrovib.api.fleet.pool import located, one_thread, raise_failure, run_in_processes
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core.transmissibility import FloatArray, Table
@@ -106,8 +106,11 @@ def run_recordings(paths: Sequence[str], options: Any = DEFAULTS, *, jobs: int =
         for k, path in enumerate(paths):
             try:
                 results.append(step(path, options))
-            except GyrovibError:
-                raise
+            except GyrovibError as exc:
+                placed = located(exc, path)
+                if placed is exc:
+                    raise
+                raise placed from None
             except Exception as exc:  # a bug, named by the recording it met
                 raise Crash(path, type(exc).__name__, str(exc)) from exc
             advance(label, k + 1, total)
