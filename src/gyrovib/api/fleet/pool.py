@@ -1,8 +1,10 @@
 """The worker processes of ``--jobs N`` (docs/fleet.md).
 
 :func:`run_in_processes` starts N worker processes once for the whole run and hands
-each one path at a time; a worker answers with the step's result only (a fit is tens
-of kB, never the samples) and is then given the next path. Every worker, and the
+each a path and the next one (a worker holds one recording at a time; the second path
+waits in its pipe so that it need not wait for its caller); a worker answers with the
+step's result only (a fit is tens of kB, never the samples) and is then given the next
+path. Every worker, and the
 calling process while it runs the step itself (:func:`one_thread`), runs one
 BLAS/OpenMP thread: N processes use N cores, and no more.
 
@@ -46,6 +48,10 @@ THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"
 
 #: The signals a worker does not leave to the default action while it starts.
 _SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+#: Paths a worker holds at most: the one it runs and the next, so that it need not wait
+#: for its caller (busy, or not given a core at once) between two recordings.
+_AHEAD = 2
 
 #: Seconds an idle worker waits for its next path before it checks its caller is alive.
 _ALIVE_CHECK = 1.0
@@ -282,16 +288,12 @@ def run_in_processes(paths: Sequence[str], options: Any, jobs: int,
     total = len(paths)
     outcomes: list[Any] = [None] * total
     first_bad = total
-    done = 0
+    done = given = 0
     workers = _start(min(jobs, total), step, options)
     at_once = True
     try:
-        given = 0
         for w in workers:
-            if given < total:
-                w.conn.send((given, paths[given]))
-                w.tasks.append(given)
-                given += 1
+            given = _give(w, paths, given, len(workers))
         while any(j < first_bad for w in workers for j in w.tasks):
             for w, index, result in _answers(workers):
                 outcomes[index] = result
@@ -299,14 +301,23 @@ def run_in_processes(paths: Sequence[str], options: Any, jobs: int,
                 advance(label, done, total)
                 if isinstance(result, Failed | Crashed):
                     first_bad = min(first_bad, index)
-                elif given < total and first_bad == total:
-                    w.conn.send((given, paths[given]))
-                    w.tasks.append(given)
-                    given += 1
+                elif first_bad == total:
+                    given = _give(w, paths, given, len(workers))
         at_once = first_bad < total
     finally:
         _stop(workers, at_once=at_once)
     return outcomes[:first_bad + 1]
+
+
+def _give(worker: _Worker, paths: Sequence[str], given: int, workers: int) -> int:
+    """Hand ``worker`` paths up to :data:`_AHEAD` (one once no more than one a worker is
+    left: the last ones go to whichever worker is free first); the count given."""
+    while given < len(paths) and len(worker.tasks) < (_AHEAD if len(paths) - given > workers
+                                                      else 1):
+        worker.conn.send((given, paths[given]))
+        worker.tasks.append(given)
+        given += 1
+    return given
 
 
 def _answers(workers: list[_Worker]) -> Iterator[tuple[_Worker, int, Any]]:
