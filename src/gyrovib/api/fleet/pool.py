@@ -39,7 +39,7 @@ from typing import Any
 
 from gyrovib.errors import Crash, GyrovibError, Problem
 from gyrovib.frozen import Frozen
-from gyrovib.progress import advance
+from gyrovib.progress import advance, receiving
 
 #: The environment variables that set the thread count of the BLAS and OpenMP
 #: libraries a worker may load after it starts (threadpoolctl limits those loaded).
@@ -164,7 +164,7 @@ def _serve(conn: Any, step: Callable[[str, Any], Any], options: Any) -> None:
         signal.pthread_sigmask(signal.SIG_UNBLOCK, _SIGNALS)
     for name in THREAD_VARIABLES:
         os.environ[name] = "1"
-    with one_thread():
+    with receiving(None), one_thread():  # progress is the caller's to report
         while True:
             try:
                 while not conn.poll(_ALIVE_CHECK):
