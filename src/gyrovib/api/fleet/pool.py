@@ -46,8 +46,9 @@ from gyrovib.progress import advance, receiving
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
                     "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")
 
-#: The signals a worker does not leave to the default action while it starts.
-_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+#: The signals held back while workers start (those of them the platform has).
+_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP")
+                 if hasattr(signal, name))
 
 #: Paths a worker holds at most: the one it runs and the next, so that it need not wait
 #: for its caller (busy, or not given a core at once) between two recordings.
@@ -157,9 +158,8 @@ def _serve(conn: Any, step: Callable[[str, Any], Any], options: Any) -> None:
     ``(index, path)`` received send back ``(index, outcome)``, until told to stop
     (None), its caller is gone, or the connection closes."""
     caller = os.getppid()  # the command, or the forkserver that forked this worker for it
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGHUP, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    for signum in _SIGNALS:
+        signal.signal(signum, signal.SIG_DFL if signum == signal.SIGTERM else signal.SIG_IGN)
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, _SIGNALS)
     for name in THREAD_VARIABLES:
