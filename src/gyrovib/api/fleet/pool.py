@@ -15,7 +15,8 @@ frameworks is unsafe. A worker ignores SIGINT and SIGHUP (a Ctrl-C reaches the
 whole process group: the caller decides) and dies on SIGTERM; whatever ends the
 run early — a failure, or an exception such as a signal's ``KeyboardInterrupt`` in
 the caller — terminates the workers before it propagates. A worker whose caller
-has gone (killed outright) notices within a second and exits.
+has gone (killed outright) notices within a second of finishing its current
+recording, and exits.
 
 What goes wrong in a worker comes back as data naming its recording: a user error
 (:class:`Failed`, re-raised as the same :class:`~gyrovib.errors.GyrovibError`), or
