@@ -98,6 +98,35 @@ def test_workers_start_once_and_run_one_blas_thread() -> None:
     assert [lib["num_threads"] for lib in threadpool_info()] == before
 
 
+@pytest.mark.parametrize(("module", "name", "args"), [
+    ("gyrovib.cli.run.profile", "fit_recording", ["profile"]),
+    ("gyrovib.cli.run.recording", "run", ["analyze", "--sensor", "adxrs645", "--recording"]),
+])
+def test_one_recording_is_fitted_at_one_blas_thread(
+        logs: list[Path], monkeypatch: pytest.MonkeyPatch, module: str, name: str,
+        args: list[str]) -> None:
+    """A single recording (no workers: the command's own process, --jobs 1) is fitted with
+    every BLAS/OpenMP library at one thread; the limits are put back afterwards."""
+    import importlib
+
+    from threadpoolctl import threadpool_info
+
+    target = importlib.import_module(module)
+    real = getattr(target, name)
+    seen: list[list[int]] = []
+
+    def counting(*a: Any, **k: Any) -> Any:
+        seen.append(sorted({int(lib["num_threads"]) for lib in threadpool_info()}))
+        return real(*a, **k)
+
+    monkeypatch.setattr(target, name, counting)
+    before = [lib["num_threads"] for lib in threadpool_info()]
+    result = invoke(*args, logs[0], "--fs", FS, "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    assert seen == [[1]]
+    assert [lib["num_threads"] for lib in threadpool_info()] == before
+
+
 @pytest.mark.parametrize("jobs", [1, 2])
 def test_an_unexpected_exception_names_its_recording(jobs: int) -> None:
     from gyrovib.api.fleet.run import run_recordings
