@@ -48,13 +48,15 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
     # lazy: the library and the renderers load when the command runs, not for --help
     from gyrovib.api.commands.recording import fit_recording
     from gyrovib.api.fleet.envelope import profile_recordings
+    from gyrovib.api.fleet.pool import one_thread
     from gyrovib.cli.recording import read, step_options
     from gyrovib.render import fleet as render
     from gyrovib.render.recording import honesty_table, plot_fit
 
     if len(recordings) == 1:
 
-        fit = fit_recording(read(recordings[0], options), **fit_options(options))
+        with one_thread():  # one BLAS/OpenMP thread, as with --jobs 1 on several
+            fit = fit_recording(read(recordings[0], options), **fit_options(options))
         table = honesty_table(fit)
         document = render.profile_json(fit) if fmt == "json" else fit.yaml
     else:

@@ -124,14 +124,16 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
     """``gyrovib analyze --recording`` (once or more): one library call, then the renderer."""
     # lazy: the library and the renderers load when it runs, not for --help
     from gyrovib.api.commands.recording import analyze_recording as run
+    from gyrovib.api.fleet.pool import one_thread
     from gyrovib.api.fleet.run import analyze_recordings
     from gyrovib.render import fleet as render_many
     from gyrovib.render import recording as render
 
     if len(paths) == 1:
 
-        result = run(read(paths[0], options), catalog, sensors=sensors, unit=unit,
-                     **fit_options(options))
+        with one_thread():  # one BLAS/OpenMP thread, as with --jobs 1 on several
+            result = run(read(paths[0], options), catalog, sensors=sensors, unit=unit,
+                         **fit_options(options))
         if fmt != "table" or output is not None:  # the table on the terminal lists them itself
             for warning in result.fit.warnings:
                 click.echo(f"gyrovib: warning: {warning}", err=True)
