@@ -99,8 +99,10 @@ def test_workers_start_once_and_run_one_blas_thread() -> None:
 
 
 @pytest.mark.parametrize(("module", "name", "args"), [
-    ("gyrovib.cli.run.profile", "fit_recording", ["profile"]),
-    ("gyrovib.cli.run.recording", "run", ["analyze", "--sensor", "adxrs645", "--recording"]),
+    # the commands import the library when they run: patched where they take it from
+    ("gyrovib.api.commands.recording", "fit_recording", ["profile"]),
+    ("gyrovib.api.commands.recording", "analyze_recording",
+     ["analyze", "--sensor", "adxrs645", "--recording"]),
 ])
 def test_one_recording_is_fitted_at_one_blas_thread(
         logs: list[Path], monkeypatch: pytest.MonkeyPatch, module: str, name: str,
