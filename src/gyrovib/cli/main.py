@@ -151,6 +151,7 @@ _COMMANDS = {name: f"gyrovib.cli.{name}"
 
 
 _COMMANDS["mission"] = "gyrovib.cli.mission"
+_COMMANDS["runup"] = "gyrovib.cli.runup"
 
 
 class _Group(click.Group):

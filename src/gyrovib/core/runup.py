@@ -69,7 +69,8 @@ def window_levels(x3: ArrayLike, window: int, accel_vibration: ArrayLike | None 
         a = np.asarray(accel_vibration, dtype=float)
         blocks = a[:count * window].reshape(count, window, -1)
         cols.append(blocks.var(axis=1).sum(axis=1))
-    return 10.0 * np.log10(np.maximum(np.column_stack(cols), 1e-30))
+    out: FloatArray = 10.0 * np.log10(np.maximum(np.column_stack(cols), 1e-30))
+    return out
 
 
 def detect_steps(levels: ArrayLike, window: int, threshold_db: float = STEP_THRESHOLD_DB,

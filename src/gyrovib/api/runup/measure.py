@@ -25,6 +25,8 @@ WINDOW_SECONDS = 0.5
 #: A step is part of the baseline when its vibration is within this many dB of the
 #: quietest step's, on the angular and on the linear level.
 BASELINE_DB = 3.0
+#: A vibration whose rms is below this fraction of the signal's is rounding: none.
+NEGLIGIBLE = 1e-10
 
 
 class Measured:
@@ -105,24 +107,34 @@ def measure(recording: Recording, crossover: float,
     for k, (s0, s1) in enumerate(kept):
         wanted = (None if placed is None
                   else [(lo, hi) for seg, lo, hi in placed if seg == k])
-        if wanted == []:
-            continue
-        w = recording.store.block("rate", s0, s1)
-        c = rec.lowpass(w, fs, crossover)
-        a = low = None
-        if recording.store.has_accel:
-            a = recording.store.block("accel", s0, s1)
-            low = rec.lowpass(a, fs, crossover)
-        if wanted is None:
-            wanted = _detect(w[:, 2] - c[:, 2], None if a is None or low is None else a - low,
-                             fs, s0)
-        for lo, hi in wanted:
-            i, j = lo - s0, hi - s0
-            out.append(_one(fs, lo, hi, w[i:j], c[i:j], None if a is None else a[i:j],
-                            None if low is None else low[i:j], responses))
+        if wanted != []:
+            out += _segment(recording, s0, s1, crossover, wanted, responses)
     if placed is not None:  # in the order given
         order = {lo: n for n, (_, lo, _) in enumerate(placed)}
         out.sort(key=lambda m: order[m.lo])
+    return out
+
+
+def _segment(recording: Recording, s0: int, s1: int, crossover: float,
+             wanted: list[tuple[int, int]] | None,
+             responses: Sequence[Table]) -> list[Measured]:
+    """One contiguous segment split at the crossover, its steps found (``wanted`` None)
+    or placed, and each measured."""
+    fs = recording.fs
+    w = recording.store.block("rate", s0, s1)
+    c = rec.lowpass(w, fs, crossover)
+    a = low = None
+    if recording.store.has_accel:
+        a = recording.store.block("accel", s0, s1)
+        low = rec.lowpass(a, fs, crossover)
+    if wanted is None:
+        wanted = _detect(w[:, 2] - c[:, 2], None if a is None or low is None else a - low,
+                         fs, s0)
+    out = []
+    for lo, hi in wanted:
+        i, j = lo - s0, hi - s0
+        out.append(_one(fs, lo, hi, w[i:j], c[i:j], None if a is None else a[i:j],
+                        None if low is None else low[i:j], responses))
     return out
 
 
@@ -134,7 +146,7 @@ def _one(fs: float, lo: int, hi: int, w: FloatArray, c: FloatArray, a: FloatArra
     m.variance = kernel.mean_variance(w[:, 2], fs)
     m.phi = kernel.step_regressors(w, c, a, low)
     x = w - c
-    m.x3_rms = float(np.sqrt(np.mean(x[:, 2] ** 2)))
+    m.x3_rms = _rms(x[:, 2:], w[:, 2:])
     m.carrier = c.mean(axis=0)
     m.carrier_sd = c.std(axis=0)
     m.side_variance = np.array([kernel.mean_variance(w[:, j], fs) for j in range(3)])
@@ -143,9 +155,17 @@ def _one(fs: float, lo: int, hi: int, w: FloatArray, c: FloatArray, a: FloatArra
         xr = np.column_stack([rec.zero_phase_gain(x[:, j], fs, table) for j in range(3)])
         m.moments.append(rec.recorded_moments(c + xr, c) / n)
     if a is not None and low is not None:
-        m.accel_rms = float(np.sqrt(np.sum(np.var(a - low, axis=0))))
+        m.accel_rms = _rms(a - low, a)
         m.g2_moments = rec.recorded_g2_moments(a, low) / n
     return m
+
+
+def _rms(vibration: FloatArray, signal: FloatArray) -> float:
+    """√(Σ_axes ⟨v²⟩); 0 where that is below 1e-10 of the signal's rms (the split's
+    rounding, not a vibration)."""
+    power = float(np.sum(np.mean(vibration**2, axis=0)))
+    floor = NEGLIGIBLE**2 * float(np.sum(np.mean(signal**2, axis=0)))
+    return math.sqrt(power) if power > floor else 0.0
 
 
 def baseline(steps: Sequence[Measured]) -> np.ndarray:
@@ -163,7 +183,8 @@ def baseline(steps: Sequence[Measured]) -> np.ndarray:
         keep &= lin <= lin.min() + BASELINE_DB
     if not keep.any():  # the quietest angularly is not the quietest linearly
         keep[int(np.argmin(ang))] = True
-    return keep
+    out: np.ndarray = keep
+    return out
 
 
 __all__ = ["BASELINE_DB", "WINDOW_SECONDS", "Measured", "baseline", "measure", "need_scipy"]

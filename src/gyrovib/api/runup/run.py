@@ -99,10 +99,8 @@ def runup(recording: Recording, catalog: Any = None, *, sensor: str | None = Non
         raise OptionError(f"the crossover {crossover:g} Hz must be a positive frequency")
     terms = check_terms(estimate if estimate else default_terms(recording), recording)
     entry = _entry(catalog, sensor)
-    responses = ()
     response = None if entry is None else input_response(entry)
-    if response is not None:
-        responses = (as_table(response),)
+    responses = () if response is None else (as_table(response),)
     measured = measure(recording, crossover, steps, responses)
     if len(measured) < len(terms) + 1:
         raise OptionError(
@@ -214,7 +212,10 @@ def _moved(measured: list[Measured], base: np.ndarray) -> np.ndarray:
 def _predictions(measured: list[Measured], base: np.ndarray, entry: Any,
                  var: FloatArray) -> tuple[FloatArray, bool]:
     """Each step's predicted shift (deg/s): Δ_V,rec on its samples less the baseline's
-    (weighted like the means); a spec-form sensor's is its envelope's worst case, a bound.
+    (weighted like the means; Δ_V,rec is linear in the moments, so it is Δ_V,rec of the
+    moments' difference). A spec-form sensor's is the envelope's worst |Δ_s − Δ_b|, a
+    bound (its g² part taken on |⟨a_j a_k⟩_s − ⟨a_j a_k⟩_b| per term, which can only
+    raise it).
     NaN where a term the prediction needs is unknown (a g² sensitivity the datasheet does
     not publish, or accelerations the recording does not hold)."""
     n = len(measured)
@@ -222,11 +223,21 @@ def _predictions(measured: list[Measured], base: np.ndarray, entry: Any,
         return np.full(n, np.nan), False
     spec = is_spec(entry)
     row = 1 if input_response(entry) is not None else 0
-    totals = np.array([recorded_totals([entry], m.moments[row].reshape(1, -1),
-                                       m.g2_moments)[0] for m in measured])
-    out = totals - _weighted(totals, var, base)
-    if spec:
-        out = np.abs(totals) - _weighted(np.abs(totals), var, base)
+    moments = np.array([m.moments[row] for m in measured])
+    g2 = None if measured[0].g2_moments is None else np.array([m.g2_moments
+                                                                for m in measured])
+    m_b = np.sum(moments[base] / var[base, None], axis=0) / np.sum(1.0 / var[base])
+    g_b = None if g2 is None else np.sum(g2[base] / var[base, None], axis=0) / np.sum(
+        1.0 / var[base])
+    out = np.empty(n)
+    for s in range(n):
+        d = (moments[s] - m_b).reshape(1, -1)
+        g = None if g2 is None or g_b is None else g2[s] - g_b
+        if spec:  # the envelope's worst |Δ_s − Δ_b|, both signs of the difference
+            g = None if g is None else np.abs(g)
+            out[s] = max(recorded_totals([entry], d, g)[0], recorded_totals([entry], -d, g)[0])
+        else:
+            out[s] = recorded_totals([entry], d, g)[0]
     if _g2_unknown(entry, measured, spec):
         out = np.full(n, np.nan)
     return out, spec

@@ -98,13 +98,8 @@ def runup_yaml(result: RunupResult, catalog: Any = None) -> str:
     values = {n: v for n, v in carried.items() if n not in rate}
     lines = [*_header(result, written, left, carried), "gyrovib: 1", "units:", "  rate: deg/s",
              "sensors:", f"  - id: {_id(result)}"]
-    coeffs = [f"{n}: {_num(v)}" for n, v in values.items()]
-    coeffs += [f"{n}: {_num(e.value, e.uncertainty)}" for n, e in rate.items()]
-    lines.append("    coefficients: {" + ", ".join(coeffs) + "}")
+    lines += _rate_lines(values, rate)
     if rate:
-        lines += ["    uncertainty:",
-                  "      sigma: {" + ", ".join(f"{n}: {_num(e.uncertainty, e.uncertainty)}"
-                                               for n, e in rate.items()) + "}"]
         lines += _correlation(result, list(rate))
     lines += _g2_lines([e for e in written if e.name not in _RATE_TERMS])
     text = "\n".join(lines) + "\n"
@@ -114,6 +109,18 @@ def runup_yaml(result: RunupResult, catalog: Any = None) -> str:
         raise GyrovibError(f"the in-situ sensor entry does not validate: "
                            f"{exc.problems[0].message}") from None
     return text
+
+
+def _rate_lines(values: dict[str, float], rate: dict[str, Estimate]) -> list[str]:
+    """``coefficients`` (carried and in-situ) and the in-situ terms' ``uncertainty``."""
+    coeffs = [f"{n}: {_num(v)}" for n, v in values.items()]
+    coeffs += [f"{n}: {_num(e.value, e.uncertainty)}" for n, e in rate.items()]
+    lines = ["    coefficients: {" + ", ".join(coeffs) + "}"]
+    if rate:
+        lines += ["    uncertainty:",
+                  "      sigma: {" + ", ".join(f"{n}: {_num(e.uncertainty, e.uncertainty)}"
+                                               for n, e in rate.items()) + "}"]
+    return lines
 
 
 def _correlation(result: RunupResult, names: list[str]) -> list[str]:
