@@ -40,6 +40,8 @@ RATE_NEEDS: dict[str, tuple[int, ...]] = {"A1": (2,), "k2": (2,), "k4": (2,),
                                           "m31": (0, 2), "m32": (1, 2)}
 #: A level change of this many dB (of the running variance of x3 or of a) starts a step.
 STEP_THRESHOLD_DB = 3.0
+#: Window levels more than this far below the loudest window are the floor (dB).
+LEVEL_FLOOR_DB = 80.0
 #: Steps shorter than this many windows are transitions, not steps.
 MIN_WINDOWS = 4
 #: A term whose variance inflation factor exceeds this is (near-)collinear with the others
@@ -61,7 +63,8 @@ def window_levels(x3: ArrayLike, window: int, accel_vibration: ArrayLike | None 
                   ) -> FloatArray:
     """Per window of ``window`` samples, the variance of x3 and (when given) of the
     linear vibration a − A summed over its axes, in dB: shape (windows, 1 or 2).
-    A variance of 0 is floored at 1e-30 (−300 dB)."""
+    Each column is floored :data:`LEVEL_FLOOR_DB` below its loudest window (and at
+    1e-30): the split's rounding and filter tails in a silent stretch are not levels."""
     v = np.asarray(x3, dtype=float)
     count = v.size // window
     cols = [v[:count * window].reshape(count, window).var(axis=1)]
@@ -69,7 +72,9 @@ def window_levels(x3: ArrayLike, window: int, accel_vibration: ArrayLike | None 
         a = np.asarray(accel_vibration, dtype=float)
         blocks = a[:count * window].reshape(count, window, -1)
         cols.append(blocks.var(axis=1).sum(axis=1))
-    out: FloatArray = 10.0 * np.log10(np.maximum(np.column_stack(cols), 1e-30))
+    var = np.column_stack(cols)
+    floor = np.maximum(var.max(axis=0, initial=0.0) * 10.0 ** (-LEVEL_FLOOR_DB / 10.0), 1e-30)
+    out: FloatArray = 10.0 * np.log10(np.maximum(var, floor))
     return out
 
 
@@ -81,7 +86,8 @@ def detect_steps(levels: ArrayLike, window: int, threshold_db: float = STEP_THRE
     The levels are smoothed by a running median over 3 windows; a window whose level
     differs from the mean of the current run by more than ``threshold_db`` on any
     column starts a new run. Runs shorter than ``min_windows`` are transitions and
-    dropped; each kept run loses one window at either end (the change itself), so a
+    dropped; each run loses its edge windows more than half the threshold off its median
+    level (a ramp), and one window more at either inner end (the change itself), so a
     step is only samples at its settled level.
     """
     lv = np.asarray(levels, dtype=float)
@@ -105,12 +111,25 @@ def detect_steps(levels: ArrayLike, window: int, threshold_db: float = STEP_THRE
             total += smooth[w]
     out = []
     for start, stop in runs:
+        start, stop = _settled(smooth, start, stop, threshold_db / 2)
         if stop - start < min_windows:
             continue
         lo = start + (1 if start > 0 else 0)
         hi = stop - (1 if stop < count else 0)
         out.append((lo * window, hi * window))
     return np.array(out, dtype=np.intp).reshape(-1, 2)
+
+
+def _settled(smooth: FloatArray, start: int, stop: int, tolerance: float) -> tuple[int, int]:
+    """A run less its edge windows more than ``tolerance`` dB off the run's median level
+    (a ramp from one level to the next that stayed within the threshold)."""
+    median = np.median(smooth[start:stop], axis=0)
+    off = np.any(np.abs(smooth[start:stop] - median) > tolerance, axis=1)
+    while start < stop and off[0]:
+        start, off = start + 1, off[1:]
+    while stop > start and off[-1]:
+        stop, off = stop - 1, off[:-1]
+    return start, stop
 
 
 # ----------------------------------------------------------------- regressors

@@ -171,9 +171,10 @@ def _rms(vibration: FloatArray, signal: FloatArray) -> float:
 def baseline(steps: Sequence[Measured]) -> np.ndarray:
     """The steps without vibration: within :data:`BASELINE_DB` of the quietest step's
     angular level (and linear level, where recorded)."""
-    def db(values: list[float]) -> FloatArray:
+    def db(values: list[float]) -> FloatArray:  # floored as the step finder's levels are
         v = np.asarray(values, dtype=float)
-        return np.asarray(10.0 * np.log10(np.maximum(v, 1e-30)), dtype=float)
+        floor = max(float(v.max()) * 10.0 ** (-kernel.LEVEL_FLOOR_DB / 10.0), 1e-30)
+        return np.asarray(10.0 * np.log10(np.maximum(v, floor)), dtype=float)
 
     ang = db([s.x3_rms ** 2 for s in steps])
     keep = ang <= ang.min() + BASELINE_DB
