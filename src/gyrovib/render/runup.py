@@ -152,15 +152,22 @@ def _verdict(result: RunupResult) -> str:
     return f"verdict: every step within the prediction of {result.sensor}"
 
 
+def _step_columns(result: RunupResult) -> list[int]:
+    """The step table's columns: without a sensor, no prediction and no verdict."""
+    return [k for k in range(len(_STEP_HEAD)) if result.sensor is not None or k not in (7, 9)]
+
+
 def to_table(result: RunupResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """The summary, a table of the steps, a table of the estimates, notes and limits."""
     items: list[Any] = [Text(_summary(result))]
     steps = Table(title="steps", header_style="bold")
-    for k, label in enumerate(_STEP_HEAD):
-        steps.add_column(label, justify="left" if k in (1, 9, 10) else "right")
+    shown = _step_columns(result)
+    for k in shown:
+        steps.add_column(_STEP_HEAD[k], justify="left" if k in (1, 9, 10) else "right")
     for s in result.steps:
-        steps.add_row(*_step_cells(s))
+        cells = _step_cells(s)
+        steps.add_row(*(cells[k] for k in shown))
     items.append(steps)
     est = Table(title="in-situ estimates (standard uncertainty u)", header_style="bold")
     for k, label in enumerate(_EST_HEAD):
@@ -178,8 +185,10 @@ def to_table(result: RunupResult, width: int | None = None, color: bool = False,
 
 def to_markdown(result: RunupResult) -> str:
     """The two tables as GitHub Markdown, with the summary, notes and limits."""
-    parts = [_summary(result), "", markdown_table(_STEP_HEAD, [_step_cells(s)
-                                                               for s in result.steps]),
+    shown = _step_columns(result)
+    parts = [_summary(result), "",
+             markdown_table([_STEP_HEAD[k] for k in shown],
+                            [[_step_cells(s)[k] for k in shown] for s in result.steps]),
              "", markdown_table(_EST_HEAD, [_estimate_cells(e, result.sensor is not None)
                                                     for e in result.estimates])]
     verdict = _verdict(result)
