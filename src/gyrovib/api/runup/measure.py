@@ -88,11 +88,11 @@ def _detect(x3: FloatArray, xa: FloatArray | None, fs: float, s0: int) -> list[t
 
 def measure(recording: Recording, crossover: float,
             steps: Sequence[tuple[float, float]] | None,
-            responses: Sequence[Table] = ()) -> list[Measured]:
+            responses: Sequence[Table] | None = None) -> list[Measured]:
     """Split each kept segment at ``crossover``, find (or place) the steps, and measure
     each: its mean and the variance of that mean, its regressors, its vibration levels,
-    the carrier's mean and spread per axis, and the Δ_V,rec moments (plain, and for each
-    input-side response of ``responses``)."""
+    the carrier's mean and spread per axis, and — when ``responses`` is given, for a
+    prediction — the Δ_V,rec moments (plain, and for each input-side response)."""
     fs = recording.fs
     if not 0 < crossover < fs / 2:
         raise OptionError(f"the crossover {crossover:g} Hz must lie in (0, fs/2 = "
@@ -117,7 +117,7 @@ def measure(recording: Recording, crossover: float,
 
 def _segment(recording: Recording, s0: int, s1: int, crossover: float,
              wanted: list[tuple[int, int]] | None,
-             responses: Sequence[Table]) -> list[Measured]:
+             responses: Sequence[Table] | None) -> list[Measured]:
     """One contiguous segment split at the crossover, its steps found (``wanted`` None)
     or placed, and each measured."""
     fs = recording.fs
@@ -139,7 +139,7 @@ def _segment(recording: Recording, s0: int, s1: int, crossover: float,
 
 
 def _one(fs: float, lo: int, hi: int, w: FloatArray, c: FloatArray, a: FloatArray | None,
-         low: FloatArray | None, responses: Sequence[Table]) -> Measured:
+         low: FloatArray | None, responses: Sequence[Table] | None) -> Measured:
     m = Measured(lo, hi, fs)
     n = hi - lo
     m.mean = float(np.mean(w[:, 2]))
@@ -150,13 +150,17 @@ def _one(fs: float, lo: int, hi: int, w: FloatArray, c: FloatArray, a: FloatArra
     m.carrier = c.mean(axis=0)
     m.carrier_sd = c.std(axis=0)
     m.side_variance = np.array([kernel.mean_variance(w[:, j], fs) for j in range(3)])
+    if a is not None and low is not None:
+        m.accel_rms = _rms(a - low, a)
+    if responses is None:
+        return m
     m.moments = [rec.recorded_moments(w, c) / n]
     for table in responses:
         xr = np.column_stack([rec.zero_phase_gain(x[:, j], fs, table) for j in range(3)])
         m.moments.append(rec.recorded_moments(c + xr, c) / n)
-    if a is not None and low is not None:
-        m.accel_rms = _rms(a - low, a)
-        m.g2_moments = rec.recorded_g2_moments(a, low) / n
+    if a is not None and low is not None:  # columns contiguous for the dot products
+        m.g2_moments = rec.recorded_g2_moments(np.asfortranarray(a),
+                                               np.asfortranarray(low)) / n
     return m
 
 

@@ -100,7 +100,7 @@ def runup(recording: Recording, catalog: Any = None, *, sensor: str | None = Non
     terms = check_terms(estimate if estimate else default_terms(recording), recording)
     entry = _entry(catalog, sensor)
     response = None if entry is None else input_response(entry)
-    responses = () if response is None else (as_table(response),)
+    responses = None if entry is None else () if response is None else (as_table(response),)
     measured = measure(recording, crossover, steps, responses)
     if len(measured) < len(terms) + 1:
         raise OptionError(
