@@ -157,6 +157,14 @@ def _step_columns(result: RunupResult) -> list[int]:
     return [k for k in range(len(_STEP_HEAD)) if result.sensor is not None or k not in (7, 9)]
 
 
+def _estimate_columns(result: RunupResult) -> list[int]:
+    """The estimates table's columns: the catalogue's only with a sensor, what would
+    separate a term only when one is not identifiable."""
+    separate = any(e.separate for e in result.estimates)
+    return [k for k in range(len(_EST_HEAD))
+            if (k not in (4, 5) or result.sensor is not None) and (k != 6 or separate)]
+
+
 def to_table(result: RunupResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """The summary, a table of the steps, a table of the estimates, notes and limits."""
@@ -170,10 +178,12 @@ def to_table(result: RunupResult, width: int | None = None, color: bool = False,
         steps.add_row(*(cells[k] for k in shown))
     items.append(steps)
     est = Table(title="in-situ estimates (standard uncertainty u)", header_style="bold")
-    for k, label in enumerate(_EST_HEAD):
-        est.add_column(label, justify="right" if k in (1, 4, 5) else "left")
+    shown = _estimate_columns(result)
+    for k in shown:
+        est.add_column(_EST_HEAD[k], justify="right" if k in (1, 4, 5) else "left")
     for e in result.estimates:
-        est.add_row(*_estimate_cells(e, result.sensor is not None))
+        cells = _estimate_cells(e, result.sensor is not None)
+        est.add_row(*(cells[k] for k in shown))
     items.append(est)
     verdict = _verdict(result)
     if verdict:
@@ -189,8 +199,10 @@ def to_markdown(result: RunupResult) -> str:
     parts = [_summary(result), "",
              markdown_table([_STEP_HEAD[k] for k in shown],
                             [[_step_cells(s)[k] for k in shown] for s in result.steps]),
-             "", markdown_table(_EST_HEAD, [_estimate_cells(e, result.sensor is not None)
-                                                    for e in result.estimates])]
+             "", markdown_table([_EST_HEAD[k] for k in _estimate_columns(result)],
+                                [[_estimate_cells(e, result.sensor is not None)[k]
+                                  for k in _estimate_columns(result)]
+                                 for e in result.estimates])]
     verdict = _verdict(result)
     if verdict:
         parts += ["", verdict]
