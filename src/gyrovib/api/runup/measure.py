@@ -25,8 +25,9 @@ WINDOW_SECONDS = 0.5
 #: A step is part of the baseline when its vibration is within this many dB of the
 #: quietest step's, on the angular and on the linear level.
 BASELINE_DB = 3.0
-#: A vibration whose rms is below this fraction of the signal's is rounding: none.
-NEGLIGIBLE = 1e-10
+#: A vibration whose rms is below this fraction of the signal's is the split's rounding
+#: and filter tails (a millionth of 1 g is below any accelerometer's noise): none.
+NEGLIGIBLE = 1e-6
 
 
 class Measured:
@@ -165,8 +166,8 @@ def _one(fs: float, lo: int, hi: int, w: FloatArray, c: FloatArray, a: FloatArra
 
 
 def _rms(vibration: FloatArray, signal: FloatArray) -> float:
-    """√(Σ_axes ⟨v²⟩); 0 where that is below 1e-10 of the signal's rms (the split's
-    rounding, not a vibration)."""
+    """√(Σ_axes ⟨v²⟩); 0 where that is below :data:`NEGLIGIBLE` of the signal's rms (the
+    split's rounding and tails, not a vibration)."""
     power = float(np.sum(np.mean(vibration**2, axis=0)))
     floor = NEGLIGIBLE**2 * float(np.sum(np.mean(signal**2, axis=0)))
     return math.sqrt(power) if power > floor else 0.0

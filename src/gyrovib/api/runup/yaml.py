@@ -79,6 +79,8 @@ def _header(result: RunupResult, written: list[Estimate], left: list[Estimate],
     ]
     lines += [f"# not written, not identifiable from this test: {e.name} ({e.separate})"
               for e in left]
+    lines += [f"# {e.name} is not significant (|value| < 2u): written with its uncertainty; "
+              "remove it to take it as 0" for e in written if e.status == "not significant"]
     if carried:
         lines.append(f"# other coefficients as catalogue sensor {result.sensor} gives them")
     else:
