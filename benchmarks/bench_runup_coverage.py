@@ -30,9 +30,10 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 sys.path.insert(0, os.path.join(ROOT, "src"))
 
+from tests.runup_sim import simulate  # noqa: E402
+
 from gyrovib.api.recordings import read_recording  # noqa: E402
 from gyrovib.api.runup import runup  # noqa: E402
-from tests.runup_sim import simulate  # noqa: E402
 
 TRUTH = {"A1": 0.0, "k2": 0.002, "vre": 0.01}
 

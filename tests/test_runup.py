@@ -261,3 +261,21 @@ def test_the_ulog_reader_feeds_the_test_directly() -> None:
                    estimate=["k2"])
     assert len(result.steps) == 4
     assert all(math.isfinite(s.shift) for s in result.steps)
+
+
+def test_a_step_where_the_vehicle_turned_is_flagged_moved(tmp_path: Path) -> None:
+    # during step 4 (80–100 s) the vehicle rolls by 12.7° and back is not modelled: a
+    # half-sine rate pulse of 20 deg/s peak over 1 s about x1 (∫ = 40/π deg); its mean
+    # over the step, 0.64 deg/s, is far beyond the noise, and the carrier swings with it
+    rng = np.random.default_rng(8)
+    data, steps = simulate(rng, {"vre": 0.01})
+    fs = 200.0
+    a, _ = steps[4]
+    k = np.arange(round(1.0 * fs))
+    at = round((a + 5.0) * fs)
+    data[at:at + k.size, 0] += 20.0 * np.sin(np.pi * k / k.size)
+    path = tmp_path / "moved.npy"
+    np.save(path, data)
+    result = runup(_read(path), steps=steps, estimate=["vre"])
+    assert [s.index for s in result.steps if s.moved] == [4]
+    assert any("moving" in n for n in result.notes)

@@ -142,3 +142,24 @@ def test_a_g2_term_needs_the_accelerations(record: Path) -> None:
                  "vre")
     assert out.exit_code == 2
     assert "accelerations" in out.stderr
+
+
+def test_without_the_z_rate_there_is_no_test(record: Path) -> None:
+    out = invoke("runup", record, "--fs", "200", "--rate-columns", "0,1,-",
+                 "--accel-columns", "3,4,5")
+    assert out.exit_code == 2
+    assert "rate about x3 (Z)" in out.stderr
+
+
+def test_without_x_and_y_the_z_terms_are_still_measured(record: Path) -> None:
+    # an axis not recorded is unknown: m31 cannot be asked for, k2 and vre can, and the
+    # "moved" test (which reads x1 and x2) says nothing rather than guessing
+    out = invoke("runup", record, "--fs", "200", "--rate-columns", "-,-,2",
+                 "--accel-columns", "3,4,5", "--estimate", "k2,vre", "--format", "json")
+    assert out.exit_code == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert not any(s["moved"] for s in doc["steps"])
+    assert doc["estimates"]["vre"]["status"] == "found"
+    refused = invoke("runup", record, "--fs", "200", "--rate-columns", "-,-,2",
+                     "--estimate", "m31")
+    assert refused.exit_code == 2 and "rate about X" in refused.stderr

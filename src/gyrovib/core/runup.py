@@ -52,6 +52,9 @@ VIF_LIMIT = 100.0
 DRIFT_VIF_LIMIT = 10.0
 #: Above this the design is singular: the term is not estimated at all.
 SINGULAR_VIF = 1e8
+#: A step moved when its angle excursion exceeds this many times the median step's (each
+#: per √T, as a Brownian bridge grows): a turn stands out among steps that only shake.
+MOVED_FACTOR = 10.0
 #: A residual beyond this many standard deviations of its step's mean is flagged.
 RESIDUAL_SIGMAS = 3.0
 
@@ -195,6 +198,22 @@ def mean_variance(rate: ArrayLike, fs: float) -> float:
     tau0 = 1.0 / fs
     tau, adev = allan.oadev(resid, tau0, m)
     return float(np.max(adev**2 * tau)) / (n * tau0)
+
+
+def angle_excursion(carrier: ArrayLike, fs: float) -> FloatArray:
+    """Per column, the largest |θ(t)| of θ = ∫ (Ω_K − its least-squares line) dt over the
+    step (deg for deg/s): how far the vehicle turned and came back within the step. A
+    steady offset (rectification) and a linear drift of the rate leave it at the noise's
+    Brownian bridge, of the order N·√T/2; a roll of 10° and back, at 10°."""
+    c = np.asarray(carrier, dtype=float).reshape(len(carrier), -1)
+    n = c.shape[0]
+    if n < 3:
+        return np.zeros(c.shape[1])
+    t = np.arange(n, dtype=float)
+    fit = np.polynomial.polynomial.polyfit(t, c, 1)
+    resid = c - (fit[0] + np.outer(t, fit[1]))
+    out: FloatArray = np.abs(np.cumsum(resid, axis=0)).max(axis=0) / fs
+    return out
 
 
 # ----------------------------------------------------------------- the fit
@@ -363,7 +382,7 @@ def flagged_residuals(residuals: ArrayLike, var: ArrayLike,
     return out
 
 
-__all__ = ["DRIFT_VIF_LIMIT", "G_PAIRS", "MIN_WINDOWS", "RATE_NEEDS", "RESIDUAL_SIGMAS",
-           "STEP_THRESHOLD_DB", "TERMS", "VIF_LIMIT", "StepFit", "detect_steps",
-           "drift_separable", "fit_steps", "flagged_residuals", "mean_variance",
-           "step_regressors", "window_levels"]
+__all__ = ["DRIFT_VIF_LIMIT", "G_PAIRS", "MIN_WINDOWS", "MOVED_FACTOR", "RATE_NEEDS",
+           "RESIDUAL_SIGMAS", "STEP_THRESHOLD_DB", "TERMS", "VIF_LIMIT", "StepFit",
+           "angle_excursion", "detect_steps", "drift_separable", "fit_steps",
+           "flagged_residuals", "mean_variance", "step_regressors", "window_levels"]

@@ -33,8 +33,8 @@ NEGLIGIBLE = 1e-6
 class Measured:
     """What one step gives (an accumulator private to :mod:`gyrovib.api.runup`)."""
 
-    __slots__ = ("accel_rms", "carrier", "carrier_sd", "end", "g2_moments", "lo", "mean",
-                 "moments", "phi", "side_variance", "start", "variance", "x3_rms")
+    __slots__ = ("accel_rms", "end", "excursion", "g2_moments", "lo", "mean", "moments",
+                 "phi", "start", "variance", "x3_rms")
 
     def __init__(self, lo: int, hi: int, fs: float) -> None:
         self.lo = lo
@@ -44,9 +44,7 @@ class Measured:
         self.x3_rms = math.nan
         self.accel_rms = math.nan
         self.phi = np.full(len(kernel.TERMS), np.nan)
-        self.carrier = np.zeros(3)
-        self.carrier_sd = np.zeros(3)
-        self.side_variance = np.zeros(3)
+        self.excursion = np.zeros(3)
         self.moments: list[FloatArray] = []
         self.g2_moments: FloatArray | None = None
 
@@ -148,9 +146,7 @@ def _one(fs: float, lo: int, hi: int, w: FloatArray, c: FloatArray, a: FloatArra
     m.phi = kernel.step_regressors(w, c, a, low)
     x = w - c
     m.x3_rms = _rms(x[:, 2:], w[:, 2:])
-    m.carrier = c.mean(axis=0)
-    m.carrier_sd = c.std(axis=0)
-    m.side_variance = np.array([kernel.mean_variance(w[:, j], fs) for j in range(3)])
+    m.excursion = kernel.angle_excursion(c, fs)
     if a is not None and low is not None:
         m.accel_rms = _rms(a - low, a)
     if responses is None:

@@ -44,6 +44,9 @@ COVERAGE = 2.0
 FOUND_T = 2.0
 #: Where each rate-form term sits in a row of the coefficient matrix (core.analysis).
 _COLUMN = {"A1": 2, "k2": 3, "k4": 5, "m31": 9, "m32": 10}
+#: The least variance of a step's mean, (deg/s)²: a record without noise (synthetic, or
+#: quantised flat) would otherwise weigh infinitely.
+TINY = 1e-30
 _G_TERMS = ("G11", "G22", "G33", "G12", "G13", "G23")
 _RATE_UNIT = "deg/s"
 
@@ -62,6 +65,9 @@ def default_terms(recording: Recording) -> tuple[str, ...]:
 
 def check_terms(terms: Sequence[str], recording: Recording) -> tuple[str, ...]:
     """The terms to estimate, each known and measurable on this recording, given once."""
+    if not recording.rate_axes[2]:
+        raise OptionError("the run-up test measures the rate about x3 (Z), which the "
+                          "recording does not hold")
     out: list[str] = []
     for t in terms:
         if t not in kernel.TERMS:
@@ -124,12 +130,13 @@ def _result(recording: Recording, crossover: float, measured: list[Measured],
     idx = [kernel.TERMS.index(t) for t in terms]
     y = np.array([m.mean for m in measured])
     t = np.array([(m.start + m.end) / 2 for m in measured])
-    var = np.array([m.variance for m in measured])
+    var = np.maximum([m.variance for m in measured], TINY)
     phi = np.array([m.phi[idx] for m in measured]).reshape(len(measured), len(idx))
     fit = kernel.fit_steps(y, t, phi, var)
     base = baseline(measured)
     predicted, bound = _predictions(measured, base, entry, var)
-    steps = _steps(measured, base, terms, fit, phi, var, predicted, bound, entry is not None)
+    steps = _steps(measured, base, terms, fit, phi, var, predicted, bound, entry is not None,
+                   recording.rate_axes)
     catalogue, cat_bound = _catalogue(entry, terms)
     estimates = tuple(_estimate(k, name, fit, len(measured), terms, catalogue[k], cat_bound[k])
                       for k, name in enumerate(terms))
@@ -154,7 +161,8 @@ def _weighted(values: FloatArray, var: FloatArray, base: np.ndarray) -> float:
 
 def _steps(measured: list[Measured], base: np.ndarray, terms: tuple[str, ...],
            fit: kernel.StepFit, phi: FloatArray, var: FloatArray, predicted: FloatArray,
-           bound: bool, compared: bool) -> tuple[Step, ...]:
+           bound: bool, compared: bool,
+           rate_axes: tuple[bool, bool, bool]) -> tuple[Step, ...]:
     y = np.array([m.mean for m in measured])
     t = np.array([(m.start + m.end) / 2 for m in measured])
     d = fit.drift if math.isfinite(fit.drift) else 0.0
@@ -164,7 +172,7 @@ def _steps(measured: list[Measured], base: np.ndarray, terms: tuple[str, ...],
     phi_b = np.array([_weighted(phi[:, k], var, base) for k in range(phi.shape[1])])
     theta = np.nan_to_num(fit.values)
     outliers = kernel.flagged_residuals(fit.residuals, var)
-    moved = _moved(measured, base)
+    moved = _moved(measured, base, rate_axes)
     out = []
     for s, m in enumerate(measured):
         shift = float(y[s] - y_b - d * (t[s] - t_b))
@@ -172,7 +180,7 @@ def _steps(measured: list[Measured], base: np.ndarray, terms: tuple[str, ...],
         u = math.sqrt(max(u2, 0.0))
         out.append(Step(
             index=s, start=m.start, end=m.end, baseline=bool(base[s]), mean=m.mean,
-            variance=m.variance, x3_rms=m.x3_rms, accel_rms=m.accel_rms,
+            variance=float(var[s]), x3_rms=m.x3_rms, accel_rms=m.accel_rms,
             regressors=tuple((name, float(phi[s, k])) for k, name in enumerate(terms)),
             shift=shift, uncertainty=u, fitted=float((phi[s] - phi_b) @ theta),
             residual=float(fit.residuals[s]), predicted=float(predicted[s]), bound=bound,
@@ -191,21 +199,20 @@ def _status(shift: float, u: float, predicted: float, bound: bool, base: bool) -
     return WITHIN if gap <= COVERAGE * u else OUTSIDE
 
 
-def _moved(measured: list[Measured], base: np.ndarray) -> np.ndarray:
-    """Steps where the vehicle moved: about x1 or x2 the carrier's mean is off the
-    baseline's by more than 3 standard deviations of the two means while the carrier
-    swings more than twice as much as on the baseline (a rotation, not a steady rectified
-    offset). About x3 a step off the fit is the residual's flag."""
-    mean = np.array([m.carrier for m in measured])[:, :2]
-    spread = np.array([m.carrier_sd for m in measured])[:, :2]
-    var = np.array([m.side_variance for m in measured])[:, :2]
-    w = 1.0 / var[base]
-    ref = np.sum(w * mean[base], axis=0) / np.sum(w, axis=0)
-    ref_var = 1.0 / np.sum(w, axis=0)
-    ref_spread = spread[base].max(axis=0)
-    off = np.abs(mean - ref) > 3.0 * np.sqrt(var + ref_var)
-    swings = spread > 2.0 * ref_spread + 1e-12
-    out: np.ndarray = np.any(off & swings, axis=1) & ~base
+def _moved(measured: list[Measured], base: np.ndarray,
+           recorded: tuple[bool, bool, bool]) -> np.ndarray:
+    """Steps where the vehicle moved: on some recorded axis the carrier's angle excursion
+    (:func:`gyrovib.core.runup.angle_excursion`: it turned and came back) exceeds
+    :data:`~gyrovib.core.runup.MOVED_FACTOR` times the median step's, both per √T (the
+    vibration's own low-frequency shaking raises every vibrating step a little; a turn
+    stands out). A steady rectified offset leaves the excursion alone; about x3 a step
+    off the fit is also the residual's flag."""
+    axes = [j for j in range(3) if recorded[j]]
+    excursion = np.array([m.excursion for m in measured])[:, axes]
+    root = np.sqrt([m.end - m.start for m in measured])[:, None]
+    per_root = excursion / root
+    reference = np.maximum(np.median(per_root, axis=0), 1e-12)
+    out: np.ndarray = np.any(per_root > kernel.MOVED_FACTOR * reference, axis=1)
     return out
 
 
