@@ -211,16 +211,32 @@ def to_markdown(result: RunupResult) -> str:
     return "\n".join(parts) + "\n"
 
 
+#: The unit of each term's regressor (docs/model.md section 16); the G terms' is g².
+_REGRESSOR_UNITS = {"A1": "deg/s", "k2": "(deg/s)^2", "k4": "(deg/s)^4", "m31": "(deg/s)^2",
+                    "m32": "(deg/s)^2"}
+
+
+def _leading(result: RunupResult) -> Estimate:
+    """The estimate that moves the shifts most over these steps (|θ|·span of φ)."""
+    def reach(e: Estimate) -> float:
+        values = [dict(s.regressors)[e.name] for s in result.steps]
+        span = max(values) - min(values)
+        effect = abs(e.value) * span
+        return effect if math.isfinite(effect) else -1.0
+
+    return max(result.estimates, key=reach)
+
+
 def plot(result: RunupResult) -> bytes:
-    """Shift against the first estimated term's regressor: measured with 2u error bars,
-    the fit, and the catalogue sensor's prediction (PNG bytes)."""
+    """Shift against the regressor of the term that moves it most (:func:`_leading`):
+    measured with 2u error bars, the fit, and the catalogue sensor's prediction (PNG)."""
     # lazy: matplotlib is optional, for --plot only
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    first = result.estimates[0]
+    first = _leading(result)
     x = [dict(s.regressors)[first.name] for s in result.steps]
     fig, ax = plt.subplots(figsize=(7, 4.2))
     ax.errorbar(x, [s.shift for s in result.steps],
@@ -237,7 +253,7 @@ def plot(result: RunupResult) -> bytes:
         ax.annotate(str(s.index), (xv, s.shift), textcoords="offset points", xytext=(4, 4),
                     fontsize=7)
     ax.axhline(0.0, color="0.7", lw=0.8)
-    ax.set_xlabel(f"{first.name} regressor (unit coefficient)")
+    ax.set_xlabel(f"{first.name} regressor, {_REGRESSOR_UNITS.get(first.name, 'g^2')}")
     ax.set_ylabel(f"shift from the baseline, {UNIT}")
     ax.set_title(f"{os.path.basename(result.file)}: run-up test", fontsize=10)
     ax.grid(True, lw=0.3)
