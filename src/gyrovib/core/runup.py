@@ -205,7 +205,8 @@ def angle_excursion(carrier: ArrayLike, fs: float) -> FloatArray:
     step (deg for deg/s): how far the vehicle turned and came back within the step. A
     steady offset (rectification) and a linear drift of the rate leave it at the noise's
     Brownian bridge, of the order N·√T/2; a roll of 10° and back, at 10°."""
-    c = np.asarray(carrier, dtype=float).reshape(len(carrier), -1)
+    c = np.asarray(carrier, dtype=float)
+    c = c.reshape(c.shape[0], -1)
     n = c.shape[0]
     if n < 3:
         return np.zeros(c.shape[1])

@@ -270,8 +270,8 @@ def _catalogue(entry: Any, terms: tuple[str, ...]) -> tuple[list[float], list[bo
         figs = figures([entry])
         known = {"vre": float(figs.vre[0]) if figs.has_vre[0] else math.nan,
                  "A1": float(figs.asymmetry[0]) if np.isfinite(figs.asymmetry[0]) else math.nan}
-        values = [known.get(t, math.nan) for t in terms]
-        return values, [math.isfinite(v) for v in values]
+        figures_ = [known.get(t, math.nan) for t in terms]
+        return figures_, [math.isfinite(v) for v in figures_]
     row = coefficient_matrix([entry])[0]
     g = g2_matrix([entry])[0]
     values = {name: float(row[col]) for name, col in _COLUMN.items()}
