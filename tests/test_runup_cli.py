@@ -163,3 +163,39 @@ def test_without_x_and_y_the_z_terms_are_still_measured(record: Path) -> None:
     refused = invoke("runup", record, "--fs", "200", "--rate-columns", "-,-,2",
                      "--estimate", "m31")
     assert refused.exit_code == 2 and "rate about X" in refused.stderr
+
+
+def test_a_datasheet_without_a_vre_leaves_the_verdict_unverified(record: Path) -> None:
+    # SCH16T's datasheet publishes no VRE (DATASHEETS.md): on a recording with linear
+    # vibration its prediction is unknown — null, not 0 — and every vibrating step
+    # unverified; --require fails only on a step found outside, so it passes here
+    out = invoke("runup", record, *READ, "--estimate", "vre", "--sensor", "sch16t",
+                 "--require", "--format", "json")
+    assert out.exit_code == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert all(s["predicted"] is None for s in doc["steps"])
+    assert {s["status"] for s in doc["steps"]} == {"unverified"}
+    assert doc["estimates"]["vre"]["catalogue"] is None
+    table = invoke("runup", record, *READ, "--estimate", "vre", "--sensor", "sch16t")
+    assert "verdict: unverified" in table.stdout and "│ unverified │" in table.stdout
+
+
+def test_an_input_response_of_unit_gain_predicts_as_none(record: Path,
+                                                         tmp_path: Path) -> None:
+    # the same coefficients with a response acting at the input whose gain is 1 at every
+    # frequency: the vibration the element sees is the recorded one, so each step's
+    # prediction is the same to rounding (the FFT's round trip)
+    catalogue = tmp_path / "pair.yaml"
+    catalogue.write_text(
+        "gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n"
+        "  - id: plain\n    coefficients: {k2: 0.002}\n    vre: 0.01\n"
+        "  - id: filtered\n    coefficients: {k2: 0.002}\n    vre: 0.01\n"
+        "    response: {at: input, table: [[1, 1.0], [1000, 1.0]]}\n", encoding="utf-8")
+    shifts = {}
+    for sensor in ("plain", "filtered"):
+        out = invoke("runup", record, *READ, catalogue, "--estimate", "k2,vre", "--sensor",
+                     sensor, "--format", "json")
+        assert out.exit_code == 0, out.stderr
+        shifts[sensor] = [s["predicted"] for s in json.loads(out.stdout)["steps"]]
+    assert np.allclose(shifts["plain"], shifts["filtered"], rtol=1e-9, atol=1e-12)
+    assert max(shifts["plain"]) > 0.01                  # a real prediction, not zeros
