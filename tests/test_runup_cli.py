@@ -199,3 +199,21 @@ def test_an_input_response_of_unit_gain_predicts_as_none(record: Path,
         shifts[sensor] = [s["predicted"] for s in json.loads(out.stdout)["steps"]]
     assert np.allclose(shifts["plain"], shifts["filtered"], rtol=1e-9, atol=1e-12)
     assert max(shifts["plain"]) > 0.01                  # a real prediction, not zeros
+
+
+def test_a_csv_with_a_time_column_reads_as_the_npy_does(tmp_path: Path) -> None:
+    # every reader feeds the test: the same synthetic run-up as CSV with t in s, the
+    # sample rate from the timestamps, the columns by name
+    data, steps = simulate(np.random.default_rng(9), {"vre": 0.01}, seconds=8.0, gap=1.0)
+    t = np.arange(data.shape[0]) / 200.0
+    path = tmp_path / "runup.csv"
+    np.savetxt(path, np.column_stack([t, data]), delimiter=",", comments="", fmt="%.9g",
+               header="t,gx,gy,gz,ax,ay,az")
+    out = invoke("runup", path, "--accel-columns", "ax,ay,az", "--format", "json")
+    assert out.exit_code == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert doc["recording"]["fs"] == pytest.approx(200.0)
+    assert len(doc["steps"]) == len(steps)
+    assert list(doc["estimates"]) == ["vre"]                 # the default with accelerations
+    vre = doc["estimates"]["vre"]
+    assert abs(vre["value"] - 0.01) <= 2 * vre["uncertainty"]  # the simulated value
