@@ -217,3 +217,21 @@ def test_a_csv_with_a_time_column_reads_as_the_npy_does(tmp_path: Path) -> None:
     assert list(doc["estimates"]) == ["vre"]                 # the default with accelerations
     vre = doc["estimates"]["vre"]
     assert abs(vre["value"] - 0.01) <= 2 * vre["uncertainty"]  # the simulated value
+
+
+def test_the_entry_keeps_the_catalogue_sensors_other_terms(record: Path,
+                                                           tmp_path: Path) -> None:
+    # a coefficient-form sensor: what the test did not estimate is the catalogue's (as
+    # written there), what it estimated is the test's
+    catalogue = tmp_path / "unit.yaml"
+    catalogue.write_text("gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n  - id: unit-7\n"
+                         "    coefficients: {A1: 0.001, k4: 1.0e-6}\n    vre: 0.5\n",
+                         encoding="utf-8")
+    out = invoke("runup", record, *READ, catalogue, "--sensor", "unit-7", "--estimate",
+                 "vre", "-o", "-")
+    assert out.exit_code == 0, out.stderr
+    sensor = yaml.safe_load(out.stdout)["sensors"][0]
+    assert sensor["id"] == "unit-7-insitu"
+    assert sensor["coefficients"] == {"A1": 0.001, "k4": 1.0e-6}
+    assert abs(sensor["vre"] - 0.01) < 0.005                 # measured, not the 0.5 written
+    assert "g2_sensitivity" not in sensor

@@ -23,12 +23,14 @@ from gyrovib._version import __version__
 from gyrovib.api.runup.results import Estimate, RunupResult
 from gyrovib.api.study.convert import coefficient_matrix
 from gyrovib.api.study.entries import select_entries
+from gyrovib.api.study.linear import g2_matrix
 from gyrovib.catalog.loader import parse_catalog
 from gyrovib.core.analysis import COEFFICIENTS
 from gyrovib.errors import GyrovibError
 
 #: The eq. (2) terms that the ``coefficients`` block holds (and ``uncertainty``).
 _RATE_TERMS = ("A1", "k2", "k4", "m31", "m32")
+_G_TERMS = ("G11", "G22", "G33", "G12", "G13", "G23")
 #: Significant digits of a written uncertainty (the value is written to its decimal place).
 SIGMA_DIGITS = 3
 
@@ -54,21 +56,26 @@ def _id(result: RunupResult) -> str:
     return f"{clean}-insitu"[:200]
 
 
-def _carried(result: RunupResult, catalog: Any) -> dict[str, float]:
-    """The catalogue sensor's eq. (2) coefficients (deg/s powers), non-zero ones, when it
-    gives coefficients (not a datasheet)."""
+def _carried(result: RunupResult, catalog: Any) -> tuple[dict[str, float], dict[str, float]]:
+    """The catalogue sensor's non-zero eq. (2) coefficients (deg/s powers) and g² terms
+    (deg/s/g²), when it gives coefficients (not a datasheet); the g² terms only when
+    the test estimated none."""
     if result.sensor is None or catalog is None:
-        return {}
+        return {}, {}
     entry = select_entries(catalog, (result.sensor,), (), need=("sensors",))[0][0]
     if entry.sensor.specs is not None:
-        return {}
+        return {}, {}
     row = coefficient_matrix([entry])[0]
-    return {n: float(v) for n, v in zip(COEFFICIENTS, row, strict=True)
+    rate = {n: float(v) for n, v in zip(COEFFICIENTS, row, strict=True)
             if v != 0 and n not in ("k1",)}
+    if any(e.name not in _RATE_TERMS for e in result.estimates):
+        return rate, {}
+    g2 = {n: float(v) for n, v in zip(_G_TERMS, g2_matrix([entry])[0], strict=True) if v != 0}
+    return rate, g2
 
 
 def _header(result: RunupResult, written: list[Estimate], left: list[Estimate],
-            carried: dict[str, float]) -> list[str]:
+            carried: bool) -> list[str]:
     lines = [
         f"# Written by gyrovib {__version__} runup from {os.path.basename(result.file)} "
         f"(sha256 {result.sha256[:16]}…, {len(result.steps)} steps, fs {result.fs:.6g} Hz):",
@@ -82,7 +89,8 @@ def _header(result: RunupResult, written: list[Estimate], left: list[Estimate],
     lines += [f"# {e.name} is not significant (|value| < 2u): written with its uncertainty; "
               "remove it to take it as 0" for e in written if e.status == "not significant"]
     if carried:
-        lines.append(f"# other coefficients as catalogue sensor {result.sensor} gives them")
+        lines.append(f"# the terms not estimated (or not identified) as catalogue sensor "
+                     f"{result.sensor} gives them")
     else:
         lines.append("# terms not estimated here are the format's default, 0: add the "
                      "datasheet's or the rate table's")
@@ -95,15 +103,15 @@ def runup_yaml(result: RunupResult, catalog: Any = None) -> str:
     """The sensor entry (see the module docstring), validated by the catalogue loader."""
     written = [e for e in result.estimates if e.identifiable or e.status == "not significant"]
     left = [e for e in result.estimates if e not in written]
-    carried = _carried(result, catalog)
+    carried, carried_g2 = _carried(result, catalog)
     rate = {e.name: e for e in written if e.name in _RATE_TERMS}
     values = {n: v for n, v in carried.items() if n not in rate}
-    lines = [*_header(result, written, left, carried), "gyrovib: 1", "units:", "  rate: deg/s",
-             "sensors:", f"  - id: {_id(result)}"]
+    lines = [*_header(result, written, left, bool(carried or carried_g2)), "gyrovib: 1",
+             "units:", "  rate: deg/s", "sensors:", f"  - id: {_id(result)}"]
     lines += _rate_lines(values, rate)
     if rate:
         lines += _correlation(result, list(rate))
-    lines += _g2_lines([e for e in written if e.name not in _RATE_TERMS])
+    lines += _g2_lines([e for e in written if e.name not in _RATE_TERMS], carried_g2)
     text = "\n".join(lines) + "\n"
     try:  # what is written must load
         parse_catalog(text, "<runup sensor>")
@@ -136,8 +144,13 @@ def _correlation(result: RunupResult, names: list[str]) -> list[str]:
     return ["      correlation:" + (" {}" if not pairs else ""), *pairs]
 
 
-def _g2_lines(estimates: list[Estimate]) -> list[str]:
+def _g2_lines(estimates: list[Estimate], carried: dict[str, float]) -> list[str]:
+    """``vre`` or ``g2_sensitivity`` in-situ (uncertainty as a comment), or the catalogue
+    sensor's ``g2_sensitivity`` carried when the test estimated no g² term."""
     lines = []
+    if carried:
+        lines.append("    g2_sensitivity: {" + ", ".join(f"{n}: {_num(v)}"
+                                                       for n, v in carried.items()) + "}")
     for e in estimates:
         if e.name == "vre":
             lines.append(f"    vre: {_num(e.value, e.uncertainty)}    # ± "
