@@ -235,3 +235,33 @@ def test_the_entry_keeps_the_catalogue_sensors_other_terms(record: Path,
     assert sensor["coefficients"] == {"A1": 0.001, "k4": 1.0e-6}
     assert abs(sensor["vre"] - 0.01) < 0.005                 # measured, not the 0.5 written
     assert "g2_sensitivity" not in sensor
+
+
+def test_an_ardupilot_dataflash_log_feeds_the_test_and_is_named(tmp_path: Path) -> None:
+    # the synthetic run-up written as DataFlash IMU messages (tests/logwriters.py: rad/s
+    # and m/s² as float32, its header says synthetic): read by its own reader, the
+    # output names the message and instance read, and vre comes back (simulated 0.01)
+    pytest.importorskip("pymavlink")
+    from tests.logwriters import D2R, G0, dataflash_imu
+
+    data, steps = simulate(np.random.default_rng(12), {"vre": 0.01}, seconds=8.0, gap=1.0)
+    t_us = np.round(np.arange(data.shape[0]) / 200.0 * 1e6)
+    path = dataflash_imu(tmp_path / "runup.bin", t_us, [data[:, :3] * D2R],
+                         [data[:, 3:] * G0])
+    out = invoke("runup", path, "--format", "json")
+    assert out.exit_code == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert (doc["recording"]["topic"], doc["recording"]["instance"]) == ("IMU", 0)
+    assert len(doc["steps"]) == len(steps)
+    vre = doc["estimates"]["vre"]
+    assert abs(vre["value"] - 0.01) <= 2 * vre["uncertainty"]
+    table = invoke("runup", path)
+    assert "runup.bin (IMU instance 0)" in table.stdout
+
+
+def test_the_ulog_topic_read_is_named() -> None:
+    out = invoke("runup", Path(__file__).parent / "data" / "px4-sample.ulg", "--steps",
+                 "1.2:3,3.2:5,5.2:7,7.2:9", "--format", "json")
+    assert out.exit_code == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert doc["recording"]["topic"] == "sensor_combined"

@@ -56,7 +56,8 @@ def to_json(result: RunupResult) -> str:
     """``steps``, ``estimates`` (by name), ``drift``, ``chi2`` and the recording."""
     doc = header("runup", UNIT)
     doc |= {
-        "recording": {"file": os.path.basename(result.file), "sha256": result.sha256,
+        "recording": {"file": os.path.basename(result.file), "topic": result.topic,
+                      "instance": result.instance, "sha256": result.sha256,
                       "samples": result.samples, "fs": result.fs,
                       "crossover": result.crossover, "steps_given": result.steps_given},
         "sensor": result.sensor,
@@ -132,7 +133,8 @@ def _summary(result: RunupResult) -> str:
            + (f" (uncertainties × {math.sqrt(result.inflation):.3g})"
               if result.inflation > 1 else ""))
     source = "given" if result.steps_given else "found from the running variance"
-    return (f"recording {os.path.basename(result.file)}: {result.samples} samples at "
+    read = "" if result.source is None else f" ({result.source})"
+    return (f"recording {os.path.basename(result.file)}{read}: {result.samples} samples at "
             f"{result.fs:.6g} Hz, {len(result.steps)} steps ({source}), crossover "
             f"{result.crossover:g} Hz; drift {drift}; {chi}"
             + (f"; compared with sensor {result.sensor}" if result.sensor else ""))

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from gyrovib.api.recordings.results import source_words
 from gyrovib.frozen import Frozen
 
 #: Statuses of a step against the catalogue sensor's prediction.
@@ -99,7 +100,9 @@ class RunupResult(Frozen):
     ``correlation`` of the estimates (row per estimate); ``constant`` c (deg/s);
     ``sensor``: the catalogue sensor compared (None); ``steps_given``: the steps came
     from the user, not from the recording; ``limits``: what the test cannot see
-    (always said); ``notes``: what the reader should know of this result.
+    (always said); ``notes``: what the reader should know of this result; ``warnings``:
+    the reader's about the file (a log cut short, clipped samples); ``topic`` and
+    ``instance``: the log's topic or message read, and which instance (None otherwise).
     """
 
     file: str
@@ -121,6 +124,14 @@ class RunupResult(Frozen):
     steps_given: bool
     limits: tuple[str, ...]
     notes: tuple[str, ...]
+    warnings: tuple[str, ...] = ()
+    topic: str | None = None
+    instance: int | None = None
+
+    @property
+    def source(self) -> str | None:
+        """The log's topic and instance read, in words (``sensor_combined``), or None."""
+        return source_words(self.topic, self.instance)
 
     @property
     def requirement_met(self) -> bool:

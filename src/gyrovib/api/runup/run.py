@@ -151,7 +151,8 @@ def _result(recording: Recording, crossover: float, measured: list[Measured],
         drift_vif=fit.drift_vif, chi2=fit.chi2, dof=fit.dof, inflation=fit.inflation,
         correlation=tuple(tuple(float(v) for v in row) for row in corr),
         sensor=None if entry is None else entry.sensor.id, steps_given=given,
-        limits=_limits(recording), notes=notes)
+        limits=_limits(recording), notes=notes, warnings=recording.warnings,
+        topic=recording.topic, instance=recording.instance)
 
 
 def _weighted(values: FloatArray, var: FloatArray, base: np.ndarray) -> float:

@@ -77,8 +77,9 @@ def _carried(result: RunupResult, catalog: Any) -> tuple[dict[str, float], dict[
 def _header(result: RunupResult, written: list[Estimate], left: list[Estimate],
             carried: bool) -> list[str]:
     lines = [
-        f"# Written by gyrovib {__version__} runup from {os.path.basename(result.file)} "
-        f"(sha256 {result.sha256[:16]}…, {len(result.steps)} steps, fs {result.fs:.6g} Hz):",
+        f"# Written by gyrovib {__version__} runup from {os.path.basename(result.file)}"
+        + ("" if result.source is None else f" ({result.source})")
+        + f" (sha256 {result.sha256[:16]}…, {len(result.steps)} steps, fs {result.fs:.6g} Hz):",
         "# the installed sensor's in-situ figures (docs/model.md section 16), each with its "
         "standard",
         f"# uncertainty (k = 1; reduced χ² {result.reduced_chi2:.3g}, inflation "

@@ -52,6 +52,8 @@ def runup(ctx: click.Context, /, recording: str, files: tuple[str, ...], sensor:
     catalog = load_catalog(files) if sensor is not None or files else None
     result = run(read(recording, options), catalog, sensor=sensor, steps=given,
                  estimate=terms, crossover=crossover)
+    for warning in result.warnings:  # a log's damage, said as profile says it
+        say(f"gyrovib: warning: {warning}")
     if fmt != "table":
         for note in result.notes:
             say(f"gyrovib: note: {note}")
