@@ -55,7 +55,7 @@ def runup(ctx: click.Context, /, recording: str, files: tuple[str, ...], sensor:
     it, each said to be found, not significant, or not identifiable (and what
     step would separate it).
 
-    RECORDING: as for `gyrovib profile` (CSV, .npy, .npz, PX4 .ulg) with the
-    same column, unit and sample-rate options; FILE...: catalogues for
-    --sensor (default: the bundled ones).
+    RECORDING: as for `gyrovib profile` (CSV, .npy, .npz, PX4 .ulg, ArduPilot
+    .bin) with the same column, unit, topic and sample-rate options; FILE...:
+    catalogues for --sensor (default: the bundled ones).
     """
