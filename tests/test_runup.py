@@ -132,6 +132,11 @@ def test_collinear_terms_are_not_identifiable_and_name_their_partner() -> None:
     fit = kernel.fit_steps(np.arange(6.0), np.arange(6) * 60.0, phi, np.ones(6), drift=False)
     assert not fit.separable.any()
     assert fit.partner.tolist() == [1, 0]
+    # a regressor the same on every step (no vibration where it needs it): not estimated
+    fit = kernel.fit_steps(np.arange(4.0), np.zeros(4), [[0.0, 1], [1, 1], [2, 1], [3, 1]],
+                           np.ones(4), drift=False)
+    assert fit.partner.tolist()[1] == -3 and math.isnan(fit.values[1])
+    assert fit.values[0] == pytest.approx(1.0)
     # too few steps for the unknowns
     fit = kernel.fit_steps([0.0, 1.0], [0.0, 60.0], [[0.0], [1.0]], [1.0, 1.0], drift=False)
     assert fit.partner.tolist() == [-2]
@@ -279,3 +284,13 @@ def test_a_step_where_the_vehicle_turned_is_flagged_moved(tmp_path: Path) -> Non
     result = runup(_read(path), steps=steps, estimate=["vre"])
     assert [s.index for s in result.steps if s.moved] == [4]
     assert any("moving" in n for n in result.notes)
+
+
+def test_regressors_many_decades_apart_are_solved_to_rounding() -> None:
+    # ⟨x3⁴⟩ of 1e4 beside ½⟨|x3|⟩ of 1e-2: noiseless data, exact least squares
+    rng = np.random.default_rng(10)
+    phi = np.column_stack([1e-2 * rng.uniform(0, 1, 8), 1e4 * rng.uniform(0, 1, 8)])
+    theta = np.array([0.3, 2e-7])
+    y = 0.01 + phi @ theta
+    fit = kernel.fit_steps(y, np.zeros(8), phi, np.full(8, 1e-8), drift=False)
+    assert fit.values == pytest.approx(theta, rel=1e-9)

@@ -231,7 +231,8 @@ class StepFit(Frozen):
     ``chi2`` Σ r²/var, ``dof`` S − unknowns, ``inflation`` max(1, χ²/dof) (1 with no
     degree of freedom); ``vif`` (P,) each term's variance inflation factor against the
     constant, the drift and the other terms; ``partner`` (P,): the column it is most
-    collinear with (−1 time, −2 too few steps, index of another term, or P for none);
+    collinear with (−1 time, −2 too few steps, −3 the same on every step, index of another
+    term, or P for none);
     ``drift_vif``: the drift's own factor (whether the steps' order separates it).
     """
 
@@ -334,9 +335,14 @@ def fit_steps(y: ArrayLike, t: ArrayLike, phi: ArrayLike, var: ArrayLike,
     keep = [k for k in range(x.shape[1]) if k < offset or vif[k - offset] <= SINGULAR_VIF]
     xk = x[:, keep]
     sw = np.sqrt(w)
-    normal = (xk * w[:, None]).T @ xk
-    cov_k = np.linalg.pinv(normal)
-    beta_k = cov_k @ (xk.T @ (w * ys))
+    # columns scaled to unit weighted norm: the regressors span many decades (⟨x3⁴⟩
+    # against ½⟨|x3|⟩), and the normal matrix squares their condition number
+    scale = np.sqrt(np.sum((xk * sw[:, None]) ** 2, axis=0))
+    scale[scale == 0] = 1.0
+    xs = xk / scale
+    cov_s = np.linalg.pinv((xs * w[:, None]).T @ xs)
+    cov_k = cov_s / np.outer(scale, scale)
+    beta_k = (cov_s @ (xs.T @ (w * ys))) / scale
     fitted = xk @ beta_k
     resid = ys - fitted
     chi2 = float(np.sum((resid * sw) ** 2))
@@ -366,7 +372,7 @@ def _term_vifs(x: FloatArray, w: FloatArray, n_terms: int, offset: int,
     for j in range(n_terms):
         col = offset + j
         if steps < 2 or float(np.ptp(x[:, col])) == 0.0:
-            partner[j] = -2
+            partner[j] = -2 if steps < 2 else -3
             continue
         value, other = _vif(x, w, col)
         vif[j] = value

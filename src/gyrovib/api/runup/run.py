@@ -310,6 +310,9 @@ def _separation(k: int, fit: kernel.StepFit, steps: int, terms: tuple[str, ...])
     if partner == -2:
         return (f"more steps, each at a vibration level of its own: {steps} steps for "
                 f"{len(terms)} term(s), the constant and the drift")
+    if partner == -3:
+        return (f"a step where the {name} regressor changes: it is the same on every one of "
+                "these steps (no vibration where the term needs it)")
     if partner == -1:
         return ("a step at a lower vibration level after the highest (down again): it "
                 "separates the drift from the vibration")
