@@ -24,9 +24,11 @@ from gyrovib.api.noise.results import (
     AxisAllan,
     Budget,
     Figure,
+    GaussMarkov,
+    NOISE_TERMS,
 )
 from gyrovib.api.noise.yaml import noise_yaml
 
 __all__ = ["BUDGET_TERMS", "FIGURES", "FIGURE_UNITS", "AllanResult", "AxisAllan", "Budget",
-           "Figure", "allan", "budget", "check_coverage", "mission", "noise_angles",
+           "Figure", "GaussMarkov", "NOISE_TERMS", "allan", "budget", "check_coverage", "mission", "noise_angles",
            "noise_values", "noise_yaml", "ranked"]

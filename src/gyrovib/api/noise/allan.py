@@ -1,27 +1,49 @@
 """``gyrovib allan``: the overlapping Allan deviation of a static recording, per axis,
-and N, B, K read from it (docs/model.md section 15; the kernels are core/allan.py)."""
+each point with its confidence interval, and IEEE Std 952's five terms (and a
+Gauss–Markov term where the curve shows one) fitted to it, each a value with its
+interval or an upper bound (docs/model.md section 15; the kernels are core/allan.py,
+core/allan_edf.py and core/allan_fit.py)."""
 
 from __future__ import annotations
 
+import importlib.util
 import math
 
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api.noise.results import FIGURE_UNITS, AllanResult, AxisAllan, Figure
+from gyrovib.api.noise.results import (
+    FIGURE_UNITS,
+    NOISE_TERMS,
+    AllanResult,
+    AxisAllan,
+    Figure,
+    GaussMarkov,
+)
 from gyrovib.api.recordings.reading import AXES, Recording, RecordingError
 from gyrovib.core import allan as kernel
+from gyrovib.core import allan_fit
 from gyrovib.errors import OptionError, Problem
 
-#: From the kernel's figures (deg/s·√s, deg/s, deg/s/√s) to the reported units.
-TO_REPORTED = {"arw": 60.0, "bias_instability": 3600.0, "rrw": 216_000.0}
+#: From the kernel's figures (deg, deg/s·√s, deg/s, deg/s/√s, deg/s²) to the reported
+#: units (deg, deg/√h, deg/h, deg/h/√h, deg/h²).
+TO_REPORTED = {"quantization": 1.0, "arw": 60.0, "bias_instability": 3600.0,
+               "rrw": 216_000.0, "rate_ramp": 3600.0 ** 2}
 #: Fewest samples an Allan deviation is computed from.
 MIN_SAMPLES = 30
+#: Fewest changes of a quantised record's level that carry a noise figure.
+MIN_CHANGES = 30
 
 
-def _figure(read: kernel.Read, name: str) -> Figure:
+def _figure(term: allan_fit.Term, name: str, confidence: float) -> Figure:
     f = TO_REPORTED[name]
-    return Figure(read.value * f, FIGURE_UNITS[name], read.uncertainty * f, read.tau, read.share)
+    unit = FIGURE_UNITS[name]
+    if term.bound is not None:
+        return Figure(unit=unit, confidence=allan_fit.BOUND_CONFIDENCE, bound=term.bound * f)
+    assert term.value is not None
+    (lo, hi), (lo95, hi95) = term.intervals
+    return Figure(unit=unit, confidence=confidence, value=term.value * f,
+                  interval=(lo * f, hi * f), interval95=(lo95 * f, hi95 * f))
 
 
 def longest_segment(recording: Recording) -> tuple[int, int]:
@@ -31,39 +53,111 @@ def longest_segment(recording: Recording) -> tuple[int, int]:
     return int(seg[k, 0]), int(seg[k, 1])
 
 
+def seen_noise(rate: np.ndarray, axis: str, file: str, unit: str = "deg/s") -> None:
+    """Refuses a record in which no noise is seen: a constant, or a quantised output
+    that changes level fewer than :data:`MIN_CHANGES` times. No noise seen is not zero
+    noise (a stuck sensor, or noise below one step of its quantisation)."""
+    lo, hi = float(np.min(rate)), float(np.max(rate))
+    if lo == hi:
+        raise RecordingError(Problem(
+            f"axis {axis} is constant ({lo:.6g} {unit} in every sample): no noise is seen, "
+            "which is not zero noise (a stuck output, or noise below one step of its "
+            "quantisation); no figure is written", file))
+    changes = int(np.count_nonzero(np.diff(rate)))
+    if changes < MIN_CHANGES:
+        levels = np.unique(rate)
+        step = float(np.min(np.diff(levels)))
+        raise RecordingError(Problem(
+            f"axis {axis} changes level only {changes} times in {rate.size} samples "
+            f"({levels.size} levels, step {step:.3g} {unit}): its noise is below one step "
+            "of quantisation, which says nothing about its size; no figure is written",
+            file))
+
+
 def allan_axis(axis: str, rate: np.ndarray, fs: float, unit: str,
-               per_decade: int = kernel.PER_DECADE) -> AxisAllan:
+               per_decade: int = kernel.PER_DECADE, confidence: float = 0.68,
+               seed: int = 0) -> AxisAllan:
     """One axis: ``rate`` in deg/s at ``fs`` Hz; σ(τ) reported in ``unit``."""
     tau0 = 1.0 / fs
     m = kernel.tau_grid(rate.size, per_decade)
     adev = kernel.oadev(rate, tau0, m)[1]
+    return axis_from_curve(axis, m, adev, rate.size, fs, unit, confidence, seed)
+
+
+def axis_from_curve(axis: str, m: np.ndarray, adev: np.ndarray, n: int, fs: float,
+                    unit: str, confidence: float = 0.68, seed: int = 0) -> AxisAllan:
+    """One axis from its curve: σ(τ) (deg/s) at cluster sizes ``m`` of ``n`` samples."""
     tau = m / fs  # as written: 3 / 10 is 0.3, where 3 · 0.1 is 0.30000000000000004
-    terms = kernel.noise_terms(tau, adev, rate.size + 1, tau0)
-    n2, b2, k2 = (float(c) for c in terms.fitted)
-    fitted = (math.sqrt(n2) * TO_REPORTED["arw"], math.sqrt(b2) * TO_REPORTED["bias_instability"],
-              math.sqrt(k2) * TO_REPORTED["rrw"])
+    keep = adev > 0
+    tau, m, adev = tau[keep], m[keep], adev[keep]
+    model = allan_fit.noise_model(tau, adev, m, n, 1.0 / fs, (confidence, 0.95), seed)
+    figures = {name: _figure(term, name, confidence)
+               for name, term in zip(NOISE_TERMS, model.terms, strict=False)}
     scale = units.scale(unit)
     return AxisAllan(axis=axis, tau=tau, adev=adev / scale, unit=unit,
-                     arw=_figure(terms.arw, "arw"),
-                     bias_instability=_figure(terms.bias_instability, "bias_instability"),
-                     rrw=_figure(terms.rrw, "rrw"), fitted=fitted)
+                     ci_lo=model.ci[0] / scale, ci_hi=model.ci[1] / scale,
+                     edf=model.fit.nu, figures=figures,
+                     gauss_markov=_gauss_markov(model),
+                     model=np.sqrt(model.fit.model(tau)) / scale,
+                     misfit=tuple(float(tau[i]) for i in model.misfit))
+
+
+def _gauss_markov(model: allan_fit.Model) -> GaussMarkov | None:
+    if model.fit.tau_c is None:
+        return None
+    term = model.terms[5]
+    sigma = math.sqrt(float(model.fit.coef[5])) * 3600.0
+    interval = None
+    if term.value is not None:
+        lo, hi = term.intervals[0]
+        interval = (lo * 3600.0, hi * 3600.0)
+    return GaussMarkov(sigma=sigma, tau_c=model.fit.tau_c, interval=interval)
+
+
+def misfit_warning(ax: AxisAllan) -> str | None:
+    """A warning when more than a tenth of the curve lies outside the model's 99 % band."""
+    if len(ax.misfit) <= max(1, ax.tau.size // 10):
+        return None
+    where = ", ".join(f"{t:.4g}" for t in ax.misfit[:6]) + ("…" if len(ax.misfit) > 6 else "")
+    return (f"axis {ax.axis}: the noise model does not fit the curve at τ = {where} s "
+            f"({len(ax.misfit)} of {ax.tau.size} points outside their 99 % interval): "
+            "the record holds noise the five terms do not describe (a vibration, a "
+            "temperature change, a filter), and the figures are only as good as the fit")
+
+
+def _need_scipy(recording: Recording) -> None:
+    if importlib.util.find_spec("scipy") is None:
+        raise RecordingError(Problem(
+            "the noise model's fit and intervals need scipy: pip install "
+            "'gyrovib[recording]'", recording.file))
 
 
 def allan(recording: Recording, unit: str = "deg/h",
-          per_decade: int = kernel.PER_DECADE) -> AllanResult:
+          per_decade: int = kernel.PER_DECADE, confidence: float = 0.68) -> AllanResult:
     """Every recorded axis of ``recording`` (read by :func:`gyrovib.api.recordings.
-    read_recording`): σ(τ) in ``unit`` on a log grid (``per_decade`` points a decade),
-    N, B, K with their uncertainties, from its longest contiguous segment."""
+    read_recording`): σ(τ) in ``unit`` on a log grid (``per_decade`` points a decade)
+    with its limits at ``confidence``, and the noise model's terms, from the record's
+    longest contiguous segment."""
     unit = units.canonical_unit(unit)
     if per_decade < 1:
         raise OptionError(f"--per-decade {per_decade}: give at least 1")
+    if not (0.0 < confidence < 1.0):
+        raise OptionError(f"--confidence {confidence:g}: give a level between 0 and 1 "
+                          "(0.68, or 68 %)")
+    _need_scipy(recording)
     lo, hi = longest_segment(recording)
     if hi - lo < MIN_SAMPLES:
         raise RecordingError(Problem(
             f"{hi - lo} contiguous samples: an Allan deviation needs {MIN_SAMPLES} at least "
             "(and hours of a static record for the bias instability and rate random walk)",
             recording.file, None, None))
-    axes = tuple(allan_axis(name, recording.rate[lo:hi, k], recording.fs, unit, per_decade)
-                 for k, name in enumerate(AXES) if recording.rate_axes[k])
+    chosen = [(k, name) for k, name in enumerate(AXES) if recording.rate_axes[k]]
+    for k, name in chosen:
+        seen_noise(recording.rate[lo:hi, k], name, recording.file)
+    axes = tuple(allan_axis(name, recording.rate[lo:hi, k], recording.fs, unit, per_decade,
+                            confidence)
+                 for k, name in chosen)
+    warnings = tuple(w for w in (misfit_warning(ax) for ax in axes) if w is not None)
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
-                       samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes)
+                       samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes,
+                       confidence=confidence, warnings=warnings)
