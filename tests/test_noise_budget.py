@@ -97,7 +97,7 @@ def test_json_and_table_say_unknown(tmp_path) -> None:  # type: ignore[no-untype
     assert silent["arw"] is None and silent["lower_bound"] is True
     assert set(rows[0]["budget"]) == {"vibration", "arw", "bias_instability", "rrw",
                                       "repeatability", "total", "coverage", "unit",
-                                      "lower_bound"}
+                                      "lower_bound", "rests_on_bound", "bounds"}
     table = invoke("mission", path, "--angle-budget", "3deg").stdout
     line = next(x for x in table.splitlines() if x.startswith("│ silent"))
     assert "?" in line and " 0 " not in line
@@ -131,3 +131,24 @@ def test_report_shows_the_budget_as_a_stacked_bar(tmp_path) -> None:  # type: ig
                  "full: rate random walk", "full: bias repeatability", "silent: vibration"):
         assert part in chart
     assert "silent: angle random walk" not in chart and chart.count("≥ ?") == 1
+
+
+BOUNDED = CATALOGUE.replace('rrw: {value: 0.02, unit: deg/h/sqrt(h)}',
+                            'rrw: "≤ 0.02 deg/h/sqrt(h)"')
+
+
+def test_a_bound_is_the_budget_maximum_and_the_row_says_so(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    measured = _result(coverage=2.0).rows[0].budget
+    bounded = api.mission(merge([parse_catalog(BOUNDED, "<c>")]), coverage=2.0).rows[0]
+    b = bounded.budget
+    assert b is not None and measured is not None
+    # the bound's upper value enters exactly as the value did (K·T^{3/2}/√3 at K = 0.02)
+    assert b.rrw == measured.rrw and b.total == measured.total
+    assert b.bounds == ("rrw",) and measured.bounds == ()
+    path = tmp_path / "c.yaml"
+    path.write_text(BOUNDED, encoding="utf-8")
+    doc = json.loads(invoke("mission", path, "--angle-budget", "3deg", "--format",
+                            "json").stdout)["mission"][0]["budget"]
+    assert doc["rests_on_bound"] is True and doc["bounds"] == ["rrw"]
+    table = invoke("mission", path, "--angle-budget", "3deg").stdout
+    assert f"≤ {b.rrw:.4g}" in table and "rests on" in table
