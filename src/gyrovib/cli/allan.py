@@ -18,9 +18,10 @@ from gyrovib.cli.recording import reader_options
 @click.option("--unit", default="deg/h", show_default=True, metavar="UNIT",
               help="Rate unit of the Allan deviation: deg/s, deg/h, rad/s, rpm (the figures "
                    "are always in deg/sqrt(h), deg/h and deg/h/sqrt(h)).")
-@click.option("--per-decade", type=click.IntRange(min=1), default=10, show_default=True,
-              metavar="P", help="Points of the τ grid per decade (fewer where there are "
-                                "not as many cluster sizes).")
+@click.option("--per-decade", type=click.IntRange(min=1), default=None, metavar="P",
+              help="Points of the τ grid per decade (fewer where there are not as many "
+                   "cluster sizes); default 10, and for a record of more than 4 M samples "
+                   "(read a block at a time) the octave grid τ0·2^j.")
 @click.option("--plot", metavar="PNG",
               help="Write the Allan deviation per axis, log-log, with its error bars, each "
                    "term's line and the fitted model (matplotlib).")
@@ -32,7 +33,7 @@ from gyrovib.cli.recording import reader_options
                    "bounds are always at 95 %.")
 @format_option("table", "json", "kalibr")
 @runs("allan")
-def allan(recording: str, unit: str, per_decade: int, plot: str | None, output: str | None,
+def allan(recording: str, unit: str, per_decade: int | None, plot: str | None, output: str | None,
           confidence: str, fmt: str, **options: Any) -> None:
     """The Allan deviation of a static RECORDING and its noise model, with intervals.
 

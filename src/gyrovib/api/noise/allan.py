@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import tempfile
+from collections.abc import Callable
 
 import numpy as np
 
@@ -22,7 +24,7 @@ from gyrovib.api.noise.results import (
 )
 from gyrovib.api.recordings.reading import AXES, Recording, RecordingError
 from gyrovib.core import allan as kernel
-from gyrovib.core import allan_fit
+from gyrovib.core import allan_fit, allan_stream
 from gyrovib.errors import OptionError, Problem
 
 #: From the kernel's figures (deg, deg/s·√s, deg/s, deg/s/√s, deg/s²) to the reported
@@ -33,6 +35,9 @@ TO_REPORTED = {"quantization": 1.0, "arw": 60.0, "bias_instability": 3600.0,
 MIN_SAMPLES = 30
 #: Fewest changes of a quantised record's level that carry a noise figure.
 MIN_CHANGES = 30
+#: Samples above which the curve is computed without holding the record
+#: (core/allan_stream.py): 2²² samples are 100 MB of float64 over three axes.
+STREAM_SAMPLES = 1 << 22
 
 
 def _figure(term: allan_fit.Term, name: str, confidence: float) -> Figure:
@@ -53,25 +58,27 @@ def longest_segment(recording: Recording) -> tuple[int, int]:
     return int(seg[k, 0]), int(seg[k, 1])
 
 
-def seen_noise(rate: np.ndarray, axis: str, file: str, unit: str = "deg/s") -> None:
+def seen_noise(rate: np.ndarray, axis: str, file: str) -> None:
+    """Refuses a record in which no noise is seen (:func:`refuse_unseen`)."""
+    refuse_unseen(axis, float(np.min(rate)), float(np.max(rate)),
+                  int(np.count_nonzero(np.diff(rate))), rate.size, file)
+
+
+def refuse_unseen(axis: str, low: float, high: float, changes: int, n: int,
+                  file: str) -> None:
     """Refuses a record in which no noise is seen: a constant, or a quantised output
     that changes level fewer than :data:`MIN_CHANGES` times. No noise seen is not zero
     noise (a stuck sensor, or noise below one step of its quantisation)."""
-    lo, hi = float(np.min(rate)), float(np.max(rate))
-    if lo == hi:
+    if low == high:
         raise RecordingError(Problem(
-            f"axis {axis} is constant ({lo:.6g} {unit} in every sample): no noise is seen, "
+            f"axis {axis} is constant ({low:.6g} deg/s in every sample): no noise is seen, "
             "which is not zero noise (a stuck output, or noise below one step of its "
             "quantisation); no figure is written", file))
-    changes = int(np.count_nonzero(np.diff(rate)))
     if changes < MIN_CHANGES:
-        levels = np.unique(rate)
-        step = float(np.min(np.diff(levels)))
         raise RecordingError(Problem(
-            f"axis {axis} changes level only {changes} times in {rate.size} samples "
-            f"({levels.size} levels, step {step:.3g} {unit}): its noise is below one step "
-            "of quantisation, which says nothing about its size; no figure is written",
-            file))
+            f"axis {axis} changes level only {changes} times in {n} samples (between "
+            f"{low:.6g} and {high:.6g} deg/s): its noise is below one step of quantisation, "
+            "which says nothing about its size; no figure is written", file))
 
 
 def allan_axis(axis: str, rate: np.ndarray, fs: float, unit: str,
@@ -132,14 +139,57 @@ def _need_scipy(recording: Recording) -> None:
             "'gyrovib[recording]'", recording.file))
 
 
+def _streamed(recording: Recording, lo: int, hi: int, chosen: list[tuple[int, str]],
+              unit: str, per_decade: int | None, confidence: float) -> tuple[AxisAllan, ...]:
+    """The curves of a long record read a block at a time (core/allan_stream.py), the
+    record never held: a pass checks that noise is seen, one takes the mean and writes
+    the angle to a scratch file, one per τ reads it back."""
+    cols = [k for k, _ in chosen]
+    n = hi - lo
+
+    def read_rows(a: int, b: int) -> np.ndarray:
+        return recording.store.block("rate", lo + a, lo + b)[:, cols]
+
+    _seen_blockwise(read_rows, n, chosen, recording.file)
+    m = allan_stream.octave_grid(n) if per_decade is None else kernel.tau_grid(n, per_decade)
+    with tempfile.TemporaryFile(prefix="gyrovib-allan-") as scratch:
+        allan_stream.write_angle(read_rows, n, len(cols), 1.0 / recording.fs, scratch)
+        curves = allan_stream.oadev_scratch(scratch, n, len(cols), 1.0 / recording.fs, m)
+    return tuple(axis_from_curve(name, m, curves[:, j], n, recording.fs, unit, confidence)
+                 for j, (_, name) in enumerate(chosen))
+
+
+def _seen_blockwise(read_rows: Callable[[int, int], np.ndarray], n: int,
+                    chosen: list[tuple[int, str]], file: str) -> None:
+    """:func:`refuse_unseen` of every column, a block at a time (the level changes
+    counted across blocks)."""
+    cols = len(chosen)
+    low, high = np.full(cols, np.inf), np.full(cols, -np.inf)
+    changes = np.zeros(cols, dtype=np.int64)
+    last = None
+    for a in range(0, n, allan_stream.ROWS):
+        y = read_rows(a, min(n, a + allan_stream.ROWS))
+        low, high = np.minimum(low, y.min(axis=0)), np.maximum(high, y.max(axis=0))
+        changes += np.count_nonzero(np.diff(y, axis=0), axis=0)
+        if last is not None:
+            changes += y[0] != last
+        last = y[-1].copy()
+    for j, (_, name) in enumerate(chosen):
+        refuse_unseen(name, float(low[j]), float(high[j]), int(changes[j]), n, file)
+
+
 def allan(recording: Recording, unit: str = "deg/h",
-          per_decade: int = kernel.PER_DECADE, confidence: float = 0.68) -> AllanResult:
+          per_decade: int | None = None, confidence: float = 0.68,
+          stream_samples: int = STREAM_SAMPLES) -> AllanResult:
     """Every recorded axis of ``recording`` (read by :func:`gyrovib.api.recordings.
     read_recording`): σ(τ) in ``unit`` on a log grid (``per_decade`` points a decade)
     with its limits at ``confidence``, and the noise model's terms, from the record's
-    longest contiguous segment."""
+    longest contiguous segment. A segment longer than ``stream_samples`` is read a block
+    at a time and never held, on the octave grid τ0·2^j unless ``per_decade`` is given
+    (each τ costs a pass over the record); otherwise ``per_decade`` defaults to
+    :data:`gyrovib.core.allan.PER_DECADE`."""
     unit = units.canonical_unit(unit)
-    if per_decade < 1:
+    if per_decade is not None and per_decade < 1:
         raise OptionError(f"--per-decade {per_decade}: give at least 1")
     if not (0.0 < confidence < 1.0):
         raise OptionError(f"--confidence {confidence:g}: give a level between 0 and 1 "
@@ -152,11 +202,15 @@ def allan(recording: Recording, unit: str = "deg/h",
             "(and hours of a static record for the bias instability and rate random walk)",
             recording.file, None, None))
     chosen = [(k, name) for k, name in enumerate(AXES) if recording.rate_axes[k]]
-    for k, name in chosen:
-        seen_noise(recording.rate[lo:hi, k], name, recording.file)
-    axes = tuple(allan_axis(name, recording.rate[lo:hi, k], recording.fs, unit, per_decade,
-                            confidence)
-                 for k, name in chosen)
+    if hi - lo > stream_samples:
+        axes = _streamed(recording, lo, hi, chosen, unit, per_decade, confidence)
+    else:
+        rate = recording.store.block("rate", lo, hi)
+        for k, name in chosen:
+            seen_noise(rate[:, k], name, recording.file)
+        axes = tuple(allan_axis(name, rate[:, k], recording.fs, unit,
+                                per_decade or kernel.PER_DECADE, confidence)
+                     for k, name in chosen)
     warnings = tuple(w for w in (misfit_warning(ax) for ax in axes) if w is not None)
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
                        samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes,

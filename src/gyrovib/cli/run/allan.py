@@ -28,7 +28,7 @@ def parse_confidence(text: str) -> float:
     return value
 
 
-def allan(recording: str, unit: str, per_decade: int, plot: str | None, output: str | None,
+def allan(recording: str, unit: str, per_decade: int | None, plot: str | None, output: str | None,
           fmt: str, confidence: str = "68%", **options: Any) -> None:
     """See :func:`gyrovib.cli.allan.allan`."""
 
