@@ -26,6 +26,13 @@ not. A term θ (the square root of its coefficient) gets the pivot interval
 θ̂/q_{(1+c)/2} … θ̂/q_{(1−c)/2}, q the quantiles of the replicates' θ*/θ̂ (a scale
 family's interval: exact when the estimate's law scales with the truth).
 
+**Roll-off.** A sensor's low-pass filter flattens the curve below a few times its time
+constant: read there, N would come out too small. A leading stretch flatter than white
+noise and below the −½ line of the first white point (:func:`roll_off`) is left out of
+the fit (and said), and past it the filter's tail, σ² lowered by about c/τ², takes the
+place of quantization in the fit (a non-negative c of −1/τ²; quantization behind a
+filter is then only bounded).
+
 **Bounds.** A term is *unresolved* when it is absent from the fit, when 2.5 % or more of
 the replicates fit it at 0 (its 95 % interval reaches 0), or when it dominates the model
 (half its σ²) at no τ of the record (its slope region is absent). It is then given as an
@@ -77,10 +84,11 @@ def gm_basis(tau: FloatArray, tau_c: float) -> FloatArray:
     return out
 
 
-def design(tau: FloatArray, tau_c: float | None = None) -> FloatArray:
-    """The basis functions per τ (columns in :data:`TERMS` order, then g if τ_c)."""
+def design(tau: FloatArray, tau_c: float | None = None, filtered: bool = False) -> FloatArray:
+    """The basis functions per τ (columns in :data:`TERMS` order, then g if τ_c); for a
+    ``filtered`` curve the first column is a filter's −1/τ² instead of quantization's."""
     t = np.asarray(tau, dtype=float)
-    cols = [3.0 / t ** 2, 1.0 / t, np.full_like(t, FLICKER_FLOOR ** 2), t / 3.0, t * t / 2.0]
+    cols = [(-1.0 if filtered else 3.0) / t ** 2, 1.0 / t, np.full_like(t, FLICKER_FLOOR ** 2), t / 3.0, t * t / 2.0]
     if tau_c is not None:
         cols.append(gm_basis(t, tau_c))
     return np.stack(cols, axis=1)
@@ -120,15 +128,15 @@ class Fit:
     nu: FloatArray
     weight: FloatArray
     cost: float
+    filtered: bool = False
+
+    def design(self, tau: FloatArray) -> FloatArray:
+        """The fit's basis functions at ``tau``."""
+        return design(tau, self.tau_c, self.filtered)
 
     def model(self, tau: FloatArray) -> FloatArray:
         """The fitted σ²(τ)."""
-        out: FloatArray = design(tau, self.tau_c) @ self.coef
-        return out
-
-    def parts(self, tau: FloatArray) -> FloatArray:
-        """Each term's part of the fitted σ²(τ), per point and column."""
-        out: FloatArray = design(tau, self.tau_c) * self.coef
+        out: FloatArray = self.design(tau) @ self.coef
         return out
 
 
@@ -140,8 +148,8 @@ def _weighted(a: FloatArray, var: FloatArray, weight: FloatArray) -> tuple[Float
 
 
 def _refine(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
-            tau_c: float | None) -> Fit:
-    a = design(tau, tau_c)
+            tau_c: float | None, filtered: bool) -> Fit:
+    a = design(tau, tau_c, filtered)
     coef, _ = _weighted(a, var, 1.0 / var ** 2)
     nu = np.ones_like(var)
     weight = 1.0 / var ** 2
@@ -152,18 +160,19 @@ def _refine(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
         weight = nu / (2.0 * model ** 2)
         coef, _ = _weighted(a, var, weight)
     r = (a @ coef - var) * np.sqrt(weight)
-    return Fit(coef, tau_c, nu, weight, float(r @ r))
+    return Fit(coef, tau_c, nu, weight, float(r @ r), filtered)
 
 
 def fit(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
-        gauss_markov: bool = True) -> Fit:
+        gauss_markov: bool = True, filtered: bool = False) -> Fit:
     """The weighted non-negative fit of the module docstring to σ̂² = ``var`` at τ = m·τ0
-    (all > 0), ``points`` = n + 1 angle points of the record."""
-    best = _refine(tau, var, m, points, None)
+    (all > 0), ``points`` = n + 1 angle points of the record; ``filtered``: the curve
+    follows a filter's roll-off, whose −1/τ² tail takes quantization's column."""
+    best = _refine(tau, var, m, points, None, filtered)
     if not gauss_markov or tau.size < 8 or best.cost <= MISFIT * tau.size:
         return best
     for tau_c in np.geomspace(tau[0] * 3.0, tau[-1] / 3.0, 13) if tau[-1] > 9 * tau[0] else []:
-        trial = _refine(tau, var, m, points, float(tau_c))
+        trial = _refine(tau, var, m, points, float(tau_c), filtered)
         if trial.coef[5] > 0 and trial.cost < 0.5 * best.cost and trial.cost < best.cost - 10:
             if best.tau_c is None or trial.cost < best.cost:
                 best = trial
@@ -181,7 +190,7 @@ def _replicate_curves(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: f
     beyond :data:`SIM_CAP` samples, simulated at a coarser interval k·τ0, the points
     below it drawn as independent χ²_ν/ν multiples of the model."""
     c = fitted.coef
-    truth = Truth(quantization=math.sqrt(c[0]), arw=math.sqrt(c[1]),
+    truth = Truth(quantization=0.0 if fitted.filtered else math.sqrt(c[0]), arw=math.sqrt(c[1]),
                   bias_instability=math.sqrt(c[2]), rrw=math.sqrt(c[3]),
                   rate_ramp=math.sqrt(c[4]),
                   gm_sigma=math.sqrt(c[5]) if fitted.tau_c is not None else 0.0,
@@ -225,61 +234,106 @@ def envelope_bound(basis: FloatArray, var: FloatArray, nu: FloatArray) -> float:
 
 
 def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
-          confidences: tuple[float, ...]) -> tuple[Term, ...]:
+          confidences: tuple[float, ...], method: str = "pivot") -> tuple[Term, ...]:
     """Each of the five terms (and the Gauss–Markov σ, sixth, when fitted) from the fit
     and the replicates' coefficients (rows), see the module docstring."""
-    a = design(tau, fitted.tau_c)
+    a = fitted.design(tau)
     parts = a * fitted.coef
     share = parts / np.maximum(parts.sum(axis=1, keepdims=True), np.finfo(float).tiny)
+    basis = design(tau, fitted.tau_c)  # quantization's own column for its bound
     out = []
     for j in range(a.shape[1]):
-        value = math.sqrt(fitted.coef[j])
+        value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(fitted.coef[j])
         star = np.sqrt(np.maximum(replicates[:, j], 0.0))
         zeros = float(np.mean(star <= 0.0))
         resolved = (value > 0 and zeros < (1.0 - BOUND_CONFIDENCE) / 2.0
                     and float(share[:, j].max()) >= RESOLVED_SHARE)
         if not resolved:
-            bound = max(envelope_bound(a[:, j], var, fitted.nu), value)
+            bound = max(envelope_bound(basis[:, j], var, fitted.nu), value)
             out.append(Term(None, (), bound))
             continue
         ratio = star / value
         intervals = []
         for c in confidences:
             lo_q, hi_q = np.quantile(ratio, [(1.0 - c) / 2.0, (1.0 + c) / 2.0])
-            intervals.append((value / float(hi_q), value / float(lo_q)))
+            if method == "pivot":
+                intervals.append((value / float(hi_q), value / float(lo_q)))
+            else:  # the percentile interval, for the coverage study's comparison
+                intervals.append((value * float(lo_q), value * float(hi_q)))
         out.append(Term(value, tuple(intervals), None))
     return tuple(out)
 
 
 @dataclass(frozen=True, slots=True)
 class Model:
-    """The whole noise model of one curve: the fit, its terms (:data:`TERMS`, then the
-    Gauss–Markov σ when fitted), σ(τ)'s confidence limits per point at the first
-    confidence, and the points outside their 99 % limits (a model that does not fit)."""
+    """The whole noise model of one curve: the fit (of the points from ``start`` on),
+    its terms (:data:`TERMS`, then the Gauss–Markov σ when fitted), σ(τ)'s confidence
+    limits per point at the first confidence and each point's EDF, and the fitted points
+    outside their 99 % limits (a model that does not fit)."""
 
     fit: Fit
     terms: tuple[Term, ...]
     ci: tuple[FloatArray, FloatArray]
     misfit: IntArray
+    start: int
+    nu: FloatArray
+
+
+#: Local slope of log σ against log τ at or below which the curve is white noise (−½)
+#: or steeper (quantization, −1); a leading stretch flatter than :data:`ROLL_OFF_SLOPE`
+#: and below the white line is a filter's roll-off.
+WHITE_SLOPE, ROLL_OFF_SLOPE, SETTLED_SLOPE = -0.4, -0.3, -0.49
+
+
+def roll_off(tau: FloatArray, adev: FloatArray) -> int:
+    """How many leading points lie on a low-pass filter's roll-off: the curve there is
+    flatter than white noise (slope above −0.3 on average) and below the −½ line through
+    the first point where the slope reaches −0.4 (the first point by 10 % at least),
+    which must come within the first half of the curve; the stretch then runs on to
+    the first slope of −0.48 (the filter's last few per cent). 0 when there is no such
+    stretch."""
+    if tau.size < 8:
+        return 0
+    slope = np.diff(np.log(adev)) / np.diff(np.log(tau))
+    white = np.flatnonzero(slope[: tau.size // 2] <= WHITE_SLOPE)
+    if white.size == 0 or white[0] == 0:
+        return 0
+    j = int(white[0])
+    line = adev[j] * np.sqrt(tau[j] / tau[:j])
+    if (float(np.mean(slope[:j])) <= ROLL_OFF_SLOPE or not np.all(adev[:j] < line)
+            or adev[0] > 0.9 * line[0]):
+        return 0
+    # the filter still lowers the curve a little past it: on to a slope of −0.48
+    while j < tau.size // 2 and slope[j] > SETTLED_SLOPE:
+        j += 1
+    return j
 
 
 def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: float,
                 confidences: tuple[float, ...] = (0.68, 0.95), seed: int = 0,
-                replicates: int = REPLICATES, gauss_markov: bool = True) -> Model:
+                replicates: int = REPLICATES, gauss_markov: bool = True,
+                method: str = "pivot") -> Model:
     """The fit, bootstrap and bounds of the module docstring for the Allan deviation
-    ``adev`` (deg/s, all > 0) at τ = m·τ0 of a record of ``n`` samples."""
-    var = np.asarray(adev, dtype=float) ** 2
-    fitted = fit(tau, var, m, n + 1, gauss_markov)
+    ``adev`` (deg/s, all > 0) at τ = m·τ0 of a record of ``n`` samples; a leading
+    stretch on a filter's roll-off (:func:`roll_off`) is left out of the fit."""
+    m_all = np.asarray(m, dtype=np.int64)
+    start = roll_off(tau, np.asarray(adev, dtype=float))
+    var_all = np.asarray(adev, dtype=float) ** 2
+    tau, var, m = tau[start:], var_all[start:], m[start:]
+    fitted = fit(tau, var, m, n + 1, gauss_markov, filtered=start > 0)
     rng = np.random.default_rng(seed)
     curves = _replicate_curves(fitted, tau, m, n, tau0, replicates, rng)
-    a = design(tau, fitted.tau_c)
+    a = fitted.design(tau)
     coefs = np.array([refit(a, curve, fitted.weight) for curve in curves])
-    found = terms(fitted, tau, var, coefs, confidences)
-    ci = edfs.confidence_interval(np.sqrt(var), fitted.nu, confidences[0])
+    found = terms(fitted, tau, var, coefs, confidences, method)
+    # the points left out (a roll-off) get the EDF of white noise, the type they follow
+    nu = np.concatenate([edfs.edf(np.full(start, edfs.WHITE), m_all[:start], n + 1),
+                         fitted.nu])
+    ci = edfs.confidence_interval(np.sqrt(var_all), nu, confidences[0])
     lo99, hi99 = edfs.confidence_interval(np.sqrt(var), fitted.nu, 0.99)
     model = np.sqrt(fitted.model(tau))
-    misfit = np.flatnonzero((model < lo99) | (model > hi99)).astype(np.int64)
-    return Model(fitted, found, ci, misfit)
+    misfit = start + np.flatnonzero((model < lo99) | (model > hi99)).astype(np.int64)
+    return Model(fitted, found, ci, misfit, start, nu)
 
 
 __all__ = ["BOUND_CONFIDENCE", "FLICKER_FLOOR", "Fit", "Model", "REPLICATES", "TERMS", "Term",

@@ -46,6 +46,7 @@ def _axis_json(ax: AxisAllan) -> dict[str, Any]:
         "sigma": number(gm.sigma), "tau_c": number(gm.tau_c), "unit": "deg/h",
         "interval": None if gm.interval is None else [number(v) for v in gm.interval]}
     entry["misfit_tau"] = [number(t) for t in ax.misfit]
+    entry["fitted_from_tau"] = number(ax.fitted_from)
     return entry
 
 

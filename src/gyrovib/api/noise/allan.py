@@ -103,10 +103,11 @@ def axis_from_curve(axis: str, m: np.ndarray, adev: np.ndarray, n: int, fs: floa
     scale = units.scale(unit)
     return AxisAllan(axis=axis, tau=tau, adev=adev / scale, unit=unit,
                      ci_lo=model.ci[0] / scale, ci_hi=model.ci[1] / scale,
-                     edf=model.fit.nu, figures=figures,
+                     edf=model.nu, figures=figures,
                      gauss_markov=_gauss_markov(model),
                      model=np.sqrt(model.fit.model(tau)) / scale,
-                     misfit=tuple(float(tau[i]) for i in model.misfit))
+                     misfit=tuple(float(tau[i]) for i in model.misfit),
+                     fitted_from=float(tau[model.start]))
 
 
 def _gauss_markov(model: allan_fit.Model) -> GaussMarkov | None:
@@ -119,6 +120,15 @@ def _gauss_markov(model: allan_fit.Model) -> GaussMarkov | None:
         lo, hi = term.intervals[0]
         interval = (lo * 3600.0, hi * 3600.0)
     return GaussMarkov(sigma=sigma, tau_c=model.fit.tau_c, interval=interval)
+
+
+def roll_off_warning(ax: AxisAllan) -> str | None:
+    """A warning when the curve's first points were left out of the fit (a roll-off)."""
+    if ax.fitted_from <= ax.tau[0]:
+        return None
+    return (f"axis {ax.axis}: below τ = {ax.fitted_from:.4g} s the curve is flatter than "
+            "white noise and below its line (a low-pass filter's roll-off): those points are "
+            "left out of the fit, and N is read where the curve is white")
 
 
 def misfit_warning(ax: AxisAllan) -> str | None:
@@ -211,7 +221,8 @@ def allan(recording: Recording, unit: str = "deg/h",
         axes = tuple(allan_axis(name, rate[:, k], recording.fs, unit,
                                 per_decade or kernel.PER_DECADE, confidence)
                      for k, name in chosen)
-    warnings = tuple(w for w in (misfit_warning(ax) for ax in axes) if w is not None)
+    warnings = tuple(w for ax in axes for w in (roll_off_warning(ax), misfit_warning(ax))
+                     if w is not None)
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
                        samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes,
                        confidence=confidence, warnings=warnings)

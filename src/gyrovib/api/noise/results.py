@@ -60,7 +60,8 @@ class AxisAllan(Frozen):
     confidence limits ``ci_lo``, ``ci_hi`` (at the result's confidence, from each
     point's EDF ``edf``), the five terms of :data:`NOISE_TERMS` (each a :class:`Figure`),
     the Gauss–Markov term (None when the curve shows none), the fitted model's σ(τ) in
-    ``unit``, and the τ where the curve leaves the model's 99 % band (``misfit``)."""
+    ``unit``, the τ where the curve leaves the model's 99 % band (``misfit``), and the
+    least τ fitted (``fitted_from``: above τ0 when a filter's roll-off is left out)."""
 
     axis: str
     tau: FloatArray
@@ -73,6 +74,7 @@ class AxisAllan(Frozen):
     gauss_markov: GaussMarkov | None
     model: FloatArray
     misfit: tuple[float, ...]
+    fitted_from: float = 0.0
 
     @property
     def arw(self) -> Figure:
