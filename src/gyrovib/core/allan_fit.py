@@ -18,7 +18,7 @@ is tried on a grid of τ_c only where the five terms leave a weighted misfit of 
 way the five terms cannot).
 
 **Intervals: a parametric bootstrap.** Records of the fitted model, as long as the
-record (or, beyond :data:`SIM_CAP` samples, as long at a coarser interval), are
+record (beyond :data:`SIM_CAP` samples: see :func:`_replicate_curves`), are
 simulated (:mod:`gyrovib.core.allan_sim`), their Allan variance taken at the same τ and
 refitted with the same weights: so each replicate carries the correlation between
 neighbouring τ and every other term's pull on the term, which a formula per point does
@@ -186,9 +186,13 @@ def refit(a: FloatArray, var: FloatArray, weight: FloatArray) -> FloatArray:
 
 def _replicate_curves(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
                       replicates: int, rng: np.random.Generator) -> FloatArray:
-    """σ̂²(τ) of ``replicates`` records of the fitted model (rows), at the record's τ;
-    beyond :data:`SIM_CAP` samples, simulated at a coarser interval k·τ0, the points
-    below it drawn as independent χ²_ν/ν multiples of the model."""
+    """σ̂²(τ) of ``replicates`` records of the fitted model (rows), at the record's τ.
+
+    Beyond :data:`SIM_CAP` samples a replicate is two simulations: one as long as the
+    record at a coarser interval k·τ0 (k = ⌈n/SIM_CAP⌉), which gives the points from
+    m = 2k on, and one of :data:`SIM_CAP` samples at τ0 for the points below, whose
+    relative fluctuations are scaled by √(SIM_CAP/n) (at a fixed short τ the estimate's
+    spread falls as 1/√n) — so that those points keep their correlation across τ."""
     c = fitted.coef
     truth = Truth(quantization=0.0 if fitted.filtered else math.sqrt(c[0]), arw=math.sqrt(c[1]),
                   bias_instability=math.sqrt(c[2]), rrw=math.sqrt(c[3]),
@@ -201,14 +205,22 @@ def _replicate_curves(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: f
     mk = np.maximum(np.round(m[coarse] / k), 1).astype(np.int64)
     uniq, inverse = np.unique(mk, return_inverse=True)
     tau_k = uniq * (k * tau0)
+    fine = np.flatnonzero(~coarse)
+    short = fine[m[fine] <= SIM_CAP // 3]
+    drawn = fine[m[fine] > SIM_CAP // 3]
+    shrink = math.sqrt(SIM_CAP / n)
     out = np.empty((replicates, tau.size))
     for i in range(replicates):
         y = simulate(truth, n // k, k * tau0, rng)
         ratio = oadev(y, k * tau0, uniq)[1] ** 2 / fitted.model(tau_k)
         out[i, coarse] = model[coarse] * ratio[inverse]
-        if k > 1:
-            nu = fitted.nu[~coarse]
-            out[i, ~coarse] = model[~coarse] * rng.chisquare(nu) / nu
+        if short.size:
+            y = simulate(truth, SIM_CAP, tau0, rng)
+            r = oadev(y, tau0, m[short])[1] ** 2 / model[short]
+            out[i, short] = model[short] * (1.0 + (r - 1.0) * shrink)
+        if drawn.size:
+            nu = fitted.nu[drawn]
+            out[i, drawn] = model[drawn] * rng.chisquare(nu) / nu
     return out
 
 
@@ -324,6 +336,9 @@ def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: fl
     rng = np.random.default_rng(seed)
     curves = _replicate_curves(fitted, tau, m, n, tau0, replicates, rng)
     a = fitted.design(tau)
+    if fitted.filtered:  # the replicates have no filter: its column would only pull N up
+        a = a.copy()
+        a[:, 0] = 0.0
     coefs = np.array([refit(a, curve, fitted.weight) for curve in curves])
     found = terms(fitted, tau, var, coefs, confidences, method)
     # the points left out (a roll-off) get the EDF of white noise, the type they follow
