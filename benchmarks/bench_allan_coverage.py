@@ -28,9 +28,9 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "src"))
 
-from gyrovib.core.allan import oadev, tau_grid  # noqa: E402
-from gyrovib.core.allan_fit import TERMS, noise_model  # noqa: E402
-from gyrovib.core.allan_sim import Truth, simulate  # noqa: E402
+from gyrovib.core.allan import oadev, tau_grid
+from gyrovib.core.allan_fit import TERMS, noise_model
+from gyrovib.core.allan_sim import Truth, simulate
 
 TAU0 = 1.0
 #: Truths in the kernel's units (deg, deg/√s, deg/s, deg/s/√s, deg/s²): N = 0.1 deg/√h,

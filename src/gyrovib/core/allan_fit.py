@@ -88,7 +88,8 @@ def design(tau: FloatArray, tau_c: float | None = None, filtered: bool = False) 
     """The basis functions per τ (columns in :data:`TERMS` order, then g if τ_c); for a
     ``filtered`` curve the first column is a filter's −1/τ² instead of quantization's."""
     t = np.asarray(tau, dtype=float)
-    cols = [(-1.0 if filtered else 3.0) / t ** 2, 1.0 / t, np.full_like(t, FLICKER_FLOOR ** 2), t / 3.0, t * t / 2.0]
+    cols = [(-1.0 if filtered else 3.0) / t ** 2, 1.0 / t, np.full_like(t, FLICKER_FLOOR ** 2),
+            t / 3.0, t * t / 2.0]
     if tau_c is not None:
         cols.append(gm_basis(t, tau_c))
     return np.stack(cols, axis=1)
@@ -110,11 +111,11 @@ def dominant_alpha(parts: FloatArray, tau: FloatArray, tau_c: float | None) -> I
     """The noise type α of the largest part of the model per point (a Gauss–Markov part
     counts as a random walk below τ_c and as white noise above)."""
     kinds = list(_ALPHA)
-    alpha = np.array(kinds, dtype=np.int64)[np.argmax(parts[:, :5], axis=1)]
+    alpha: IntArray = np.array(kinds, dtype=np.int64)[np.argmax(parts[:, :5], axis=1)]
     if tau_c is not None and parts.shape[1] > 5:
         gm_wins = parts[:, 5] > parts[:, :5].max(axis=1)
         gm_alpha = np.where(tau < tau_c, edfs.RANDOM_WALK, edfs.WHITE)
-        alpha = np.where(gm_wins, gm_alpha, alpha)
+        alpha = np.where(gm_wins, gm_alpha, alpha).astype(np.int64)
     return alpha
 
 
@@ -173,9 +174,9 @@ def fit(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
         return best
     for tau_c in np.geomspace(tau[0] * 3.0, tau[-1] / 3.0, 13) if tau[-1] > 9 * tau[0] else []:
         trial = _refine(tau, var, m, points, float(tau_c), filtered)
-        if trial.coef[5] > 0 and trial.cost < 0.5 * best.cost and trial.cost < best.cost - 10:
-            if best.tau_c is None or trial.cost < best.cost:
-                best = trial
+        if (trial.coef[5] > 0 and trial.cost < 0.5 * best.cost
+                and trial.cost < best.cost - 10):  # the best τ_c: the first, or a better one
+            best = trial
     return best
 
 
@@ -204,7 +205,7 @@ def _replicate_curves(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: f
     coarse = m >= 2 * k if k > 1 else np.ones(m.shape, dtype=bool)
     mk = np.maximum(np.round(m[coarse] / k), 1).astype(np.int64)
     uniq, inverse = np.unique(mk, return_inverse=True)
-    tau_k = uniq * (k * tau0)
+    tau_k = np.multiply(uniq, k * tau0, dtype=np.float64)
     fine = np.flatnonzero(~coarse)
     short = fine[m[fine] <= SIM_CAP // 3]
     drawn = fine[m[fine] > SIM_CAP // 3]
@@ -351,6 +352,20 @@ def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: fl
     return Model(fitted, found, ci, misfit, start, nu)
 
 
-__all__ = ["BOUND_CONFIDENCE", "FLICKER_FLOOR", "Fit", "Model", "REPLICATES", "TERMS", "Term",
-           "design", "envelope_bound", "fit", "gm_basis", "nnls", "noise_model", "refit",
-           "terms"]
+__all__ = [
+    "BOUND_CONFIDENCE",
+    "FLICKER_FLOOR",
+    "REPLICATES",
+    "TERMS",
+    "Fit",
+    "Model",
+    "Term",
+    "design",
+    "envelope_bound",
+    "fit",
+    "gm_basis",
+    "nnls",
+    "noise_model",
+    "refit",
+    "terms",
+]

@@ -41,7 +41,7 @@ class _Scratch:
 
     def read(self, col: int, start: int, out: FloatArray) -> FloatArray:
         self.file.seek((col * self.points + start) * 8)
-        got = self.file.readinto(memoryview(out).cast("B"))  # type: ignore[attr-defined]
+        got = self.file.readinto(out.data.cast("B"))  # type: ignore[attr-defined]
         if got != out.size * 8:
             raise OSError("the scratch file of the angle is shorter than written")
         return out
@@ -145,4 +145,4 @@ def octave_grid(n: int) -> NDArray[np.int64]:
     return np.array([1 << k for k in range(int(math.log2(top)) + 1)], dtype=np.int64)
 
 
-__all__ = ["ROWS", "octave_grid", "oadev_scratch", "write_angle"]
+__all__ = ["ROWS", "oadev_scratch", "octave_grid", "write_angle"]

@@ -106,6 +106,15 @@ def _unknown_notes(result: MissionResult) -> list[str]:
     return notes
 
 
+def _bound_note(result: MissionResult) -> list[str]:
+    """The note on rows whose budget rests on a noise figure given only as a bound."""
+    if not any(r.budget is not None and r.budget.bounds for r in result.rows):
+        return []
+    return ["'≤ x': a term whose noise figure is only an upper bound (a term the static "
+            "log did not resolve); the total uses the bound, so it rests on a bound: the "
+            "most the term can be, not a measured value."]
+
+
 def _table_notes(result: MissionResult) -> list[str]:
     """The legend under the table: the definitions, then what applies to these rows."""
     notes = ["mean Δ̄_V = Σ T_s·Δ_V,s / Σ T_s; angle θ_V = Σ T_s·Δ_V,s; mean RMS = "
@@ -115,10 +124,7 @@ def _table_notes(result: MissionResult) -> list[str]:
              f"{fmt(result.coverage)}·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) (coverage k = "
              f"{fmt(result.coverage)}); '?': a noise figure the catalogue does not give, "
              "unknown, so the total is a lower bound (≥)."]
-    if any(r.budget is not None and r.budget.bounds for r in result.rows):
-        notes.append("'≤ x': a term whose noise figure is only an upper bound (a term the "
-                     "static log did not resolve); the total uses the bound, so it rests on "
-                     "a bound: the most the term can be, not a measured value.")
+    notes.extend(_bound_note(result))
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "
