@@ -152,3 +152,26 @@ def test_confidence_option(tmp_path: Path) -> None:
     assert np.all(wide[:, 0] < narrow[:, 0]) and np.all(wide[:, 1] > narrow[:, 1])
     bad = invoke("allan", path, "--confidence", "150%")
     assert bad.exit_code == 2 and "--confidence" in bad.stderr
+
+
+def test_the_accelerometer_where_recorded_in_json_table_and_kalibr(tmp_path: Path) -> None:
+    # white specific-force noise of VRW 0.05 m/s/√h = 0.05/60 m/s²·√s, logged in g
+    g = np.random.default_rng(11)
+    n, fs, vrw = 30_000, 100.0, 0.05 / 60.0
+    gyro = g.standard_normal(n) * N_DEG_SQRT_S * math.sqrt(fs)
+    accel = 1.0 + g.standard_normal(n) * vrw * math.sqrt(fs) / 9.80665
+    path = tmp_path / "imu.csv"
+    np.savetxt(path, np.column_stack([np.arange(n) / fs, gyro, accel]), delimiter=",",
+               header="t,gz,az", comments="", fmt="%.12g")
+    cols = ("--rate-columns", "-,-,gz", "--accel-columns", "-,-,az")
+    doc = json.loads(invoke("allan", path, *cols, "--format", "json").stdout)
+    (az,) = doc["accelerometer"]
+    assert az["axis"] == "Z" and az["arw"]["unit"] == "m/s/sqrt(h)"
+    lo, hi = az["arw"]["interval"]
+    assert abs(az["arw"]["value"] - 0.05) <= 3 * (hi - lo)
+    assert "velocity random walk" in invoke("allan", path, *cols).stdout
+    imu = yaml.safe_load(invoke("allan", path, *cols, "--format", "kalibr").stdout)
+    # by hand: VRW [m/s/√h] / 60 = m/s/√s = m/s²/√Hz
+    assert imu["accelerometer_noise_density"] == pytest.approx(az["arw"]["value"] / 60.0,
+                                                               rel=1e-5)
+    assert imu["accelerometer_random_walk"] > 0            # a bound here, said in a comment

@@ -24,6 +24,10 @@ _FIGURES = (("quantization", "Q: quantization"), ("arw", "N: angle random walk")
             ("rate_ramp", "R: rate ramp"))
 
 
+#: The accelerometer's names of the terms that differ from the gyro's.
+_ACCEL_LABELS = {"arw": "N: velocity random walk", "rrw": "K: acceleration random walk"}
+
+
 def figure_json(fig: Figure) -> dict[str, Any]:
     """``{value, unit, interval}`` or ``{bound, unit, confidence}`` (INTERFACE.md)."""
     if fig.is_bound:
@@ -43,7 +47,7 @@ def _axis_json(ax: AxisAllan) -> dict[str, Any]:
         entry[name] = figure_json(ax.figures[name])
     gm = ax.gauss_markov
     entry["gauss_markov"] = None if gm is None else {
-        "sigma": number(gm.sigma), "tau_c": number(gm.tau_c), "unit": "deg/h",
+        "sigma": number(gm.sigma), "tau_c": number(gm.tau_c), "unit": gm.unit,
         "interval": None if gm.interval is None else [number(v) for v in gm.interval]}
     entry["misfit_tau"] = [number(t) for t in ax.misfit]
     entry["fitted_from_tau"] = number(ax.fitted_from)
@@ -102,14 +106,16 @@ def to_table(result: AllanResult, width: int | None = None, color: bool = False,
     figures = Table(title="noise model", header_style="bold")
     for k, label in enumerate(("axis", "term", f"value [{pct}] or bound", "unit")):
         figures.add_column(label, justify="right" if k == 2 else "left")
-    for ax in result.axes:
-        for name, label in _FIGURES:
-            fig = ax.figures[name]
-            figures.add_row(ax.axis, label, figure_text(fig), fig.unit)
-        if ax.gauss_markov is not None:
-            gm = ax.gauss_markov
-            figures.add_row(ax.axis, "Gauss–Markov σ, τ_c",
-                            f"{fmt(gm.sigma)}, τ_c = {fmt(gm.tau_c)} s", "deg/h")
+    for prefix, group in (("", result.axes), ("accel ", result.accel)):
+        for ax in group:
+            for name, label in _FIGURES:
+                fig = ax.figures[name]
+                figures.add_row(prefix + ax.axis, _ACCEL_LABELS.get(name, label) if prefix
+                                else label, figure_text(fig), fig.unit)
+            if ax.gauss_markov is not None:
+                gm = ax.gauss_markov
+                figures.add_row(prefix + ax.axis, "Gauss–Markov σ, τ_c",
+                                f"{fmt(gm.sigma)}, τ_c = {fmt(gm.tau_c)} s", gm.unit)
     items.append(figures)
     for ax in result.axes:
         items.append(_curve_table(ax, pct))

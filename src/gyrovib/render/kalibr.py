@@ -65,6 +65,8 @@ def to_kalibr(result: AllanResult) -> str:
     for key, name, factor in _GYRO:
         lines.extend(_entry(key, name, factor, result.axes))
     if result.accel:
+        lines.append("# accelerometer_noise_density = VRW [m/s/√h] / 60; "
+                     "accelerometer_random_walk = its random walk [m/s²/√h] / 60")
         for key, name, factor in _ACCEL:
             lines.extend(_entry(key, name, factor, result.accel))
     else:

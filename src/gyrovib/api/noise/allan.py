@@ -31,6 +31,12 @@ from gyrovib.errors import OptionError, Problem
 #: units (deg, deg/√h, deg/h, deg/h/√h, deg/h²).
 TO_REPORTED = {"quantization": 1.0, "arw": 60.0, "bias_instability": 3600.0,
                "rrw": 216_000.0, "rate_ramp": 3600.0 ** 2}
+#: The accelerometer's terms: from the kernel's (m/s², s) units to the reported ones
+#: (velocity random walk in m/s/√h, bias instability in m/s², its random walk in
+#: m/s²/√h), with their units.
+ACCEL_REPORTED = {"quantization": (1.0, "m/s"), "arw": (60.0, "m/s/sqrt(h)"),
+                  "bias_instability": (1.0, "m/s^2"), "rrw": (60.0, "m/s^2/sqrt(h)"),
+                  "rate_ramp": (1.0, "m/s^3")}
 #: Fewest samples an Allan deviation is computed from.
 MIN_SAMPLES = 30
 #: Fewest changes of a quantised record's level that carry a noise figure.
@@ -40,9 +46,9 @@ MIN_CHANGES = 30
 STREAM_SAMPLES = 1 << 22
 
 
-def _figure(term: allan_fit.Term, name: str, confidence: float) -> Figure:
-    f = TO_REPORTED[name]
-    unit = FIGURE_UNITS[name]
+def _figure(term: allan_fit.Term, name: str, confidence: float,
+            accel: bool = False) -> Figure:
+    f, unit = ACCEL_REPORTED[name] if accel else (TO_REPORTED[name], FIGURE_UNITS[name])
     if term.bound is not None:
         return Figure(unit=unit, confidence=allan_fit.BOUND_CONFIDENCE, bound=term.bound * f)
     assert term.value is not None
@@ -92,34 +98,61 @@ def allan_axis(axis: str, rate: np.ndarray, fs: float, unit: str,
 
 
 def axis_from_curve(axis: str, m: np.ndarray, adev: np.ndarray, n: int, fs: float,
-                    unit: str, confidence: float = 0.68, seed: int = 0) -> AxisAllan:
-    """One axis from its curve: σ(τ) (deg/s) at cluster sizes ``m`` of ``n`` samples."""
+                    unit: str, confidence: float = 0.68, seed: int = 0,
+                    accel: bool = False) -> AxisAllan:
+    """One axis from its curve: σ(τ) (deg/s; m/s² for an ``accel`` axis, reported in
+    m/s²) at cluster sizes ``m`` of ``n`` samples."""
     tau = m / fs  # as written: 3 / 10 is 0.3, where 3 · 0.1 is 0.30000000000000004
     keep = adev > 0
     tau, m, adev = tau[keep], m[keep], adev[keep]
     model = allan_fit.noise_model(tau, adev, m, n, 1.0 / fs, (confidence, 0.95), seed)
-    figures = {name: _figure(term, name, confidence)
+    figures = {name: _figure(term, name, confidence, accel)
                for name, term in zip(NOISE_TERMS, model.terms, strict=False)}
-    scale = units.scale(unit)
+    unit, scale = ("m/s^2", 1.0) if accel else (unit, units.scale(unit))
     return AxisAllan(axis=axis, tau=tau, adev=adev / scale, unit=unit,
                      ci_lo=model.ci[0] / scale, ci_hi=model.ci[1] / scale,
                      edf=model.nu, figures=figures,
-                     gauss_markov=_gauss_markov(model),
+                     gauss_markov=_gauss_markov(model, 1.0 if accel else 3600.0,
+                                                "m/s^2" if accel else "deg/h"),
                      model=np.sqrt(model.fit.model(tau)) / scale,
                      misfit=tuple(float(tau[i]) for i in model.misfit),
                      fitted_from=float(tau[model.start]))
 
 
-def _gauss_markov(model: allan_fit.Model) -> GaussMarkov | None:
+def _gauss_markov(model: allan_fit.Model, factor: float, unit: str) -> GaussMarkov | None:
     if model.fit.tau_c is None:
         return None
     term = model.terms[5]
-    sigma = math.sqrt(float(model.fit.coef[5])) * 3600.0
+    sigma = math.sqrt(float(model.fit.coef[5])) * factor
     interval = None
     if term.value is not None:
         lo, hi = term.intervals[0]
-        interval = (lo * 3600.0, hi * 3600.0)
-    return GaussMarkov(sigma=sigma, tau_c=model.fit.tau_c, interval=interval)
+        interval = (lo * factor, hi * factor)
+    return GaussMarkov(sigma=sigma, tau_c=model.fit.tau_c, interval=interval, unit=unit)
+
+
+def accel_axes(recording: Recording, lo: int, hi: int, per_decade: int,
+               confidence: float) -> tuple[tuple[AxisAllan, ...], tuple[str, ...]]:
+    """The accelerometer's noise model per recorded axis (specific force in m/s²), and
+    the axes left out because no noise is seen on them (said, never zero)."""
+    if not any(recording.accel_axes):
+        return (), ()
+    block = recording.store.block("accel", lo, hi) * units.STANDARD_GRAVITY
+    out, notes = [], []
+    for k, name in enumerate(AXES):
+        if not recording.accel_axes[k]:
+            continue
+        y = block[:, k]
+        try:
+            seen_noise(y, name, recording.file)
+        except RecordingError:
+            notes.append(f"accelerometer axis {name}: no noise seen (a constant, or changes "
+                         "below one step of quantisation): its figures are not given")
+            continue
+        m = kernel.tau_grid(y.size, per_decade)
+        out.append(axis_from_curve(name, m, kernel.oadev(y, 1.0 / recording.fs, m)[1],
+                                   y.size, recording.fs, "m/s^2", confidence, accel=True))
+    return tuple(out), tuple(notes)
 
 
 def roll_off_warning(ax: AxisAllan) -> str | None:
@@ -221,8 +254,10 @@ def allan(recording: Recording, unit: str = "deg/h",
         axes = tuple(allan_axis(name, rate[:, k], recording.fs, unit,
                                 per_decade or kernel.PER_DECADE, confidence)
                      for k, name in chosen)
+    accel, notes = ((), ()) if hi - lo > stream_samples else accel_axes(
+        recording, lo, hi, per_decade or kernel.PER_DECADE, confidence)
     warnings = tuple(w for ax in axes for w in (roll_off_warning(ax), misfit_warning(ax))
-                     if w is not None)
+                     if w is not None) + notes
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
                        samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes,
-                       confidence=confidence, warnings=warnings)
+                       confidence=confidence, warnings=warnings, accel=accel)

@@ -46,12 +46,14 @@ class Figure(Frozen):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class GaussMarkov(Frozen):
-    """A first-order Gauss–Markov term: ``sigma`` (deg/h) and correlation time ``tau_c``
-    (s), each with its interval at the result's confidence (None: unresolved)."""
+    """A first-order Gauss–Markov term: ``sigma`` (in ``unit``: deg/h, or m/s² for an
+    accelerometer) and correlation time ``tau_c`` (s); ``interval``: σ's at the result's
+    confidence (None: unresolved)."""
 
     sigma: float
     tau_c: float
     interval: tuple[float, float] | None
+    unit: str = "deg/h"
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -96,7 +98,10 @@ class AxisAllan(Frozen):
 class AllanResult(Frozen):
     """Every recorded axis of a static recording: ``samples`` used (the longest
     contiguous segment, ``segments`` found), ``fs`` Hz, provenance ``file``, ``sha256``,
-    the ``confidence`` of the intervals, and ``warnings`` (a model that does not fit)."""
+    the ``confidence`` of the intervals, ``warnings`` (a model that does not fit, a
+    filter's roll-off), and ``accel``: the accelerometer's axes where the record has
+    specific force (in m/s²; ``arw`` is then its velocity random walk, ``rrw`` the
+    random walk of its bias)."""
 
     file: str
     sha256: str
