@@ -64,7 +64,7 @@ def test_in_the_schema() -> None:
     assert set(noise["properties"]) == {"arw", "bias_instability", "rrw", "bias_repeatability",
                                         "x", "y", "z"}
     # a bound is one of the forms the schema accepts, as text and as a mapping
-    text = json.dumps(noise["properties"]["rrw"])
+    text = json.dumps(noise["properties"]["rrw"], ensure_ascii=False)
     assert "≤|<=" in text and '"bound"' in text
 
 

@@ -175,6 +175,14 @@ def misfit_warning(ax: AxisAllan) -> str | None:
             "temperature change, a filter), and the figures are only as good as the fit")
 
 
+def _check_options(per_decade: int | None, confidence: float) -> None:
+    if per_decade is not None and per_decade < 1:
+        raise OptionError(f"--per-decade {per_decade}: give at least 1")
+    if not (0.0 < confidence < 1.0):
+        raise OptionError(f"confidence {confidence:g}: give a level between 0 and 1 "
+                          "(0.68 for 68 %)")
+
+
 def _need_scipy(recording: Recording) -> None:
     if importlib.util.find_spec("scipy") is None:
         raise RecordingError(Problem(
@@ -232,11 +240,7 @@ def allan(recording: Recording, unit: str = "deg/h",
     (each τ costs a pass over the record); otherwise ``per_decade`` defaults to
     :data:`gyrovib.core.allan.PER_DECADE`."""
     unit = units.canonical_unit(unit)
-    if per_decade is not None and per_decade < 1:
-        raise OptionError(f"--per-decade {per_decade}: give at least 1")
-    if not (0.0 < confidence < 1.0):
-        raise OptionError(f"--confidence {confidence:g}: give a level between 0 and 1 "
-                          "(0.68, or 68 %)")
+    _check_options(per_decade, confidence)
     _need_scipy(recording)
     lo, hi = longest_segment(recording)
     if hi - lo < MIN_SAMPLES:

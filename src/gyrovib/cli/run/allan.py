@@ -29,7 +29,7 @@ def parse_confidence(text: str) -> float:
 
 
 def allan(recording: str, unit: str, per_decade: int | None, plot: str | None, output: str | None,
-          fmt: str, confidence: str = "68%", **options: Any) -> None:
+          confidence: str, fmt: str, **options: Any) -> None:
     """See :func:`gyrovib.cli.allan.allan`."""
 
     result = run(read(recording, options), unit=unit, per_decade=per_decade,
