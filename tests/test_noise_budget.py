@@ -152,3 +152,21 @@ def test_a_bound_is_the_budget_maximum_and_the_row_says_so(tmp_path) -> None:  #
     assert doc["rests_on_bound"] is True and doc["bounds"] == ["rrw"]
     table = invoke("mission", path, "--angle-budget", "3deg").stdout
     assert f"≤ {b.rrw:.4g}" in table and "rests on" in table
+
+
+def test_a_triad_row_takes_its_axis_figures() -> None:
+    per_axis = CATALOGUE.replace("      bias_repeatability: 1\n",
+                                 "      bias_repeatability: 1\n"
+                                 "      z: {arw: 0.6 deg/sqrt(h), rrw: \"≤ 0.1 deg/h/sqrt(h)\"}\n")
+    per_axis = per_axis.replace("  - id: two-hours\n", "  - id: two-hours\n    placement: triad\n")
+    rows = [r for r in api.mission(merge([parse_catalog(per_axis, "<c>")])).rows
+            if r.sensor == "full"]
+    by_axis = {r.axis: r.budget for r in rows}
+    assert set(by_axis) == {"X", "Y", "Z"}
+    t = 2.0
+    # X and Y: the block's own figures; Z: its sub-block's N and bound on K, the block's B
+    assert by_axis["X"].arw == pytest.approx(0.15 * math.sqrt(t), rel=1e-12)
+    assert by_axis["Z"].arw == pytest.approx(0.6 * math.sqrt(t), rel=1e-12)
+    assert by_axis["Z"].rrw == pytest.approx(0.1 * t ** 1.5 / math.sqrt(3.0), rel=1e-12)
+    assert by_axis["Z"].bias_instability == by_axis["X"].bias_instability
+    assert by_axis["Z"].bounds == ("rrw",) and by_axis["X"].bounds == ()
