@@ -58,7 +58,8 @@ def to_json(result: AllanResult) -> str:
     """One object per axis: axis, tau (s), adev (rate unit), ci, the five terms and
     gauss_markov; the confidence of the intervals and the warnings at the top."""
     doc = header("allan", result.axes[0].unit if result.axes else "deg/h")
-    doc |= {"recording": {"file": os.path.basename(result.file), "sha256": result.sha256,
+    doc |= {"recording": {"file": os.path.basename(result.file), "topic": result.topic,
+                          "instance": result.instance, "sha256": result.sha256,
                           "samples": result.samples, "fs": result.fs,
                           "segments": result.segments},
             "confidence": result.confidence,
@@ -75,7 +76,8 @@ def summary(result: AllanResult) -> str:
     if result.segments > 1:
         used += (f", only the longest of {result.segments} contiguous segments (a gap "
                  "breaks the record)")
-    return f"recording {os.path.basename(result.file)}: {used}"
+    source = "" if result.source is None else f" ({result.source})"
+    return f"recording {os.path.basename(result.file)}{source}: {used}"
 
 
 def figure_text(fig: Figure) -> str:

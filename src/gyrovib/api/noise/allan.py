@@ -264,4 +264,6 @@ def allan(recording: Recording, unit: str = "deg/h",
                      if w is not None) + notes
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
                        samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes,
-                       confidence=confidence, warnings=warnings, accel=accel)
+                       topic=recording.topic, instance=recording.instance,
+                       confidence=confidence, warnings=recording.warnings + warnings,
+                       accel=accel)

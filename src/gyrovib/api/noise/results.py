@@ -98,10 +98,11 @@ class AxisAllan(Frozen):
 class AllanResult(Frozen):
     """Every recorded axis of a static recording: ``samples`` used (the longest
     contiguous segment, ``segments`` found), ``fs`` Hz, provenance ``file``, ``sha256``,
-    the ``confidence`` of the intervals, ``warnings`` (a model that does not fit, a
-    filter's roll-off), and ``accel``: the accelerometer's axes where the record has
-    specific force (in m/s²; ``arw`` is then its velocity random walk, ``rrw`` the
-    random walk of its bias)."""
+    the ``confidence`` of the intervals, for a log the ``topic`` and ``instance`` read;
+    ``warnings``: the reader's (the damage of a log, what its library printed), then the
+    fit's (a model that does not fit, a filter's roll-off); and ``accel``: the
+    accelerometer's axes where the record has specific force (in m/s²; ``arw`` is then
+    its velocity random walk, ``rrw`` the random walk of its bias)."""
 
     file: str
     sha256: str
@@ -109,9 +110,18 @@ class AllanResult(Frozen):
     samples: int
     segments: int
     axes: tuple[AxisAllan, ...]
-    confidence: float = 0.68
+    topic: str | None = None
+    instance: int | None = None
     warnings: tuple[str, ...] = ()
+    confidence: float = 0.68
     accel: tuple[AxisAllan, ...] = ()
+
+    @property
+    def source(self) -> str | None:
+        """``sensor_gyro instance 1``: the topic and instance read, or None."""
+        if self.topic is None:
+            return None
+        return self.topic if self.instance is None else f"{self.topic} instance {self.instance}"
 
 
 @dataclass(frozen=True, eq=False, repr=False)

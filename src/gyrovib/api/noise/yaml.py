@@ -43,7 +43,8 @@ def noise_yaml(result: AllanResult) -> str:
     recorded axis, or one sub-block per axis (``x:``, ``y:``, ``z:``), with commented
     provenance, each value's interval as a comment and each unresolved figure as a
     bound (``"≤ 0.8 deg/h/sqrt(h)"``)."""
-    lines = [f"# from gyrovib allan {os.path.basename(result.file)} "
+    source = "" if result.source is None else f", {result.source}"
+    lines = [f"# from gyrovib allan {os.path.basename(result.file)}{source} "
              f"(sha256 {result.sha256[:16]}…, {result.samples} samples at {result.fs:.6g} Hz)"]
     if result.segments > 1:
         lines.append(f"# only the longest of {result.segments} contiguous segments was used "

@@ -34,7 +34,7 @@ def allan(recording: str, unit: str, per_decade: int | None, plot: str | None, o
 
     result = run(read(recording, options), unit=unit, per_decade=per_decade,
                  confidence=parse_confidence(confidence))
-    for warning in result.warnings:
+    for warning in result.warnings:  # a log's damage, said as profile says it; the fit's
         say(f"gyrovib: warning: {warning}")
     if plot is not None:
         write_binary(render.plot(result), plot)
