@@ -7,7 +7,8 @@ caught here, once: one line per problem on standard error, exit status 2.
 
 Exit status (the contract; no environment variable changes it):
 
-* 0 success; 1 ``select``'s (or ``mission``'s) requirement not met; 2 bad usage or bad input;
+* 0 success; 1 ``select``'s (or ``mission``'s, or ``runup --require``'s) requirement not met;
+  2 bad usage or bad input;
 * 3 an internal error (a bug in gyrovib), reported in one line asking for a
   report; ``GYROVIB_DEBUG=1`` (or ``true``, ``yes``; any case) adds the
   traceback, the status stays 3;
@@ -51,6 +52,7 @@ from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, st
 from gyrovib.cli.profile import profile
 from gyrovib.cli.progress import terminal_progress
 from gyrovib.cli.report import report
+from gyrovib.cli.runup import runup
 from gyrovib.cli.schema import schema
 from gyrovib.cli.select import select
 from gyrovib.cli.sweep import sweep
@@ -260,8 +262,8 @@ def cli(ctx: click.Context, color: str) -> None:
     find which sensors of a catalogue meet an error budget.
 
     Without FILE arguments every command uses the catalogues bundled with
-    gyrovib. Exit status: 0 success, 1 a `select` or `mission` requirement not met,
-    2 bad usage or bad input, 3 an internal error (please report it),
+    gyrovib. Exit status: 0 success, 1 a `select`, `mission` or `runup` requirement
+    not met, 2 bad usage or bad input, 3 an internal error (please report it),
     74 the output could not be written, 129 hung up, 130 interrupted,
     143 terminated, 141 standard output closed early.
     """
@@ -272,7 +274,7 @@ def cli(ctx: click.Context, color: str) -> None:
 #: module declares its options at import and imports the library and the renderers only
 #: inside its function, so listing them all costs click's declarations alone.
 COMMANDS: tuple[click.Command, ...] = (analyze, bounds, select, sweep, report, validate,
-                                       schema, fit, profile, allan, catalog, mission)
+                                       schema, fit, profile, allan, catalog, mission, runup)
 for _each in COMMANDS:
     cli.add_command(_each)
 

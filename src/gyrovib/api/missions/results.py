@@ -21,7 +21,9 @@ class Budget(Frozen):
     ``vibration`` θ_V (signed); ``arw`` N√T, ``bias_instability`` B·T, ``rrw``
     K·T^{3/2}/√3, ``repeatability`` R·T, each None where the catalogue does not give the
     figure (unknown, never 0); ``total`` = |θ_V| + k·RSS of the known noise terms, a
-    lower bound when one is unknown (``unknown`` names them); ``coverage`` k.
+    lower bound when one is unknown (``unknown`` names them); ``coverage`` k. ``bounds``
+    names the terms whose figure is only an upper bound (its bound is used: the term,
+    and the total, are then the most they can be from it).
     """
 
     vibration: float
@@ -33,6 +35,7 @@ class Budget(Frozen):
     coverage: float
     unknown: tuple[str, ...]
     unit: str = "deg"
+    bounds: tuple[str, ...] = ()
 
     @property
     def lower_bound(self) -> bool:

@@ -34,9 +34,10 @@ def noise_angles(figures: dict[str, float | None], hours: float) -> dict[str, fl
 
 
 def budget(vibration_deg: float, figures: dict[str, float | None], seconds: float,
-           coverage: float = 1.0) -> Budget:
-    """The budget of one row: θ_V in deg, the figures in their default units, the
-    mission's duration in s, coverage k (> 0)."""
+           coverage: float = 1.0, bounds: tuple[str, ...] = ()) -> Budget:
+    """The budget of one row: θ_V in deg, the figures in their default units (a bound's
+    upper value for the figures named in ``bounds``), the mission's duration in s,
+    coverage k (> 0)."""
     angles = noise_angles(figures, seconds / 3600.0)
     known = [a for a in angles.values() if a is not None]
     rss = math.sqrt(sum(a * a for a in known))
@@ -45,4 +46,4 @@ def budget(vibration_deg: float, figures: dict[str, float | None], seconds: floa
                   bias_instability=angles["bias_instability"], rrw=angles["rrw"],
                   repeatability=angles["repeatability"],
                   total=abs(vibration_deg) + coverage * rss, coverage=coverage,
-                  unknown=unknown)
+                  unknown=unknown, bounds=tuple(TERM_OF[name] for name in bounds))
