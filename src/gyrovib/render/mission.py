@@ -128,7 +128,20 @@ def _table_notes(result: MissionResult) -> list[str]:
         notes.append(f"{n} of {len(result.sensors)} sensors pass every mission{open_} "
                      f"(--require {result.require}: "
                      f"{'met' if result.requirement_met else 'NOT met'}).")
+    notes += _rank_notes(result)
     return notes
+
+
+def _rank_notes(result: MissionResult) -> list[str]:
+    """What the order of a ranked result means, and which sensors it does not rank."""
+    if result.ranks is None:
+        return []
+    out = ["Sensors ranked by their largest budget total, smallest first."]
+    left = [s for s, r in zip(result.sensors, result.ranks, strict=True) if r is None]
+    if left:
+        out.append(f"Not ranked (a total that is only a lower bound, or a verdict "
+                   f"unverified), listed after the ranked ones: {', '.join(left)}.")
+    return out
 
 
 def to_table(result: MissionResult, width: int | None = None, color: bool = False,
@@ -227,7 +240,8 @@ def to_json(result: MissionResult) -> str:
         "require": result.require, "assume_unknown": result.assume_unknown,
         "mission": [_row_json(result, r) for r in result.rows],
         "triads": _triads_json(result),
-        "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k)}
+        "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k),
+                     **({} if result.ranks is None else {"rank": result.ranks[k]})}
                     for k, (s, p) in enumerate(zip(result.sensors, result.sensor_pass,
                                                    strict=True))],
         "requirement_met": result.requirement_met,
@@ -255,7 +269,7 @@ def to_markdown(result: MissionResult) -> str:
     head[4] += f" ({result.angle_unit})"
     head[5] += f" ({result.unit})"
     text = markdown_table(head, (_cells(result, r) for r in result.rows))
-    notes = _unknown_notes(result)
+    notes = _unknown_notes(result) + _rank_notes(result)
     return text + ("\n" + "\n\n".join(notes) + "\n" if notes else "")
 
 

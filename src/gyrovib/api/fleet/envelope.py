@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api.commands.recording import _LINE_FLOOR, random_tables
+from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.run import DEFAULTS, RecordingOptions, profile_one, run_recordings
 from gyrovib.api.recordings.results import (
     AxisHonesty,
@@ -419,5 +420,7 @@ def profile_recordings(paths: Sequence[str], options: RecordingOptions = DEFAULT
                        *, jobs: int = 1) -> Envelope:
     """``gyrovib profile A B …``: every recording fitted (``jobs`` processes), then the
     envelope profile (``options.profile_id`` names it; the recordings keep their own)."""
+    refuse_same_paths(paths)
     fits = run_recordings(paths, dataclasses.replace(options, profile_id=None), jobs=jobs)
+    refuse_same_contents((fit.file, fit.sha256) for fit in fits)
     return envelope(fits, options)

@@ -24,6 +24,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.commands.recording import analysis_of_fit, fit_recording, recording_responses
+from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core.transmissibility import FloatArray, Table
@@ -196,8 +197,10 @@ def analyze_recordings(paths: Sequence[str], catalog: Any, options: RecordingOpt
     """
 
     unit = units.canonical_unit(unit)
+    refuse_same_paths(paths)
     entries, responses = recording_responses(catalog, sensors)
     fits = run_recordings(paths, dataclasses.replace(options, responses=responses), jobs=jobs)
+    refuse_same_contents((fit.file, fit.sha256) for fit in fits)
     analyses = tuple(analysis_of_fit(fit, catalog, entries, unit=unit) for fit in fits)
     recorded = np.array([a.recorded for a in analyses], dtype=float).reshape(len(analyses), -1)
     return RecordingsAnalysis(unit, analyses[0].sensors, analyses, worst_recordings(recorded))

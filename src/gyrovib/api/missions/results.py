@@ -99,7 +99,9 @@ class MissionResult(Frozen):
     ``require`` condition (any: one sensor passes; all: every sensor does);
     ``notes``: warnings about the input (a segment longer than 100 years).
     ``coverage``: k of the rows' budgets (docs/model.md section 15), and then
-    ``angle_budget`` is judged on their total.
+    ``angle_budget`` is judged on their total. ``ranks``: per sensor its rank by budget
+    total (1: smallest) or None where it is not ranked (a total that is a lower bound,
+    or unverified); None for a result that is not ranked (``select --mission`` ranks).
     """
 
     unit: str
@@ -115,6 +117,7 @@ class MissionResult(Frozen):
     assume_unknown: str = "none"
     notes: tuple[str, ...] = ()
     coverage: float = 1.0
+    ranks: tuple[int | None, ...] | None = None
 
     def sensor_status(self, k: int) -> str | None:
         """Sensor ``k`` over every mission and axis: ``fail`` if a row fails on its

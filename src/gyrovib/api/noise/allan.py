@@ -63,7 +63,7 @@ def allan(recording: Recording, unit: str = "deg/h",
             f"{hi - lo} contiguous samples: an Allan deviation needs {MIN_SAMPLES} at least "
             "(and hours of a static record for the bias instability and rate random walk)",
             recording.file, None, None))
-    axes = tuple(allan_axis(name, recording.rate[lo:hi, k], recording.fs, unit, per_decade)
+    axes = tuple(allan_axis(name, recording.axis(k, lo, hi), recording.fs, unit, per_decade)
                  for k, name in enumerate(AXES) if recording.rate_axes[k])
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
                        samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes)

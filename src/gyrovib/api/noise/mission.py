@@ -91,13 +91,30 @@ def _verdicts(result: MissionResult, rows: Sequence[MissionRow], coverage: float
 
 def ranked(result: MissionResult) -> MissionResult:
     """The sensors ordered by their largest budget total over the rows (smallest first;
-    ``select --mission``): the rows follow their sensor, in their own order."""
-    def worst(sensor: str) -> float:
-        totals = [r.budget.total for r in result.rows if r.sensor == sensor and r.budget]
-        return max(totals, default=math.inf)
+    ``select --mission``): the rows follow their sensor, in their own order.
 
-    order = sorted(range(len(result.sensors)), key=lambda k: worst(result.sensors[k]))
+    Only a sensor whose every total is a figure is ranked: one whose total somewhere is a
+    lower bound (a noise figure unknown) or whose verdict is unverified is not ranked on
+    it, and follows the ranked ones in the catalogue's order (README: unverified parts
+    are not ranked)."""
+    def key(k: int) -> tuple[bool, float]:
+        rows = [r for r in result.rows if r.sensor == result.sensors[k]]
+        if not rankable(rows):
+            return True, 0.0
+        totals = [r.budget.total for r in rows if r.budget is not None]
+        return False, max(totals, default=math.inf)
+
+    keys = [key(k) for k in range(len(result.sensors))]
+    order = sorted(range(len(result.sensors)), key=lambda k: keys[k])
     sensors = tuple(result.sensors[k] for k in order)
     rows = tuple(r for s in sensors for r in result.rows if r.sensor == s)
-    return replace(result, sensors=sensors, rows=rows,
+    ranks = tuple(None if keys[k][0] else n + 1 for n, k in enumerate(order))
+    return replace(result, sensors=sensors, rows=rows, ranks=ranks,
                    sensor_pass=tuple(result.sensor_pass[k] for k in order))
+
+
+def rankable(rows: Sequence[MissionRow]) -> bool:
+    """Whether a sensor's rows can rank it: every budget total a figure (no lower bound),
+    no verdict unverified."""
+    return all(r.budget is not None and not r.budget.lower_bound and not r.unverified
+               for r in rows)

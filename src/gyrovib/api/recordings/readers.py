@@ -75,20 +75,40 @@ class Store(Protocol):
 
 
 class ArrayStore:
-    """Samples held in memory: (n, 3) float64 arrays (CSV, .npz, ULog)."""
+    """Samples held in memory, float64: a column per recorded axis (CSV, .npz, ULog).
 
-    def __init__(self, rate: FloatArray, accel: FloatArray | None) -> None:
-        self.arrays = {"rate": rate, "accel": accel}
-        self.rows = int(rate.shape[0])
+    ``rate`` and ``accel`` are (n, 3) arrays, or three columns (n,) each, None where
+    the axis is not recorded: only recorded axes are held; :meth:`block` puts zeros
+    in a stretch's unrecorded columns, and the recording says which they are."""
+
+    def __init__(self, rate: FloatArray | Sequence[FloatArray | None],
+                 accel: FloatArray | Sequence[FloatArray | None] | None) -> None:
+        self.arrays = {"rate": _columns(rate), "accel": None if accel is None
+                       else _columns(accel)}
+        self.rows = next(int(c.shape[0]) for c in self.arrays["rate"] if c is not None)
         self.has_accel = accel is not None
 
     def block(self, kind: str, lo: int, hi: int) -> FloatArray:
-        array = self.arrays[kind]
-        assert array is not None
-        return array[lo:hi]
+        columns = self.arrays[kind]
+        assert columns is not None
+        out = np.zeros((hi - lo, 3))
+        for axis, c in enumerate(columns):
+            if c is not None:
+                out[:, axis] = c[lo:hi]
+        return out
 
     def column(self, kind: str, axis: int, lo: int, hi: int) -> FloatArray:
-        return self.block(kind, lo, hi)[:, axis]
+        columns = self.arrays[kind]
+        assert columns is not None
+        c = columns[axis]
+        return np.zeros(hi - lo) if c is None else c[lo:hi]
+
+
+def _columns(data: FloatArray | Sequence[FloatArray | None]) -> list[FloatArray | None]:
+    """Three columns (None: not recorded) from an (n, 3) array or three columns."""
+    if isinstance(data, np.ndarray):
+        return [data[:, k] for k in range(3)]
+    return [None if c is None else c.reshape(-1) for c in data]
 
 
 class NpyStore:
@@ -204,6 +224,11 @@ class Columns:
         raise problem(self.path, f"{option}: no column named {column!r} (the columns "
                                  f"are: {shown})")
 
+    def where(self, sample: int) -> tuple[int | None, int | None]:
+        """Line and column of sample ``sample``'s time stamp in the file (None, None where
+        the format has no lines)."""
+        return None, None
+
     def rows(self) -> int:
         """Number of data rows."""
         raise NotImplementedError
@@ -217,16 +242,25 @@ class Columns:
              n: int) -> tuple[Store, FloatArray | None]:
         """The chosen columns as a store, and the time column (s, before ``time_scale``)."""
         time_col = self.time_index()
-        rate = np.zeros((n, 3))
-        accel = None if axes["accel"] is None else np.zeros((n, 3))
+        # one (n, 1) array per recorded axis, written through fill's (array, axis 0):
+        # an axis not recorded is never built
+        built: dict[str, list[FloatArray | None] | None] = {"rate": None, "accel": None}
         time = np.empty(n) if time_col is not None else None
         targets: list[tuple[int, FloatArray, int, float]] = []
-        for kind, array in (("rate", rate), ("accel", accel)):
+        for kind in ("rate", "accel"):
+            if axes[kind] is None:
+                continue
+            columns: list[FloatArray | None] = [None, None, None]
             for axis, c in enumerate(axes[kind] or ()):
-                if c is not None and array is not None:
-                    targets.append((c, array, axis, scales[kind]))
+                if c is not None:
+                    columns[axis] = np.empty((n, 1))
+                    targets.append((c, columns[axis], 0, scales[kind]))  # type: ignore[arg-type]
+            built[kind] = columns
         rows = self.fill(targets, time, time_col)
-        store = ArrayStore(rate[:rows], None if accel is None else accel[:rows])
+        rate, accel = ([None if c is None else c[:rows, 0] for c in cols] if cols else None
+                       for cols in (built["rate"], built["accel"]))
+        assert rate is not None
+        store = ArrayStore(rate, accel)
         return store, None if time is None else time[:rows]
 
 
@@ -263,6 +297,23 @@ class CsvColumns(Columns):
 
     def __init__(self, path: str, names: list[str], count: int) -> None:
         self.path, self.names, self.count = path, names, count
+
+    def where(self, sample: int) -> tuple[int | None, int | None]:
+        """The line of the ``sample``-th data row (blank lines are skipped, as the parser
+        skips them) and the column of its time cell."""
+        time_col = self.time_index()
+        with open(self.path, encoding="utf-8-sig", newline="") as fh:
+            fh.readline()
+            seen = -1
+            for line_no, line in enumerate(fh, start=2):
+                if line.strip():
+                    seen += 1
+                    if seen == sample:
+                        cells = line.split(",")
+                        column = (None if time_col is None
+                                  else 1 + sum(len(x) + 1 for x in cells[:time_col]))
+                        return line_no, column
+        return None, None
 
     def rows(self) -> int:
         lines = 0
@@ -382,8 +433,27 @@ def _numpy_error(path: str, kind: str, exc: Exception) -> RecordingError:
     return problem(path, f"cannot read as NumPy {kind}: {exc}")
 
 
+#: The first bytes of a .npy file and of a zip archive (an .npz is one).
+_MAGIC = {"npy": (b"\x93NUMPY",), "npz": (b"PK\x03\x04", b"PK\x05\x06")}
+
+
+def _check_magic(path: str, kind: str) -> None:
+    """Refuse a file whose first bytes are not its format's: numpy would read anything
+    else as pickled data and suggest allow_pickle, which is wrong advice and unsafe."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(8)
+    except OSError as exc:
+        raise problem(path, f"cannot read: {exc.strerror or exc}") from None
+    if not head.startswith(_MAGIC[kind]):
+        what = ("a NumPy .npy file (it does not start with the .npy magic bytes)"
+                if kind == "npy" else "a NumPy .npz file (it is not a zip archive)")
+        raise problem(path, f"not a valid {kind}: the file is not {what}")
+
+
 def open_npy(path: str, topic: str | None = None) -> Columns:
     """A 2-D .npy: its header only (the samples stay in the file)."""
+    _check_magic(path, "npy")
     try:
         arr = np.load(path, mmap_mode="r", allow_pickle=False)
     except (OSError, ValueError, EOFError) as exc:
@@ -441,6 +511,7 @@ class NpyColumns(Columns):
 
 def open_npz(path: str, topic: str | None = None) -> Columns:
     """An .npz: one 2-D array, or 1-D arrays of one length named as columns."""
+    _check_magic(path, "npz")
     try:
         with np.load(path, allow_pickle=False) as z:
             keys = list(z.keys())
