@@ -50,7 +50,7 @@ def test_json_per_axis_with_the_interface_keys(tmp_path: Path) -> None:
 def test_output_is_a_noise_block_a_sensor_accepts(tmp_path: Path) -> None:
     path, _ = _record(tmp_path)
     block = tmp_path / "noise.yaml"
-    out = invoke("allan", path, "-o", block)
+    out = invoke("allan", path, "--rate-columns", "gx,-,gz", "-o", block)
     assert out.exit_code == 0, out.stderr
     documents = list(yaml.safe_load_all(block.read_text(encoding="utf-8")))
     assert len(documents) == 2                                      # one per recorded axis
@@ -63,7 +63,7 @@ def test_output_is_a_noise_block_a_sensor_accepts(tmp_path: Path) -> None:
 def test_plot_writes_a_png(tmp_path: Path) -> None:
     path, _ = _record(tmp_path)
     png = tmp_path / "a.png"
-    out = invoke("allan", path, "--plot", png, "--format", "json")
+    out = invoke("allan", path, "--rate-columns", "gx,-,gz", "--plot", png, "--format", "json")
     assert out.exit_code == 0, out.stderr
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -72,7 +72,7 @@ def test_a_short_record_is_refused_with_the_file_named(tmp_path: Path) -> None:
     path = tmp_path / "short.csv"
     path.write_text("t,g\n" + "".join(f"{i / 10},{i % 3}\n" for i in range(10)),
                     encoding="utf-8")
-    out = invoke("allan", path)
+    out = invoke("allan", path, "--rate-columns", "-,-,g")
     assert out.exit_code == 2
     assert "short.csv" in out.stderr and "needs 30" in out.stderr
 
@@ -80,7 +80,8 @@ def test_a_short_record_is_refused_with_the_file_named(tmp_path: Path) -> None:
 def test_bias_instability_is_the_reported_minimum_over_0664(tmp_path: Path) -> None:
     path, _ = _record(tmp_path)
     for unit in ("deg/h", "rad/s"):
-        doc = json.loads(invoke("allan", path, "--unit", unit, "--format", "json").stdout)
+        doc = json.loads(invoke("allan", path, "--rate-columns", "gx,-,gz", "--unit", unit,
+                                "--format", "json").stdout)
         for axis in doc["axes"]:
             b = axis["bias_instability"]["value"]                     # deg/h
             lowest = min(axis["adev"]) * (1.0 if unit == "deg/h" else 3600 * 180 / math.pi)

@@ -169,6 +169,11 @@ def recorded_error(coefficients: ArrayLike, moments: ArrayLike, g2: ArrayLike | 
 # ----------------------------------------------------------------- spectra
 
 
+def welch_length(fs: float, resolution: float) -> int:
+    """Samples in one Welch window: nper = max(8, round(fs / Δf)) (docs/model.md section 13)."""
+    return max(8, round(fs / resolution))
+
+
 def welch_spectra(segments: Sequence[FloatArray], fs: float,
                   resolution: float) -> tuple[FloatArray, NDArray[np.complex128], int]:
     """Welch cross-spectral matrix of (n, m) segments: ``(f, S (m, m, F), windows)``.
@@ -185,7 +190,7 @@ def welch_spectra(segments: Sequence[FloatArray], fs: float,
     shorter than one window are left out; ``windows`` = 0 when none is long enough.
     """
 
-    nper = max(8, round(fs / resolution))
+    nper = welch_length(fs, resolution)
     step = nper - nper // 2
     window = 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(nper) / nper)
     freqs: FloatArray = np.fft.rfftfreq(nper, 1.0 / fs).astype(float)

@@ -31,6 +31,7 @@ from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.datasheet import spec_bounds, specs
 from gyrovib.api.missions.results import MissionResult, MissionRow, SegmentResult
 from gyrovib.api.placement.placement import place_profile
+from gyrovib.api.recordings.unknown import any_missing, depends_on
 from gyrovib.api.study.prepare import float_guard
 from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry
@@ -276,7 +277,8 @@ def _mission_row(evaluated: _Evaluated, i: int, r: int, run: _Run, a_factor: flo
     sat = bool(np.any(evaluated.saturated[i, cols]))
     passed = limits.passed(sat, angle, float(agg.rms))
     names = evaluated.unknown.get((i, r), ())
-    open_ = passed is not None and spec_bounds.is_unverified(passed, names, assume_unknown)
+    open_ = passed is not None and (any_missing(names) or spec_bounds.is_unverified(
+        passed, names, assume_unknown))
     if open_:
         passed = False
     w = int(agg.worst_index)
@@ -384,6 +386,8 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     """
     out: dict[tuple[int, int], float] = {}
     unknown = _g2_unknown(study, sources, runs)
+    for key, parts in _not_recorded(study, runs).items():
+        unknown[key] = (*parts, *unknown.get(key, ()))
     rows = [i for i, src in enumerate(sources) if src == "specs"]
     if not rows:
         return out, unknown
@@ -392,7 +396,8 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     scale = units.scale(unit)
     with float_guard():
         prepared = study.narrowed(rows).prepare(methods=("exact",), phase_search=True)
-        unknown.update(_spec_unknown(prepared, runs, where))
+        for key, names in _spec_unknown(prepared, runs, where).items():
+            unknown[key] = (*unknown.get(key, ()), *names)
         for group in prepared.groups:
             out.update(_group_means(prepared, group, runs, where, scale))
     return out, unknown
@@ -410,6 +415,19 @@ def _g2_unknown(study: Study, sources: Sequence[str], runs: Sequence[_Run]
                 if any(study.linear[c] is not None for c in run.columns):
                     unknown[(i, r)] = ("vre",)
     return unknown
+
+
+def _not_recorded(study: Study, runs: Sequence[_Run]) -> dict[tuple[int, int], tuple[str, ...]]:
+    """(sensor, run) → what a segment's profile, fitted from a recording, did not record
+    and the sensor's error depends on (docs/model.md section 13: unknown, not 0)."""
+    out: dict[tuple[int, int], tuple[str, ...]] = {}
+    for r, run in enumerate(runs):
+        missing = tuple(dict.fromkeys(n for c in run.columns
+                                      for n in study.profiles[c].profile.not_recorded))
+        for i, parts in enumerate(depends_on(study.sensors, missing)):
+            if parts:
+                out[(i, r)] = parts
+    return out
 
 
 def _spec_unknown(prepared: Prepared, runs: Sequence[_Run], where: dict[str, int]

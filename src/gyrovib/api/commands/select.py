@@ -41,6 +41,7 @@ from gyrovib.api.lots.yields import (
     open_lots,
     yield_limits,
 )
+from gyrovib.api.recordings.unknown import depends_on
 from gyrovib.api.study.convert import bound_factors
 from gyrovib.api.study.prepare import (
     Group,
@@ -216,6 +217,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         _unknown_g2(prepared, criterion, passed, budget, rms, total, vre_bound_deg, unit,
                     unknown, questions)
         unverified = _unverified(passed, unknown, assume_unknown)
+        unrecorded_cells(prepared, passed, unverified, unknown)
         yields = None if yield_target is None else lot_yields(
             prepared, parts, method, criterion, budget, limits_deg, checks.vre_pass,
             yield_target, seed=seed, draws=draws, rtol=PASS_RTOL)
@@ -345,6 +347,20 @@ def _decided(criterion: str, tests: dict[str, NDArray[np.bool_]]) -> NDArray[np.
     for name in DECIDED_BY[criterion]:
         out = out & tests[name]
     return out
+
+
+def unrecorded_cells(prepared: Prepared, passed: NDArray[np.bool_],
+                     unverified: NDArray[np.bool_],
+                     unknown: dict[tuple[int, int], tuple[str, ...]]) -> None:
+    """A profile fitted from a recording that lacks an axis (``not_recorded``): each sensor
+    whose error depends on it is unverified there, whatever its computed verdict (the
+    error is unknown, docs/model.md section 13; not a figure to assume 0)."""
+    for j, p in enumerate(prepared.profiles):
+        missing = tuple(p.profile.not_recorded)
+        for i, parts in enumerate(depends_on(prepared.sensors, missing)):
+            if parts:
+                passed[i, j], unverified[i, j] = False, True
+                unknown[(i, j)] = (*parts, *unknown.get((i, j), ()))
 
 
 def _unverified(passed: NDArray[np.bool_], unknown: dict[tuple[int, int], tuple[str, ...]],

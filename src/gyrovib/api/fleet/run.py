@@ -180,10 +180,11 @@ class RecordingsAnalysis(Frozen):
 
 def worst_recordings(recorded: FloatArray) -> tuple[int, ...]:
     """Per column of ``recorded`` (recordings × sensors) the row of the largest |value|;
-    the first such row on a tie, -1 where no value is finite."""
+    the first such row on a tie, -1 where a value is not finite (unknown on one
+    recording, say an axis it did not record: the worst is then unknown too)."""
     magnitude = np.where(np.isfinite(recorded), np.abs(recorded), -1.0)
     rows = np.argmax(magnitude, axis=0)
-    return tuple(int(r) if magnitude[r, k] >= 0 else -1 for k, r in enumerate(rows))
+    return tuple(int(r) if np.all(magnitude[:, k] >= 0) else -1 for k, r in enumerate(rows))
 
 
 def analyze_recordings(paths: Sequence[str], catalog: Any, options: RecordingOptions, *,

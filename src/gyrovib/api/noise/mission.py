@@ -21,6 +21,7 @@ from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.missions.results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import budget
 from gyrovib.api.noise.figures import FIGURES, noise_values
+from gyrovib.api.recordings.unknown import any_missing
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.mission import ANGLE_IN_RAD
 from gyrovib.errors import OptionError
@@ -65,7 +66,7 @@ def _judged(row: MissionRow, theta_deg: float, assume_unknown: str) -> MissionRo
     assert row.budget is not None
     names = row.unknown + tuple(n for n in FIGURES if _term(n) in row.budget.unknown)
     passed = not row.saturated and row.budget.total <= theta_deg
-    open_ = spec_bounds.is_unverified(passed, names, assume_unknown)
+    open_ = any_missing(names) or spec_bounds.is_unverified(passed, names, assume_unknown)
     return replace(row, passed=passed and not open_, unverified=open_, unknown=names)
 
 

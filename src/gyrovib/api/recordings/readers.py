@@ -199,13 +199,24 @@ class Columns:
     def default_columns(self, rate: Sequence[str | int | None] | None,
                         accel: Sequence[str | int | None] | None,
                         ) -> tuple[Sequence[str | int | None], Sequence[str | int | None] | None]:
-        """The rate and acceleration columns when not named: the first three other than time."""
+        """The rate and acceleration columns when not named: the first three other than time.
+
+        Fewer than three are not placed by a rule (a lone ``gz`` is not X): the user
+        places them, an axis not recorded being ``-`` (unknown, never 0)."""
         if rate is None:
             time_col = self.time_index()
             others = [i for i in range(len(self.names)) if i != time_col]
             if len(others) < 1:
                 raise problem(self.path, "no rate column: name them with --rate-columns X,Y,Z")
-            rate = tuple(others[:3]) + (None,) * (3 - len(others[:3]))
+            if len(others) < 3:
+                shown = ", ".join(repr(self.names[i]) for i in others)
+                example = ",".join(["-"] * (3 - len(others)) + [self.names[i] for i in others])
+                raise problem(self.path, f"{len(others)} rate column(s) ({shown}) besides the "
+                                         "time, and no rule says which axis each is: place "
+                                         f"them with --rate-columns X,Y,Z, e.g. --rate-columns "
+                                         f"{example} (- for an axis not recorded: it is then "
+                                         "unknown, never taken as 0)")
+            rate = tuple(others[:3])
         return rate, accel
 
     def index(self, column: str | int | None, option: str) -> int | None:

@@ -103,6 +103,8 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         "# Rates in deg/s (PSD in (deg/s)^2/Hz), accelerations in g (PSD in g^2/Hz).",
         *_shape_comments(fit),
     ]
+    missing = missing_parts(fit)
+    lines += _missing_comments(missing)
     if fit.angular.harmonics:
         lines.append("# Lines at integer multiples of a fundamental are one phase-locked group; "
                      "their relative phases are unobservable in a PSD, so each order is "
@@ -123,6 +125,8 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         f"    name: {_quote('Fitted from ' + base)}",
         f"    rate: {_triple(fit.rate)}",
     ]
+    if missing:
+        lines.append(f"    not_recorded: [{', '.join(missing)}]")
     lines += _part(fit.angular, "    ", rate=True)
     if fit.linear is not None and (fit.linear.tones or any(t is not None
                                                            for t in fit.linear.psd)):
@@ -133,6 +137,26 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         lines.append(f"      - {{profile: {fit.profile_id}, duration: {_num(t)}, "
                      f"rate: {_triple(rate)}}}")
     return "\n".join(lines) + "\n"
+
+
+def missing_parts(fit: RecordingFit) -> tuple[str, ...]:
+    """What the fitted recording did not record: rate axes x1, x2, x3 and
+    ``acceleration`` (docs/model.md section 13: unknown, never 0)."""
+    out = [name for name, on in zip(("x1", "x2", "x3"), fit.rate_axes, strict=True) if not on]
+    if fit.linear is None or not np.all(np.isfinite(fit.linear.variance)):
+        out.append("acceleration")
+    return tuple(out)
+
+
+def _missing_comments(missing: tuple[str, ...]) -> list[str]:
+    if not missing:
+        return []
+    return [f"# Not recorded: {', '.join(missing)}. Unknown, not 0: the profile has no "
+            "vibration part for them (a triple",
+            "# holds 0 there only because the format has three places), and `not_recorded` "
+            "says so: an error",
+            "# that depends on them is unknown, and select and mission call its verdict "
+            "unverified."]
 
 
 def _shape_comments(fit: RecordingFit) -> list[str]:

@@ -1,0 +1,91 @@
+"""What a recording did not record is unknown, never 0 (docs/model.md section 13, first
+paragraph): which of a sensor's results depend on it.
+
+The parts a recording can leave out are its rate axes ``x1``, ``x2``, ``x3`` (the
+profile's, or the recording's X, Y, Z) and its ``acceleration``. A sensor's
+rectified error Δ_V,rec (and the closed form of a profile fitted without them)
+depends on
+
+* ``x3``, the sensitive axis: always (every term of eq. (2) that rectifies holds x3);
+* ``x1``, ``x2``: through m31·x3·x1 and m32·x3·x2 (the linear m1·x1, m2·x2 cancel in
+  Δ_V,rec), so where m31 (m32) is not zero, or not known (a datasheet part does not
+  publish it);
+* ``acceleration``: through the g² term, where the sensor states one that is not 0.
+
+A result that depends on an unknown part is unknown: NaN in the library (``null`` in
+JSON, empty in CSV, '?' in tables), and a verdict on it is ``unverified``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from gyrovib.api.datasheet.specs import is_spec
+from gyrovib.api.study.convert import coefficient_matrix
+from gyrovib.api.study.linear import g2_matrix
+
+#: The parts of a recording, in order: its rate axes (as the profile's x1, x2, x3) and
+#: its accelerations.
+PARTS = ("x1", "x2", "x3", "acceleration")
+#: Column of m31 and m32 in :func:`gyrovib.api.study.convert.coefficient_matrix`.
+_M3 = {"x1": 9, "x2": 10}
+
+
+def not_recorded(rate_axes: Sequence[bool], accel: bool | None = None) -> tuple[str, ...]:
+    """The parts a recording lacks: the rate axes not recorded, and ``acceleration``
+    when ``accel`` is False (None: not asked)."""
+    out = [name for name, on in zip(PARTS[:3], rate_axes, strict=True) if not on]
+    if accel is False:
+        out.append("acceleration")
+    return tuple(out)
+
+
+def depends_on(entries: Sequence[Any], missing: Sequence[str], *,
+               spec_cross: bool = True) -> list[tuple[str, ...]]:
+    """Per sensor entry, the parts of ``missing`` its rectified error depends on (see the
+    module docstring); empty where it does not depend on any. ``spec_cross`` False: a
+    datasheet part's m31, m32 are taken as 0, as Δ_V,rec's worst case over its envelope
+    takes them (docs/model.md section 13), so x1, x2 do not enter it."""
+    if not missing or not entries:
+        return [() for _ in entries]
+    coeffs = coefficient_matrix(entries)
+    g2 = g2_matrix(entries)
+    out = []
+    for i, e in enumerate(entries):
+        spec = is_spec(e)
+        parts = []
+        for name in missing:
+            if name == "x3":
+                parts.append(name)
+            elif name in _M3 and ((spec and spec_cross) or coeffs[i, _M3[name]] != 0):
+                parts.append(name)
+            elif name == "acceleration" and _g2_matters(e, g2[i], spec):
+                parts.append(name)
+        out.append(tuple(parts))
+    return out
+
+
+def _g2_matters(entry: Any, g2: Any, spec: bool) -> bool:
+    """Whether a sensor needs the accelerations: it states a g² term that is not 0 (a G,
+    or a datasheet VRE). One that gives no g² figure at all is reported as such where
+    the profile has linear vibration (``vre`` unknown), as for any profile."""
+    if spec:
+        vre = entry.sensor.specs.vre
+        return vre is not None and vre != 0
+    return bool(np.any(np.asarray(g2) != 0))
+
+
+def any_missing(names: Sequence[str]) -> bool:
+    """Whether ``names`` (a result's unknowns) hold a part a recording did not record: the
+    verdict is then unverified whatever the computed one (no figure to assume 0)."""
+    return any(n in PARTS for n in names)
+
+
+def words(parts: Sequence[str]) -> str:
+    """``axis x3 (sensitive) not recorded``-style words for ``parts``."""
+    named = {"x1": "axis x1", "x2": "axis x2", "x3": "axis x3 (the sensitive axis)",
+             "acceleration": "the accelerations"}
+    return ", ".join(named[p] for p in parts) + " not recorded"
