@@ -97,7 +97,7 @@ def test_json_and_table_say_unknown(tmp_path) -> None:  # type: ignore[no-untype
     assert silent["arw"] is None and silent["lower_bound"] is True
     assert set(rows[0]["budget"]) == {"vibration", "arw", "bias_instability", "rrw",
                                       "repeatability", "total", "coverage", "unit",
-                                      "lower_bound"}
+                                      "lower_bound", "typical"}
     table = invoke("mission", path, "--angle-budget", "3deg").stdout
     line = next(x for x in table.splitlines() if x.startswith("│ silent"))
     assert "?" in line and " 0 " not in line

@@ -69,7 +69,8 @@ def _noise_cells(row: MissionRow) -> list[str]:
     if row.budget is None:
         return ["-"] * len(_NOISE)
     values = [getattr(row.budget, name) for name in _NOISE]
-    return ["?" if v is None else fmt(v) for v in values]
+    return ["?" if v is None else fmt(v) + (" typ" if name in row.budget.typical else "")
+            for name, v in zip(_NOISE, values, strict=True)]
 
 
 def _cells(result: MissionResult, row: MissionRow) -> list[str]:
@@ -79,7 +80,13 @@ def _cells(result: MissionResult, row: MissionRow) -> list[str]:
     return [row.sensor, row.mission, axis, fmt(row.mean), fmt(row.angle), fmt(row.rms),
             *_noise_cells(row), budget_total(row),
             f"{row.worst_index + 1} {w.profile} ({fmt(w.total)})",
-            _verdict(row) + (" (saturated)" if row.saturated else "")]
+            _verdict(row) + (" (saturated)" if row.saturated else "") + _on_typical(row)]
+
+
+def _on_typical(row: MissionRow) -> str:
+    """' (on typ)' where a verdict rests on a figure the datasheet gives as typical."""
+    typical = row.budget is not None and row.budget.typical and row.status is not None
+    return " (on typ)" if typical else ""
 
 
 def _unknown_notes(result: MissionResult) -> list[str]:
@@ -112,7 +119,8 @@ def _table_notes(result: MissionResult) -> list[str]:
              f"θ_ARW = N·√T, θ_B = B·T, θ_RRW = K·T^1.5/√3, θ_R = R·T; total = |θ_V| + "
              f"{fmt(result.coverage)}·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) (coverage k = "
              f"{fmt(result.coverage)}); '?': a noise figure the catalogue does not give, "
-             "unknown, so the total is a lower bound (≥)."]
+             "unknown, so the total is a lower bound (≥); 'typ': a figure the datasheet "
+             "gives as typical, not guaranteed, and '(on typ)': a verdict that rests on one."]
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "
@@ -187,7 +195,7 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
             **{name: None if getattr(b, name) is None else number(getattr(b, name))
                for name in _NOISE},
             "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
-            "lower_bound": b.lower_bound}
+            "lower_bound": b.lower_bound, "typical": list(b.typical)}
     if row.axis is not None:
         out["axis"] = row.axis
         out["worst_axis"] = row.worst_axis
@@ -258,7 +266,8 @@ def to_csv(result: MissionResult) -> str:
                 str(r.saturated).lower(), r.source,
                 "" if r.passed is None else str(r.passed).lower(), r.status or "",
                 " ".join(r.unknown),
-                *("" if v is None else v for v in budget_columns(r).values())]
+                *("" if v is None else v for v in budget_columns(r).values()),
+                " ".join(r.budget.typical) if r.budget is not None else ""]
 
     return csv_text(frame_columns(), (row(r) for r in result.rows))
 
@@ -288,7 +297,9 @@ def to_junit(result: MissionResult) -> str:
         out = ET.SubElement(case, "system-out")
         out.text = (f"θ_V = {fmt(r.angle)} {result.angle_unit}, budget total "
                     f"{budget_total(r)} deg, mean RMS = {fmt(r.rms)} "
-                    f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})")
+                    f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})"
+                    + (f"; the verdict rests on typical (typ) figures: "
+                       f"{', '.join(r.budget.typical)}" if _on_typical(r) else ""))
         if r.passed is False:
             reason = _reason(result, r)
             failure = ET.Element("failure", message=reason,

@@ -145,7 +145,8 @@ def _record(r: MissionRow) -> dict[str, Any]:
             "worst_segment": r.worst_index + 1, "worst_profile": r.worst_profile,
             "worst_total": r.worst_total, "duration": r.duration, "saturated": r.saturated,
             "source": r.source, "passed": r.passed, "status": r.status,
-            "unknown": " ".join(r.unknown), **budget_columns(r)}
+            "unknown": " ".join(r.unknown), **budget_columns(r),
+            "typical": " ".join(r.budget.typical) if r.budget is not None else ""}
 
 
 #: The budget's columns of the DataFrame and the CSV (deg; None where unknown).
@@ -166,4 +167,4 @@ def frame_columns() -> tuple[str, ...]:
     """The DataFrame's (and the CSV's) column names, in order."""
     return ("sensor", "mission", "placement", "axis", "mean", "angle", "rms", "worst_segment",
             "worst_profile", "worst_total", "duration", "saturated", "source", "passed",
-            "status", "unknown", *BUDGET_COLUMNS)
+            "status", "unknown", *BUDGET_COLUMNS, "typical")

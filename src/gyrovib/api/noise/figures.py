@@ -18,3 +18,12 @@ def noise_values(noise: Noise | None) -> dict[str, float | None]:
         if fig is not None:
             out[name] = fig.value * units.noise_factor(name, fig.unit)
     return out
+
+
+def typical_figures(noise: Noise | None) -> tuple[str, ...]:
+    """The figures the datasheet gives as typical (``typ``), not guaranteed, in order."""
+    if noise is None:
+        return ()
+    given = noise.figures()
+    return tuple(name for name in FIGURES
+                 if given.get(name) is not None and given[name].qualifier == "typ")

@@ -20,11 +20,11 @@ from gyrovib.api.commands.mission import mission as vibration_mission
 from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.missions.results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import budget
-from gyrovib.api.noise.figures import FIGURES, noise_values
+from gyrovib.api.noise.figures import FIGURES, noise_values, typical_figures
 from gyrovib.api.recordings.unknown import any_missing
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.mission import ANGLE_IN_RAD
-from gyrovib.errors import OptionError
+from gyrovib.errors import ModelError, OptionError
 
 #: Degrees per unit of a mission's angle (deg, rad, rev).
 _DEG_PER = {name: ANGLE_IN_RAD[name] / ANGLE_IN_RAD["deg"] for name in ("deg", "rad", "rev")}
@@ -48,8 +48,11 @@ def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | No
     k = check_coverage(coverage)
     result = vibration_mission(catalog, angle_budget=angle_budget, **options)
     figures = {e.sensor.id: noise_values(e.sensor.noise) for e in catalog.sensors}
+    typical = {e.sensor.id: typical_figures(e.sensor.noise) for e in catalog.sensors}
     per_deg = _DEG_PER[result.angle_unit]
-    rows = [_with_budget(r, figures[r.sensor], per_deg, k) for r in result.rows]
+    rows = [_with_budget(r, figures[r.sensor], per_deg, k, typical[r.sensor])
+            for r in result.rows]
+    _refuse_overflow(catalog, rows)
     if result.angle_budget is not None:
         theta = result.angle_budget * per_deg
         rows = [_judged(r, theta, result.assume_unknown) for r in rows]
@@ -57,8 +60,32 @@ def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | No
 
 
 def _with_budget(row: MissionRow, figures: dict[str, float | None], per_deg: float,
-                 coverage: float) -> MissionRow:
-    return replace(row, budget=budget(row.angle * per_deg, figures, row.duration, coverage))
+                 coverage: float, typical: tuple[str, ...] = ()) -> MissionRow:
+    return replace(row, budget=budget(row.angle * per_deg, figures, row.duration, coverage,
+                                      typical))
+
+
+def _refuse_overflow(catalog: Catalog, rows: Sequence[MissionRow]) -> None:
+    """A budget term or total past double precision (a noise figure over an enormous
+    duration) is refused at the mission's duration, naming the sensor and the term: it
+    cannot be a float, and ∞ must not read as a figure."""
+    for row in rows:
+        b = row.budget
+        if b is None:
+            continue
+        terms = {name: getattr(b, name) for name in ("arw", "bias_instability", "rrw",
+                                                     "repeatability")}
+        bad = [n for n, v in terms.items() if v is not None and not math.isfinite(v)]
+        if not bad and math.isfinite(b.total):
+            continue
+        entry = next(e for e in catalog.missions if e.mission.id == row.mission)
+        what = f"its {bad[0]} term" if bad else "its budget total"
+        raise ModelError(entry.source.problem(
+            f"mission {row.mission!r}, sensor {row.sensor!r}: {what} over "
+            f"{row.duration:.6g} s is beyond double precision (about 1.8e308 deg): check "
+            "the durations (seconds unless written with min or h) and the noise figures",
+            ("missions", entry.index, "segments", 0, "duration")),
+            reason="budget overflows")
 
 
 def _judged(row: MissionRow, theta_deg: float, assume_unknown: str) -> MissionRow:

@@ -64,7 +64,9 @@ class Budget(Frozen):
     ``vibration`` θ_V (signed); ``arw`` N√T, ``bias_instability`` B·T, ``rrw``
     K·T^{3/2}/√3, ``repeatability`` R·T, each None where the catalogue does not give the
     figure (unknown, never 0); ``total`` = |θ_V| + k·RSS of the known noise terms, a
-    lower bound when one is unknown (``unknown`` names them); ``coverage`` k.
+    lower bound when one is unknown (``unknown`` names them); ``coverage`` k;
+    ``typical``: the terms whose figure the datasheet gives as typical (``typ``), not
+    guaranteed, so a verdict on the total rests on a typical figure.
     """
 
     vibration: float
@@ -76,6 +78,7 @@ class Budget(Frozen):
     coverage: float
     unknown: tuple[str, ...]
     unit: str = "deg"
+    typical: tuple[str, ...] = ()
 
     @property
     def lower_bound(self) -> bool:
