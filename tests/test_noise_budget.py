@@ -125,7 +125,7 @@ def test_select_does_not_rank_lower_bounds_in_any_format(tmp_path) -> None:  # t
     path.write_text(text, encoding="utf-8")
     args = ("select", path, "--mission", "two-hours", "--angle-budget", "3deg")
     doc = json.loads(invoke(*args, "--format", "json").stdout)
-    assert [s["sensor"] for s in doc["sensors"]][0] == "full"
+    assert doc["sensors"][0]["sensor"] == "full"
     assert [s["rank"] for s in doc["sensors"]] == [1, None, None, None, None]
     rows = invoke(*args, "--format", "csv").stdout.splitlines()[1:]
     assert rows[0].startswith("full,")

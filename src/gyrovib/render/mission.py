@@ -299,7 +299,8 @@ def to_junit(result: MissionResult) -> str:
                     f"{budget_total(r)} deg, mean RMS = {fmt(r.rms)} "
                     f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})"
                     + (f"; the verdict rests on typical (typ) figures: "
-                       f"{', '.join(r.budget.typical)}" if _on_typical(r) else ""))
+                       f"{', '.join(r.budget.typical)}"
+                       if r.budget is not None and _on_typical(r) else ""))
         if r.passed is False:
             reason = _reason(result, r)
             failure = ET.Element("failure", message=reason,

@@ -29,9 +29,9 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.datasheet import spec_bounds, specs
+from gyrovib.api.evaluation.unknown import any_missing, depends_on
 from gyrovib.api.missions.results import MissionResult, MissionRow, SegmentResult
 from gyrovib.api.placement.placement import place_profile
-from gyrovib.api.recordings.unknown import any_missing, depends_on
 from gyrovib.api.study.prepare import float_guard
 from gyrovib.api.study.study import Study, check_peak_factor
 from gyrovib.catalog.loader import Catalog, MissionEntry, ProfileEntry

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.commands.mission import mission
 from gyrovib.api.datasheet.specs import figures, is_spec
+from gyrovib.api.evaluation.unknown import depends_on, not_recorded, words
 from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier3, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.api.recordings.results import (
@@ -33,7 +34,6 @@ from gyrovib.api.recordings.results import (
     FittedTone,
     RecordingFit,
 )
-from gyrovib.api.recordings.unknown import depends_on, not_recorded, words
 from gyrovib.api.recordings.yaml import mission_id, profile_yaml, with_fitted_profile
 from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
 from gyrovib.api.study.entries import select_entries
@@ -453,17 +453,24 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
     s = units.scale(unit)
-    warnings = _warnings(fit, ratio, saturated, peak / s, ranges / s, unit)
-    for i, parts in enumerate(unknown):
-        if parts:
-            warnings[i] = (f"Δ_V,rec unknown: {words(parts)}, and this sensor's error "
-                           "depends on it (an axis not recorded is unknown, never 0)",
-                           *warnings.get(i, ()))
+    warnings = _unknown_warnings(unknown, _warnings(fit, ratio, saturated, peak / s,
+                                                    ranges / s, unit))
     return RecordingAnalysis(
         unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
         warnings=warnings)
+
+
+def _unknown_warnings(unknown: Sequence[tuple[str, ...]],
+                      warnings: dict[int, tuple[str, ...]]) -> dict[int, tuple[str, ...]]:
+    """``warnings`` with, first on each row whose Δ_V,rec is unknown, the parts it lacks."""
+    for i, parts in enumerate(unknown):
+        if parts:
+            warnings[i] = (f"Δ_V,rec unknown: {words(parts)}, and this sensor's error "
+                           "depends on it (an axis not recorded is unknown, never 0)",
+                           *warnings.get(i, ()))
+    return warnings
 
 
 def fit_missing(fit: RecordingFit) -> tuple[str, ...]:

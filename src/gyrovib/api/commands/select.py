@@ -31,6 +31,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import Limit, SelectionResult
+from gyrovib.api.evaluation.unknown import unknown_errors, unrecorded_cells
 from gyrovib.api.lots.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
@@ -41,7 +42,6 @@ from gyrovib.api.lots.yields import (
     open_lots,
     yield_limits,
 )
-from gyrovib.api.recordings.unknown import depends_on
 from gyrovib.api.study.convert import bound_factors
 from gyrovib.api.study.prepare import (
     Group,
@@ -237,6 +237,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         if yields is not None:
             limits = yield_limits(yields, limits, sensor_pass, found.saturated)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
+    rms, total, margin = unknown_errors(unknown, rms, total, margin)
     fields = spec_bounds.selection_fields(len(prepared.sensors), len(prepared.profiles), spec,
                                           own, total, unit,
                                           (checks.vre, vre_bound_deg, checks.vre_pass))
@@ -347,20 +348,6 @@ def _decided(criterion: str, tests: dict[str, NDArray[np.bool_]]) -> NDArray[np.
     for name in DECIDED_BY[criterion]:
         out = out & tests[name]
     return out
-
-
-def unrecorded_cells(prepared: Prepared, passed: NDArray[np.bool_],
-                     unverified: NDArray[np.bool_],
-                     unknown: dict[tuple[int, int], tuple[str, ...]]) -> None:
-    """A profile fitted from a recording that lacks an axis (``not_recorded``): each sensor
-    whose error depends on it is unverified there, whatever its computed verdict (the
-    error is unknown, docs/model.md section 13; not a figure to assume 0)."""
-    for j, p in enumerate(prepared.profiles):
-        missing = tuple(p.profile.not_recorded)
-        for i, parts in enumerate(depends_on(prepared.sensors, missing)):
-            if parts:
-                passed[i, j], unverified[i, j] = False, True
-                unknown[(i, j)] = (*parts, *unknown.get((i, j), ()))
 
 
 def _unverified(passed: NDArray[np.bool_], unknown: dict[tuple[int, int], tuple[str, ...]],

@@ -26,4 +26,4 @@ def typical_figures(noise: Noise | None) -> tuple[str, ...]:
         return ()
     given = noise.figures()
     return tuple(name for name in FIGURES
-                 if given.get(name) is not None and given[name].qualifier == "typ")
+                 if (fig := given.get(name)) is not None and fig.qualifier == "typ")

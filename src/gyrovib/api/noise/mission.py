@@ -18,10 +18,10 @@ from typing import Any
 
 from gyrovib.api.commands.mission import mission as vibration_mission
 from gyrovib.api.datasheet import spec_bounds
+from gyrovib.api.evaluation.unknown import any_missing
 from gyrovib.api.missions.results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import budget
 from gyrovib.api.noise.figures import FIGURES, noise_values, typical_figures
-from gyrovib.api.recordings.unknown import any_missing
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.mission import ANGLE_IN_RAD
 from gyrovib.errors import ModelError, OptionError

@@ -33,8 +33,8 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
+from gyrovib.api.recordings.located import RecordingError, check_magic, csv_where, problem, unplaced
 from gyrovib.core.transmissibility import FloatArray
-from gyrovib.errors import GyrovibError, Problem
 
 #: The time column's names in a CSV or an .npz (seconds).
 TIME_NAMES = ("t", "time")
@@ -47,16 +47,6 @@ _CHUNK = 1 << 20
 
 #: A column index (or None: not recorded) per axis X, Y, Z.
 Axes = tuple[int | None, int | None, int | None]
-
-
-class RecordingError(GyrovibError):
-    """A recording cannot be read, or does not suit the analysis asked of it."""
-
-
-def problem(file: str, message: str, line: int | None = None,
-            column: int | None = None) -> RecordingError:
-    """A located :class:`RecordingError`."""
-    return RecordingError(Problem(message, file, line, column))
 
 
 class Store(Protocol):
@@ -83,9 +73,9 @@ class ArrayStore:
 
     def __init__(self, rate: FloatArray | Sequence[FloatArray | None],
                  accel: FloatArray | Sequence[FloatArray | None] | None) -> None:
-        self.arrays = {"rate": _columns(rate), "accel": None if accel is None
-                       else _columns(accel)}
-        self.rows = next(int(c.shape[0]) for c in self.arrays["rate"] if c is not None)
+        rates = _columns(rate)
+        self.arrays = {"rate": rates, "accel": None if accel is None else _columns(accel)}
+        self.rows = next(int(c.shape[0]) for c in rates if c is not None)
         self.has_accel = accel is not None
 
     def block(self, kind: str, lo: int, hi: int) -> FloatArray:
@@ -209,13 +199,7 @@ class Columns:
             if len(others) < 1:
                 raise problem(self.path, "no rate column: name them with --rate-columns X,Y,Z")
             if len(others) < 3:
-                shown = ", ".join(repr(self.names[i]) for i in others)
-                example = ",".join(["-"] * (3 - len(others)) + [self.names[i] for i in others])
-                raise problem(self.path, f"{len(others)} rate column(s) ({shown}) besides the "
-                                         "time, and no rule says which axis each is: place "
-                                         f"them with --rate-columns X,Y,Z, e.g. --rate-columns "
-                                         f"{example} (- for an axis not recorded: it is then "
-                                         "unknown, never taken as 0)")
+                raise unplaced(self.path, [self.names[i] for i in others])
             rate = tuple(others[:3])
         return rate, accel
 
@@ -310,21 +294,7 @@ class CsvColumns(Columns):
         self.path, self.names, self.count = path, names, count
 
     def where(self, sample: int) -> tuple[int | None, int | None]:
-        """The line of the ``sample``-th data row (blank lines are skipped, as the parser
-        skips them) and the column of its time cell."""
-        time_col = self.time_index()
-        with open(self.path, encoding="utf-8-sig", newline="") as fh:
-            fh.readline()
-            seen = -1
-            for line_no, line in enumerate(fh, start=2):
-                if line.strip():
-                    seen += 1
-                    if seen == sample:
-                        cells = line.split(",")
-                        column = (None if time_col is None
-                                  else 1 + sum(len(x) + 1 for x in cells[:time_col]))
-                        return line_no, column
-        return None, None
+        return csv_where(self.path, self.time_index(), sample)
 
     def rows(self) -> int:
         lines = 0
@@ -444,27 +414,9 @@ def _numpy_error(path: str, kind: str, exc: Exception) -> RecordingError:
     return problem(path, f"cannot read as NumPy {kind}: {exc}")
 
 
-#: The first bytes of a .npy file and of a zip archive (an .npz is one).
-_MAGIC = {"npy": (b"\x93NUMPY",), "npz": (b"PK\x03\x04", b"PK\x05\x06")}
-
-
-def _check_magic(path: str, kind: str) -> None:
-    """Refuse a file whose first bytes are not its format's: numpy would read anything
-    else as pickled data and suggest allow_pickle, which is wrong advice and unsafe."""
-    try:
-        with open(path, "rb") as fh:
-            head = fh.read(8)
-    except OSError as exc:
-        raise problem(path, f"cannot read: {exc.strerror or exc}") from None
-    if not head.startswith(_MAGIC[kind]):
-        what = ("a NumPy .npy file (it does not start with the .npy magic bytes)"
-                if kind == "npy" else "a NumPy .npz file (it is not a zip archive)")
-        raise problem(path, f"not a valid {kind}: the file is not {what}")
-
-
 def open_npy(path: str, topic: str | None = None) -> Columns:
     """A 2-D .npy: its header only (the samples stay in the file)."""
-    _check_magic(path, "npy")
+    check_magic(path, "npy")
     try:
         arr = np.load(path, mmap_mode="r", allow_pickle=False)
     except (OSError, ValueError, EOFError) as exc:
@@ -522,7 +474,7 @@ class NpyColumns(Columns):
 
 def open_npz(path: str, topic: str | None = None) -> Columns:
     """An .npz: one 2-D array, or 1-D arrays of one length named as columns."""
-    _check_magic(path, "npz")
+    check_magic(path, "npz")
     try:
         with np.load(path, allow_pickle=False) as z:
             keys = list(z.keys())
@@ -639,5 +591,5 @@ def reader_for(path: str) -> tuple[str, Opener]:
                         "or .ulg (PX4 ULog)")
 
 
-__all__ = ["READERS", "ArrayStore", "Columns", "NpyStore", "RecordingError", "Store",
+__all__ = ["READERS", "ArrayStore", "Columns", "NpyStore", "RecordingError", "Store", "problem",
            "reader_for"]

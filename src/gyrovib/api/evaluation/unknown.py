@@ -56,15 +56,10 @@ def depends_on(entries: Sequence[Any], missing: Sequence[str], *,
     out = []
     for i, e in enumerate(entries):
         spec = is_spec(e)
-        parts = []
-        for name in missing:
-            if name == "x3":
-                parts.append(name)
-            elif name in _M3 and ((spec and spec_cross) or coeffs[i, _M3[name]] != 0):
-                parts.append(name)
-            elif name == "acceleration" and _g2_matters(e, g2[i], spec):
-                parts.append(name)
-        out.append(tuple(parts))
+        needs = {"x3": True, "acceleration": _g2_matters(e, g2[i], spec)}
+        for name, column in _M3.items():
+            needs[name] = (spec and spec_cross) or bool(coeffs[i, column] != 0)
+        out.append(tuple(name for name in missing if needs[name]))
     return out
 
 
@@ -89,3 +84,35 @@ def words(parts: Sequence[str]) -> str:
     named = {"x1": "axis x1", "x2": "axis x2", "x3": "axis x3 (the sensitive axis)",
              "acceleration": "the accelerations"}
     return ", ".join(named[p] for p in parts) + " not recorded"
+
+
+# ----------------------------------------------------------------- select's cells
+
+
+def unrecorded_cells(prepared: Any, passed: Any,
+                     unverified: Any,
+                     unknown: dict[tuple[int, int], tuple[str, ...]]) -> None:
+    """A profile fitted from a recording that lacks an axis (``not_recorded``): each sensor
+    whose error depends on it is unverified there, whatever its computed verdict (the
+    error is unknown, docs/model.md section 13; not a figure to assume 0)."""
+    for j, p in enumerate(prepared.profiles):
+        missing = tuple(p.profile.not_recorded)
+        for i, parts in enumerate(depends_on(prepared.sensors, missing)):
+            if parts:
+                passed[i, j], unverified[i, j] = False, True
+                unknown[(i, j)] = (*parts, *unknown.get((i, j), ()))
+
+
+def unknown_errors(unknown: dict[tuple[int, int], tuple[str, ...]],
+                   *arrays: Any) -> tuple[Any, ...]:
+    """Each (sensors, profiles) array (Δ_V(RMS), Δ_V, the margin) with NaN in the cells
+    that depend on a part a recording did not record: unknown (null in JSON, empty in
+    CSV, '?' in tables), never the number computed with 0 there."""
+    cells = [key for key, names in unknown.items() if any_missing(names)]
+    if not cells:
+        return arrays
+    out = tuple(np.array(a, dtype=float, copy=True) for a in arrays)
+    for i, j in cells:
+        for a in out:
+            a[i, j] = np.nan
+    return out
