@@ -119,8 +119,10 @@ def _table_notes(result: MissionResult) -> list[str]:
              f"θ_ARW = N·√T, θ_B = B·T, θ_RRW = K·T^1.5/√3, θ_R = R·T; total = |θ_V| + "
              f"{fmt(result.coverage)}·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) (coverage k = "
              f"{fmt(result.coverage)}); '?': a noise figure the catalogue does not give, "
-             "unknown, so the total is a lower bound (≥); 'typ': a figure the datasheet "
-             "gives as typical, not guaranteed, and '(on typ)': a verdict that rests on one."]
+             "unknown, so the total is a lower bound (≥)."]
+    if any(r.budget is not None and r.budget.typical for r in result.rows):
+        notes.append("'typ': a figure the datasheet gives as typical, not guaranteed; "
+                     "'(on typ)': a verdict that rests on one.")
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "
