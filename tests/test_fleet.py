@@ -43,14 +43,18 @@ def logs(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
 
 
 def test_envelope_of_one_recording_is_its_own_profile(logs: list[Path]) -> None:
-    """The envelope reduction on a recording and itself gives back the one-recording fit
+    """The envelope reduction on a recording and a twin of it (the same samples under
+    another identity: the same file itself is refused) gives back the one-recording fit
     (profile body identical but for the id and name; its mission's time twice)."""
+    import dataclasses
+
     from gyrovib.api.fleet.envelope import envelope
     from gyrovib.api.fleet.run import RecordingOptions, profile_one
 
     options = RecordingOptions(fs=FS)
     fit = profile_one(str(logs[0]), options)
-    env = envelope([fit, fit], options)
+    twin = dataclasses.replace(fit, sha256="0" * 64)
+    env = envelope([fit, twin], options)
     one, both = fit.yaml, env.fit.yaml
     body = one[one.index("profiles:"):one.index("missions:")]
     assert both[both.index("profiles:"):both.index("missions:")] == body.replace(

@@ -310,3 +310,37 @@ def test_the_worst_of_several_recordings_is_unknown_where_one_is() -> None:
     # gives 1.0; sensor 1: |−3| on recording 1 is the largest (a hand count)
     recorded = np.array([[1.0, 2.0], [np.nan, -3.0]])
     assert worst_recordings(recorded) == (-1, 1)
+
+
+def test_an_envelope_knows_an_axis_only_where_every_recording_recorded_it(
+        tmp_path: Path) -> None:
+    import yaml
+
+    from gyrovib.api.fleet.envelope import envelope
+    from gyrovib.api.fleet.run import RecordingOptions, profile_one
+
+    full = _csv(tmp_path, "gx,gy,gz,ax,ay,az", name="full.csv")
+    lone = _csv(tmp_path, "gy,gz", name="lone.csv", seed=2)
+    fits = [profile_one(str(full), RecordingOptions(rate_columns=("gx", "gy", "gz"),
+                                                    accel_columns=("ax", "ay", "az"))),
+            profile_one(str(lone), RecordingOptions(rate_columns=(None, "gy", "gz")))]
+    env = envelope(fits)
+    # lone.csv has neither x1 nor accelerations: the envelope's largest PSD on x1 would
+    # be full.csv's alone, a lower bound; unknown instead, and said so
+    assert env.fit.rate_axes == (False, True, True)
+    text = env.fit.yaml
+    assert "# Not recorded: x1, acceleration. Unknown, not 0" in text
+    profile = yaml.safe_load(text)["profiles"][0]
+    assert profile["not_recorded"] == ["x1", "acceleration"]
+    assert set(profile["random"]["psd"]) == {"x2", "x3"} and "acceleration" not in profile
+    assert np.isnan(env.fit.honesty[0].variance)
+    # both recordings complete: nothing is said
+    other = _csv(tmp_path, "gx,gy,gz,ax,ay,az", name="other.csv", seed=3)
+    both = envelope([fits[0], profile_one(str(other), RecordingOptions(
+        rate_columns=("gx", "gy", "gz"), accel_columns=("ax", "ay", "az")))])
+    assert "not_recorded" not in both.fit.yaml and "Not recorded" not in both.fit.yaml
+    # the library's envelope refuses one recording twice, as the command does
+    from gyrovib.errors import GyrovibError
+
+    with pytest.raises(GyrovibError, match="same contents"):
+        envelope([fits[0], fits[0]])

@@ -104,7 +104,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         *_shape_comments(fit),
     ]
     missing = missing_parts(fit)
-    lines += _missing_comments(missing)
+    lines += missing_comments(missing)
     if fit.angular.harmonics:
         lines.append("# Lines at integer multiples of a fundamental are one phase-locked group; "
                      "their relative phases are unobservable in a PSD, so each order is "
@@ -148,7 +148,7 @@ def missing_parts(fit: RecordingFit) -> tuple[str, ...]:
     return tuple(out)
 
 
-def _missing_comments(missing: tuple[str, ...]) -> list[str]:
+def missing_comments(missing: tuple[str, ...]) -> list[str]:
     if not missing:
         return []
     return [f"# Not recorded: {', '.join(missing)}. Unknown, not 0: the profile has no "
