@@ -120,9 +120,7 @@ def _table_notes(result: MissionResult) -> list[str]:
              f"{fmt(result.coverage)}·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) (coverage k = "
              f"{fmt(result.coverage)}); '?': a noise figure the catalogue does not give, "
              "unknown, so the total is a lower bound (≥)."]
-    if any(r.budget is not None and r.budget.typical for r in result.rows):
-        notes.append("'typ': a figure the datasheet gives as typical, not guaranteed; "
-                     "'(on typ)': a verdict that rests on one.")
+    notes += _typical_note(result)
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "
@@ -140,6 +138,14 @@ def _table_notes(result: MissionResult) -> list[str]:
                      f"{'met' if result.requirement_met else 'NOT met'}).")
     notes += _rank_notes(result)
     return notes
+
+
+def _typical_note(result: MissionResult) -> list[str]:
+    """What 'typ' means, where a row's budget rests on a typical figure."""
+    if not any(r.budget is not None and r.budget.typical for r in result.rows):
+        return []
+    return ["'typ': a figure the datasheet gives as typical, not guaranteed; '(on typ)': a "
+            "verdict that rests on one."]
 
 
 def _rank_notes(result: MissionResult) -> list[str]:
