@@ -344,3 +344,27 @@ def test_an_envelope_knows_an_axis_only_where_every_recording_recorded_it(
 
     with pytest.raises(GyrovibError, match="same contents"):
         envelope([fits[0], fits[0]])
+
+
+def test_a_placement_moves_the_unknown_axis_with_the_sensor(tmp_path: Path) -> None:
+    # recorded: vehicle Y and Z; with x3 on vehicle X (x1=+Y, x2=+Z, x3=+X) the sensitive
+    # axis lies on the unrecorded X, so even k2-only, which needs x3 alone, is unverified;
+    # with the default placement it is not
+    path = _csv(tmp_path, "gy,gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,gy,gz", "-o", out).exit_code == 0
+    cat = _catalogue(tmp_path)
+    for placement, status in (("x1=+X,x2=+Y,x3=+Z", "pass"), ("x1=+Y,x2=+Z,x3=+X",
+                                                              "unverified")):
+        r = invoke("select", cat, out, "--budget", "10deg/s", "--placement", placement,
+                   "--format", "json")
+        cells = {s["sensor"]: s["profiles"][0] for s in json.loads(r.stdout)["sensors"]}
+        assert cells["k2-only"]["status"] == status, placement
+    from gyrovib.api import load
+    from gyrovib.api.placement.placement import place_profile
+    from gyrovib.core.placement import Placement
+
+    profile = load([out]).profiles[0].profile
+    assert profile.not_recorded == ["x1", "acceleration"]
+    placed = place_profile(profile, Placement(source=(1, 2, 0)))
+    assert placed.not_recorded == ["x3", "acceleration"]
