@@ -368,3 +368,30 @@ def test_a_placement_moves_the_unknown_axis_with_the_sensor(tmp_path: Path) -> N
     assert profile.not_recorded == ["x1", "acceleration"]
     placed = place_profile(profile, Placement(source=(1, 2, 0)))
     assert placed.not_recorded == ["x3", "acceleration"]
+
+
+def test_the_fitted_mission_reads_unknown_where_a_sensor_needs_a_missing_axis(
+        tmp_path: Path) -> None:
+    path = _csv(tmp_path, "gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,-,gz", "-o", out).exit_code == 0
+    args = ("mission", _catalogue(tmp_path), out, "--angle-budget", "1000deg")
+    rows = {r["sensor"]: r for r in json.loads(invoke(*args, "--format", "json").stdout)[
+        "mission"]}
+    # k2-only needs x3 alone: numbers; cross needs x1 (m31): unknown, never those numbers
+    # (no noise figures here: both are unverified on them too, k2-only on them alone)
+    assert rows["k2-only"]["mean"] > 0
+    assert not set(rows["k2-only"]["unknown"]) & {"x1", "x2", "x3", "acceleration"}
+    cross = rows["cross"]
+    assert (cross["mean"], cross["angle"], cross["rms"]) == (None, None, None)
+    assert cross["budget"]["vibration"] is None and cross["budget"]["total"] is None
+    assert cross["status"] == "unverified"
+    table = invoke(*args, "--format", "markdown").stdout
+    line = next(x for x in table.splitlines() if x.startswith("| cross"))
+    assert "nan" not in line and line.count("| ? |") >= 3
+    got = next(r for r in invoke(*args, "--format", "csv").stdout.splitlines()
+               if r.startswith("cross,"))
+    assert ",,,," in got and "nan" not in got
+    # a triad: with x3 on every vehicle axis in turn, the worst axis is unknown too
+    triad = json.loads(invoke(*args, "--placement", "triad", "--format", "json").stdout)
+    assert {t["worst_axis"] for t in triad["triads"] if t["sensor"] == "cross"} == {None}

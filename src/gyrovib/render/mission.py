@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 from typing import TYPE_CHECKING, Any
 
@@ -57,10 +58,18 @@ _HEAD = ["sensor", "mission", "axis", "mean Δ̄_V", "angle θ_V", "mean RMS Δ�
 _NOISE = ("arw", "bias_instability", "rrw", "repeatability")
 
 
+def known(value: float) -> str:
+    """:func:`fmt`, but '?' for a value that is unknown (NaN: an axis a fitted profile's
+    recording did not record), never 'nan' or 0."""
+    return "?" if math.isnan(value) else fmt(value)
+
+
 def budget_total(row: MissionRow) -> str:
     """The budget's total: '≥ x' when a noise figure is unknown (a lower bound)."""
     if row.budget is None:
         return "-"
+    if math.isnan(row.budget.total):
+        return "?"
     return ("≥ " if row.budget.lower_bound else "") + fmt(row.budget.total)
 
 
@@ -77,9 +86,9 @@ def _cells(result: MissionResult, row: MissionRow) -> list[str]:
     w = row.segments[row.worst_index]
     axis = "-" if row.axis is None else row.axis + (" (worst)" if row.axis == row.worst_axis
                                                     else "")
-    return [row.sensor, row.mission, axis, fmt(row.mean), fmt(row.angle), fmt(row.rms),
-            *_noise_cells(row), budget_total(row),
-            f"{row.worst_index + 1} {w.profile} ({fmt(w.total)})",
+    worst = f"({fmt(w.total)})" if math.isfinite(row.worst_total) else "(?)"
+    return [row.sensor, row.mission, axis, known(row.mean), known(row.angle), known(row.rms),
+            *_noise_cells(row), budget_total(row), f"{row.worst_index + 1} {w.profile} {worst}",
             _verdict(row) + (" (saturated)" if row.saturated else "") + _on_typical(row)]
 
 
@@ -269,15 +278,21 @@ def to_csv(result: MissionResult) -> str:
     """One row per sensor × mission × axis; columns as :meth:`MissionResult.to_frame`."""
 
     def row(r: MissionRow) -> list[Any]:
-        return [r.sensor, r.mission, r.placement, r.axis or "", r.mean, r.angle, r.rms,
-                r.worst_index + 1, r.worst_profile, r.worst_total, r.duration,
+        return [r.sensor, r.mission, r.placement, r.axis or "", *_csv_known(r.mean, r.angle,
+                r.rms), r.worst_index + 1, r.worst_profile, *_csv_known(r.worst_total),
+                r.duration,
                 str(r.saturated).lower(), r.source,
                 "" if r.passed is None else str(r.passed).lower(), r.status or "",
                 " ".join(r.unknown),
-                *("" if v is None else v for v in budget_columns(r).values()),
+                *("" if v is None or math.isnan(v) else v for v in budget_columns(r).values()),
                 " ".join(r.budget.typical) if r.budget is not None else ""]
 
     return csv_text(frame_columns(), (row(r) for r in result.rows))
+
+
+def _csv_known(*values: float) -> list[float | None]:
+    """CSV cells: None (empty) where a value is unknown (NaN)."""
+    return [None if math.isnan(v) else v for v in values]
 
 
 def to_markdown(result: MissionResult) -> str:
@@ -303,8 +318,8 @@ def to_junit(result: MissionResult) -> str:
         name = r.mission if r.axis is None else f"{r.mission} (x3 on {r.axis})"
         case = ET.SubElement(suite, "testcase", classname=r.sensor, name=name, time="0")
         out = ET.SubElement(case, "system-out")
-        out.text = (f"θ_V = {fmt(r.angle)} {result.angle_unit}, budget total "
-                    f"{budget_total(r)} deg, mean RMS = {fmt(r.rms)} "
+        out.text = (f"θ_V = {known(r.angle)} {result.angle_unit}, budget total "
+                    f"{budget_total(r)} deg, mean RMS = {known(r.rms)} "
                     f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})"
                     + (f"; the verdict rests on typical (typ) figures: "
                        f"{', '.join(r.budget.typical)}"

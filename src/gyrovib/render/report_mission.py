@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
+from gyrovib.render.mission import known
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
@@ -97,8 +98,9 @@ def _segments_table(result: MissionResult, row: MissionRow) -> str:
     note = (" A datasheet sensor's segments are each their own worst case; its θ_V is the "
             "worst case of the whole mission (one conversion function), at most their sum."
             if row.source == "specs" else "")
-    caption = (f"{row.sensor}{where}: θ_V = {fmt(row.angle)} {result.angle_unit}, mean "
-               f"Δ̄_V = {fmt(row.mean)} {result.unit}, mean RMS = {fmt(row.rms)} {result.unit}; "
+    caption = (f"{row.sensor}{where}: θ_V = {known(row.angle)} {result.angle_unit}, mean "
+               f"Δ̄_V = {known(row.mean)} {result.unit}, mean RMS = {known(row.rms)} "
+               f"{result.unit}; "
                f"worst segment {row.worst_index + 1} ({row.worst_profile}).{note}")
     return (f"<table><caption>{_e(caption)}</caption><thead><tr>"
             + "".join(f"<th>{_e(h)}</th>" for h in head) + "</tr></thead><tbody>"

@@ -273,11 +273,15 @@ def _mission_row(evaluated: _Evaluated, i: int, r: int, run: _Run, a_factor: flo
     mean = float(agg.mean)
     if (i, r) in evaluated.spec_mean:
         mean = evaluated.spec_mean[(i, r)]
-    angle = mean * agg.duration * a_factor
-    sat = bool(np.any(evaluated.saturated[i, cols]))
-    passed = limits.passed(sat, angle, float(agg.rms))
     names = evaluated.unknown.get((i, r), ())
-    open_ = passed is not None and (any_missing(names) or spec_bounds.is_unverified(
+    gap = any_missing(names)  # a segment's recording lacks what this error needs
+    angle = mean * agg.duration * a_factor
+    rms, worst = float(agg.rms), float(agg.worst_total)
+    if gap:  # unknown, never the number computed with 0 there (docs/model.md section 13)
+        mean = angle = rms = worst = math.nan
+    sat = bool(np.any(evaluated.saturated[i, cols]))
+    passed = limits.passed(sat, angle, rms)
+    open_ = passed is not None and (gap or spec_bounds.is_unverified(
         passed, names, assume_unknown))
     if open_:
         passed = False
@@ -286,9 +290,9 @@ def _mission_row(evaluated: _Evaluated, i: int, r: int, run: _Run, a_factor: flo
         sensor=evaluated.result.sensors[i], mission=run.mission.id,
         placement="triad" if run.triad else str(run.placement),
         axis=run.placement.axis if run.triad else None,
-        mean=mean, angle=angle, rms=float(agg.rms), worst_index=w,
+        mean=mean, angle=angle, rms=rms, worst_index=w,
         worst_profile=run.mission.segments[w].profile,
-        worst_total=float(agg.worst_total), segments=_segment_results(evaluated, i, run),
+        worst_total=worst, segments=_segment_results(evaluated, i, run),
         saturated=sat, passed=passed, source=evaluated.sources[i], unknown=names,
         unverified=open_)
 
@@ -337,8 +341,8 @@ def check_angles(rows: Sequence[MissionRow], chosen: Sequence[MissionEntry]) -> 
     """Raise :class:`ModelError` at the first segment of a mission whose mean error or
     angle θ_V = Σ T_s·Δ_V,s overflowed (a finite Σ T_s times an error can still be inf)."""
     by_id = {e.mission.id: e for e in chosen}
-    bad = next((r for r in rows if not (math.isfinite(r.angle) and math.isfinite(r.mean))),
-               None)
+    bad = next((r for r in rows if not (math.isfinite(r.angle) and math.isfinite(r.mean))
+                and not any_missing(r.unknown)), None)  # unknown (NaN) is not overflow
     if bad is None:
         return
     raise ModelError(by_id[bad.mission].source.problem(
@@ -365,7 +369,9 @@ def _with_worst_axis(rows: list[MissionRow]) -> list[MissionRow]:
             k += 1
             continue
         group = [r for r in rows[k:k + 3]]
-        worst = max(group, key=lambda r: (r.saturated, abs(r.angle))).axis
+        # an axis whose θ_V is unknown may be the worst: then the worst axis is unknown
+        worst = (None if any(math.isnan(r.angle) for r in group)
+                 else max(group, key=lambda r: (r.saturated, abs(r.angle))).axis)
         out.extend(replace(r, worst_axis=worst) for r in group)
         k += 3
     return out

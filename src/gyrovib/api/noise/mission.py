@@ -71,7 +71,7 @@ def _refuse_overflow(catalog: Catalog, rows: Sequence[MissionRow]) -> None:
     cannot be a float, and ∞ must not read as a figure."""
     for row in rows:
         b = row.budget
-        if b is None:
+        if b is None or math.isnan(b.vibration):  # unknown θ_V: not an overflow
             continue
         terms = {name: getattr(b, name) for name in ("arw", "bias_instability", "rrw",
                                                      "repeatability")}
