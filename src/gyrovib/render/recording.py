@@ -133,7 +133,8 @@ def to_csv(result: RecordingAnalysis) -> str:
 
 
 def _table_rows(result: RecordingAnalysis) -> list[list[str]]:
-    return [[s, _known(result.recorded[i]), _known(result.fitted[i]), _fmt(result.ratio[i], 3),
+    return [[s, _known(result.recorded[i]), _known(result.fitted[i]),
+             "?" if math.isnan(result.recorded[i]) else _fmt(result.ratio[i], 3),
              _fmt(result.peak_rate[i]), "yes" if result.saturated[i] else "no"]
             for i, s in enumerate(result.sensors)]
 
