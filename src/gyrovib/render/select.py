@@ -132,8 +132,11 @@ def _summary(result: SelectionResult) -> str:
     need = "at least one sensor" if result.require == "any" else "every sensor"
     n_open = sum(1 for i in range(len(result.sensors))
                  if result.sensor_status(i) == "unverified")
-    tail = (f", {n_open} unverified (an unpublished figure, or an axis a fitted profile's "
-            "recording did not record, can decide them)" if n_open else "")
+    why = ("an unpublished figure, or an axis a fitted profile's recording did not record, "
+           "can decide them" if any(set(_PARTS) & set(result.sensor_unknown(i)) for i in
+                                    range(len(result.sensors)))
+           else "an unpublished figure can decide them: ask the vendor")
+    tail = f", {n_open} unverified ({why})" if n_open else ""
     note = assumption_note(result)
     return (f"Requirement ({result.require}: {need} passes under every profile): {verdict}; "
             f"{n_pass} of {len(result.sensors)} sensor(s) pass{tail}."
@@ -321,8 +324,7 @@ def _get(array: Any, i: int, j: int) -> Any:
 
 def _csv_float(value: float) -> float | str:
     """A CSV number: empty where unknown (NaN), ``inf`` where unconstrained."""
-    v = float(value)
-    return "" if math.isnan(v) else v
+    return "" if math.isnan(value) else float(value)
 
 
 def _csv_checks(result: SelectionResult, sensor: str, profile: str, i: int,
