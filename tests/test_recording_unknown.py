@@ -395,3 +395,25 @@ def test_the_fitted_mission_reads_unknown_where_a_sensor_needs_a_missing_axis(
     # a triad: with x3 on every vehicle axis in turn, the worst axis is unknown too
     triad = json.loads(invoke(*args, "--placement", "triad", "--format", "json").stdout)
     assert {t["worst_axis"] for t in triad["triads"] if t["sensor"] == "cross"} == {None}
+
+
+def test_analyze_on_a_fitted_profile_reads_unknown_where_an_axis_is_missing(
+        tmp_path: Path) -> None:
+    path = _csv(tmp_path, "gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,-,gz", "-o", out).exit_code == 0
+    args = ("analyze", _catalogue(tmp_path), out)
+    rows = {r["sensor"]: r for r in json.loads(invoke(*args, "--format", "json").stdout)[
+        "results"]}
+    # k2-only: Δ0(2) = k2·σ3² > 0 on the recorded x3; cross needs x1 (m31·C31): null
+    assert rows["k2-only"]["total"] > 0
+    assert rows["cross"]["total"] is None and rows["cross"]["rms"] is None
+    assert set(rows["cross"]["additive_terms"].values()) == {None}
+    assert "without x1" in rows["cross"]["warnings"][0]
+    for fmt in ("table", "markdown"):
+        line = next(x for x in invoke(*args, "--format", fmt).stdout.splitlines()
+                    if "cross" in x)
+        assert "?" in line and "nan" not in line and " 0 " not in line
+    got = next(r for r in invoke(*args, "--format", "csv").stdout.splitlines()
+               if r.startswith("cross,"))
+    assert "nan" not in got and ",,,," in got

@@ -55,8 +55,9 @@ def csv_text(header_row: Iterable[str], rows: Iterable[Iterable[Any]]) -> str:
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(list(header_row))
     for row in rows:
-        writer.writerow(["" if x is None else (repr(x) if isinstance(x, float) else x)
-                         for x in row])
+        # None and NaN (unknown) are empty cells, never 'nan' or 0
+        writer.writerow(["" if x is None or x != x else (repr(x) if isinstance(x, float)
+                                                          else x) for x in row])
     return buffer.getvalue()
 
 

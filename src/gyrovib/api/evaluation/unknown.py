@@ -116,3 +116,21 @@ def unknown_errors(unknown: dict[tuple[int, int], tuple[str, ...]],
         for a in out:
             a[i, j] = np.nan
     return out
+
+
+def unknown_cells(prepared: Any, error: Any,
+                  warnings: dict[tuple[int, int], tuple[str, ...]]) -> None:
+    """``analyze`` on a profile fitted from a recording that lacks a part: each error of a
+    sensor that depends on it is NaN in ``error`` (every array, at its sensor × profile),
+    with a warning naming the part (docs/model.md section 13: unknown, never 0)."""
+    arrays = [error.additive_terms, error.multiplicative_coefficients, error.additive,
+              error.multiplicative, error.total, error.rms, error.extra_terms]
+    for j, p in enumerate(prepared.profiles):
+        for i, parts in enumerate(depends_on(prepared.sensors, tuple(p.profile.not_recorded))):
+            if parts:
+                for a in arrays:
+                    a[i, j] = np.nan
+                warnings[(i, j)] = (f"unknown: the profile was fitted from a recording "
+                                    f"without {', '.join(parts)}, and this sensor's error "
+                                    "depends on it (docs/model.md section 13)",
+                                    *warnings.get((i, j), ()))
