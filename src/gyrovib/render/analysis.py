@@ -87,7 +87,9 @@ def _to_json_rows(result: AnalysisResult) -> str:
 def _nulls(array: np.ndarray) -> Any:
     """``array.tolist()`` with None (null) for NaN: an error that is unknown (an axis its
     profile's recording did not record). An infinity stays, for json to refuse."""
-    return np.where(np.isnan(array), None, array).tolist()
+    cells: Any = array.astype(object)
+    cells[np.isnan(array)] = None
+    return cells.tolist()
 
 
 _COEFFICIENT_SOURCE = '"coefficients"'  # json.dumps("coefficients")
