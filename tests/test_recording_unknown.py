@@ -417,3 +417,32 @@ def test_analyze_on_a_fitted_profile_reads_unknown_where_an_axis_is_missing(
     got = next(r for r in invoke(*args, "--format", "csv").stdout.splitlines()
                if r.startswith("cross,"))
     assert "nan" not in got and ",,,," in got
+
+
+def test_bounds_of_a_profile_without_an_axis_are_unknown_not_unbounded(
+        tmp_path: Path) -> None:
+    # x1 not recorded: m31's bound (α4·Δ*/|C31|) is unknown, not the 'unbounded' that a
+    # C31 read as 0 would give; x3 not recorded: every bound is unknown
+    path = tmp_path / "p.yaml"
+    path.write_text("""\
+gyrovib: 1
+units: {rate: deg/s, acceleration: g}
+profiles:
+  - id: no-x1
+    rate: [0, 0, 1]
+    not_recorded: [x1]
+    harmonic: [{frequency: 50, amplitude: [1, 1, 2]}]
+  - id: no-x3
+    rate: [0, 0, 1]
+    not_recorded: [x3]
+    harmonic: [{frequency: 50, amplitude: [1, 1, 0]}]
+""", encoding="utf-8")
+    doc = json.loads(invoke("bounds", path, "--budget", "1deg/s", "--format", "json").stdout)
+    no_x1, no_x3 = (p["bounds"] for p in doc["profiles"])
+    assert no_x1["m31"] is None and no_x1["m32"] > 0 and no_x1["k2"] > 0
+    assert set(no_x3.values()) == {None}
+    table = invoke("bounds", path, "--budget", "1deg/s").stdout
+    m31 = next(x for x in table.splitlines() if "m31" in x)
+    assert "?" in m31 and "unbounded" not in m31 and "nan" not in table
+    rows = invoke("bounds", path, "--budget", "1deg/s", "--format", "csv").stdout.splitlines()
+    assert rows[2].startswith("no-x3,0.0,0.0,1.0,,,") and "nan" not in rows[2]

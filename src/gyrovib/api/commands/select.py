@@ -31,7 +31,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import Limit, SelectionResult
-from gyrovib.api.evaluation.unknown import unknown_errors, unrecorded_cells
+from gyrovib.api.evaluation.unknown import unknown_bounds, unknown_errors, unrecorded_cells
 from gyrovib.api.lots.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
@@ -196,7 +196,8 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
     unit = units.canonical_unit(unit)
     constants = resolve_allocation(study.catalog, method, allocation)
     with float_guard():
-        _, _, alone = profile_bounds(study, method, budget, constants, unit)
+        alone_study, _, alone = profile_bounds(study, method, budget, constants, unit)
+        alone = unknown_bounds(alone_study.profiles, alone)
         prepared = study.prepare(methods=(method,), peak_factor=peak_factor)
         limits_deg, vre_bound_deg = _coefficient_limits(prepared, method, budget, constants)
         parts, total, spec = _errors(study, prepared, method)

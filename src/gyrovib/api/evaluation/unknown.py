@@ -134,3 +134,26 @@ def unknown_cells(prepared: Any, error: Any,
                                     f"without {', '.join(parts)}, and this sensor's error "
                                     "depends on it (docs/model.md section 13)",
                                     *warnings.get((i, j), ()))
+
+
+def unknown_bounds(profiles: Sequence[Any], bounds: Any) -> Any:
+    """``bounds`` (per profile) with NaN where a profile fitted from a recording lacks what
+    a bound depends on: every bound without x3, m31's without x1, m32's without x2, the
+    VRE's without the accelerations (unknown, not 'unbounded')."""
+    import dataclasses
+
+    update: dict[str, Any] = {}
+    for j, p in enumerate(profiles):
+        gone = set(p.profile.not_recorded)
+        if not gone:
+            continue
+        names = [f.name for f in dataclasses.fields(bounds)
+                 if getattr(bounds, f.name) is not None and (
+                     "x3" in gone or (f.name == "m31" and "x1" in gone)
+                     or (f.name == "m32" and "x2" in gone))]
+        if "acceleration" in gone and bounds.vre is not None:
+            names.append("vre")
+        for name in dict.fromkeys(names):
+            array = update.setdefault(name, np.array(getattr(bounds, name), dtype=float))
+            array[j] = np.nan
+    return dataclasses.replace(bounds, **update) if update else bounds
