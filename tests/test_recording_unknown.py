@@ -446,3 +446,21 @@ profiles:
     assert "?" in m31 and "unbounded" not in m31 and "nan" not in table
     rows = invoke("bounds", path, "--budget", "1deg/s", "--format", "csv").stdout.splitlines()
     assert rows[2].startswith("no-x3,0.0,0.0,1.0,,,") and "nan" not in rows[2]
+
+
+def test_sweep_on_a_fitted_profile_reads_unknown_where_an_axis_is_missing(
+        tmp_path: Path) -> None:
+    path = _csv(tmp_path, "gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,-,gz", "-o", out).exit_code == 0
+    args = ("sweep", _catalogue(tmp_path), out, "--rate-range", "0:10:3")
+    series = {s["sensor"]: s for s in json.loads(invoke(*args, "--format", "json").stdout)[
+        "series"]}
+    assert all(v > 0 for v in series["k2-only"]["exact"]["total"])
+    assert series["cross"]["exact"]["total"] == [None, None, None]
+    rows = [r for r in invoke(*args, "--format", "csv").stdout.splitlines()
+            if r.startswith("cross,")]
+    assert len(rows) == 3 and all(",,,," in r and "nan" not in r for r in rows)
+    table = invoke(*args).stdout
+    cross = table[table.index("cross / "):]
+    assert "nan" not in table and cross.count("?") >= 6  # Δ_V and Δ_V(RMS) at 3 rates
