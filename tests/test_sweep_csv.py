@@ -59,7 +59,7 @@ def row_by_row(result: SweepResult) -> str:
                 paper: list[Any] = (["", ""] if refused else
                                     [_cell(float(result.paper.total[i, j, r])),
                                      _cell(float(result.paper.rms[i, j, r]))])
-                writer.writerow([sensor, profile, repr(rate),
+                writer.writerow([sensor, profile, _cell(rate),
                                  _cell(float(result.exact.total[i, j, r])),
                                  _cell(float(result.exact.rms[i, j, r])), *paper,
                                  str(bool(sat[i, j, r]))])
