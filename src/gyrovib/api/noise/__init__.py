@@ -20,13 +20,31 @@ from gyrovib.api.noise.mission import check_coverage, mission, ranked
 from gyrovib.api.noise.results import (
     BUDGET_TERMS,
     FIGURE_UNITS,
+    NOISE_TERMS,
     AllanResult,
     AxisAllan,
     Budget,
     Figure,
+    GaussMarkov,
 )
 from gyrovib.api.noise.yaml import noise_yaml
 
-__all__ = ["BUDGET_TERMS", "FIGURES", "FIGURE_UNITS", "AllanResult", "AxisAllan", "Budget",
-           "Figure", "allan", "budget", "check_coverage", "mission", "noise_angles",
-           "noise_values", "noise_yaml", "ranked"]
+__all__ = [
+    "BUDGET_TERMS",
+    "FIGURES",
+    "FIGURE_UNITS",
+    "NOISE_TERMS",
+    "AllanResult",
+    "AxisAllan",
+    "Budget",
+    "Figure",
+    "GaussMarkov",
+    "allan",
+    "budget",
+    "check_coverage",
+    "mission",
+    "noise_angles",
+    "noise_values",
+    "noise_yaml",
+    "ranked",
+]

@@ -37,9 +37,11 @@ def noise_angles(figures: dict[str, float | None], hours: float) -> dict[str, fl
 
 
 def budget(vibration_deg: float, figures: dict[str, float | None], seconds: float,
-           coverage: float = 1.0, typical: tuple[str, ...] = ()) -> Budget:
-    """The budget of one row: θ_V in deg, the figures in their default units, the
-    mission's duration in s, coverage k (> 0); ``typical``: the figures given as ``typ``."""
+           coverage: float = 1.0, bounds: tuple[str, ...] = (),
+           typical: tuple[str, ...] = ()) -> Budget:
+    """The budget of one row: θ_V in deg, the figures in their default units (a bound's
+    upper value for the figures named in ``bounds``), the mission's duration in s,
+    coverage k (> 0); ``typical``: the figures given as ``typ``."""
     angles = noise_angles(figures, seconds / 3600.0)
     known = [a for a in angles.values() if a is not None]
     rss = math.hypot(*known)  # scaled before squaring: no overflow of a finite RSS
@@ -48,4 +50,5 @@ def budget(vibration_deg: float, figures: dict[str, float | None], seconds: floa
                   bias_instability=angles["bias_instability"], rrw=angles["rrw"],
                   repeatability=angles["repeatability"],
                   total=abs(vibration_deg) + coverage * rss, coverage=coverage,
-                  unknown=unknown, typical=tuple(TERM_OF[n] for n in typical))
+                  unknown=unknown, bounds=tuple(TERM_OF[name] for name in bounds),
+                  typical=tuple(TERM_OF[n] for n in typical))

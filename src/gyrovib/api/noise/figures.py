@@ -9,21 +9,29 @@ from gyrovib.models.noise import WHAT, Noise
 FIGURES = tuple(WHAT)
 
 
-def noise_values(noise: Noise | None) -> dict[str, float | None]:
-    """Each figure in its default unit; None where it is not given (unknown)."""
+def noise_values(noise: Noise | None, axis: str | None = None) -> dict[str, float | None]:
+    """Each figure of ``axis`` (see :meth:`Noise.for_axis`) in its default unit, a bound
+    as its upper value; None where it is not given (unknown)."""
     out: dict[str, float | None] = dict.fromkeys(FIGURES)
     if noise is None:
         return out
-    for name, fig in noise.figures().items():
+    for name, fig in noise.for_axis(axis).items():
         if fig is not None:
-            out[name] = fig.value * units.noise_factor(name, fig.unit)
+            out[name] = fig.upper * units.noise_factor(name, fig.unit)
     return out
 
 
-def typical_figures(noise: Noise | None) -> tuple[str, ...]:
-    """The figures the datasheet gives as typical (``typ``), not guaranteed, in order."""
+def noise_bounds(noise: Noise | None, axis: str | None = None) -> tuple[str, ...]:
+    """The figures of ``axis`` given only as upper bounds."""
     if noise is None:
         return ()
-    given = noise.figures()
-    return tuple(name for name in FIGURES
-                 if (fig := given.get(name)) is not None and fig.qualifier == "typ")
+    return tuple(name for name, fig in noise.for_axis(axis).items()
+                 if fig is not None and fig.is_bound)
+
+
+def typical_figures(noise: Noise | None, axis: str | None = None) -> tuple[str, ...]:
+    """The figures of ``axis`` the datasheet gives as typical (``typ``), not guaranteed."""
+    if noise is None:
+        return ()
+    return tuple(name for name, fig in noise.for_axis(axis).items()
+                 if fig is not None and fig.qualifier == "typ")

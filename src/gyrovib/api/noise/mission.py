@@ -21,7 +21,7 @@ from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.evaluation.unknown import any_missing
 from gyrovib.api.missions.results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import budget
-from gyrovib.api.noise.figures import FIGURES, noise_values, typical_figures
+from gyrovib.api.noise.figures import FIGURES, noise_bounds, noise_values, typical_figures
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.mission import ANGLE_IN_RAD
 from gyrovib.errors import ModelError, OptionError
@@ -47,11 +47,11 @@ def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | No
     """
     k = check_coverage(coverage)
     result = vibration_mission(catalog, angle_budget=angle_budget, **options)
-    figures = {e.sensor.id: noise_values(e.sensor.noise) for e in catalog.sensors}
-    typical = {e.sensor.id: typical_figures(e.sensor.noise) for e in catalog.sensors}
+    noise = {e.sensor.id: e.sensor.noise for e in catalog.sensors}
     per_deg = _DEG_PER[result.angle_unit]
-    rows = [_with_budget(r, figures[r.sensor], per_deg, k, typical[r.sensor])
-            for r in result.rows]
+    rows = [_with_budget(r, noise_values(noise[r.sensor], r.axis), per_deg, k,
+                         noise_bounds(noise[r.sensor], r.axis),
+                         typical_figures(noise[r.sensor], r.axis)) for r in result.rows]
     _refuse_overflow(catalog, rows)
     if result.angle_budget is not None:
         theta = result.angle_budget * per_deg
@@ -60,9 +60,10 @@ def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | No
 
 
 def _with_budget(row: MissionRow, figures: dict[str, float | None], per_deg: float,
-                 coverage: float, typical: tuple[str, ...] = ()) -> MissionRow:
+                 coverage: float, bounds: tuple[str, ...],
+                 typical: tuple[str, ...] = ()) -> MissionRow:
     return replace(row, budget=budget(row.angle * per_deg, figures, row.duration, coverage,
-                                      typical))
+                                      bounds, typical))
 
 
 def _refuse_overflow(catalog: Catalog, rows: Sequence[MissionRow]) -> None:
