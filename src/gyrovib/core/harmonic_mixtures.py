@@ -156,6 +156,78 @@ def _interpolate(c: FloatArray, h: float, reach: float, log: FloatArray) -> Floa
     return out
 
 
+#: Locked groups kept on the midpoint grid of :func:`locked_mixture_excess`; the
+#: further groups are folded into the table of E_Y (:func:`_folded_table`).
+GRID_GROUPS = 2
+#: Most interpolations :func:`_folded_table` may make (about 1 µs each).
+MAX_FOLD_INTERPOLATIONS = 1 << 26
+
+
+def _folded_table(amplitudes: FloatArray, sigma: float,
+                  folded: Sequence[tuple[NDArray[np.int64], ComplexArray, int]]
+                  ) -> tuple[float, float, FloatArray]:
+    """``log E_Y'(c)`` on c = −R, −R + h, …, R for Y' = Y + x3 of the ``folded`` groups
+    (Y the tones and the Gaussian part of :func:`_excess_table`), with h = σ/16 and
+    the reach R = Σa + 40σ + Σ peaks.
+
+    Each group g (its orders, phasors and midpoint nodes m) is independent of Y, so
+    with F(c) = E(c) + |c| = <|c + Y|>, F_{Y+g}(c) = <F_Y(c + g(θ))>_θ: the mean
+    over g's period, a midpoint rule on m nodes (geometric convergence: F_Y is
+    analytic at the scale σ, as in :func:`mixture_nodes`). Where |c| exceeds the
+    group's peak, c + g keeps its sign and E_{Y+g}(c) = <E_Y(c + g)> (no
+    cancellation). A folded group makes E_Y' odd-asymmetric (odd moments), so the
+    table is signed.
+    """
+    peaks = [locked_peak(n, p) for n, p, _ in folded]
+    reach = math.fsum(amplitudes.tolist()) + 40.0 * sigma + math.fsum(peaks)
+    h = sigma / _TABLE_PER_SIGMA
+    half = math.ceil(reach / h) + _STENCIL
+    c = h * np.arange(-half, half + 1)
+    e = rectified_excess(np.abs(c[half:]), amplitudes, sigma)
+    log: FloatArray = np.log(np.maximum(np.concatenate([e[:0:-1], e]), 1e-300))
+    for (n, p, m), peak in zip(folded, peaks, strict=True):
+        theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
+        x3 = _x3_at(n.astype(float), p, theta)[0]
+        new = np.empty(c.size)
+        step = max(1, (1 << 20) // m)
+        for lo in range(0, c.size, step):
+            part = c[lo:lo + step]
+            s = part[:, None] + x3[None, :]
+            e_s = _interpolate_signed(s, h, reach, log)
+            inside = np.mean(e_s + np.abs(s), axis=1) - np.abs(part)
+            new[lo:lo + step] = np.where(np.abs(part) < peak, inside, np.mean(e_s, axis=1))
+        log = np.log(np.maximum(new, 1e-300))
+    return h, reach, log
+
+
+def _interpolate_signed(c: FloatArray, h: float, reach: float, log: FloatArray) -> FloatArray:
+    """E(c) from the signed table of :func:`_folded_table` (Lagrange on 8 points)."""
+    half = (log.size - 1) // 2
+    x = np.asarray(c, dtype=float) / h + half
+    base = np.clip(np.floor(x).astype(np.int64) - (_STENCIL // 2 - 1), 0,
+                   log.size - _STENCIL)
+    t = x - base
+    total = np.zeros_like(x)
+    for j in range(_STENCIL):
+        weight = np.ones_like(x)
+        for k in range(_STENCIL):
+            if k != j:
+                weight *= (t - k) / (j - k)
+        total += weight * log[base + j]
+    with np.errstate(over="ignore", invalid="ignore"):  # (past the reach: unused)
+        out: FloatArray = np.where(np.abs(c) < reach, np.exp(total), 0.0)
+    return out
+
+
+def fold_cost(amplitudes: ArrayLike, sigma: float, peaks: Sequence[float],
+              nodes: Sequence[int]) -> float:
+    """Interpolations :func:`_folded_table` makes: table length × nodes, per folded group."""
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    reach = math.fsum(a[a > 0].tolist()) + 40.0 * sigma + math.fsum(peaks)
+    length = 2.0 * reach * _TABLE_PER_SIGMA / sigma
+    return length * float(sum(nodes))
+
+
 def mixture_nodes(groups: Sequence[LockedGroup], amplitudes: ArrayLike,
                   sigma: float) -> list[int]:
     """Midpoint nodes per group period for :func:`locked_mixture_excess` (σ > 0).
@@ -215,8 +287,13 @@ def _phase_shifts(live: list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]
 
 def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
                           amplitudes: ArrayLike, sigma: float) -> FloatArray:
-    """``E(Ω) = <|Ω + x3(θ1) [+ y3(θ2)] + Y|> − |Ω|``: one or two locked groups, with
+    """``E(Ω) = <|Ω + x3(θ1) [+ y3(θ2) + …] + Y|> − |Ω|``: locked groups, with
     independent tones ``amplitudes`` and a Gaussian part ``sigma`` > 0 in Y.
+
+    The first :data:`GRID_GROUPS` groups are averaged on their midpoint grid as
+    below; any further group is independent of the rest and is folded into the
+    table of E_Y first (:func:`_folded_table`), so that no number of groups
+    multiplies the grid (cost: :func:`fold_cost` more interpolations, once).
 
     The Gaussian part and the tones are integrated first, once: E_Y(c) =
     <|c + Y|> − |c| (:func:`~gyrovib.core.statistics.rectified_excess`) is
@@ -236,16 +313,36 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     a = np.asarray(amplitudes, dtype=float).reshape(-1)
     a = np.sort(a[a > 0])[::-1]
     coefficients = [_x3_coefficients(g) for g in groups]
-    live = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True) if n.size]
-    nodes = mixture_nodes([g for g, _, _ in live], a, sigma)
+    everything = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True)
+                  if n.size]
+    all_nodes = mixture_nodes([g for g, _, _ in everything], a, sigma)
+    live, nodes = everything[:GRID_GROUPS], all_nodes[:GRID_GROUPS]
+    folded = [(n, p, m) for (_, n, p), m in zip(everything[GRID_GROUPS:],
+                                                all_nodes[GRID_GROUPS:], strict=True)]
     peak = sum(locked_peak(n, p) for _, n, p in live)
+    fold_peak = sum(locked_peak(n, p) for n, p, _ in folded)
     # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
-    near = np.abs(flat) < peak + math.fsum(a.tolist()) + 40.0 * sigma
+    near = np.abs(flat) < peak + fold_peak + math.fsum(a.tolist()) + 40.0 * sigma
     _mixture_cost_checked(live, a, sigma, near, nodes)
+    if folded and fold_cost(a, sigma, [locked_peak(n, p) for n, p, _ in folded],
+                            [m for _, _, m in folded]) > MAX_FOLD_INTERPOLATIONS:
+        raise ModelError(
+            reason=f"E(Ω) for {len(everything)} phase-locked groups on a random part of RMS "
+            f"{sigma:.4g} would fold the groups beyond the second into a table of "
+            f"{fold_cost(a, sigma, [fold_peak], [1]):,.0f} values on "
+            f"{' + '.join(str(m) for _, _, m in folded)} nodes, more than the "
+            f"{MAX_FOLD_INTERPOLATIONS:,} interpolations gyrovib allows: the random part is "
+            "narrow against the groups' swing; give the smaller groups' orders as "
+            "independent tones")
     out = np.zeros(flat.size)
     if not near.any():
         return out.reshape(w.shape)
-    h, reach, log = _excess_table(a, sigma)
+    if folded:
+        h, reach, log = _folded_table(a, sigma, folded)
+        interpolate = _interpolate_signed
+    else:
+        h, reach, log = _excess_table(a, sigma)
+        interpolate = _interpolate
     shift = _phase_shifts(live, nodes)
     todo = flat[near]
     done = np.empty(todo.size)
@@ -254,7 +351,7 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
         advance("E(Ω) of locked harmonics", lo, todo.size)
         part = todo[lo:lo + step]
         s = part[:, None] + shift[None, :]
-        e = _interpolate(s, h, reach, log)
+        e = interpolate(s, h, reach, log)
         crossing = np.abs(part) < peak
         inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
         done[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))

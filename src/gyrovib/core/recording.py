@@ -30,6 +30,12 @@ MEDIAN_HALF_WIDTH = 20
 LOBE_HALF_WIDTH = 3
 #: Lines within this fraction of n·f0 are order n of f0 (docs/model.md section 13).
 HARMONIC_TOLERANCE = 0.01
+#: The highest order a fitted harmonics group takes (shafts, engines, rotors: low orders).
+MAX_FITTED_ORDER = 12
+#: Most orders missing between two orders of a fitted group (a consistent series).
+MAX_ORDER_GAP = 3
+#: A line joins order n of f0 only within this fraction of f0 of n·f0.
+ORDER_SPACING = 0.05
 #: At most this many histogram bins of Ω_K3 make the fitted mission.
 MISSION_BINS = 16
 #: The six products a_j·a_k of the g² term, in the order of core.linear.G2_TERMS.
@@ -289,26 +295,40 @@ def find_lines(f: FloatArray, spectra: NDArray[np.complex128], threshold_db: flo
 def harmonic_groups(frequencies: ArrayLike,
                     tolerance: float = HARMONIC_TOLERANCE) -> list[tuple[float, list[int],
                                                                          list[int]]]:
-    """Lines that are integer multiples of a common fundamental (docs/model.md section 13).
+    """Lines that are integer multiples of a common fundamental (docs/model.md section 13),
+    grouped only where the series is plausible.
 
-    Ascending: each line not yet grouped is tried as a fundamental f0; every
-    later ungrouped line within ``tolerance``·f of n·f0 (n ≥ 2, one line per
-    order) joins it. Returns ``(f0, line indices, orders)`` for groups of two
-    lines or more.
+    Ascending: each line not yet grouped is tried as a fundamental f0 (so the
+    fundamental is always a line that was found); a later ungrouped line at f joins
+    it as order n = round(f/f0) when
+
+    * n ≥ 2, not yet taken, and n ≤ :data:`MAX_FITTED_ORDER` (a machine's low orders:
+      a 180 Hz line is no "order 19" of a 9.39 Hz hull mode);
+    * it lies within ``tolerance``·f of n·f0 and within :data:`ORDER_SPACING`·f0 of it
+      (at high orders a relative tolerance spans much of the spacing between orders,
+      and almost any line would be some order of any f0);
+    * the series stays consistent: n is at most :data:`MAX_ORDER_GAP` above the highest
+      order taken so far (orders 1, 2, 3, 5 are a series; 1 and 6 alone are not).
+
+    Returns ``(f0, line indices, orders)`` for groups of two lines or more.
     """
     fr = np.asarray(frequencies, dtype=float)
     used = np.zeros(fr.size, dtype=bool)
     groups = []
-    for i in np.argsort(fr).tolist():
+    ascending = np.argsort(fr).tolist()
+    for i in ascending:
         if used[i]:
             continue
         f0 = fr[i]
         members, orders = [i], [1]
-        for j in np.argsort(fr).tolist():
+        for j in ascending:
             if used[j] or j == i or fr[j] <= f0:
                 continue
             n = round(fr[j] / f0)
-            if n >= 2 and n not in orders and abs(fr[j] - n * f0) <= tolerance * fr[j]:
+            off = abs(fr[j] - n * f0)
+            if (2 <= n <= min(MAX_FITTED_ORDER, max(orders) + MAX_ORDER_GAP)
+                    and n not in orders and off <= tolerance * fr[j]
+                    and off <= ORDER_SPACING * f0):
                 members.append(j)
                 orders.append(n)
         if len(members) > 1:

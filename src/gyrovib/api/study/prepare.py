@@ -266,15 +266,17 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
 
 
 def _too_many_groups(p: ProfileEntry) -> Problem | None:
-    """More phase-locked groups than :data:`~gyrovib.core.harmonics.MAX_GROUPS`."""
+    """More phase-locked groups than :data:`~gyrovib.core.harmonics.MAX_GROUPS` and no
+    random part (with one, the further groups are folded into its table)."""
     groups = p.profile.harmonic_groups
-    if len(groups) <= MAX_GROUPS:
+    if len(groups) <= MAX_GROUPS or p.profile.random is not None:
         return None
     return p.source.problem(
-        f"profile {p.profile.id!r}: {len(groups)} phase-locked groups, more than "
-        f"{MAX_GROUPS}, the most gyrovib averages E(Ω) over (the joint phases of the groups "
-        f"beyond the first take 256^(groups − 1) nodes per rate: 256^{len(groups) - 1} "
-        "here); give the smaller groups' orders as independent tones under 'harmonic'",
+        f"profile {p.profile.id!r}: {len(groups)} phase-locked groups and no random part; "
+        f"without one gyrovib averages E(Ω) over at most {MAX_GROUPS} groups (the joint "
+        f"phases of the groups beyond the first take 256^(groups − 1) nodes per rate: "
+        f"256^{len(groups) - 1} here); give the smaller groups' orders as independent "
+        "tones under 'harmonic', or the profile's random part",
         _harmonics_path(p, MAX_GROUPS, "fundamental"))
 
 
