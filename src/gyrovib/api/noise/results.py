@@ -64,7 +64,9 @@ class Budget(Frozen):
     ``vibration`` θ_V (signed); ``arw`` N√T, ``bias_instability`` B·T, ``rrw``
     K·T^{3/2}/√3, ``repeatability`` R·T, each None where the catalogue does not give the
     figure (unknown, never 0); ``total`` = |θ_V| + k·RSS of the known noise terms, a
-    lower bound when one is unknown (``unknown`` names them); ``coverage`` k.
+    lower bound when one is unknown (``unknown`` names them); ``coverage`` k;
+    ``allowed``: with an angle budget, the largest value of each figure that meets it
+    (:class:`Allowance`).
     """
 
     vibration: float
@@ -76,8 +78,40 @@ class Budget(Frozen):
     coverage: float
     unknown: tuple[str, ...]
     unit: str = "deg"
+    allowed: Allowance | None = None
 
     @property
     def lower_bound(self) -> bool:
         """Whether ``total`` is only a lower bound (a noise figure is unknown)."""
         return bool(self.unknown)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Allowance(Frozen):
+    """The largest value of each budget figure that still meets an angle budget θ*, the
+    others as given (docs/model.md section 15 solved for one figure at a time).
+
+    From total = |θ_V| + k·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) ≤ θ*: ``vibration`` the
+    largest |θ_V| (deg); ``arw`` N (deg/√h), ``bias_instability`` B (deg/h),
+    ``rrw`` K (deg/h/√h), ``repeatability`` R (deg/h). None: no value passes, and
+    ``limited_by`` names, per such figure, the term that alone uses the allowance.
+    ``upper``: the figures whose value is only an upper limit, because another
+    noise figure is unknown (it can only take more of the allowance).
+    """
+
+    vibration: float | None
+    arw: float | None
+    bias_instability: float | None
+    rrw: float | None
+    repeatability: float | None
+    limited_by: tuple[tuple[str, str], ...] = ()
+    upper: tuple[str, ...] = ()
+
+    def limit(self, term: str) -> str | None:
+        """The term that alone uses the allowance where ``term`` has no passing value."""
+        return dict(self.limited_by).get(term)
+
+
+#: Each budget term's figure unit in an :class:`Allowance` (vibration: the angle, deg).
+ALLOWANCE_UNITS = {"vibration": "deg", "arw": "deg/sqrt(h)", "bias_instability": "deg/h",
+                   "rrw": "deg/h/sqrt(h)", "repeatability": "deg/h"}

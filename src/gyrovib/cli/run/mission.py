@@ -18,6 +18,7 @@ from gyrovib.cli.options import (
 from gyrovib.cli.output import write_output
 from gyrovib.errors import OptionError
 from gyrovib.render import mission as render
+from gyrovib.render.mission_answer import answer_line
 from gyrovib.render.report_mission import mission_section as section
 
 
@@ -52,6 +53,9 @@ def _show(result: MissionResult, fmt: str, output: str | None) -> None:
     markdown or junit) to standard output or ``output``."""
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
+    answer = answer_line(result)
+    if answer is not None:  # the answer first, on standard error: the data stay clean
+        say(f"gyrovib: {answer}")
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
