@@ -251,7 +251,7 @@ def _folded_table(amplitudes: FloatArray, sigma: float,
     coef = _BASES.get(key)
     if coef is None:
         e = rectified_excess(np.abs(c[half:]), amplitudes, sigma)
-        coef = _interval_polynomials(
+        coef = _signed_polynomials(
             np.log(np.maximum(np.concatenate([e[:0:-1], e]), 1e-300)))
         _BASES.clear()
         _BASES[key] = coef
@@ -266,8 +266,18 @@ def _folded_table(amplitudes: FloatArray, sigma: float,
             e_s = _interpolate_signed(s, h, reach, coef)
             inside = np.mean(e_s + np.abs(s), axis=1) - np.abs(part)
             new[lo:lo + step] = np.where(np.abs(part) < peak, inside, np.mean(e_s, axis=1))
-        coef = _interval_polynomials(np.log(np.maximum(new, 1e-300)))
+        coef = _signed_polynomials(np.log(np.maximum(new, 1e-300)))
     return h, reach, coef
+
+
+def _signed_polynomials(log: FloatArray) -> FloatArray:
+    """:func:`_interval_polynomials` of a signed table (c = 0 in the middle), each half
+    on its own: E(c) = F(c) − |c| has a kink at c = 0 (F is smooth), so no stencil
+    may straddle it."""
+    half = (log.size - 1) // 2
+    out: FloatArray = np.concatenate([_interval_polynomials(log[:half + 1]),
+                                      _interval_polynomials(log[half:])], axis=1)
+    return out
 
 
 def _cached_fold(amplitudes: FloatArray, sigma: float,
@@ -345,12 +355,13 @@ def mixture_nodes(groups: Sequence[LockedGroup], amplitudes: ArrayLike,
 
 def _mixture_cost_checked(live: list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]],
                           a: FloatArray, sigma: float, near: NDArray[np.bool_],
-                          nodes: list[int]) -> None:
-    """Refuse, before any work, a table of E_Y or a grid larger than gyrovib allows."""
+                          nodes: list[int], count: int) -> None:
+    """Refuse, before any work, a table of E_Y or a grid larger than gyrovib allows
+    (``count``: the profile's groups, on the grid or folded)."""
     total = math.prod(nodes) * int(np.count_nonzero(near))
     if near.any() and table_size(a, sigma) > MAX_SHIFT_TABLE:
         raise ModelError(
-            reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
+            reason=f"E(Ω) for {count} phase-locked group{'s' if count != 1 else ''} "
             f"with {a.size} independent tone{'s' if a.size != 1 else ''} (largest "
             f"{float(a[0]) if a.size else 0.0:.4g}) on a random part of RMS {sigma:.4g} would "
             f"tabulate {table_size(a, sigma):,.0f} values of the tones' excess on the random "
@@ -421,7 +432,7 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     fold_peak = sum(_peak(n, p) for n, p, _ in folded)
     # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
     near = np.abs(flat) < peak + fold_peak + math.fsum(a.tolist()) + 40.0 * sigma
-    _mixture_cost_checked(live, a, sigma, near, nodes)
+    _mixture_cost_checked(live, a, sigma, near, nodes, len(everything))
     if folded and fold_cost(a, sigma, [_peak(n, p) for n, p, _ in folded],
                             [m for _, _, m in folded]) > MAX_FOLD_INTERPOLATIONS:
         raise ModelError(

@@ -15,10 +15,11 @@ from gyrovib.cli.options import (
     parse_placement,
     parse_unit,
 )
-from gyrovib.cli.output import write_output
+from gyrovib.cli.output import write_binary, write_output
 from gyrovib.errors import OptionError
 from gyrovib.render import mission as render
 from gyrovib.render.mission_answer import answer_line
+from gyrovib.render.mission_plot import theta_png
 from gyrovib.render.report_mission import mission_section as section
 
 
@@ -26,7 +27,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
             assume_unknown: str | None, require: str, fmt: str, output: str | None,
-            coverage: float) -> None:
+            coverage: float, plot: str | None = None) -> None:
     """See :func:`gyrovib.cli.mission.mission`."""
 
     if budget is not None and angle_budget is not None:
@@ -44,6 +45,8 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
     _show(result, fmt, output)
+    if plot is not None:
+        write_binary(theta_png(result), plot)
     if not result.requirement_met:
         ctx.exit(1)
 
