@@ -159,3 +159,18 @@ def test_the_vessel_path_runs_from_the_commands(vessel: Path) -> None:
     assert mems["bias_instability"] is None and mems["limited_by"]["bias_instability"] in (
         "rrw", "arw")
     assert (vessel / "theta.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_the_number_of_sensors_never_refuses_a_phase_search() -> None:
+    # the refusal: "3,000 allowed … for 4 sensors"; each sensor's search is the
+    # same size, so a profile one sensor may search, a thousand may too (one by one)
+    from gyrovib.api.study.prepare import cost_problems
+    from gyrovib.catalog.loader import merge, parse_catalog
+
+    orders = "".join(f"      - {{order: {n}, amplitude: [0, 0, 0.1], phase: worst}}\n"
+                     for n in range(1, 7))
+    text = ("gyrovib: 1\nunits: {rate: deg/s}\nprofiles:\n  - id: p\n    rate: [0, 0, 0.5]\n"
+            "    harmonics:\n      fundamental: 30\n      orders:\n" + orders)
+    entries = merge([parse_catalog(text, "<p>")]).profiles
+    assert cost_problems(entries, 1, 1, False) == {}
+    assert cost_problems(entries, 1, 1000, False) == {}
