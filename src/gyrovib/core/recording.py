@@ -378,3 +378,59 @@ def carrier_histogram(carrier3: ArrayLike, bins: int = MISSION_BINS,
     sums = np.bincount(idx, weights=c, minlength=bins)
     keep = counts > 0
     return sums[keep] / counts[keep], counts[keep]
+
+
+def carrier_clusters(carrier: ArrayLike, bins: int = MISSION_BINS, iterations: int = 20,
+                     ) -> tuple[FloatArray, FloatArray]:
+    """The joint carrier Ω_K = (Ω_K1, Ω_K2, Ω_K3) of a recording in at most ``bins``
+    groups: (mean rate (k, 3), sample count (k,)) of the groups that hold samples
+    (docs/model.md section 13's fitted mission, on every axis).
+
+    A histogram of Ω_K3 alone keeps the carrier of one axis; a sensor whose x3 lies on
+    X or Y (a triad) sees Ω_K1 or Ω_K2. Here the samples are split into ``bins``
+    equal-count slices along the carrier's principal direction (deterministic), then
+    moved to their nearest group mean by Lloyd's iterations (k-means), so that each
+    axis's spread is kept where the carrier spends its time. A constant axis stays
+    constant. Distances are taken on each axis divided by its standard deviation, so
+    that a small yaw carrier counts as much as a large roll (each sensor axis reads its
+    own); the group means are in the rates as given.
+    """
+    c = np.asarray(carrier, dtype=float)
+    if c.ndim != 2 or c.shape[1] != 3 or c.shape[0] == 0:
+        raise ValueError("the carrier must be (samples, 3)")
+    mean = c.mean(axis=0)
+    spread = c - mean
+    if not np.any(np.abs(spread) > 1e-9 * max(1.0, float(np.max(np.abs(c))))):
+        return mean[None, :], np.array([float(c.shape[0])])
+    std = spread.std(axis=0)
+    spread = spread / np.where(std > 0, std, 1.0)
+    step = max(1, c.shape[0] // 20_000)  # the centres from a subsample, the counts from all
+    sample = spread[::step]
+    _, _, vt = np.linalg.svd(sample, full_matrices=False)
+    order = np.argsort(sample @ vt[0], kind="stable")
+    k = min(bins, sample.shape[0])
+    centres = np.stack([sample[part].mean(axis=0) for part in np.array_split(order, k)])
+    for _ in range(iterations):
+        label = _nearest(sample, centres)
+        moved = np.stack([sample[label == j].mean(axis=0) if np.any(label == j)
+                          else centres[j] for j in range(k)])
+        if np.allclose(moved, centres, rtol=0.0, atol=1e-12):
+            break
+        centres = moved
+    label = _nearest(spread, centres)
+    counts = np.bincount(label, minlength=k).astype(float)
+    sums = np.stack([np.bincount(label, weights=spread[:, j], minlength=k)
+                     for j in range(3)], axis=1)
+    keep = counts > 0
+    rates: FloatArray = sums[keep] / counts[keep, None] * np.where(std > 0, std, 1.0) + mean
+    return rates, counts[keep]
+
+
+def _nearest(points: FloatArray, centres: FloatArray) -> NDArray[np.intp]:
+    """Index of the nearest centre of each point (squared distance), a chunk at a time."""
+    out = np.empty(points.shape[0], dtype=np.intp)
+    for lo in range(0, points.shape[0], _CHUNK // 16):
+        part = points[lo:lo + _CHUNK // 16]
+        d = np.sum((part[:, None, :] - centres[None, :, :]) ** 2, axis=2)
+        out[lo:lo + part.shape[0]] = np.argmin(d, axis=1)
+    return out
