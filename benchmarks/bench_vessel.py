@@ -43,7 +43,8 @@ STEPS: list[tuple[str, list[str]]] = [
                  "--coverage", "2", "--plot", "theta.png"]),
     ("select --mission", ["select", *FILES, "--mission", "voyage", "--angle-budget", "1deg",
                           "--coverage", "2"]),
-    ("report", ["report", *FILES, "--mission", "voyage", "--angle-budget", "1deg",
+    ("report", ["report", *FILES, "--budget", "0.01", "--mission", "voyage",
+                "--angle-budget", "1deg",
                 "--coverage", "2", "-o", "report.html"]),
 ]
 

@@ -7,8 +7,11 @@ from __future__ import annotations
 from html import escape
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
+from gyrovib.render.mission_answer import allowance_cells, allowance_head, answer_line
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
@@ -105,6 +108,87 @@ def _segments_table(result: MissionResult, row: MissionRow) -> str:
             + "".join(body) + "</tbody></table>")
 
 
+#: Size of a θ(t) chart (px) and its margins.
+_W, _H, _L, _B = 520, 200, 56, 28
+#: Verdict words.
+_WORDS = {None: "no budget", "pass": "passes", "fail": "FAILS", "unverified": "UNVERIFIED"}
+
+
+def theta_chart(result: MissionResult, row: MissionRow) -> str:
+    """θ(t) of one row as inline SVG: the vibration staircase θ_V(t) segment by segment,
+    the ±k·σ(t) noise cone around it (σ(t)² = N²t + B²t² + K²t³/3 + R²t², the row's
+    terms at T scaled by √(t/T), t/T, (t/T)^1.5, t/T) and ±θ*; each segment's point
+    carries a tooltip with its θ values."""
+    b = row.budget
+    if b is None or not row.timeline:
+        return ""
+    span = row.duration
+    t = np.linspace(0.0, span, 200)
+    ends = np.cumsum([s.duration for s in row.segments])
+    vib = np.interp(t, np.concatenate([[0.0], ends]),
+                    [0.0] + [x.vibration for x in row.timeline])
+    x = t / span
+    sigma = np.sqrt(sum((v * x**pw) ** 2 for v, pw in ((b.arw, 0.5), (b.bias_instability, 1.0),
+                                                       (b.rrw, 1.5), (b.repeatability, 1.0))
+                        if v is not None))
+    upper, lower = vib + b.coverage * sigma, vib - b.coverage * sigma
+    top = max(float(np.max(np.abs(np.concatenate([upper, lower])))),
+              result.angle_budget or 0.0, 1e-12) * 1.1
+
+    def px(tt: float, th: float) -> str:
+        return (f"{_L + (_W - _L - 8) * tt / span:.1f},"
+                f"{(_H - _B) / 2 - (_H - _B) / 2 * th / top + 4:.1f}")
+
+    cone = " ".join(px(a, c) for a, c in zip(t, upper, strict=True))
+    cone += " " + " ".join(px(a, c) for a, c in zip(t[::-1], lower[::-1], strict=True))
+    stairs = " ".join(px(a, c) for a, c in zip(t, vib, strict=True))
+    dots = "".join(
+        f'<circle cx="{px(e, s.vibration).split(",")[0]}" cy="{px(e, s.vibration).split(",")[1]}"'
+        f' r="2.5" fill="#d62728"><title>{_e(f"segment {k + 1} ends at {fmt(e / 3600.0)} h: θ_V = {fmt(s.vibration)} deg, ±{fmt(b.coverage)}·σ = ±{fmt(s.total - abs(s.vibration))} deg, total {fmt(s.total)} deg")}</title></circle>'
+        for k, (e, s) in enumerate(zip(ends, row.timeline, strict=True)))
+    limits = ""
+    if result.angle_budget is not None and result.angle_unit == "deg":
+        for sign in (1.0, -1.0):
+            y = px(0.0, sign * result.angle_budget).split(",")[1]
+            limits += (f'<line x1="{_L}" x2="{_W - 8}" y1="{y}" y2="{y}" stroke="#000" '
+                       'stroke-dasharray="4 3"/>')
+    axis = (f'<text x="4" y="12" font-size="10">±{_e(fmt(top / 1.1))} deg</text>'
+            f'<text x="{_W - 90}" y="{_H - 6}" font-size="10">{_e(fmt(span / 3600.0))} h</text>'
+            f'<text x="{_L}" y="{_H - 6}" font-size="10">0 h</text>')
+    title = (f"{row.sensor}{f' (x3 on {row.axis})' if row.axis else ''}: θ(t), total "
+             f"{'≥ ' if b.lower_bound else ''}{fmt(b.total)} deg, {_WORDS[row.status]}")
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{_W}" height="{_H}" role="img">'
+            f"<title>{_e(title)}</title>"
+            f'<polygon points="{cone}" fill="#1f77b4" fill-opacity="0.2"/>'
+            f'<polyline points="{stairs}" fill="none" stroke="#d62728" stroke-width="1.6"/>'
+            f"{limits}{dots}{axis}</svg>")
+
+
+def verdict_table(result: MissionResult, mission: str) -> str:
+    """Every sensor's worst row: its total against the budget as a number and a word,
+    and the largest figure of each kind that would meet the budget."""
+    rows = _shown(result, mission)
+    with_allowance = any(r.budget is not None and r.budget.allowed is not None for r in rows)
+    head = ["sensor", "axis", "|θ_V| (deg)", "total (deg)", "budget", "verdict"]
+    if with_allowance:
+        head += allowance_head()
+    body = []
+    for r in rows:
+        b = r.budget
+        total = "-" if b is None else ("≥ " if b.lower_bound else "") + fmt(b.total)
+        budget = ("-" if result.angle_budget is None else
+                  f"{fmt(result.angle_budget)} {result.angle_unit}")
+        cells = [r.sensor, r.axis or "-", fmt(abs(r.angle)), total, budget, _WORDS[r.status]]
+        if with_allowance:
+            cells += allowance_cells(r)
+        body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
+    return ("<table><caption>Each sensor's total and verdict (a triad: its worst axis); "
+            "the largest value of each figure that meets the budget, the others as given "
+            "(*: an upper limit, another figure being unknown)</caption><thead><tr>"
+            + "".join(f"<th>{_e(h)}</th>" for h in head) + "</tr></thead><tbody>"
+            + "".join(body) + "</tbody></table>")
+
+
 def mission_section(result: MissionResult) -> str:
     """The HTML of the report's mission section."""
     budget = ("no budget" if result.angle_budget is None and result.budget is None else
@@ -117,10 +201,17 @@ def mission_section(result: MissionResult) -> str:
              "accumulated angle θ_V = Σ T_s·Δ_V,s, and per sensor the segments that make "
              "it up (the worst segment highlighted); and the whole angle budget, |θ_V| plus "
              "the noise of each sensor's noise: figures over the mission (section 15).</p>"]
+    answer = answer_line(result)
+    if answer is not None:
+        parts.append(f'<p class="answer"><strong>{_e(answer)}</strong></p>')
     for mission in result.missions:
         parts.append(f'<section class="mission"><h3>{_e(mission)}</h3>')
+        parts.append(verdict_table(result, mission))
         parts.append(f'<div class="charts"><figure>{angle_chart(result, mission)}</figure>'
                      f"<figure>{budget_chart(result, mission)}</figure></div>")
+        parts.append('<div class="charts">' + "".join(
+            f"<figure>{theta_chart(result, r)}</figure>" for r in _shown(result, mission))
+            + "</div>")
         parts.extend(_segments_table(result, r) for r in _shown(result, mission))
         parts.append("</section>")
     return "\n".join(parts)

@@ -100,11 +100,14 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
 
 def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
                     angle_budget: str | None, unit: str, peak_factor: float,
-                    assume_unknown: str = "none", coverage: float = 1.0) -> str:
-    """``report --mission``: the HTML of the mission section."""
+                    assume_unknown: str = "none", coverage: float = 1.0,
+                    placement: str | None = None) -> str:
+    """``report --mission``: the HTML of the mission section (``placement``: replacing
+    each mission's own)."""
 
     result = api.mission(
         catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
-        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage)
+        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage,
+        placement=parse_placement(placement))
     return section(result)
