@@ -25,7 +25,7 @@ from gyrovib.core.recording import harmonic_groups
 from tests.conftest import invoke
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tools"))
-import make_vessel  # noqa: E402
+import make_vessel
 
 
 def test_a_slam_mode_and_an_engine_order_are_no_harmonic_series() -> None:

@@ -391,9 +391,11 @@ def carrier_clusters(carrier: ArrayLike, bins: int = MISSION_BINS, iterations: i
     equal-count slices along the carrier's principal direction (deterministic), then
     moved to their nearest group mean by Lloyd's iterations (k-means), so that each
     axis's spread is kept where the carrier spends its time. A constant axis stays
-    constant. Distances are taken on each axis divided by its standard deviation, so
-    that a small yaw carrier counts as much as a large roll (each sensor axis reads its
-    own); the group means are in the rates as given.
+    constant. Distances are taken on each axis divided by its standard deviation (but
+    by no less than a quarter of the largest axis's), so that a small yaw carrier
+    counts about as much as a large roll (each sensor axis reads its own) while an axis
+    that barely moves does not split the groups; the group means are in the rates as
+    given.
     """
     c = np.asarray(carrier, dtype=float)
     if c.ndim != 2 or c.shape[1] != 3 or c.shape[0] == 0:
@@ -402,8 +404,8 @@ def carrier_clusters(carrier: ArrayLike, bins: int = MISSION_BINS, iterations: i
     spread = c - mean
     if not np.any(np.abs(spread) > 1e-9 * max(1.0, float(np.max(np.abs(c))))):
         return mean[None, :], np.array([float(c.shape[0])])
-    std = spread.std(axis=0)
-    spread = spread / np.where(std > 0, std, 1.0)
+    std = np.maximum(spread.std(axis=0), 0.25 * float(np.max(spread.std(axis=0))))
+    spread = spread / std
     step = max(1, c.shape[0] // 20_000)  # the centres from a subsample, the counts from all
     sample = spread[::step]
     _, _, vt = np.linalg.svd(sample, full_matrices=False)
@@ -422,7 +424,7 @@ def carrier_clusters(carrier: ArrayLike, bins: int = MISSION_BINS, iterations: i
     sums = np.stack([np.bincount(label, weights=spread[:, j], minlength=k)
                      for j in range(3)], axis=1)
     keep = counts > 0
-    rates: FloatArray = sums[keep] / counts[keep, None] * np.where(std > 0, std, 1.0) + mean
+    rates: FloatArray = sums[keep] / counts[keep, None] * std + mean
     return rates, counts[keep]
 
 

@@ -16,6 +16,7 @@ from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
+    from gyrovib.api.noise.results import Budget
 
 PASS_FILL, FAIL_FILL, NO_BUDGET_FILL = "#2ca02c", "#d62728", "#1f77b4"
 #: Unverified (hangs on an unpublished datasheet figure): its own colour, as in select.
@@ -142,10 +143,8 @@ def theta_chart(result: MissionResult, row: MissionRow) -> str:
     cone = " ".join(px(a, c) for a, c in zip(t, upper, strict=True))
     cone += " " + " ".join(px(a, c) for a, c in zip(t[::-1], lower[::-1], strict=True))
     stairs = " ".join(px(a, c) for a, c in zip(t, vib, strict=True))
-    dots = "".join(
-        f'<circle cx="{px(e, s.vibration).split(",")[0]}" cy="{px(e, s.vibration).split(",")[1]}"'
-        f' r="2.5" fill="#d62728"><title>{_e(f"segment {k + 1} ends at {fmt(e / 3600.0)} h: θ_V = {fmt(s.vibration)} deg, ±{fmt(b.coverage)}·σ = ±{fmt(s.total - abs(s.vibration))} deg, total {fmt(s.total)} deg")}</title></circle>'
-        for k, (e, s) in enumerate(zip(ends, row.timeline, strict=True)))
+    dots = "".join(_dot(px(e, s.vibration), _tooltip(k, e, s))
+                   for k, (e, s) in enumerate(zip(ends, row.timeline, strict=True)))
     limits = ""
     if result.angle_budget is not None and result.angle_unit == "deg":
         for sign in (1.0, -1.0):
@@ -162,6 +161,18 @@ def theta_chart(result: MissionResult, row: MissionRow) -> str:
             f'<polygon points="{cone}" fill="#1f77b4" fill-opacity="0.2"/>'
             f'<polyline points="{stairs}" fill="none" stroke="#d62728" stroke-width="1.6"/>'
             f"{limits}{dots}{axis}</svg>")
+
+
+def _dot(at: str, tip: str) -> str:
+    x, y = at.split(",")
+    return f'<circle cx="{x}" cy="{y}" r="2.5" fill="#d62728"><title>{_e(tip)}</title></circle>'
+
+
+def _tooltip(k: int, end: float, b: Budget) -> str:
+    """A segment end's θ values: the staircase, the cone's half-width, the total."""
+    return (f"segment {k + 1} ends at {fmt(end / 3600.0)} h: θ_V = {fmt(b.vibration)} deg, "
+            f"±{fmt(b.coverage)}·σ = ±{fmt(b.total - abs(b.vibration))} deg, total "
+            f"{fmt(b.total)} deg")
 
 
 def verdict_table(result: MissionResult, mission: str) -> str:

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from gyrovib import api, units
 from gyrovib._version import __version__
 from gyrovib.api.commands.analyze import analysis_of
