@@ -391,6 +391,44 @@ def _phase_shifts(live: list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]
     return shift
 
 
+def _split_groups(groups: Sequence[LockedGroup], a: FloatArray, sigma: float
+                  ) -> tuple[list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]],
+                             list[int], list[tuple[NDArray[np.int64], ComplexArray, int]],
+                             int]:
+    """The groups (with a part on x3) kept on the grid and their nodes, the folded ones
+    with theirs, and how many there are: the group of most nodes stays on the grid (it
+    would cost most to fold)."""
+    coefficients = [_x3_coefficients(g) for g in groups]
+    everything = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True)
+                  if n.size]
+    all_nodes = mixture_nodes([g for g, _, _ in everything], a, sigma)
+    order = sorted(range(len(everything)), key=lambda k: -all_nodes[k])
+    live = [everything[k] for k in order[:GRID_GROUPS]]
+    nodes = [all_nodes[k] for k in order[:GRID_GROUPS]]
+    folded = [(everything[k][1], everything[k][2], all_nodes[k])
+              for k in order[GRID_GROUPS:]]
+    return live, nodes, folded, len(everything)
+
+
+def _fold_checked(folded: Sequence[tuple[NDArray[np.int64], ComplexArray, int]],
+                  a: FloatArray, sigma: float, count: int) -> None:
+    """Refuse, before any work, a fold costlier than :data:`MAX_FOLD_INTERPOLATIONS`."""
+    if not folded:
+        return
+    peaks = [_peak(n, p) for n, p, _ in folded]
+    cost = fold_cost(a, sigma, peaks, [m for _, _, m in folded])
+    if cost <= MAX_FOLD_INTERPOLATIONS:
+        return
+    raise ModelError(
+        reason=f"E(Ω) for {count} phase-locked groups on a random part of RMS "
+        f"{sigma:.4g} would fold the groups beyond the first into a table of "
+        f"{fold_cost(a, sigma, [sum(peaks)], [1]):,.0f} values on "
+        f"{' + '.join(str(m) for _, _, m in folded)} nodes, more than the "
+        f"{MAX_FOLD_INTERPOLATIONS:,} interpolations gyrovib allows: the random part is "
+        "narrow against the groups' swing; give the smaller groups' orders as "
+        "independent tones")
+
+
 def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
                           amplitudes: ArrayLike, sigma: float) -> FloatArray:
     """``E(Ω) = <|Ω + x3(θ1) [+ y3(θ2) + …] + Y|> − |Ω|``: locked groups, with
@@ -418,31 +456,13 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     flat = w.ravel()
     a = np.asarray(amplitudes, dtype=float).reshape(-1)
     a = np.sort(a[a > 0])[::-1]
-    coefficients = [_x3_coefficients(g) for g in groups]
-    everything = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True)
-                  if n.size]
-    all_nodes = mixture_nodes([g for g, _, _ in everything], a, sigma)
-    # the group of most nodes stays on the grid (it would cost most to fold)
-    order = sorted(range(len(everything)), key=lambda k: -all_nodes[k])
-    live = [everything[k] for k in order[:GRID_GROUPS]]
-    nodes = [all_nodes[k] for k in order[:GRID_GROUPS]]
-    folded = [(everything[k][1], everything[k][2], all_nodes[k])
-              for k in order[GRID_GROUPS:]]
+    live, nodes, folded, count = _split_groups(groups, a, sigma)
     peak = sum(_peak(n, p) for _, n, p in live)
     fold_peak = sum(_peak(n, p) for n, p, _ in folded)
     # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
     near = np.abs(flat) < peak + fold_peak + math.fsum(a.tolist()) + 40.0 * sigma
-    _mixture_cost_checked(live, a, sigma, near, nodes, len(everything))
-    if folded and fold_cost(a, sigma, [_peak(n, p) for n, p, _ in folded],
-                            [m for _, _, m in folded]) > MAX_FOLD_INTERPOLATIONS:
-        raise ModelError(
-            reason=f"E(Ω) for {len(everything)} phase-locked groups on a random part of RMS "
-            f"{sigma:.4g} would fold the groups beyond the first into a table of "
-            f"{fold_cost(a, sigma, [fold_peak], [1]):,.0f} values on "
-            f"{' + '.join(str(m) for _, _, m in folded)} nodes, more than the "
-            f"{MAX_FOLD_INTERPOLATIONS:,} interpolations gyrovib allows: the random part is "
-            "narrow against the groups' swing; give the smaller groups' orders as "
-            "independent tones")
+    _mixture_cost_checked(live, a, sigma, near, nodes, count)
+    _fold_checked(folded, a, sigma, count)
     out = np.zeros(flat.size)
     if not near.any():
         return out.reshape(w.shape)

@@ -161,7 +161,8 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
 def _allowance_table(result: MissionResult) -> Table:
     """Per row, the largest value of each figure that still meets the angle budget."""
     table = Table(header_style="bold", title="Largest figure that meets the budget, the "
-                  "others as given", title_justify="left")
+                  "others as given (none (X): X alone uses the allowance; *: an upper "
+                  "limit, a figure being unknown)", title_justify="left")
     for name in ("sensor", "axis", *allowance_head()):
         table.add_column(name, no_wrap=True, justify="left" if name in ("sensor", "axis")
                          else "right")

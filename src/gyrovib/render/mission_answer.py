@@ -14,9 +14,8 @@ if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
 
 #: The allowance's terms, their symbol and the word for the term that limits them.
-TERMS = {"vibration": ("|θ_V|", "the vibration angle"), "arw": ("N", "ARW"),
-         "bias_instability": ("B", "bias instability"), "rrw": ("K", "RRW"),
-         "repeatability": ("R", "bias repeatability")}
+TERMS = {"vibration": ("|θ_V|", "θ_V"), "arw": ("N", "ARW"),
+         "bias_instability": ("B", "B"), "rrw": ("K", "RRW"), "repeatability": ("R", "R")}
 #: Each term's figure in the budget (the noise block's name, or the angle itself).
 FIGURE = {"vibration": "vibration", "arw": "arw", "bias_instability": "bias_instability",
           "rrw": "rrw", "repeatability": "repeatability"}
@@ -37,7 +36,7 @@ def allowance_json(row: MissionRow) -> dict[str, Any] | None:
 
 def allowance_cells(row: MissionRow) -> list[str]:
     """One cell per term: '≤ value' (with '*' where it is only an upper limit), or
-    'none: <term> alone uses it'."""
+    'none (<term>)': no value passes, that term alone uses the allowance."""
     if row.budget is None or row.budget.allowed is None:
         return ["-"] * len(TERMS)
     a = row.budget.allowed
@@ -46,7 +45,7 @@ def allowance_cells(row: MissionRow) -> list[str]:
         value = getattr(a, name)
         if value is None:
             limit = a.limit(name) or "vibration"
-            cells.append(f"none: {TERMS[limit][1]} uses it")
+            cells.append(f"none ({TERMS[limit][1]})")
         else:
             cells.append(f"≤ {fmt(value)}" + ("*" if name in a.upper else ""))
     return cells

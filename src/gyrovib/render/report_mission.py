@@ -17,6 +17,7 @@ from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
     from gyrovib.api.noise.results import Budget
+    from gyrovib.core.transmissibility import FloatArray
 
 PASS_FILL, FAIL_FILL, NO_BUDGET_FILL = "#2ca02c", "#d62728", "#1f77b4"
 #: Unverified (hangs on an unpublished datasheet figure): its own colour, as in select.
@@ -124,15 +125,7 @@ def theta_chart(result: MissionResult, row: MissionRow) -> str:
     if b is None or not row.timeline:
         return ""
     span = row.duration
-    t = np.linspace(0.0, span, 200)
-    ends = np.cumsum([s.duration for s in row.segments])
-    vib = np.interp(t, np.concatenate([[0.0], ends]),
-                    [0.0] + [x.vibration for x in row.timeline])
-    x = t / span
-    sigma = np.sqrt(sum((v * x**pw) ** 2 for v, pw in ((b.arw, 0.5), (b.bias_instability, 1.0),
-                                                       (b.rrw, 1.5), (b.repeatability, 1.0))
-                        if v is not None))
-    upper, lower = vib + b.coverage * sigma, vib - b.coverage * sigma
+    t, vib, upper, lower = _cone(row, b, span)
     top = max(float(np.max(np.abs(np.concatenate([upper, lower])))),
               result.angle_budget or 0.0, 1e-12) * 1.1
 
@@ -143,14 +136,11 @@ def theta_chart(result: MissionResult, row: MissionRow) -> str:
     cone = " ".join(px(a, c) for a, c in zip(t, upper, strict=True))
     cone += " " + " ".join(px(a, c) for a, c in zip(t[::-1], lower[::-1], strict=True))
     stairs = " ".join(px(a, c) for a, c in zip(t, vib, strict=True))
+    ends = np.cumsum([s.duration for s in row.segments])
     dots = "".join(_dot(px(e, s.vibration), _tooltip(k, e, s))
                    for k, (e, s) in enumerate(zip(ends, row.timeline, strict=True)))
-    limits = ""
-    if result.angle_budget is not None and result.angle_unit == "deg":
-        for sign in (1.0, -1.0):
-            y = px(0.0, sign * result.angle_budget).split(",")[1]
-            limits += (f'<line x1="{_L}" x2="{_W - 8}" y1="{y}" y2="{y}" stroke="#000" '
-                       'stroke-dasharray="4 3"/>')
+    limits = "" if result.angle_budget is None or result.angle_unit != "deg" else "".join(
+        _hline(px(0.0, sign * result.angle_budget).split(",")[1]) for sign in (1.0, -1.0))
     axis = (f'<text x="4" y="12" font-size="10">±{_e(fmt(top / 1.1))} deg</text>'
             f'<text x="{_W - 90}" y="{_H - 6}" font-size="10">{_e(fmt(span / 3600.0))} h</text>'
             f'<text x="{_L}" y="{_H - 6}" font-size="10">0 h</text>')
@@ -161,6 +151,28 @@ def theta_chart(result: MissionResult, row: MissionRow) -> str:
             f'<polygon points="{cone}" fill="#1f77b4" fill-opacity="0.2"/>'
             f'<polyline points="{stairs}" fill="none" stroke="#d62728" stroke-width="1.6"/>'
             f"{limits}{dots}{axis}</svg>")
+
+
+def _cone(row: MissionRow, b: Budget, span: float
+          ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """t (s), θ_V(t) and the cone's edges θ_V ± k·σ(t) (deg) on 200 points."""
+    t = np.linspace(0.0, span, 200)
+    ends = np.cumsum([s.duration for s in row.segments])
+    vib = np.interp(t, np.concatenate([[0.0], ends]),
+                    [0.0] + [x.vibration for x in row.timeline])
+    x = t / span
+    var = np.zeros(t.size)
+    for v, power in ((b.arw, 0.5), (b.bias_instability, 1.0), (b.rrw, 1.5),
+                     (b.repeatability, 1.0)):
+        if v is not None:
+            var += (v * x**power) ** 2
+    half = b.coverage * np.sqrt(var)
+    return t, vib, vib + half, vib - half
+
+
+def _hline(y: str) -> str:
+    return (f'<line x1="{_L}" x2="{_W - 8}" y1="{y}" y2="{y}" stroke="#000" '
+            'stroke-dasharray="4 3"/>')
 
 
 def _dot(at: str, tip: str) -> str:

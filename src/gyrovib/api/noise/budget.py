@@ -64,20 +64,14 @@ def allowance(b: Budget, theta_deg: float, seconds: float) -> Allowance:
     """
     hours = seconds / 3600.0
     k = b.coverage
-    noise = {name: getattr(b, name) for name in _POWER}
-    known = {name: v for name, v in noise.items() if v is not None}
+    known = {name: getattr(b, name) for name in _POWER if getattr(b, name) is not None}
     values: dict[str, float | None] = {}
     limits: list[tuple[str, str]] = []
     room = (theta_deg - abs(b.vibration)) / k
-    for name, (power, factor) in _POWER.items():
-        rest = {n: v for n, v in known.items() if n != name}
-        left = room * room - sum(v * v for v in rest.values()) if room > 0 else -1.0
-        if left > 0:
-            values[name] = math.sqrt(left) / (hours ** power * factor)
-        else:
-            values[name] = None
-            limits.append((name, "vibration" if room <= 0 else
-                           max(rest, key=lambda n: rest[n])))
+    for name in _POWER:
+        values[name], limit = _noise_allowance(name, room, known, hours)
+        if limit is not None:
+            limits.append((name, limit))
     rss = math.sqrt(sum(v * v for v in known.values()))
     vib = theta_deg - k * rss
     values["vibration"] = vib if vib > 0 else None
@@ -89,6 +83,20 @@ def allowance(b: Budget, theta_deg: float, seconds: float) -> Allowance:
                      bias_instability=values["bias_instability"], rrw=values["rrw"],
                      repeatability=values["repeatability"], limited_by=tuple(limits),
                      upper=upper)
+
+
+def _noise_allowance(name: str, room: float, known: dict[str, float], hours: float
+                     ) -> tuple[float | None, str | None]:
+    """Noise term ``name``'s largest figure within the noise allowance ``room`` (deg, 1σ),
+    the other known terms as they are; or None and the term that alone uses it."""
+    power, factor = _POWER[name]
+    rest = {n: v for n, v in known.items() if n != name}
+    if room <= 0:
+        return None, "vibration"
+    left = room * room - sum(v * v for v in rest.values())
+    if left <= 0:
+        return None, max(rest, key=lambda n: rest[n])
+    return math.sqrt(left) / (hours ** power * factor), None
 
 
 def timeline(vibration_deg: list[float], durations: list[float],
