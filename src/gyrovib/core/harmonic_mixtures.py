@@ -334,18 +334,20 @@ def fold_cost(amplitudes: ArrayLike, sigma: float, peaks: Sequence[float],
 
 
 def mixture_nodes(groups: Sequence[LockedGroup], amplitudes: ArrayLike,
-                  sigma: float) -> list[int]:
+                  sigma: float, swing: float | None = None) -> list[int]:
     """Midpoint nodes per group period for :func:`locked_mixture_excess` (σ > 0).
 
     The integrand is analytic at the scale σ, so the midpoint rule converges
     geometrically once each group has ``1.25·n_max·(8·peak/σ + (swing +
     peak)·peak/σ²) + 64`` nodes (the kernel's width against the group's swing,
     and the curvature of its Gaussian tail; the rule of the single group of
-    :func:`locked_rectified_excess`), capped at 2^14.
+    :func:`locked_rectified_excess`), capped at 2^14. ``swing``: an upper bound to use
+    instead of the sum of the peaks and the tones (more nodes, never fewer).
     """
     a = np.asarray(amplitudes, dtype=float).reshape(-1)
     peaks = [_peak(*_x3_coefficients(g)) for g in groups]
-    swing = sum(peaks) + float(np.sum(a[a > 0]))
+    if swing is None:
+        swing = sum(peaks) + float(np.sum(a[a > 0]))
     out = []
     for g, peak in zip(groups, peaks, strict=True):
         need = 1.25 * g.n_max * (8.0 * peak / sigma + (swing + peak) * peak / sigma**2) + 64
@@ -405,7 +407,12 @@ def _split_groups(groups: Sequence[LockedGroup], a: FloatArray, sigma: float
     order = sorted(range(len(everything)), key=lambda k: -all_nodes[k])
     live = [everything[k] for k in order[:GRID_GROUPS]]
     nodes = [all_nodes[k] for k in order[:GRID_GROUPS]]
-    folded = [(everything[k][1], everything[k][2], all_nodes[k])
+    # a folded group's nodes from a swing that does not move with the other groups'
+    # phases (Σ|a_n| bounds each peak): its table is then reused while a phase
+    # search moves only the other groups
+    bound = sum(float(np.sum(np.abs(p))) for _, _, p in everything) + float(np.sum(a))
+    folded = [(everything[k][1], everything[k][2],
+               mixture_nodes([everything[k][0]], a, sigma, swing=bound)[0])
               for k in order[GRID_GROUPS:]]
     return live, nodes, folded, len(everything)
 
