@@ -184,8 +184,9 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
     assert {"sensor", "recorded", "fitted", "ratio", "saturated", "peak_rate"} <= set(row)
     assert {"total", "additive_terms", "g2"} == set(row["recorded"])
     assert {"total", "rms"} == set(row["fitted"])
-    assert set(doc["recording"]) == {"file", "sha256", "samples", "fs", "crossover",
-                                     "segments", "duration", "axes"}
+    assert set(doc["recording"]) == {"file", "topic", "instance", "sha256", "samples", "fs",
+                                     "crossover", "segments", "duration", "axes"}
+    assert doc["recording"]["topic"] is None and doc["recording"]["instance"] is None
     assert set(doc["recording"]["axes"]["X"]) == {"variance", "held", "skewness",
                                                   "excess_kurtosis", "shape_db", "off_3db"}
     import hashlib

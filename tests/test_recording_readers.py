@@ -4,14 +4,14 @@ block-wise zero-phase filter gives scipy's numbers."""
 
 from __future__ import annotations
 
-import itertools
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from tests.conftest import invoke
-from tests.test_recording import SENSOR, ULOG, _eq2
+from tests.recording_oracle import recorded_error
+from tests.test_recording import SENSOR, ULOG
 
 scipy_signal = pytest.importorskip("scipy.signal")
 
@@ -40,30 +40,7 @@ def test_ulog_recorded_error_is_float64_from_the_raw_samples(tmp_path: Path) -> 
     g = np.column_stack([data[f"accelerometer_m_s2[{j}]"].astype(np.float64)
                          for j in range(3)]) / 9.80665
     t = data["timestamp"].astype(np.float64) * 1e-6
-    dt = np.diff(t)
-    edges = [0, *(np.flatnonzero(dt > 1.5 * np.median(dt)) + 1).tolist(), t.size]
-    fs = 1.0 / np.median(dt)
-    c = {"k0": 0.3, "k1": 1.02, "A1": 2.0e-2, "k2": 8.0e-4, "k3": -6.4e-5, "k4": 1.28e-5,
-         "k5": -7.8e-7, "m1": 1.0e-2, "m2": -2.0e-2, "m31": 4.0e-3, "m32": -3.0e-3}
-    gk = [0.01, 0.02, 0.03, 0.004, 0.005, 0.006]
-    pairs = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
-    sos = scipy_signal.butter(4, fc, fs=fs, output="sos")
-    total, count = 0.0, 0
-    for lo, hi in itertools.pairwise(edges):
-        if (hi - lo) / fs < 4.0 / fc or hi - lo <= 15:
-            continue
-        ws, gs = w[lo:hi], g[lo:hi]
-        ks = scipy_signal.sosfiltfilt(sos, ws, axis=0)
-        big = scipy_signal.sosfiltfilt(sos, gs, axis=0)
-        x = ws - ks
-        per = (_eq2(c, ws) - _eq2(c, ks) - c["k1"] * x[:, 2] - c["m1"] * x[:, 0]
-               - c["m2"] * x[:, 1])
-        per += sum(gj * (gs[:, j] * gs[:, k] - big[:, j] * big[:, k])
-                   for gj, (j, k) in zip(gk, pairs, strict=True))
-        total += float(per.sum())
-        count += hi - lo
-    assert count > 0
-    assert result.recorded[0] == pytest.approx(total / count, rel=1e-9)
+    assert result.recorded[0] == pytest.approx(recorded_error(w, g, t, fc), rel=1e-9)
 
 
 @pytest.mark.parametrize("dtype", ["<f4", ">f8", "<i2"])

@@ -11,11 +11,24 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 
 def reader_options(f: F) -> F:
-    """How a recording is read (INTERFACE.md, third round): its columns, units, topic and
-    sample rate; shared by ``profile``, ``analyze --recording`` and ``allan``."""
+    """How a recording is read (INTERFACE.md, third and fifth rounds): its columns, units,
+    topic, instance, preset and sample rate, and whether damage is refused; shared by
+    ``profile``, ``analyze --recording``, ``report --recording`` and ``allan``."""
     options = [
+        click.option("--strict", is_flag=True,
+                     help="Refuse (exit status 2) a recording that is only warned about "
+                          "otherwise: a log cut short, with corrupt data or with clipped "
+                          "samples."),
+        click.option("--preset", type=click.Choice(["betaflight"]), default=None,
+                     help="A CSV written by another tool: betaflight (blackbox_decode's "
+                          "time (us), gyroADC[0..2] in deg/s, accSmooth[0..2])."),
+        click.option("--instance", type=click.IntRange(min=0), default=None, metavar="N",
+                     help="Which instance of the topic or message (a log with several "
+                          "gyros); default: the only one."),
         click.option("--topic", metavar="NAME",
-                     help="ULog topic (default sensor_combined)."),
+                     help="ULog topic (default sensor_combined; sensor_gyro, "
+                          "sensor_gyro_fifo) or DataFlash message (IMU, the default, or "
+                          "batch)."),
         click.option("--accel-unit", metavar="UNIT",
                      help="Unit of the accelerations: g or m/s^2 (default g; ULog m/s^2)."),
         click.option("--rate-unit", metavar="UNIT",
@@ -37,9 +50,6 @@ def reader_options(f: F) -> F:
 def recording_options(f: F) -> F:
     """The recording input and fit options of INTERFACE.md (third round)."""
     options = [
-        click.option("--strict", is_flag=True,
-                     help="Refuse (exit status 2) a recording that is only warned about "
-                          "otherwise: a ULog cut short or with corrupt data."),
         click.option("--id", "profile_id", metavar="NAME",
                      help="Id of the fitted profile (default: the file's name + -fitted)."),
         click.option("--independent-tones", is_flag=True,

@@ -37,7 +37,8 @@ def to_json(result: AllanResult) -> str:
             entry[name] = _figure(fig) | {"tau_read": number(fig.tau)}
         axes.append(entry)
     doc = header("allan", result.axes[0].unit if result.axes else "deg/h")
-    doc |= {"recording": {"file": os.path.basename(result.file), "sha256": result.sha256,
+    doc |= {"recording": {"file": os.path.basename(result.file), "topic": result.topic,
+                          "instance": result.instance, "sha256": result.sha256,
                           "samples": result.samples, "fs": result.fs,
                           "segments": result.segments},
             "axes": axes}
@@ -48,7 +49,8 @@ def _summary(result: AllanResult) -> str:
     used = f"{result.samples} samples at {result.fs:.6g} Hz ({result.samples / result.fs:.6g} s)"
     if result.segments > 1:
         used += f", the longest of {result.segments} contiguous segments"
-    return f"recording {os.path.basename(result.file)}: {used}"
+    source = "" if result.source is None else f" ({result.source})"
+    return f"recording {os.path.basename(result.file)}{source}: {used}"
 
 
 def _legend() -> str:

@@ -50,7 +50,8 @@ def shape_text(h: AxisHonesty) -> str:
 def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
     """The ``"recording"`` object of the JSON; variances in (output unit)²."""
     return {
-        "file": os.path.basename(fit.file), "sha256": fit.sha256, "samples": fit.samples,
+        "file": os.path.basename(fit.file), "topic": fit.topic, "instance": fit.instance,
+        "sha256": fit.sha256, "samples": fit.samples,
         "fs": fit.fs, "crossover": fit.crossover, "segments": fit.segments,
         "duration": fit.duration,
         "axes": {a: {"variance": _num(h.variance / scale**2), "held": _num(h.held),
@@ -60,9 +61,16 @@ def recording_info(fit: RecordingFit, scale: float = 1.0) -> dict[str, Any]:
     }
 
 
+def _named(fit: RecordingFit) -> str:
+    """The file's name, and the topic and instance read from a log: ``a.ulg
+    (sensor_gyro_fifo instance 1)``."""
+    base = os.path.basename(fit.file)
+    return base if fit.source is None else f"{base} ({fit.source})"
+
+
 def honesty_table(fit: RecordingFit) -> str:
     """The honesty of the fit (docs/model.md section 13), one row per axis, as plain text."""
-    lines = [f"recording {os.path.basename(fit.file)}: {fit.samples} samples, "
+    lines = [f"recording {_named(fit)}: {fit.samples} samples, "
              f"fs {fit.fs:.6g} Hz, f_c {fit.crossover:g} Hz, {fit.segments} segment(s), "
              f"{fit.duration:.6g} s analysed",
              f"{'axis':<5} {'variance (deg/s)²':>18} {'held':>8} {'skewness':>9} "
@@ -154,7 +162,7 @@ def to_table(result: RecordingAnalysis) -> str:
 def to_markdown(result: RecordingAnalysis) -> str:
     """``analyze --recording --format markdown``."""
     out = [f"Recorded error Δ_V,rec and the fitted mission's closed form ({result.unit}), "
-           f"recording `{os.path.basename(result.fit.file)}`", "",
+           f"recording `{_named(result.fit)}`", "",
            "| " + " | ".join(_HEAD) + " |", "|" + "---|" * len(_HEAD)]
     out += ["| " + " | ".join(r) + " |" for r in _table_rows(result)]
     for i, messages in sorted(result.warnings.items()):
@@ -200,7 +208,7 @@ def plot_fit(fit: RecordingFit, path: str) -> None:
     axes[-1].set_xlabel("frequency, Hz")
     worst = max((h.shape_db for h in fit.honesty if not math.isnan(h.shape_db)), default=None)
     shape = "" if worst is None else f", worst shape {worst:.2f} dB"
-    fig.suptitle(f"{os.path.basename(fit.file)}: measured and fitted (f_c {fit.crossover:g} Hz"
+    fig.suptitle(f"{_named(fit)}: measured and fitted (f_c {fit.crossover:g} Hz"
                  f"{shape})")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
@@ -254,7 +262,7 @@ def report_section(result: RecordingAnalysis) -> str:
     figures = "".join(f"<figure>{c}</figure>" for c in charts)
     return (
         '<section class="recording" id="recording"><h2>Recording</h2>'
-        f"<p class=\"sub\">{escape(os.path.basename(fit.file))}, SHA-256 "
+        f"<p class=\"sub\">{escape(_named(fit))}, SHA-256 "
         f"<code>{fit.sha256}</code>: {fit.samples} samples at {fit.fs:.6g} Hz, crossover "
         f"f_c = {fit.crossover:g} Hz, {fit.segments} segment(s), {fit.duration:.6g} s "
         f"analysed. Its fitted profile <code>{escape(fit.profile_id)}</code> is among the "

@@ -188,7 +188,8 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         angular=angular, linear=linear,
         honesty=honesty,  # type: ignore[arg-type]
         rate_axes=recording.rate_axes, warnings=tuple(warnings), yaml="", peak=peak,
-        moments=moments, g2_moments=g2_moments)
+        moments=moments, g2_moments=g2_moments, topic=recording.topic,
+        instance=recording.instance)
 
     text = profile_yaml(fit, independent_tones=independent_tones)
     try:  # what is written must validate: an --id the format refuses is said here
@@ -356,6 +357,7 @@ class RecordingAnalysis(Frozen):
         frame = pd.DataFrame(data)
         fit = self.fit
         frame.attrs.update({"unit": self.unit, "file": os.path.basename(fit.file),
+                            "topic": fit.topic, "instance": fit.instance,
                             "sha256": fit.sha256, "samples": fit.samples, "fs": fit.fs,
                             "crossover": fit.crossover, "segments": fit.segments,
                             "duration": fit.duration})

@@ -54,6 +54,8 @@ class RecordingOptions(Frozen):
     profile_id: str | None = None
     responses: tuple[Table, ...] = ()
     strict: bool = False
+    instance: int | None = None
+    preset: str | None = None
 
 
 #: The options' defaults (those of ``gyrovib profile``).
@@ -67,7 +69,8 @@ def profile_one(path: str, options: RecordingOptions = DEFAULTS) -> RecordingFit
     recording = read_recording(
         path, fs=options.fs, rate_columns=options.rate_columns,
         accel_columns=options.accel_columns, rate_unit=options.rate_unit,
-        accel_unit=options.accel_unit, topic=options.topic, strict=options.strict)
+        accel_unit=options.accel_unit, topic=options.topic, strict=options.strict,
+        instance=options.instance, preset=options.preset)
     return fit_recording(
         recording, crossover=options.crossover, resolution=options.resolution,
         tone_threshold=options.tone_threshold, breakpoints=options.breakpoints,

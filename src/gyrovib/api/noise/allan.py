@@ -66,4 +66,6 @@ def allan(recording: Recording, unit: str = "deg/h",
     axes = tuple(allan_axis(name, recording.rate[lo:hi, k], recording.fs, unit, per_decade)
                  for k, name in enumerate(AXES) if recording.rate_axes[k])
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
-                       samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes)
+                       samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes,
+                       topic=recording.topic, instance=recording.instance,
+                       warnings=recording.warnings)

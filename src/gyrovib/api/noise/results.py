@@ -47,7 +47,9 @@ class AxisAllan(Frozen):
 @dataclass(frozen=True, eq=False, repr=False)
 class AllanResult(Frozen):
     """Every recorded axis of a static recording: ``samples`` used (the longest
-    contiguous segment, ``segments`` found), ``fs`` Hz, provenance ``file``, ``sha256``."""
+    contiguous segment, ``segments`` found), ``fs`` Hz, provenance ``file``, ``sha256``,
+    and for a log the ``topic`` and ``instance`` read; ``warnings``: the reader's (the
+    damage of a log, what its library printed)."""
 
     file: str
     sha256: str
@@ -55,6 +57,16 @@ class AllanResult(Frozen):
     samples: int
     segments: int
     axes: tuple[AxisAllan, ...]
+    topic: str | None = None
+    instance: int | None = None
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def source(self) -> str | None:
+        """``sensor_gyro instance 1``: the topic and instance read, or None."""
+        if self.topic is None:
+            return None
+        return self.topic if self.instance is None else f"{self.topic} instance {self.instance}"
 
 
 @dataclass(frozen=True, eq=False, repr=False)

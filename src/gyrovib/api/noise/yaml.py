@@ -15,7 +15,8 @@ def noise_yaml(result: AllanResult) -> str:
     """One ``noise:`` block per axis, each its own YAML document (``---`` between them),
     with commented provenance and each figure's uncertainty as a comment: in the
     default units, ready to indent under a sensor."""
-    lines = [f"# from gyrovib allan {os.path.basename(result.file)} "
+    source = "" if result.source is None else f", {result.source}"
+    lines = [f"# from gyrovib allan {os.path.basename(result.file)}{source} "
              f"(sha256 {result.sha256[:16]}…, {result.samples} samples at {result.fs:.6g} Hz)",
              "# one document per recorded axis: keep the sensor's own, indent it under the",
              "# sensor; ± values are standard uncertainties of the reads (docs/error-budget.md)"]

@@ -3,8 +3,13 @@
 =====================  =========================================================
 module                 what it holds
 =====================  =========================================================
-``readers``            one reader per format (CSV, ``.npy``/``.npz``, PX4 ULog)
-                       behind one interface, chosen by suffix; samples in float64
+``readers``            the reader interface and the plain formats (CSV,
+                       ``.npy``/``.npz``); samples in float64
+``px4``                PX4 ULog: topics, instances, the raw FIFO, damage
+``dataflash``          ArduPilot DataFlash: IMU and the batch sampler, damage
+``betaflight``         the CSV of Betaflight's blackbox_decode (a preset)
+``registry``           the readers by suffix, else by the file's first bytes
+``quiet``              what a log library prints, kept off standard output
 ``reading``            ``read_recording``: columns, units, gaps -> a ``Recording``
 ``passes``             the pass over the segments (the split into carrier and
                        vibration a column at a time, the sums of Δ_V,rec)

@@ -3,7 +3,8 @@
 A reader opens a file as a :class:`Columns` table: named columns, which
 one is the time, how many rows, and :meth:`Columns.load`, which gives the
 chosen columns as a :class:`Store` of float64 samples in deg/s and g. The
-formats are registered by suffix in :data:`READERS`:
+formats are registered by suffix in :data:`gyrovib.api.recordings.registry.READERS`;
+this module holds the interface and the plain formats:
 
 * CSV (``.csv``, ``.txt``): streamed a block of lines at a time into
   preallocated arrays (its lines are counted first);
@@ -12,8 +13,10 @@ formats are registered by suffix in :data:`READERS`:
   the samples are read a block of rows at a time from the file when the
   analysis asks for them (:class:`NpyStore`), so a recording larger than
   memory costs the columns being worked on, not the array;
-* NumPy ``.npz`` and PX4 ULog (``.ulg``, pyulog): the arrays the library
-  gives, copied into float64 arrays.
+* NumPy ``.npz``: its arrays copied into float64 arrays (:class:`ArrayColumns`, which
+  the log readers use too: PX4 ULog in :mod:`~gyrovib.api.recordings.px4`, ArduPilot
+  DataFlash in :mod:`~gyrovib.api.recordings.dataflash`, Betaflight's CSV in
+  :mod:`~gyrovib.api.recordings.betaflight`).
 
 Every sample is promoted to float64 before any arithmetic (a float32 ULog
 gyro, an int16 ADC column): scaling to deg/s or g happens in float64.
@@ -24,10 +27,8 @@ applies, the column or the sample (exit status 2).
 
 from __future__ import annotations
 
-import io
 import itertools
-import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Protocol
 
 import numpy as np
@@ -161,13 +162,19 @@ class Columns:
     """A recording file as a table of named columns (the reader interface).
 
     Subclasses give ``rows`` and ``fill`` (or replace ``load``); ``warnings``
-    are what the reader noticed about the file without refusing it.
+    are the damage the reader noticed in the file without refusing it (a log cut
+    short, corrupt data, clipped samples: refused under ``strict``).
     """
 
     names: list[str]
     path: str
     time_scale: float = 1.0
     warnings: tuple[str, ...] = ()
+    #: What a log library printed while reading (warnings, never damage in themselves).
+    notes: tuple[str, ...] = ()
+    #: The topic or message read and its instance, where the format has them.
+    topic: str | None = None
+    instance: int | None = None
 
     def time_index(self) -> int | None:
         """The time column, or None."""
@@ -233,7 +240,7 @@ class Columns:
 # ----------------------------------------------------------------- CSV
 
 
-def open_csv(path: str, topic: str | None = None) -> Columns:
+def open_csv(path: str, topic: str | None = None, instance: int | None = None) -> Columns:
     """A CSV with a header row."""
     try:
         with open(path, encoding="utf-8-sig", newline="") as fh:
@@ -347,11 +354,14 @@ class ArrayColumns(Columns):
         return super().time_index()
 
     def rows(self) -> int:
-        return int(self.columns[0].shape[0]) if self.columns else 0
+        if not hasattr(self, "count"):  # counted once: fill lets the columns go as it copies
+            self.count = int(self.columns[0].shape[0]) if self.columns else 0
+        return self.count
 
     def fill(self, targets: list[tuple[int, FloatArray, int, float]],
              time: FloatArray | None, time_col: int | None) -> int:
         n = self.rows()
+        uses = {c: sum(1 for t in targets if t[0] == c) for c, *_ in targets}
         for c, array, axis, scale in targets:
             col = _numeric(self.path, self.names[c], self.columns[c])
             promote(col, scale, array[:n, axis])
@@ -359,6 +369,9 @@ class ArrayColumns(Columns):
             if bad.size:
                 raise problem(self.path, f"column {self.names[c]!r}, sample {int(bad[0])}: "
                                          "not a finite number")
+            uses[c] -= 1
+            if uses[c] == 0 and c != time_col:  # copied: the original can go now
+                self.columns[c] = np.empty(0, col.dtype)
         if time is not None and time_col is not None:
             column = self.columns[time_col]
             if not np.issubdtype(column.dtype, np.number):
@@ -382,7 +395,7 @@ def _numpy_error(path: str, kind: str, exc: Exception) -> RecordingError:
     return problem(path, f"cannot read as NumPy {kind}: {exc}")
 
 
-def open_npy(path: str, topic: str | None = None) -> Columns:
+def open_npy(path: str, topic: str | None = None, instance: int | None = None) -> Columns:
     """A 2-D .npy: its header only (the samples stay in the file)."""
     try:
         arr = np.load(path, mmap_mode="r", allow_pickle=False)
@@ -439,7 +452,7 @@ class NpyColumns(Columns):
                 first[c] = lo + int(bad[0])
 
 
-def open_npz(path: str, topic: str | None = None) -> Columns:
+def open_npz(path: str, topic: str | None = None, instance: int | None = None) -> Columns:
     """An .npz: one 2-D array, or 1-D arrays of one length named as columns."""
     try:
         with np.load(path, allow_pickle=False) as z:
@@ -457,105 +470,5 @@ def open_npz(path: str, topic: str | None = None) -> Columns:
     return ArrayColumns(path, keys, cols)
 
 
-# ----------------------------------------------------------------- PX4 ULog
-
-#: ULog's default topic and its fields (rad/s, m/s², timestamps in µs).
-ULOG_TOPIC = "sensor_combined"
-ULOG_RATE = ("gyro_rad[0]", "gyro_rad[1]", "gyro_rad[2]")
-ULOG_ACCEL = ("accelerometer_m_s2[0]", "accelerometer_m_s2[1]", "accelerometer_m_s2[2]")
-
-
-class _Watched(io.BufferedReader):
-    """A file that remembers the first read that found fewer bytes than asked
-    (pyulog stops there without a word): ``(asked, got, position)``."""
-
-    short: tuple[int, int, int] | None = None
-
-    def read(self, size: int | None = -1, /) -> bytes:
-        data = super().read(size)
-        if size is not None and size > 0 and len(data) < size and self.short is None:
-            self.short = (size, len(data), self.tell())
-        return data
-
-
-def open_ulog(path: str, topic: str | None = None) -> Columns:
-    """A PX4 ULog's topic (pyulog), with a warning when the file is cut or corrupt."""
-    try:
-        # lazy: pyulog is optional (gyrovib[ulog])
-        from pyulog import ULog
-    except ImportError:
-        raise problem(path, "reading PX4 ULog needs pyulog: pip install 'gyrovib[ulog]'") \
-            from None
-    topic = topic or ULOG_TOPIC
-    fh = _Watched(io.FileIO(path, "rb"))
-    try:
-        log = ULog(fh, [topic])
-    except Exception as exc:  # pyulog raises many kinds on a damaged file
-        raise problem(path, f"cannot read as PX4 ULog: {type(exc).__name__}: {exc}") \
-            from None
-    finally:
-        fh.close()
-    found = [d for d in log.data_list if d.name == topic]
-    if not found:
-        raise problem(path, f"no topic {topic!r} in this log (choose one with --topic)")
-    data = max(found, key=lambda d: len(d.data["timestamp"])).data
-    names = ["timestamp", *[k for k in data if k != "timestamp"]]
-    warnings = _ulog_damage(path, topic, fh.short, bool(log.file_corruption),
-                            data["timestamp"])
-    return UlogColumns(path, names, [data[k] for k in names], time_scale=1e-6,
-                       warnings=warnings)
-
-
-def _ulog_damage(path: str, topic: str, short: tuple[int, int, int] | None, corrupt: bool,
-                 stamps: NDArray[np.generic]) -> tuple[str, ...]:
-    """The warnings of a cut (the last message incomplete) or corrupt log."""
-    seconds = (float(stamps[-1]) - float(stamps[0])) * 1e-6 if len(stamps) > 1 else 0.0
-    read = f"{len(stamps)} samples = {seconds:.6g} s of {topic} read"
-    out = []
-    if short is not None and (short[1] > 0 or short[0] != 3):
-        out.append(f"the log looks cut short: it ends inside a message after "
-                   f"{os.path.getsize(path)} bytes; {read}, and the flight may have run longer")
-    if corrupt:
-        out.append(f"pyulog found corrupt data in the log and skipped it; {read}")
-    return tuple(out)
-
-
-class UlogColumns(ArrayColumns):
-    """A ULog topic: its default columns are sensor_combined's, or x, y, z of a sensor_gyro."""
-
-    def default_columns(self, rate: Sequence[str | int | None] | None,
-                        accel: Sequence[str | int | None] | None,
-                        ) -> tuple[Sequence[str | int | None], Sequence[str | int | None] | None]:
-        if rate is None:
-            plain = ("x", "y", "z")
-            rate = (plain if all(c in self.names for c in plain)
-                    and ULOG_RATE[0] not in self.names else ULOG_RATE)
-        if accel is None and all(c in self.names for c in ULOG_ACCEL):
-            accel = ULOG_ACCEL
-        return rate, accel
-
-
-# ----------------------------------------------------------------- the registry
-
-Opener = Callable[[str, "str | None"], Columns]
-
-#: The readers by suffix (lower case), and whether a suffix's units default to ULog's.
-READERS: dict[str, tuple[str, Opener]] = {
-    ".csv": ("csv", open_csv), ".txt": ("csv", open_csv),
-    ".npy": ("npy", open_npy), ".npz": ("npz", open_npz),
-    ".ulg": ("ulog", open_ulog),
-}
-
-
-def reader_for(path: str) -> tuple[str, Opener]:
-    """The format of a file by its suffix, and its reader."""
-    lower = path.lower()
-    for suffix, reader in READERS.items():
-        if lower.endswith(suffix):
-            return reader
-    raise problem(path, "unknown recording format: use .csv (header row), .npy, .npz "
-                        "or .ulg (PX4 ULog)")
-
-
-__all__ = ["READERS", "ArrayStore", "Columns", "NpyStore", "RecordingError", "Store",
-           "reader_for"]
+__all__ = ["ArrayColumns", "ArrayStore", "Columns", "NpyStore", "RecordingError", "Store",
+           "open_csv", "open_npy", "open_npz", "problem"]

@@ -22,19 +22,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.recordings.betaflight import PRESETS, open_betaflight
+from gyrovib.api.recordings.px4 import ULOG_ACCEL, ULOG_RATE, ULOG_TOPIC
 from gyrovib.api.recordings.readers import (
     TIME_NAMES,
-    ULOG_ACCEL,
-    ULOG_RATE,
-    ULOG_TOPIC,
     Axes,
     Columns,
-    Opener,
     RecordingError,
     Store,
     problem,
-    reader_for,
 )
+from gyrovib.api.recordings.registry import LOGS, Opener, reader_for
+from gyrovib.api.recordings.results import source_words
 from gyrovib.core.recording import gap_segments
 from gyrovib.core.transmissibility import FloatArray
 from gyrovib.errors import OptionError
@@ -55,8 +54,10 @@ class Recording(Frozen):
     arrays, ``store.block``/``store.column`` a stretch at a time. ``fs`` in
     Hz; ``segments`` (S, 2) start/stop sample indices of the contiguous
     segments (gaps split them); ``time_given``: the file had timestamps.
-    ``file``, ``sha256``: provenance. ``warnings``: what the reader noticed
-    about the file without refusing it (a ULog cut short).
+    ``file``, ``sha256``: provenance; ``topic`` and ``instance``: the topic or message
+    read and which of its instances, for a log that has them (None otherwise).
+    ``warnings``: what the reader noticed about the file without refusing it (damage:
+    a log cut short, corrupt data, clipped samples; and what a log library printed).
     """
 
     file: str
@@ -68,6 +69,14 @@ class Recording(Frozen):
     time_given: bool
     store: Store = field(compare=False, repr=False)
     warnings: tuple[str, ...] = ()
+    topic: str | None = None
+    instance: int | None = None
+
+    @property
+    def source(self) -> str | None:
+        """The topic and instance read, in words (``sensor_gyro_fifo instance 1``), or
+        None for a format without topics."""
+        return source_words(self.topic, self.instance)
 
     @property
     def samples(self) -> int:
@@ -115,16 +124,21 @@ def read_recording(path: str, *, fs: float | None = None,
                    rate_columns: Sequence[str | int | None] | None = None,
                    accel_columns: Sequence[str | int | None] | None = None,
                    rate_unit: str | None = None, accel_unit: str | None = None,
-                   topic: str | None = None, strict: bool = False) -> Recording:
+                   topic: str | None = None, strict: bool = False,
+                   instance: int | None = None, preset: str | None = None) -> Recording:
     """Read a recording (see the module docstring); units default to deg/s and g,
-    and for ULog to the topic's own (rad/s, m/s²). ``strict``: a file the reader
-    would warn about (a ULog cut short or corrupt) is refused instead."""
-    kind, opener = _format(path, fs, topic)
-    ulog = kind == "ulog"
-    scales = {"rate": units.scale(units.canonical_unit(rate_unit or ("rad/s" if ulog
+    and for a PX4 or ArduPilot log to its own (rad/s, m/s²). ``topic`` and
+    ``instance``: which topic (ULog) or message (DataFlash) and which of its
+    instances; ``preset``: a CSV written by another tool (``betaflight``).
+    ``strict``: a file whose damage the reader would warn about (a log cut short,
+    corrupt data, clipped samples) is refused instead."""
+    kind, opener = _format(path, fs, topic, instance, preset)
+    log = kind in LOGS
+    scales = {"rate": units.scale(units.canonical_unit(rate_unit or ("rad/s" if log
                                                                      else "deg/s"))),
-              "accel": units.acceleration(accel_unit or ("m/s^2" if ulog else "g"))}
-    reader = opener(path, topic)
+              "accel": units.acceleration(accel_unit or ("m/s^2" if log else "g"))}
+    reader = (open_betaflight(path, accel_unit is not None) if preset is not None
+              else opener(path, topic, instance))
     if strict and reader.warnings:
         raise problem(path, f"{reader.warnings[0]} (refused under --strict)")
     axes = _axes(reader, rate_columns, accel_columns)
@@ -133,15 +147,18 @@ def read_recording(path: str, *, fs: float | None = None,
         raise problem(path, f"{n} sample(s): a recording needs at least two")
     store, time = reader.load(axes, scales, n)
     rate_fs, segments = _timing(path, time, fs, reader.time_scale, store.rows)
+    base = os.path.basename(path)
     return Recording(
         file=path, sha256=file_sha256(path), fs=rate_fs,
         rate_axes=_recorded(axes["rate"]), accel_axes=_recorded(axes["accel"]),
         segments=segments, time_given=time is not None, store=store,
-        warnings=tuple(f"{os.path.basename(path)}: {w} (--strict refuses such a file)"
-                       for w in reader.warnings))
+        warnings=tuple(f"{base}: {w} (--strict refuses such a file)" for w in reader.warnings)
+        + tuple(f"{base}: {note}" for note in reader.notes),
+        topic=reader.topic, instance=reader.instance)
 
 
-def _format(path: str, fs: float | None, topic: str | None) -> tuple[str, Opener]:
+def _format(path: str, fs: float | None, topic: str | None, instance: int | None,
+            preset: str | None) -> tuple[str, Opener]:
     """The checks before a file is opened, and its format's reader."""
     if fs is not None and not (np.isfinite(fs) and fs > 0):
         raise OptionError(f"--fs {fs:g}: give a positive sample rate in Hz")
@@ -149,9 +166,18 @@ def _format(path: str, fs: float | None, topic: str | None) -> tuple[str, Opener
         raise problem(path, "no such file")
     if os.path.isdir(path):
         raise problem(path, "is a directory, not a recording")
+    if instance is not None and instance < 0:
+        raise OptionError(f"--instance {instance}: give an instance number, 0 or more")
     kind, opener = reader_for(path)
-    if topic is not None and kind != "ulog":
-        raise OptionError("--topic applies only to a ULog (.ulg) recording")
+    if preset is not None and (preset not in PRESETS or kind != "csv"):
+        raise OptionError(f"--preset {preset}: the presets are {', '.join(PRESETS)}, "
+                          "for a CSV recording")
+    if topic is not None and kind not in LOGS:
+        raise OptionError("--topic applies only to a PX4 ULog (.ulg) or an ArduPilot "
+                          "DataFlash (.bin) recording")
+    if instance is not None and kind not in LOGS:
+        raise OptionError("--instance applies only to a PX4 ULog (.ulg) or an ArduPilot "
+                          "DataFlash (.bin) recording")
     return kind, opener
 
 

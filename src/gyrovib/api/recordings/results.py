@@ -80,7 +80,9 @@ class RecordingFit(Frozen):
 
     ``mission_rates`` (bins, 3) and ``mission_durations`` (bins,) s: the
     histogram of Ω_K3 (each bin's mean Ω_K3, the time means of Ω_K1, Ω_K2);
-    ``yaml``: the catalogue text (profile ``profile_id``) with provenance.
+    ``yaml``: the catalogue text (profile ``profile_id``) with provenance;
+    ``topic``, ``instance``: the topic or message and which of its instances was read
+    from a log, None for a format without them (``source`` says both in words).
     """
 
     file: str
@@ -103,3 +105,17 @@ class RecordingFit(Frozen):
     peak: FloatArray = field(default_factory=lambda: np.zeros(0))
     moments: dict[Any, FloatArray] = field(default_factory=dict)
     g2_moments: FloatArray | None = None
+    topic: str | None = None
+    instance: int | None = None
+
+    @property
+    def source(self) -> str | None:
+        """``IMU instance 1``: the topic and instance read, or None."""
+        return source_words(self.topic, self.instance)
+
+
+def source_words(topic: str | None, instance: int | None) -> str | None:
+    """A log's topic and instance in words (``sensor_gyro_fifo instance 0``), or None."""
+    if topic is None:
+        return None
+    return topic if instance is None else f"{topic} instance {instance}"

@@ -97,6 +97,7 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
     lines = [
         "# Fitted by `gyrovib profile` from a recording (docs/model.md section 13).",
         f"# file: {base}",
+        *([f"# source: {fit.source}"] if fit.source is not None else []),
         f"# sha256: {fit.sha256}",
         f"# samples: {fit.samples}; fs: {_num(fit.fs)} Hz; crossover f_c: {_num(fit.crossover)}"
         f" Hz; segments: {fit.segments}; duration analysed: {_num(fit.duration)} s",

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import click
+
 from gyrovib.api.noise import allan as run
 from gyrovib.api.noise import noise_yaml
 from gyrovib.cli.common import page_width, plain_ascii, use_color
@@ -17,6 +19,8 @@ def allan(recording: str, unit: str, per_decade: int, plot: str | None, output: 
     """See :func:`gyrovib.cli.allan.allan`."""
 
     result = run(read(recording, options), unit=unit, per_decade=per_decade)
+    for warning in result.warnings:  # a log's damage, said as profile says it
+        click.echo(f"gyrovib: warning: {warning}", err=True)
     if plot is not None:
         write_binary(render.plot(result), plot)
     if output is not None:

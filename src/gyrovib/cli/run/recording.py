@@ -28,6 +28,7 @@ def step_options(options: dict[str, Any]) -> Any:
         accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
         rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
         topic=options["topic"], strict=options.get("strict", False),
+        instance=options.get("instance"), preset=options.get("preset"),
         **fit_options(options))
 
 
@@ -39,7 +40,8 @@ def read(path: str, options: dict[str, Any]) -> Any:
         rate_columns=parse_columns(options["rate_columns"], "--rate-columns"),
         accel_columns=parse_columns(options["accel_columns"], "--accel-columns"),
         rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
-        topic=options["topic"], strict=options.get("strict", False))
+        topic=options["topic"], strict=options.get("strict", False),
+        instance=options.get("instance"), preset=options.get("preset"))
 
 
 def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, ...], unit: str,
