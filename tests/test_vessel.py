@@ -174,3 +174,28 @@ def test_the_number_of_sensors_never_refuses_a_phase_search() -> None:
     entries = merge([parse_catalog(text, "<p>")]).profiles
     assert cost_problems(entries, 1, 1, False) == {}
     assert cost_problems(entries, 1, 1000, False) == {}
+
+
+def test_the_report_states_each_total_verdict_and_theta_of_t(tmp_path: Path) -> None:
+    # a small coefficient catalogue (no phase search): the report's mission section opens
+    # with the answer, states each total and verdict in words, draws θ(t) with its cone,
+    # lists the noise figures with their qualifiers ('?' where not given), and takes
+    # --placement like mission
+    from tests.test_noise_budget import CATALOGUE
+
+    path = tmp_path / "c.yaml"
+    path.write_text(CATALOGUE, encoding="utf-8")
+    out = tmp_path / "r.html"
+    run = invoke("report", path, "--budget", "1", "--mission", "two-hours", "--angle-budget",
+                 "3deg", "--coverage", "2", "--placement", "triad", "-o", out)
+    assert run.exit_code == 0, run.stderr
+    html = out.read_text(encoding="utf-8")
+    assert "answer:" in html
+    assert "passes" in html or "FAILS" in html or "UNVERIFIED" in html
+    assert "θ(t)" in html and "<polygon" in html  # the cone
+    assert "0.5 °/h typ" in html  # the unit and qualifier as the catalogue writes them
+    assert "<td>silent</td><td>?</td>" in html  # not given: unknown, never 0
+    # the triad placement was applied: the tone is on vehicle Z, the worst axis
+    assert "x3 on Z" in html
+    # every segment end is a point with its θ values as a tooltip
+    assert html.count("segment 2 ends at 2 h") >= 1

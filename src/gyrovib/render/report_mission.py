@@ -5,7 +5,7 @@ segments that make it up."""
 from __future__ import annotations
 
 from html import escape
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -212,7 +212,35 @@ def verdict_table(result: MissionResult, mission: str) -> str:
             + "".join(body) + "</tbody></table>")
 
 
-def mission_section(result: MissionResult) -> str:
+#: The noise figures of a ``noise:`` block, and their heading.
+_FIGURES = (("arw", "N: angle random walk"), ("bias_instability", "B: bias instability"),
+            ("rrw", "K: rate random walk"), ("bias_repeatability", "R: bias repeatability"))
+
+
+def noise_table(noise: dict[str, dict[str, Any]]) -> str:
+    """Each sensor's noise figures as its catalogue writes them — value, unit and the
+    datasheet's qualifier (typ, max) — and '?' where a figure is not given (unknown,
+    never 0). ``noise``: sensor → figure name → an object with ``value``, ``unit``,
+    ``qualifier`` (or None)."""
+    if not noise:
+        return ""
+    body = []
+    for sensor, figures in noise.items():
+        cells = [sensor]
+        for name, _ in _FIGURES:
+            fig = figures.get(name)
+            cells.append("?" if fig is None else
+                         f"{fmt(fig.value)} {fig.unit}"
+                         + (f" {fig.qualifier}" if getattr(fig, "qualifier", None) else ""))
+        body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
+    return ("<table><caption>The noise figures of the budget, as the catalogue gives them "
+            "(typ: typical, max: guaranteed; ?: not given, unknown)</caption><thead><tr>"
+            + "".join(f"<th>{_e(h)}</th>" for h in ("sensor", *(t for _, t in _FIGURES)))
+            + "</tr></thead><tbody>" + "".join(body) + "</tbody></table>")
+
+
+def mission_section(result: MissionResult,
+                    noise: dict[str, dict[str, Any]] | None = None) -> str:
     """The HTML of the report's mission section."""
     budget = ("no budget" if result.angle_budget is None and result.budget is None else
               f"angle budget |θ_V| ≤ {fmt(result.angle_budget)} {result.angle_unit}"
@@ -227,6 +255,7 @@ def mission_section(result: MissionResult) -> str:
     answer = answer_line(result)
     if answer is not None:
         parts.append(f'<p class="answer"><strong>{_e(answer)}</strong></p>')
+    parts.append(noise_table(noise or {}))
     for mission in result.missions:
         parts.append(f'<section class="mission"><h3>{_e(mission)}</h3>')
         parts.append(verdict_table(result, mission))

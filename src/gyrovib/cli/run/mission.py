@@ -110,4 +110,6 @@ def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[s
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage,
         placement=parse_placement(placement))
-    return section(result)
+    noise = {e.sensor.id: ({} if e.sensor.noise is None else e.sensor.noise.figures())
+             for e in catalog.sensors if e.sensor.id in result.sensors}  # type: ignore[attr-defined]
+    return section(result, noise)
