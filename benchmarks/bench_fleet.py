@@ -2,8 +2,10 @@
 
 Run on demand (it is not part of the test suite)::
 
-    python benchmarks/bench_fleet.py                    # 100 logs of 10 min at 250 Hz, --jobs 2
-    python benchmarks/bench_fleet.py --logs 10 --jobs 1 2
+    python benchmarks/bench_fleet.py                  # 100 logs of 10 min at 250 Hz,
+                                                      # --jobs 1 and 2, three pairs
+    python benchmarks/bench_fleet.py --logs 10 --jobs 1 2 --repeat 5
+    python benchmarks/bench_fleet.py --folder /tmp/logs   # write the logs once, keep them
 
 THE DATA ARE SYNTHETIC, made here with a seeded numpy Generator: each log is
 10 minutes at 250 Hz of angular rate on three axes (150,000 samples × 3, a
@@ -14,12 +16,22 @@ slowly varying carrier Ω_K3. No real flight is involved.
 
 Each run is the command line itself, in a fresh process: ``gyrovib profile
 LOG... --fs 250 --jobs N -o envelope.yaml``; the wall-clock time includes the
-interpreter's and the workers' start-up. Reported with it: the 1-minute load
-average before and after (the machine may be shared), the largest resident set
-of the command and of any of its workers (``ru_maxrss`` of the reaped
-children), with ``--jobs 1`` the command's CPU time (the work itself: on a
-quiet machine ``--jobs N`` takes about it divided by N, plus the workers'
-start-up), and whether every ``--jobs`` wrote the same bytes.
+interpreter's and the workers' start-up. The ``--jobs`` values run one after
+the other, ``--repeat`` times (interleaved, so a change of the machine's load
+hits every value alike); the minimum of each is what counts on a shared machine.
+Reported per run: wall-clock and CPU time (user + system, of the command itself
+and of its workers: they are its children, reaped before it exits), CPU / wall,
+the 1-minute load average before and after, the largest resident set of any
+process so far; then whether every run wrote the same bytes, and per ``--jobs``
+the minimum wall time and its ratio to the first value's (the targets: ``--jobs
+2`` at most 0.6 × the wall time of ``--jobs 1``, and ``--jobs 1``'s CPU time at
+most 1.1 × its wall time).
+
+On a machine shared with other work the wall times say little (with the
+kernel's autogroup scheduling, every session gets its share of the cores
+whatever its number of processes), so the wall time on idle cores is also
+inferred from the CPU times: the command's own (its start, the envelope: serial,
+the command waits while its workers fit) plus the workers' divided by ``--jobs``.
 """
 
 from __future__ import annotations
@@ -66,46 +78,113 @@ def make_logs(folder: str, count: int, minutes: float, seed: int = 2026) -> list
     return paths
 
 
-def run(paths: list[str], jobs: int, out: str) -> tuple[float, bytes]:
-    command = [sys.executable, "-m", "gyrovib", "profile", *paths, "--fs", str(FS),
+#: The command line, run through a launcher that writes, as it exits, the CPU time of
+#: the command itself and of its reaped children (the --jobs workers) to $BENCH_CPU.
+LAUNCHER = "\n".join([
+    "import atexit, os, resource, sys",
+    "def cpu():",
+    "    own = resource.getrusage(resource.RUSAGE_SELF)",
+    "    kids = resource.getrusage(resource.RUSAGE_CHILDREN)",
+    "    with open(os.environ['BENCH_CPU'], 'w') as fh:",
+    "        fh.write(f'{own.ru_utime + own.ru_stime} {kids.ru_utime + kids.ru_stime}')",
+    "atexit.register(cpu)",
+    "sys.argv = ['gyrovib', *sys.argv[1:]]",
+    "from gyrovib.cli import main",
+    "main()",
+])
+
+
+def run(paths: list[str], jobs: int, out: str) -> tuple[float, float, float, bytes]:
+    """One run of the command line: its wall-clock time, the CPU time of the command
+    itself and of its workers, and the bytes it wrote."""
+    command = [sys.executable, "-c", LAUNCHER, "profile", *paths, "--fs", str(FS),
                "--jobs", str(jobs), "-o", out]
+    report = out + ".cpu"
     start = time.perf_counter()
-    done = subprocess.run(command, capture_output=True, check=False)
+    done = subprocess.run(command, capture_output=True, check=False,
+                          env={**os.environ, "BENCH_CPU": report})
     elapsed = time.perf_counter() - start
     if done.returncode != 0:
         sys.exit(done.stderr.decode())
+    with open(report) as fh:
+        own, workers = (float(x) for x in fh.read().split())
     with open(out, "rb") as fh:
-        return elapsed, fh.read()
+        return elapsed, own, workers, fh.read()
+
+
+def logs_in(folder: str, count: int, minutes: float) -> list[str]:
+    """The logs of ``folder`` if it holds these (by name and size), else written there."""
+    n = int(minutes * 60 * FS)
+    paths = [os.path.join(folder, f"log-{k:03d}.npy") for k in range(count)]
+    if all(os.path.exists(p) and os.path.getsize(p) == 128 + 24 * n for p in paths):
+        print(f"{count} synthetic logs of {minutes:g} min at {FS:g} Hz found in {folder}")
+        return paths
+    t0 = time.perf_counter()
+    paths = make_logs(folder, count, minutes)
+    print(f"{count} synthetic logs of {minutes:g} min at {FS:g} Hz written in "
+          f"{time.perf_counter() - t0:.1f} s")
+    return paths
+
+
+Times = dict[int, list[tuple[float, float, float]]]
+
+
+def measure(paths: list[str], jobs_values: list[int], repeat: int, folder: str) -> Times:
+    """``repeat`` rounds of every ``--jobs``: per run (wall, command CPU, workers' CPU)."""
+    times: Times = {j: [] for j in jobs_values}
+    outputs = set()
+    for round_ in range(repeat):
+        for jobs in jobs_values:
+            before = os.getloadavg()[0]
+            seconds, own, workers, text = run(paths, jobs,
+                                              os.path.join(folder, f"envelope-{jobs}.yaml"))
+            after = os.getloadavg()[0]
+            peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+            times[jobs].append((seconds, own, workers))
+            outputs.add(hashlib.sha256(text).hexdigest())
+            cpu = own + workers
+            print(f"run {round_ + 1}, --jobs {jobs}: {seconds:6.2f} s wall, {cpu:6.2f} s CPU "
+                  f"(command {own:.2f} s, workers {workers:.2f} s; CPU/wall "
+                  f"{cpu / seconds:.2f}); load average {before:.1f} before, {after:.1f} "
+                  f"after; largest process so far {peak:.0f} MB", flush=True)
+    print("same output for every run:", len(outputs) == 1)
+    return times
+
+
+def summary(times: Times, jobs_values: list[int]) -> None:
+    """The minima, their ratios to the first ``--jobs``, and the wall time the CPU times
+    imply on idle cores: the command's own CPU (its start, the envelope: serial) plus
+    the workers' shared out over ``--jobs`` cores."""
+    first = jobs_values[0]
+    wall_first = min(w for w, _, _ in times[first])
+    idle_first = min(own + workers / first for _, own, workers in times[first])
+    for jobs in jobs_values:
+        fastest = min(times[jobs])
+        wall = fastest[0]
+        cpu = min(own + workers for _, own, workers in times[jobs])
+        idle = min(own + workers / jobs for _, own, workers in times[jobs])
+        print(f"--jobs {jobs}: min wall {wall:.2f} s ({wall / wall_first:.2f} x --jobs "
+              f"{first}); CPU/wall of that run {(fastest[1] + fastest[2]) / wall:.2f}; "
+              f"min CPU {cpu:.2f} s; on idle cores (from the CPU times) "
+              f"{idle:.2f} s ({idle / idle_first:.2f} x --jobs {first})")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
     parser.add_argument("--logs", type=int, default=100)
     parser.add_argument("--minutes", type=float, default=10.0)
-    parser.add_argument("--jobs", type=int, nargs="+", default=[2])
+    parser.add_argument("--jobs", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--folder", help="where the logs are kept (default: a temporary "
+                        "folder, removed afterwards)")
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as folder:
-        t0 = time.perf_counter()
-        paths = make_logs(folder, args.logs, args.minutes)
-        print(f"{args.logs} synthetic logs of {args.minutes:g} min at {FS:g} Hz written in "
-              f"{time.perf_counter() - t0:.1f} s ({os.cpu_count()} CPUs)")
-        outputs = set()
-        for jobs in args.jobs:
-            before = os.getloadavg()[0]
-            used = resource.getrusage(resource.RUSAGE_CHILDREN)
-            seconds, text = run(paths, jobs, os.path.join(folder, f"envelope-{jobs}.yaml"))
-            after = os.getloadavg()[0]
-            usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-            cpu = usage.ru_utime + usage.ru_stime - used.ru_utime - used.ru_stime
-            outputs.add(hashlib.sha256(text).hexdigest())
-            # workers forked by the forkserver are its children, not the command's: their
-            # CPU time is not reaped here, so it is shown for --jobs 1 only
-            shown = f"{cpu:.1f} s CPU, " if jobs == 1 else ""
-            print(f"--jobs {jobs}: {seconds:.1f} s wall, {shown}"
-                  f"{seconds / args.logs:.2f} s per log; load average {before:.1f} before, "
-                  f"{after:.1f} after; largest process so far {usage.ru_maxrss / 1024:.0f} MB")
-        if len(args.jobs) > 1:
-            print("same output for every --jobs:", len(outputs) == 1)
+    print(f"{os.cpu_count()} CPUs; load average {os.getloadavg()[0]:.1f}")
+    with tempfile.TemporaryDirectory() as scratch:
+        folder = args.folder or scratch
+        os.makedirs(folder, exist_ok=True)
+        paths = logs_in(folder, args.logs, args.minutes)
+        times = measure(paths, args.jobs, args.repeat, scratch)
+    summary(times, args.jobs)
 
 
 if __name__ == "__main__":

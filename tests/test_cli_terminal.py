@@ -95,11 +95,61 @@ def test_ctrl_c_during_start_up_imports_exits_130_without_traceback(tmp_path: Pa
 def test_sigterm_or_hangup_during_start_up_imports_exits_in_one_line(
         tmp_path: Path, sig: int, code: int, word: str) -> None:
     # sent as soon as main() starts importing the command line: before the command's
-    # own handlers exist, the default action would kill the process (exit -15 / -1)
-    status, err = _interrupt(["analyze"], sig, 0.0, tmp_path)
+    # own handlers exist, the default action would kill the process (exit -15 / -1).
+    # The command runs for minutes, so on a loaded machine, wherever the signal lands
+    # (the imports, the hand-over of the handlers, the command), it finds the run going
+    status, err = _interrupt(LONG, sig, 0.0, tmp_path)
     assert status == code, err
     assert "Traceback" not in err
     assert err.strip() == f"gyrovib: {word}"
+
+
+#: The console script with ``signal.signal`` wrapped: right after the N-th change of
+#: the handler of signal S (other than to ignore it), the process sends itself S.
+#: Deterministic: every hand-over from the default action to the command's own handler
+#: is hit, not just those a timed signal happens to land in.
+_AT_HANDLER_CHANGE = "\n".join([
+    "import os, signal, sys",
+    "target, nth = int(sys.argv[1]), int(sys.argv[2])",
+    "real, seen = signal.signal, [0]",
+    "def changed(signum, handler):",
+    "    previous = real(signum, handler)",
+    "    if signum == target and handler is not signal.SIG_IGN:",
+    "        seen[0] += 1",
+    "        if seen[0] == nth:",
+    "            os.kill(os.getpid(), target)",
+    "    return previous",
+    "signal.signal = changed",
+    "try:",
+    "    from gyrovib.cli import main",
+    "    sys.argv = ['gyrovib', 'analyze', '--format', 'json']",
+    "    main()",
+    "finally:",
+    "    if seen[0] < nth:",
+    "        sys.stderr.write('no such change\\n')",
+])
+
+
+@pytest.mark.parametrize(("sig", "code", "word"), [(signal.SIGINT, 130, "interrupted"),
+                                                  (signal.SIGTERM, 143, "terminated"),
+                                                  (signal.SIGHUP, 129, "hung up")])
+def test_a_signal_at_every_change_of_its_handler_exits_in_one_line(
+        tmp_path: Path, sig: int, code: int, word: str) -> None:
+    # the console script's start-up handler, then the command's: a signal right after
+    # either is answered in one line with its status, never by the default action
+    changes = 0
+    for nth in range(1, 10):
+        done = subprocess.run([sys.executable, "-c", _AT_HANDLER_CHANGE, str(int(sig)),
+                               str(nth)], capture_output=True, text=True, cwd=tmp_path,
+                              env=clean_env(), timeout=120, check=False)
+        if "no such change" in done.stderr:
+            assert done.returncode == 0, done.stderr
+            break
+        changes += 1
+        assert done.returncode == code, (nth, done.returncode, done.stderr)
+        assert done.stderr.strip() == f"gyrovib: {word}", nth
+        assert done.stdout == ""
+    assert changes >= 2  # the start-up handler and the command's at least
 
 
 def test_sigterm_exits_143_and_leaves_no_temporary_file(tmp_path: Path) -> None:

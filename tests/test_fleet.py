@@ -6,6 +6,7 @@ from __future__ import annotations
 import functools
 import json
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -201,11 +202,16 @@ def test_the_envelope_on_dask(logs: list[Path]) -> None:
         fit_envelope,
         profile_recordings,
     )
+    from gyrovib.api.fleet.pool import one_thread
     from gyrovib.api.fleet.run import RecordingOptions
+
+    def one_log(path: str, options: RecordingOptions) -> Any:  # the recipe's, one thread
+        with one_thread():
+            return envelope_step(path, options)
 
     options = RecordingOptions(fs=FS)
     paths = [str(p) for p in logs]
-    part = bag.from_sequence(paths, npartitions=2).map(envelope_step, options).fold(
+    part = bag.from_sequence(paths, npartitions=2).map(one_log, options).fold(
         combine).compute(scheduler="synchronous")
     assert fit_envelope(part, options).fit.yaml == profile_recordings(paths, options).fit.yaml
 

@@ -84,3 +84,21 @@ class ModelError(GyrovibError):
 
 class RangeError(GyrovibError):
     """A result or an intermediate value overflows floating point (absurd magnitudes)."""
+
+
+class Crash(Exception):
+    """Not a user error: an unexpected exception (a bug) or a worker process that died
+    while one file was handled, carried with that file's name.
+
+    ``kind`` is the original exception's type name (or what happened to the worker),
+    ``detail`` its message. The command line reports it as an internal error naming
+    ``file`` (``FILE: internal error: kind: detail``, exit 3), or as running out of
+    memory (exit 2) when ``kind`` is ``MemoryError``, as it reports the exception itself.
+    Deliberately not a :class:`GyrovibError`: the input is not to blame.
+    """
+
+    def __init__(self, file: str, kind: str, detail: str) -> None:
+        super().__init__(f"{file}: {kind}: {detail}" if detail else f"{file}: {kind}")
+        self.file = file
+        self.kind = kind
+        self.detail = detail

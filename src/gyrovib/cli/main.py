@@ -40,9 +40,10 @@ import click
 
 from gyrovib._version import __version__
 from gyrovib.cli.common import Settings, say, silence_stderr
+from gyrovib.cli.early import early_exit
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
 from gyrovib.cli.progress import terminal_progress
-from gyrovib.errors import GyrovibError
+from gyrovib.errors import Crash, GyrovibError
 from gyrovib.render.github import annotation, problems_to_github
 
 EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
@@ -68,13 +69,16 @@ class Terminated(KeyboardInterrupt):
 
 
 def _on_signal(signum: int, frame: Any) -> None:
-    """SIGINT, SIGTERM, SIGHUP: an exception, unless the output is already in place.
+    """SIGINT, SIGTERM, SIGHUP: an exception, unless the output is already in place, the
+    outcome is decided, or a signal has already been received.
 
     Once the output has been renamed over ``--output`` the run has succeeded:
     a signal in its last moments must not report a failure the file contradicts.
+    After the first signal the run is ending (its workers terminated, its temporary
+    file removed): a second one must not cut that short with a traceback.
     """
-    if output_in_place():
-        return
+    if output_in_place() or _decided or _received:
+        return  # the outcome stands; a second signal must not interrupt the clean-up
     _received.append(signum)
     if signum == signal.SIGINT:
         raise KeyboardInterrupt
@@ -85,6 +89,9 @@ def _on_signal(signum: int, frame: Any) -> None:
 #: a signal raised and raises another in its place (as pydantic may while it builds
 #: a model) must not turn an interrupted run into an internal error.
 _received: list[int] = []
+
+#: Set once :func:`main` has decided its status: a signal then changes nothing.
+_decided = False
 
 
 def _interrupted_status() -> int | None:
@@ -126,6 +133,29 @@ def _report(exc: GyrovibError, settings: Settings | None) -> None:
             sys.stdout.flush()
         except (OSError, AttributeError, ValueError):
             silence_stdout()  # the verdict (exit 2) stands; the annotations are a courtesy
+
+
+def _unexpected(exc: Exception) -> int:
+    """Report an exception that is not the user's and return the status: the signal's, if
+    one was received (a library may have raised another exception in its place); out of
+    memory, 2; else an internal error, 3, in one line (``GYROVIB_DEBUG`` adds the
+    traceback). A :class:`~gyrovib.errors.Crash` is placed at the file it met."""
+    signalled = _interrupted_status()
+    if signalled is not None:
+        _echo_interrupted(signalled)
+        return signalled
+    where, kind, detail = "gyrovib", type(exc).__name__, str(exc)
+    if isinstance(exc, Crash):
+        where, kind, detail = exc.file, exc.kind, exc.detail
+        if kind == MemoryError.__name__:
+            say(f"{where}: error: out of memory")
+            return EXIT_BAD_INPUT
+    _traceback()
+    detail = detail.splitlines()[0][:300] if detail else ""
+    say(f"{where}: internal error: {kind}" + (f": {detail}" if detail else "")
+        + "; this is a bug in gyrovib, not in your input: please report it with the "
+        "command and files used (GYROVIB_DEBUG=1 shows the traceback)")
+    return EXIT_INTERNAL
 
 
 def _wants_github(argv: list[str]) -> bool:
@@ -213,17 +243,7 @@ class _Group(click.Group):
             say(f"gyrovib: error: {exc}")
             ctx.exit(EXIT_WRITE_FAILED)
         except Exception as exc:
-            signalled = _interrupted_status()
-            if signalled is not None:
-                _echo_interrupted(signalled)
-                ctx.exit(signalled)
-            _traceback()
-            detail = str(exc).splitlines()[0][:300] if str(exc) else ""
-            say(f"gyrovib: internal error: {type(exc).__name__}"
-                + (f": {detail}" if detail else "")
-                + "; this is a bug in gyrovib, not in your input: please report it with the "
-                "command and files used (GYROVIB_DEBUG=1 shows the traceback)")
-            ctx.exit(EXIT_INTERNAL)
+            ctx.exit(_unexpected(exc))
 
 
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
@@ -253,8 +273,34 @@ def cli(ctx: click.Context, color: str) -> None:
 
 
 def main(args: list[str] | None = None) -> NoReturn:
-    """Console-script entry point: runs the command and exits with its status."""
-    caught = _catch_signals()
+    """Console-script entry point: runs the command and exits with its status.
+
+    From the first signal handler installed to the status decided, everything runs
+    inside one ``try``: a signal anywhere in it ends the run in one line with its
+    status; after it, a signal changes nothing (:func:`_on_signal`)."""
+    global _decided
+    _decided = False
+    _received.clear()
+    caught: list[signal.Signals] = []
+    try:
+        _catch_signals(caught)
+        code = _command(args)
+        if code in (EXIT_OK, EXIT_NOT_MET):
+            code = _flushed(code)
+        _decided = True
+    except KeyboardInterrupt as exc:  # a signal outside the command's own handling
+        code = _signal_status(exc)
+        _echo_interrupted(code)
+    # The outcome is decided (and any output in place): the signals caught are now
+    # ignored. Python's shutdown would otherwise put back their default action,
+    # and a SIGTERM in its last milliseconds would kill a run that has succeeded.
+    for signum in caught:
+        signal.signal(signum, signal.SIG_IGN)
+    sys.exit(code)
+
+
+def _command(args: list[str] | None) -> int:
+    """Run the command; its status, every exception but a signal's turned into one."""
     try:
         code = cli.main(args, prog_name="gyrovib", standalone_mode=False)
     except click.exceptions.Abort:  # a KeyboardInterrupt while click parsed the group
@@ -266,9 +312,6 @@ def main(args: list[str] | None = None) -> NoReturn:
         except (OSError, ValueError, AttributeError):
             silence_stderr()
         code = exc.exit_code
-    except KeyboardInterrupt as exc:
-        code = _signal_status(exc)
-        _echo_interrupted(code)
     except BrokenPipeError:
         silence_stdout()
         code = EXIT_BROKEN_PIPE
@@ -282,34 +325,32 @@ def main(args: list[str] | None = None) -> NoReturn:
             say(f"gyrovib: internal error: {type(exc).__name__}: "
                 f"{str(exc)[:300]}; this is a bug in gyrovib: please report it")
             code = EXIT_INTERNAL
-    code = code if isinstance(code, int) else 0
-    if code in (EXIT_OK, EXIT_NOT_MET):
-        try:
-            if sys.stdout is not None:
-                sys.stdout.flush()
-        except BrokenPipeError:
-            silence_stdout()
-            code = EXIT_BROKEN_PIPE
-        except (OSError, ValueError) as exc:
-            silence_stdout()
-            say(f"gyrovib: error: cannot write standard output: {exc}")
-            code = EXIT_WRITE_FAILED
-    # The outcome is decided (and any output in place): the signals caught are now
-    # ignored. Python's shutdown would otherwise put back their default action,
-    # and a SIGTERM in its last milliseconds would kill a run that has succeeded.
-    for signum in caught:
-        signal.signal(signum, signal.SIG_IGN)
-    sys.exit(code)
+    return code if isinstance(code, int) else 0
 
 
-def _catch_signals() -> list[signal.Signals]:
-    """SIGINT, SIGTERM and SIGHUP become exceptions (:func:`_on_signal`); a signal the
-    parent set to be ignored (``nohup``, a background job) stays ignored. Returns
-    the signals now caught."""
-    caught = []
+def _flushed(code: int) -> int:
+    """``code`` once standard output is flushed, or the status of its failure."""
+    try:
+        if sys.stdout is not None:
+            sys.stdout.flush()
+    except BrokenPipeError:
+        silence_stdout()
+        code = EXIT_BROKEN_PIPE
+    except (OSError, ValueError) as exc:
+        silence_stdout()
+        say(f"gyrovib: error: cannot write standard output: {exc}")
+        code = EXIT_WRITE_FAILED
+    return code
+
+
+def _catch_signals(caught: list[signal.Signals]) -> None:
+    """SIGINT, SIGTERM and SIGHUP become exceptions (:func:`_on_signal`), each appended to
+    ``caught`` as soon as it is; a signal the parent set to be ignored (``nohup``, a
+    background job) stays ignored. The handler of the console script's start-up
+    (:func:`gyrovib.cli.early.early_exit`) is replaced in one step, so there is no moment
+    when the signal's default action would kill the process."""
     for signum in _SIGNALS:
         previous = signal.getsignal(signum)
-        if previous in (signal.SIG_DFL, None, signal.default_int_handler):
-            signal.signal(signum, _on_signal)
+        if previous in (signal.SIG_DFL, None, signal.default_int_handler, early_exit):
             caught.append(signum)
-    return caught
+            signal.signal(signum, _on_signal)

@@ -24,10 +24,11 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.commands.recording import analysis_of_fit, fit_recording, recording_responses
+from gyrovib.api.fleet.pool import located, one_thread, raise_failure, run_in_processes
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core.transmissibility import FloatArray, Table
-from gyrovib.errors import GyrovibError, OptionError, Problem
+from gyrovib.errors import Crash, GyrovibError, OptionError
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
 
@@ -81,88 +82,42 @@ def profile_one(path: str, options: RecordingOptions = DEFAULTS) -> RecordingFit
 # ----------------------------------------------------------------- many recordings
 
 
-@dataclass(frozen=True, eq=False, repr=False)
-class _Failed(Frozen):
-    """A user error raised in a worker, carried back as data (its class and problems)."""
-
-    kind: type[GyrovibError]
-    problems: tuple[Problem, ...]
-
-    def error(self) -> GyrovibError:
-        try:
-            return self.kind(self.problems)
-        except TypeError:  # a subclass with another signature: the root keeps the words
-            return GyrovibError(self.problems)
-
-
-def _guarded(step: Callable[[str, Any], Any], path: str, options: Any) -> Any:
-    try:
-        return step(path, options)
-    except GyrovibError as exc:
-        return _Failed(type(exc), exc.problems)
-
-
 def run_recordings(paths: Sequence[str], options: Any = DEFAULTS, *, jobs: int = 1,
                    step: Callable[[str, Any], Any] = profile_one,
                    label: str = "recordings") -> tuple[Any, ...]:
     """``step(path, options)`` for every path, in input order.
 
-    ``jobs`` > 1 runs them in that many worker processes (a ``forkserver`` context
-    where the platform has one, else ``spawn``: nothing of the parent's state is
-    inherited); each worker holds one recording at a time and returns only the
-    step's result. The first user error in input order is raised, as with
-    ``jobs = 1``; progress goes to :func:`gyrovib.progress.advance` under ``label``.
+    ``jobs`` > 1 runs them in that many worker processes, started once for the run
+    (:func:`gyrovib.api.fleet.pool.run_in_processes`); each holds one recording at a
+    time and returns only the step's result. Every process running the step runs one
+    BLAS/OpenMP thread, this one too with ``jobs`` = 1. The first user error in input
+    order is raised, as with ``jobs`` = 1; an unexpected exception, or a worker that
+    died, is raised as a :class:`~gyrovib.errors.Crash` naming its recording. Progress
+    goes to :func:`gyrovib.progress.advance` under ``label``.
     """
 
     if jobs < 1:
         raise OptionError(f"--jobs {jobs}: give at least 1")
     total = len(paths)
-    if jobs == 1 or total <= 1:
-        results = []
+    if jobs > 1 and total > 1:
+        outcomes = run_in_processes(paths, options, jobs, step, label)
+        for path, result in zip(paths, outcomes, strict=False):
+            raise_failure(result, path)
+        return tuple(outcomes)
+    results = []
+    with one_thread():
         for k, path in enumerate(paths):
-            results.append(step(path, options))
+            try:
+                results.append(step(path, options))
+            except GyrovibError as exc:
+                placed = located(exc, path)
+                if placed is exc:
+                    raise
+                raise placed from None
+            except Exception as exc:  # a bug, named by the recording it met
+                raise Crash(path, type(exc).__name__, str(exc)) from exc
             advance(label, k + 1, total)
-        return tuple(results)
-    outcomes = _in_processes(paths, options, min(jobs, total), step, label)
-    for outcome in outcomes:
-        if isinstance(outcome, _Failed):
-            raise outcome.error()
-    return tuple(outcomes)
-
-
-def _in_processes(paths: Sequence[str], options: Any, jobs: int,
-                  step: Callable[[str, Any], Any], label: str) -> list[Any]:
-    # lazy: the process pool of --jobs only
-    import multiprocessing
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-
-    method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
-    total = len(paths)
-    outcomes: list[Any] = [None] * total
-    first_bad = total  # the earliest failure seen: later recordings need not run
-    with ProcessPoolExecutor(max_workers=jobs,
-                             mp_context=multiprocessing.get_context(method)) as pool:
-        pending = {pool.submit(_guarded, step, path, options): k for k, path in enumerate(paths)}
-        done_count = 0
-        while pending:
-            done, _ = wait(pending, return_when=FIRST_COMPLETED)
-            for future in done:
-                k = pending.pop(future)
-                if future.cancelled():
-                    continue
-                outcomes[k] = future.result()
-                done_count += 1
-                advance(label, done_count, total)
-                if isinstance(outcomes[k], _Failed) and k < first_bad:
-                    first_bad = k
-                    for other, j in pending.items():
-                        if j > k:
-                            other.cancel()
-            if first_bad < total and all(j > first_bad for j in pending.values()):
-                for other in pending:
-                    other.cancel()
-                break
-    return outcomes[:first_bad + 1] if first_bad < total else outcomes
+    return tuple(results)
 
 
 # ----------------------------------------------------------------- analyze --recording A B …

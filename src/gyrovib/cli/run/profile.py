@@ -8,6 +8,7 @@ import click
 
 from gyrovib.api.commands.recording import fit_recording
 from gyrovib.api.fleet.envelope import profile_recordings
+from gyrovib.api.fleet.pool import one_thread
 from gyrovib.cli.output import write_output
 from gyrovib.cli.recording import fit_options
 from gyrovib.cli.run.recording import read, step_options
@@ -21,7 +22,8 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
 
     if len(recordings) == 1:
 
-        fit = fit_recording(read(recordings[0], options), **fit_options(options))
+        with one_thread():  # one BLAS/OpenMP thread, as with --jobs 1 on several
+            fit = fit_recording(read(recordings[0], options), **fit_options(options))
         table = honesty_table(fit)
         document = render.profile_json(fit) if fmt == "json" else fit.yaml
     else:

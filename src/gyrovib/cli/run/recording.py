@@ -8,6 +8,7 @@ from typing import Any
 import click
 
 from gyrovib.api.commands.recording import analyze_recording as run
+from gyrovib.api.fleet.pool import one_thread
 from gyrovib.api.fleet.run import RecordingOptions, analyze_recordings
 from gyrovib.api.recordings.reading import parse_columns, read_recording
 from gyrovib.api.recordings.yaml import with_fitted_profile
@@ -51,8 +52,9 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
 
     if len(paths) == 1:
 
-        result = run(read(paths[0], options), catalog, sensors=sensors, unit=unit,
-                     **fit_options(options))
+        with one_thread():  # one BLAS/OpenMP thread, as with --jobs 1 on several
+            result = run(read(paths[0], options), catalog, sensors=sensors, unit=unit,
+                         **fit_options(options))
         if fmt != "table" or output is not None:  # the table on the terminal lists them itself
             for warning in result.fit.warnings:
                 click.echo(f"gyrovib: warning: {warning}", err=True)
