@@ -27,7 +27,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
             assume_unknown: str | None, require: str, fmt: str, output: str | None,
-            coverage: float, plot: str | None = None) -> None:
+            coverage: float, plot: str | None) -> None:
     """See :func:`gyrovib.cli.mission.mission`."""
 
     if budget is not None and angle_budget is not None:
