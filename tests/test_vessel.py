@@ -199,3 +199,23 @@ def test_the_report_states_each_total_verdict_and_theta_of_t(tmp_path: Path) -> 
     assert "x3 on Z" in html
     # every segment end is a point with its θ values as a tooltip
     assert html.count("segment 2 ends at 2 h") >= 1
+
+
+def test_the_answer_names_the_one_figure_that_would_change_a_failure(tmp_path: Path) -> None:
+    from tests.test_noise_budget import CATALOGUE
+
+    path = tmp_path / "c.yaml"
+    path.write_text(CATALOGUE, encoding="utf-8")
+    run = invoke("mission", path, "--sensor", "full", "--angle-budget", "4deg", "--coverage",
+                 "2", "--format", "csv")
+    # by hand, over T = 2 h at k = 2: θ_ARW = 0.15·√2, θ_B = 0.5·2, θ_RRW = 0.02·2^1.5/√3,
+    # θ_R = 1·2; A = (4 − |θ_V|)/2; R may reach √(A² − θ_ARW² − θ_B² − θ_RRW²)/2 h, and no
+    # B passes (θ_R alone is 2 deg of the 1.97 deg allowance)
+    import csv
+
+    theta_v = float(next(csv.DictReader(run.stdout.splitlines()))["angle"])
+    room = (4.0 - abs(theta_v)) / 2.0
+    r_max = math.sqrt(room**2 - 0.045 - 1.0 - (0.04 * math.sqrt(2) / math.sqrt(3)) ** 2) / 2.0
+    assert run.exit_code == 1
+    assert f"it would pass with R ≤ {r_max:.4g} deg/h (it has 1)" in run.stderr
+    assert run.stdout.startswith("sensor,")  # the data stay clean
