@@ -1,12 +1,14 @@
-"""The overlapping Allan deviation kernel and the noise terms read from it
-(core/allan.py, docs/model.md section 15)."""
+"""The overlapping Allan deviation kernel (core/allan.py), its streamed form for records
+too long to hold (core/allan_stream.py), and published reference values."""
 
+import io
 import math
 
 import numpy as np
 import pytest
 
-from gyrovib.core.allan import B_FACTOR, noise_terms, oadev, tau_grid
+from gyrovib.core.allan import oadev, tau_grid
+from gyrovib.core.allan_stream import oadev_scratch, octave_grid, write_angle
 
 
 def naive_oadev(y: np.ndarray, tau0: float, m: int) -> float:
@@ -47,56 +49,61 @@ def test_equals_allantools() -> None:
     assert np.allclose(taus, tau) and np.allclose(ad, adev, rtol=1e-6, atol=0)
 
 
-# Simulated truth: N in deg/√s, K in deg/s/√s at τ0 = 0.01 s. White rate noise of
-# standard deviation N/√τ0 has σ(τ) = N/√τ; a random walk of steps K·√τ0 has K²τ/3.
-# A figure must come within 2 of its stated standard uncertainties (k = 2, about 95 %),
-# and the uncertainty must be small enough for that to be a test (below 5 %).
-N_TRUE, K_TRUE, TAU0, SAMPLES = 0.01, 1e-4, 0.01, 200_000
+# NIST SP 1065 (Riley, Handbook of Frequency Stability Analysis), tables 30 and 31: the
+# overlapping Allan deviation of the NBS14 data sets, to the digits printed there.
+NBS9 = [892.0, 809.0, 823.0, 798.0, 671.0, 644.0, 883.0, 903.0, 677.0]
+NBS9_OADEV = {1: 91.22945, 2: 85.95287}
+NBS1000_OADEV = {1: 2.922319e-01, 10: 9.159953e-02, 100: 3.241343e-02}
 
 
-@pytest.mark.parametrize("seed", [11, 12])
-def test_arw_of_white_noise_within_its_uncertainty(seed: int) -> None:
-    y = np.random.default_rng(seed).standard_normal(SAMPLES) * N_TRUE / math.sqrt(TAU0)
-    tau, adev = oadev(y, TAU0)
-    terms = noise_terms(tau, adev, SAMPLES + 1, TAU0)
-    assert abs(terms.arw.value - N_TRUE) <= 2 * terms.arw.uncertainty
-    assert terms.arw.uncertainty < 0.05 * N_TRUE
+def nbs1000() -> np.ndarray:
+    """The 1000-point NBS14 frequency series: the Lehmer generator n_{i+1} = 16807·n_i
+    mod (2³¹ − 1) from n_1 = 1234567890, each divided by 2³¹ − 1 (SP 1065 section 12.3)."""
+    n = [1234567890]
+    for _ in range(999):
+        n.append(16807 * n[-1] % 2147483647)
+    return np.array(n, dtype=float) / 2147483647.0
 
 
-@pytest.mark.parametrize("seed", [21, 22])
-def test_rrw_of_a_random_walk_within_its_uncertainty(seed: int) -> None:
-    steps = np.random.default_rng(seed).standard_normal(SAMPLES)
-    y = np.cumsum(steps) * K_TRUE * math.sqrt(TAU0)
-    tau, adev = oadev(y, TAU0)
-    terms = noise_terms(tau, adev, SAMPLES + 1, TAU0)
-    assert abs(terms.rrw.value - K_TRUE) <= 2 * terms.rrw.uncertainty
-    assert terms.rrw.uncertainty < 0.05 * K_TRUE
+@pytest.mark.parametrize(("data", "table"), [(NBS9, NBS9_OADEV), (None, NBS1000_OADEV)])
+def test_nbs14_to_the_printed_digits(data: list[float] | None,
+                                     table: dict[int, float]) -> None:
+    y = np.array(data) if data is not None else nbs1000()
+    m = np.array(sorted(table), dtype=np.int64)
+    _, adev = oadev(y, 1.0, m)
+    for mm, a in zip(m.tolist(), adev, strict=True):
+        printed = table[mm]
+        digits = 7 if printed < 1 else 7 - len(str(int(printed)))  # 7 significant figures
+        assert round(float(a), digits) == pytest.approx(printed, abs=0.5 * 10.0 ** -digits)
+    allantools = pytest.importorskip("allantools")   # and allantools on the same samples
+    _, ad, _, _ = allantools.oadev(y, rate=1.0, data_type="freq", taus=m.astype(float))
+    assert np.allclose(ad, adev, rtol=1e-12, atol=0)
 
 
-def test_both_terms_of_a_mixed_record() -> None:
-    g = np.random.default_rng(31)
-    y = (g.standard_normal(SAMPLES) * N_TRUE / math.sqrt(TAU0)
-         + np.cumsum(g.standard_normal(SAMPLES)) * K_TRUE * math.sqrt(TAU0))
-    tau, adev = oadev(y, TAU0)
-    terms = noise_terms(tau, adev, SAMPLES + 1, TAU0)
-    assert abs(terms.arw.value - N_TRUE) <= 2 * terms.arw.uncertainty
-    assert abs(terms.rrw.value - K_TRUE) <= 2 * terms.rrw.uncertainty
+def _streamed(y: np.ndarray, tau0: float, m: np.ndarray, rows: int) -> np.ndarray:
+    scratch = io.BytesIO()
+    write_angle(lambda a, b: y[a:b].astype(np.float64), y.shape[0], y.shape[1], tau0,
+                scratch, rows)
+    return oadev_scratch(scratch, y.shape[0], y.shape[1], tau0, m, rows)
 
 
-def test_bias_instability_is_the_curve_minimum_over_0664() -> None:
-    g = np.random.default_rng(41)
-    y = g.standard_normal(50_000) + np.cumsum(g.standard_normal(50_000)) * 0.01
-    tau, adev = oadev(y, 0.01)
-    terms = noise_terms(tau, adev, 50_001, 0.01)
-    assert terms.bias_instability.value == float(adev.min()) / 0.664
-    assert B_FACTOR == 0.664
-    assert terms.bias_instability.tau == float(tau[np.argmin(adev)])
+@pytest.mark.parametrize("rows", [64, 1000])
+def test_streamed_equals_allantools_to_1e9(rows: int) -> None:
+    # small blocks so that every path runs several times: the sliding window (2m < rows)
+    # and the chains k, k + m, k + 2m (m ≥ rows/2, m a multiple of the block or not)
+    allantools = pytest.importorskip("allantools")
+    g = np.random.default_rng(8)
+    n = 20_001
+    y = (g.standard_normal((n, 3)) + np.cumsum(g.standard_normal((n, 3)), axis=0) * 0.02
+         ).astype(np.float32)                         # a float32 log, as a day-long .npy
+    m = np.unique(np.concatenate([tau_grid(n, 7), octave_grid(n)]))
+    curves = _streamed(y, 0.001, m, rows)
+    for k in range(3):
+        _, ad, _, _ = allantools.oadev(y[:, k].astype(np.float64), rate=1000.0,
+                                       data_type="freq", taus=m * 0.001)
+        assert np.max(np.abs(curves[:, k] / ad - 1.0)) < 1e-9
 
 
-def test_a_record_without_noise_reads_zero_not_an_error() -> None:
-    # a constant rate (a quantised sensor at rest that never flips a bit): σ = 0 at
-    # every τ, and every figure is 0 — not a failed fit
-    tau, adev = oadev(np.full(1000, 0.25), 0.1)
-    assert not adev.any()
-    terms = noise_terms(tau, adev, 1001, 0.1)
-    assert (terms.arw.value, terms.bias_instability.value, terms.rrw.value) == (0, 0, 0)
+def test_octave_grid_is_powers_of_two_to_a_third() -> None:
+    assert octave_grid(100).tolist() == [1, 2, 4, 8, 16, 32]
+    assert octave_grid(86_400_000)[-1] == 1 << 24        # 16.8 M ≤ 28.8 M < 2²⁵

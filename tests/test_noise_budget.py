@@ -97,7 +97,8 @@ def test_json_and_table_say_unknown(tmp_path) -> None:  # type: ignore[no-untype
     assert silent["arw"] is None and silent["lower_bound"] is True
     assert set(rows[0]["budget"]) == {"vibration", "arw", "bias_instability", "rrw",
                                       "repeatability", "total", "coverage", "unit",
-                                      "lower_bound", "allowed"}
+                                      "lower_bound", "rests_on_bound", "bounds",
+                                      "allowed"}
     # with unknown noise figures, every figure's allowance is only an upper limit (the
     # unknown ones can only take more of the budget); with all known, none is
     assert rows[1]["budget"]["allowed"]["upper"] == ["vibration", "arw", "bias_instability",
@@ -139,3 +140,42 @@ def test_report_shows_the_budget_as_a_stacked_bar(tmp_path) -> None:  # type: ig
                  "full: rate random walk", "full: bias repeatability", "silent: vibration"):
         assert part in chart
     assert "silent: angle random walk" not in chart and chart.count("≥ ?") == 1
+
+
+BOUNDED = CATALOGUE.replace('rrw: {value: 0.02, unit: deg/h/sqrt(h)}',
+                            'rrw: "≤ 0.02 deg/h/sqrt(h)"')
+
+
+def test_a_bound_is_the_budget_maximum_and_the_row_says_so(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    measured = _result(coverage=2.0).rows[0].budget
+    bounded = api.mission(merge([parse_catalog(BOUNDED, "<c>")]), coverage=2.0).rows[0]
+    b = bounded.budget
+    assert b is not None and measured is not None
+    # the bound's upper value enters exactly as the value did (K·T^{3/2}/√3 at K = 0.02)
+    assert b.rrw == measured.rrw and b.total == measured.total
+    assert b.bounds == ("rrw",) and measured.bounds == ()
+    path = tmp_path / "c.yaml"
+    path.write_text(BOUNDED, encoding="utf-8")
+    doc = json.loads(invoke("mission", path, "--angle-budget", "3deg", "--format",
+                            "json").stdout)["mission"][0]["budget"]
+    assert doc["rests_on_bound"] is True and doc["bounds"] == ["rrw"]
+    table = invoke("mission", path, "--angle-budget", "3deg").stdout
+    assert f"≤ {b.rrw:.4g}" in table and "rests on" in table
+
+
+def test_a_triad_row_takes_its_axis_figures() -> None:
+    per_axis = CATALOGUE.replace("      bias_repeatability: 1\n",
+                                 "      bias_repeatability: 1\n"
+                                 "      z: {arw: 0.6 deg/sqrt(h), rrw: \"≤ 0.1 deg/h/sqrt(h)\"}\n")
+    per_axis = per_axis.replace("  - id: two-hours\n", "  - id: two-hours\n    placement: triad\n")
+    rows = [r for r in api.mission(merge([parse_catalog(per_axis, "<c>")])).rows
+            if r.sensor == "full"]
+    by_axis = {r.axis: r.budget for r in rows}
+    assert set(by_axis) == {"X", "Y", "Z"}
+    t = 2.0
+    # X and Y: the block's own figures; Z: its sub-block's N and bound on K, the block's B
+    assert by_axis["X"].arw == pytest.approx(0.15 * math.sqrt(t), rel=1e-12)
+    assert by_axis["Z"].arw == pytest.approx(0.6 * math.sqrt(t), rel=1e-12)
+    assert by_axis["Z"].rrw == pytest.approx(0.1 * t ** 1.5 / math.sqrt(3.0), rel=1e-12)
+    assert by_axis["Z"].bias_instability == by_axis["X"].bias_instability
+    assert by_axis["Z"].bounds == ("rrw",) and by_axis["X"].bounds == ()

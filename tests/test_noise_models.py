@@ -61,4 +61,49 @@ def test_a_wrong_unit_is_located_in_the_file(tmp_path: Path) -> None:
 def test_in_the_schema() -> None:
     schema = json.loads(invoke("schema").stdout)
     noise = schema["definitions"]["Noise"]
-    assert set(noise["properties"]) == {"arw", "bias_instability", "rrw", "bias_repeatability"}
+    assert set(noise["properties"]) == {"arw", "bias_instability", "rrw", "bias_repeatability",
+                                        "x", "y", "z"}
+    # a bound is one of the forms the schema accepts, as text and as a mapping
+    text = json.dumps(noise["properties"]["rrw"], ensure_ascii=False)
+    assert "≤|<=" in text and '"bound"' in text
+
+
+def test_a_bound_in_each_written_form_is_its_upper_value_and_flagged() -> None:
+    from gyrovib.api.noise.figures import noise_bounds
+
+    for rrw in ("≤ 0.8 deg/h/sqrt(h)", "<= 0.8 deg/h/sqrt(h)", "≤0.8 deg/h/√h",
+                {"bound": 0.8, "unit": "deg/h/sqrt(h)"}):
+        s = _noise(arw=0.1, rrw=rrw)
+        assert s.noise is not None and s.noise.rrw is not None
+        assert s.noise.rrw.is_bound and s.noise.rrw.value is None
+        assert noise_values(s.noise)["rrw"] == 0.8           # the budget uses the bound
+        assert noise_bounds(s.noise) == ("rrw",)
+    # a bound in another unit converts like a value: 1 deg/s/√s = 216 000 deg/h/√h
+    s = _noise(rrw={"bound": 1e-6, "unit": "deg/s/sqrt(s)"})
+    assert noise_values(s.noise)["rrw"] == pytest.approx(0.216, rel=1e-15)
+
+
+def test_a_mapping_gives_a_value_or_a_bound_not_both() -> None:
+    with pytest.raises(ValidationError, match="value or a bound"):
+        _noise(rrw={"value": 0.5, "bound": 0.8, "unit": "deg/h/sqrt(h)"})
+    with pytest.raises(ValidationError, match="value or a bound"):
+        _noise(rrw={"unit": "deg/h/sqrt(h)"})
+
+
+def test_per_axis_figures_override_the_block_and_any_axis_takes_the_largest() -> None:
+    s = _noise(arw=0.1, bias_repeatability=5,
+               x={"arw": 0.2}, z={"arw": "0.3 deg/sqrt(h)", "rrw": "≤ 2 deg/h/sqrt(h)"})
+    assert s.noise is not None
+    assert noise_values(s.noise, "X")["arw"] == 0.2
+    assert noise_values(s.noise, "Y")["arw"] == 0.1              # no y block: the block's
+    z = noise_values(s.noise, "Z")
+    assert z["arw"] == 0.3 and z["rrw"] == 2.0 and z["bias_repeatability"] == 5.0
+    # a single-axis sensor (axis None): the block's own figure, else the axes' largest
+    anyaxis = noise_values(s.noise, None)
+    assert anyaxis["arw"] == 0.1 and anyaxis["rrw"] == 2.0
+
+
+def test_a_flat_block_reads_as_before_for_every_axis() -> None:
+    s = _noise(arw=0.12, rrw="0.5 deg/h/sqrt(h)")
+    for axis in (None, "X", "Y", "Z"):
+        assert noise_values(s.noise, axis) == noise_values(s.noise)

@@ -7,7 +7,8 @@ caught here, once: one line per problem on standard error, exit status 2.
 
 Exit status (the contract; no environment variable changes it):
 
-* 0 success; 1 ``select``'s (or ``mission``'s) requirement not met; 2 bad usage or bad input;
+* 0 success; 1 ``select``'s (or ``mission``'s, or ``runup --require``'s) requirement not met;
+  2 bad usage or bad input;
 * 3 an internal error (a bug in gyrovib), reported in one line asking for a
   report; ``GYROVIB_DEBUG=1`` (or ``true``, ``yes``; any case) adds the
   traceback, the status stays 3;
@@ -181,6 +182,7 @@ _COMMANDS = {name: f"gyrovib.cli.{name}"
 
 
 _COMMANDS["mission"] = "gyrovib.cli.mission"
+_COMMANDS["runup"] = "gyrovib.cli.runup"
 
 
 class _Group(click.Group):
@@ -264,8 +266,8 @@ def cli(ctx: click.Context, color: str) -> None:
     find which sensors of a catalogue meet an error budget.
 
     Without FILE arguments every command uses the catalogues bundled with
-    gyrovib. Exit status: 0 success, 1 a `select` or `mission` requirement not met,
-    2 bad usage or bad input, 3 an internal error (please report it),
+    gyrovib. Exit status: 0 success, 1 a `select`, `mission` or `runup` requirement
+    not met, 2 bad usage or bad input, 3 an internal error (please report it),
     74 the output could not be written, 129 hung up, 130 interrupted,
     143 terminated, 141 standard output closed early.
     """

@@ -4,6 +4,14 @@ Each figure is written as a bare number in its default unit, as a text with its
 unit and, where the datasheet says so, its qualifier (``"0.12 deg/sqrt(h) typ"``,
 ``"8 °/h"``), or as a mapping ``{value, unit, qualifier}``; once validated it is a
 :class:`NoiseFigure` (a bare number gets the default unit and no qualifier).
+
+A figure the measurement does not resolve is an upper **bound**: ``"≤ 0.8 deg/h/sqrt(h)"``,
+``"<= 0.8 deg/h/sqrt(h)"`` or ``{bound: 0.8, unit: deg/h/sqrt(h)}`` (``gyrovib allan -o``
+writes them so); the mission budget uses its bound as the figure and says so.
+
+Where a triad's axes differ, the block holds one sub-block per axis (``x:``, ``y:``,
+``z:``, each with the same figures); figures written directly under ``noise:`` hold for
+every axis that does not give its own.
 The units and their factors are :data:`gyrovib.units.NOISE_UNITS`;
 :mod:`gyrovib.api.noise` converts them.
 """
@@ -55,12 +63,35 @@ def default_unit(figure: str) -> str:
 
 
 class NoiseFigure(Model):
-    """One noise figure with its unit and, where the datasheet gives one, its qualifier."""
+    """One noise figure with its unit and, where the datasheet gives one, its qualifier;
+    or an upper bound of it (``bound``, no value)."""
 
-    value: NoiseValue = Field(description="The value, in unit; >= 0.")
+    value: NoiseValue | None = Field(None, description="The value, in unit; >= 0.")
+    bound: NoiseValue | None = Field(
+        None, description="An upper bound, in unit (instead of a value): a figure the "
+                          "measurement does not resolve.")
     unit: str = Field(description="Its unit (see the figure for the units allowed).")
     qualifier: Annotated[Qualifier, Named("qualifier")] | None = Field(
         None, description="The datasheet's qualifier: typ (typical) or max (guaranteed).")
+
+    @model_validator(mode="after")
+    def _value_or_bound(self) -> "NoiseFigure":
+        if (self.value is None) == (self.bound is None):
+            raise rule_error("give a value or a bound (not both): {value: 0.8, unit: …} or "
+                             "{bound: 0.8, unit: …}")
+        return self
+
+    @property
+    def is_bound(self) -> bool:
+        """Whether the figure is only an upper bound."""
+        return self.bound is not None
+
+    @property
+    def upper(self) -> float:
+        """The value, or the bound: what a budget uses."""
+        out = self.value if self.value is not None else self.bound
+        assert out is not None
+        return out
 
 
 def _unit_pattern(figure: str) -> str:
@@ -68,7 +99,7 @@ def _unit_pattern(figure: str) -> str:
 
 
 def _text_pattern(figure: str) -> str:
-    return rf"^ *({NUMBER_TEXT}) *({_unit_pattern(figure)}) *(?: +(typ|max))? *$"
+    return rf"^ *(≤|<=)? *({NUMBER_TEXT}) *({_unit_pattern(figure)}) *(?: +(typ|max))? *$"
 
 
 def _reader(figure: str) -> Any:
@@ -80,10 +111,13 @@ def _reader(figure: str) -> Any:
         if match is None:
             raise rule_error(
                 f"cannot read {value!r} as the {WHAT[figure]}: write a number, a unit and "
-                f"optionally typ or max, e.g. '{_example(figure)}' (units: "
+                f"optionally typ or max, e.g. '{_example(figure)}', or a bound such as "
+                f"'≤ {_example(figure).split(' typ')[0].split(' max')[0]}' (units: "
                 + ", ".join(units) + ")")
-        return NoiseFigure(value=float(match.group(1)), unit=match.group(2),
-                           qualifier=match.group(3))
+        number = float(match.group(2))
+        if match.group(1):
+            return NoiseFigure(bound=number, unit=match.group(3), qualifier=match.group(4))
+        return NoiseFigure(value=number, unit=match.group(3), qualifier=match.group(4))
 
     def from_number(value: float) -> NoiseFigure:
         return NoiseFigure.model_construct(value=value, unit=default_unit(figure),
@@ -109,7 +143,8 @@ def _figure_type(figure: str) -> Any:
     read_text, from_number, check_unit = _reader(figure)
     kinds = Discriminator(value_kind, custom_error_type="kind", custom_error_message=(
         f"a number ({default_unit(figure)}), a text such as '{_example(figure)}' or a "
-        "mapping {value, unit, qualifier}"))
+        "mapping {value, unit, qualifier} (or {bound, unit})"))
+    magnitude = {"type": "number", "minimum": 0, "maximum": MAX_MAGNITUDE}
     unit_schema = {"type": "string", "enum": list(NOISE_UNITS[figure])}
     return Annotated[
         Annotated[NoiseValue, AfterValidator(from_number), Tag("<number>"),
@@ -119,10 +154,11 @@ def _figure_type(figure: str) -> Any:
                     WithJsonSchema({"type": "string", "pattern": _text_pattern(figure)})]
         | Annotated[NoiseFigure, AfterValidator(check_unit), Tag("<mapping>"),
                     WithJsonSchema({"type": "object", "additionalProperties": False,
-                                    "required": ["value", "unit"],
+                                    "required": ["unit"],
+                                    "oneOf": [{"required": ["value"]},
+                                              {"required": ["bound"]}],
                                     "properties": {
-                                        "value": {"type": "number", "minimum": 0,
-                                                  "maximum": MAX_MAGNITUDE},
+                                        "value": magnitude, "bound": magnitude,
                                         "unit": unit_schema,
                                         "qualifier": {"enum": ["typ", "max"]}}})],
         kinds]
@@ -135,9 +171,9 @@ def _field(figure: str, text: str) -> Any:
                  "never 0.")
 
 
-class Noise(Model):
-    """The noise figures of a sensor at rest (docs/model.md section 15); each omitted one
-    is unknown."""
+class NoiseAxis(Model):
+    """The noise figures of one axis of a triad (or of every axis: :class:`Noise`); each
+    omitted one is unknown."""
 
     arw: _figure_type("arw") | None = _field(  # type: ignore[valid-type]
         "arw", "Angle random walk N: the Allan deviation's slope −½, read at τ = 1 s.")
@@ -150,14 +186,56 @@ class Noise(Model):
         "bias_repeatability", "Bias repeatability R: run to run, 1σ (adds R·T over a "
         "mission).")
 
-    @model_validator(mode="after")
-    def _something(self) -> "Noise":
-        if all(getattr(self, name) is None for name in WHAT):
-            raise rule_error("a noise block gives at least one of " + ", ".join(WHAT)
-                             + " (an empty block says nothing: leave it out)")
-        return self
-
     def figures(self) -> dict[str, NoiseFigure | None]:
         """Each figure as validated (None: not given, unknown)."""
         return {name: getattr(self, name) for name in WHAT}
 
+
+def _axis_field(axis: str) -> Any:
+    return Field(None, description=f"The figures of the triad's {axis} axis where they "
+                 "differ from the others (the figures given directly under noise: hold "
+                 "for an axis without its own).")
+
+
+class Noise(NoiseAxis):
+    """The noise figures of a sensor at rest (docs/model.md section 15); each omitted one
+    is unknown. ``x``, ``y``, ``z``: a triad's axes where they differ."""
+
+    x: NoiseAxis | None = _axis_field("x")
+    y: NoiseAxis | None = _axis_field("y")
+    z: NoiseAxis | None = _axis_field("z")
+
+    @model_validator(mode="after")
+    def _something(self) -> "Noise":
+        blocks = [self] + [b for b in (self.x, self.y, self.z) if b is not None]
+        if all(getattr(b, name) is None for b in blocks for name in WHAT):
+            raise rule_error("a noise block gives at least one of " + ", ".join(WHAT)
+                             + " (an empty block says nothing: leave it out)")
+        return self
+
+    def for_axis(self, axis: str | None) -> dict[str, NoiseFigure | None]:
+        """Each figure of ``axis`` ("x", "y", "z"; its own, else the block's); for None
+        (a single-axis sensor, or any axis) the block's own figure, else the largest of
+        the axes' (the conservative choice)."""
+        own = self.figures()
+        axes = {"x": self.x, "y": self.y, "z": self.z}
+        if axis is not None:
+            block = axes.get(axis.lower())
+            if block is None:
+                return own
+            return {name: fig if fig is not None else own[name]
+                    for name, fig in block.figures().items()}
+        out = dict(own)
+        for block in axes.values():
+            if block is None:
+                continue
+            for name, fig in block.figures().items():
+                if own[name] is None and fig is not None:
+                    current = out[name]
+                    if current is None or _default(name, fig) > _default(name, current):
+                        out[name] = fig
+        return out
+
+
+def _default(name: str, fig: NoiseFigure) -> float:
+    return fig.upper * NOISE_UNITS[name][fig.unit]

@@ -67,11 +67,13 @@ def budget_total(row: MissionRow) -> str:
 
 
 def _noise_cells(row: MissionRow) -> list[str]:
-    """The noise terms in deg; '?' where the figure is unknown (never 0)."""
+    """The noise terms in deg; '?' where the figure is unknown (never 0), '≤ x' where it
+    is only an upper bound (the budget uses the bound)."""
     if row.budget is None:
         return ["-"] * len(_NOISE)
-    values = [getattr(row.budget, name) for name in _NOISE]
-    return ["?" if v is None else fmt(v) for v in values]
+    bounds = row.budget.bounds
+    return ["?" if (v := getattr(row.budget, name)) is None
+            else ("≤ " if name in bounds else "") + fmt(v) for name in _NOISE]
 
 
 def _cells(result: MissionResult, row: MissionRow) -> list[str]:
@@ -106,6 +108,15 @@ def _unknown_notes(result: MissionResult) -> list[str]:
     return notes
 
 
+def _bound_note(result: MissionResult) -> list[str]:
+    """The note on rows whose budget rests on a noise figure given only as a bound."""
+    if not any(r.budget is not None and r.budget.bounds for r in result.rows):
+        return []
+    return ["'≤ x': a term whose noise figure is only an upper bound (a term the static "
+            "log did not resolve); the total uses the bound, so it rests on a bound: the "
+            "most the term can be, not a measured value."]
+
+
 def _table_notes(result: MissionResult) -> list[str]:
     """The legend under the table: the definitions, then what applies to these rows."""
     notes = ["mean Δ̄_V = Σ T_s·Δ_V,s / Σ T_s; angle θ_V = Σ T_s·Δ_V,s; mean RMS = "
@@ -115,6 +126,7 @@ def _table_notes(result: MissionResult) -> list[str]:
              f"{fmt(result.coverage)}·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) (coverage k = "
              f"{fmt(result.coverage)}); '?': a noise figure the catalogue does not give, "
              "unknown, so the total is a lower bound (≥)."]
+    notes.extend(_bound_note(result))
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "
@@ -192,7 +204,8 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
             **{name: None if getattr(b, name) is None else number(getattr(b, name))
                for name in _NOISE},
             "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
-            "lower_bound": b.lower_bound}
+            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
+            "bounds": list(b.bounds)}
         allowed = allowance_json(row)
         if allowed is not None:
             out["budget"]["allowed"] = allowed
@@ -207,7 +220,8 @@ def _budget_json(b: Budget) -> dict[str, Any]:
             **{name: None if getattr(b, name) is None else number(getattr(b, name))
                for name in _NOISE},
             "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
-            "lower_bound": b.lower_bound}
+            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
+            "bounds": list(b.bounds)}
 
 
 def _timeline_json(row: MissionRow, k: int) -> dict[str, Any]:

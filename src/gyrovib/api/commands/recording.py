@@ -420,8 +420,8 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     total, terms, g2_part = recorded_error(coeffs, moments, g2, fit.g2_moments)
     spec = np.array([is_spec(e) for e in entries], dtype=bool)
     if spec.any():
-        total, terms, g2_part = _spec_recorded(entries, spec, moments, fit, total, terms,
-                                               g2_part, figures)
+        total, terms, g2_part = _spec_recorded(entries, spec, moments, fit.g2_moments, total,
+                                               terms, g2_part, figures)
     ranges = sensor_ranges(entries)
     saturated = peak > ranges
     fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries])
@@ -460,8 +460,23 @@ def _warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_]
     return warnings
 
 
+def recorded_totals(entries: Sequence[Any], moments: FloatArray,
+                    g2_moments: FloatArray | None) -> FloatArray:
+    """Δ_V,rec (deg/s) of every sensor of ``entries`` from mean moments (N, 7) and the mean
+    g² moments (6,) or None: the definition for coefficient-form sensors, the worst case
+    over the envelope for spec-form ones (docs/model.md sections 11, 13). The run-up test
+    takes it step by step."""
+    total, terms, g2_part = recorded_error(coefficient_matrix(entries), moments,
+                                           g2_matrix(entries), g2_moments)
+    spec = np.array([is_spec(e) for e in entries], dtype=bool)
+    if spec.any():
+        total = _spec_recorded(entries, spec, moments, g2_moments, total, terms, g2_part,
+                               figures)[0]
+    return total
+
+
 def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: FloatArray,
-                   fit: RecordingFit, total: FloatArray, terms: FloatArray,
+                   g2_moments: FloatArray | None, total: FloatArray, terms: FloatArray,
                    g2_part: FloatArray, figures: Any) -> tuple[FloatArray, FloatArray,
                                                                FloatArray]:
     """Spec-form rows: worst Δ_V,rec over the envelope (docs/model.md sections 11, 13).
@@ -474,7 +489,7 @@ def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: Flo
     total, terms, g2_part = total.copy(), terms.copy(), g2_part.copy()
     idx = np.flatnonzero(spec)
     figs = figures([entries[i] for i in idx.tolist()])
-    s_acc = 0.0 if fit.g2_moments is None else float(np.sum(fit.g2_moments[:3]))
+    s_acc = 0.0 if g2_moments is None else float(np.sum(g2_moments[:3]))
     for k, i in enumerate(idx.tolist()):
         t = np.zeros((1, 8, 5))
         for c in range(5):

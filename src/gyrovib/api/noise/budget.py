@@ -34,9 +34,10 @@ def noise_angles(figures: dict[str, float | None], hours: float) -> dict[str, fl
 
 
 def budget(vibration_deg: float, figures: dict[str, float | None], seconds: float,
-           coverage: float = 1.0) -> Budget:
-    """The budget of one row: θ_V in deg, the figures in their default units, the
-    mission's duration in s, coverage k (> 0)."""
+           coverage: float = 1.0, bounds: tuple[str, ...] = ()) -> Budget:
+    """The budget of one row: θ_V in deg, the figures in their default units (a bound's
+    upper value for the figures named in ``bounds``), the mission's duration in s,
+    coverage k (> 0)."""
     angles = noise_angles(figures, seconds / 3600.0)
     known = [a for a in angles.values() if a is not None]
     rss = math.sqrt(sum(a * a for a in known))
@@ -45,7 +46,7 @@ def budget(vibration_deg: float, figures: dict[str, float | None], seconds: floa
                   bias_instability=angles["bias_instability"], rrw=angles["rrw"],
                   repeatability=angles["repeatability"],
                   total=abs(vibration_deg) + coverage * rss, coverage=coverage,
-                  unknown=unknown)
+                  unknown=unknown, bounds=tuple(TERM_OF[name] for name in bounds))
 
 
 #: Per noise term, θ over T hours from its figure: θ = figure · T^power · factor.
@@ -100,7 +101,8 @@ def _noise_allowance(name: str, room: float, known: dict[str, float], hours: flo
 
 
 def timeline(vibration_deg: list[float], durations: list[float],
-             figures: dict[str, float | None], coverage: float) -> tuple[Budget, ...]:
+             figures: dict[str, float | None], coverage: float,
+             bounds: tuple[str, ...] = ()) -> tuple[Budget, ...]:
     """The budget at the end of each segment: θ_V(t) the vibration staircase (the
     segments' angles ``vibration_deg`` summed up to t) and the noise over t, so that
     σ(t)² = N²t + B²t² + K²t³/3 + R²t² (t in hours), the cone ±k·σ(t)."""
@@ -110,5 +112,5 @@ def timeline(vibration_deg: list[float], durations: list[float],
     for theta, seconds in zip(vibration_deg, durations, strict=True):
         angle += theta
         elapsed += seconds
-        out.append(budget(angle, figures, elapsed, coverage))
+        out.append(budget(angle, figures, elapsed, coverage, bounds))
     return tuple(out)

@@ -9,12 +9,21 @@ from gyrovib.models.noise import WHAT, Noise
 FIGURES = tuple(WHAT)
 
 
-def noise_values(noise: Noise | None) -> dict[str, float | None]:
-    """Each figure in its default unit; None where it is not given (unknown)."""
+def noise_values(noise: Noise | None, axis: str | None = None) -> dict[str, float | None]:
+    """Each figure of ``axis`` (see :meth:`Noise.for_axis`) in its default unit, a bound
+    as its upper value; None where it is not given (unknown)."""
     out: dict[str, float | None] = dict.fromkeys(FIGURES)
     if noise is None:
         return out
-    for name, fig in noise.figures().items():
+    for name, fig in noise.for_axis(axis).items():
         if fig is not None:
-            out[name] = fig.value * units.noise_factor(name, fig.unit)
+            out[name] = fig.upper * units.noise_factor(name, fig.unit)
     return out
+
+
+def noise_bounds(noise: Noise | None, axis: str | None = None) -> tuple[str, ...]:
+    """The figures of ``axis`` given only as upper bounds."""
+    if noise is None:
+        return ()
+    return tuple(name for name, fig in noise.for_axis(axis).items()
+                 if fig is not None and fig.is_bound)

@@ -20,7 +20,7 @@ from gyrovib.api.commands.mission import mission as vibration_mission
 from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.missions.results import MissionResult, MissionRow
 from gyrovib.api.noise.budget import allowance, budget, timeline
-from gyrovib.api.noise.figures import FIGURES, noise_values
+from gyrovib.api.noise.figures import FIGURES, noise_bounds, noise_values
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.mission import ANGLE_IN_RAD, ANGLE_UNITS
 from gyrovib.errors import OptionError
@@ -46,10 +46,11 @@ def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | No
     """
     k = check_coverage(coverage)
     result = vibration_mission(catalog, angle_budget=angle_budget, **options)
-    figures = {e.sensor.id: noise_values(e.sensor.noise) for e in catalog.sensors}
+    noise = {e.sensor.id: e.sensor.noise for e in catalog.sensors}
     per_deg = _DEG_PER[result.angle_unit]
     per_step = per_deg * ANGLE_UNITS[result.unit][1]  # deg per (rate unit × s)
-    rows = [_with_budget(r, figures[r.sensor], per_deg, per_step, k) for r in result.rows]
+    rows = [_with_budget(r, noise_values(noise[r.sensor], r.axis), per_deg, per_step,
+                         k, noise_bounds(noise[r.sensor], r.axis)) for r in result.rows]
     if result.angle_budget is not None:
         theta = result.angle_budget * _DEG_PER[result.angle_unit]
         rows = [_judged(r, theta, result.assume_unknown) for r in rows]
@@ -57,13 +58,14 @@ def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | No
 
 
 def _with_budget(row: MissionRow, figures: dict[str, float | None], per_deg: float,
-                 per_step: float, coverage: float) -> MissionRow:
-    """The row's budget (``per_deg``: deg per angle unit), and its timeline
-    (``per_step``: deg per rate unit × second)."""
+                 per_step: float, coverage: float, bounds: tuple[str, ...]) -> MissionRow:
+    """The row's budget (``per_deg``: deg per angle unit; ``bounds``: the figures that
+    are only upper bounds), and its timeline (``per_step``: deg per rate unit × second)."""
     steps = [s.total * s.duration * per_step for s in row.segments]
-    return replace(row, budget=budget(row.angle * per_deg, figures, row.duration, coverage),
+    return replace(row, budget=budget(row.angle * per_deg, figures, row.duration, coverage,
+                                      bounds),
                    timeline=timeline(steps, [s.duration for s in row.segments], figures,
-                                     coverage))
+                                     coverage, bounds))
 
 
 def _judged(row: MissionRow, theta_deg: float, assume_unknown: str) -> MissionRow:

@@ -1,0 +1,107 @@
+"""Coverage of the noise model's intervals (docs/error-budget.md, docs/model.md section 15).
+
+Run on demand (it is not part of the test suite)::
+
+    python benchmarks/bench_allan_coverage.py                 # 200 records
+    python benchmarks/bench_allan_coverage.py --records 40    # a quicker look
+
+Records of known terms are simulated (white rate noise, flicker, a rate random walk, a
+rate ramp, angle quantization, in combinations cycled over the records; the numbers are
+synthetic, drawn by ``gyrovib.core.allan_sim``), each analysed as ``gyrovib allan`` does
+(its own seed for the bootstrap, not the simulation's), and for each term present in
+the truth the fraction of records whose 68 % and 95 % intervals hold it is printed,
+with the number of records where the term was resolved (a value) and where it was
+given as a bound (then whether the bound holds). Terms absent from the truth must come
+out as bounds (or values whose interval is counted as a miss).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "src"))
+
+from gyrovib.core.allan import oadev, tau_grid
+from gyrovib.core.allan_fit import TERMS, noise_model
+from gyrovib.core.allan_sim import Truth, simulate
+
+TAU0 = 1.0
+#: Truths in the kernel's units (deg, deg/√s, deg/s, deg/s/√s, deg/s²): N = 0.1 deg/√h,
+#: B = 1 deg/h, K = 3 deg/h/√h, R = 10 deg/h², Q = 3e-3 deg: over 2¹⁵ s (9.1 h) each
+#: term present rules a stretch of the curve (N below 80 s, B to 530 s, K above).
+N, B, K, R, Q = 0.1 / 60, 1.0 / 3600, 3.0 / 216_000, 10.0 / 3600 ** 2, 3e-3
+CASES = (
+    ("white", Truth(arw=N)),
+    ("white+flicker", Truth(arw=N, bias_instability=B)),
+    ("white+random walk", Truth(arw=N, rrw=K)),
+    ("white+flicker+random walk", Truth(arw=N, bias_instability=B, rrw=K)),
+    ("quantization+white+ramp", Truth(quantization=Q, arw=N, rate_ramp=R)),
+)
+
+
+def truth_values(truth: Truth) -> tuple[float, ...]:
+    return (truth.quantization, truth.arw, truth.bias_instability, truth.rrw, truth.rate_ramp)
+
+
+def run(records: int, samples: int, first_seed: int,
+        method: str = "pivot") -> dict[str, list[tuple[str, bool, bool]]]:
+    """Per term: (case, held at 68 %, held at 95 %) for resolved terms, and
+    ('bound', holds, holds) for bounds."""
+    out: dict[str, list[tuple[str, bool, bool]]] = {name: [] for name in TERMS}
+    m = tau_grid(samples)
+    for r in range(records):
+        name, truth = CASES[r % len(CASES)]
+        rng = np.random.default_rng(first_seed + r)
+        y = simulate(truth, samples, TAU0, rng)
+        tau, adev = oadev(y, TAU0, m)
+        model = noise_model(tau, adev, m, samples, TAU0, seed=10_000 + r, method=method)
+        for term, found, true in zip(TERMS, model.terms, truth_values(truth), strict=False):
+            if found.resolved:
+                assert found.value is not None
+                (lo68, hi68), (lo95, hi95) = found.intervals
+                out[term].append((name if true > 0 else "absent", lo68 <= true <= hi68,
+                                  lo95 <= true <= hi95))
+            elif true > 0:
+                assert found.bound is not None
+                out[term].append(("bound", true <= found.bound, true <= found.bound))
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--records", type=int, default=200)
+    parser.add_argument("--samples", type=int, default=1 << 15)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--interval", choices=("pivot", "percentile"), default="pivot",
+                        help="the bootstrap interval (pivot: gyrovib's)")
+    args = parser.parse_args()
+    start = time.perf_counter()
+    result = run(args.records, args.samples, args.seed, args.interval)
+    took = time.perf_counter() - start
+    print(f"{args.records} records of {args.samples} samples at {TAU0} s "
+          f"(seeds {args.seed}…{args.seed + args.records - 1}), {args.interval} intervals, "
+          f"{took:.0f} s")
+    print(f"{'term':18} {'values':>7} {'68 % cover':>11} {'95 % cover':>11} "
+          f"{'bounds':>7} {'bounds hold':>12}")
+    for term, rows in result.items():
+        values = [r for r in rows if r[0] not in ("bound", "absent")]
+        bounds = [r for r in rows if r[0] == "bound"]
+        absent = [r for r in rows if r[0] == "absent"]
+        c68 = f"{100 * np.mean([r[1] for r in values]):.1f} %" if values else "-"
+        c95 = f"{100 * np.mean([r[2] for r in values]):.1f} %" if values else "-"
+        hold = f"{100 * np.mean([r[1] for r in bounds]):.1f} %" if bounds else "-"
+        print(f"{term:18} {len(values):7d} {c68:>11} {c95:>11} {len(bounds):7d} {hold:>12}"
+              + (f"   ({len(absent)} values of a term the truth lacks)" if absent else ""))
+    print("binomial 1σ of a coverage over v values: √(p(1 − p)/v), "
+          f"e.g. {100 * math.sqrt(0.68 * 0.32 / 40):.1f} points at 68 % over 40")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,270 @@
+"""Renderers of ``gyrovib runup`` (docs/model.md section 16): a table per step and the
+estimates, JSON (keys: INTERFACE.md, fifth round), CSV, Markdown and the plot.
+
+An unknown figure is '?' in tables, null in JSON and empty in CSV.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+from typing import TYPE_CHECKING, Any
+
+from rich.table import Table
+from rich.text import Text
+
+from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+
+if TYPE_CHECKING:
+    from gyrovib.api.runup import Estimate, RunupResult, Step
+
+UNIT = "deg/s"
+#: Columns of the CSV (one row per step, then one per estimate).
+STEP_COLUMNS = ("kind", "step", "start", "end", "duration", "baseline", "x3_rms", "accel_rms",
+                "shift", "uncertainty", "fitted", "predicted", "residual", "status",
+                "outlier", "moved")
+ESTIMATE_COLUMNS = ("kind", "name", "value", "uncertainty", "unit", "identifiable", "status",
+                    "catalogue", "catalogue_bound", "ratio", "separate")
+
+
+def _c(value: float, digits: int = 4) -> str:
+    """A table cell: '?' for an unknown figure."""
+    return fmt(value, digits) if math.isfinite(value) else "?"
+
+
+def _step_json(s: Step) -> dict[str, Any]:
+    return {"index": s.index, "start": s.start, "end": s.end, "duration": s.duration,
+            "baseline": s.baseline, "mean": number(s.mean), "x3_rms": number(s.x3_rms),
+            "accel_rms": number(s.accel_rms), "shift": number(s.shift),
+            "uncertainty": number(s.uncertainty),
+            "regressors": {k: number(v) for k, v in s.regressors},
+            "fitted": number(s.fitted), "predicted": number(s.predicted),
+            "predicted_bound": s.bound, "residual": number(s.residual),
+            "residual_sigma": number(s.residual / s.sigma) if s.sigma > 0 else None,
+            "status": s.status, "outlier": s.outlier, "moved": s.moved}
+
+
+def _estimate_json(e: Estimate) -> dict[str, Any]:
+    return {"value": number(e.value), "uncertainty": number(e.uncertainty), "unit": e.unit,
+            "identifiable": e.identifiable, "status": e.status, "separate": e.separate,
+            "catalogue": number(e.catalogue), "catalogue_bound": e.catalogue_bound,
+            "ratio": number(e.ratio), "vif": number(e.vif)}
+
+
+def to_json(result: RunupResult) -> str:
+    """``steps``, ``estimates`` (by name), ``drift``, ``chi2`` and the recording."""
+    doc = header("runup", UNIT)
+    doc |= {
+        "recording": {"file": os.path.basename(result.file), "topic": result.topic,
+                      "instance": result.instance, "sha256": result.sha256,
+                      "samples": result.samples, "fs": result.fs,
+                      "crossover": result.crossover, "steps_given": result.steps_given},
+        "sensor": result.sensor,
+        "steps": [_step_json(s) for s in result.steps],
+        "estimates": {e.name: _estimate_json(e) for e in result.estimates},
+        "drift": {"value": number(result.drift), "uncertainty": number(result.drift_uncertainty),
+                  "unit": "deg/s/s", "estimated": math.isfinite(result.drift),
+                  "vif": number(result.drift_vif)},
+        "chi2": {"value": number(result.chi2), "dof": result.dof,
+                 "reduced": number(result.reduced_chi2), "inflation": number(result.inflation)},
+        "constant": number(result.constant),
+        "requirement_met": result.requirement_met,
+        "limits": list(result.limits),
+        "notes": list(result.notes),
+    }
+    return dumps(doc)
+
+
+def _csv_cell(value: float) -> str:
+    return repr(float(value)) if math.isfinite(value) else ""
+
+
+def _rows(result: RunupResult) -> list[list[Any]]:
+    rows: list[list[Any]] = []
+    for s in result.steps:
+        rows.append(["step", s.index, repr(s.start), repr(s.end), repr(s.duration),
+                     str(s.baseline), _csv_cell(s.x3_rms), _csv_cell(s.accel_rms),
+                     _csv_cell(s.shift), _csv_cell(s.uncertainty), _csv_cell(s.fitted),
+                     _csv_cell(s.predicted), _csv_cell(s.residual), s.status or "",
+                     str(s.outlier), str(s.moved)])
+    return rows
+
+
+def to_csv(result: RunupResult) -> str:
+    """The steps (one row each), a blank line, then the estimates (one row each)."""
+    steps = csv_text(STEP_COLUMNS, _rows(result))
+    estimates = csv_text(ESTIMATE_COLUMNS, [
+        ["estimate", e.name, _csv_cell(e.value), _csv_cell(e.uncertainty), e.unit,
+         str(e.identifiable), e.status, _csv_cell(e.catalogue),
+         str(e.catalogue_bound), _csv_cell(e.ratio), e.separate or ""]
+        for e in result.estimates])
+    return steps + "\n" + estimates
+
+
+def _step_cells(s: Step) -> list[str]:
+    flags = [w for w, on in (("baseline", s.baseline), ("> 3σ", s.outlier),
+                             ("moved", s.moved)) if on]
+    predicted = "" if s.status is None else (
+        ("≤ " if s.bound else "") + _c(s.predicted, 3))
+    return [str(s.index), f"{s.start:.6g}–{s.end:.6g}", _c(s.duration, 4), _c(s.x3_rms, 3),
+            _c(s.accel_rms, 3), f"{_c(s.shift, 3)} ± {_c(s.uncertainty, 2)}",
+            _c(s.fitted, 3), predicted, _c(s.residual, 2), s.status or "", ", ".join(flags)]
+
+
+_STEP_HEAD = ["step", "time, s", "T, s", "x3 rms, deg/s", "a rms, g", "shift ± u, deg/s",
+              "fit, deg/s", "predicted, deg/s", "residual, deg/s", "verdict", "flags"]
+_EST_HEAD = ["term", "in-situ ± u", "unit", "status", "catalogue", "ratio", "what would "
+             "separate it"]
+
+
+def _estimate_cells(e: Estimate, compared: bool) -> list[str]:
+    cat = "" if not compared else "?" if not math.isfinite(e.catalogue) else (
+        ("≤ " if e.catalogue_bound else "") + _c(e.catalogue, 3))
+    return [e.name, f"{_c(e.value, 3)} ± {_c(e.uncertainty, 2)}", e.unit, e.status, cat,
+            _c(e.ratio, 3) if math.isfinite(e.ratio) else "", e.separate or ""]
+
+
+def _summary(result: RunupResult) -> str:
+    drift = ("not estimated (the steps' order does not separate it)"
+             if not math.isfinite(result.drift)
+             else f"{fmt(result.drift, 3)} ± {fmt(result.drift_uncertainty, 2)} deg/s/s")
+    chi = (f"χ² = {fmt(result.chi2, 3)} on {result.dof} degrees of freedom"
+           + (f" (uncertainties × {math.sqrt(result.inflation):.3g})"
+              if result.inflation > 1 else ""))
+    source = "given" if result.steps_given else "found from the running variance"
+    read = "" if result.source is None else f" ({result.source})"
+    return (f"recording {os.path.basename(result.file)}{read}: {result.samples} samples at "
+            f"{result.fs:.6g} Hz, {len(result.steps)} steps ({source}), crossover "
+            f"{result.crossover:g} Hz; drift {drift}; {chi}"
+            + (f"; compared with sensor {result.sensor}" if result.sensor else ""))
+
+
+def _verdict(result: RunupResult) -> str:
+    if result.sensor is None:
+        return ""
+    outside = [s.index for s in result.steps if s.status == "outside"]
+    unknown = [s.index for s in result.steps if s.status == "unverified"]
+    if outside:
+        return (f"verdict: step(s) {', '.join(map(str, outside))} outside the prediction of "
+                f"{result.sensor} (measured shift more than 2 u from it)")
+    if unknown:
+        return (f"verdict: unverified — the prediction of {result.sensor} is unknown on "
+                f"step(s) {', '.join(map(str, unknown))} (a figure it needs is not published)")
+    return f"verdict: every step within the prediction of {result.sensor}"
+
+
+def _step_columns(result: RunupResult) -> list[int]:
+    """The step table's columns: without a sensor, no prediction and no verdict."""
+    return [k for k in range(len(_STEP_HEAD)) if result.sensor is not None or k not in (7, 9)]
+
+
+def _estimate_columns(result: RunupResult) -> list[int]:
+    """The estimates table's columns: the catalogue's only with a sensor, what would
+    separate a term only when one is not identifiable."""
+    separate = any(e.separate for e in result.estimates)
+    return [k for k in range(len(_EST_HEAD))
+            if (k not in (4, 5) or result.sensor is not None) and (k != 6 or separate)]
+
+
+def to_table(result: RunupResult, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """The summary, a table of the steps, a table of the estimates, notes and limits."""
+    items: list[Any] = [Text(_summary(result))]
+    steps = Table(title="steps", header_style="bold")
+    shown = _step_columns(result)
+    for k in shown:
+        steps.add_column(_STEP_HEAD[k], justify="left" if k in (1, 9, 10) else "right")
+    for s in result.steps:
+        cells = _step_cells(s)
+        steps.add_row(*(cells[k] for k in shown))
+    items.append(steps)
+    est = Table(title="in-situ estimates (standard uncertainty u)", header_style="bold")
+    shown = _estimate_columns(result)
+    for k in shown:
+        est.add_column(_EST_HEAD[k], justify="right" if k in (1, 4, 5) else "left")
+    for e in result.estimates:
+        cells = _estimate_cells(e, result.sensor is not None)
+        est.add_row(*(cells[k] for k in shown))
+    items.append(est)
+    verdict = _verdict(result)
+    if verdict:
+        items.append(Text(verdict, style="bold"))
+    items += [Text(f"note: {n}") for n in result.notes]
+    items += [Text(f"limit: {n}", style="dim") for n in result.limits]
+    return rich_text(items, width=width, color=color, ascii=ascii)
+
+
+def to_markdown(result: RunupResult) -> str:
+    """The two tables as GitHub Markdown, with the summary, notes and limits."""
+    shown = _step_columns(result)
+    parts = [_summary(result), "",
+             markdown_table([_STEP_HEAD[k] for k in shown],
+                            [[_step_cells(s)[k] for k in shown] for s in result.steps]),
+             "", markdown_table([_EST_HEAD[k] for k in _estimate_columns(result)],
+                                [[_estimate_cells(e, result.sensor is not None)[k]
+                                  for k in _estimate_columns(result)]
+                                 for e in result.estimates])]
+    verdict = _verdict(result)
+    if verdict:
+        parts += ["", verdict]
+    parts += [""] + [f"- note: {n}" for n in result.notes] + [f"- limit: {n}"
+                                                               for n in result.limits]
+    return "\n".join(parts) + "\n"
+
+
+#: The unit of each term's regressor (docs/model.md section 16); the G terms' is g².
+_REGRESSOR_UNITS = {"A1": "deg/s", "k2": "(deg/s)^2", "k4": "(deg/s)^4", "m31": "(deg/s)^2",
+                    "m32": "(deg/s)^2"}
+
+
+def _leading(result: RunupResult) -> Estimate:
+    """The estimate that moves the shifts most over these steps (|θ|·span of φ)."""
+    def reach(e: Estimate) -> float:
+        values = [dict(s.regressors)[e.name] for s in result.steps]
+        span = max(values) - min(values)
+        effect = abs(e.value) * span
+        return effect if math.isfinite(effect) else -1.0
+
+    return max(result.estimates, key=reach)
+
+
+def plot(result: RunupResult) -> bytes:
+    """Shift against the regressor of the term that moves it most (:func:`_leading`):
+    measured with 2u error bars, the fit, and the catalogue sensor's prediction (PNG)."""
+    # lazy: matplotlib is optional, for --plot only
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    first = _leading(result)
+    x = [dict(s.regressors)[first.name] for s in result.steps]
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    ax.errorbar(x, [s.shift for s in result.steps],
+                yerr=[2 * s.uncertainty for s in result.steps], fmt="o", color="k", ms=4,
+                capsize=3, label="measured shift ± 2u")
+    order = sorted(range(len(x)), key=lambda k: x[k])
+    ax.plot([x[k] for k in order], [result.steps[k].fitted for k in order], "-", color="C0",
+            label="fit")
+    if result.sensor is not None:
+        ax.plot(x, [s.predicted for s in result.steps], "s", mfc="none", color="C3",
+                label=f"{result.sensor}: predicted" + (" (bound)" if result.steps[0].bound
+                                                       else ""))
+    for s, xv in zip(result.steps, x, strict=True):
+        ax.annotate(str(s.index), (xv, s.shift), textcoords="offset points", xytext=(4, 4),
+                    fontsize=7)
+    ax.axhline(0.0, color="0.7", lw=0.8)
+    ax.set_xlabel(f"{first.name} regressor, {_REGRESSOR_UNITS.get(first.name, 'g^2')}")
+    ax.set_ylabel(f"shift from the baseline, {UNIT}")
+    ax.set_title(f"{os.path.basename(result.file)}: run-up test", fontsize=10)
+    ax.grid(True, lw=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    out = io.BytesIO()
+    fig.savefig(out, format="png", dpi=100)
+    plt.close(fig)
+    return out.getvalue()
+
+
+__all__ = ["plot", "to_csv", "to_json", "to_markdown", "to_table"]
