@@ -466,8 +466,9 @@ def test_report_gains_a_mission_section(tmp_path) -> None:  # type: ignore[no-un
             from gyrovib.render.common import fmt
 
             assert f"{r['sensor']} with x3 on {r['axis']}: θ_V = {fmt(r['angle'])} deg" in section
-    # one table row per segment (8) per sensor shown (2), and a header row each
-    assert section.count("<tr") == 2 * (8 + 1)
+    # one table row per segment (8) per sensor shown (2), and a header row each; then
+    # the verdict table and the noise figures' table, a header and a row per sensor each
+    assert section.count("<tr") == 2 * (8 + 1) + 2 * (1 + 2)
 
 
 def test_notebook_mission_is_the_command() -> None:

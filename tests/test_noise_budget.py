@@ -97,10 +97,19 @@ def test_json_and_table_say_unknown(tmp_path) -> None:  # type: ignore[no-untype
     assert silent["arw"] is None and silent["lower_bound"] is True
     assert set(rows[0]["budget"]) == {"vibration", "arw", "bias_instability", "rrw",
                                       "repeatability", "total", "coverage", "unit",
-                                      "lower_bound", "rests_on_bound", "bounds", "typical"}
+                                      "lower_bound", "rests_on_bound", "bounds", "typical",
+                                      "allowed"}
+    # with unknown noise figures, every figure's allowance is only an upper limit (the
+    # unknown ones can only take more of the budget); with all known, none is
+    assert rows[1]["budget"]["allowed"]["upper"] == ["vibration", "arw", "bias_instability",
+                                                     "rrw", "repeatability"]
+    assert rows[0]["budget"]["allowed"]["upper"] == []
     table = invoke("mission", path, "--angle-budget", "3deg").stdout
     line = next(x for x in table.splitlines() if x.startswith("│ silent"))
     assert "?" in line and " 0 " not in line
+    # the allowance table marks the upper limits with '*'
+    allowed = [x for x in table.splitlines() if x.startswith("│ silent")][-1]
+    assert "*" in allowed
 
 
 def test_select_ranks_on_the_total(tmp_path) -> None:  # type: ignore[no-untyped-def]

@@ -46,13 +46,17 @@ coverage_option = click.option(
                    "chosen mission (on every axis of a triad).")
 @format_option("table", "json", "csv", "markdown", "junit")
 @output_option
+@click.option("--plot", metavar="PNG", default=None,
+              help="Also draw θ(t) per sensor to PNG: the vibration angle segment by "
+                   "segment inside the ±k·σ(t) noise cone, and the angle budget "
+                   "(matplotlib).")
 @click.pass_context
 @runs("mission")
 def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...],
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
             assume_unknown: str | None, require: str, fmt: str, output: str | None,
-            coverage: float) -> None:
+            coverage: float, plot: str | None) -> None:
     """Each sensor over each mission: mean error, angle θ_V, mean RMS, worst segment,
     and the whole angle budget.
 

@@ -11,9 +11,11 @@ from rich.text import Text
 
 from gyrovib.api.missions.results import budget_columns, frame_columns
 from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.mission_answer import allowance_cells, allowance_head, allowance_json
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
+    from gyrovib.api.noise.results import Budget
 
 
 #: The verdict cell of each row status (None: no budget).
@@ -198,10 +200,25 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
         cells = _cells(result, row)
         table.add_row(*(cells[k] for k in keep))
     out: list[Any] = [table]
+    if any(r.budget is not None and r.budget.allowed is not None for r in result.rows):
+        out.append(_allowance_table(result))
     notes = _table_notes(result)
     out.append(Text(" ".join(notes), style="dim"))
     out.extend(Text(note) for note in _unknown_notes(result))
     return rich_text(out, width=width, color=color, ascii=ascii)
+
+
+def _allowance_table(result: MissionResult) -> Table:
+    """Per row, the largest value of each figure that still meets the angle budget."""
+    table = Table(header_style="bold", title="Largest figure that meets the budget, the "
+                  "others as given (none (X): X alone uses the allowance; *: an upper "
+                  "limit, a figure being unknown)", title_justify="left")
+    for name in ("sensor", "axis", *allowance_head()):
+        table.add_column(name, no_wrap=True, justify="left" if name in ("sensor", "axis")
+                         else "right")
+    for row in result.rows:
+        table.add_row(row.sensor, row.axis or "-", *allowance_cells(row))
+    return table
 
 
 def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
@@ -212,7 +229,8 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
                           "total": number(row.worst_total)},
         "segments": [{"profile": s.profile, "duration": s.duration,
                       "rate": [number(v) for v in s.rate], "total": number(s.total),
-                      "rms": number(s.rms), "saturated": s.saturated} for s in row.segments],
+                      "rms": number(s.rms), "saturated": s.saturated,
+                      **_timeline_json(row, k)} for k, s in enumerate(row.segments)],
         "saturated": row.saturated, "pass": row.passed, "status": row.status,
         "unknown": list(row.unknown), "reason": _reason(result, row) or None,
         "source": row.source,
@@ -226,10 +244,31 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
             "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
             "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
             "bounds": list(b.bounds), "typical": list(b.typical)}
+        allowed = allowance_json(row)
+        if allowed is not None:
+            out["budget"]["allowed"] = allowed
     if row.axis is not None:
         out["axis"] = row.axis
         out["worst_axis"] = row.worst_axis
     return out
+
+
+def _budget_json(b: Budget) -> dict[str, Any]:
+    return {"vibration": number(b.vibration),
+            **{name: None if getattr(b, name) is None else number(getattr(b, name))
+               for name in _NOISE},
+            "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
+            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
+            "bounds": list(b.bounds)}
+
+
+def _timeline_json(row: MissionRow, k: int) -> dict[str, Any]:
+    """Segment ``k``'s ``end`` (s from the start) and the ``budget`` there: θ_V(t)
+    summed so far and the noise over t (deg; the cone is ±coverage·RSS of the terms)."""
+    if not row.timeline:
+        return {}
+    return {"end": sum(s.duration for s in row.segments[:k + 1]),
+            "budget": _budget_json(row.timeline[k])}
 
 
 def _group_status(group: list[MissionRow], passed: bool | None) -> str | None:

@@ -25,7 +25,7 @@ from gyrovib import units
 from gyrovib.api.commands.mission import mission
 from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.evaluation.unknown import depends_on, not_recorded, words
-from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier3, rate_pass
+from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.api.recordings.results import (
     AxisHonesty,
@@ -188,12 +188,15 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                            breakpoints, True, crossover, var_a, rate=False)
         del xa_segments
     rate = measured.carrier_sum / n_total
-    c3 = carrier3(recording, kept, crossover)
-    bin_rates, counts = core.carrier_histogram(c3)
-    del c3
+    # the fitted mission keeps the carrier of every axis: the joint carrier in at most
+    # 16 groups (a histogram of Ω_K3 alone left a triad's X and Y sensors no carrier)
+    joint = carrier(recording, kept, crossover, rate)
+    mission_rates, counts = core.carrier_clusters(joint)
+    del joint
+    for j in range(3):
+        if not recording.rate_axes[j]:
+            mission_rates[:, j] = rate[j]
     peak = measured.peak
-    mission_rates = np.column_stack([np.full(bin_rates.size, rate[0]),
-                                     np.full(bin_rates.size, rate[1]), bin_rates])
     honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
                                 float(kurt[j]), float(angular.shape_db[j]),
                                 float(angular.off_3db[j])) for j in range(3))

@@ -44,7 +44,12 @@ class MissionRow(Frozen):
     ``m31``, ``m32``; docs/model.md section 11); ``unverified``: the row passes
     on the published figures but an unknown one can decide it (then ``passed``
     is False), see :attr:`status`. ``budget``: the whole angle budget in deg
-    (docs/model.md section 15; :mod:`gyrovib.api.noise`), None before it is computed.
+    (docs/model.md section 15; :mod:`gyrovib.api.noise`), None before it is computed;
+    ``timeline``: the budget at the end of each segment (θ_V(t) summed segment by
+    segment, the noise over the time flown so far), empty before it is computed. For a
+    datasheet sensor each segment's angle is that segment's own worst case, so the
+    staircase may end above the row's ``angle`` (the worst case of one conversion
+    function over the whole mission).
     """
 
     sensor: str
@@ -65,6 +70,7 @@ class MissionRow(Frozen):
     unknown: tuple[str, ...] = ()
     unverified: bool = False
     budget: Budget | None = None
+    timeline: tuple[Budget, ...] = ()
 
     @property
     def duration(self) -> float:
@@ -149,9 +155,12 @@ def _record(r: MissionRow) -> dict[str, Any]:
             "typical": " ".join(r.budget.typical) if r.budget is not None else ""}
 
 
-#: The budget's columns of the DataFrame and the CSV (deg; None where unknown).
+#: The budget's columns of the DataFrame and the CSV (deg; None where unknown), then the
+#: allowance's (the largest |θ_V| in deg, N, B, K, R in their figures' units that meet
+#: the angle budget; None where none passes or without an angle budget).
 BUDGET_COLUMNS = ("theta_arw", "theta_bias_instability", "theta_rrw", "theta_repeatability",
-                  "budget_total", "coverage")
+                  "budget_total", "coverage", "allowed_vibration", "allowed_arw",
+                  "allowed_bias_instability", "allowed_rrw", "allowed_repeatability")
 
 
 def budget_columns(r: MissionRow) -> dict[str, float | None]:
@@ -159,8 +168,11 @@ def budget_columns(r: MissionRow) -> dict[str, float | None]:
     b = r.budget
     if b is None:
         return dict.fromkeys(BUDGET_COLUMNS)
+    a = b.allowed
+    allowed = ((None,) * 5 if a is None else
+               (a.vibration, a.arw, a.bias_instability, a.rrw, a.repeatability))
     return dict(zip(BUDGET_COLUMNS, (b.arw, b.bias_instability, b.rrw, b.repeatability,
-                                     b.total, b.coverage), strict=True))
+                                     b.total, b.coverage, *allowed), strict=True))
 
 
 def frame_columns() -> tuple[str, ...]:

@@ -20,10 +20,10 @@ from gyrovib.api.commands.mission import mission as vibration_mission
 from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.evaluation.unknown import any_missing
 from gyrovib.api.missions.results import MissionResult, MissionRow
-from gyrovib.api.noise.budget import budget
+from gyrovib.api.noise.budget import allowance, budget, timeline
 from gyrovib.api.noise.figures import FIGURES, noise_bounds, noise_values, typical_figures
 from gyrovib.catalog.loader import Catalog
-from gyrovib.core.mission import ANGLE_IN_RAD
+from gyrovib.core.mission import ANGLE_IN_RAD, ANGLE_UNITS
 from gyrovib.errors import ModelError, OptionError
 
 #: Degrees per unit of a mission's angle (deg, rad, rev).
@@ -49,21 +49,28 @@ def mission(catalog: Catalog, *, coverage: float = 1.0, angle_budget: float | No
     result = vibration_mission(catalog, angle_budget=angle_budget, **options)
     noise = {e.sensor.id: e.sensor.noise for e in catalog.sensors}
     per_deg = _DEG_PER[result.angle_unit]
-    rows = [_with_budget(r, noise_values(noise[r.sensor], r.axis), per_deg, k,
+    per_step = per_deg * ANGLE_UNITS[result.unit][1]  # deg per (rate unit × s)
+    rows = [_with_budget(r, noise_values(noise[r.sensor], r.axis), per_deg, per_step, k,
                          noise_bounds(noise[r.sensor], r.axis),
                          typical_figures(noise[r.sensor], r.axis)) for r in result.rows]
     _refuse_overflow(catalog, rows)
     if result.angle_budget is not None:
-        theta = result.angle_budget * per_deg
+        theta = result.angle_budget * _DEG_PER[result.angle_unit]
         rows = [_judged(r, theta, result.assume_unknown) for r in rows]
     return _verdicts(result, rows, k)
 
 
 def _with_budget(row: MissionRow, figures: dict[str, float | None], per_deg: float,
-                 coverage: float, bounds: tuple[str, ...],
+                 per_step: float, coverage: float, bounds: tuple[str, ...],
                  typical: tuple[str, ...] = ()) -> MissionRow:
+    """The row's budget (``per_deg``: deg per angle unit; ``bounds``: the figures that
+    are only upper bounds; ``typical``: those given as ``typ``), and its timeline
+    (``per_step``: deg per rate unit × second)."""
+    steps = [s.total * s.duration * per_step for s in row.segments]
     return replace(row, budget=budget(row.angle * per_deg, figures, row.duration, coverage,
-                                      bounds, typical))
+                                      bounds, typical),
+                   timeline=timeline(steps, [s.duration for s in row.segments], figures,
+                                     coverage, bounds, typical))
 
 
 def _refuse_overflow(catalog: Catalog, rows: Sequence[MissionRow]) -> None:
@@ -95,7 +102,9 @@ def _judged(row: MissionRow, theta_deg: float, assume_unknown: str) -> MissionRo
     names = row.unknown + tuple(n for n in FIGURES if _term(n) in row.budget.unknown)
     passed = not row.saturated and row.budget.total <= theta_deg
     open_ = any_missing(names) or spec_bounds.is_unverified(passed, names, assume_unknown)
-    return replace(row, passed=passed and not open_, unverified=open_, unknown=names)
+    allowed = allowance(row.budget, theta_deg, row.duration)
+    return replace(row, passed=passed and not open_, unverified=open_, unknown=names,
+                   budget=replace(row.budget, allowed=allowed))
 
 
 def _term(figure: str) -> str:

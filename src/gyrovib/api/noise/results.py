@@ -135,7 +135,8 @@ class Budget(Frozen):
     names the terms whose figure is only an upper bound (its bound is used: the term,
     and the total, are then the most they can be from it).
     ``typical``: the terms whose figure the datasheet gives as typical (``typ``), not
-    guaranteed, so a verdict on the total rests on a typical figure.
+    guaranteed, so a verdict on the total rests on a typical figure. ``allowed``: with an
+    angle budget, the largest value of each figure that meets it (:class:`Allowance`).
     """
 
     vibration: float
@@ -149,8 +150,40 @@ class Budget(Frozen):
     unit: str = "deg"
     bounds: tuple[str, ...] = ()
     typical: tuple[str, ...] = ()
+    allowed: Allowance | None = None
 
     @property
     def lower_bound(self) -> bool:
         """Whether ``total`` is only a lower bound (a noise figure is unknown)."""
         return bool(self.unknown)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Allowance(Frozen):
+    """The largest value of each budget figure that still meets an angle budget θ*, the
+    others as given (docs/model.md section 15 solved for one figure at a time).
+
+    From total = |θ_V| + k·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) ≤ θ*: ``vibration`` the
+    largest |θ_V| (deg); ``arw`` N (deg/√h), ``bias_instability`` B (deg/h),
+    ``rrw`` K (deg/h/√h), ``repeatability`` R (deg/h). None: no value passes, and
+    ``limited_by`` names, per such figure, the term that alone uses the allowance.
+    ``upper``: the figures whose value is only an upper limit, because another
+    noise figure is unknown (it can only take more of the allowance).
+    """
+
+    vibration: float | None
+    arw: float | None
+    bias_instability: float | None
+    rrw: float | None
+    repeatability: float | None
+    limited_by: tuple[tuple[str, str], ...] = ()
+    upper: tuple[str, ...] = ()
+
+    def limit(self, term: str) -> str | None:
+        """The term that alone uses the allowance where ``term`` has no passing value."""
+        return dict(self.limited_by).get(term)
+
+
+#: Each budget term's figure unit in an :class:`Allowance` (vibration: the angle, deg).
+ALLOWANCE_UNITS = {"vibration": "deg", "arw": "deg/sqrt(h)", "bias_instability": "deg/h",
+                   "rrw": "deg/h/sqrt(h)", "repeatability": "deg/h"}

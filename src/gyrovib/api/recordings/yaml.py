@@ -110,10 +110,10 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         lines.append("# Lines at integer multiples of a fundamental are one phase-locked group; "
                      "their relative phases are unobservable in a PSD, so each order is "
                      "'phase: worst'.")
-    lines.append("# The mission is the carrier histogram of Omega_K3 (docs/model.md sections "
-                 "12-13):")
-    lines.append("# one segment per bin, its time in s at its mean rate (Omega_K1, Omega_K2: "
-                 "the recording's means).")
+    lines.append("# The mission is the joint carrier (Omega_K1, Omega_K2, Omega_K3) in at most "
+                 "16 groups (docs/model.md sections 12-13):")
+    lines.append("# one segment per group, its time in s at its mean rate on every axis, so "
+                 "that a sensor on any axis keeps its carrier.")
     lines += [
         "",
         "gyrovib: 1",

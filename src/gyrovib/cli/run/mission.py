@@ -15,9 +15,11 @@ from gyrovib.cli.options import (
     parse_placement,
     parse_unit,
 )
-from gyrovib.cli.output import write_output
+from gyrovib.cli.output import write_binary, write_output
 from gyrovib.errors import OptionError
 from gyrovib.render import mission as render
+from gyrovib.render.mission_answer import answer_line
+from gyrovib.render.mission_plot import theta_png
 from gyrovib.render.report_mission import mission_section as section
 
 
@@ -25,7 +27,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
             assume_unknown: str | None, require: str, fmt: str, output: str | None,
-            coverage: float) -> None:
+            coverage: float, plot: str | None) -> None:
     """See :func:`gyrovib.cli.mission.mission`."""
 
     if budget is not None and angle_budget is not None:
@@ -43,6 +45,8 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
     _show(result, fmt, output)
+    if plot is not None:
+        write_binary(theta_png(result), plot)
     if not result.requirement_met:
         ctx.exit(1)
 
@@ -52,6 +56,9 @@ def _show(result: MissionResult, fmt: str, output: str | None) -> None:
     markdown or junit) to standard output or ``output``."""
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
+    answer = answer_line(result)
+    if answer is not None:  # the answer first, on standard error: the data stay clean
+        say(f"gyrovib: {answer}")
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
@@ -93,11 +100,16 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
 
 def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
                     angle_budget: str | None, unit: str, peak_factor: float,
-                    assume_unknown: str = "none", coverage: float = 1.0) -> str:
-    """``report --mission``: the HTML of the mission section."""
+                    assume_unknown: str = "none", coverage: float = 1.0,
+                    placement: str | None = None) -> str:
+    """``report --mission``: the HTML of the mission section (``placement``: replacing
+    each mission's own)."""
 
     result = api.mission(
         catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
-        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage)
-    return section(result)
+        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage,
+        placement=parse_placement(placement))
+    noise = {e.sensor.id: ({} if e.sensor.noise is None else e.sensor.noise.figures())
+             for e in catalog.sensors if e.sensor.id in result.sensors}  # type: ignore[attr-defined]
+    return section(result, noise)

@@ -20,7 +20,8 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, assume_unknown: str | None, require: str,
            rate_range: str | None, yield_target: float | None, seed: int, draws: int,
-           output: str, recording: str | None, coverage: float, **rec: Any) -> None:
+           output: str, recording: str | None, coverage: float, placement: str | None = None,
+           **rec: Any) -> None:
     """See :func:`gyrovib.cli.report.report`."""
     split = budget_arguments(budget, unit, rate, allocation)
     sweep_rates = None
@@ -34,7 +35,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     if missions:  # after the recording's section, before the profiles
         section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
                                    peak_factor, assume_unknown=assume_unknown or "none",
-                                   coverage=coverage)
+                                   coverage=coverage, placement=placement)
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,
