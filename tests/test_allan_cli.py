@@ -90,7 +90,7 @@ def test_a_record_with_gaps_says_in_the_block_that_one_segment_was_used(tmp_path
 def test_plot_writes_a_png_with_no_library_warnings(tmp_path: Path) -> None:
     path, _ = _record(tmp_path)
     png = tmp_path / "a.png"
-    out = invoke("allan", path, "--plot", png, "--format", "json")
+    out = invoke("allan", path, "--rate-columns", "gx,-,gz", "--plot", png, "--format", "json")
     assert out.exit_code == 0, out.stderr
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "Warning" not in out.stderr and ".py:" not in out.stderr
@@ -118,8 +118,8 @@ def test_a_record_without_visible_noise_is_refused_never_zero(tmp_path: Path,
 
 def test_kalibr_yaml_round_trips_with_the_hand_conversion(tmp_path: Path) -> None:
     path, _ = _record(tmp_path)
-    doc = json.loads(invoke("allan", path, "--format", "json").stdout)
-    out = invoke("allan", path, "--format", "kalibr")
+    doc = json.loads(invoke("allan", path, "--rate-columns", "gx,-,gz", "--format", "json").stdout)
+    out = invoke("allan", path, "--rate-columns", "gx,-,gz", "--format", "kalibr")
     assert out.exit_code == 0, out.stderr
     imu = yaml.safe_load(out.stdout)
     # by hand: N [deg/√h] / 60 = deg/√s = deg/s/√Hz, × π/180 → rad/s/√Hz; K [deg/h/√h]
@@ -138,19 +138,19 @@ def test_a_short_record_is_refused_with_the_file_named(tmp_path: Path) -> None:
     path = tmp_path / "short.csv"
     path.write_text("t,g\n" + "".join(f"{i / 10},{i % 3}\n" for i in range(10)),
                     encoding="utf-8")
-    out = invoke("allan", path)
+    out = invoke("allan", path, "--rate-columns", "-,-,g")
     assert out.exit_code == 2
     assert "short.csv" in out.stderr and "needs 30" in out.stderr
 
 
 def test_confidence_option(tmp_path: Path) -> None:
     path, _ = _record(tmp_path)
-    docs = {c: json.loads(invoke("allan", path, "--confidence", c, "--format",
-                                 "json").stdout) for c in ("68%", "0.95")}
+    docs = {c: json.loads(invoke("allan", path, "--rate-columns", "gx,-,gz", "--confidence",
+                                 c, "--format", "json").stdout) for c in ("68%", "0.95")}
     assert docs["0.95"]["confidence"] == 0.95
     narrow, wide = (np.array(docs[c]["axes"][0]["ci"]) for c in ("68%", "0.95"))
     assert np.all(wide[:, 0] < narrow[:, 0]) and np.all(wide[:, 1] > narrow[:, 1])
-    bad = invoke("allan", path, "--confidence", "150%")
+    bad = invoke("allan", path, "--rate-columns", "gx,-,gz", "--confidence", "150%")
     assert bad.exit_code == 2 and "--confidence" in bad.stderr
 
 

@@ -74,4 +74,5 @@ def test_errors_in_the_output_unit_rates_in_the_catalogue_unit() -> None:
 def test_noise_below_1e_12_of_its_row_prints_as_zero() -> None:
     assert render.row_cells([-3.405e-181, 1.0, 2.5e-13, 1e-12]) == ["0", "1", "0", "1e-12"]
     assert render.row_cells([0.0, 0.0]) == ["0", "0"]
-    assert render.row_cells([float("nan"), 2.0]) == ["nan", "2"]
+    # NaN is an unknown error (an axis a fitted profile's recording lacks): "?", never "nan"
+    assert render.row_cells([float("nan"), 2.0]) == ["?", "2"]

@@ -433,7 +433,14 @@ def test_select_on_a_mission_is_the_mission_verdict() -> None:
     worst = {s["sensor"]: max(r["budget"]["total"] for r in select_doc["mission"]
                               if r["sensor"] == s["sensor"]) for s in select_doc["sensors"]}
     order = [s["sensor"] for s in select_doc["sensors"]]
-    assert order == sorted(worst, key=worst.__getitem__) == ["generic-navigation-fog", "sch16t"]
+    # only a sensor whose every total is a figure is ranked, the others follow unranked
+    lower = {r["sensor"] for r in select_doc["mission"] if r["budget"]["lower_bound"]}
+    ranked = [s for s in order if s not in lower]
+    assert ranked == sorted(ranked, key=worst.__getitem__)
+    assert order == ranked + [s for s in order if s in lower]
+    assert [s["rank"] for s in select_doc["sensors"]] == [
+        *range(1, len(ranked) + 1), *[None] * (len(order) - len(ranked))]
+    assert set(order) == {"generic-navigation-fog", "sch16t"}
     # only the MEMS part: nothing passes, exit 1; --budget (on the mean RMS) alike
     assert invoke("select", "--mission", "survey-flight", "--angle-budget", "0.5deg",
                   "--sensor", "sch16t").exit_code == 1
@@ -459,8 +466,9 @@ def test_report_gains_a_mission_section(tmp_path) -> None:  # type: ignore[no-un
             from gyrovib.render.common import fmt
 
             assert f"{r['sensor']} with x3 on {r['axis']}: θ_V = {fmt(r['angle'])} deg" in section
-    # one table row per segment (8) per sensor shown (2), and a header row each
-    assert section.count("<tr") == 2 * (8 + 1)
+    # one table row per segment (8) per sensor shown (2), and a header row each; then
+    # the verdict table and the noise figures' table, a header and a row per sensor each
+    assert section.count("<tr") == 2 * (8 + 1) + 2 * (1 + 2)
 
 
 def test_notebook_mission_is_the_command() -> None:

@@ -97,10 +97,19 @@ def test_json_and_table_say_unknown(tmp_path) -> None:  # type: ignore[no-untype
     assert silent["arw"] is None and silent["lower_bound"] is True
     assert set(rows[0]["budget"]) == {"vibration", "arw", "bias_instability", "rrw",
                                       "repeatability", "total", "coverage", "unit",
-                                      "lower_bound", "rests_on_bound", "bounds"}
+                                      "lower_bound", "rests_on_bound", "bounds", "typical",
+                                      "allowed"}
+    # with unknown noise figures, every figure's allowance is only an upper limit (the
+    # unknown ones can only take more of the budget); with all known, none is
+    assert rows[1]["budget"]["allowed"]["upper"] == ["vibration", "arw", "bias_instability",
+                                                     "rrw", "repeatability"]
+    assert rows[0]["budget"]["allowed"]["upper"] == []
     table = invoke("mission", path, "--angle-budget", "3deg").stdout
     line = next(x for x in table.splitlines() if x.startswith("│ silent"))
     assert "?" in line and " 0 " not in line
+    # the allowance table marks the upper limits with '*'
+    allowed = [x for x in table.splitlines() if x.startswith("│ silent")][-1]
+    assert "*" in allowed
 
 
 def test_select_ranks_on_the_total(tmp_path) -> None:  # type: ignore[no-untyped-def]
@@ -108,8 +117,31 @@ def test_select_ranks_on_the_total(tmp_path) -> None:  # type: ignore[no-untyped
     path.write_text(CATALOGUE, encoding="utf-8")
     out = invoke("select", path, "--mission", "two-hours", "--angle-budget", "3deg",
                  "--format", "json")
-    order = [s["sensor"] for s in json.loads(out.stdout)["sensors"]]
-    assert order == ["silent", "full"]         # its lower bound is the smaller total
+    sensors = json.loads(out.stdout)["sensors"]
+    # 'silent' gives no noise figure: its total is only a lower bound (|θ_V| alone, smaller
+    # than full's ≈ 2.24 deg, test_angle_budget_judges_the_total), so it is not ranked above
+    # the sensor whose every figure is known: it follows it, without a rank
+    assert [(s["sensor"], s["rank"], s["status"]) for s in sensors] == [
+        ("full", 1, "pass"), ("silent", None, "unverified")]
+
+
+def test_select_does_not_rank_lower_bounds_in_any_format(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    # a variant: three sensors without noise figures (smaller lower bounds) and one with all
+    text = CATALOGUE.replace("profiles:", "".join(
+        f"  - id: quiet-{k}\n    coefficients: {{A1: 1.0e-6}}\n    vre: 0\n"
+        for k in range(3)) + "profiles:")
+    path = tmp_path / "c.yaml"
+    path.write_text(text, encoding="utf-8")
+    args = ("select", path, "--mission", "two-hours", "--angle-budget", "3deg")
+    doc = json.loads(invoke(*args, "--format", "json").stdout)
+    assert doc["sensors"][0]["sensor"] == "full"
+    assert [s["rank"] for s in doc["sensors"]] == [1, None, None, None, None]
+    rows = invoke(*args, "--format", "csv").stdout.splitlines()[1:]
+    assert rows[0].startswith("full,")
+    for fmt in ("table", "markdown"):
+        out = invoke(*args, "--format", fmt).stdout
+        assert out.index("full") < out.index("quiet-0")
+        assert "Not ranked" in out and "silent" in out.split("Not ranked")[1]
 
 
 def test_coverage_must_be_positive() -> None:

@@ -57,6 +57,16 @@ def _synthetic(rng: np.random.Generator, fs: float = 1000.0,
     return rate, fs
 
 
+def _still_accel(rate: np.ndarray) -> np.ndarray:
+    """``rate`` with three accelerometer columns that read 0 g: a known zero, so the g²
+    terms of SENSOR are known (0) and Δ_V,rec is the rate part alone; without them the
+    accelerations are not recorded and a sensor with a g² term has an unknown Δ_V,rec
+    (docs/model.md section 13, tests/test_recording_unknown.py)."""
+    return np.column_stack([rate, np.zeros_like(rate)])
+
+
+STILL = ("--rate-columns", "0,1,2", "--accel-columns", "3,4,5")
+
 TONES = [(37.23, (0.5, 0.3, 1.5), (0.0, 40.0, 0.0)), (83.71, (0.2, 0.4, 0.8), (0.0, 0.0, 90.0))]
 SIGMA = 0.7
 
@@ -143,7 +153,8 @@ def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:
         sigma = np.sqrt(psd_variance(as_table(getattr(psd, axis))))
         # the fitted band starts at f_c: white noise loses the part below it (5/500)
         assert sigma == pytest.approx(SIGMA * np.sqrt(1 - 5 / 500), rel=0.10)
-    r = invoke("analyze", "--recording", tmp_path / "syn.npy", "--fs", fs,
+    np.save(tmp_path / "syn6.npy", _still_accel(rate))
+    r = invoke("analyze", "--recording", tmp_path / "syn6.npy", "--fs", fs, *STILL,
                _sensor_file(tmp_path), "--format", "json")
     assert r.exit_code == 0, r.stderr
     doc = json.loads(r.stdout)
@@ -203,8 +214,11 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
     frame = analyze_recording(read_recording(str(tmp_path / "syn.npy"), fs=fs),
                               load([_sensor_file(tmp_path)])).to_frame()
     assert list(frame["sensor"]) == ["every-term", "k4-only", "linear-only"]
-    assert frame["recorded"].tolist() == pytest.approx(
-        [r["recorded"]["total"] for r in doc["results"]], rel=1e-12)
+    # every-term states a g² term and no acceleration was recorded: unknown (NaN, null)
+    assert doc["results"][0]["recorded"]["total"] is None
+    assert np.isnan(frame["recorded"][0])
+    assert frame["recorded"].tolist()[1:] == pytest.approx(
+        [r["recorded"]["total"] for r in doc["results"][1:]], rel=1e-12)
 
 
 def test_gaps_split_and_short_segments_are_dropped(tmp_path: Path) -> None:
@@ -242,7 +256,8 @@ def _long_csv(tmp_path: Path, n: int = 4000, fs: float = 200.0) -> Path:
     (("--rate-columns", "gx,gy,nope"), None, "no column named 'nope'"),
     (("--rate-columns", "0,1,9"), None, "column 9 does not exist"),
     ((), "t,gx,gy,gz\n0,1,2,3\n0.01,1,x,3\n", "bad.csv:3:8: column 'gy': 'x' is not a number"),
-    ((), "t,gx,gy,gz\n0,1,2,3\n0.01,1,2,3\n0.005,1,2,3\n", "sample 2: timestamps must increase"),
+    ((), "t,gx,gy,gz\n0,1,2,3\n0.01,1,2,3\n0.005,1,2,3\n",
+         "bad.csv:4:1: sample 2: the time stamp goes back"),
     (("--crossover", "150"), None, "too low for the crossover 150 Hz"),
     ((), "t,gx,gy,gz\n0,1,2,3\n0.01,1,2,3\n0.02,1,2,3\n", "shorter than one segment"),
     ((), "gx,gy,gz\n1,2,3\n1,2,3\n", "give the sample rate with --fs"),
@@ -546,8 +561,12 @@ def test_the_written_mission_and_coherences_are_catalogue_data(tmp_path: Path) -
     results = json.loads(analyzed.stdout)["results"]
     assert {row["sensor"] for row in results} == set(rows)
     for row in results:
+        if row["fitted"]["total"] is None:  # a VRE part: w.npy records no acceleration
+            assert "acceleration" in rows[row["sensor"]]["unknown"]
+            continue
         assert row["fitted"]["total"] == pytest.approx(rows[row["sensor"]]["mean"], rel=1e-12)
         assert row["fitted"]["rms"] == pytest.approx(rows[row["sensor"]]["rms"], rel=1e-12)
+    assert sum(row["fitted"]["total"] is not None for row in results) >= 5
 
 
 def test_rounded_coherences_stay_a_correlation_matrix() -> None:

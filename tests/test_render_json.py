@@ -48,10 +48,20 @@ def test_stderr_column_with_non_finite_values(result):
     assert json.loads(text)["results"][0]["stderr"] is None
 
 
-def test_non_finite_values_are_refused_as_json_refuses_them(result):
-    error = dataclasses.replace(result.error, total=result.error.total * np.nan)
+def test_infinite_values_are_refused_as_json_refuses_them(result):
+    error = dataclasses.replace(result.error, total=result.error.total * np.inf)
     with pytest.raises(ValueError, match="JSON compliant"):
         render.to_json(dataclasses.replace(result, error=error))
+
+
+def test_nan_is_unknown_and_written_null(result):
+    # NaN is an error that is unknown (a profile fitted from a recording without an axis
+    # the sensor needs, docs/model.md section 13): null, never a number
+    total = np.array(result.error.total)
+    total[0, 0] = np.nan
+    error = dataclasses.replace(result.error, total=total)
+    rows = json.loads(render.to_json(dataclasses.replace(result, error=error)))["results"]
+    assert rows[0]["total"] is None and rows[1]["total"] == float(total[1, 0])
 
 
 def test_no_sensors():

@@ -100,14 +100,16 @@ def test_saturated_rows_are_marked() -> None:
     assert [m.split()[0] for m in marked] == expected
 
 
-def test_nan_and_infinite_values_print_as_fmt_writes_them() -> None:
+def test_nan_and_infinite_values_print_as_unknown_and_as_fmt_writes_them() -> None:
+    # NaN is an unknown error (a profile fitted from a recording without an axis the
+    # sensor needs, docs/model.md section 13): '?', never 'nan' or 0; -inf as fmt writes it
     result = results()[0]
     e = result.error
     total = np.array(e.total)
     total[0, 0], total[1, 0] = np.nan, -np.inf
     odd = dataclasses.replace(result, error=dataclasses.replace(e, total=total))
     found = table_rows(render.to_table(odd, width=400, detail=True))
-    assert found[0][0][-2] == "nan" and found[0][1][-2] == "-∞"
+    assert found[0][0][-2] == "?" and found[0][1][-2] == "-∞"
 
 
 # ---------------------------------------------------------------- the Table itself

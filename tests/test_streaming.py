@@ -40,13 +40,14 @@ def select_document(result: api.SelectionResult) -> str:
 
 
 def csv_reference(head: list[str], rows: list[list[Any]]) -> str:
-    """What the csv module writes: floats as repr, None as an empty cell."""
+    """What the csv module writes: floats as repr, None and NaN (unknown) as an empty
+    cell."""
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(head)
     for row in rows:
-        writer.writerow(["" if x is None else repr(x) if isinstance(x, float) else x
-                         for x in row])
+        writer.writerow(["" if x is None or x != x else repr(x) if isinstance(x, float)
+                         else x for x in row])
     return buffer.getvalue()
 
 

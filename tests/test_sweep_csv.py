@@ -39,8 +39,14 @@ AWKWARD = [0.0, -0.0, math.inf, -math.inf, math.nan, 5e-324, -5e-324, 2.22507385
            1e-4, 0.1, 1.0, -1.0, 2.0, 100.0, 123456789.0, 1e22, 0.1 + 0.2, 1 / 3, -2 / 3]
 
 
+def _cell(value: float) -> str:
+    """A value as the CSV writes it: its repr, or empty where it is unknown (NaN)."""
+    return "" if value != value else repr(value)
+
+
 def row_by_row(result: SweepResult) -> str:
-    """The csv module's text, one value at a time: what the CSV has always been."""
+    """The csv module's text, one value at a time: what the CSV has always been (an
+    unknown value, NaN, is an empty cell)."""
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(HEAD)
@@ -51,11 +57,11 @@ def row_by_row(result: SweepResult) -> str:
         for i, sensor in enumerate(result.sensors):
             for r, rate in enumerate(result.rates.tolist()):
                 paper: list[Any] = (["", ""] if refused else
-                                    [repr(float(result.paper.total[i, j, r])),
-                                     repr(float(result.paper.rms[i, j, r]))])
-                writer.writerow([sensor, profile, repr(rate),
-                                 repr(float(result.exact.total[i, j, r])),
-                                 repr(float(result.exact.rms[i, j, r])), *paper,
+                                    [_cell(float(result.paper.total[i, j, r])),
+                                     _cell(float(result.paper.rms[i, j, r]))])
+                writer.writerow([sensor, profile, _cell(rate),
+                                 _cell(float(result.exact.total[i, j, r])),
+                                 _cell(float(result.exact.rms[i, j, r])), *paper,
                                  str(bool(sat[i, j, r]))])
     return buffer.getvalue()
 
@@ -119,13 +125,14 @@ def test_sweep_csv_is_the_row_by_row_text_for_awkward_values(result: SweepResult
 
 @pytest.mark.parametrize("value", [0.0, -0.0, math.nan, math.inf, -math.inf, 5e-324, 1e16, 3.0])
 def test_a_column_of_one_value_is_that_values_repr_throughout(value: float) -> None:
-    # by the bits: 0.0 and -0.0 compare equal but are written differently
-    assert float_cells(np.full(7, value)) == [repr(value)] * 7
+    # by the bits: 0.0 and -0.0 compare equal but are written differently; NaN (unknown)
+    # is an empty cell
+    assert float_cells(np.full(7, value)) == [_cell(value)] * 7
     mixed = np.array([0.0, -0.0, 0.0])
     assert float_cells(mixed) == ["0.0", "-0.0", "0.0"]
     # a strided column (one rate series of a larger array) is read, not its memory
     block = np.array([[value, 1.0], [value, 2.0]])
-    assert float_cells(block[:, 0]) == [repr(value)] * 2
+    assert float_cells(block[:, 0]) == [_cell(value)] * 2
 
 
 def test_sweep_csv_through_the_command_line_is_the_row_by_row_text(tmp_path: Any) -> None:

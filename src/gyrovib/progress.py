@@ -38,3 +38,20 @@ def receiving(receiver: Receiver | None) -> Iterator[None]:
         yield
     finally:
         _RECEIVER.reset(token)
+
+
+@contextmanager
+def part_of(index: int, count: int) -> Iterator[None]:
+    """Inside the block, report the work as part ``index`` of ``count`` equal parts of the
+    whole: ``done`` of ``total`` becomes ``index·total + done`` of ``count·total`` (a
+    search per profile, each reporting its own sensors, reads as one bar)."""
+    outer = _RECEIVER.get()
+    if outer is None:
+        yield
+        return
+
+    def scaled(label: str, done: int, total: int) -> None:
+        outer(label, index * total + done, count * total)
+
+    with receiving(scaled):
+        yield

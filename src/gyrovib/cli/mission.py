@@ -18,7 +18,7 @@ from gyrovib.cli.options import (
     peak_factor_option,
     placement_option,
 )
-from gyrovib.cli.output import write_output
+from gyrovib.cli.output import write_binary, write_output
 from gyrovib.cli.spec_options import assume_unknown_option
 from gyrovib.errors import OptionError
 
@@ -57,12 +57,16 @@ coverage_option = click.option(
                    "chosen mission (on every axis of a triad).")
 @format_option("table", "json", "csv", "markdown", "junit")
 @output_option
+@click.option("--plot", metavar="PNG", default=None,
+              help="Also draw θ(t) per sensor to PNG: the vibration angle segment by "
+                   "segment inside the ±k·σ(t) noise cone, and the angle budget "
+                   "(matplotlib).")
 @click.pass_context
 def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...],
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
             assume_unknown: str | None, require: str, fmt: str, output: str | None,
-            coverage: float) -> None:
+            coverage: float, plot: str | None) -> None:
     """Each sensor over each mission: mean error, angle θ_V, mean RMS, worst segment,
     and the whole angle budget.
 
@@ -81,6 +85,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
     """
     # lazy: the library and the renderers load when the command runs, not for --help
     from gyrovib import api, units
+    from gyrovib.render.mission_plot import theta_png
 
     if budget is not None and angle_budget is not None:
         raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
@@ -97,6 +102,8 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
     _show(result, fmt, output)
+    if plot is not None:
+        write_binary(theta_png(result), plot)
     if not result.requirement_met:
         ctx.exit(1)
 
@@ -106,9 +113,13 @@ def _show(result: MissionResult, fmt: str, output: str | None) -> None:
     markdown or junit) to standard output or ``output``."""
     # lazy: the library and the renderers load when it runs, not for --help
     from gyrovib.render import mission as render
+    from gyrovib.render.mission_answer import answer_line
 
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
+    answer = answer_line(result)
+    if answer is not None:  # the answer first, on standard error: the data stay clean
+        say(f"gyrovib: {answer}")
     if fmt == "table":
         text = render.to_table(result, color=use_color(output), width=page_width(output),
                                ascii=plain_ascii(output))
@@ -153,8 +164,10 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
 
 def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[str, ...],
                     angle_budget: str | None, unit: str, peak_factor: float,
-                    assume_unknown: str = "none", coverage: float = 1.0) -> str:
-    """``report --mission``: the HTML of the mission section."""
+                    assume_unknown: str = "none", coverage: float = 1.0,
+                    placement: str | None = None) -> str:
+    """``report --mission``: the HTML of the mission section (``placement``: replacing
+    each mission's own)."""
     # lazy: the library and the renderers load when it runs, not for --help
     from gyrovib import api
     from gyrovib.render.report_mission import mission_section as section
@@ -162,5 +175,8 @@ def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[s
     result = api.mission(
         catalog, missions=missions, sensors=sensors,  # type: ignore[arg-type]
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
-        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage)
-    return section(result)
+        unit=unit, peak_factor=peak_factor, assume_unknown=assume_unknown, coverage=coverage,
+        placement=parse_placement(placement))
+    noise = {e.sensor.id: ({} if e.sensor.noise is None else e.sensor.noise.figures())
+             for e in catalog.sensors if e.sensor.id in result.sensors}  # type: ignore[attr-defined]
+    return section(result, noise)

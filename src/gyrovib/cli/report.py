@@ -55,13 +55,17 @@ DEFAULT_OUTPUT = "report.html"
               help="θ* of the mission section, on each sensor's budget total, with an angle "
                    "unit (0.5deg, '2 mrad').")
 @coverage_option
+@click.option("--placement", metavar="P",
+              help="The mission section's placement, replacing each mission's own: "
+                   "x1=+Y,x2=+Z,x3=+X (a rotation), or triad (docs/model.md section 12).")
 @recording_options
 def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str, ...],
            missions: tuple[str, ...], angle_budget: str | None,
            budget: str, method: str, rate: str | None, unit: str | None, allocation: str | None,
            peak_factor: float, criterion: str, assume_unknown: str | None, require: str,
            rate_range: str | None, yield_target: float | None, seed: int, draws: int,
-           output: str, recording: str | None, coverage: float, **rec: Any) -> None:
+           output: str, recording: str | None, coverage: float, placement: str | None = None,
+           **rec: Any) -> None:
     """Write a trade-study report: one HTML file, charts inline, no network needed.
 
     It holds the inputs (files with their SHA-256, budget, method, criterion,
@@ -90,7 +94,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     if missions:  # after the recording's section, before the profiles
         section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
                                    peak_factor, assume_unknown=assume_unknown or "none",
-                                   coverage=coverage)
+                                   coverage=coverage, placement=placement)
     result = studies.trade_study(
         catalog, sensors=sensors, profiles=profiles, method=method, **split,
         criterion=criterion, require=require, sweep_rates=sweep_rates, peak_factor=peak_factor,

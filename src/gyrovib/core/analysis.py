@@ -56,6 +56,7 @@ from gyrovib.core.harmonic_mixtures import (
     two_groups_excess,
 )
 from gyrovib.core.harmonics import (
+    MAX_GROUPS,
     LockedGroup,
     combine_moments,
     group_moments,
@@ -245,7 +246,14 @@ def _locked_asymmetry(w: FloatArray, locked: Sequence[LockedGroup], a: FloatArra
 def _grid_asymmetry(w: FloatArray, locked: Sequence[LockedGroup], a: FloatArray,
                     s3: float) -> FloatArray:
     """Half of E(Ω): the first group against the independent tones, or alone, averaged
-    over the further groups' phases on a grid of :data:`_EXTRA_GROUP_NODES` each."""
+    over the further groups' phases on a grid of :data:`_EXTRA_GROUP_NODES` each (at most
+    two groups: with a random part, more are folded into its table instead)."""
+    if len(locked) > MAX_GROUPS:
+        raise ModelError(reason=(
+            f"E(Ω) for {len(locked)} phase-locked groups with no random part on the sensitive "
+            f"axis: their joint phases would take {_EXTRA_GROUP_NODES}^{len(locked) - 1} "
+            "nodes per rate (with a random part, the groups beyond the second are folded "
+            "into its table); give the smaller groups' orders as independent tones"))
     if len(locked) > 1 and w.size * _EXTRA_GROUP_NODES * (1 << 14) > MAX_MIXTURE_NODES:
         raise ModelError(reason=(
             "E(Ω) for two phase-locked groups with independent tones and no random part "

@@ -138,37 +138,216 @@ def _excess_table(amplitudes: FloatArray, sigma: float) -> tuple[float, float, F
     return h, reach, log
 
 
-def _interpolate(c: FloatArray, h: float, reach: float, log: FloatArray) -> FloatArray:
-    """E_Y(|c|) from :func:`_excess_table` by Lagrange interpolation on 8 table points."""
-    x = np.abs(c) / h
-    last = log.size - _STENCIL
-    base = np.clip(np.floor(x).astype(np.int64) - (_STENCIL // 2 - 1), 0, last)
-    t = x - base
-    total = np.zeros_like(x)
+def _cached_table(amplitudes: FloatArray, sigma: float) -> tuple[float, float, FloatArray]:
+    """:func:`_excess_table` as per-interval polynomials, kept for the last few
+    (tones, σ): a phase search evaluates E(Ω) hundreds of times on one table."""
+    key = (amplitudes.tobytes(), float(sigma))
+    hit = _TABLES.get(key)
+    if hit is None:
+        h, reach, log = _excess_table(amplitudes, sigma)
+        hit = (h, reach, _interval_polynomials(log))
+        if len(_TABLES) >= 8:
+            _TABLES.pop(next(iter(_TABLES)))
+        _TABLES[key] = hit
+    return hit
+
+
+_TABLES: dict[tuple[bytes, float], tuple[float, float, FloatArray]] = {}
+
+
+def _lagrange_to_power(offset: int) -> FloatArray:
+    """(8, 8) M with M[p, j] the coefficient of u^p in the Lagrange basis polynomial
+    L_j(u + offset) on the nodes 0…7: the interpolant on one table interval as a
+    polynomial in its local coordinate u ∈ [0, 1). Computed once per offset."""
+    hit = _POWER.get(offset)
+    if hit is not None:
+        return hit
+    out = np.zeros((_STENCIL, _STENCIL))
     for j in range(_STENCIL):
-        weight = np.ones_like(x)
+        poly = np.array([1.0])  # ascending powers of u
         for k in range(_STENCIL):
             if k != j:
-                weight *= (t - k) / (j - k)
-        total += weight * log[base + j]
-    with np.errstate(over="ignore", invalid="ignore"):  # (past the reach: extrapolated, unused)
-        out: FloatArray = np.where(np.abs(c) < reach, np.exp(total), 0.0)
+                poly = np.convolve(poly, np.array([offset - k, 1.0])) / (j - k)
+        out[:, j] = poly
+    _POWER[offset] = out
     return out
 
 
+_POWER: dict[int, FloatArray] = {}
+
+
+def _interval_polynomials(log: FloatArray) -> FloatArray:
+    """(8, L − 1) power coefficients in u of the 8-point Lagrange interpolant of ``log``
+    on each interval [i, i + 1) (nodes i − 3 … i + 4, shifted inwards at the ends):
+    the same interpolant as evaluating the Lagrange basis at every point, computed once
+    per table so that each point costs a gather and a Horner step."""
+    intervals = log.size - 1
+    base = np.clip(np.arange(intervals) - (_STENCIL // 2 - 1), 0, log.size - _STENCIL)
+    offset = np.arange(intervals) - base
+    windows = log[base[:, None] + np.arange(_STENCIL)[None, :]]
+    coef = np.empty((intervals, _STENCIL))
+    for d in np.unique(offset).tolist():
+        rows = offset == d
+        coef[rows] = windows[rows] @ _lagrange_to_power(int(d)).T
+    # one contiguous row per power: each point gathers 8 scalars from short rows
+    out: FloatArray = np.ascontiguousarray(coef.T)
+    return out
+
+
+def _horner(x: FloatArray, coef: FloatArray) -> FloatArray:
+    """The table's interpolant at positions ``x`` (in table steps, ≥ 0)."""
+    i = np.minimum(x.astype(np.int64), coef.shape[1] - 1)
+    u = x - i
+    total = coef[_STENCIL - 1].take(i)
+    for p in range(_STENCIL - 2, -1, -1):
+        total *= u
+        total += coef[p].take(i)
+    out: FloatArray = total
+    return out
+
+
+def _interpolate(c: FloatArray, h: float, reach: float, coef: FloatArray) -> FloatArray:
+    """E_Y(|c|) from :func:`_excess_table` by Lagrange interpolation on 8 table points
+    (its per-interval polynomials, :func:`_interval_polynomials`)."""
+    a = np.abs(c)
+    inside = a < reach
+    out = np.zeros(a.shape)
+    out[inside] = np.exp(_horner(a[inside] / h, coef))
+    return out
+
+
+#: Locked groups kept on the midpoint grid of :func:`locked_mixture_excess`; the
+#: further groups are folded into the table of E_Y (:func:`_folded_table`): the grid
+#: of one group costs its nodes per rate, a fold the table's length times its nodes
+#: once (and once per phase of the folded group in a ``phase: worst`` search, whose
+#: moves change one group at a time), where a grid of two would cost their product
+#: per rate.
+GRID_GROUPS = 1
+#: Most interpolations :func:`_folded_table` may make (about 1 µs each).
+MAX_FOLD_INTERPOLATIONS = 1 << 26
+
+
+def _folded_table(amplitudes: FloatArray, sigma: float,
+                  folded: Sequence[tuple[NDArray[np.int64], ComplexArray, int]]
+                  ) -> tuple[float, float, FloatArray]:
+    """``log E_Y'(c)`` on c = −R, −R + h, …, R for Y' = Y + x3 of the ``folded`` groups
+    (Y the tones and the Gaussian part of :func:`_excess_table`), with h = σ/16 and
+    the reach R = Σa + 40σ + Σ peaks.
+
+    Each group g (its orders, phasors and midpoint nodes m) is independent of Y, so
+    with F(c) = E(c) + |c| = <|c + Y|>, F_{Y+g}(c) = <F_Y(c + g(θ))>_θ: the mean
+    over g's period, a midpoint rule on m nodes (geometric convergence: F_Y is
+    analytic at the scale σ, as in :func:`mixture_nodes`). Where |c| exceeds the
+    group's peak, c + g keeps its sign and E_{Y+g}(c) = <E_Y(c + g)> (no
+    cancellation). A folded group makes E_Y' odd-asymmetric (odd moments), so the
+    table is signed.
+    """
+    peaks = [_peak(n, p) for n, p, _ in folded]
+    reach = math.fsum(amplitudes.tolist()) + 40.0 * sigma + math.fsum(peaks)
+    h = sigma / _TABLE_PER_SIGMA
+    half = math.ceil(reach / h) + _STENCIL
+    c = h * np.arange(-half, half + 1)
+    key = (amplitudes.tobytes(), float(sigma), half)
+    coef = _BASES.get(key)
+    if coef is None:
+        e = rectified_excess(np.abs(c[half:]), amplitudes, sigma)
+        coef = _signed_polynomials(
+            np.log(np.maximum(np.concatenate([e[:0:-1], e]), 1e-300)))
+        _BASES.clear()
+        _BASES[key] = coef
+    for (n, p, m), peak in zip(folded, peaks, strict=True):
+        theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
+        x3 = _x3_at(n.astype(float), p, theta)[0]
+        new = np.empty(c.size)
+        step = max(1, (1 << 20) // m)
+        for lo in range(0, c.size, step):
+            part = c[lo:lo + step]
+            s = part[:, None] + x3[None, :]
+            e_s = _interpolate_signed(s, h, reach, coef)
+            inside = np.mean(e_s + np.abs(s), axis=1) - np.abs(part)
+            new[lo:lo + step] = np.where(np.abs(part) < peak, inside, np.mean(e_s, axis=1))
+        coef = _signed_polynomials(np.log(np.maximum(new, 1e-300)))
+    return h, reach, coef
+
+
+def _signed_polynomials(log: FloatArray) -> FloatArray:
+    """:func:`_interval_polynomials` of a signed table (c = 0 in the middle), each half
+    on its own: E(c) = F(c) − |c| has a kink at c = 0 (F is smooth), so no stencil
+    may straddle it."""
+    half = (log.size - 1) // 2
+    out: FloatArray = np.concatenate([_interval_polynomials(log[:half + 1]),
+                                      _interval_polynomials(log[half:])], axis=1)
+    return out
+
+
+def _cached_fold(amplitudes: FloatArray, sigma: float,
+                 folded: Sequence[tuple[NDArray[np.int64], ComplexArray, int]]
+                 ) -> tuple[float, float, FloatArray]:
+    """:func:`_folded_table`, kept for the last few (tones, σ, folded groups)."""
+    key = (amplitudes.tobytes(), float(sigma),
+           tuple((n.tobytes(), p.tobytes(), m) for n, p, m in folded))
+    hit = _FOLDS.get(key)
+    if hit is None:
+        hit = _folded_table(amplitudes, sigma, folded)
+        if len(_FOLDS) >= 16:
+            _FOLDS.pop(next(iter(_FOLDS)))
+        _FOLDS[key] = hit
+    return hit
+
+
+_FOLDS: dict[tuple[object, ...], tuple[float, float, FloatArray]] = {}
+_BASES: dict[tuple[bytes, float, int], FloatArray] = {}
+_PEAKS: dict[tuple[bytes, bytes], float] = {}
+
+
+def _peak(n: NDArray[np.int64], p: ComplexArray) -> float:
+    """:func:`~gyrovib.core.harmonics.locked_peak`, kept for the last few groups (a
+    phase search asks for the same group's peak at every evaluation)."""
+    key = (n.tobytes(), p.tobytes())
+    hit = _PEAKS.get(key)
+    if hit is None:
+        hit = float(locked_peak(n, p))
+        if len(_PEAKS) >= 64:
+            _PEAKS.pop(next(iter(_PEAKS)))
+        _PEAKS[key] = hit
+    return hit
+
+
+def _interpolate_signed(c: FloatArray, h: float, reach: float, coef: FloatArray
+                        ) -> FloatArray:
+    """E(c) from the signed table of :func:`_folded_table` (its per-interval
+    polynomials; position 0 is c = −(half the table))."""
+    half = coef.shape[1] // 2
+    inside = np.abs(c) < reach
+    out = np.zeros(np.shape(c))
+    out[inside] = np.exp(_horner(np.asarray(c)[inside] / h + half, coef))
+    return out
+
+
+def fold_cost(amplitudes: ArrayLike, sigma: float, peaks: Sequence[float],
+              nodes: Sequence[int]) -> float:
+    """Interpolations :func:`_folded_table` makes: table length × nodes, per folded group."""
+    a = np.asarray(amplitudes, dtype=float).reshape(-1)
+    reach = math.fsum(a[a > 0].tolist()) + 40.0 * sigma + math.fsum(peaks)
+    length = 2.0 * reach * _TABLE_PER_SIGMA / sigma
+    return length * float(sum(nodes))
+
+
 def mixture_nodes(groups: Sequence[LockedGroup], amplitudes: ArrayLike,
-                  sigma: float) -> list[int]:
+                  sigma: float, swing: float | None = None) -> list[int]:
     """Midpoint nodes per group period for :func:`locked_mixture_excess` (σ > 0).
 
     The integrand is analytic at the scale σ, so the midpoint rule converges
     geometrically once each group has ``1.25·n_max·(8·peak/σ + (swing +
     peak)·peak/σ²) + 64`` nodes (the kernel's width against the group's swing,
     and the curvature of its Gaussian tail; the rule of the single group of
-    :func:`locked_rectified_excess`), capped at 2^14.
+    :func:`locked_rectified_excess`), capped at 2^14. ``swing``: an upper bound to use
+    instead of the sum of the peaks and the tones (more nodes, never fewer).
     """
     a = np.asarray(amplitudes, dtype=float).reshape(-1)
-    peaks = [locked_peak(*_x3_coefficients(g)) for g in groups]
-    swing = sum(peaks) + float(np.sum(a[a > 0]))
+    peaks = [_peak(*_x3_coefficients(g)) for g in groups]
+    if swing is None:
+        swing = sum(peaks) + float(np.sum(a[a > 0]))
     out = []
     for g, peak in zip(groups, peaks, strict=True):
         need = 1.25 * g.n_max * (8.0 * peak / sigma + (swing + peak) * peak / sigma**2) + 64
@@ -178,12 +357,13 @@ def mixture_nodes(groups: Sequence[LockedGroup], amplitudes: ArrayLike,
 
 def _mixture_cost_checked(live: list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]],
                           a: FloatArray, sigma: float, near: NDArray[np.bool_],
-                          nodes: list[int]) -> None:
-    """Refuse, before any work, a table of E_Y or a grid larger than gyrovib allows."""
+                          nodes: list[int], count: int) -> None:
+    """Refuse, before any work, a table of E_Y or a grid larger than gyrovib allows
+    (``count``: the profile's groups, on the grid or folded)."""
     total = math.prod(nodes) * int(np.count_nonzero(near))
     if near.any() and table_size(a, sigma) > MAX_SHIFT_TABLE:
         raise ModelError(
-            reason=f"E(Ω) for {len(live)} phase-locked group{'s' if len(live) != 1 else ''} "
+            reason=f"E(Ω) for {count} phase-locked group{'s' if count != 1 else ''} "
             f"with {a.size} independent tone{'s' if a.size != 1 else ''} (largest "
             f"{float(a[0]) if a.size else 0.0:.4g}) on a random part of RMS {sigma:.4g} would "
             f"tabulate {table_size(a, sigma):,.0f} values of the tones' excess on the random "
@@ -213,10 +393,58 @@ def _phase_shifts(live: list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]
     return shift
 
 
+def _split_groups(groups: Sequence[LockedGroup], a: FloatArray, sigma: float
+                  ) -> tuple[list[tuple[LockedGroup, NDArray[np.int64], ComplexArray]],
+                             list[int], list[tuple[NDArray[np.int64], ComplexArray, int]],
+                             int]:
+    """The groups (with a part on x3) kept on the grid and their nodes, the folded ones
+    with theirs, and how many there are: the group of most nodes stays on the grid (it
+    would cost most to fold)."""
+    coefficients = [_x3_coefficients(g) for g in groups]
+    everything = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True)
+                  if n.size]
+    all_nodes = mixture_nodes([g for g, _, _ in everything], a, sigma)
+    order = sorted(range(len(everything)), key=lambda k: -all_nodes[k])
+    live = [everything[k] for k in order[:GRID_GROUPS]]
+    nodes = [all_nodes[k] for k in order[:GRID_GROUPS]]
+    # a folded group's nodes from a swing that does not move with the other groups'
+    # phases (Σ|a_n| bounds each peak): its table is then reused while a phase
+    # search moves only the other groups
+    bound = sum(float(np.sum(np.abs(p))) for _, _, p in everything) + float(np.sum(a))
+    folded = [(everything[k][1], everything[k][2],
+               mixture_nodes([everything[k][0]], a, sigma, swing=bound)[0])
+              for k in order[GRID_GROUPS:]]
+    return live, nodes, folded, len(everything)
+
+
+def _fold_checked(folded: Sequence[tuple[NDArray[np.int64], ComplexArray, int]],
+                  a: FloatArray, sigma: float, count: int) -> None:
+    """Refuse, before any work, a fold costlier than :data:`MAX_FOLD_INTERPOLATIONS`."""
+    if not folded:
+        return
+    peaks = [_peak(n, p) for n, p, _ in folded]
+    cost = fold_cost(a, sigma, peaks, [m for _, _, m in folded])
+    if cost <= MAX_FOLD_INTERPOLATIONS:
+        return
+    raise ModelError(
+        reason=f"E(Ω) for {count} phase-locked groups on a random part of RMS "
+        f"{sigma:.4g} would fold the groups beyond the first into a table of "
+        f"{fold_cost(a, sigma, [sum(peaks)], [1]):,.0f} values on "
+        f"{' + '.join(str(m) for _, _, m in folded)} nodes, more than the "
+        f"{MAX_FOLD_INTERPOLATIONS:,} interpolations gyrovib allows: the random part is "
+        "narrow against the groups' swing; give the smaller groups' orders as "
+        "independent tones")
+
+
 def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
                           amplitudes: ArrayLike, sigma: float) -> FloatArray:
-    """``E(Ω) = <|Ω + x3(θ1) [+ y3(θ2)] + Y|> − |Ω|``: one or two locked groups, with
+    """``E(Ω) = <|Ω + x3(θ1) [+ y3(θ2) + …] + Y|> − |Ω|``: locked groups, with
     independent tones ``amplitudes`` and a Gaussian part ``sigma`` > 0 in Y.
+
+    The group of most nodes is averaged on its midpoint grid as below; every
+    further group is independent of the rest and is folded into the table of E_Y
+    first (:func:`_folded_table`), so that no number of groups multiplies the grid
+    (cost: :func:`fold_cost` interpolations, once per table).
 
     The Gaussian part and the tones are integrated first, once: E_Y(c) =
     <|c + Y|> − |c| (:func:`~gyrovib.core.statistics.rectified_excess`) is
@@ -235,17 +463,22 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     flat = w.ravel()
     a = np.asarray(amplitudes, dtype=float).reshape(-1)
     a = np.sort(a[a > 0])[::-1]
-    coefficients = [_x3_coefficients(g) for g in groups]
-    live = [(g, n, p) for g, (n, p) in zip(groups, coefficients, strict=True) if n.size]
-    nodes = mixture_nodes([g for g, _, _ in live], a, sigma)
-    peak = sum(locked_peak(n, p) for _, n, p in live)
+    live, nodes, folded, count = _split_groups(groups, a, sigma)
+    peak = sum(_peak(n, p) for _, n, p in live)
+    fold_peak = sum(_peak(n, p) for n, p, _ in folded)
     # beyond the swing by more than E_Y's reach, E underflows to 0: not computed
-    near = np.abs(flat) < peak + math.fsum(a.tolist()) + 40.0 * sigma
-    _mixture_cost_checked(live, a, sigma, near, nodes)
+    near = np.abs(flat) < peak + fold_peak + math.fsum(a.tolist()) + 40.0 * sigma
+    _mixture_cost_checked(live, a, sigma, near, nodes, count)
+    _fold_checked(folded, a, sigma, count)
     out = np.zeros(flat.size)
     if not near.any():
         return out.reshape(w.shape)
-    h, reach, log = _excess_table(a, sigma)
+    if folded:
+        h, reach, table = _cached_fold(a, sigma, folded)
+        interpolate = _interpolate_signed
+    else:
+        h, reach, table = _cached_table(a, sigma)
+        interpolate = _interpolate
     shift = _phase_shifts(live, nodes)
     todo = flat[near]
     done = np.empty(todo.size)
@@ -254,7 +487,7 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
         advance("E(Ω) of locked harmonics", lo, todo.size)
         part = todo[lo:lo + step]
         s = part[:, None] + shift[None, :]
-        e = _interpolate(s, h, reach, log)
+        e = interpolate(s, h, reach, table)
         crossing = np.abs(part) < peak
         inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
         done[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))

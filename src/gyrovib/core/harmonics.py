@@ -35,9 +35,11 @@ from gyrovib.progress import advance
 
 ComplexArray = NDArray[np.complex128]
 
-#: Most locked groups of one profile: E(Ω) averages over the joint phases of the
-#: groups beyond the first (two groups alone: exactly; three would take 256² nodes
-#: per rate, 12 s and 650 MB for a 401-rate sweep, minutes inside the swing).
+#: Most locked groups of a profile with no random part: E(Ω) averages over the joint
+#: phases of the groups beyond the first (two groups alone: exactly; three would take
+#: 256² nodes per rate, 12 s and 650 MB for a 401-rate sweep, minutes inside the swing).
+#: With a random part, any number: the groups beyond the second are folded into its
+#: table (core/harmonic_mixtures.py).
 MAX_GROUPS = 2
 
 #: Unit-circle tolerance for the roots of Ω + x3(θ); extra breakpoints are harmless.

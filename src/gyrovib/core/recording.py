@@ -32,6 +32,12 @@ MEDIAN_HALF_WIDTH = 20
 LOBE_HALF_WIDTH = 3
 #: Lines within this fraction of n·f0 are order n of f0 (docs/model.md section 13).
 HARMONIC_TOLERANCE = 0.01
+#: The highest order a fitted harmonics group takes (shafts, engines, rotors: low orders).
+MAX_FITTED_ORDER = 12
+#: Most orders missing between two orders of a fitted group (a consistent series).
+MAX_ORDER_GAP = 3
+#: A line joins order n of f0 only within this fraction of f0 of n·f0.
+ORDER_SPACING = 0.05
 #: At most this many histogram bins of Ω_K3 make the fitted mission.
 MISSION_BINS = 16
 #: The six products a_j·a_k of the g² term, in the order of core.linear.G2_TERMS.
@@ -171,6 +177,11 @@ def recorded_error(coefficients: ArrayLike, moments: ArrayLike, g2: ArrayLike | 
 # ----------------------------------------------------------------- spectra
 
 
+def welch_length(fs: float, resolution: float) -> int:
+    """Samples in one Welch window: nper = max(8, round(fs / Δf)) (docs/model.md section 13)."""
+    return max(8, round(fs / resolution))
+
+
 def welch_spectra(segments: Sequence[FloatArray], fs: float,
                   resolution: float) -> tuple[FloatArray, NDArray[np.complex128], int]:
     """Welch cross-spectral matrix of (n, m) segments: ``(f, S (m, m, F), windows)``.
@@ -187,7 +198,7 @@ def welch_spectra(segments: Sequence[FloatArray], fs: float,
     shorter than one window are left out; ``windows`` = 0 when none is long enough.
     """
 
-    nper = max(8, round(fs / resolution))
+    nper = welch_length(fs, resolution)
     step = nper - nper // 2
     window = 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(nper) / nper)
     freqs: FloatArray = np.fft.rfftfreq(nper, 1.0 / fs).astype(float)
@@ -291,26 +302,40 @@ def find_lines(f: FloatArray, spectra: NDArray[np.complex128], threshold_db: flo
 def harmonic_groups(frequencies: ArrayLike,
                     tolerance: float = HARMONIC_TOLERANCE) -> list[tuple[float, list[int],
                                                                          list[int]]]:
-    """Lines that are integer multiples of a common fundamental (docs/model.md section 13).
+    """Lines that are integer multiples of a common fundamental (docs/model.md section 13),
+    grouped only where the series is plausible.
 
-    Ascending: each line not yet grouped is tried as a fundamental f0; every
-    later ungrouped line within ``tolerance``·f of n·f0 (n ≥ 2, one line per
-    order) joins it. Returns ``(f0, line indices, orders)`` for groups of two
-    lines or more.
+    Ascending: each line not yet grouped is tried as a fundamental f0 (so the
+    fundamental is always a line that was found); a later ungrouped line at f joins
+    it as order n = round(f/f0) when
+
+    * n ≥ 2, not yet taken, and n ≤ :data:`MAX_FITTED_ORDER` (a machine's low orders:
+      a 180 Hz line is no "order 19" of a 9.39 Hz hull mode);
+    * it lies within ``tolerance``·f of n·f0 and within :data:`ORDER_SPACING`·f0 of it
+      (at high orders a relative tolerance spans much of the spacing between orders,
+      and almost any line would be some order of any f0);
+    * the series stays consistent: n is at most :data:`MAX_ORDER_GAP` above the highest
+      order taken so far (orders 1, 2, 3, 5 are a series; 1 and 6 alone are not).
+
+    Returns ``(f0, line indices, orders)`` for groups of two lines or more.
     """
     fr = np.asarray(frequencies, dtype=float)
     used = np.zeros(fr.size, dtype=bool)
     groups = []
-    for i in np.argsort(fr).tolist():
+    ascending = np.argsort(fr).tolist()
+    for i in ascending:
         if used[i]:
             continue
         f0 = fr[i]
         members, orders = [i], [1]
-        for j in np.argsort(fr).tolist():
+        for j in ascending:
             if used[j] or j == i or fr[j] <= f0:
                 continue
             n = round(fr[j] / f0)
-            if n >= 2 and n not in orders and abs(fr[j] - n * f0) <= tolerance * fr[j]:
+            off = abs(fr[j] - n * f0)
+            if (2 <= n <= min(MAX_FITTED_ORDER, max(orders) + MAX_ORDER_GAP)
+                    and n not in orders and off <= tolerance * fr[j]
+                    and off <= ORDER_SPACING * f0):
                 members.append(j)
                 orders.append(n)
         if len(members) > 1:
@@ -360,3 +385,61 @@ def carrier_histogram(carrier3: ArrayLike, bins: int = MISSION_BINS,
     sums = np.bincount(idx, weights=c, minlength=bins)
     keep = counts > 0
     return sums[keep] / counts[keep], counts[keep]
+
+
+def carrier_clusters(carrier: ArrayLike, bins: int = MISSION_BINS, iterations: int = 20,
+                     ) -> tuple[FloatArray, FloatArray]:
+    """The joint carrier Ω_K = (Ω_K1, Ω_K2, Ω_K3) of a recording in at most ``bins``
+    groups: (mean rate (k, 3), sample count (k,)) of the groups that hold samples
+    (docs/model.md section 13's fitted mission, on every axis).
+
+    A histogram of Ω_K3 alone keeps the carrier of one axis; a sensor whose x3 lies on
+    X or Y (a triad) sees Ω_K1 or Ω_K2. Here the samples are split into ``bins``
+    equal-count slices along the carrier's principal direction (deterministic), then
+    moved to their nearest group mean by Lloyd's iterations (k-means), so that each
+    axis's spread is kept where the carrier spends its time. A constant axis stays
+    constant. Distances are taken on each axis divided by its standard deviation (but
+    by no less than a quarter of the largest axis's), so that a small yaw carrier
+    counts about as much as a large roll (each sensor axis reads its own) while an axis
+    that barely moves does not split the groups; the group means are in the rates as
+    given.
+    """
+    c = np.asarray(carrier, dtype=float)
+    if c.ndim != 2 or c.shape[1] != 3 or c.shape[0] == 0:
+        raise ValueError("the carrier must be (samples, 3)")
+    mean = c.mean(axis=0)
+    spread = c - mean
+    if not np.any(np.abs(spread) > 1e-9 * max(1.0, float(np.max(np.abs(c))))):
+        return mean[None, :], np.array([float(c.shape[0])])
+    std = np.maximum(spread.std(axis=0), 0.25 * float(np.max(spread.std(axis=0))))
+    spread = spread / std
+    step = max(1, c.shape[0] // 20_000)  # the centres from a subsample, the counts from all
+    sample = spread[::step]
+    _, _, vt = np.linalg.svd(sample, full_matrices=False)
+    order = np.argsort(sample @ vt[0], kind="stable")
+    k = min(bins, sample.shape[0])
+    centres = np.stack([sample[part].mean(axis=0) for part in np.array_split(order, k)])
+    for _ in range(iterations):
+        label = _nearest(sample, centres)
+        moved = np.stack([sample[label == j].mean(axis=0) if np.any(label == j)
+                          else centres[j] for j in range(k)])
+        if np.allclose(moved, centres, rtol=0.0, atol=1e-12):
+            break
+        centres = moved
+    label = _nearest(spread, centres)
+    counts = np.bincount(label, minlength=k).astype(float)
+    sums = np.stack([np.bincount(label, weights=spread[:, j], minlength=k)
+                     for j in range(3)], axis=1)
+    keep = counts > 0
+    rates: FloatArray = sums[keep] / counts[keep, None] * std + mean
+    return rates, counts[keep]
+
+
+def _nearest(points: FloatArray, centres: FloatArray) -> NDArray[np.intp]:
+    """Index of the nearest centre of each point (squared distance), a chunk at a time."""
+    out = np.empty(points.shape[0], dtype=np.intp)
+    for lo in range(0, points.shape[0], _CHUNK // 16):
+        part = points[lo:lo + _CHUNK // 16]
+        d = np.sum((part[:, None, :] - centres[None, :, :]) ** 2, axis=2)
+        out[lo:lo + part.shape[0]] = np.argmin(d, axis=1)
+    return out

@@ -291,6 +291,11 @@ class Profile(Model):
         "one group, or a list of groups.")
     acceleration: Acceleration | None = Field(
         None, description="Linear vibration at the sensor's axes (docs/model.md section 8).")
+    not_recorded: Annotated[list[Literal["x1", "x2", "x3", "acceleration"]],
+                            Field(max_length=4)] = Field(
+        [], description="What the recording this profile was fitted from did not record "
+        "(docs/model.md section 13): unknown, not 0, so an error that depends on it is "
+        "unknown and its verdict unverified.")
 
     @model_validator(mode="after")
     def _groups_listed(self) -> "Profile":

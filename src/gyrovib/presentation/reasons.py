@@ -132,13 +132,31 @@ UNKNOWN_WORDS = {
 }
 
 
+#: What a profile fitted from a recording may lack (docs/model.md section 13), as a reason
+#: names it.
+NOT_RECORDED_WORDS = {"x1": "axis x1", "x2": "axis x2", "x3": "axis x3 (the sensitive axis)",
+                      "acceleration": "the accelerations"}
+
+
 def unverified_text(names: Sequence[str], spec: bool = True) -> str:
     """The reason of an unverified verdict whose unpublished figures are ``names``
     (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
-    sensor, whose missing g² figure is "not given" rather than "not published")."""
-    return ("unverified: passes on its published figures, but "
-            + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS for n in names)
-            + " -- ask the vendor, or --assume-unknown zero to take it as 0")
+    sensor, whose missing g² figure is "not given" rather than "not published"). Names of
+    :data:`NOT_RECORDED_WORDS` are parts a fitted profile's recording did not record."""
+    parts = [n for n in names if n in NOT_RECORDED_WORDS]
+    figures = [n for n in names if n not in NOT_RECORDED_WORDS]
+    out = []
+    if parts:
+        out.append("unverified: the profile was fitted from a recording without "
+                   + ", ".join(NOT_RECORDED_WORDS[n] for n in parts)
+                   + ", and this sensor's error depends on it (unknown, not 0; docs/model.md "
+                   "section 13) -- record every axis")
+    if figures:
+        out.append("unverified: passes on its published figures, but "
+                   + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS
+                               for n in figures)
+                   + " -- ask the vendor, or --assume-unknown zero to take it as 0")
+    return "; ".join(out)
 
 
 #: Why a coefficient-form sensor's missing g² figure can matter, as a reason names it.

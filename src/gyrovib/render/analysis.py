@@ -52,10 +52,10 @@ def _to_json_rows(result: AnalysisResult) -> str:
     results: list[dict[str, Any]] = []
     rates = result.rates.tolist()
     terms = [[[*t, *g] for t, g in zip(ts, gs, strict=True)]
-             for ts, gs in zip(e.additive_terms.tolist(), e.extra_terms.tolist(), strict=True)]
-    qs = e.multiplicative_coefficients.tolist()
-    additive, mult, total, rms = (e.additive.tolist(), e.multiplicative.tolist(),
-                                  e.total.tolist(), e.rms.tolist())
+             for ts, gs in zip(_nulls(e.additive_terms), _nulls(e.extra_terms), strict=True)]
+    qs = _nulls(e.multiplicative_coefficients)
+    additive, mult, total, rms = (_nulls(e.additive), _nulls(e.multiplicative),
+                                  _nulls(e.total), _nulls(e.rms))
     for i, j in _rows(result):
         row: dict[str, Any] = {
             "sensor": result.sensors[i],
@@ -83,6 +83,14 @@ def _to_json_rows(result: AnalysisResult) -> str:
     document = _head(result)
     document["results"] = results
     return dumps(document)
+
+
+def _nulls(array: np.ndarray) -> Any:
+    """``array.tolist()`` with None (null) for NaN: an error that is unknown (an axis its
+    profile's recording did not record). An infinity stays, for json to refuse."""
+    cells: Any = array.astype(object)
+    cells[np.isnan(array)] = None
+    return cells.tolist()
 
 
 _COEFFICIENT_SOURCE = '"coefficients"'  # json.dumps("coefficients")

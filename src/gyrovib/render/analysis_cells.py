@@ -104,8 +104,8 @@ def row_cells(values: list[float], digits: int = 4) -> list[str]:
     """A table row's numbers, those below :data:`NEGLIGIBLE_IN_ROW` of its largest as 0."""
     finite = [abs(v) for v in values if v == v and abs(v) != float("inf")]
     scale = max(finite, default=0.0)
-    return ["0" if v == v and scale > 0 and abs(v) < NEGLIGIBLE_IN_ROW * scale
-            else fmt(v, digits) for v in values]
+    return ["?" if v != v else "0" if scale > 0 and abs(v) < NEGLIGIBLE_IN_ROW * scale
+            else fmt(v, digits) for v in values]  # NaN: unknown
 
 
 def grouped_warnings(result: AnalysisResult) -> list[tuple[str, list[tuple[int, int]]]]:

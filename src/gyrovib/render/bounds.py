@@ -225,7 +225,7 @@ def _which(bounds: Any, j: int, name: str) -> str:
         value = float(values[j])
         if attr in _ALWAYS or np.isfinite(value):
             parts.append((label, value))
-    if len(parts) < 2:
+    if len(parts) < 2 or any(value != value for _, value in parts):  # NaN: unknown
         return ""
     if all(value == float("inf") for _, value in parts):
         return ", ".join(f"{label} ∞" for label, _ in parts) + ": unconstrained"
@@ -243,6 +243,8 @@ def bound_text(name: str, value: float) -> str:
     """A coefficient's bound as a table writes it: ``unbounded`` where it constrains
     nothing (+inf: the coefficient does not act; A1: no |A1| < 2 uses up its share)."""
     v = float(value)
+    if v != v:  # unknown: a profile fitted from a recording without what it depends on
+        return "?"
     if v == float("inf") or (name == "A1" and v >= A1_LIMIT):
         return UNBOUNDED
     return fmt(v)
@@ -265,7 +267,8 @@ def _rows(result: BoundsResult, j: int) -> list[list[str]]:
             for name in BOUNDED]
     if linear and result.spec_bounds is None:  # with --range: the datasheet VRE alone
         assert result.bounds.vre is not None
-        rows.append(["vre", fmt(result.bounds.vre[j]), vre_unit(result.unit), share["vre"],
+        rows.append(["vre", bound_text("vre", result.bounds.vre[j]), vre_unit(result.unit),
+                     share["vre"],
                      "|Δ0(6)|/Σ⟨a_j²⟩"])
     return rows
 

@@ -42,7 +42,10 @@ def dumps(document: Any) -> str:
 
 
 def fmt_budget(value: float | None, budget: float | None, digits: int = 4) -> str:
-    """:func:`fmt`, but ``0`` for |value| below :data:`NEGLIGIBLE` × the budget (tables only)."""
+    """:func:`fmt`, but ``0`` for |value| below :data:`NEGLIGIBLE` × the budget, and '?' for
+    NaN, an unknown value (tables only)."""
+    if value is not None and value != value:
+        return "?"
     if (value is not None and budget is not None and budget > 0 and math.isfinite(value)
             and abs(value) < NEGLIGIBLE * budget):
         return "0"
@@ -55,8 +58,9 @@ def csv_text(header_row: Iterable[str], rows: Iterable[Iterable[Any]]) -> str:
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(list(header_row))
     for row in rows:
-        writer.writerow(["" if x is None else (repr(x) if isinstance(x, float) else x)
-                         for x in row])
+        # None and NaN (unknown) are empty cells, never 'nan' or 0
+        writer.writerow(["" if x is None or x != x else (repr(x) if isinstance(x, float)
+                                                          else x) for x in row])
     return buffer.getvalue()
 
 
@@ -77,8 +81,11 @@ def float_cells(values: Any) -> list[str]:
     if a.size > 1:
         bits = a.view(np.int64)
         if bits[0] == bits[-1] and bool(np.all(bits == bits[0])):
-            return [repr(float(a[0]))] * a.size
-    return list(map(float.__repr__, a.tolist()))
+            return ["" if a[0] != a[0] else repr(float(a[0]))] * a.size
+    cells = list(map(float.__repr__, a.tolist()))
+    if np.isnan(a).any():  # unknown: an empty cell, as csv_text writes it
+        cells = ["" if c == "nan" else c for c in cells]
+    return cells
 
 
 def csv_lines(columns: Sequence[Sequence[str]]) -> str:

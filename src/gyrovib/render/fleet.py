@@ -70,10 +70,10 @@ def _worst_rows(result: RecordingsAnalysis) -> list[list[str]]:
         i = result.worst[k]
         sat = ", ".join(_saturated_on(result, k)) or "—"
         if i < 0:
-            rows.append([sensor, "—", "—", "—", "—", sat])
+            rows.append([sensor, "?", "—", "?", "—", sat])  # unknown on some recording
             continue
         a = result.analyses[i]
-        rows.append([sensor, one._fmt(a.recorded[k]), _name(a), one._fmt(a.fitted[k]),
+        rows.append([sensor, one._known(a.recorded[k]), _name(a), one._known(a.fitted[k]),
                      one._fmt(a.ratio[k], 3), sat])
     return rows
 

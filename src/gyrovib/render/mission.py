@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 from typing import TYPE_CHECKING, Any
 
@@ -11,9 +12,11 @@ from rich.text import Text
 from gyrovib.presentation.reasons import unverified_text
 from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
 from gyrovib.render.formats import csv_of
+from gyrovib.render.mission_answer import allowance_cells, allowance_head, allowance_json
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
+    from gyrovib.api.noise.results import Budget
 
 
 #: The verdict cell of each row status (None: no budget).
@@ -66,10 +69,18 @@ _HEAD = ["sensor", "mission", "axis", "mean Δ̄_V", "angle θ_V", "mean RMS Δ�
 _NOISE = ("arw", "bias_instability", "rrw", "repeatability")
 
 
+def known(value: float) -> str:
+    """:func:`fmt`, but '?' for a value that is unknown (NaN: an axis a fitted profile's
+    recording did not record), never 'nan' or 0."""
+    return "?" if math.isnan(value) else fmt(value)
+
+
 def budget_total(row: MissionRow) -> str:
     """The budget's total: '≥ x' when a noise figure is unknown (a lower bound)."""
     if row.budget is None:
         return "-"
+    if math.isnan(row.budget.total):
+        return "?"
     return ("≥ " if row.budget.lower_bound else "") + fmt(row.budget.total)
 
 
@@ -78,19 +89,26 @@ def _noise_cells(row: MissionRow) -> list[str]:
     is only an upper bound (the budget uses the bound)."""
     if row.budget is None:
         return ["-"] * len(_NOISE)
-    bounds = row.budget.bounds
+    bounds, typical = row.budget.bounds, row.budget.typical
     return ["?" if (v := getattr(row.budget, name)) is None
-            else ("≤ " if name in bounds else "") + fmt(v) for name in _NOISE]
+            else ("≤ " if name in bounds else "") + fmt(v) + (" typ" if name in typical else "")
+            for name in _NOISE]
 
 
 def _cells(result: MissionResult, row: MissionRow) -> list[str]:
     w = row.segments[row.worst_index]
     axis = "-" if row.axis is None else row.axis + (" (worst)" if row.axis == row.worst_axis
                                                     else "")
-    return [row.sensor, row.mission, axis, fmt(row.mean), fmt(row.angle), fmt(row.rms),
-            *_noise_cells(row), budget_total(row),
-            f"{row.worst_index + 1} {w.profile} ({fmt(w.total)})",
-            _verdict(row) + (" (saturated)" if row.saturated else "")]
+    worst = f"({fmt(w.total)})" if math.isfinite(row.worst_total) else "(?)"
+    return [row.sensor, row.mission, axis, known(row.mean), known(row.angle), known(row.rms),
+            *_noise_cells(row), budget_total(row), f"{row.worst_index + 1} {w.profile} {worst}",
+            _verdict(row) + (" (saturated)" if row.saturated else "") + _on_typical(row)]
+
+
+def _on_typical(row: MissionRow) -> str:
+    """' (on typ)' where a verdict rests on a figure the datasheet gives as typical."""
+    typical = row.budget is not None and row.budget.typical and row.status is not None
+    return " (on typ)" if typical else ""
 
 
 def _unknown_notes(result: MissionResult) -> list[str]:
@@ -135,6 +153,7 @@ def _table_notes(result: MissionResult) -> list[str]:
              f"{fmt(result.coverage)}); '?': a noise figure the catalogue does not give, "
              "unknown, so the total is a lower bound (≥)."]
     notes.extend(_bound_note(result))
+    notes += _typical_note(result)
     if any(r.source == "specs" for r in result.rows):
         notes.append("A datasheet sensor's mean and angle are the worst case over its "
                      "envelope of the whole mission (one conversion function for every "
@@ -150,7 +169,28 @@ def _table_notes(result: MissionResult) -> list[str]:
         notes.append(f"{n} of {len(result.sensors)} sensors pass every mission{open_} "
                      f"(--require {result.require}: "
                      f"{'met' if result.requirement_met else 'NOT met'}).")
+    notes += _rank_notes(result)
     return notes
+
+
+def _typical_note(result: MissionResult) -> list[str]:
+    """What 'typ' means, where a row's budget rests on a typical figure."""
+    if not any(r.budget is not None and r.budget.typical for r in result.rows):
+        return []
+    return ["'typ': a figure the datasheet gives as typical, not guaranteed; '(on typ)': a "
+            "verdict that rests on one."]
+
+
+def _rank_notes(result: MissionResult) -> list[str]:
+    """What the order of a ranked result means, and which sensors it does not rank."""
+    if result.ranks is None:
+        return []
+    out = ["Sensors ranked by their largest budget total, smallest first."]
+    left = [s for s, r in zip(result.sensors, result.ranks, strict=True) if r is None]
+    if left:
+        out.append(f"Not ranked (a total that is only a lower bound, or a verdict "
+                   f"unverified), listed after the ranked ones: {', '.join(left)}.")
+    return out
 
 
 def to_table(result: MissionResult, width: int | None = None, color: bool = False,
@@ -170,10 +210,25 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
         cells = _cells(result, row)
         table.add_row(*(cells[k] for k in keep))
     out: list[Any] = [table]
+    if any(r.budget is not None and r.budget.allowed is not None for r in result.rows):
+        out.append(_allowance_table(result))
     notes = _table_notes(result)
     out.append(Text(" ".join(notes), style="dim"))
     out.extend(Text(note) for note in _unknown_notes(result))
     return rich_text(out, width=width, color=color, ascii=ascii)
+
+
+def _allowance_table(result: MissionResult) -> Table:
+    """Per row, the largest value of each figure that still meets the angle budget."""
+    table = Table(header_style="bold", title="Largest figure that meets the budget, the "
+                  "others as given (none (X): X alone uses the allowance; *: an upper "
+                  "limit, a figure being unknown)", title_justify="left")
+    for name in ("sensor", "axis", *allowance_head()):
+        table.add_column(name, no_wrap=True, justify="left" if name in ("sensor", "axis")
+                         else "right")
+    for row in result.rows:
+        table.add_row(row.sensor, row.axis or "-", *allowance_cells(row))
+    return table
 
 
 def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
@@ -184,7 +239,8 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
                           "total": number(row.worst_total)},
         "segments": [{"profile": s.profile, "duration": s.duration,
                       "rate": [number(v) for v in s.rate], "total": number(s.total),
-                      "rms": number(s.rms), "saturated": s.saturated} for s in row.segments],
+                      "rms": number(s.rms), "saturated": s.saturated,
+                      **_timeline_json(row, k)} for k, s in enumerate(row.segments)],
         "saturated": row.saturated, "pass": row.passed, "status": row.status,
         "unknown": list(row.unknown), "reason": _reason(result, row) or None,
         "source": row.source,
@@ -197,11 +253,32 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
                for name in _NOISE},
             "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
             "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
-            "bounds": list(b.bounds)}
+            "bounds": list(b.bounds), "typical": list(b.typical)}
+        allowed = allowance_json(row)
+        if allowed is not None:
+            out["budget"]["allowed"] = allowed
     if row.axis is not None:
         out["axis"] = row.axis
         out["worst_axis"] = row.worst_axis
     return out
+
+
+def _budget_json(b: Budget) -> dict[str, Any]:
+    return {"vibration": number(b.vibration),
+            **{name: None if getattr(b, name) is None else number(getattr(b, name))
+               for name in _NOISE},
+            "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
+            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
+            "bounds": list(b.bounds)}
+
+
+def _timeline_json(row: MissionRow, k: int) -> dict[str, Any]:
+    """Segment ``k``'s ``end`` (s from the start) and the ``budget`` there: θ_V(t)
+    summed so far and the noise over t (deg; the cone is ±coverage·RSS of the terms)."""
+    if not row.timeline:
+        return {}
+    return {"end": sum(s.duration for s in row.segments[:k + 1]),
+            "budget": _budget_json(row.timeline[k])}
 
 
 def _group_status(group: list[MissionRow], passed: bool | None) -> str | None:
@@ -250,7 +327,8 @@ def to_json(result: MissionResult) -> str:
         "require": result.require, "assume_unknown": result.assume_unknown,
         "mission": [_row_json(result, r) for r in result.rows],
         "triads": _triads_json(result),
-        "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k)}
+        "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k),
+                     **({} if result.ranks is None else {"rank": result.ranks[k]})}
                     for k, (s, p) in enumerate(zip(result.sensors, result.sensor_pass,
                                                    strict=True))],
         "requirement_met": result.requirement_met,
@@ -270,7 +348,7 @@ def to_markdown(result: MissionResult) -> str:
     head[4] += f" ({result.angle_unit})"
     head[5] += f" ({result.unit})"
     text = markdown_table(head, (_cells(result, r) for r in result.rows))
-    notes = _unknown_notes(result)
+    notes = _unknown_notes(result) + _rank_notes(result)
     return text + ("\n" + "\n\n".join(notes) + "\n" if notes else "")
 
 
@@ -287,9 +365,12 @@ def to_junit(result: MissionResult) -> str:
         name = r.mission if r.axis is None else f"{r.mission} (x3 on {r.axis})"
         case = ET.SubElement(suite, "testcase", classname=r.sensor, name=name, time="0")
         out = ET.SubElement(case, "system-out")
-        out.text = (f"θ_V = {fmt(r.angle)} {result.angle_unit}, budget total "
-                    f"{budget_total(r)} deg, mean RMS = {fmt(r.rms)} "
-                    f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})")
+        out.text = (f"θ_V = {known(r.angle)} {result.angle_unit}, budget total "
+                    f"{budget_total(r)} deg, mean RMS = {known(r.rms)} "
+                    f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})"
+                    + (f"; the verdict rests on typical (typ) figures: "
+                       f"{', '.join(r.budget.typical)}"
+                       if r.budget is not None and _on_typical(r) else ""))
         if r.passed is False:
             reason = _reason(result, r)
             failure = ET.Element("failure", message=reason,

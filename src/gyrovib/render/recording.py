@@ -33,6 +33,11 @@ def _fmt(v: float, digits: int = 4) -> str:
     return "—" if not math.isfinite(v) else f"{v:.{digits}g}"
 
 
+def _known(v: float) -> str:
+    """An error that can be unknown (an axis not recorded): '?' then, never 0 or a dash."""
+    return "?" if not math.isfinite(v) else f"{v:.4g}"
+
+
 def _percent(v: float) -> str:
     return "—" if not math.isfinite(v) else f"{100 * v:.1f} %"
 
@@ -137,7 +142,8 @@ def to_csv(result: RecordingAnalysis) -> str:
 
 
 def _table_rows(result: RecordingAnalysis) -> list[list[str]]:
-    return [[s, _fmt(result.recorded[i]), _fmt(result.fitted[i]), _fmt(result.ratio[i], 3),
+    return [[s, _known(result.recorded[i]), _known(result.fitted[i]),
+             "?" if math.isnan(result.recorded[i]) else _fmt(result.ratio[i], 3),
              _fmt(result.peak_rate[i]), "yes" if result.saturated[i] else "no"]
             for i, s in enumerate(result.sensors)]
 

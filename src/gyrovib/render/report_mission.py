@@ -5,14 +5,20 @@ segments that make it up."""
 from __future__ import annotations
 
 from html import escape
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
+from gyrovib.render.mission import known
+from gyrovib.render.mission_answer import allowance_cells, allowance_head, answer_line
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
+    from gyrovib.api.noise.results import Budget
+    from gyrovib.core._types import FloatArray
 
 PASS_FILL, FAIL_FILL, NO_BUDGET_FILL = "#2ca02c", "#d62728", "#1f77b4"
 #: Unverified (hangs on an unpublished datasheet figure): its own colour, as in select.
@@ -97,15 +103,146 @@ def _segments_table(result: MissionResult, row: MissionRow) -> str:
     note = (" A datasheet sensor's segments are each their own worst case; its θ_V is the "
             "worst case of the whole mission (one conversion function), at most their sum."
             if row.source == "specs" else "")
-    caption = (f"{row.sensor}{where}: θ_V = {fmt(row.angle)} {result.angle_unit}, mean "
-               f"Δ̄_V = {fmt(row.mean)} {result.unit}, mean RMS = {fmt(row.rms)} {result.unit}; "
+    caption = (f"{row.sensor}{where}: θ_V = {known(row.angle)} {result.angle_unit}, mean "
+               f"Δ̄_V = {known(row.mean)} {result.unit}, mean RMS = {known(row.rms)} "
+               f"{result.unit}; "
                f"worst segment {row.worst_index + 1} ({row.worst_profile}).{note}")
     return (f"<table><caption>{_e(caption)}</caption><thead><tr>"
             + "".join(f"<th>{_e(h)}</th>" for h in head) + "</tr></thead><tbody>"
             + "".join(body) + "</tbody></table>")
 
 
-def mission_section(result: MissionResult) -> str:
+#: Size of a θ(t) chart (px) and its margins.
+_W, _H, _L, _B = 520, 200, 56, 28
+#: Verdict words.
+_WORDS = {None: "no budget", "pass": "passes", "fail": "FAILS", "unverified": "UNVERIFIED"}
+
+
+def theta_chart(result: MissionResult, row: MissionRow) -> str:
+    """θ(t) of one row as inline SVG: the vibration staircase θ_V(t) segment by segment,
+    the ±k·σ(t) noise cone around it (σ(t)² = N²t + B²t² + K²t³/3 + R²t², the row's
+    terms at T scaled by √(t/T), t/T, (t/T)^1.5, t/T) and ±θ*; each segment's point
+    carries a tooltip with its θ values."""
+    b = row.budget
+    if b is None or not row.timeline:
+        return ""
+    span = row.duration
+    t, vib, upper, lower = _cone(row, b, span)
+    top = max(float(np.max(np.abs(np.concatenate([upper, lower])))),
+              result.angle_budget or 0.0, 1e-12) * 1.1
+
+    def px(tt: float, th: float) -> str:
+        return (f"{_L + (_W - _L - 8) * tt / span:.1f},"
+                f"{(_H - _B) / 2 - (_H - _B) / 2 * th / top + 4:.1f}")
+
+    cone = " ".join(px(a, c) for a, c in zip(t, upper, strict=True))
+    cone += " " + " ".join(px(a, c) for a, c in zip(t[::-1], lower[::-1], strict=True))
+    stairs = " ".join(px(a, c) for a, c in zip(t, vib, strict=True))
+    ends = np.cumsum([s.duration for s in row.segments])
+    dots = "".join(_dot(px(e, s.vibration), _tooltip(k, e, s))
+                   for k, (e, s) in enumerate(zip(ends, row.timeline, strict=True)))
+    limits = "" if result.angle_budget is None or result.angle_unit != "deg" else "".join(
+        _hline(px(0.0, sign * result.angle_budget).split(",")[1]) for sign in (1.0, -1.0))
+    axis = (f'<text x="4" y="12" font-size="10">±{_e(fmt(top / 1.1))} deg</text>'
+            f'<text x="{_W - 90}" y="{_H - 6}" font-size="10">{_e(fmt(span / 3600.0))} h</text>'
+            f'<text x="{_L}" y="{_H - 6}" font-size="10">0 h</text>')
+    title = (f"{row.sensor}{f' (x3 on {row.axis})' if row.axis else ''}: θ(t), total "
+             f"{'≥ ' if b.lower_bound else ''}{fmt(b.total)} deg, {_WORDS[row.status]}")
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{_W}" height="{_H}" role="img">'
+            f"<title>{_e(title)}</title>"
+            f'<polygon points="{cone}" fill="#1f77b4" fill-opacity="0.2"/>'
+            f'<polyline points="{stairs}" fill="none" stroke="#d62728" stroke-width="1.6"/>'
+            f"{limits}{dots}{axis}</svg>")
+
+
+def _cone(row: MissionRow, b: Budget, span: float
+          ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """t (s), θ_V(t) and the cone's edges θ_V ± k·σ(t) (deg) on 200 points."""
+    t = np.linspace(0.0, span, 200)
+    ends = np.cumsum([s.duration for s in row.segments])
+    vib = np.interp(t, np.concatenate([[0.0], ends]),
+                    [0.0] + [x.vibration for x in row.timeline])
+    x = t / span
+    var = np.zeros(t.size)
+    for v, power in ((b.arw, 0.5), (b.bias_instability, 1.0), (b.rrw, 1.5),
+                     (b.repeatability, 1.0)):
+        if v is not None:
+            var += (v * x**power) ** 2
+    half = b.coverage * np.sqrt(var)
+    return t, vib, vib + half, vib - half
+
+
+def _hline(y: str) -> str:
+    return (f'<line x1="{_L}" x2="{_W - 8}" y1="{y}" y2="{y}" stroke="#000" '
+            'stroke-dasharray="4 3"/>')
+
+
+def _dot(at: str, tip: str) -> str:
+    x, y = at.split(",")
+    return f'<circle cx="{x}" cy="{y}" r="2.5" fill="#d62728"><title>{_e(tip)}</title></circle>'
+
+
+def _tooltip(k: int, end: float, b: Budget) -> str:
+    """A segment end's θ values: the staircase, the cone's half-width, the total."""
+    return (f"segment {k + 1} ends at {fmt(end / 3600.0)} h: θ_V = {fmt(b.vibration)} deg, "
+            f"±{fmt(b.coverage)}·σ = ±{fmt(b.total - abs(b.vibration))} deg, total "
+            f"{fmt(b.total)} deg")
+
+
+def verdict_table(result: MissionResult, mission: str) -> str:
+    """Every sensor's worst row: its total against the budget as a number and a word,
+    and the largest figure of each kind that would meet the budget."""
+    rows = _shown(result, mission)
+    with_allowance = any(r.budget is not None and r.budget.allowed is not None for r in rows)
+    head = ["sensor", "axis", "|θ_V| (deg)", "total (deg)", "budget", "verdict"]
+    if with_allowance:
+        head += allowance_head()
+    body = []
+    for r in rows:
+        b = r.budget
+        total = "-" if b is None else ("≥ " if b.lower_bound else "") + fmt(b.total)
+        budget = ("-" if result.angle_budget is None else
+                  f"{fmt(result.angle_budget)} {result.angle_unit}")
+        cells = [r.sensor, r.axis or "-", fmt(abs(r.angle)), total, budget, _WORDS[r.status]]
+        if with_allowance:
+            cells += allowance_cells(r)
+        body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
+    return ("<table><caption>Each sensor's total and verdict (a triad: its worst axis); "
+            "the largest value of each figure that meets the budget, the others as given "
+            "(*: an upper limit, another figure being unknown)</caption><thead><tr>"
+            + "".join(f"<th>{_e(h)}</th>" for h in head) + "</tr></thead><tbody>"
+            + "".join(body) + "</tbody></table>")
+
+
+#: The noise figures of a ``noise:`` block, and their heading.
+_FIGURES = (("arw", "N: angle random walk"), ("bias_instability", "B: bias instability"),
+            ("rrw", "K: rate random walk"), ("bias_repeatability", "R: bias repeatability"))
+
+
+def noise_table(noise: dict[str, dict[str, Any]]) -> str:
+    """Each sensor's noise figures as its catalogue writes them — value, unit and the
+    datasheet's qualifier (typ, max) — and '?' where a figure is not given (unknown,
+    never 0). ``noise``: sensor → figure name → an object with ``value``, ``unit``,
+    ``qualifier`` (or None)."""
+    if not noise:
+        return ""
+    body = []
+    for sensor, figures in noise.items():
+        cells = [sensor]
+        for name, _ in _FIGURES:
+            fig = figures.get(name)
+            cells.append("?" if fig is None else
+                         f"{fmt(fig.value)} {fig.unit}"
+                         + (f" {fig.qualifier}" if getattr(fig, "qualifier", None) else ""))
+        body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
+    return ("<table><caption>The noise figures of the budget, as the catalogue gives them "
+            "(typ: typical, max: guaranteed; ?: not given, unknown)</caption><thead><tr>"
+            + "".join(f"<th>{_e(h)}</th>" for h in ("sensor", *(t for _, t in _FIGURES)))
+            + "</tr></thead><tbody>" + "".join(body) + "</tbody></table>")
+
+
+def mission_section(result: MissionResult,
+                    noise: dict[str, dict[str, Any]] | None = None) -> str:
     """The HTML of the report's mission section."""
     budget = ("no budget" if result.angle_budget is None and result.budget is None else
               f"angle budget |θ_V| ≤ {fmt(result.angle_budget)} {result.angle_unit}"
@@ -117,10 +254,18 @@ def mission_section(result: MissionResult) -> str:
              "accumulated angle θ_V = Σ T_s·Δ_V,s, and per sensor the segments that make "
              "it up (the worst segment highlighted); and the whole angle budget, |θ_V| plus "
              "the noise of each sensor's noise: figures over the mission (section 15).</p>"]
+    answer = answer_line(result)
+    if answer is not None:
+        parts.append(f'<p class="answer"><strong>{_e(answer)}</strong></p>')
+    parts.append(noise_table(noise or {}))
     for mission in result.missions:
         parts.append(f'<section class="mission"><h3>{_e(mission)}</h3>')
+        parts.append(verdict_table(result, mission))
         parts.append(f'<div class="charts"><figure>{angle_chart(result, mission)}</figure>'
                      f"<figure>{budget_chart(result, mission)}</figure></div>")
+        parts.append('<div class="charts">' + "".join(
+            f"<figure>{theta_chart(result, r)}</figure>" for r in _shown(result, mission))
+            + "</div>")
         parts.extend(_segments_table(result, r) for r in _shown(result, mission))
         parts.append("</section>")
     return "\n".join(parts)

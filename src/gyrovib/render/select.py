@@ -132,8 +132,11 @@ def _summary(result: SelectionResult) -> str:
     need = "at least one sensor" if result.require == "any" else "every sensor"
     n_open = sum(1 for i in range(len(result.sensors))
                  if result.sensor_status(i) == "unverified")
-    tail = (f", {n_open} unverified (an unpublished figure can decide them: ask the vendor)"
-            if n_open else "")
+    why = ("an unpublished figure, or an axis a fitted profile's recording did not record, "
+           "can decide them" if any(set(_PARTS) & set(result.sensor_unknown(i)) for i in
+                                    range(len(result.sensors)))
+           else "an unpublished figure can decide them: ask the vendor")
+    tail = f", {n_open} unverified ({why})" if n_open else ""
     note = assumption_note(result)
     return (f"Requirement ({result.require}: {need} passes under every profile): {verdict}; "
             f"{n_pass} of {len(result.sensors)} sensor(s) pass{tail}."
@@ -319,11 +322,16 @@ def _get(array: Any, i: int, j: int) -> Any:
     return array[i, j]
 
 
+def _csv_float(value: float) -> float | str:
+    """A CSV number: empty where unknown (NaN), ``inf`` where unconstrained."""
+    return "" if math.isnan(value) else float(value)
+
+
 def _csv_checks(result: SelectionResult, sensor: str, profile: str, i: int,
                 j: int) -> list[Any]:
     """The CSV's verdict, RMS, margin and coefficient-check columns of one cell."""
     row: list[Any] = [sensor, profile, bool(result.passed[i, j]), bool(result.sensor_pass[i]),
-                      float(result.rms[i, j]), float(result.margin[i, j])]
+                      _csv_float(result.rms[i, j]), _csv_float(result.margin[i, j])]
     spec = result.source(i) == "specs"
     for b in range(len(BOUNDED)):
         row += (["", "", ""] if spec else
@@ -464,9 +472,23 @@ def _unknown_names(result: SelectionResult, i: int, j: int) -> list[str]:
 
 def _unverified(result: SelectionResult) -> list[list[str]]:
     """Unverified sensors and the questions for their vendor."""
-    return [[result.sensors[i], " | ".join(result.questions.get(i, ()))
-             or "the unknown figures " + ", ".join(result.sensor_unknown(i))]
+    return [[result.sensors[i], " | ".join(result.questions.get(i, ())) or _ask(result, i)]
             for i in result.ranking if result.sensor_status(i) == "unverified"]
+
+
+_PARTS = ("x1", "x2", "x3", "acceleration")
+
+
+def _ask(result: SelectionResult, i: int) -> str:
+    """The unknown figures of an unverified sensor, and the parts a profile's recording
+    did not record (a recording to make, not a question for the vendor)."""
+    names = result.sensor_unknown(i)
+    figures = [n for n in names if n not in _PARTS]
+    parts = [n for n in names if n in _PARTS]
+    out = ["the unknown figures " + ", ".join(figures)] if figures else []
+    if parts:
+        out.append("a recording of " + ", ".join(parts) + " (not recorded)")
+    return " | ".join(out)
 
 
 def assumption_note(result: SelectionResult) -> str:

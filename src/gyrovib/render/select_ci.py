@@ -93,10 +93,13 @@ def to_github(
                    for j in range(len(result.profiles)) if not result.passed[i, j]]
         if result.sensor_status(i) == "unverified":
             asks = "; ".join(result.questions.get(i, ()))
-            items.append((file, line, f"{sensor} is unverified",
-                          f"{sensor} passes Δ* = {fmt(result.budget)} {result.unit} on its "
-                          "published figures, but an unpublished one can decide it. Ask the "
-                          f"vendor: {asks}. " + " | ".join(reasons), "error"))
+            text = (f"{sensor} passes Δ* = {fmt(result.budget)} {result.unit} on its "
+                    "published figures, but an unpublished one can decide it. Ask the "
+                    f"vendor: {asks}. " if asks or not _not_recorded(result, i) else
+                    f"{sensor}: its error is unknown under a profile fitted from a recording "
+                    "that lacks an axis it depends on. ")
+            items.append((file, line, f"{sensor} is unverified", text + " | ".join(reasons),
+                          "error"))
             continue
         items.append((file, line, f"{sensor} fails the budget",
                       f"{sensor} fails Δ* = {fmt(result.budget)} {result.unit} "
@@ -105,3 +108,8 @@ def to_github(
     items.append((None, None, "gyrovib select", _summary(result), "notice"))
     rank.append(-math.inf)  # the summary is always shown
     return annotations(items, rank=rank)
+
+
+def _not_recorded(result: SelectionResult, i: int) -> bool:
+    """Whether sensor ``i`` is unverified on a part a fitted profile's recording lacks."""
+    return any(n in ("x1", "x2", "x3", "acceleration") for n in result.sensor_unknown(i))

@@ -337,7 +337,9 @@ def bar_chart(title: str, xlabel: str, names: Sequence[str], values: Sequence[fl
         y = top + row * k
         text = fit(name, left - 5 - 4, SIZES["ty"])
         out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">{escape(text)}</text>')
-        if value > 0:
+        if math.isnan(value):  # unknown (an axis not recorded): never drawn as 0
+            out.append(f'<text x="{left + 4}" y="{y + 13}" class="lg">?</text>')
+        elif value > 0:
             end = min(max(x(value), left), WIDTH - 40) if math.isfinite(value) else WIDTH - 40
             out.append(f'<rect x="{left}" y="{y + 3}" width="{end - left:.1f}" height="{row - 6}" '
                        f'fill="{fill}"/>')

@@ -21,6 +21,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import AnalysisResult
+from gyrovib.api.evaluation.unknown import unknown_cells
 from gyrovib.api.lots.uncertainty import distributions, with_uncertainty
 from gyrovib.api.study.convert import error_arrays, to_unit
 from gyrovib.api.study.prepare import (
@@ -156,6 +157,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         stderr_out = None if stderr is None else stderr / out_scale
         check_finite([*error_arrays(error), *([] if stderr_out is None else [stderr_out])],
                      prepared)
+        unknown_cells(prepared, error, warnings)
         locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
         spread = _spread(study, prepared, method, unit, peak_factor)
     return AnalysisResult(

@@ -11,6 +11,7 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api.datasheet.spec_bounds import datasheet_bounds
 from gyrovib.api.evaluation.results import BoundsResult
+from gyrovib.api.evaluation.unknown import unknown_bounds
 from gyrovib.api.study.convert import bound_factors
 from gyrovib.api.study.prepare import (
     TINY,
@@ -203,7 +204,7 @@ def bounds_of(study: Study, *, method: str = "exact", budget: float, unit: str =
         budget=budget / units.scale(unit),
         profiles=tuple(p.profile.id for p in prepared.profiles),
         rates=prepared.rates / units.scale(unit),
-        bounds=scaled,
+        bounds=unknown_bounds(prepared.profiles, scaled),
         allocation=constants,
         spec_bounds=datasheet,
         coefficient_unit=catalog_unit([p.unit for p in prepared.profiles]),

@@ -29,6 +29,7 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.datasheet import spec_bounds, specs
+from gyrovib.api.evaluation.unknown import any_missing, depends_on
 from gyrovib.api.missions.results import MissionResult, MissionRow, SegmentResult
 from gyrovib.api.placement.placement import place_profile
 from gyrovib.api.study.prepare import float_guard
@@ -273,11 +274,16 @@ def _mission_row(evaluated: _Evaluated, i: int, r: int, run: _Run, a_factor: flo
     mean = float(agg.mean)
     if (i, r) in evaluated.spec_mean:
         mean = evaluated.spec_mean[(i, r)]
-    angle = mean * agg.duration * a_factor
-    sat = bool(np.any(evaluated.saturated[i, cols]))
-    passed = limits.passed(sat, angle, float(agg.rms))
     names = evaluated.unknown.get((i, r), ())
-    open_ = passed is not None and spec_bounds.is_unverified(passed, names, assume_unknown)
+    gap = any_missing(names)  # a segment's recording lacks what this error needs
+    angle = mean * agg.duration * a_factor
+    rms, worst = float(agg.rms), float(agg.worst_total)
+    if gap:  # unknown, never the number computed with 0 there (docs/model.md section 13)
+        mean = angle = rms = worst = math.nan
+    sat = bool(np.any(evaluated.saturated[i, cols]))
+    passed = limits.passed(sat, angle, rms)
+    open_ = passed is not None and (gap or spec_bounds.is_unverified(
+        passed, names, assume_unknown))
     if open_:
         passed = False
     w = int(agg.worst_index)
@@ -285,9 +291,9 @@ def _mission_row(evaluated: _Evaluated, i: int, r: int, run: _Run, a_factor: flo
         sensor=evaluated.result.sensors[i], mission=run.mission.id,
         placement="triad" if run.triad else str(run.placement),
         axis=run.placement.axis if run.triad else None,
-        mean=mean, angle=angle, rms=float(agg.rms), worst_index=w,
+        mean=mean, angle=angle, rms=rms, worst_index=w,
         worst_profile=run.mission.segments[w].profile,
-        worst_total=float(agg.worst_total), segments=_segment_results(evaluated, i, run),
+        worst_total=worst, segments=_segment_results(evaluated, i, run),
         saturated=sat, passed=passed, source=evaluated.sources[i], unknown=names,
         unverified=open_)
 
@@ -336,8 +342,8 @@ def check_angles(rows: Sequence[MissionRow], chosen: Sequence[MissionEntry]) -> 
     """Raise :class:`ModelError` at the first segment of a mission whose mean error or
     angle θ_V = Σ T_s·Δ_V,s overflowed (a finite Σ T_s times an error can still be inf)."""
     by_id = {e.mission.id: e for e in chosen}
-    bad = next((r for r in rows if not (math.isfinite(r.angle) and math.isfinite(r.mean))),
-               None)
+    bad = next((r for r in rows if not (math.isfinite(r.angle) and math.isfinite(r.mean))
+                and not any_missing(r.unknown)), None)  # unknown (NaN) is not overflow
     if bad is None:
         return
     raise ModelError(by_id[bad.mission].source.problem(
@@ -364,7 +370,9 @@ def _with_worst_axis(rows: list[MissionRow]) -> list[MissionRow]:
             k += 1
             continue
         group = [r for r in rows[k:k + 3]]
-        worst = max(group, key=lambda r: (r.saturated, abs(r.angle))).axis
+        # an axis whose θ_V is unknown may be the worst: then the worst axis is unknown
+        worst = (None if any(math.isnan(r.angle) for r in group)
+                 else max(group, key=lambda r: (r.saturated, abs(r.angle))).axis)
         out.extend(replace(r, worst_axis=worst) for r in group)
         k += 3
     return out
@@ -385,6 +393,8 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     """
     out: dict[tuple[int, int], float] = {}
     unknown = _g2_unknown(study, sources, runs)
+    for key, parts in _not_recorded(study, runs).items():
+        unknown[key] = (*parts, *unknown.get(key, ()))
     rows = [i for i, src in enumerate(sources) if src == "specs"]
     if not rows:
         return out, unknown
@@ -393,7 +403,8 @@ def _spec_means(study: Study, sources: Sequence[str], runs: Sequence[_Run],
     scale = units.scale(unit)
     with float_guard():
         prepared = study.narrowed(rows).prepare(methods=("exact",), phase_search=True)
-        unknown.update(_spec_unknown(prepared, runs, where))
+        for key, names in _spec_unknown(prepared, runs, where).items():
+            unknown[key] = (*unknown.get(key, ()), *names)
         for group in prepared.groups:
             out.update(_group_means(prepared, group, runs, where, scale))
     return out, unknown
@@ -411,6 +422,19 @@ def _g2_unknown(study: Study, sources: Sequence[str], runs: Sequence[_Run]
                 if any(study.linear[c] is not None for c in run.columns):
                     unknown[(i, r)] = ("vre",)
     return unknown
+
+
+def _not_recorded(study: Study, runs: Sequence[_Run]) -> dict[tuple[int, int], tuple[str, ...]]:
+    """(sensor, run) → what a segment's profile, fitted from a recording, did not record
+    and the sensor's error depends on (docs/model.md section 13: unknown, not 0)."""
+    out: dict[tuple[int, int], tuple[str, ...]] = {}
+    for r, run in enumerate(runs):
+        missing = tuple(dict.fromkeys(n for c in run.columns
+                                      for n in study.profiles[c].profile.not_recorded))
+        for i, parts in enumerate(depends_on(study.sensors, missing)):
+            if parts:
+                out[(i, r)] = parts
+    return out
 
 
 def _spec_unknown(prepared: Prepared, runs: Sequence[_Run], where: dict[str, int]

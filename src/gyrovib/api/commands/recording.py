@@ -24,7 +24,8 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.commands.mission import mission
 from gyrovib.api.datasheet.specs import figures, is_spec
-from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier3, rate_pass
+from gyrovib.api.evaluation.unknown import depends_on, not_recorded, words
+from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.api.recordings.results import (
     AxisHonesty,
@@ -102,6 +103,26 @@ def _kept(recording: Recording, crossover: float) -> tuple[list[tuple[int, int]]
     return kept, warnings
 
 
+def _up(value: float) -> str:
+    """``value`` rounded up to 3 significant figures (a --resolution that is enough)."""
+    step = 10.0 ** (math.floor(math.log10(value)) - 2)
+    return f"{math.ceil(value / step - 1e-9) * step:.3g}"
+
+
+def _short_for_welch(kept: Sequence[tuple[int, int]], fs: float,
+                     resolution: float) -> list[str]:
+    """A warning when kept segments are shorter than one Welch window: they count in
+    Δ_V,rec and the statistics, but hold no window of the spectra (docs/model.md
+    section 13)."""
+    nper = core.welch_length(fs, resolution)
+    short = [hi - lo for lo, hi in kept if hi - lo < nper]
+    if not short or len(short) == len(kept):  # none left for the spectra: an error later
+        return []
+    return [f"{len(short)} of {len(kept)} segment(s) shorter than one Welch window "
+            f"(1/Δf = {1 / resolution:g} s, {nper} samples) are left out of the spectra "
+            f"and the fitted profile; Δ_V,rec and the statistics use every sample"]
+
+
 def _statistics(measured: RatePass, n_total: int, axes: tuple[bool, bool, bool],
                 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Variance, skewness and excess kurtosis of x per axis (NaN on an axis not recorded)."""
@@ -154,6 +175,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     _need_scipy(recording)
     fs = recording.fs
     kept, warnings = _kept(recording, crossover)
+    warnings += _short_for_welch(kept, fs, resolution)
     n_total = sum(hi - lo for lo, hi in kept)
     measured = rate_pass(recording, kept, crossover, responses)
     moments = {key: value / n_total for key, value in measured.moments.items()}
@@ -170,12 +192,15 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                            breakpoints, True, crossover, var_a, rate=False)
         del xa_segments
     rate = measured.carrier_sum / n_total
-    c3 = carrier3(recording, kept, crossover)
-    bin_rates, counts = core.carrier_histogram(c3)
-    del c3
+    # the fitted mission keeps the carrier of every axis: the joint carrier in at most
+    # 16 groups (a histogram of Ω_K3 alone left a triad's X and Y sensors no carrier)
+    joint = carrier(recording, kept, crossover, rate)
+    mission_rates, counts = core.carrier_clusters(joint)
+    del joint
+    for j in range(3):
+        if not recording.rate_axes[j]:
+            mission_rates[:, j] = rate[j]
     peak = measured.peak
-    mission_rates = np.column_stack([np.full(bin_rates.size, rate[0]),
-                                     np.full(bin_rates.size, rate[1]), bin_rates])
     honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
                                 float(kurt[j]), float(angular.shape_db[j]),
                                 float(angular.off_3db[j])) for j in range(3))
@@ -219,13 +244,16 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     """Tones, harmonics, PSD breakpoints and coherences of one kind of vibration."""
 
     f, spectra, windows = core.welch_spectra(segments, fs, resolution)
+    if windows == 0:
+        longest = max(s.shape[0] for s in segments)
+        raise RecordingError(Problem(
+            f"no contiguous segment holds one Welch window of 1/Δf = {1 / resolution:g} s "
+            f"({core.welch_length(fs, resolution)} samples; the longest segment kept has "
+            f"{longest} = {longest / fs:.6g} s): give --resolution {_up(fs / longest)} or "
+            "more (Hz)", file))
     silent = ~(variance > 0)  # not recorded, or negligible: no spectrum to fit
     spectra[silent, :, :] = 0.0
     spectra[:, silent, :] = 0.0
-    if windows == 0:
-        raise RecordingError(Problem(
-            f"no contiguous segment holds one Welch window of 1/Δf = {1 / resolution:g} s: "
-            "raise --resolution", file))
     lines, median = core.find_lines(f, spectra, threshold, fmin=_LINE_FLOOR * crossover)
     df = float(f[1] - f[0])
     psd = np.real(np.stack([spectra[i, i] for i in range(3)]))
@@ -420,6 +448,7 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     moments = np.array([fit.moments[g] for g in group]).reshape(n, -1)
     peak = np.array([fit.peak[0 if g is None else g + 1] for g in group])
     total, terms, g2_part = recorded_error(coeffs, moments, g2, fit.g2_moments)
+    total, terms, g2_part = total.copy(), terms.copy(), g2_part.copy()
     spec = np.array([is_spec(e) for e in entries], dtype=bool)
     if spec.any():
         total, terms, g2_part = _spec_recorded(entries, spec, moments, fit.g2_moments, total,
@@ -427,15 +456,37 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     ranges = sensor_ranges(entries)
     saturated = peak > ranges
     fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries])
+    unknown = depends_on(entries, fit_missing(fit), spec_cross=False)
+    for i, parts in enumerate(unknown):
+        if parts:  # unknown, never 0 (docs/model.md section 13)
+            total[i] = terms[i] = g2_part[i] = fitted[i] = fitted_rms[i] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
     s = units.scale(unit)
-    warnings = _warnings(fit, ratio, saturated, peak / s, ranges / s, unit)
+    warnings = _unknown_warnings(unknown, _warnings(fit, ratio, saturated, peak / s,
+                                                    ranges / s, unit))
     return RecordingAnalysis(
         unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
         warnings=warnings)
+
+
+def _unknown_warnings(unknown: Sequence[tuple[str, ...]],
+                      warnings: dict[int, tuple[str, ...]]) -> dict[int, tuple[str, ...]]:
+    """``warnings`` with, first on each row whose Δ_V,rec is unknown, the parts it lacks."""
+    for i, parts in enumerate(unknown):
+        if parts:
+            warnings[i] = (f"Δ_V,rec unknown: {words(parts)}, and this sensor's error "
+                           "depends on it (an axis not recorded is unknown, never 0)",
+                           *warnings.get(i, ()))
+    return warnings
+
+
+def fit_missing(fit: RecordingFit) -> tuple[str, ...]:
+    """The parts the fitted recording did not record (rate axes, accelerations)."""
+    accel = fit.linear is not None and bool(np.all(np.isfinite(fit.linear.variance)))
+    return not_recorded(fit.rate_axes, accel)
 
 
 def _warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_],

@@ -31,6 +31,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import Limit, SelectionResult
+from gyrovib.api.evaluation.unknown import unknown_bounds, unknown_errors, unrecorded_cells
 from gyrovib.api.lots.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
@@ -194,7 +195,8 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
     unit = units.canonical_unit(unit)
     constants = resolve_allocation(study.catalog, method, allocation)
     with float_guard():
-        _, _, alone = profile_bounds(study, method, budget, constants, unit)
+        alone_study, _, alone = profile_bounds(study, method, budget, constants, unit)
+        alone = unknown_bounds(alone_study.profiles, alone)
         prepared = study.prepare(methods=(method,), peak_factor=peak_factor)
         limits_deg, vre_bound_deg = _coefficient_limits(prepared, method, budget, constants)
         parts, total, spec = _errors(study, prepared, method)
@@ -215,6 +217,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         _unknown_g2(prepared, criterion, passed, budget, rms, total, vre_bound_deg, unit,
                     unknown, questions)
         unverified = _unverified(passed, unknown, assume_unknown)
+        unrecorded_cells(prepared, passed, unverified, unknown)
         yields = None if yield_target is None else lot_yields(
             prepared, parts, method, criterion, budget, limits_deg, checks.vre_pass,
             yield_target, seed=seed, draws=draws, rtol=PASS_RTOL)
@@ -233,6 +236,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         if yields is not None:
             limits = yield_limits(yields, limits, sensor_pass, found.saturated)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
+    rms, total, margin = unknown_errors(unknown, rms, total, margin)
     fields = spec_bounds.selection_fields(len(prepared.sensors), len(prepared.profiles), spec,
                                           own, total, unit,
                                           (checks.vre, vre_bound_deg, checks.vre_pass))

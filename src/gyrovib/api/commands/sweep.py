@@ -10,6 +10,7 @@ from gyrovib import units
 from gyrovib.api.datasheet import specs
 from gyrovib.api.evaluation.evaluate import ERROR_PARTS, errors, saturation, sources, worst_case
 from gyrovib.api.evaluation.results import SweepResult
+from gyrovib.api.evaluation.unknown import unknown_cells
 from gyrovib.api.study.convert import error_arrays, to_unit
 from gyrovib.api.study.prepare import check_finite, float_guard
 from gyrovib.api.study.study import Study, check_peak_factor
@@ -147,6 +148,8 @@ def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "
             check_finite(checked(exact), prepared)
         if "paper" in methods:
             check_finite(checked(paper), prepared, exclude=sorted(refused))
+        unknown_cells(prepared, exact, {})  # a profile fitted from a recording that lacks
+        unknown_cells(prepared, paper, {})  # a part: unknown, not 0
     return SweepResult(
         unit=unit,
         sensors=tuple(e.sensor.id for e in prepared.sensors),

@@ -46,6 +46,7 @@ from gyrovib.core.analysis import EXTRA_TERMS, vibration_error
 from gyrovib.core.phases import WorstPhases, worst_phase_error
 from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.frozen import Frozen
+from gyrovib.progress import part_of
 
 #: The arrays of a :class:`~gyrovib.core.analysis.VibrationError` and their trailing shapes.
 ERROR_PARTS: dict[str, tuple[int, ...]] = {
@@ -126,14 +127,18 @@ class CoefficientForm:
                      rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]:
         """Per profile with ``phase: worst`` orders, the phases maximising |Δ_V| of each of
         ``rows`` (its sensors of ``group``) and the error there (docs/model.md section 10)."""
-        for j, (v, locked) in enumerate(zip(group.vibrations, group.locked, strict=True)):
-            if not any(g.worst.any() for g in locked):
-                continue
+        searched = [j for j, locked in enumerate(group.locked)
+                    if any(g.worst.any() for g in locked)]
+        for part, j in enumerate(searched):
+            v = group.vibrations[j]
             linear = prepared.linear[j] if prepared.linear else None
-            yield j, worst_phase_error(
-                prepared.coefficients[rows], v, locked, float(prepared.rates[j, 2]),
-                acceleration=None if linear is None else linear.moments(),
-                g2_sensitivity=None if linear is None else prepared.g2[rows])
+            with part_of(part, len(searched)):  # one bar over every profile's search
+                found = worst_phase_error(
+                    prepared.coefficients[rows], v, group.locked[j],
+                    float(prepared.rates[j, 2]),
+                    acceleration=None if linear is None else linear.moments(),
+                    g2_sensitivity=None if linear is None else prepared.g2[rows])
+            yield j, found
 
     def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
                     profile: int, spec: specs.SpecResults | None) -> None:

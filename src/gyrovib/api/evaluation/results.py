@@ -418,7 +418,8 @@ class SelectionResult(SensorsByProfiles):
     def sensor_unknown(self, i: int) -> tuple[str, ...]:
         """The unknown figures of sensor ``i`` that matter under some profile, in order."""
         found = {n for (k, _), names in self.unknown.items() if k == i for n in names}
-        return tuple(n for n in ("vre", "m31", "m32", "spread") if n in found)
+        return tuple(n for n in ("vre", "m31", "m32", "spread", "x1", "x2", "x3",
+                                 "acceleration") if n in found)
 
     @property
     def table_unit(self) -> str:

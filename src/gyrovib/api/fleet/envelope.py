@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from gyrovib.api.commands.recording import _LINE_FLOOR, random_tables
+from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.run import DEFAULTS, RecordingOptions, profile_one, run_recordings
 from gyrovib.api.recordings.results import (
     AxisHonesty,
@@ -41,7 +42,7 @@ from gyrovib.api.recordings.results import (
     FittedTone,
     RecordingFit,
 )
-from gyrovib.api.recordings.yaml import profile_yaml
+from gyrovib.api.recordings.yaml import missing_comments, missing_parts, profile_yaml
 from gyrovib.catalog.loader import parse_catalog
 from gyrovib.catalog.writer import measured
 from gyrovib.core import recording as core
@@ -110,6 +111,8 @@ class EnvelopePart(Frozen):
     mission_durations: FloatArray
     rate_axes: tuple[bool, bool, bool]
     segments: int
+    #: Whether every recording recorded the accelerations (else they are unknown).
+    accel_everywhere: bool = True
 
     def __post_init__(self) -> None:
         _read_only(self)
@@ -169,7 +172,8 @@ def envelope_part(fit: RecordingFit, options: RecordingOptions = DEFAULTS
                 else _spectrum(fit.linear, fit.crossover, threshold, rate=False)),
         rate_time=np.asarray(fit.rate, dtype=float) * fit.duration,
         mission_rates=np.asarray(fit.mission_rates, dtype=float).reshape(-1, 3),
-        mission_durations=durations, rate_axes=fit.rate_axes, segments=fit.segments)
+        mission_durations=durations, rate_axes=fit.rate_axes, segments=fit.segments,
+        accel_everywhere="acceleration" not in missing_parts(fit))
 
 
 def _on_grid(s: SpectrumEnvelope, grid: FloatArray) -> tuple[FloatArray, ...]:
@@ -218,9 +222,11 @@ def combine(a: EnvelopePart, b: EnvelopePart) -> EnvelopePart:
         linear=_join_spectra(a.linear, b.linear), rate_time=a.rate_time + b.rate_time,
         mission_rates=np.concatenate([a.mission_rates, b.mission_rates]),
         mission_durations=np.concatenate([a.mission_durations, b.mission_durations]),
-        rate_axes=(a.rate_axes[0] or b.rate_axes[0], a.rate_axes[1] or b.rate_axes[1],
-                   a.rate_axes[2] or b.rate_axes[2]),
-        segments=a.segments + b.segments)
+        # an axis is known in the envelope only where every recording recorded it
+        rate_axes=(a.rate_axes[0] and b.rate_axes[0], a.rate_axes[1] and b.rate_axes[1],
+                   a.rate_axes[2] and b.rate_axes[2]),
+        segments=a.segments + b.segments,
+        accel_everywhere=a.accel_everywhere and b.accel_everywhere)
 
 
 def _merged_lines(s: SpectrumEnvelope) -> list[tuple[float, FloatArray, FloatArray]]:
@@ -330,10 +336,14 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
     ``options.breakpoints``, ``independent_tones`` and ``profile_id`` as for one."""
     breakpoints, independent_tones = options.breakpoints, options.independent_tones
     profile_id = options.profile_id
+    # one recording twice would count its time twice (here too for a reduction made
+    # elsewhere, e.g. Dask's)
+    refuse_same_contents((r.file, r.sha256) for r in part.recordings)
 
-    angular = _fitted(part.angular, part.crossover, breakpoints, independent_tones, rate=True)
-    linear = None if part.linear is None else _fitted(part.linear, part.crossover, breakpoints,
-                                                      True, rate=False)
+    angular = _known_axes(_fitted(part.angular, part.crossover, breakpoints,
+                                  independent_tones, rate=True), part.rate_axes)
+    linear = None if part.linear is None or not part.accel_everywhere else _fitted(
+        part.linear, part.crossover, breakpoints, True, rate=False)
     duration = float(np.sum([r.duration for r in part.recordings]))
     pid = profile_id or ENVELOPE_ID
     mission_rates, mission_durations = fleet_mission(part.mission_rates,
@@ -352,7 +362,8 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
                       for j in range(3)),  # type: ignore[arg-type]
         rate_axes=part.rate_axes, warnings=(), yaml="")
     body = profile_yaml(fit, independent_tones=independent_tones)
-    text = _envelope_header(part) + body[body.index("\ngyrovib: 1\n"):]
+    text = (_envelope_header(part) + "".join(f"{c}\n" for c in missing_comments(
+        missing_parts(fit))) + body[body.index("\ngyrovib: 1\n"):])
     try:
         parse_catalog(text, "<envelope profile>")
     except GyrovibError as exc:
@@ -360,6 +371,19 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
                           reason="the envelope profile does not validate: "
                                  f"{exc.problems[0].message}") from None
     return Envelope(dataclasses.replace(fit, yaml=text), part.recordings)
+
+
+def _known_axes(part: FittedPart, axes: tuple[bool, bool, bool]) -> FittedPart:
+    """The envelope's part without a random PSD on an axis some recording did not record
+    (its envelope is unknown there, not the others' largest)."""
+    off = ~np.array(axes)
+    if not off.any():
+        return part
+    nan = np.where(off, np.nan, 1.0)
+    return dataclasses.replace(
+        part, psd=tuple(None if off[j] else part.psd[j] for j in range(3)),  # type: ignore[arg-type]
+        variance=part.variance * nan, held=part.held * nan, shape_db=part.shape_db * nan,
+        off_3db=part.off_3db * nan)
 
 
 def _envelope_header(part: EnvelopePart) -> str:
@@ -421,5 +445,7 @@ def profile_recordings(paths: Sequence[str], options: RecordingOptions = DEFAULT
                        *, jobs: int = 1) -> Envelope:
     """``gyrovib profile A B …``: every recording fitted (``jobs`` processes), then the
     envelope profile (``options.profile_id`` names it; the recordings keep their own)."""
+    refuse_same_paths(paths)
     fits = run_recordings(paths, dataclasses.replace(options, profile_id=None), jobs=jobs)
+    refuse_same_contents((fit.file, fit.sha256) for fit in fits)
     return envelope(fits, options)

@@ -24,6 +24,7 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.api.commands.recording import analysis_of_fit, fit_recording, recording_responses
+from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.pool import located, one_thread, raise_failure, run_in_processes
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
@@ -137,10 +138,11 @@ class RecordingsAnalysis(Frozen):
 
 def worst_recordings(recorded: FloatArray) -> tuple[int, ...]:
     """Per column of ``recorded`` (recordings × sensors) the row of the largest |value|;
-    the first such row on a tie, -1 where no value is finite."""
+    the first such row on a tie, -1 where a value is not finite (unknown on one
+    recording, say an axis it did not record: the worst is then unknown too)."""
     magnitude = np.where(np.isfinite(recorded), np.abs(recorded), -1.0)
     rows = np.argmax(magnitude, axis=0)
-    return tuple(int(r) if magnitude[r, k] >= 0 else -1 for k, r in enumerate(rows))
+    return tuple(int(r) if np.all(magnitude[:, k] >= 0) else -1 for k, r in enumerate(rows))
 
 
 def analyze_recordings(paths: Sequence[str], catalog: Any, options: RecordingOptions, *,
@@ -154,8 +156,10 @@ def analyze_recordings(paths: Sequence[str], catalog: Any, options: RecordingOpt
     """
 
     unit = units.canonical_unit(unit)
+    refuse_same_paths(paths)
     entries, responses = recording_responses(catalog, sensors)
     fits = run_recordings(paths, dataclasses.replace(options, responses=responses), jobs=jobs)
+    refuse_same_contents((fit.file, fit.sha256) for fit in fits)
     analyses = tuple(analysis_of_fit(fit, catalog, entries, unit=unit) for fit in fits)
     recorded = np.array([a.recorded for a in analyses], dtype=float).reshape(len(analyses), -1)
     return RecordingsAnalysis(unit, analyses[0].sensors, analyses, worst_recordings(recorded))

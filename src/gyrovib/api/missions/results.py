@@ -24,6 +24,9 @@ class Budget(Frozen):
     lower bound when one is unknown (``unknown`` names them); ``coverage`` k. ``bounds``
     names the terms whose figure is only an upper bound (its bound is used: the term,
     and the total, are then the most they can be from it).
+    ``typical``: the terms whose figure the datasheet gives as typical (``typ``), not
+    guaranteed, so a verdict on the total rests on a typical figure. ``allowed``: with an
+    angle budget, the largest value of each figure that meets it (:class:`Allowance`).
     """
 
     vibration: float
@@ -36,11 +39,44 @@ class Budget(Frozen):
     unknown: tuple[str, ...]
     unit: str = "deg"
     bounds: tuple[str, ...] = ()
+    typical: tuple[str, ...] = ()
+    allowed: Allowance | None = None
 
     @property
     def lower_bound(self) -> bool:
         """Whether ``total`` is only a lower bound (a noise figure is unknown)."""
         return bool(self.unknown)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Allowance(Frozen):
+    """The largest value of each budget figure that still meets an angle budget θ*, the
+    others as given (docs/model.md section 15 solved for one figure at a time).
+
+    From total = |θ_V| + k·√(θ_ARW² + θ_B² + θ_RRW² + θ_R²) ≤ θ*: ``vibration`` the
+    largest |θ_V| (deg); ``arw`` N (deg/√h), ``bias_instability`` B (deg/h),
+    ``rrw`` K (deg/h/√h), ``repeatability`` R (deg/h). None: no value passes, and
+    ``limited_by`` names, per such figure, the term that alone uses the allowance.
+    ``upper``: the figures whose value is only an upper limit, because another
+    noise figure is unknown (it can only take more of the allowance).
+    """
+
+    vibration: float | None
+    arw: float | None
+    bias_instability: float | None
+    rrw: float | None
+    repeatability: float | None
+    limited_by: tuple[tuple[str, str], ...] = ()
+    upper: tuple[str, ...] = ()
+
+    def limit(self, term: str) -> str | None:
+        """The term that alone uses the allowance where ``term`` has no passing value."""
+        return dict(self.limited_by).get(term)
+
+
+#: Each budget term's figure unit in an :class:`Allowance` (vibration: the angle, deg).
+ALLOWANCE_UNITS = {"vibration": "deg", "arw": "deg/sqrt(h)", "bias_instability": "deg/h",
+                   "rrw": "deg/h/sqrt(h)", "repeatability": "deg/h"}
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -72,7 +108,12 @@ class MissionRow(Frozen):
     ``m31``, ``m32``; docs/model.md section 11); ``unverified``: the row passes
     on the published figures but an unknown one can decide it (then ``passed``
     is False), see :attr:`status`. ``budget``: the whole angle budget in deg
-    (docs/model.md section 15; :mod:`gyrovib.api.noise`), None before it is computed.
+    (docs/model.md section 15; :mod:`gyrovib.api.noise`), None before it is computed;
+    ``timeline``: the budget at the end of each segment (θ_V(t) summed segment by
+    segment, the noise over the time flown so far), empty before it is computed. For a
+    datasheet sensor each segment's angle is that segment's own worst case, so the
+    staircase may end above the row's ``angle`` (the worst case of one conversion
+    function over the whole mission).
     """
 
     sensor: str
@@ -93,6 +134,7 @@ class MissionRow(Frozen):
     unknown: tuple[str, ...] = ()
     unverified: bool = False
     budget: Budget | None = None
+    timeline: tuple[Budget, ...] = ()
 
     @property
     def duration(self) -> float:
@@ -119,7 +161,9 @@ class MissionResult(Frozen):
     ``require`` condition (any: one sensor passes; all: every sensor does);
     ``notes``: warnings about the input (a segment longer than 100 years).
     ``coverage``: k of the rows' budgets (docs/model.md section 15), and then
-    ``angle_budget`` is judged on their total.
+    ``angle_budget`` is judged on their total. ``ranks``: per sensor its rank by budget
+    total (1: smallest) or None where it is not ranked (a total that is a lower bound,
+    or unverified); None for a result that is not ranked (``select --mission`` ranks).
     """
 
     unit: str
@@ -135,6 +179,7 @@ class MissionResult(Frozen):
     assume_unknown: str = "none"
     notes: tuple[str, ...] = ()
     coverage: float = 1.0
+    ranks: tuple[int | None, ...] | None = None
 
     def sensor_status(self, k: int) -> str | None:
         """Sensor ``k`` over every mission and axis: ``fail`` if a row fails on its
@@ -163,9 +208,16 @@ def _budget(name: str) -> Callable[[MissionRow], float | None]:
     return lambda r: None if r.budget is None else getattr(r.budget, name)
 
 
+def _allowed(name: str) -> Callable[[MissionRow], float | None]:
+    """The largest value of a budget figure that meets the angle budget (None: none passes,
+    or no angle budget)."""
+    return lambda r: (None if r.budget is None or r.budget.allowed is None
+                      else getattr(r.budget.allowed, name))
+
+
 #: The records of a mission result, declared once: the CSV's header and cells and the
 #: DataFrame's columns come from here. Units: ``rate`` is the result's unit, ``angle``
-#: its angle unit; the budget's figures are in deg.
+#: its angle unit; the budget's terms are in deg, the allowance in each figure's unit.
 COLUMNS: tuple[Column[MissionRow], ...] = (
     Column("sensor", None, lambda r: r.sensor),
     Column("mission", None, lambda r: r.mission),
@@ -189,4 +241,10 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
     Column("theta_repeatability", "deg", _budget("repeatability")),
     Column("budget_total", "deg", _budget("total")),
     Column("coverage", None, _budget("coverage")),
+    Column("allowed_vibration", "deg", _allowed("vibration")),
+    Column("allowed_arw", "deg/sqrt(h)", _allowed("arw")),
+    Column("allowed_bias_instability", "deg/h", _allowed("bias_instability")),
+    Column("allowed_rrw", "deg/h/sqrt(h)", _allowed("rrw")),
+    Column("allowed_repeatability", "deg/h", _allowed("repeatability")),
+    Column("typical", None, lambda r: "" if r.budget is None else " ".join(r.budget.typical)),
 )

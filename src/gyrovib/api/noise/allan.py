@@ -252,10 +252,11 @@ def allan(recording: Recording, unit: str = "deg/h",
     if hi - lo > stream_samples:
         axes = _streamed(recording, lo, hi, chosen, unit, per_decade, confidence)
     else:
-        rate = recording.store.block("rate", lo, hi)
+        # only the recorded axes are read (never a column of zeros per axis not recorded)
+        rate = {k: recording.axis(k, lo, hi) for k, _ in chosen}
         for k, name in chosen:
-            seen_noise(rate[:, k], name, recording.file)
-        axes = tuple(allan_axis(name, rate[:, k], recording.fs, unit,
+            seen_noise(rate[k], name, recording.file)
+        axes = tuple(allan_axis(name, rate[k], recording.fs, unit,
                                 per_decade or kernel.PER_DECADE, confidence)
                      for k, name in chosen)
     accel, notes = ((), ()) if hi - lo > stream_samples else accel_axes(

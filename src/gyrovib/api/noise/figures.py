@@ -27,3 +27,11 @@ def noise_bounds(noise: Noise | None, axis: str | None = None) -> tuple[str, ...
         return ()
     return tuple(name for name, fig in noise.for_axis(axis).items()
                  if fig is not None and fig.is_bound)
+
+
+def typical_figures(noise: Noise | None, axis: str | None = None) -> tuple[str, ...]:
+    """The figures of ``axis`` the datasheet gives as typical (``typ``), not guaranteed."""
+    if noise is None:
+        return ()
+    return tuple(name for name, fig in noise.for_axis(axis).items()
+                 if fig is not None and fig.qualifier == "typ")

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from gyrovib.api.missions.results import ALLOWANCE_UNITS as ALLOWANCE_UNITS
+from gyrovib.api.missions.results import Allowance as Allowance
 from gyrovib.api.missions.results import Budget as Budget
 from gyrovib.core._types import FloatArray
 from gyrovib.frozen import Frozen

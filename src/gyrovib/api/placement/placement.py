@@ -83,6 +83,11 @@ def place_profile(profile: Profile, placement: Placement) -> Profile:
             a_update["random"] = _random(acc.random, placement,
                                          placement.pair_coherence(*acc.random.coherence))
         update["acceleration"] = acc.model_copy(update=a_update)
+    if profile.not_recorded:  # sensor axis x(i+1) is unknown where its vehicle axis is
+        gone = set(profile.not_recorded)
+        update["not_recorded"] = [
+            *(f"x{i + 1}" for i, a in enumerate(placement.source) if f"x{a + 1}" in gone),
+            *(["acceleration"] if "acceleration" in gone else [])]
     return profile.model_copy(update=update)
 
 

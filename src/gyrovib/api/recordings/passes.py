@@ -131,4 +131,24 @@ def carrier3(recording: Recording, kept: Sequence[tuple[int, int]],
     return out
 
 
-__all__ = ["BLOCK", "RatePass", "accel_pass", "carrier3", "rate_pass"]
+def carrier(recording: Recording, kept: Sequence[tuple[int, int]], crossover: float,
+            rate: FloatArray) -> FloatArray:
+    """Ω_K on every axis over the kept segments, end to end, (samples, 3); an axis not
+    recorded holds its mean ``rate`` (0 where that is not known either: the caller puts
+    the axis's own value back)."""
+    out = np.empty((sum(hi - lo for lo, hi in kept), 3))
+    for j in range(3):
+        if not recording.rate_axes[j]:
+            out[:, j] = rate[j] if np.isfinite(rate[j]) else 0.0
+            continue
+        at = 0
+        column = np.empty(out.shape[0])
+        for lo, hi in kept:
+            core.lowpass(recording.store.column("rate", j, lo, hi), recording.fs, crossover,
+                         out=column[at:at + hi - lo])
+            at += hi - lo
+        out[:, j] = column
+    return out
+
+
+__all__ = ["BLOCK", "RatePass", "accel_pass", "carrier", "carrier3", "rate_pass"]

@@ -34,8 +34,8 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
+from gyrovib.api.recordings.located import RecordingError, check_magic, csv_where, problem, unplaced
 from gyrovib.core._types import FloatArray
-from gyrovib.errors import GyrovibError, Problem
 
 #: The time column's names in a CSV or an .npz (seconds).
 TIME_NAMES = ("t", "time")
@@ -48,16 +48,6 @@ _CHUNK = 1 << 20
 
 #: A column index (or None: not recorded) per axis X, Y, Z.
 Axes = tuple[int | None, int | None, int | None]
-
-
-class RecordingError(GyrovibError):
-    """A recording cannot be read, or does not suit the analysis asked of it."""
-
-
-def problem(file: str, message: str, line: int | None = None,
-            column: int | None = None) -> RecordingError:
-    """A located :class:`RecordingError`."""
-    return RecordingError(Problem(message, file, line, column))
 
 
 class Store(Protocol):
@@ -76,20 +66,40 @@ class Store(Protocol):
 
 
 class ArrayStore:
-    """Samples held in memory: (n, 3) float64 arrays (CSV, .npz, ULog)."""
+    """Samples held in memory, float64: a column per recorded axis (CSV, .npz, ULog).
 
-    def __init__(self, rate: FloatArray, accel: FloatArray | None) -> None:
-        self.arrays = {"rate": rate, "accel": accel}
-        self.rows = int(rate.shape[0])
+    ``rate`` and ``accel`` are (n, 3) arrays, or three columns (n,) each, None where
+    the axis is not recorded: only recorded axes are held; :meth:`block` puts zeros
+    in a stretch's unrecorded columns, and the recording says which they are."""
+
+    def __init__(self, rate: FloatArray | Sequence[FloatArray | None],
+                 accel: FloatArray | Sequence[FloatArray | None] | None) -> None:
+        rates = _columns(rate)
+        self.arrays = {"rate": rates, "accel": None if accel is None else _columns(accel)}
+        self.rows = next(int(c.shape[0]) for c in rates if c is not None)
         self.has_accel = accel is not None
 
     def block(self, kind: str, lo: int, hi: int) -> FloatArray:
-        array = self.arrays[kind]
-        assert array is not None
-        return array[lo:hi]
+        columns = self.arrays[kind]
+        assert columns is not None
+        out = np.zeros((hi - lo, 3))
+        for axis, c in enumerate(columns):
+            if c is not None:
+                out[:, axis] = c[lo:hi]
+        return out
 
     def column(self, kind: str, axis: int, lo: int, hi: int) -> FloatArray:
-        return self.block(kind, lo, hi)[:, axis]
+        columns = self.arrays[kind]
+        assert columns is not None
+        c = columns[axis]
+        return np.zeros(hi - lo) if c is None else c[lo:hi]
+
+
+def _columns(data: FloatArray | Sequence[FloatArray | None]) -> list[FloatArray | None]:
+    """Three columns (None: not recorded) from an (n, 3) array or three columns."""
+    if isinstance(data, np.ndarray):
+        return [data[:, k] for k in range(3)]
+    return [None if c is None else c.reshape(-1) for c in data]
 
 
 class NpyStore:
@@ -186,13 +196,18 @@ class Columns:
     def default_columns(self, rate: Sequence[str | int | None] | None,
                         accel: Sequence[str | int | None] | None,
                         ) -> tuple[Sequence[str | int | None], Sequence[str | int | None] | None]:
-        """The rate and acceleration columns when not named: the first three other than time."""
+        """The rate and acceleration columns when not named: the first three other than time.
+
+        Fewer than three are not placed by a rule (a lone ``gz`` is not X): the user
+        places them, an axis not recorded being ``-`` (unknown, never 0)."""
         if rate is None:
             time_col = self.time_index()
             others = [i for i in range(len(self.names)) if i != time_col]
             if len(others) < 1:
                 raise problem(self.path, "no rate column: name them with --rate-columns X,Y,Z")
-            rate = tuple(others[:3]) + (None,) * (3 - len(others[:3]))
+            if len(others) < 3:
+                raise unplaced(self.path, [self.names[i] for i in others])
+            rate = tuple(others[:3])
         return rate, accel
 
     def index(self, column: str | int | None, option: str) -> int | None:
@@ -211,6 +226,11 @@ class Columns:
         raise problem(self.path, f"{option}: no column named {column!r} (the columns "
                                  f"are: {shown})")
 
+    def where(self, sample: int) -> tuple[int | None, int | None]:
+        """Line and column of sample ``sample``'s time stamp in the file (None, None where
+        the format has no lines)."""
+        return None, None
+
     def rows(self) -> int:
         """Number of data rows."""
         raise NotImplementedError
@@ -224,16 +244,25 @@ class Columns:
              n: int) -> tuple[Store, FloatArray | None]:
         """The chosen columns as a store, and the time column (s, before ``time_scale``)."""
         time_col = self.time_index()
-        rate = np.zeros((n, 3))
-        accel = None if axes["accel"] is None else np.zeros((n, 3))
+        # one (n, 1) array per recorded axis, written through fill's (array, axis 0):
+        # an axis not recorded is never built
+        built: dict[str, list[FloatArray | None] | None] = {"rate": None, "accel": None}
         time = np.empty(n) if time_col is not None else None
         targets: list[tuple[int, FloatArray, int, float]] = []
-        for kind, array in (("rate", rate), ("accel", accel)):
+        for kind in ("rate", "accel"):
+            if axes[kind] is None:
+                continue
+            columns: list[FloatArray | None] = [None, None, None]
             for axis, c in enumerate(axes[kind] or ()):
-                if c is not None and array is not None:
-                    targets.append((c, array, axis, scales[kind]))
+                if c is not None:
+                    columns[axis] = np.empty((n, 1))
+                    targets.append((c, columns[axis], 0, scales[kind]))  # type: ignore[arg-type]
+            built[kind] = columns
         rows = self.fill(targets, time, time_col)
-        store = ArrayStore(rate[:rows], None if accel is None else accel[:rows])
+        rate, accel = ([None if c is None else c[:rows, 0] for c in cols] if cols else None
+                       for cols in (built["rate"], built["accel"]))
+        assert rate is not None
+        store = ArrayStore(rate, accel)
         return store, None if time is None else time[:rows]
 
 
@@ -270,6 +299,9 @@ class CsvColumns(Columns):
 
     def __init__(self, path: str, names: list[str], count: int) -> None:
         self.path, self.names, self.count = path, names, count
+
+    def where(self, sample: int) -> tuple[int | None, int | None]:
+        return csv_where(self.path, self.time_index(), sample)
 
     def rows(self) -> int:
         lines = 0
@@ -397,6 +429,7 @@ def _numpy_error(path: str, kind: str, exc: Exception) -> RecordingError:
 
 def open_npy(path: str, topic: str | None = None, instance: int | None = None) -> Columns:
     """A 2-D .npy: its header only (the samples stay in the file)."""
+    check_magic(path, "npy")
     try:
         arr = np.load(path, mmap_mode="r", allow_pickle=False)
     except (OSError, ValueError, EOFError) as exc:
@@ -454,6 +487,7 @@ class NpyColumns(Columns):
 
 def open_npz(path: str, topic: str | None = None, instance: int | None = None) -> Columns:
     """An .npz: one 2-D array, or 1-D arrays of one length named as columns."""
+    check_magic(path, "npz")
     try:
         with np.load(path, allow_pickle=False) as z:
             keys = list(z.keys())

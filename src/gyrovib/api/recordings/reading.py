@@ -88,6 +88,11 @@ class Recording(Frozen):
         """ω (n, 3) in deg/s, whole (a copy for a .npy)."""
         return self.store.block("rate", 0, self.samples)
 
+    def axis(self, k: int, lo: int = 0, hi: int | None = None) -> FloatArray:
+        """ω about axis ``k`` (0, 1, 2), samples lo:hi, deg/s: only that column is read
+        (a recorded axis; 0 on one not recorded, see ``rate_axes``)."""
+        return self.store.column("rate", k, lo, self.samples if hi is None else hi)
+
     @property
     def accel(self) -> FloatArray | None:
         """Specific force (n, 3) in g, whole, or None when not recorded."""
@@ -148,7 +153,7 @@ def read_recording(path: str, *, fs: float | None = None,
     if n < 2:
         raise problem(path, f"{n} sample(s): a recording needs at least two")
     store, time = reader.load(axes, scales, n)
-    rate_fs, segments = _timing(path, time, fs, reader.time_scale, store.rows)
+    rate_fs, segments = _timing(reader, time, fs, store.rows)
     base = os.path.basename(path)
     return Recording(
         file=path, sha256=file_sha256(path), fs=rate_fs,
@@ -200,26 +205,30 @@ def _recorded(axes: Axes | None) -> tuple[bool, bool, bool]:
         axes[0] is not None, axes[1] is not None, axes[2] is not None)
 
 
-def _timing(path: str, time: FloatArray | None, fs: float | None,
-            time_scale: float, n: int) -> tuple[float, NDArray[np.intp]]:
+def _timing(reader: Columns, time: FloatArray | None, fs: float | None,
+            n: int) -> tuple[float, NDArray[np.intp]]:
     """fs and the segments: from the timestamps (gaps split), else from --fs."""
 
+    path = reader.path
     if time is None:
         if fs is None:
             raise problem(path, "no time column ('t' or 'time', in s): give the sample "
                                  "rate with --fs HZ")
         return float(fs), np.array([[0, n]], dtype=np.intp)
-    if time_scale != 1.0:
-        time *= time_scale
+    if reader.time_scale != 1.0:
+        time *= reader.time_scale
     if not np.all(np.isfinite(time)):
         bad = int(np.flatnonzero(~np.isfinite(time))[0])
-        raise problem(path, f"sample {bad}: the timestamp is not a finite number")
+        raise problem(path, f"sample {bad}: the timestamp is not a finite number",
+                      *reader.where(bad))
     dt = np.diff(time)
     bad_dt = np.flatnonzero(dt <= 0)
     if bad_dt.size:
         k = int(bad_dt[0]) + 1
-        raise problem(path, f"sample {k}: timestamps must increase (t = {time[k]:.9g} s "
-                            f"after {time[k - 1]:.9g} s)")
+        what = "repeats" if dt[k - 1] == 0 else "goes back"
+        raise problem(path, f"sample {k}: the time stamp {what} (t = {time[k]:.9g} s after "
+                            f"{time[k - 1]:.9g} s); time stamps must increase",
+                      *reader.where(k))
     segments, median = gap_segments(time, GAP_FACTOR)
     rate_fs = 1.0 / median
     if fs is not None and abs(fs - rate_fs) > 0.01 * rate_fs:

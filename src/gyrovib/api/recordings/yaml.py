@@ -100,14 +100,16 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         "# Rates in deg/s (PSD in (deg/s)^2/Hz), accelerations in g (PSD in g^2/Hz).",
         *_shape_comments(fit),
     ]
+    missing = missing_parts(fit)
+    lines += missing_comments(missing)
     if fit.angular.harmonics:
         lines.append("# Lines at integer multiples of a fundamental are one phase-locked group; "
                      "their relative phases are unobservable in a PSD, so each order is "
                      "'phase: worst'.")
-    lines.append("# The mission is the carrier histogram of Omega_K3 (docs/model.md sections "
-                 "12-13):")
-    lines.append("# one segment per bin, its time in s at its mean rate (Omega_K1, Omega_K2: "
-                 "the recording's means).")
+    lines.append("# The mission is the joint carrier (Omega_K1, Omega_K2, Omega_K3) in at most "
+                 "16 groups (docs/model.md sections 12-13):")
+    lines.append("# one segment per group, its time in s at its mean rate on every axis, so "
+                 "that a sensor on any axis keeps its carrier.")
     lines += [
         "",
         "gyrovib: 1",
@@ -120,6 +122,8 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         f"    name: {quoted('Fitted from ' + base)}",
         f"    rate: {_triple(fit.rate)}",
     ]
+    if missing:
+        lines.append(f"    not_recorded: [{', '.join(missing)}]")
     lines += _part(fit.angular, "    ", rate=True)
     if fit.linear is not None and (fit.linear.tones or any(t is not None
                                                            for t in fit.linear.psd)):
@@ -130,6 +134,26 @@ def profile_yaml(fit: RecordingFit, *, independent_tones: bool = False) -> str:
         lines.append(f"      - {{profile: {fit.profile_id}, duration: {measured(t)}, "
                      f"rate: {_triple(rate)}}}")
     return "\n".join(lines) + "\n"
+
+
+def missing_parts(fit: RecordingFit) -> tuple[str, ...]:
+    """What the fitted recording did not record: rate axes x1, x2, x3 and
+    ``acceleration`` (docs/model.md section 13: unknown, never 0)."""
+    out = [name for name, on in zip(("x1", "x2", "x3"), fit.rate_axes, strict=True) if not on]
+    if fit.linear is None or not np.all(np.isfinite(fit.linear.variance)):
+        out.append("acceleration")
+    return tuple(out)
+
+
+def missing_comments(missing: tuple[str, ...]) -> list[str]:
+    if not missing:
+        return []
+    return [f"# Not recorded: {', '.join(missing)}. Unknown, not 0: the profile has no "
+            "vibration part for them (a triple",
+            "# holds 0 there only because the format has three places), and `not_recorded` "
+            "says so: an error",
+            "# that depends on them is unknown, and select and mission call its verdict "
+            "unverified."]
 
 
 def _shape_comments(fit: RecordingFit) -> list[str]:

@@ -19,13 +19,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from gyrovib import api, units
 from gyrovib._version import __version__
 from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.commands.select import selection_of
 from gyrovib.api.commands.sweep import sweep_of
 from gyrovib.api.study.linear import profile_linear
-from gyrovib.api.study.prepare import float_guard
+from gyrovib.api.study.prepare import cost_problems, float_guard
 from gyrovib.api.study.study import Study
 from gyrovib.catalog.loader import Catalog, ProfileEntry, bundled_paths
 from gyrovib.core._types import FloatArray
@@ -214,6 +216,21 @@ def envelope(catalog: Catalog | Study, profiles: Sequence[str] = (),
     return ENVELOPE_FACTOR * widest if widest > 0 else 1.0
 
 
+def _affordable(study: Study, rates: FloatArray) -> FloatArray:
+    """The sweep's rates, thinned (same range, fewer points) until a ``phase: worst``
+    search at every rate costs what one search may (a profile the tool wrote from a
+    recording must chart, not refuse the report): at worst the range's middle alone."""
+    count = rates.size
+    while count > 1 and cost_problems(study.profiles, count, 1, True):
+        count = count // 2
+    if count == rates.size:
+        return rates
+    if count <= 1:
+        return np.array([0.5 * (float(rates[0]) + float(rates[-1]))])
+    out: FloatArray = np.linspace(float(rates[0]), float(rates[-1]), count)
+    return out
+
+
 def trade_study(
     catalog: Catalog,
     *,
@@ -263,7 +280,8 @@ def trade_study(
     charted = study
     if len(study.sensors) > SWEEP_SENSORS:
         charted = study.narrowed(sorted(selection.ranking[:SWEEP_SENSORS]))
-    swept = sweep_of(charted, sweep_rates, unit=unit, methods=(method,), rms_only=True)
+    swept = sweep_of(charted, _affordable(charted, np.asarray(sweep_rates, dtype=float)),
+                     unit=unit, methods=(method,), rms_only=True)
     when = (created or _dt.datetime.now(_dt.UTC)).astimezone(_dt.UTC)
     return TradeStudy(
         selection=selection,

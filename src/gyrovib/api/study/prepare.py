@@ -249,11 +249,12 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
     """Profiles whose locked harmonics would cost more than the input's size warrants.
 
     Refused before any computation, each at the offending key: more than
-    :data:`~gyrovib.core.harmonics.MAX_GROUPS` groups, and a ``phase: worst``
-    search (with ``phase_search``, over ``rates`` rates and ``sensors`` sensors)
-    estimated above :data:`~gyrovib.core.phases.MAX_SEARCH_COST` — four
-    objectives per rate for synthesis (with ``phase_search``) and one per sensor
-    for the per-sensor search of ``analyze`` and ``select``.
+    :data:`~gyrovib.core.harmonics.MAX_GROUPS` groups with no random part, and a
+    ``phase: worst`` search (with ``phase_search``, over ``rates`` rates) estimated
+    above :data:`~gyrovib.core.phases.MAX_SEARCH_COST` for one sensor — four
+    objectives per rate for synthesis (with ``phase_search``) and one for the
+    sensor's own search of ``analyze`` and ``select``. ``sensors`` does not enter:
+    each sensor's search is the same size, run one after another with progress.
     """
     problems: dict[int, Problem] = {}
     for j, p in enumerate(entries):
@@ -267,15 +268,17 @@ def cost_problems(entries: Sequence[ProfileEntry], rates: int, sensors: int,
 
 
 def _too_many_groups(p: ProfileEntry) -> Problem | None:
-    """More phase-locked groups than :data:`~gyrovib.core.harmonics.MAX_GROUPS`."""
+    """More phase-locked groups than :data:`~gyrovib.core.harmonics.MAX_GROUPS` and no
+    random part (with one, the further groups are folded into its table)."""
     groups = p.profile.harmonic_groups
-    if len(groups) <= MAX_GROUPS:
+    if len(groups) <= MAX_GROUPS or p.profile.random is not None:
         return None
     return p.source.problem(
-        f"profile {p.profile.id!r}: {len(groups)} phase-locked groups, more than "
-        f"{MAX_GROUPS}, the most gyrovib averages E(Ω) over (the joint phases of the groups "
-        f"beyond the first take 256^(groups − 1) nodes per rate: 256^{len(groups) - 1} "
-        "here); give the smaller groups' orders as independent tones under 'harmonic'",
+        f"profile {p.profile.id!r}: {len(groups)} phase-locked groups and no random part; "
+        f"without one gyrovib averages E(Ω) over at most {MAX_GROUPS} groups (the joint "
+        f"phases of the groups beyond the first take 256^(groups − 1) nodes per rate: "
+        f"256^{len(groups) - 1} here); give the smaller groups' orders as independent "
+        "tones under 'harmonic', or the profile's random part",
         _harmonics_path(p, MAX_GROUPS, "fundamental"))
 
 
@@ -296,19 +299,20 @@ def _search_too_costly(p: ProfileEntry, rates: int, sensors: int,
     if not worst:
         return None
     dims, n_max = _search_size(groups)
-    cost = search_cost(dims, (4 * rates if phase_search else 0) + sensors, n_max)
+    # the synthesis searches four objectives per rate (a sweep's rates are the user's
+    # to choose); the analysis one per sensor, one sensor after another with progress:
+    # the number of sensors compared multiplies the time, it never refuses the input
+    cost = search_cost(dims, (4 * rates if phase_search else 0) + 1, n_max)
     if cost <= MAX_SEARCH_COST:
         return None
     gi, oi = worst[0]
     return p.source.problem(
         f"profile {p.profile.id!r}: the search over {dims} unknown relative phase"
         f"{'s' if dims != 1 else ''} (phase: worst, orders up to {n_max}) at {rates} "
-        f"rate{'s' if rates != 1 else ''} for {sensors} sensor"
-        f"{'s' if sensors != 1 else ''} would take about {cost:,.0f} evaluations of "
-        f"the profile, more than the {MAX_SEARCH_COST:,.0f} (a few seconds) gyrovib "
-        "allows; "
-        "give fewer orders phase: worst (their phases, if known), fewer rates, or "
-        "fewer sensors",
+        f"rate{'s' if rates != 1 else ''} would take about {cost:,.0f} evaluations of "
+        f"the profile per sensor, more than the {MAX_SEARCH_COST:,.0f} (a few seconds) "
+        "gyrovib allows; give fewer orders phase: worst (their phases, if known), or "
+        "fewer rates",
         _harmonics_path(p, gi, "orders", oi, "phase"))
 
 

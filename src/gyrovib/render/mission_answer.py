@@ -1,0 +1,130 @@
+"""The words of a mission result that the numbers alone do not say: the answer first
+(which part to buy, by what margin, or the one figure that would change a failure),
+and each row's allowance — the largest figure that still meets the angle budget
+(:class:`gyrovib.api.noise.Allowance`) — as table cells and JSON."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from gyrovib.api.noise.results import ALLOWANCE_UNITS
+from gyrovib.render.common import fmt, number
+
+if TYPE_CHECKING:
+    from gyrovib.api.missions.results import MissionResult, MissionRow
+
+#: The allowance's terms, their symbol and the word for the term that limits them.
+TERMS = {"vibration": ("|θ_V|", "θ_V"), "arw": ("N", "ARW"),
+         "bias_instability": ("B", "B"), "rrw": ("K", "RRW"), "repeatability": ("R", "R")}
+#: Each term's figure in the budget (the noise block's name, or the angle itself).
+FIGURE = {"vibration": "vibration", "arw": "arw", "bias_instability": "bias_instability",
+          "rrw": "rrw", "repeatability": "repeatability"}
+
+
+def allowance_json(row: MissionRow) -> dict[str, Any] | None:
+    """``budget.allowed``: per term its largest passing value (null: none passes, with
+    the term that alone uses the allowance under ``limited_by``), the units, and which
+    values are only upper limits (``upper``: another noise figure is unknown)."""
+    if row.budget is None or row.budget.allowed is None:
+        return None
+    a = row.budget.allowed
+    values = {name: None if getattr(a, name) is None else number(getattr(a, name))
+              for name in TERMS}
+    return {**values, "unit": dict(ALLOWANCE_UNITS), "limited_by": dict(a.limited_by),
+            "upper": list(a.upper)}
+
+
+def allowance_cells(row: MissionRow) -> list[str]:
+    """One cell per term: '≤ value' (with '*' where it is only an upper limit), or
+    'none (<term>)': no value passes, that term alone uses the allowance."""
+    if row.budget is None or row.budget.allowed is None:
+        return ["-"] * len(TERMS)
+    a = row.budget.allowed
+    cells = []
+    for name in TERMS:
+        value = getattr(a, name)
+        if value is None:
+            limit = a.limit(name) or "vibration"
+            cells.append(f"none ({TERMS[limit][1]})")
+        else:
+            cells.append(f"≤ {fmt(value)}" + ("*" if name in a.upper else ""))
+    return cells
+
+
+def allowance_head() -> list[str]:
+    """The allowance columns' headings, with their units."""
+    return [f"{symbol} ≤ ({ALLOWANCE_UNITS[name]})" for name, (symbol, _) in TERMS.items()]
+
+
+def _worst_row(result: MissionResult, sensor: str) -> MissionRow | None:
+    rows = [r for r in result.rows if r.sensor == sensor and r.budget is not None]
+    return max(rows, key=lambda r: (r.saturated, r.budget.total if r.budget else 0.0),
+               default=None)
+
+
+def _one_figure(row: MissionRow) -> str | None:
+    """The single figure whose change would make ``row`` pass, the smallest change first
+    (relative to its present value), as words; None if no single figure does."""
+    b = row.budget
+    if b is None or b.allowed is None:
+        return None
+    best: tuple[float, str] | None = None
+    for name, (symbol, _) in TERMS.items():
+        allowed = getattr(b.allowed, name)
+        present = abs(b.vibration) if name == "vibration" else getattr(b, name)
+        if allowed is None or present is None or present <= 0:
+            continue
+        if name != "vibration":  # the budget holds θ; the figure scales with it
+            present_figure = present * allowed / _theta_of(b.allowed, name, row.duration)
+        else:
+            present_figure = present
+        ratio = allowed / present_figure
+        text = (f"{symbol} ≤ {fmt(allowed)} {ALLOWANCE_UNITS[name]} "
+                f"(it has {fmt(present_figure)})")
+        if best is None or ratio > best[0]:
+            best = (ratio, text)
+    return None if best is None else best[1]
+
+
+def _theta_of(allowed: Any, name: str, seconds: float) -> float:
+    """θ of term ``name`` at its allowed figure over ``seconds`` (deg)."""
+    hours = seconds / 3600.0
+    power = {"arw": 0.5, "bias_instability": 1.0, "rrw": 1.5, "repeatability": 1.0}[name]
+    factor = 1.0 / 3.0 ** 0.5 if name == "rrw" else 1.0
+    value: float = getattr(allowed, name) * hours ** power * factor
+    return value
+
+
+def answer_line(result: MissionResult) -> str | None:
+    """The answer in one line (None without an angle budget): the part to buy and its
+    margin, or that none passes, the closest part and the one figure that would change
+    that."""
+    if result.angle_budget is None:
+        return None
+    unit = result.angle_unit
+    budget = result.angle_budget
+    worst = {s: _worst_row(result, s) for s in result.sensors}
+    totals = {s: (r.budget.total if r is not None and r.budget is not None else float("inf"))
+              for s, r in worst.items()}
+    passing = [s for k, s in enumerate(result.sensors) if result.sensor_pass[k]]
+    if passing:
+        best = min(passing, key=lambda s: totals[s])
+        margin = budget - totals[best]
+        more = f"; {len(passing) - 1} other part(s) pass too" if len(passing) > 1 else ""
+        return (f"answer: buy {best}: its worst total {fmt(totals[best])} {unit} is within "
+                f"the {fmt(budget)} {unit} budget by {fmt(margin)} {unit} "
+                f"({fmt(100.0 * margin / budget)} %){more}.")
+    unverified = [s for k, s in enumerate(result.sensors)
+                  if result.sensor_status(k) == "unverified"]
+    if unverified:
+        s = min(unverified, key=lambda s: totals[s])
+        return (f"answer: no part passes for certain; {s} passes on its published figures "
+                f"(total ≥ {fmt(totals[s])} {unit}) but an unknown figure can decide it: "
+                "ask its vendor.")
+    closest = min(result.sensors, key=lambda s: totals[s])
+    row = worst[closest]
+    change = None if row is None else _one_figure(row)
+    tail = (f"; it would pass with {change}" if change else
+            "; no single figure changes that")
+    return (f"answer: no part passes; the closest is {closest} at {fmt(totals[closest])} "
+            f"{unit} against {fmt(budget)} {unit}{tail}.")
