@@ -566,3 +566,18 @@ def test_mission_unit_defaults_as_every_command() -> None:
     for a, b in zip(plain["mission"], hours["mission"], strict=True):
         assert b["angle"] == pytest.approx(a["angle"], rel=1e-12)
         assert b["mean"] == pytest.approx(3600.0 * a["mean"], rel=1e-12)  # 1 deg/s = 3600 deg/h
+
+
+def test_a_gaussian_part_whose_variance_underflows_counts_as_none() -> None:
+    """A random part of rms 2.2e-313 (σ² underflows to 0) beside a tone: E moves by at
+    most σ·√(2/π) from the tone alone (|·| is 1-Lipschitz), so the analysis equals the
+    tone-only profile's to the last bit instead of overflowing (a case hypothesis found
+    for the placement invariant above)."""
+    def profile(rms: str) -> str:
+        return _profiles("  - id: veh\n    rate: [0.0, 0.0, 0.0]\n"
+                         "    harmonic: [{frequency: 80, amplitude: [0.0, 0.0, 1.0], "
+                         "phase: [0.0, 0.0, 0.0]}]\n"
+                         f"    random: {{rms: [0.0, 0.0, {rms}], coherence: [0.0, 0.0, 0.0]}}\n")
+    tiny = _analyze(_catalog(SENSOR, profile("2.2250738585e-313")))
+    none = _analyze(_catalog(SENSOR, profile("0.0")))
+    assert np.array_equal(tiny, none)

@@ -440,6 +440,10 @@ def _nearest(points: FloatArray, centres: FloatArray) -> NDArray[np.intp]:
     out = np.empty(points.shape[0], dtype=np.intp)
     for lo in range(0, points.shape[0], _CHUNK // 16):
         part = points[lo:lo + _CHUNK // 16]
-        d = np.sum((part[:, None, :] - centres[None, :, :]) ** 2, axis=2)
+        # axis by axis, summed in the order np.sum takes three terms: the same distances
+        # without a (points, centres, 3) temporary
+        d = (part[:, 0, None] - centres[None, :, 0]) ** 2
+        for j in range(1, points.shape[1]):
+            d += (part[:, j, None] - centres[None, :, j]) ** 2
         out[lo:lo + part.shape[0]] = np.argmin(d, axis=1)
     return out
