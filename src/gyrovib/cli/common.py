@@ -227,3 +227,12 @@ def _read_stdin() -> bytes:
         raw: bytes = stream.buffer.read(MAX_FILE_BYTES + 1)
         return raw
     return str(stream.read(MAX_FILE_BYTES + 1)).encode("utf-8")
+
+
+def rendered(render: Any, result: Any, fmt: str, output: str | None = None) -> Any:
+    """The document of ``result`` in ``fmt`` from a renderer module's ``to_FORMAT``
+    functions; a table is sized and coloured for where it goes (``output``)."""
+    if fmt == "table":
+        return render.to_table(result, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output))
+    return getattr(render, f"to_{fmt}")(result)

@@ -6,7 +6,7 @@ import sys
 
 import click
 
-from gyrovib.cli.common import page_width, plain_ascii, say, use_color
+from gyrovib.cli.common import rendered, say
 from gyrovib.cli.options import format_option
 from gyrovib.cli.output import write_binary, write_output
 
@@ -66,10 +66,4 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
         write_output(fit_catalog(result), output)
         if output == "-":
             return
-    if fmt == "table":
-        text = render.to_table(result, color=use_color(), width=page_width(),
-                               ascii=plain_ascii())
-    else:
-        text = {"json": render.to_json, "csv": render.to_csv,
-                "markdown": render.to_markdown}[fmt](result)
-    write_output(text, None)
+    write_output(rendered(render, result, fmt), None)

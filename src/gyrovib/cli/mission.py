@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from gyrovib.cli.common import load_catalog, page_width, plain_ascii, say, use_color
+from gyrovib.cli.common import load_catalog, rendered, say
 from gyrovib.cli.options import (
     files_argument,
     format_option,
@@ -120,13 +120,7 @@ def _show(result: MissionResult, fmt: str, output: str | None) -> None:
     answer = answer_line(result)
     if answer is not None:  # the answer first, on standard error: the data stay clean
         say(f"gyrovib: {answer}")
-    if fmt == "table":
-        text = render.to_table(result, color=use_color(output), width=page_width(output),
-                               ascii=plain_ascii(output))
-    else:
-        text = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown,
-                "junit": render.to_junit}[fmt](result)
-    write_output(text, output)
+    write_output(rendered(render, result, fmt, output), output)
 
 
 def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tuple[str, ...],

@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.common import load_catalog, page_width, plain_ascii, say, use_color
+from gyrovib.cli.common import load_catalog, rendered, say
 from gyrovib.cli.options import files_argument, format_option
 from gyrovib.cli.output import write_binary, write_output
 from gyrovib.cli.recording import read, reader_options
@@ -83,13 +83,7 @@ def runup(ctx: click.Context, /, recording: str, files: tuple[str, ...], sensor:
     if output is not None:
         write_output(runup_yaml(result, catalog), output)
     if output != "-":
-        if fmt == "table":
-            text = render.to_table(result, color=use_color(), width=page_width(),
-                                   ascii=plain_ascii())
-        else:
-            text = {"json": render.to_json, "csv": render.to_csv,
-                    "markdown": render.to_markdown}[fmt](result)
-        write_output(text, None)
+        write_output(rendered(render, result, fmt), None)
     if require and not result.requirement_met:
         ctx.exit(1)
 
