@@ -29,11 +29,19 @@ class MissingDependency(GyrovibError, ImportError):
 class Column(Generic[Row]):
     """One column of a result's records: its ``name`` (the CSV header, the DataFrame
     column), its ``unit`` (``None``: a name, a count, a flag) and ``value``, how to read it
-    from one row (``None``: unknown, written empty in CSV, kept as None in a frame)."""
+    from one row (``None``: unknown, written empty in CSV, kept as None in a frame).
+    ``frame_only``: a column the DataFrame has and the CSV leaves out (a list, a text the
+    JSON nests, a figure the CSV's documented header does not carry)."""
 
     name: str
     unit: str | None
     value: Callable[[Row], Any]
+    frame_only: bool = False
+
+
+def in_csv(columns: Sequence[Column[Row]]) -> tuple[Column[Row], ...]:
+    """The columns the CSV writes (every one but the frame-only ones), in order."""
+    return tuple(c for c in columns if not c.frame_only)
 
 
 def names(columns: Sequence[Column[Any]]) -> tuple[str, ...]:
@@ -69,6 +77,10 @@ def columns_of(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> dict[str,
     return {c.name: [c.value(row) for row in rows] for c in columns}
 
 
-def frame_of(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> Any:
-    """The DataFrame of the records: one row per row, the columns in order."""
-    return pandas().DataFrame(columns_of(columns, rows))
+def frame_of(columns: Sequence[Column[Row]], rows: Sequence[Row],
+             attrs: dict[str, Any] | None = None) -> Any:
+    """The DataFrame of the records: one row per row, the columns in order; with
+    ``attrs`` (the document-level fields), :func:`dataframe`'s ``frame.attrs``."""
+    if attrs is None:
+        return pandas().DataFrame(columns_of(columns, rows))
+    return dataframe(columns_of(columns, rows), attrs)

@@ -42,9 +42,9 @@ from gyrovib.core.analysis import ALL_TERMS as JSON_TERMS
 from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
 from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
-from gyrovib.presentation.reasons import reason
+from gyrovib.presentation.reasons import coefficient_unit, reason
 from gyrovib.records import MISSING_PANDAS as MISSING_PANDAS
-from gyrovib.records import Column, columns_of, dataframe
+from gyrovib.records import Column, columns_of, dataframe, frame_of
 from gyrovib.records import MissingDependency as MissingDependency
 
 if TYPE_CHECKING:
@@ -221,28 +221,44 @@ def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
     return out
 
 
-def bounds_frame(result: BoundsResult) -> Any:
-    """``bounds``: one row per profile; an unconstrained bound is ``inf``."""
-    rows = np.arange(len(result.profiles))
-    columns: dict[str, Any] = {
-        "profile": list(result.profiles),
-        **_rate_columns(np.asarray(result.rates).reshape(-1, 3), rows),
-        **_bounds_columns(result.bounds, rows),
-    }
+def _of_row(values: Any) -> Callable[[int], float]:
+    """Read a float per row from an array over the rows."""
+    listed = np.asarray(values, dtype=float).tolist()
+    return lambda j: listed[j]
+
+
+def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
+    """``bounds``'s records, declared once, one row per profile (its index): the CSV's
+    columns and the frame's, in order. An unconstrained bound is ``inf``; ``vre`` is a CSV
+    column only when some profile has linear vibration (the frame: ``inf`` without);
+    ``--range`` adds the allowable datasheet figures (the frame also their reading)."""
+    b = result.bounds
+    rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
+    parts = PARTS + tuple(n for n in ODD_PARTS if getattr(b, n) is not None)
+    columns: list[Column[int]] = [
+        Column("profile", None, lambda j: result.profiles[j]),
+        *(Column(f"rate_{axis}", "rate", lambda j, k=k: rates[j][k])
+          for k, axis in enumerate(AXES)),
+        *(Column(name, coefficient_unit(name, result.unit), _of_row(getattr(b, name)))
+          for name in BOUNDED + parts),
+        Column("vre", f"{result.unit}/g^2", lambda j: math.inf, frame_only=True)
+        if b.vre is None else Column("vre", f"{result.unit}/g^2", _of_row(b.vre))]
     sb = result.spec_bounds
     if sb is not None:  # bounds --range: the allowable datasheet figures
-        n = len(result.profiles)
-        columns.update({
-            "spec_bounds.nonlinearity.value": np.asarray(sb.nonlinearity)[rows],
-            "spec_bounds.nonlinearity.unit": ["%FS"] * n,
-            "spec_bounds.nonlinearity.fit": [sb.fit] * n,
-            "spec_bounds.nonlinearity.measure": [sb.measure] * n,
-            "spec_bounds.nonlinearity.of": [sb.of] * n,
-            "spec_bounds.nonlinearity.range": [sb.range] * n,
-            "spec_bounds.vre": np.asarray(sb.vre)[rows],
-        })
-    return dataframe(_named("bounds", columns), {"method": result.method, "unit": result.unit,
-                                              "budget": result.budget})
+        columns += [Column("spec_nonlinearity", "%FS", _of_row(sb.nonlinearity)),
+                    *(Column(f"spec_nonlinearity_{key}", None, lambda j, v=value: v,
+                             frame_only=True)
+                      for key, value in (("unit", "%FS"), ("fit", sb.fit),
+                                         ("measure", sb.measure), ("of", sb.of),
+                                         ("range", sb.range))),
+                    Column("spec_vre", f"{result.unit}/g^2", _of_row(sb.vre))]
+    return tuple(columns)
+
+
+def bounds_frame(result: BoundsResult) -> Any:
+    """``bounds``: one row per profile; an unconstrained bound is ``inf``."""
+    return frame_of(bounds_columns(result), range(len(result.profiles)),
+                    {"method": result.method, "unit": result.unit, "budget": result.budget})
 
 
 def selection_frame(result: SelectionResult) -> Any:

@@ -18,8 +18,10 @@ from gyrovib.core.synthesis import (
     AllocationConstants,
     CoefficientBounds,
 )
+from gyrovib.presentation.frames import bounds_columns
 from gyrovib.presentation.reasons import coefficient_unit as coefficient_unit
-from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.formats import csv_of
 
 
 #: Unit of the VRE bound in an output rate unit (rate per g², docs/model.md section 8).
@@ -77,27 +79,10 @@ def spec_bounds_dict(result: BoundsResult, j: int) -> dict[str, Any]:
 
 
 def to_csv(result: BoundsResult) -> str:
-    """One row per profile; an unconstrained bound is written ``inf``.
-
-    With linear vibration in some profile the rows end with ``vre``; with
-    ``--range`` then with ``spec_nonlinearity`` (%FS) and ``spec_vre``.
-    """
-    parts = part_names(result.bounds)
-    vre = result.bounds.vre  # a column only when some profile has linear vibration
-    head = ["profile", "rate_x1", "rate_x2", "rate_x3", *BOUNDED, *parts,
-            *(["vre"] if vre is not None else [])]
-    sb = result.spec_bounds
-    if sb is not None:
-        head += ["spec_nonlinearity", "spec_vre"]
-
-    def rows() -> Iterator[list[Any]]:
-        for j, p in enumerate(result.profiles):
-            yield [p, *map(float, result.rates[j]),
-                   *(float(getattr(result.bounds, n)[j]) for n in BOUNDED + parts),
-                   *([float(vre[j])] if vre is not None else []),
-                   *([] if sb is None else [float(sb.nonlinearity[j]), float(sb.vre[j])])]
-
-    return csv_text(head, rows())
+    """One row per profile: the result's records
+    (:func:`gyrovib.presentation.frames.bounds_columns`, which the DataFrame shares); an
+    unconstrained bound is written ``inf``."""
+    return csv_of(bounds_columns(result), range(len(result.profiles)))
 
 
 def _spec_rows(result: BoundsResult, j: int) -> list[list[str]]:

@@ -10,16 +10,15 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api.ratetable.results import (
-    FIT_COLUMNS,
     FitResult,
-    fit_columns,
     lot_mapping,
     output_unit,
     pairs,
 )
 from gyrovib.core.fit import SIGNIFICANT_T
 from gyrovib.core.lot import YieldEstimate
-from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.formats import csv_of
 from gyrovib.render.plot import _figure_class
 
 
@@ -59,11 +58,8 @@ def to_json(result: FitResult) -> str:
 
 
 def to_csv(result: FitResult) -> str:
-    """One row per unit × coefficient (the DataFrame's columns)."""
-    columns = fit_columns(result)
-    rows = zip(*(columns[c] for c in FIT_COLUMNS), strict=True)
-    return csv_text(FIT_COLUMNS, ([str(v).lower() if isinstance(v, bool) else v for v in row]
-                                  for row in rows))
+    """One row per unit × coefficient: the result's records (the DataFrame's columns)."""
+    return csv_of(result.records(), result.rows())
 
 
 def _title(result: FitResult, i: int) -> str:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from typing import Any, TypeVar
 
-from gyrovib.records import Column, names, records
+from gyrovib.records import Column, in_csv, names, records
 from gyrovib.render.common import csv_text
 
 Row = TypeVar("Row")
@@ -25,6 +25,8 @@ def _cell(value: Any) -> Any:
 
 
 def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> str:
-    """CSV of the records: the columns' names as the header, one line per row."""
-    return csv_text(names(columns), ([_cell(v) for v in values]
-                                     for values in records(columns, rows)))
+    """CSV of the records: the columns' names as the header, one line per row (the
+    frame-only columns left out)."""
+    written = in_csv(columns)
+    return csv_text(names(written), ([_cell(v) for v in values]
+                                     for values in records(written, rows)))

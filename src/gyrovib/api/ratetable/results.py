@@ -6,6 +6,7 @@ In a module of its own so that no other command defines its classes.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -16,7 +17,7 @@ from gyrovib import units as rate_units
 from gyrovib.api.evaluation.results import Result, freeze
 from gyrovib.core.fit import SIGNIFICANT_T, RateFit
 from gyrovib.core.lot import LotStatistics
-from gyrovib.records import dataframe
+from gyrovib.records import Column, frame_of
 
 
 def output_unit(result: FitResult) -> str:
@@ -88,43 +89,45 @@ class FitResult(Result):
         """(units, coefficients): every unit's eq. (2) coefficients."""
         return np.array([f.values for f in self.fits])
 
-    def to_frame(self) -> Any:
-        """Tidy pandas DataFrame: one row per unit × coefficient, columns as in
-        ``--format csv`` (unit, coefficient, value, sigma, t, significant,
-        coefficient_unit, residual_rms, nonlinearity.least_squares_max,
-        nonlinearity.endpoint_max, nonlinearity.range, points); the lot in
-        ``frame.attrs["lot"]`` (the JSON's mapping) when there is one."""
+    def rows(self) -> list[tuple[int, int]]:
+        """The rows of :meth:`records`: (unit, coefficient) index pairs, units outermost."""
+        return [(i, k) for i in range(len(self.units)) for k in range(len(self.names))]
 
-        columns = fit_columns(self)
+    def records(self) -> tuple[Column[tuple[int, int]], ...]:
+        """The columns of the CSV and the DataFrame, in order, with their units: one row
+        per unit × coefficient (:meth:`rows`)."""
+        fits, names, units = self.fits, self.names, self.coefficient_units()
+        out = self.output_unit or None
+
+        def nl(name: str) -> Callable[[tuple[int, int]], float]:
+            return lambda r: float(getattr(fits[r[0]].nonlinearity, name))
+
+        return (
+            Column("unit", None, lambda r: self.units[r[0]]),
+            Column("coefficient", None, lambda r: names[r[1]]),
+            Column("value", None, lambda r: float(fits[r[0]].values[r[1]])),
+            Column("sigma", None, lambda r: float(fits[r[0]].sigma[r[1]])),
+            Column("t", None, lambda r: float(fits[r[0]].t[r[1]])),
+            Column("significant", None,
+                   lambda r: bool(abs(float(fits[r[0]].t[r[1]])) >= SIGNIFICANT_T)),
+            Column("coefficient_unit", None, lambda r: units[r[1]]),
+            Column("residual_rms", out, lambda r: float(fits[r[0]].residual_rms)),
+            Column("nonlinearity.least_squares_max", "%FS", nl("least_squares_max")),
+            Column("nonlinearity.endpoint_max", "%FS", nl("endpoint_max")),
+            Column("nonlinearity.range", self.unit, nl("range")),
+            Column("points", None, lambda r: fits[r[0]].points),
+        )
+
+    def to_frame(self) -> Any:
+        """Tidy pandas DataFrame: one row per unit × coefficient, the columns of
+        :meth:`records` (those of ``--format csv``); the lot in ``frame.attrs["lot"]``
+        (the JSON's mapping) when there is one."""
         attrs: dict[str, Any] = {"method": self.method, "unit": self.unit,
                                  "output_unit": self.output_unit, "order": self.order,
                                  "file": self.file}
         if self.lot is not None:
             attrs["lot"] = lot_mapping(self)
-        return dataframe(columns, attrs)
-
-
-#: The columns of the fit's CSV and DataFrame, in order.
-FIT_COLUMNS: tuple[str, ...] = (
-    "unit", "coefficient", "value", "sigma", "t", "significant", "coefficient_unit",
-    "residual_rms", "nonlinearity.least_squares_max", "nonlinearity.endpoint_max",
-    "nonlinearity.range", "points")
-
-
-def fit_columns(result: FitResult) -> dict[str, list[Any]]:
-    """The rows of the CSV and the DataFrame, column by column (:data:`FIT_COLUMNS`)."""
-    out: dict[str, list[Any]] = {c: [] for c in FIT_COLUMNS}
-    units = result.coefficient_units()
-    for name, f in zip(result.units, result.fits, strict=True):
-        for k, coefficient in enumerate(result.names):
-            t = float(f.t[k])
-            row = (name, coefficient, float(f.values[k]), float(f.sigma[k]), t,
-                   bool(abs(t) >= SIGNIFICANT_T), units[k], f.residual_rms,
-                   f.nonlinearity.least_squares_max, f.nonlinearity.endpoint_max,
-                   f.nonlinearity.range, f.points)
-            for column, value in zip(FIT_COLUMNS, row, strict=True):
-                out[column].append(value)
-    return out
+        return frame_of(self.records(), self.rows(), attrs)
 
 
 def pairs(names: tuple[str, ...], correlation: Any) -> dict[str, float]:
