@@ -32,6 +32,7 @@ is missing the error names the extra to install.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -44,7 +45,7 @@ from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 from gyrovib.presentation.reasons import coefficient_unit, reason
 from gyrovib.records import MISSING_PANDAS as MISSING_PANDAS
-from gyrovib.records import Column, columns_of, dataframe, frame_of
+from gyrovib.records import Column, frame_of
 from gyrovib.records import MissingDependency as MissingDependency
 
 if TYPE_CHECKING:
@@ -96,15 +97,6 @@ def _select_column(parts: list[str]) -> str | None:
 _COLUMNS: dict[str, Callable[[list[str]], str | None]] = {
     "sweep": _sweep_column, "analyze": _analyze_column, "bounds": _bounds_column,
     "select": _select_column}
-
-
-def _named(kind: str, columns: dict[str, Any]) -> dict[str, Any]:
-    return {column_name(kind, key): value for key, value in columns.items()}
-
-
-def _rate_columns(rates: Any, rows: Any) -> dict[str, Any]:
-    """``rate.x1..x3`` of Ω_K per profile (``rates`` (profiles, 3)), taken at ``rows``."""
-    return {f"rate.{axis}": rates[rows, k] for k, axis in enumerate(AXES)}
 
 
 def _of_cell(values: list[Any], k: int | None = None) -> Callable[[Cell], Any]:
@@ -195,7 +187,7 @@ def analysis_frame(result: AnalysisResult) -> Any:
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
     if result.samples is not None:
         attrs.update(samples=result.samples, seed=result.seed)
-    return dataframe(columns_of(analysis_columns(result, csv=False), cells), attrs)
+    return frame_of(analysis_columns(result, csv=False), cells, attrs)
 
 
 def _envelope_columns(result: AnalysisResult) -> list[Column[Cell]]:
@@ -211,20 +203,26 @@ def _envelope_columns(result: AnalysisResult) -> list[Column[Cell]]:
             Column("envelope_rms_bound", "rate", lambda c: bound[c[0]][c[1]])]
 
 
-def _bounds_columns(bounds: Any, rows: Any) -> dict[str, Any]:
-    out = {f"bounds.{n}": np.asarray(getattr(bounds, n))[rows] for n in BOUNDED}
-    # the VRE bound (docs/model.md section 8): JSON null, here inf, without linear vibration
-    vre = np.full(len(rows), np.inf) if bounds.vre is None else np.asarray(bounds.vre)[rows]
-    out["bounds.vre"] = vre
-    present = PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
-    out.update({f"parts.{n}": np.asarray(getattr(bounds, n))[rows] for n in present})
-    return out
-
-
 def _of_row(values: Any) -> Callable[[int], float]:
     """Read a float per row from an array over the rows."""
     listed = np.asarray(values, dtype=float).tolist()
     return lambda j: listed[j]
+
+
+def _limit_columns(b: Any, unit: str, bounds: str = "",
+                   parts: str = "") -> list[Column[int]]:
+    """A profile's coefficient bounds, its candidates (k4/k5 and those of locked harmonics,
+    docs/model.md section 10) and its VRE bound (section 8; a CSV column only with linear
+    vibration, else the frame's ``inf``), named with the prefixes ``bounds`` and
+    ``parts``."""
+    present = PARTS + tuple(n for n in ODD_PARTS if getattr(b, n) is not None)
+    vre = f"{unit}/g^2"
+    return [*(Column(bounds + n, coefficient_unit(n, unit), _of_row(getattr(b, n)))
+              for n in BOUNDED),
+            *(Column(parts + n, coefficient_unit(n, unit), _of_row(getattr(b, n)))
+              for n in present),
+            Column(bounds + "vre", vre, lambda j: math.inf, frame_only=True)
+            if b.vre is None else Column(bounds + "vre", vre, _of_row(b.vre))]
 
 
 def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
@@ -234,15 +232,11 @@ def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
     ``--range`` adds the allowable datasheet figures (the frame also their reading)."""
     b = result.bounds
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
-    parts = PARTS + tuple(n for n in ODD_PARTS if getattr(b, n) is not None)
     columns: list[Column[int]] = [
         Column("profile", None, lambda j: result.profiles[j]),
         *(Column(f"rate_{axis}", "rate", lambda j, k=k: rates[j][k])
           for k, axis in enumerate(AXES)),
-        *(Column(name, coefficient_unit(name, result.unit), _of_row(getattr(b, name)))
-          for name in BOUNDED + parts),
-        Column("vre", f"{result.unit}/g^2", lambda j: math.inf, frame_only=True)
-        if b.vre is None else Column("vre", f"{result.unit}/g^2", _of_row(b.vre))]
+        *_limit_columns(b, result.unit)]
     sb = result.spec_bounds
     if sb is not None:  # bounds --range: the allowable datasheet figures
         columns += [Column("spec_nonlinearity", "%FS", _of_row(sb.nonlinearity)),
@@ -262,124 +256,183 @@ def bounds_frame(result: BoundsResult) -> Any:
 
 
 def selection_frame(result: SelectionResult) -> Any:
-    """``select``: one row per sensor × profile.
-
-    ``passed`` (the JSON's ``pass``: ``df.query("not passed")`` works),
-    ``status`` (pass, fail, unverified), ``unknown``, ``rms``, ``margin`` and
-    ``value_<coefficient>``, ``bound_…``, ``pass_…`` (the JSON's
-    ``checks.<coefficient>.value|bound|pass``) are the JSON's per-profile cell;
-    ``sensor_pass`` and ``sensor_status`` are the sensor's overall ``pass`` and
-    ``status``; ``rate_*`` and ``profile_bounds_*`` are the profile's entry of
-    the JSON's ``profiles`` list (its bounds for ν_sensor = 1).
-    """
-    n_s, n_p = len(result.sensors), len(result.profiles)
-    s_idx, p_idx = (a.reshape(-1) for a in np.indices((n_s, n_p)))
-    cells = list(zip(s_idx.tolist(), p_idx.tolist(), strict=True))
-    columns: dict[str, Any] = {
-        "sensor": [result.sensors[i] for i in s_idx],
-        "profile": [result.profiles[j] for j in p_idx],
-        "sensor_pass": np.asarray(result.sensor_pass, dtype=bool)[s_idx],
-        "sensor_status": [result.sensor_status(int(i)) for i in s_idx],
-        # "passed", not the JSON's "pass": a Python keyword breaks df.query("not pass")
-        "pass": np.asarray(result.passed, dtype=bool).reshape(-1),
-        "status": [result.status(i, j) for i, j in cells],
-        "unknown": [list(result.unknown.get((i, j), ())) for i, j in cells],
-        "criterion_margin": np.asarray(result.margin if result.criterion_margin is None
-                                       else result.criterion_margin).reshape(-1),
-        "disagrees": [list(result.disagrees.get((i, j), ())) for i, j in cells],
-        "rms": np.asarray(result.rms).reshape(-1),
-        "margin": np.asarray(result.margin).reshape(-1),
-        "saturated": np.asarray(result.saturated, dtype=bool).reshape(-1),
-        "reason": [reason(result, i, j) for i, j in cells],
-    }
-    spec_rows = np.array([result.source(int(i)) == "specs" for i in s_idx], dtype=bool)
-    columns.update(_coefficient_check_columns(result, spec_rows))
-    columns["source"] = [result.source(int(i)) for i in s_idx]
-    if result.total is not None:
-        columns["total"] = np.asarray(result.total).reshape(-1)
-    columns.update(_datasheet_check_columns(result, spec_rows))
-    columns.update(_yield_columns(result, s_idx))
-    columns.update(_rate_columns(np.asarray(result.rates).reshape(-1, 3), p_idx))
-    for key, column in _bounds_columns(result.profile_bounds, p_idx).items():
-        columns[f"profile_{key}"] = column
+    """``select``: one row per sensor × profile (:func:`selection_columns`)."""
     attrs = {"method": result.method, "unit": result.unit, "budget": result.budget,
              "criterion": result.criterion, "require": result.require,
              "requirement_met": result.requirement_met}
     if result.yields is not None:
         attrs.update({"yield": result.yields.target, "seed": result.yields.seed})
-    return dataframe(_named("select", columns), attrs)
+    return frame_of(selection_columns(result, csv=False), selection_cells(result), attrs)
 
 
-def _coefficient_check_columns(result: SelectionResult, spec_rows: Any) -> dict[str, Any]:
-    """``checks.<coefficient>.value|bound|pass`` and the VRE check (docs/model.md
-    section 8); a spec-form row has no coefficient checks (JSON: none; CSV: empty): NaN,
-    None."""
-    rows = len(spec_rows)
-    values = np.asarray(result.values).reshape(rows, -1)
-    bounds = np.asarray(result.bounds).reshape(rows, -1)
-    checks = np.asarray(result.check_pass, dtype=bool).reshape(rows, -1)
-    out: dict[str, Any] = {}
+def selection_cells(result: SelectionResult) -> list[Cell]:
+    """The rows of ``select``'s records: (sensor, profile), sensors outermost."""
+    return [(i, j) for i in range(len(result.sensors)) for j in range(len(result.profiles))]
+
+
+def _float_cell(values: Any) -> Callable[[Cell], float]:
+    listed = np.asarray(values, dtype=float).tolist()
+    return lambda c: listed[c[0]][c[1]]
+
+
+def selection_columns(result: SelectionResult, *, csv: bool) -> tuple[Column[Cell], ...]:
+    """``select``'s records, declared once, one row per sensor × profile (sensors
+    outermost): the columns of ``--format csv`` (``csv``) or of the DataFrame.
+
+    ``passed`` is the JSON's ``pass`` (a Python keyword breaks ``df.query("not pass")``);
+    ``value_<coefficient>``, ``bound_…``, ``pass_…`` its ``checks.<coefficient>``, empty
+    (NaN, None) on a datasheet sensor's rows; the frame adds the sensor's ``status``, the
+    profile's ``rate_*`` and ``profile_bounds_*``/``profile_parts_*`` (the JSON's
+    ``profiles`` entry), and keeps ``unknown`` and ``disagrees`` as lists."""
+    specs = [result.source(i) == "specs" for i in range(len(result.sensors))]
+    words: Callable[[tuple[str, ...]], Any] = " ".join if csv else list
+    margin = result.margin if result.criterion_margin is None else result.criterion_margin
+    sensor_pass = np.asarray(result.sensor_pass, dtype=bool).tolist()
+    columns: list[Column[Cell]] = [
+        Column("sensor", None, lambda c: result.sensors[c[0]]),
+        Column("profile", None, lambda c: result.profiles[c[1]]),
+        Column("passed", None, lambda c: bool(result.passed[c[0], c[1]])),
+        Column("sensor_pass", None, lambda c: sensor_pass[c[0]]),
+        Column("sensor_status", None, lambda c: result.sensor_status(c[0]), frame_only=True),
+        Column("rms", "rate", _float_cell(result.rms)),
+        Column("margin", None, _float_cell(result.margin)),
+        *_coefficient_checks(result, specs),
+        *_datasheet_checks(result, specs, csv),
+        *_yield_cells(result, csv),
+        Column("saturated", None, lambda c: bool(result.saturated is not None
+                                                 and result.saturated[c[0], c[1]])),
+        Column("status", None, lambda c: result.status(*c)),
+        Column("unknown", None, lambda c: words(result.unknown.get(c, ()))),
+        Column("criterion_margin", None, _float_cell(margin)),
+        Column("disagrees", None, lambda c: words(result.disagrees.get(c, ()))),
+        Column("reason", None, (lambda c: reason(result, *c) or "") if csv
+               else (lambda c: reason(result, *c))),
+    ]
+    rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
+    columns += [Column(f"rate_{axis}", "rate", _of_profile(rates, k), frame_only=True)
+                for k, axis in enumerate(AXES)]
+    columns += [Column(c.name, c.unit, lambda cell, read=c.value: read(cell[1]),
+                       frame_only=True)
+                for c in _limit_columns(result.profile_bounds, result.unit, "profile_bounds_",
+                                        "profile_parts_")]
+    return tuple(columns)
+
+
+def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
+    """``checks.<coefficient>.value|bound|pass`` (eq. 23, 25): NaN, None on a datasheet
+    (spec-form) sensor's rows, which have no coefficient checks."""
+    values = np.asarray(result.values, dtype=float).tolist()
+    bounds = np.asarray(result.bounds, dtype=float).tolist()
+    checks = np.asarray(result.check_pass, dtype=bool).tolist()
+
+    def read(table: list[Any], b: int, empty: Any) -> Callable[[Cell], Any]:
+        return lambda c: empty if specs[c[0]] else table[c[0]][c[1]][b]
+
+    columns: list[Column[Cell]] = []
     for b, name in enumerate(BOUNDED):
-        out[f"checks.{name}.value"] = np.where(spec_rows, np.nan, values[:, b])
-        out[f"checks.{name}.bound"] = np.where(spec_rows, np.nan, bounds[:, b])
-        out[f"checks.{name}.pass"] = (checks[:, b] if not spec_rows.any() else
-                                      [None if sp else bool(c) for sp, c in
-                                       zip(spec_rows, checks[:, b], strict=True)])
-    if result.vre_pass is not None:
-        out["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
-        out["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
-        out["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
-    return out
+        columns += [Column(f"value_{name}", None, read(values, b, math.nan)),
+                    Column(f"bound_{name}", None, read(bounds, b, math.nan)),
+                    Column(f"pass_{name}", None, read(checks, b, None))]
+    return columns
 
 
-def _datasheet_check_columns(result: SelectionResult, spec_rows: Any) -> dict[str, Any]:
-    """Datasheet (spec-form) sensors' nonlinearity check: NaN, None on coefficient rows."""
-    if result.nl_value is None:
-        return {}
-    return {
-        "checks.nonlinearity.value": np.asarray(result.nl_value).reshape(-1),
-        "checks.nonlinearity.bound": np.asarray(result.nl_bound).reshape(-1),
-        "checks.nonlinearity.pass": [
-            bool(v) if sp else None for sp, v in
-            zip(spec_rows, np.asarray(result.nl_pass).reshape(-1), strict=True)],
-        "checks.nonlinearity.unit": ["%FS" if sp else None for sp in spec_rows.tolist()],
-    }
+def _datasheet_checks(result: SelectionResult, specs: list[bool],
+                      csv: bool) -> list[Column[Cell]]:
+    """A datasheet sensor's ``source``, ``total`` and nonlinearity check (%FS; NaN, None
+    on coefficient rows), then the VRE check (docs/model.md section 8). The CSV has them
+    with datasheet sensors (the VRE check also where it can bind: linear vibration); its
+    cells are empty where a row has no such check."""
+    with_specs = "specs" in result.sources
+    vre = result.has_linear and result.vre_pass is not None
+    columns = [Column("source", None, lambda c: result.source(c[0]),
+                      frame_only=not with_specs)]
+    if result.total is not None:
+        columns.append(Column("total", "rate", _float_cell(result.total),
+                              frame_only=not with_specs))
+    if result.nl_value is not None and (with_specs or not csv):
+        nl = (_float_cell(result.nl_value), _float_cell(result.nl_bound),
+              np.asarray(result.nl_pass, dtype=bool).tolist())
+        shown = (lambda c: specs[c[0]]) if csv else (lambda c: True)
+        columns += [
+            Column("value_nonlinearity", "%FS",
+                   lambda c: nl[0](c) if shown(c) else math.nan),
+            Column("bound_nonlinearity", "%FS",
+                   lambda c: nl[1](c) if shown(c) else math.nan),
+            Column("pass_nonlinearity", None,
+                   lambda c: nl[2][c[0]][c[1]] if specs[c[0]] else None),
+            Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
+                   frame_only=True)]
+    if result.vre_pass is not None and (with_specs or vre or not csv):
+        checked = (lambda c: specs[c[0]] or vre) if csv else (lambda c: True)
+        value, bound = _float_cell(result.vre_value), _float_cell(result.vre_bound)
+        passed = np.asarray(result.vre_pass, dtype=bool).tolist()
+        columns += [
+            Column("value_vre", None, lambda c: value(c) if checked(c) else math.nan),
+            Column("bound_vre", None, lambda c: bound(c) if checked(c) else math.nan),
+            Column("pass_vre", None, lambda c: passed[c[0]][c[1]] if checked(c) else None)]
+    return columns
 
 
-def _yield_columns(result: SelectionResult, s_idx: Any) -> dict[str, Any]:
-    """``--yield`` (docs/model.md section 14): NaN, None off the lots."""
+def _yield_cells(result: SelectionResult, csv: bool) -> list[Column[Cell]]:
+    """``--yield`` (docs/model.md section 14): NaN, None off the lots; the CSV leaves an
+    exact yield's interval empty."""
     y = result.yields
     if y is None:
-        return {}
-    return {
-        "yield_value": np.asarray(y.value).reshape(-1),
-        "yield_method": [y.method if y.is_lot(int(i)) else None for i in s_idx],
-        "yield_interval_low": np.asarray(y.low).reshape(-1),
-        "yield_interval_high": np.asarray(y.high).reshape(-1),
-        "yield_draws": [y.draws if y.is_lot(int(i)) else None for i in s_idx],
-    }
+        return []
+    value, low, high = (_float_cell(a) for a in (y.value, y.low, y.high))
+    lot = (lambda c: y.is_lot(c[0])) if csv else (lambda c: True)
+    interval = (lambda c: lot(c) and y.method != "exact") if csv else lot
+    return [
+        Column("yield_value", None, lambda c: value(c) if lot(c) else math.nan),
+        Column("yield_method", None, lambda c: y.method if y.is_lot(c[0]) else None),
+        Column("yield_interval_low", None, lambda c: low(c) if interval(c) else math.nan),
+        Column("yield_interval_high", None, lambda c: high(c) if interval(c) else math.nan),
+        Column("yield_draws", None, lambda c: y.draws if y.is_lot(c[0]) else None)]
+
+
+#: A row of a sweep: (sensor, profile, rate) indices.
+SweepCell = tuple[int, int, int]
+
+
+def sweep_cells(result: SweepResult) -> list[SweepCell]:
+    """The rows of ``sweep``'s records: profiles outermost, then sensors, then rates (the
+    JSON's order)."""
+    n_r = len(result.rates)
+    return [(i, j, r) for j in range(len(result.profiles)) for i in range(len(result.sensors))
+            for r in range(n_r)]
+
+
+def sweep_columns(result: SweepResult) -> tuple[Column[SweepCell], ...]:
+    """``sweep``'s records, declared once, one row per sensor × profile × rate Ω_K3: the
+    columns of ``--format csv`` and of the DataFrame. The paper's values are unknown (CSV:
+    empty, frame: NaN) for a profile its formulas do not cover."""
+    rates = np.asarray(result.rates, dtype=float).tolist()
+    refused = [p in result.paper_refused for p in result.profiles]
+    saturated = result.saturated
+
+    def read(method: str, name: str) -> Callable[[SweepCell], float]:
+        # the values are listed at the first read: the CSV's fast writer takes only the names
+        values = functools.cache(lambda: np.asarray(getattr(getattr(result, method), name),
+                                                    dtype=float).tolist())
+        if method == "paper":
+            return lambda c: math.nan if refused[c[1]] else values()[c[0]][c[1]][c[2]]
+        return lambda c: values()[c[0]][c[1]][c[2]]
+
+    return (Column("sensor", None, lambda c: result.sensors[c[0]]),
+            Column("profile", None, lambda c: result.profiles[c[1]]),
+            Column("rate_x3", "rate", lambda c: rates[c[2]]),
+            *(Column(f"{method}_{name}", "rate", read(method, name))
+              for method in ("exact", "paper") for name in ("total", "rms")),
+            Column("saturated", None, lambda c: saturated is not None
+                   and bool(saturated[c])))
 
 
 def sweep_frame(result: SweepResult) -> Any:
-    """``sweep``: one row per sensor × profile × rate Ω_K3 (``rate``), exact and paper.
-
-    Rows in the JSON's order: profiles outermost, then sensors, then rates.
-    """
-    n_s, n_p, n_r = len(result.sensors), len(result.profiles), len(result.rates)
-    p_idx, s_idx, r_idx = (a.reshape(-1) for a in np.indices((n_p, n_s, n_r)))
-    columns: dict[str, Any] = {
-        "sensor": [result.sensors[i] for i in s_idx],
-        "profile": [result.profiles[j] for j in p_idx],
-        "rate": np.asarray(result.rates)[r_idx],
-    }
-    for method in ("exact", "paper"):
-        err = getattr(result, method)
-        for name in ("total", "rms"):
-            columns[f"{method}.{name}"] = np.asarray(getattr(err, name))[s_idx, p_idx, r_idx]
-    columns["saturated"] = np.asarray(result.saturated, dtype=bool)[s_idx, p_idx, r_idx]
-    return dataframe(_named("sweep", columns), {"method": "exact", "unit": result.unit,
-                            "methods": ["exact", "paper"],
-                            "paper_refused": dict(result.paper_refused)})
+    """``sweep``: one row per sensor × profile × rate Ω_K3, exact and paper
+    (:func:`sweep_columns`)."""
+    return frame_of(sweep_columns(result), sweep_cells(result),
+                    {"method": "exact", "unit": result.unit, "methods": ["exact", "paper"],
+                     "paper_refused": dict(result.paper_refused)})
 
 
 def to_frame(result: Any) -> Any:

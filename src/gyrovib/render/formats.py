@@ -19,14 +19,22 @@ def _cell(value: Any) -> Any:
     :func:`~gyrovib.render.common.csv_text`)."""
     if isinstance(value, bool):
         return "true" if value else "false"
+    return _joined(value)
+
+
+def _joined(value: Any) -> Any:
+    """A tuple of texts joined by ``; ``; any other value as it is."""
     if isinstance(value, tuple):
         return "; ".join(value)
     return value
 
 
-def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> str:
+def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row], *,
+           title_flags: bool = False) -> str:
     """CSV of the records: the columns' names as the header, one line per row (the
-    frame-only columns left out)."""
+    frame-only columns left out). A flag is ``true``/``false``, or with ``title_flags``
+    ``True``/``False`` (as ``bounds``, ``select`` and ``sweep`` have always written it)."""
     written = in_csv(columns)
-    return csv_text(names(written), ([_cell(v) for v in values]
+    cell = _joined if title_flags else _cell
+    return csv_text(names(written), ([cell(v) for v in values]
                                      for values in records(written, rows)))

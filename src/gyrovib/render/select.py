@@ -13,6 +13,7 @@ from rich.text import Text
 
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
+from gyrovib.presentation.frames import selection_cells, selection_columns
 from gyrovib.presentation.reasons import failures as _failures
 from gyrovib.presentation.reasons import reason, saturation_text, unknown_label, yield_text
 from gyrovib.render.analysis import SATURATED_MARK
@@ -24,7 +25,6 @@ from gyrovib.render.bounds import (
     vre_unit,
 )
 from gyrovib.render.common import (
-    csv_text,
     dumps,
     fmt,
     fmt_budget,
@@ -33,6 +33,7 @@ from gyrovib.render.common import (
     number,
     rich_text,
 )
+from gyrovib.render.formats import csv_of
 
 _CRITERION = {
     "bounds": "every |coefficient| within its bound (eq. 23, 25; sufficient, not necessary)",
@@ -317,99 +318,17 @@ def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
     }
 
 
-def _get(array: Any, i: int, j: int) -> Any:
-    assert array is not None
-    return array[i, j]
-
-
-def _csv_float(value: float) -> float | str:
-    """A CSV number: empty where unknown (NaN), ``inf`` where unconstrained."""
-    return "" if math.isnan(value) else float(value)
-
-
-def _csv_checks(result: SelectionResult, sensor: str, profile: str, i: int,
-                j: int) -> list[Any]:
-    """The CSV's verdict, RMS, margin and coefficient-check columns of one cell."""
-    row: list[Any] = [sensor, profile, bool(result.passed[i, j]), bool(result.sensor_pass[i]),
-                      _csv_float(result.rms[i, j]), _csv_float(result.margin[i, j])]
-    spec = result.source(i) == "specs"
-    for b in range(len(BOUNDED)):
-        row += (["", "", ""] if spec else
-                [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
-                 bool(result.check_pass[i, j, b])])
-    return row
-
-
-def _csv_specs(result: SelectionResult, i: int, j: int, with_specs: bool,
-               vre: bool) -> list[Any]:
-    """The datasheet columns (source, total, nonlinearity) and the VRE check of one cell."""
-    spec = result.source(i) == "specs"
-    row: list[Any] = []
-    if with_specs:
-        row += [result.source(i), float(_get(result.total, i, j))]
-        row += ([float(_get(result.nl_value, i, j)), float(_get(result.nl_bound, i, j)),
-                 bool(_get(result.nl_pass, i, j))] if spec else [""] * 3)
-    if spec:
-        value = float(_get(result.vre_value, i, j))
-        row += ["" if math.isnan(value) else value, float(_get(result.vre_bound, i, j)),
-                bool(_get(result.vre_pass, i, j))]
-    elif vre:
-        row += [("" if math.isnan(v) else v) for v in _vre(result, i, j)]
-        row += [bool(_get(result.vre_pass, i, j))]
-    elif with_specs:
-        row += [""] * 3
-    return row
-
-
-def _csv_yield(result: SelectionResult, i: int, j: int) -> list[Any]:
-    """The yield columns of one cell (none without --yield; empty for a sensor not a lot)."""
-    y = result.yields
-    if y is None:
-        return []
-    if not y.is_lot(i):
-        return [""] * 5
-    interval = ["", ""] if y.method == "exact" else [float(y.low[i, j]), float(y.high[i, j])]
-    return [float(y.value[i, j]), y.method, *interval, y.draws]
-
-
-def _csv_verdict(result: SelectionResult, i: int, j: int) -> list[Any]:
-    """Saturation, status, unknowns, margin under the criterion, disagreements, reason."""
-    return [_sat(result, i, j), result.status(i, j), " ".join(result.unknown.get((i, j), ())),
-            cell_margin(result, i, j), " ".join(result.disagrees.get((i, j), ())),
-            reason(result, i, j) or ""]
-
-
 def to_csv(result: SelectionResult) -> str:
-    """One row per sensor × profile; an unconstrained bound or margin is ``inf``.
+    """One row per sensor × profile: the result's records
+    (:func:`gyrovib.presentation.frames.selection_columns`, which the DataFrame shares); an
+    unconstrained bound or margin is ``inf``.
 
     With datasheet (spec-form) sensors the rows gain ``source``, ``total`` and
     their checks (``value_nonlinearity``… in %FS, ``value_vre``… per g²; empty on
     coefficient rows, whose coefficient columns are empty on spec rows).
     """
-    head = ["sensor", "profile", "passed", "sensor_pass", "rms", "margin"]
-    for name in BOUNDED:
-        head += [f"value_{name}", f"bound_{name}", f"pass_{name}"]
-    with_specs = "specs" in result.sources
-    vre = result.has_linear and result.vre_pass is not None  # the VRE check can bind
-    if with_specs:
-        head += ["source", "total", "value_nonlinearity", "bound_nonlinearity",
-                 "pass_nonlinearity"]
-    if with_specs or vre:
-        head += ["value_vre", "bound_vre", "pass_vre"]
-    y = result.yields
-    if y is not None:
-        head += ["yield_value", "yield_method", "yield_interval_low", "yield_interval_high",
-                 "yield_draws"]
-    head += ["saturated", "status", "unknown", "criterion_margin", "disagrees", "reason"]
-
-    def rows() -> Iterator[list[Any]]:
-        for i, sensor in enumerate(result.sensors):
-            for j, profile in enumerate(result.profiles):
-                yield [*_csv_checks(result, sensor, profile, i, j),
-                       *_csv_specs(result, i, j, with_specs, vre),
-                       *_csv_yield(result, i, j), *_csv_verdict(result, i, j)]
-
-    return csv_text(head, rows())
+    return csv_of(selection_columns(result, csv=True), selection_cells(result),
+                  title_flags=True)
 
 
 # ------------------------------------------------------------------ human

@@ -10,6 +10,8 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api import SweepResult
+from gyrovib.presentation.frames import sweep_columns
+from gyrovib.records import in_csv, names
 from gyrovib.render.common import (
     csv_cell,
     csv_head,
@@ -73,14 +75,14 @@ def to_csv(result: SweepResult, budget: float | None = None) -> str:
 def to_csv_chunks(result: SweepResult, budget: float | None = None) -> Iterator[str]:
     """:func:`to_csv` in pieces: the header, then one piece per sensor × profile series.
 
-    Written column by column (each number ``repr`` of its float, as
+    The records are those the DataFrame declares
+    (:func:`gyrovib.presentation.frames.sweep_columns`; a test holds this writer to them),
+    written column by column (each number ``repr`` of its float, as
     :func:`~gyrovib.render.common.csv_text` writes it): the rate column is
     written once for every series, a series' sensor and profile cells once as
     its rows' common prefix, and only one series' text is held at a time.
     """
-    head = ["sensor", "profile", "rate_x3", "exact_total", "exact_rms", "paper_total",
-            "paper_rms", "saturated"]
-    yield csv_head(head)
+    yield csv_head(names(in_csv(sweep_columns(result))))
     rates = float_cells(result.rates)
     n = len(rates)
     if not n:
