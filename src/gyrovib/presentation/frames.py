@@ -350,27 +350,37 @@ def _datasheet_checks(result: SelectionResult, specs: list[bool],
         columns.append(Column("total", "rate", _float_cell(result.total),
                               frame_only=not with_specs))
     if result.nl_value is not None and (with_specs or not csv):
-        nl = (_float_cell(result.nl_value), _float_cell(result.nl_bound),
-              np.asarray(result.nl_pass, dtype=bool).tolist())
-        shown = (lambda c: specs[c[0]]) if csv else (lambda c: True)
-        columns += [
-            Column("value_nonlinearity", "%FS",
-                   lambda c: nl[0](c) if shown(c) else math.nan),
-            Column("bound_nonlinearity", "%FS",
-                   lambda c: nl[1](c) if shown(c) else math.nan),
+        columns += _nonlinearity_checks(result, specs, csv)
+    if result.vre_pass is not None and (with_specs or vre or not csv):
+        columns += _vre_checks(result, specs, csv, vre)
+    return columns
+
+
+def _nonlinearity_checks(result: SelectionResult, specs: list[bool],
+                         csv: bool) -> list[Column[Cell]]:
+    """A datasheet sensor's nonlinearity check (%FS): the CSV's cells empty on coefficient
+    rows; the frame has the values throughout and the unit on datasheet rows."""
+    value, bound = _float_cell(result.nl_value), _float_cell(result.nl_bound)
+    passed = np.asarray(result.nl_pass, dtype=bool).tolist()
+    shown = (lambda c: specs[c[0]]) if csv else (lambda c: True)
+    return [Column("value_nonlinearity", "%FS", lambda c: value(c) if shown(c) else math.nan),
+            Column("bound_nonlinearity", "%FS", lambda c: bound(c) if shown(c) else math.nan),
             Column("pass_nonlinearity", None,
-                   lambda c: nl[2][c[0]][c[1]] if specs[c[0]] else None),
+                   lambda c: passed[c[0]][c[1]] if specs[c[0]] else None),
             Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
                    frame_only=True)]
-    if result.vre_pass is not None and (with_specs or vre or not csv):
-        checked = (lambda c: specs[c[0]] or vre) if csv else (lambda c: True)
-        value, bound = _float_cell(result.vre_value), _float_cell(result.vre_bound)
-        passed = np.asarray(result.vre_pass, dtype=bool).tolist()
-        columns += [
-            Column("value_vre", None, lambda c: value(c) if checked(c) else math.nan),
+
+
+def _vre_checks(result: SelectionResult, specs: list[bool], csv: bool,
+                vre: bool) -> list[Column[Cell]]:
+    """The VRE check (docs/model.md section 8): the CSV's cells empty on a coefficient row
+    where it cannot bind (no linear vibration)."""
+    checked = (lambda c: specs[c[0]] or vre) if csv else (lambda c: True)
+    value, bound = _float_cell(result.vre_value), _float_cell(result.vre_bound)
+    passed = np.asarray(result.vre_pass, dtype=bool).tolist()
+    return [Column("value_vre", None, lambda c: value(c) if checked(c) else math.nan),
             Column("bound_vre", None, lambda c: bound(c) if checked(c) else math.nan),
             Column("pass_vre", None, lambda c: passed[c[0]][c[1]] if checked(c) else None)]
-    return columns
 
 
 def _yield_cells(result: SelectionResult, csv: bool) -> list[Column[Cell]]:
