@@ -9,6 +9,7 @@ when a frame is built.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
@@ -31,12 +32,20 @@ class Column(Generic[Row]):
     column), its ``unit`` (``None``: a name, a count, a flag) and ``value``, how to read it
     from one row (``None``: unknown, written empty in CSV, kept as None in a frame).
     ``frame_only``: a column the DataFrame has and the CSV leaves out (a list, a text the
-    JSON nests, a figure the CSV's documented header does not carry)."""
+    JSON nests, a figure the CSV's documented header does not carry). ``cell``: how the CSV
+    writes the value, where it differs from the frame (:func:`known`: a non-finite number
+    empty)."""
 
     name: str
     unit: str | None
     value: Callable[[Row], Any]
     frame_only: bool = False
+    cell: Callable[[Any], Any] | None = None
+
+
+def known(value: float) -> float | None:
+    """A finite number as it is, a non-finite one as None (unknown: an empty CSV cell)."""
+    return value if math.isfinite(value) else None
 
 
 def in_csv(columns: Sequence[Column[Row]]) -> tuple[Column[Row], ...]:

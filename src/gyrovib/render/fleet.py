@@ -4,15 +4,15 @@ and the envelope's summary of ``gyrovib profile A B …`` (keys: docs/output.md)
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import os
 from typing import TYPE_CHECKING, Any
 
 from gyrovib import units
+from gyrovib.records import Column
 from gyrovib.render import recording as one
 from gyrovib.render.common import dumps, header
+from gyrovib.render.formats import csv_of
 
 if TYPE_CHECKING:
     from gyrovib.api.fleet.envelope import Envelope
@@ -49,16 +49,14 @@ def to_json(result: RecordingsAnalysis) -> str:
 
 
 def to_csv(result: RecordingsAnalysis) -> str:
-    """One row per recording × sensor: the one-recording columns after ``recording``."""
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    for n, analysis in enumerate(result.analyses):
-        rows = list(csv.reader(io.StringIO(one.to_csv(analysis))))
-        if n == 0:
-            w.writerow(["recording", *rows[0]])
-        for row in rows[1:]:
-            w.writerow([_name(analysis), *row])
-    return buf.getvalue()
+    """One row per recording × sensor: the one-recording records after ``recording``."""
+    first = result.analyses[0].records()
+    by_name = [{c.name: c.value for c in a.records()} for a in result.analyses]
+    columns = (Column("recording", None, lambda r: _name(result.analyses[r[0]])),
+               *(Column(c.name, c.unit, lambda r, name=c.name: by_name[r[0]][name](r[1]),
+                        cell=c.cell) for c in first))
+    return csv_of(columns, [(n, i) for n, a in enumerate(result.analyses)
+                            for i in range(len(a.sensors))])
 
 
 _WORST_HEAD = ["sensor", "worst Δ_V,rec", "recording", "fitted Δ̄_V", "ratio", "saturated on"]

@@ -35,6 +35,7 @@ def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row], *,
     frame-only columns left out). A flag is ``true``/``false``, or with ``title_flags``
     ``True``/``False`` (as ``bounds``, ``select`` and ``sweep`` have always written it)."""
     written = in_csv(columns)
-    cell = _joined if title_flags else _cell
-    return csv_text(names(written), ([cell(v) for v in values]
+    default = _joined if title_flags else _cell
+    cells = [default if c.cell is None else c.cell for c in written]
+    return csv_text(names(written), ([cell(v) for cell, v in zip(cells, values, strict=True)]
                                      for values in records(written, rows)))

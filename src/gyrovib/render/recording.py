@@ -3,8 +3,6 @@
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import os
 from html import escape
@@ -15,6 +13,7 @@ import numpy as np
 from gyrovib import units
 from gyrovib.coefficients import BOUNDED
 from gyrovib.render.common import dumps, header
+from gyrovib.render.formats import csv_of
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
 if TYPE_CHECKING:
@@ -123,22 +122,10 @@ def to_json(result: RecordingAnalysis) -> str:
     return dumps(document)
 
 
-_CSV_HEAD = ["sensor", "recorded", *[f"recorded_{t}" for t in _TERMS], "recorded_g2",
-             "fitted", "fitted_rms", "ratio", "saturated", "peak_rate", "unit"]
-
-
 def to_csv(result: RecordingAnalysis) -> str:
-    """``analyze --recording --format csv``: one row per sensor (the DataFrame's columns)."""
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(_CSV_HEAD)
-    for i, sensor in enumerate(result.sensors):
-        values = [result.recorded[i], *result.terms[i].tolist(), result.g2[i], result.fitted[i],
-                  result.fitted_rms[i], result.ratio[i]]
-        w.writerow([sensor, *(repr(float(v)) if math.isfinite(v) else "" for v in values),
-                    "true" if result.saturated[i] else "false", repr(float(result.peak_rate[i])),
-                    result.unit])
-    return buf.getvalue()
+    """``analyze --recording --format csv``: one row per sensor, the result's records (the
+    DataFrame's columns)."""
+    return csv_of(result.records(), range(len(result.sensors)))
 
 
 def _table_rows(result: RecordingAnalysis) -> list[list[str]]:

@@ -14,18 +14,14 @@ from typing import TYPE_CHECKING, Any
 from rich.table import Table
 from rich.text import Text
 
-from gyrovib.render.common import csv_text, dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
+from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
+from gyrovib.render.formats import csv_of
 
 if TYPE_CHECKING:
     from gyrovib.api.runup import Estimate, RunupResult, Step
 
 UNIT = "deg/s"
-#: Columns of the CSV (one row per step, then one per estimate).
-STEP_COLUMNS = ("kind", "step", "start", "end", "duration", "baseline", "x3_rms", "accel_rms",
-                "shift", "uncertainty", "fitted", "predicted", "residual", "status",
-                "outlier", "moved")
-ESTIMATE_COLUMNS = ("kind", "name", "value", "uncertainty", "unit", "identifiable", "status",
-                    "catalogue", "catalogue_bound", "ratio", "separate")
 
 
 def _c(value: float, digits: int = 4) -> str:
@@ -76,30 +72,12 @@ def to_json(result: RunupResult) -> str:
     return dumps(doc)
 
 
-def _csv_cell(value: float) -> str:
-    return repr(float(value)) if math.isfinite(value) else ""
-
-
-def _rows(result: RunupResult) -> list[list[Any]]:
-    rows: list[list[Any]] = []
-    for s in result.steps:
-        rows.append(["step", s.index, repr(s.start), repr(s.end), repr(s.duration),
-                     str(s.baseline), _csv_cell(s.x3_rms), _csv_cell(s.accel_rms),
-                     _csv_cell(s.shift), _csv_cell(s.uncertainty), _csv_cell(s.fitted),
-                     _csv_cell(s.predicted), _csv_cell(s.residual), s.status or "",
-                     str(s.outlier), str(s.moved)])
-    return rows
-
-
 def to_csv(result: RunupResult) -> str:
-    """The steps (one row each), a blank line, then the estimates (one row each)."""
-    steps = csv_text(STEP_COLUMNS, _rows(result))
-    estimates = csv_text(ESTIMATE_COLUMNS, [
-        ["estimate", e.name, _csv_cell(e.value), _csv_cell(e.uncertainty), e.unit,
-         str(e.identifiable), e.status, _csv_cell(e.catalogue),
-         str(e.catalogue_bound), _csv_cell(e.ratio), e.separate or ""]
-        for e in result.estimates])
-    return steps + "\n" + estimates
+    """The steps (one row each), a blank line, then the estimates (one row each): the
+    records :data:`~gyrovib.api.runup.results.STEP_RECORDS` and
+    :data:`~gyrovib.api.runup.results.ESTIMATE_RECORDS` declare."""
+    return (csv_of(STEP_RECORDS, result.steps, title_flags=True) + "\n"
+            + csv_of(ESTIMATE_RECORDS, result.estimates, title_flags=True))
 
 
 def _step_cells(s: Step) -> list[str]:

@@ -14,7 +14,7 @@ import dataclasses
 import importlib.util
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -48,6 +48,7 @@ from gyrovib.core.recording import MOMENTS, recorded_error
 from gyrovib.core.transmissibility import as_table, psd_variance
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
+from gyrovib.records import Column, frame_of, known
 
 #: Defaults of the options (INTERFACE.md, third round).
 DEFAULT_CROSSOVER = 5.0
@@ -372,26 +373,32 @@ class RecordingAnalysis(Frozen):
     fit: RecordingFit
     warnings: dict[int, tuple[str, ...]]
 
-    def to_frame(self) -> Any:
-        """One row per sensor (pandas DataFrame); columns as the CSV output's."""
-        # lazy: pandas is optional (pip install 'gyrovib[pandas]')
-        import pandas as pd
+    def records(self) -> tuple[Column[int], ...]:
+        """The columns of the CSV and the DataFrame, in order, one row per sensor (its
+        index): a number that is not finite is unknown (an empty CSV cell)."""
+        def of(values: Any) -> Callable[[int], float]:
+            listed = np.asarray(values, dtype=float).tolist()
+            return lambda i: listed[i]
 
-        data: dict[str, Any] = {"sensor": list(self.sensors), "recorded": self.recorded}
-        for k, name in enumerate(MOMENTS):
-            data[f"recorded_{name}"] = self.terms[:, k]
-        data.update({"recorded_g2": self.g2, "fitted": self.fitted,
-                     "fitted_rms": self.fitted_rms, "ratio": self.ratio,
-                     "saturated": self.saturated, "peak_rate": self.peak_rate,
-                     "unit": self.unit})
-        frame = pd.DataFrame(data)
+        numbers = [("recorded", self.recorded),
+                   *((f"recorded_{m}", self.terms[:, k]) for k, m in enumerate(MOMENTS)),
+                   ("recorded_g2", self.g2), ("fitted", self.fitted),
+                   ("fitted_rms", self.fitted_rms), ("ratio", self.ratio)]
+        return (Column("sensor", None, lambda i: self.sensors[i]),
+                *(Column(name, None if name == "ratio" else "rate", of(values), cell=known)
+                  for name, values in numbers),
+                Column("saturated", None, lambda i: bool(self.saturated[i])),
+                Column("peak_rate", "rate", of(self.peak_rate)),
+                Column("unit", None, lambda i: self.unit))
+
+    def to_frame(self) -> Any:
+        """One row per sensor (pandas DataFrame): the columns of :meth:`records`."""
         fit = self.fit
-        frame.attrs.update({"unit": self.unit, "file": os.path.basename(fit.file),
-                            "topic": fit.topic, "instance": fit.instance,
-                            "sha256": fit.sha256, "samples": fit.samples, "fs": fit.fs,
-                            "crossover": fit.crossover, "segments": fit.segments,
-                            "duration": fit.duration})
-        return frame
+        return frame_of(self.records(), range(len(self.sensors)), {
+            "unit": self.unit, "file": os.path.basename(fit.file), "topic": fit.topic,
+            "instance": fit.instance, "sha256": fit.sha256, "samples": fit.samples,
+            "fs": fit.fs, "crossover": fit.crossover, "segments": fit.segments,
+            "duration": fit.duration})
 
 
 def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[str] = (),

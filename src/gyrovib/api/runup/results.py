@@ -9,9 +9,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from gyrovib.api.recordings.results import source_words
 from gyrovib.frozen import Frozen
+from gyrovib.records import Column, known
 
 #: Statuses of a step against the catalogue sensor's prediction.
 WITHIN, OUTSIDE, UNVERIFIED = "within", "outside", "unverified"
@@ -145,3 +147,40 @@ class RunupResult(Frozen):
 
 
 __all__ = ["OUTSIDE", "UNVERIFIED", "WITHIN", "Estimate", "RunupResult", "Step"]
+
+
+def _number(name: str, unit: str | None) -> Column[Any]:
+    """A figure of a row, NaN (unknown) written as an empty CSV cell."""
+    return Column(name, unit, lambda row: getattr(row, name), cell=known)
+
+
+#: The CSV's records of the steps, declared once: one row per step.
+STEP_RECORDS: tuple[Column[Step], ...] = (
+    Column("kind", None, lambda s: "step"),
+    Column("step", None, lambda s: s.index),
+    Column("start", "s", lambda s: s.start),
+    Column("end", "s", lambda s: s.end),
+    Column("duration", "s", lambda s: s.duration),
+    Column("baseline", None, lambda s: s.baseline),
+    _number("x3_rms", "deg/s"), _number("accel_rms", "g"), _number("shift", "deg/s"),
+    _number("uncertainty", "deg/s"), _number("fitted", "deg/s"),
+    _number("predicted", "deg/s"), _number("residual", "deg/s"),
+    Column("status", None, lambda s: s.status),
+    Column("outlier", None, lambda s: s.outlier),
+    Column("moved", None, lambda s: s.moved),
+)
+
+#: The CSV's records of the estimates, declared once: one row per estimate (each in the
+#: unit of its ``unit`` column).
+ESTIMATE_RECORDS: tuple[Column[Estimate], ...] = (
+    Column("kind", None, lambda e: "estimate"),
+    Column("name", None, lambda e: e.name),
+    _number("value", None), _number("uncertainty", None),
+    Column("unit", None, lambda e: e.unit),
+    Column("identifiable", None, lambda e: e.identifiable),
+    Column("status", None, lambda e: e.status),
+    _number("catalogue", None),
+    Column("catalogue_bound", None, lambda e: e.catalogue_bound),
+    _number("ratio", None),
+    Column("separate", None, lambda e: e.separate),
+)
