@@ -9,10 +9,8 @@ import click
 from gyrovib.cli.common import (
     load_catalog,
     note_slow_table,
-    page_width,
-    plain_ascii,
+    rendered,
     say,
-    use_color,
 )
 from gyrovib.cli.options import (
     SAMPLES_MAX,
@@ -109,19 +107,10 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
                             rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
                             seed=seed, progress=advance, peak_factor=peak_factor)
     if is_triad(result):
-        write_triad(result, lambda r: render.to_table(r, color=use_color(output),
-                                                      width=page_width(output),
-                                                      ascii=plain_ascii(output))
-                    if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
-                                            "markdown": render.to_markdown}[fmt](r),
-                    fmt, output)
+        write_triad(result, lambda r: rendered(render, r, fmt, output), fmt, output)
         return
     for note in result.notes:
         say(f"gyrovib: warning: {note}")
     if fmt == "table":
         note_slow_table(len(result.sensors) * len(result.profiles))
-        write_output(render.to_table(result, color=use_color(output), width=page_width(output),
-                                     ascii=plain_ascii(output), detail=detail), output)
-        return
-    renderers = {"json": render.to_json, "csv": render.to_csv, "markdown": render.to_markdown}
-    write_output(renderers[fmt](result), output)
+    write_output(rendered(render, result, fmt, output, detail=detail), output)

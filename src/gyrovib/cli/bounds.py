@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from gyrovib.cli.common import load_catalog, page_width, plain_ascii, use_color
+from gyrovib.cli.common import load_catalog, rendered
 from gyrovib.cli.options import (
     budget_arguments,
     budget_options,
@@ -62,14 +62,7 @@ def bounds(files: tuple[str, ...], profiles: tuple[str, ...], budget: str, metho
                         nl_measure=nl_measure, nl_of=nl_of,
                         spec_weights=parse_spec_weights(spec_weights))
 
-    def draw(one: api.BoundsResult) -> str:
-        if fmt == "table":
-            return render.to_table(one, color=use_color(output), width=page_width(output),
-                                   ascii=plain_ascii(output))
-        return {"json": render.to_json, "csv": render.to_csv,
-                "markdown": render.to_markdown}[fmt](one)
-
     if is_triad(result):
-        write_triad(result, draw, fmt, output)
+        write_triad(result, lambda one: rendered(render, one, fmt, output), fmt, output)
         return
-    write_output(draw(result), output)
+    write_output(rendered(render, result, fmt, output), output)

@@ -229,10 +229,14 @@ def _read_stdin() -> bytes:
     return str(stream.read(MAX_FILE_BYTES + 1)).encode("utf-8")
 
 
-def rendered(render: Any, result: Any, fmt: str, output: str | None = None) -> Any:
+def rendered(render: Any, result: Any, fmt: str, output: str | None = None, *args: Any,
+             **table: Any) -> Any:
     """The document of ``result`` in ``fmt`` from a renderer module's ``to_FORMAT``
-    functions; a table is sized and coloured for where it goes (``output``)."""
+    functions (``to_FORMAT_chunks`` where it streams the document in pieces), each given
+    ``args`` after the result; a table is sized and coloured for where it goes
+    (``output``) and given the ``table`` keywords."""
     if fmt == "table":
-        return render.to_table(result, color=use_color(output), width=page_width(output),
-                               ascii=plain_ascii(output))
-    return getattr(render, f"to_{fmt}")(result)
+        return render.to_table(result, *args, color=use_color(output), width=page_width(output),
+                               ascii=plain_ascii(output), **table)
+    chunks = getattr(render, f"to_{fmt}_chunks", None)
+    return (chunks or getattr(render, f"to_{fmt}"))(result, *args)

@@ -7,6 +7,7 @@ from typing import Any, TypeVar
 
 import click
 
+from gyrovib.cli.common import rendered
 from gyrovib.cli.output import write_output
 from gyrovib.errors import OptionError
 
@@ -137,16 +138,12 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
         if fmt != "table" or output is not None:  # the table on the terminal lists them itself
             for warning in result.fit.warnings:
                 click.echo(f"gyrovib: warning: {warning}", err=True)
-        renderers = {"table": render.to_table, "json": render.to_json, "csv": render.to_csv,
-                     "markdown": render.to_markdown}
-        write_output(renderers[fmt](result), output)
+        write_output(rendered(render, result, fmt, output), output)
         return
 
     many = analyze_recordings(paths, catalog, step_options(options),
                               sensors=sensors, unit=unit, jobs=jobs)
-    many_renderers = {"table": render_many.to_table, "json": render_many.to_json,
-                      "csv": render_many.to_csv, "markdown": render_many.to_markdown}
-    write_output(many_renderers[fmt](many), output)
+    write_output(rendered(render_many, many, fmt, output), output)
 
 
 def refuse_with_recording(**given: Any) -> None:

@@ -11,10 +11,8 @@ from gyrovib.cli.common import (
     github_errors,
     load_catalog,
     note_slow_table,
-    page_width,
-    plain_ascii,
+    rendered,
     say,
-    use_color,
 )
 from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
@@ -114,10 +112,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
                         peak_factor=peak_factor, assume_unknown=assume_unknown or "none",
                         yield_target=yield_target, seed=seed, draws=draws)
     if is_triad(result):  # table, json, csv or markdown, per axis, and the worst axes
-        write_triad(result, lambda one: render.to_table(
-            one, color=use_color(output), width=page_width(output), ascii=plain_ascii(output))
-            if fmt == "table" else {"json": render.to_json, "csv": render.to_csv,
-                                    "markdown": render.to_markdown}[fmt](one), fmt, output)
+        write_triad(result, lambda one: rendered(render, one, fmt, output), fmt, output)
         if not result.requirement_met:
             ctx.exit(1)
         return
@@ -135,7 +130,8 @@ for _param in select.params:  # --budget is not needed with --mission --angle-bu
 
 
 def _rendered(result: Any, fmt: str, catalog: Any, output: str | None) -> str | Iterator[str]:
-    """The selection in ``fmt``; the JSON document is streamed, never whole at once."""
+    """The selection in ``fmt``; the JSON document is streamed (``to_json_chunks``), never
+    whole at once."""
     # lazy: the library and the renderers load when it runs, not for --help
     from gyrovib import api
     from gyrovib.render import select as render
@@ -143,11 +139,6 @@ def _rendered(result: Any, fmt: str, catalog: Any, output: str | None) -> str | 
 
     if fmt == "table":  # a matrix row per sensor, then its ranking or what limits it
         note_slow_table(2 * len(result.sensors))
-        return render.to_table(result, color=use_color(output), width=page_width(output),
-                               ascii=plain_ascii(output))
-    if fmt in ("github", "junit"):  # the CI formats
-        return (select_ci.to_github(result, api.sensor_locations(catalog, result.sensors))
-                if fmt == "github" else select_ci.to_junit(result))
-    if fmt == "json":
-        return render.to_json_chunks(result)
-    return {"csv": render.to_csv, "markdown": render.to_markdown}[fmt](result)
+    if fmt == "github":  # the CI formats
+        return select_ci.to_github(result, api.sensor_locations(catalog, result.sensors))
+    return rendered(select_ci if fmt == "junit" else render, result, fmt, output)

@@ -8,10 +8,8 @@ from gyrovib import units
 from gyrovib.cli.common import (
     load_catalog,
     note_slow_table,
-    page_width,
-    plain_ascii,
+    rendered,
     say,
-    use_color,
 )
 from gyrovib.cli.options import (
     budget_unit_option,
@@ -103,12 +101,8 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
     if is_triad(result):
         if plot is not None:
             raise OptionError("--plot draws one placement: give --placement x1=..,x2=..,x3=..")
-        write_triad(result, lambda r: render.to_table(r, budget_value, width=page_width(output),
-                                                      color=use_color(output),
-                                                      ascii=plain_ascii(output))
-                    if fmt == "table" else {"json": render.to_json,
-                                            "csv": render.to_csv_chunks}[fmt](r, budget_value),
-                    fmt, output)
+        write_triad(result, lambda r: rendered(render, r, fmt, output, budget_value), fmt,
+                    output)
         return
     if result.paper_refused:
         listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
@@ -123,9 +117,4 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
             write_binary(envelope, envelope_path(plot))
     if fmt == "table":  # a table per sensor × profile, a row per rate
         note_slow_table(len(result.sensors) * len(result.profiles) * len(result.rates))
-        write_output(render.to_table(result, budget_value, width=page_width(output),
-                                     color=use_color(output),
-                                     ascii=plain_ascii(output)), output)
-        return
-    renderers = {"json": render.to_json, "csv": render.to_csv_chunks}
-    write_output(renderers[fmt](result, budget_value), output)
+    write_output(rendered(render, result, fmt, output, budget_value), output)

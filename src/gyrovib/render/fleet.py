@@ -76,8 +76,10 @@ def _worst_rows(result: RecordingsAnalysis) -> list[list[str]]:
     return rows
 
 
-def to_table(result: RecordingsAnalysis) -> str:
-    """Each recording's table and honesty table, then each sensor's worst recording."""
+def to_table(result: RecordingsAnalysis, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """Each recording's table and honesty table, then each sensor's worst recording (plain
+    text: ``width``, ``color`` and ``ascii`` are not used)."""
     n = len(result.analyses)
     parts = [f"recording {i + 1} of {n}: {_name(a)}\n{one.to_table(a)}"
              for i, a in enumerate(result.analyses)]

@@ -138,8 +138,11 @@ def _table_rows(result: RecordingAnalysis) -> list[list[str]]:
 _HEAD = ["sensor", "Δ_V,rec", "fitted Δ̄_V", "ratio", "peak |ω3|", "saturated"]
 
 
-def to_table(result: RecordingAnalysis) -> str:
-    """``analyze --recording`` as a plain-text table, the honesty table after it."""
+def to_table(result: RecordingAnalysis, width: int | None = None, color: bool = False,
+             ascii: bool = False) -> str:
+    """``analyze --recording`` as a plain-text table, the honesty table after it (plain
+    text whatever the terminal: ``width``, ``color`` and ``ascii`` are the other tables'
+    keywords, not used)."""
     rows = [_HEAD, *_table_rows(result)]
     widths = [max(len(r[k]) for r in rows) for k in range(len(_HEAD))]
     out = [f"recorded error Δ_V,rec and the fitted mission's closed form, {result.unit}"]
