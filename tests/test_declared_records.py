@@ -1,6 +1,9 @@
 """A result that declares its records (gyrovib/records.py: Column) gets its CSV header and
 cells (render/formats.py) and its DataFrame columns from that one declaration: they cannot
-drift apart, and a column moved in the declaration moves in both."""
+drift apart, and a column moved in the declaration moves in both. Every result with a CSV
+is checked here (analyze, mission, bounds, select, sweep, fit, a recording, runup); the
+expected cells are the frame's own values, written as docs/output.md says a CSV writes
+them."""
 
 from __future__ import annotations
 
@@ -86,3 +89,135 @@ def test_analyze_csv_and_frame_come_from_one_declaration(kwargs: dict) -> None:
     assert in_csv == table[0]  # the CSV's columns are the frame's, in the frame's order
     assert len(table) - 1 == len(frame) == len(result.sensors) * len(result.profiles)
     assert ("stderr" in table[0]) == ("method" in kwargs)  # the probe sees the numeric case
+
+
+# ---------------------------------------------------------------- every declared result
+
+def _frame_and_csv_agree(columns, rows, frame, text: str) -> int:
+    """The CSV's header is the declaration less its frame-only columns, the frame's
+    columns the whole declaration, in order; each CSV cell is its frame value as the
+    column writes it (a number as its repr, unknown empty, a flag true/false or
+    True/False). Returns how many cells were compared."""
+    from gyrovib.records import in_csv
+
+    table = _csv(text)
+    assert tuple(table[0]) == names(in_csv(columns))
+    assert tuple(frame.columns) == names(columns)
+    assert len(table) - 1 == len(rows) == len(frame)
+    compared = 0
+    for k, cells in enumerate(table[1:]):
+        for column, cell in zip(in_csv(columns), cells, strict=True):
+            value = frame[column.name].iloc[k]
+            shown = column.cell(value) if column.cell is not None else value
+            if shown is None or (isinstance(shown, float) and np.isnan(shown)):
+                assert cell == "", column.name
+            elif isinstance(shown, (bool, np.bool_)):
+                assert cell.lower() == str(bool(shown)).lower(), column.name
+            elif isinstance(shown, float):
+                assert cell == repr(float(shown)), column.name
+            elif isinstance(shown, (list, tuple)):
+                assert cell in (" ".join(shown), "; ".join(shown)), column.name
+            else:
+                assert cell == str(shown), column.name
+            compared += 1
+    return compared
+
+
+def test_bounds_csv_and_frame_come_from_one_declaration() -> None:
+    from gyrovib.presentation.frames import bounds_columns
+    from gyrovib.render import bounds as render_bounds
+
+    result = gyrovib.bounds(budget="10deg/h", range_=100)
+    columns = bounds_columns(result)
+    assert "spec_vre" in names(columns) and "vre" in names(columns)  # the --range probe
+    assert _frame_and_csv_agree(columns, range(len(result.profiles)), result.to_frame(),
+                                render_bounds.to_csv(result)) > 100
+
+
+@pytest.mark.parametrize("kwargs", [{"budget": "10deg/h", "criterion": "both"},
+                                    {"budget": "1deg/h", "profiles": "engine-harmonics",
+                                     "assume_unknown": "zero"},
+                                    {"budget": "10deg/h", "profiles": "flat-random-hover"}])
+def test_select_csv_and_frame_come_from_one_declaration(kwargs: dict) -> None:
+    # the frame's values and the CSV's may differ only where the declaration says so
+    # (selection_columns(csv=...): lists joined, cells a datasheet row has no check for
+    # left empty); everything else is one value
+    from gyrovib.presentation.frames import selection_cells, selection_columns
+    from gyrovib.records import in_csv
+    from gyrovib.render import select as render_select
+
+    result = gyrovib.select(**kwargs)
+    frame = result.to_frame()
+    csv_columns = selection_columns(result, csv=True)
+    table = _csv(render_select.to_csv(result))
+    assert tuple(table[0]) == names(in_csv(csv_columns))
+    assert tuple(frame.columns) == names(selection_columns(result, csv=False))
+    assert [c for c in frame.columns if c in table[0]] == table[0]  # the frame's order
+    assert len(table) - 1 == len(frame) == len(selection_cells(result))
+    # the probe meets datasheet sensors (their checks) and the VRE check
+    assert "value_nonlinearity" in table[0] and "pass_vre" in frame.columns
+
+
+def test_sweep_csv_writer_and_frame_are_the_declaration() -> None:
+    # sweep's CSV is written column by column for speed: it must equal the generic writer
+    # over the declaration, byte for byte (the paper refuses engine-harmonics: empty cells)
+    from gyrovib.presentation.frames import sweep_cells, sweep_columns
+    from gyrovib.render import sweep as render_sweep
+
+    result = gyrovib.sweep(rates=(-10, 10), points=5)
+    assert result.paper_refused  # the probe has refused cells
+    columns, rows = sweep_columns(result), sweep_cells(result)
+    text = render_sweep.to_csv(result)
+    assert text == csv_of(columns, rows, title_flags=True)
+    assert _frame_and_csv_agree(columns, rows, result.to_frame(), text) > 100
+
+
+def test_fit_csv_and_frame_come_from_one_declaration() -> None:
+    from pathlib import Path
+
+    from gyrovib.api.commands.fit import fit
+    from gyrovib.render import fit as render_fit
+
+    table = Path(__file__).resolve().parent.parent / "docs" / "examples" / "rate-table-gx100.csv"
+    result = fit(table)
+    assert len(result.units) > 1  # a lot: several units' rows
+    assert _frame_and_csv_agree(result.records(), result.rows(), result.to_frame(),
+                                render_fit.to_csv(result)) > 50
+
+
+def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
+    pytest.importorskip("scipy.signal")
+    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.reading import read_recording
+    from gyrovib.render import recording as render_recording
+
+    # a synthetic rate log (noise and a 31.3 Hz tone on a slow carrier), no accelerometer:
+    # the recorded terms are unknown, written empty
+    fs, n = 250.0, 7500
+    t = np.arange(n) / fs
+    rate = np.random.default_rng(1).normal(0.0, 0.2, (n, 3))
+    rate += np.outer(np.sin(2 * np.pi * 31.3 * t), (0.2, 0.2, 0.4))
+    rate[:, 2] += 2.0 + np.sin(2 * np.pi * 0.05 * t)
+    np.save(tmp_path / "log.npy", rate)
+    result = analyze_recording(read_recording(str(tmp_path / "log.npy"), fs=fs),
+                               gyrovib.load())
+    assert _frame_and_csv_agree(result.records(), range(len(result.sensors)),
+                                result.to_frame(), render_recording.to_csv(result)) > 50
+
+
+def test_runup_csv_sections_are_the_declarations() -> None:
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
+    from gyrovib.cli.main import cli
+
+    example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "runup-quad.npz"
+    done = CliRunner().invoke(cli, ["runup", str(example), "--fs", "200", "--accel-columns",
+                                    "ax,ay,az", "--estimate", "k2,vre", "--format", "csv"])
+    assert done.exit_code in (0, 1), done.output
+    steps, estimates = done.stdout.split("\n\n")
+    assert tuple(_csv(steps)[0]) == names(STEP_RECORDS)
+    assert tuple(_csv(estimates)[0]) == names(ESTIMATE_RECORDS)
+    assert len(_csv(estimates)) == 3  # k2 and vre
