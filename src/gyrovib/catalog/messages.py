@@ -309,7 +309,7 @@ _BOUND_WORDS = {">": "must be greater than", ">=": "must not be less than",
                 "<": "must be less than", "<=": "must not be greater than"}
 
 
-def _bound(e: Error, prefix: str, at: str, text: str | None) -> str:
+def _bound_text(e: Error, prefix: str, at: str, text: str | None) -> str:
     op, bound = e.ctx["op"], e.ctx["bound"]
     shown = int(bound) if float(bound).is_integer() and abs(bound) < 1e7 else f"{bound:g}"
     what = f"{_BOUND_WORDS[op]} {shown}"
@@ -347,7 +347,7 @@ def _rule(e: Error, prefix: str, at: str, text: str | None) -> str:
 _KINDS: dict[str, Callable[[Error, str, str, str | None], str]] = {
     "unknown_key": _unknown_key, "bad_key": _bad_key, "missing": _missing,
     "version": _version, "too_few": _too_few, "too_many": _too_many, "finite": _finite,
-    "type": _type, "bound": _bound, "id_pattern": _id_pattern, "id_empty": _id_empty,
+    "type": _type, "bound": _bound_text, "id_pattern": _id_pattern, "id_empty": _id_empty,
     "text_long": _text_long, "choice": _choice, "rule": _rule,
 }
 

@@ -141,4 +141,6 @@ def _rendered(result: Any, fmt: str, catalog: Any, output: str | None) -> str | 
         note_slow_table(2 * len(result.sensors))
     if fmt == "github":  # the CI formats
         return select_ci.to_github(result, api.sensor_locations(catalog, result.sensors))
-    return rendered(select_ci if fmt == "junit" else render, result, fmt, output)
+    text: str | Iterator[str] = rendered(select_ci if fmt == "junit" else render, result,
+                                         fmt, output)
+    return text

@@ -331,10 +331,11 @@ def _householder(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray 
     """R (p × p) and Qᵀv of the QR factorisation of X, by Householder QR of [X | v] block by
     block: R of [R_previous; block] is R of every row so far. Householder QR does not
     depend on the scale of the columns, so X is normalised afterwards, on R."""
-    r = np.zeros((0, 0))
+    r: FloatArray = np.zeros((0, 0))
     for rows, values in _blocks(rate, v, order, cross, scaling):
         block = np.vstack([rows, values]).T
-        r = np.linalg.qr(block if r.size == 0 else np.vstack([r, block]), mode="r")
+        stacked = block if r.size == 0 else np.vstack([r, block])
+        r = np.asarray(np.linalg.qr(stacked, mode="r"), dtype=float)  # mode "r": R alone
     p = r.shape[1] - 1
     return r[:p, :p], r[:p, p]
 
@@ -373,7 +374,7 @@ def _cholesky_qr(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray 
         return None
     if not (np.all(np.isfinite(r2)) and np.linalg.norm(gram2 - np.eye(p)) < 1e-2):
         return None
-    return (r2 @ r1) * diagonal, np.linalg.solve(r2.T, moment)
+    return np.asarray((r2 @ r1) * diagonal, dtype=float), np.linalg.solve(r2.T, moment)
 
 
 def _factor(rate: FloatArray, v: FloatArray, order: int, cross: FloatArray | None,

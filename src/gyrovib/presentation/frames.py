@@ -106,9 +106,25 @@ def _of_cell(values: list[Any], k: int | None = None) -> Callable[[Cell], Any]:
     return lambda c: values[c[0]][c[1]][k]
 
 
-def _of_profile(values: list[Any], k: int) -> Callable[[Cell], Any]:
-    """Read a (profiles, k) nested list at a row's profile."""
-    return lambda c: values[c[1]][k]
+def _of_profile(values: list[Any], k: int,
+                profile: Callable[[Any], int] = lambda c: c[1]) -> Callable[[Any], Any]:
+    """Read a (profiles, k) nested list at a row's profile (``profile``: where the row
+    keeps it)."""
+    return lambda c: values[profile(c)][k]
+
+
+def _of_profile_row(read: Callable[[int], Any]) -> Callable[[Cell], Any]:
+    """A per-profile column read at a sensor × profile row."""
+    return lambda c: read(c[1])
+
+
+def _constant(value: Any) -> Callable[[Any], Any]:
+    """The same value on every row."""
+    return lambda _: value
+
+
+def _always(_: Cell) -> bool:
+    return True
 
 
 def analysis_columns(result: AnalysisResult, *, csv: bool) -> tuple[Column[Cell], ...]:
@@ -234,13 +250,13 @@ def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
     columns: list[Column[int]] = [
         Column("profile", None, lambda j: result.profiles[j]),
-        *(Column(f"rate_{axis}", "rate", lambda j, k=k: rates[j][k])
+        *(Column(f"rate_{axis}", "rate", _of_profile(rates, k, lambda j: j))
           for k, axis in enumerate(AXES)),
         *_limit_columns(b, result.unit)]
     sb = result.spec_bounds
     if sb is not None:  # bounds --range: the allowable datasheet figures
         columns += [Column("spec_nonlinearity", "%FS", _of_row(sb.nonlinearity)),
-                    *(Column(f"spec_nonlinearity_{key}", None, lambda j, v=value: v,
+                    *(Column(f"spec_nonlinearity_{key}", None, _constant(value),
                              frame_only=True)
                       for key, value in (("unit", "%FS"), ("fit", sb.fit),
                                          ("measure", sb.measure), ("of", sb.of),
@@ -311,8 +327,7 @@ def selection_columns(result: SelectionResult, *, csv: bool) -> tuple[Column[Cel
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
     columns += [Column(f"rate_{axis}", "rate", _of_profile(rates, k), frame_only=True)
                 for k, axis in enumerate(AXES)]
-    columns += [Column(c.name, c.unit, lambda cell, read=c.value: read(cell[1]),
-                       frame_only=True)
+    columns += [Column(c.name, c.unit, _of_profile_row(c.value), frame_only=True)
                 for c in _limit_columns(result.profile_bounds, result.unit, "profile_bounds_",
                                         "profile_parts_")]
     return tuple(columns)
@@ -344,8 +359,8 @@ def _datasheet_checks(result: SelectionResult, specs: list[bool],
     cells are empty where a row has no such check."""
     with_specs = "specs" in result.sources
     vre = result.has_linear and result.vre_pass is not None
-    columns = [Column("source", None, lambda c: result.source(c[0]),
-                      frame_only=not with_specs)]
+    columns: list[Column[Cell]] = [Column("source", None, lambda c: result.source(c[0]),
+                                          frame_only=not with_specs)]
     if result.total is not None:
         columns.append(Column("total", "rate", _float_cell(result.total),
                               frame_only=not with_specs))
@@ -362,7 +377,7 @@ def _nonlinearity_checks(result: SelectionResult, specs: list[bool],
     rows; the frame has the values throughout and the unit on datasheet rows."""
     value, bound = _float_cell(result.nl_value), _float_cell(result.nl_bound)
     passed = np.asarray(result.nl_pass, dtype=bool).tolist()
-    shown = (lambda c: specs[c[0]]) if csv else (lambda c: True)
+    shown: Callable[[Cell], bool] = (lambda c: specs[c[0]]) if csv else _always
     return [Column("value_nonlinearity", "%FS", lambda c: value(c) if shown(c) else math.nan),
             Column("bound_nonlinearity", "%FS", lambda c: bound(c) if shown(c) else math.nan),
             Column("pass_nonlinearity", None,
@@ -375,7 +390,7 @@ def _vre_checks(result: SelectionResult, specs: list[bool], csv: bool,
                 vre: bool) -> list[Column[Cell]]:
     """The VRE check (docs/model.md section 8): the CSV's cells empty on a coefficient row
     where it cannot bind (no linear vibration)."""
-    checked = (lambda c: specs[c[0]] or vre) if csv else (lambda c: True)
+    checked: Callable[[Cell], bool] = (lambda c: specs[c[0]] or vre) if csv else _always
     value, bound = _float_cell(result.vre_value), _float_cell(result.vre_bound)
     passed = np.asarray(result.vre_pass, dtype=bool).tolist()
     return [Column("value_vre", None, lambda c: value(c) if checked(c) else math.nan),
@@ -390,8 +405,9 @@ def _yield_cells(result: SelectionResult, csv: bool) -> list[Column[Cell]]:
     if y is None:
         return []
     value, low, high = (_float_cell(a) for a in (y.value, y.low, y.high))
-    lot = (lambda c: y.is_lot(c[0])) if csv else (lambda c: True)
-    interval = (lambda c: lot(c) and y.method != "exact") if csv else lot
+    lot: Callable[[Cell], bool] = (lambda c: y.is_lot(c[0])) if csv else _always
+    interval: Callable[[Cell], bool] = ((lambda c: lot(c) and y.method != "exact") if csv
+                                        else lot)
     return [
         Column("yield_value", None, lambda c: value(c) if lot(c) else math.nan),
         Column("yield_method", None, lambda c: y.method if y.is_lot(c[0]) else None),

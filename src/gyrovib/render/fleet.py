@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from gyrovib import units
@@ -48,13 +49,19 @@ def to_json(result: RecordingsAnalysis) -> str:
     return dumps(document)
 
 
+def _in_recording(by_name: list[dict[str, Callable[[int], Any]]],
+                  name: str) -> Callable[[tuple[int, int]], Any]:
+    """Column ``name`` of a (recording, sensor) row, read from that recording's records."""
+    return lambda r: by_name[r[0]][name](r[1])
+
+
 def to_csv(result: RecordingsAnalysis) -> str:
     """One row per recording × sensor: the one-recording records after ``recording``."""
     first = result.analyses[0].records()
     by_name = [{c.name: c.value for c in a.records()} for a in result.analyses]
     columns = (Column("recording", None, lambda r: _name(result.analyses[r[0]])),
-               *(Column(c.name, c.unit, lambda r, name=c.name: by_name[r[0]][name](r[1]),
-                        cell=c.cell) for c in first))
+               *(Column(c.name, c.unit, _in_recording(by_name, c.name), cell=c.cell)
+                 for c in first))
     return csv_of(columns, [(n, i) for n, a in enumerate(result.analyses)
                             for i in range(len(a.sensors))])
 

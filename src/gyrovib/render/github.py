@@ -65,7 +65,8 @@ def capped(items: Sequence[Item], limit: int = GITHUB_LIMIT,
     ``rank`` (the worst; by default the first) are kept, and one closing notice,
     which takes one of the notices' places, says how many were left out.
     """
-    order = list(rank) if rank is not None else list(range(len(items)))
+    order = [float(r) for r in rank] if rank is not None else [float(k) for k in
+                                                                 range(len(items))]
     counts = {level: sum(1 for item in items if item[4] == level) for level in LEVELS}
     if all(n <= limit for n in counts.values()):
         return list(items), []

@@ -23,7 +23,8 @@ from gyrovib import units
 from gyrovib.api.report.views import TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
 from gyrovib.presentation.reasons import unknown_label
-from gyrovib.render.analysis import cells_text, grouped_warnings, worst_case_text
+from gyrovib.render.analysis_cells import cells_text, grouped_warnings
+from gyrovib.render.analysis_table import worst_case_text
 from gyrovib.render.bounds import shares_text
 from gyrovib.render.common import fmt
 from gyrovib.render.report_spectrum import spectrum_charts, spectrum_text

@@ -16,7 +16,7 @@ from gyrovib.core.synthesis import BOUNDED
 from gyrovib.presentation.frames import selection_cells, selection_columns
 from gyrovib.presentation.reasons import failures as _failures
 from gyrovib.presentation.reasons import reason, saturation_text, unknown_label, yield_text
-from gyrovib.render.analysis import SATURATED_MARK
+from gyrovib.render.analysis_cells import SATURATED_MARK
 from gyrovib.render.bounds import (
     coefficient_unit,
     profiles_json,

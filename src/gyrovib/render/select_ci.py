@@ -11,7 +11,7 @@ import numpy as np
 
 from gyrovib.api import SelectionResult
 from gyrovib.render.common import fmt
-from gyrovib.render.github import annotations
+from gyrovib.render.github import annotations as github_annotations
 from gyrovib.render.select import (
     _CRITERION,
     _margin,
@@ -107,7 +107,7 @@ def to_github(
                       + " | ".join(reasons), "error"))
     items.append((None, None, "gyrovib select", _summary(result), "notice"))
     rank.append(-math.inf)  # the summary is always shown
-    return annotations(items, rank=rank)
+    return github_annotations(items, rank=rank)
 
 
 def _not_recorded(result: SelectionResult, i: int) -> bool:

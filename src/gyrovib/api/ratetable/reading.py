@@ -462,9 +462,9 @@ def parse_rate_table(text: str, name: str, rate_unit: str = "deg/s",
     header = table.header
     assert header is not None
     axes = tuple(i for i in (1, 2) if f"rate_x{i}" in header.columns)
-    lines, columns = table.grouped()
+    unit_lines, columns = table.grouped()  # per unit: its line numbers, its values
     cross = [np.stack([columns[f"rate_x{i}"][k] for i in axes], axis=1) if axes else None
-             for k in range(len(lines))]
+             for k in range(len(unit_lines))]
     return RateTable(
         file=name,
         rate_unit=unit,
@@ -474,6 +474,6 @@ def parse_rate_table(text: str, name: str, rate_unit: str = "deg/s",
         output=tuple(columns["output"]),
         cross=tuple(cross),
         cross_axes=axes,
-        lines=tuple(lines),
+        lines=tuple(unit_lines),
         unit_column="unit" in header.columns,
     )
