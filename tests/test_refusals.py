@@ -100,5 +100,43 @@ def test_a_method_refusal_is_structured_and_located(write):
                             "vibration, not 2 tones")
     (problem,) = error.problems
     assert (problem.file, problem.line, problem.column) == (str(path), 8, 9)
-    assert problem.message == f"profile 'two': {error.reason}; use --method exact, or choose " \
-                              "other profiles with --profile"
+    # the library names its arguments; the command line, from the same problem, its options
+    assert problem.message == f"profile 'two': {error.reason}; use method exact, or choose " \
+                              "other profiles with profiles"
+    from gyrovib.cli.options import as_option
+
+    (worded,) = as_option(error).problems
+    assert (worded.file, worded.line, worded.column) == (str(path), 8, 9)
+    assert worded.message == f"profile 'two': {error.reason}; use --method exact, or choose " \
+                             "other profiles with --profile"
+
+
+def test_a_recording_error_names_the_argument_and_the_command_line_the_option(run, tmp_path):
+    # a CSV recording with no time column and no sample rate: the library asks for its
+    # argument fs, the command line for the option --fs, in the same located message
+    from gyrovib.api.recordings.located import RecordingError
+    from gyrovib.api.recordings.reading import read_recording
+
+    path = tmp_path / "log.csv"
+    path.write_text("gx,gy,gz\n" + "0.1,0.2,0.3\n" * 64, encoding="utf-8")
+    with pytest.raises(RecordingError) as info:
+        read_recording(str(path))
+    (problem,) = info.value.problems
+    assert problem.message.endswith("give the sample rate with fs HZ")
+    assert "--" not in problem.message
+    result = run("profile", str(path))
+    assert result.exit_code == 2
+    assert result.output.startswith(f"{path}: ") and "give the sample rate with --fs HZ" in \
+        result.output, result.output
+
+
+def test_a_rate_table_error_names_the_argument(run, tmp_path):
+    from gyrovib.api.ratetable.reading import RateTableError, output_unit_label
+
+    with pytest.raises(RateTableError) as info:
+        output_unit_label("x" * 40)
+    assert str(info.value).startswith("output_unit 'xxx")
+    table = tmp_path / "t.csv"
+    table.write_text("unit,rate,output\na,1,1\n", encoding="utf-8")
+    result = run("fit", str(table), "--output-unit", "x" * 40)
+    assert result.exit_code == 2 and "--output-unit 'xxx" in result.output, result.output

@@ -25,6 +25,25 @@ class Problem(Frozen):
     file: str | None = None
     line: int | None = None
     column: int | None = None
+    #: The message with each argument it names written ``{name}``, and those arguments
+    #: (:meth:`naming`): the command line words them as its options.
+    template: str | None = None
+    arguments: tuple[str, ...] = ()
+
+    @classmethod
+    def naming(cls, template: str, arguments: tuple[str, ...], file: str | None = None,
+               line: int | None = None, column: int | None = None) -> Problem:
+        """A problem whose message names library ``arguments``, each written ``{name}`` in
+        ``template``: the library's message names them as they are (``fs``), the command
+        line's as its options (:meth:`worded`)."""
+        return cls(fill(template, arguments, str), file, line, column, template, arguments)
+
+    def worded(self, name: Callable[[str], str]) -> Problem:
+        """The problem with each argument it names written by ``name`` (an option)."""
+        if self.template is None:
+            return self
+        return Problem(fill(self.template, self.arguments, name), self.file, self.line,
+                       self.column)
 
     def __str__(self) -> str:
         if self.file is None:
@@ -32,6 +51,14 @@ class Problem(Frozen):
         if self.line is None:
             return f"{self.file}: {self.message}"
         return f"{self.file}:{self.line}:{self.column or 1}: {self.message}"
+
+
+def fill(template: str, arguments: tuple[str, ...], name: Callable[[str], str]) -> str:
+    """``template`` with each of ``arguments`` written ``{argument}`` replaced by
+    ``name(argument)``; any other brace is the user's text, kept."""
+    for argument in arguments:
+        template = template.replace("{" + argument + "}", name(argument))
+    return template
 
 
 class GyrovibError(Exception):
@@ -79,9 +106,7 @@ class OptionError(GyrovibError):
         ``head``: after the argument and its value, ``NAME=VALUE: reason``."""
         if self.template is None:
             return self.problems[0].message if self.problems else ""
-        reason = self.template
-        for other in self.others:  # only these: any other brace is the user's text
-            reason = reason.replace("{" + other + "}", name(other))
+        reason = fill(self.template, self.others, name)
         if not head or self.argument is None:
             return reason
         who = name(self.argument)

@@ -33,10 +33,13 @@ def flag(argument: str) -> str:
 
 def as_option(exc: GyrovibError) -> GyrovibError:
     """A library error that names arguments, worded with the options that set them
-    (``samples=10: …`` → ``--samples 10: …``); any other error as it is."""
-    if not isinstance(exc, OptionError) or exc.template is None:
+    (``samples=10: …`` → ``--samples 10: …``, a located problem's ``{fs}`` → ``--fs``);
+    any other error as it is. The one place arguments become options."""
+    if isinstance(exc, OptionError) and exc.template is not None:
+        return OptionError(exc.worded(flag, head=True))
+    if not any(p.template is not None for p in exc.problems):
         return exc
-    return OptionError(exc.worded(flag, head=True))
+    return GyrovibError(tuple(p.worded(flag) for p in exc.problems))
 
 
 #: Where ``--bundled`` leaves its choice for :func:`gyrovib.cli.common.load_catalog`.

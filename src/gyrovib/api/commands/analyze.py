@@ -248,8 +248,8 @@ def _refuse_unknown_phases(prepared: Prepared) -> None:
     problems = [
         profile_problem(p, f"profile {p.profile.id!r}: the numeric method averages one "
                            "waveform and needs the phases of every order; 'phase: worst' "
-                           "is searched by --method exact (its worst_phases give phases "
-                           "to write in)")
+                           "is searched by {method} exact (its worst_phases give phases "
+                           "to write in)", ("method",))
         for j, p in enumerate(prepared.profiles)
         if any(g.worst.any() for group in prepared.groups for g in group.locked[j])]
     if problems:

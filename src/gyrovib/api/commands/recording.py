@@ -85,9 +85,10 @@ def _kept(recording: Recording, crossover: float) -> tuple[list[tuple[int, int]]
     """The segments kept for f_c, and the warnings so far (the reader's, segments dropped)."""
     fs = recording.fs
     if crossover >= fs / 2:
-        raise RecordingError(Problem(
+        raise RecordingError(Problem.naming(
             f"fs = {fs:.6g} Hz is too low for the crossover {crossover:g} Hz (it must lie "
-            f"below fs/2 = {fs / 2:.6g} Hz): lower --crossover", recording.file))
+            f"below fs/2 = {fs / 2:.6g} Hz): lower {{crossover}}", ("crossover",),
+            recording.file))
     kept = list(iter_segments(recording, crossover))
     warnings: list[str] = list(recording.warnings)
     dropped = len(recording.segments) - len(kept)
@@ -96,11 +97,11 @@ def _kept(recording: Recording, crossover: float) -> tuple[list[tuple[int, int]]
                         "dropped (docs/model.md section 13)")
     if not kept:
         longest = int(np.max(recording.segments[:, 1] - recording.segments[:, 0]))
-        raise RecordingError(Problem(
+        raise RecordingError(Problem.naming(
             f"the recording is shorter than one segment: its longest contiguous stretch "
             f"is {longest} samples = {longest / fs:.6g} s, and a segment needs 4/f_c = "
             f"{4 / crossover:g} s and more than {PADDING} samples (the filter's padding) "
-            "(raise --crossover, or record longer)", recording.file))
+            "(raise {crossover}, or record longer)", ("crossover",), recording.file))
     return kept, warnings
 
 
@@ -247,11 +248,11 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     f, spectra, windows = core.welch_spectra(segments, fs, resolution)
     if windows == 0:
         longest = max(s.shape[0] for s in segments)
-        raise RecordingError(Problem(
+        raise RecordingError(Problem.naming(
             f"no contiguous segment holds one Welch window of 1/Δf = {1 / resolution:g} s "
             f"({core.welch_length(fs, resolution)} samples; the longest segment kept has "
-            f"{longest} = {longest / fs:.6g} s): give --resolution {_up(fs / longest)} or "
-            "more (Hz)", file))
+            f"{longest} = {longest / fs:.6g} s): give {{resolution}} {_up(fs / longest)} or "
+            "more (Hz)", ("resolution",), file))
     silent = ~(variance > 0)  # not recorded, or negligible: no spectrum to fit
     spectra[silent, :, :] = 0.0
     spectra[:, silent, :] = 0.0

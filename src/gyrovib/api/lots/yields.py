@@ -188,11 +188,11 @@ def _refuse_searched_phases(prepared: Prepared, lots: Sequence[bool]) -> None:
     if searched:
         raise ModelError([profile_problem(
             prepared.profiles[j],
-            f"profile {prepared.profiles[j].profile.id!r}: --yield cannot judge a lot under "
-            "'phase: worst' orders (the error is maximised over the phases part by part, "
-            "which no distribution of Δ_V gives here); write the phases, or choose other "
-            "profiles with --profile") for j in searched],
-            reason="--yield with phase: worst")
+            f"profile {prepared.profiles[j].profile.id!r}: {{yield_target}} cannot judge a "
+            "lot under 'phase: worst' orders (the error is maximised over the phases part by "
+            "part, which no distribution of Δ_V gives here); write the phases, or choose "
+            "other profiles with {profiles}", ("yield_target", "profiles")) for j in searched],
+            reason="a yield with phase: worst")
 
 
 def lot_yields(prepared: Prepared, parts: Mapping[str, FloatArray], method: str,

@@ -75,8 +75,9 @@ def output_unit_label(text: str | None) -> str | None:
         return None
     label = text.strip()
     if not label or len(label) > 32 or not label.isprintable():
-        raise RateTableError(f"--output-unit {text!r}: give a short unit name such as mV, "
-                             "V, LSB or a rate unit")
+        raise RateTableError(Problem.naming(f"{{output_unit}} {text!r}: give a short unit "
+                                            "name such as mV, V, LSB or a rate unit",
+                                            ("output_unit",)))
     try:
         return rate_units.canonical_unit(label)
     except GyrovibError:

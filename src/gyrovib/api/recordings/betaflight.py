@@ -43,9 +43,9 @@ class BetaflightColumns(CsvColumns):
         if rate is None:
             missing = [c for c in BF_RATE if c not in self.names]
             if missing:
-                raise problem(self.path, f"--preset betaflight: no column {missing[0]!r} "
+                raise problem(self.path, f"{{preset}} betaflight: no column {missing[0]!r} "
                                          "(blackbox_decode's CSV names the gyro gyroADC[0..2])",
-                              1, 1)
+                              1, 1, arguments=("preset",))
             rate = BF_RATE
         if accel is None:
             found = next((names for names in BF_ACCEL
@@ -65,8 +65,8 @@ def open_betaflight(path: str, accel_unit_given: bool) -> Columns:
     plain = open_csv(path)
     assert isinstance(plain, CsvColumns)
     if BF_TIME not in plain.names:
-        raise problem(path, f"--preset betaflight: no column {BF_TIME!r} (the first row of "
-                            "blackbox_decode's CSV names it)", 1, 1)
+        raise problem(path, f"{{preset}} betaflight: no column {BF_TIME!r} (the first row of "
+                            "blackbox_decode's CSV names it)", 1, 1, arguments=("preset",))
     out = BetaflightColumns(path, plain.names, plain.count)
     out.accel_unit_given = accel_unit_given
     return out

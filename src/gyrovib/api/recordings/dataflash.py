@@ -199,7 +199,7 @@ def _imu(log: _Log, instance: int | None) -> tuple[dict[str, NDArray[Any]], int]
     sources = _imu_sources(log)
     if not sources:
         raise problem(log.path, "no IMU messages in this log (the batch sampler's are read "
-                                "with --topic batch)")
+                                "with {topic} batch)", arguments=("topic",))
     listing = {}
     for i, (kind, mask) in sources.items():
         t = log.records(kind, ["TimeUS"])["TimeUS"]
@@ -232,7 +232,7 @@ def _choose(path: str, what: str, instance: int | None,
         return instance
     if len(found) > 1:
         raise problem(path, f"{what} is logged by {len(found)} instances: {shown}; "
-                            "choose one with --instance N")
+                            "choose one with {instance} N", arguments=("instance",))
     return next(iter(found))
 
 
@@ -260,7 +260,8 @@ def _batches(log: _Log) -> list[_Batch]:
     head, data = log.types.get("ISBH"), log.types.get("ISBD")
     if head is None or data is None:
         raise problem(log.path, "no batch sampler messages (ISBH, ISBD) in this log: set "
-                                "INS_LOG_BAT_MASK on the vehicle, or read --topic IMU")
+                                "INS_LOG_BAT_MASK on the vehicle, or read {topic} IMU",
+                      arguments=("topic",))
     h = log.records(head, ["N", "type", "instance", "mul", "smp_cnt", "SampleUS",
                            "smp_rate"])
     h_off = log.complete(head)
@@ -342,8 +343,9 @@ def open_dataflash(path: str, topic: str | None = None,
     """An ArduPilot DataFlash log's IMU or batch-sampler samples, with its damage."""
     topic = topic or DF_TOPIC
     if topic not in (DF_TOPIC, DF_BATCH):
-        raise problem(path, f"--topic {topic!r}: a DataFlash log is read as {DF_TOPIC} "
-                            f"(the default) or {DF_BATCH} (the batch sampler's raw samples)")
+        raise problem(path, f"{{topic}} {topic!r}: a DataFlash log is read as {DF_TOPIC} "
+                            f"(the default) or {DF_BATCH} (the batch sampler's raw samples)",
+                      arguments=("topic",))
     log = _Log(path)
     if topic == DF_TOPIC:
         columns, chosen = _imu(log, instance)

@@ -12,9 +12,12 @@ class RecordingError(GyrovibError):
     """A recording cannot be read, or does not suit the analysis asked of it."""
 
 
-def problem(file: str, message: str, line: int | None = None,
-            column: int | None = None) -> RecordingError:
-    """A located :class:`RecordingError`."""
+def problem(file: str, message: str, line: int | None = None, column: int | None = None,
+            arguments: tuple[str, ...] = ()) -> RecordingError:
+    """A located :class:`RecordingError`; a message that names library ``arguments``
+    writes each ``{name}`` (:meth:`~gyrovib.errors.Problem.naming`)."""
+    if arguments:
+        return RecordingError(Problem.naming(message, arguments, file, line, column))
     return RecordingError(Problem(message, file, line, column))
 
 
@@ -59,6 +62,6 @@ def unplaced(path: str, names: Sequence[str]) -> RecordingError:
     shown = ", ".join(repr(n) for n in names)
     example = ",".join(["-"] * (3 - len(names)) + list(names))
     return problem(path, f"{len(names)} rate column(s) ({shown}) besides the time, and no "
-                         "rule says which axis each is: place them with --rate-columns X,Y,Z, "
-                         f"e.g. --rate-columns {example} (- for an axis not recorded: it is "
-                         "then unknown, never taken as 0)")
+                         "rule says which axis each is: place them with {rate_columns} X,Y,Z, "
+                         f"e.g. {{rate_columns}} {example} (- for an axis not recorded: it is "
+                         "then unknown, never taken as 0)", arguments=("rate_columns",))

@@ -187,7 +187,8 @@ def _instance(path: str, log: Any, topic: str,
     """The data of the topic's chosen instance, and its multi_id."""
     found = sorted((d for d in log.data_list if d.name == topic), key=lambda d: d.multi_id)
     if not found:
-        raise problem(path, f"no topic {topic!r} in this log (choose one with --topic)")
+        raise problem(path, f"no topic {topic!r} in this log (choose one with {{topic}})",
+                      arguments=("topic",))
     if instance is not None:
         chosen = [d for d in found if d.multi_id == instance]
         if not chosen:
@@ -196,7 +197,8 @@ def _instance(path: str, log: Any, topic: str,
         return chosen[0].data, instance
     if len(found) > 1:
         raise problem(path, f"{topic} is logged by {len(found)} instances: "
-                            f"{_listing(topic, found)}; choose one with --instance N")
+                            f"{_listing(topic, found)}; choose one with {{instance}} N",
+                      arguments=("instance",))
     return found[0].data, int(found[0].multi_id)
 
 

@@ -204,27 +204,29 @@ class Columns:
             time_col = self.time_index()
             others = [i for i in range(len(self.names)) if i != time_col]
             if len(others) < 1:
-                raise problem(self.path, "no rate column: name them with --rate-columns X,Y,Z")
+                raise problem(self.path, "no rate column: name them with {rate_columns} X,Y,Z",
+                              arguments=("rate_columns",))
             if len(others) < 3:
                 raise unplaced(self.path, [self.names[i] for i in others])
             rate = tuple(others[:3])
         return rate, accel
 
-    def index(self, column: str | int | None, option: str) -> int | None:
-        """A column named on the command line, as its index."""
+    def index(self, column: str | int | None, argument: str) -> int | None:
+        """A column named by ``argument`` (``rate_columns``, ``accel_columns``), as its
+        index."""
         if column is None:
             return None
         if isinstance(column, int):
             if not 0 <= column < len(self.names):
-                raise problem(self.path, f"{option}: column {column} does not exist "
+                raise problem(self.path, f"{{{argument}}}: column {column} does not exist "
                                          f"(the file has {len(self.names)} columns, 0 to "
-                                         f"{len(self.names) - 1})")
+                                         f"{len(self.names) - 1})", arguments=(argument,))
             return column
         if column in self.names:
             return self.names.index(column)
         shown = ", ".join(self.names[:20]) + (" ..." if len(self.names) > 20 else "")
-        raise problem(self.path, f"{option}: no column named {column!r} (the columns "
-                                 f"are: {shown})")
+        raise problem(self.path, f"{{{argument}}}: no column named {column!r} (the columns "
+                                 f"are: {shown})", arguments=(argument,))
 
     def where(self, sample: int) -> tuple[int | None, int | None]:
         """Line and column of sample ``sample``'s time stamp in the file (None, None where

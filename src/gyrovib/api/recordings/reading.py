@@ -147,7 +147,8 @@ def read_recording(path: str, *, fs: float | None = None,
     reader = (open_betaflight(path, accel_unit is not None) if preset is not None
               else opener(path, topic, instance))
     if strict and reader.warnings:
-        raise problem(path, f"{reader.warnings[0]} (refused under --strict)")
+        raise problem(path, f"{reader.warnings[0]} (refused under {{strict}})",
+                      arguments=("strict",))
     axes = _axes(reader, rate_columns, accel_columns)
     n = reader.rows()
     if n < 2:
@@ -194,8 +195,8 @@ def _axes(reader: Columns, rate_columns: Sequence[str | int | None] | None,
           accel_columns: Sequence[str | int | None] | None) -> dict[str, Axes | None]:
     """The column of each axis, rate and acceleration (None: not recorded)."""
     rate_columns, accel_columns = reader.default_columns(rate_columns, accel_columns)
-    r_idx = tuple(reader.index(c, "--rate-columns") for c in rate_columns)
-    a_idx = None if accel_columns is None else tuple(reader.index(c, "--accel-columns")
+    r_idx = tuple(reader.index(c, "rate_columns") for c in rate_columns)
+    a_idx = None if accel_columns is None else tuple(reader.index(c, "accel_columns")
                                                      for c in accel_columns)
     return {"rate": r_idx, "accel": a_idx}  # type: ignore[dict-item]
 
@@ -213,7 +214,7 @@ def _timing(reader: Columns, time: FloatArray | None, fs: float | None,
     if time is None:
         if fs is None:
             raise problem(path, "no time column ('t' or 'time', in s): give the sample "
-                                 "rate with --fs HZ")
+                                 "rate with {fs} HZ", arguments=("fs",))
         return float(fs), np.array([[0, n]], dtype=np.intp)
     if reader.time_scale != 1.0:
         time *= reader.time_scale
@@ -232,8 +233,9 @@ def _timing(reader: Columns, time: FloatArray | None, fs: float | None,
     segments, median = gap_segments(time, GAP_FACTOR)
     rate_fs = 1.0 / median
     if fs is not None and abs(fs - rate_fs) > 0.01 * rate_fs:
-        raise problem(path, f"--fs {fs:g} Hz disagrees with the timestamps' median "
-                            f"interval (fs = {rate_fs:.6g} Hz); drop --fs or the time column")
+        raise problem(path, f"{{fs}} {fs:g} Hz disagrees with the timestamps' median "
+                            f"interval (fs = {rate_fs:.6g} Hz); drop {{fs}} or the time column",
+                      arguments=("fs",))
     return rate_fs, segments
 
 

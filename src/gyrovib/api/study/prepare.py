@@ -211,9 +211,14 @@ def nan_multipliers(omega: FloatArray) -> Multipliers:
 _HINT = "the amplitudes, PSD levels, rms values, rates and coefficients"
 
 
-def profile_problem(profile: ProfileEntry, message: str) -> Problem:
-    """``message`` placed at the profile's ``id:`` in its file."""
-    return profile.source.problem(message, ("profiles", profile.index, "id"))
+def profile_problem(profile: ProfileEntry, message: str,
+                    arguments: tuple[str, ...] = ()) -> Problem:
+    """``message`` placed at the profile's ``id:`` in its file; a message that names
+    library ``arguments`` writes each ``{name}`` (:meth:`Problem.naming`)."""
+    placed = profile.source.problem(message, ("profiles", profile.index, "id"))
+    if not arguments:
+        return placed
+    return Problem.naming(message, arguments, placed.file, placed.line, placed.column)
 
 
 def overflow_problem(profile: ProfileEntry, what: str, *, sensor: SensorEntry | None = None,
@@ -228,9 +233,10 @@ def overflow_problem(profile: ProfileEntry, what: str, *, sensor: SensorEntry | 
 
 def refusal_problem(profile: ProfileEntry, method: str, reason: str) -> Problem:
     """A method's refusal of a profile (:class:`ModelError`), worded for the user."""
-    advice = ("; use --method exact, or choose other profiles with --profile"
+    advice = ("; use {method} exact, or choose other profiles with {profiles}"
               if method == "paper" else "")
-    return profile_problem(profile, f"profile {profile.profile.id!r}: {reason}{advice}")
+    return profile_problem(profile, f"profile {profile.profile.id!r}: {reason}{advice}",
+                           ("method", "profiles") if advice else ())
 
 
 def _harmonics_path(profile: ProfileEntry, group: int, *tail: Any) -> tuple[Any, ...]:
