@@ -1,6 +1,7 @@
 """The command line: one module per command, registered once (gyrovib/cli/main.py,
-COMMANDS); a command imports the library and the renderers inside its function, so that
-listing the commands (``--help``) loads click's declarations only."""
+COMMANDS) and imported only when it runs; a command imports the library and the
+renderers inside its function, so that listing the commands (``--help``) loads no command
+module, and a command's own ``--help`` its declarations only."""
 
 from __future__ import annotations
 
@@ -11,22 +12,39 @@ import sys
 from pathlib import Path
 
 import click
+import pytest
 
 import gyrovib.cli
 from gyrovib.cli.main import COMMANDS, cli
 
 
+def _command(name: str) -> click.Command:
+    command = cli.get_command(click.Context(cli), name)
+    assert command is not None
+    return command
+
+
 def test_every_command_is_registered_once_from_its_own_module():
-    names = [c.name for c in COMMANDS]
-    assert len(names) == len(set(names)) and len(names) >= 12  # the probe works
-    assert list(cli.commands) == names  # --help lists them in this order
-    for command in COMMANDS:  # cli/NAME.py declares `gyrovib NAME`
-        module = importlib.import_module(f"gyrovib.cli.{command.name}")
-        assert getattr(module, command.name) is command
+    names = list(COMMANDS)
+    assert len(names) >= 12  # the probe works
+    assert cli.list_commands(click.Context(cli)) == names  # --help lists them in this order
+    for name in names:  # cli/NAME.py declares `gyrovib NAME`
+        module = importlib.import_module(f"gyrovib.cli.{name}")
+        assert getattr(module, name) is _command(name) and _command(name).name == name
+    assert cli.get_command(click.Context(cli), "nosuch") is None
+
+
+@pytest.mark.parametrize("limit", [20, 45, 70, 200])
+def test_the_listing_shows_each_command_s_own_help(limit: int) -> None:
+    # --help lists the commands from the registry without importing them: each entry must
+    # read as click would shorten the command's own help, at any terminal width
+    for name, text in COMMANDS.items():
+        listed = click.Command(name, help=text).get_short_help_str(limit)
+        assert listed == _command(name).get_short_help_str(limit), name
 
 
 def test_no_command_is_declared_outside_the_registry():
-    registered = {id(c) for c in COMMANDS}
+    registered = {id(_command(name)) for name in COMMANDS}
     for info in pkgutil.iter_modules(gyrovib.cli.__path__):
         module = importlib.import_module(f"gyrovib.cli.{info.name}")
         for value in vars(module).values():

@@ -30,6 +30,7 @@ escaped (:func:`~gyrovib.cli.common.printable`).
 
 from __future__ import annotations
 
+import importlib
 import os
 import signal
 import sys
@@ -39,24 +40,11 @@ from typing import Any, NoReturn
 import click
 
 from gyrovib._version import __version__
-from gyrovib.cli.allan import allan
-from gyrovib.cli.analyze import analyze
-from gyrovib.cli.bounds import bounds
-from gyrovib.cli.catalog import catalog
 from gyrovib.cli.common import Settings, say, silence_stderr
 from gyrovib.cli.early import early_exit
-from gyrovib.cli.fit import fit
-from gyrovib.cli.mission import mission
 from gyrovib.cli.options import as_option
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
-from gyrovib.cli.profile import profile
 from gyrovib.cli.progress import terminal_progress
-from gyrovib.cli.report import report
-from gyrovib.cli.runup import runup
-from gyrovib.cli.schema import schema
-from gyrovib.cli.select import select
-from gyrovib.cli.sweep import sweep
-from gyrovib.cli.validate import validate
 from gyrovib.errors import Crash, GyrovibError
 from gyrovib.render.github import annotation, problems_to_github
 
@@ -198,7 +186,24 @@ class _Group(click.Group):
     _argv: list[str] | None = None
 
     def list_commands(self, ctx: click.Context) -> list[str]:
-        return list(self.commands)  # in the order registered (COMMANDS), not sorted
+        return list(COMMANDS)  # in the order registered, not sorted
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        """The command ``cmd_name``, its module (gyrovib/cli/NAME.py) imported now: only
+        the command that runs declares its options."""
+        if cmd_name not in COMMANDS:
+            return None
+        command: click.Command = getattr(importlib.import_module(f"gyrovib.cli.{cmd_name}"),
+                                         cmd_name)
+        return command
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The listing of ``--help`` from :data:`COMMANDS`' help, as click shortens each
+        command's own, without importing a command module."""
+        limit = formatter.width - 6 - max(len(name) for name in COMMANDS)
+        with formatter.section("Commands"):
+            formatter.write_dl([(name, click.Command(name, help=text).get_short_help_str(limit))
+                                for name, text in COMMANDS.items()])
 
     def main(self, args: Any = None, *rest: Any, **extra: Any) -> Any:
         self._argv = None if args is None else [str(a) for a in args]
@@ -270,13 +275,29 @@ def cli(ctx: click.Context, color: str) -> None:
     ctx.obj = Settings(color=color)
 
 
-#: Every command, registered once, in the order ``gyrovib --help`` lists them. A command
-#: module declares its options at import and imports the library and the renderers only
-#: inside its function, so listing them all costs click's declarations alone.
-COMMANDS: tuple[click.Command, ...] = (analyze, bounds, select, sweep, report, validate,
-                                       schema, fit, profile, allan, catalog, mission, runup)
-for _each in COMMANDS:
-    cli.add_command(_each)
+#: Every command, registered once, in the order ``gyrovib --help`` lists them: its name
+#: (gyrovib/cli/NAME.py declares it, imported when it runs) and the first paragraph of its
+#: help, which the listing shortens as click would (tests/test_cli_lazy.py holds each to
+#: the command's own), so ``gyrovib --help`` imports no command module.
+COMMANDS: dict[str, str] = {
+    "analyze": "The direct problem: the vibration error of every sensor under every profile.",
+    "bounds": "The inverse problem: the largest coefficients that keep the error within "
+              "budget.",
+    "select": "Check every sensor against a budget: a pass/fail table and a ranking.",
+    "sweep": "Δ_V and Δ_V(RMS) over a range of Ω_K3, exact and paper side by side.",
+    "report": "Write a trade-study report: one HTML file, charts inline, no network needed.",
+    "validate": "Only parse and validate catalogue files (exit 0 if valid, 2 if not).",
+    "schema": "Print the JSON Schema (draft-07) of the catalogue format.",
+    "fit": "Fit rate-table data: each unit's coefficients with their uncertainty, and the lot.",
+    "profile": "Fit a profile (and its carrier mission) to a RECORDING, or to the envelope of "
+               "several.",
+    "allan": "The Allan deviation of a static RECORDING and its noise model, with intervals.",
+    "catalog": "The catalogues bundled with gyrovib (the public sensors, the example "
+               "profiles).",
+    "mission": "Each sensor over each mission: mean error, angle θ_V, mean RMS, worst "
+               "segment, and the whole angle budget.",
+    "runup": "The installed sensor's rectification, measured from a run-up test RECORDING.",
+}
 
 
 def main(args: list[str] | None = None) -> NoReturn:
