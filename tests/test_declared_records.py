@@ -221,3 +221,40 @@ def test_runup_csv_sections_are_the_declarations() -> None:
     assert tuple(_csv(steps)[0]) == names(STEP_RECORDS)
     assert tuple(_csv(estimates)[0]) == names(ESTIMATE_RECORDS)
     assert len(_csv(estimates)) == 3  # k2 and vre
+
+
+def test_bounds_json_entries_are_the_declaration() -> None:
+    # the JSON's profiles are written from the same declaration: their key paths are the
+    # columns' keys, and each value the frame's (unbounded: null)
+    import json
+    import math
+
+    from gyrovib.presentation.frames import bounds_columns
+    from gyrovib.render import bounds as render_bounds
+
+    result = gyrovib.bounds(budget="10deg/h", range_=100)
+    columns = bounds_columns(result)
+    document = json.loads(render_bounds.to_json(result))
+    frame = result.to_frame()
+
+    def leaves(prefix: str, value: object) -> list[tuple[str, object]]:
+        if isinstance(value, dict):
+            return [p for k, v in value.items() for p in leaves(f"{prefix}{k}.", v)]
+        if isinstance(value, list):
+            return [p for k, v in enumerate(value) for p in leaves(f"{prefix}{k}.", v)]
+        return [(prefix[:-1], value)]
+
+    keys = [c.key or c.name for c in columns]
+    unbounded = 0
+    for k, entry in enumerate(document["profiles"]):
+        found = leaves("", entry)
+        assert sorted(path for path, _ in found) == sorted(keys)
+        for column in columns:
+            value = dict(found)[column.key or column.name]
+            expected = frame[column.name].iloc[k]
+            if isinstance(expected, float) and math.isinf(expected):
+                assert value is None
+                unbounded += 1
+            else:
+                assert value == expected, column.name
+    assert unbounded  # the probe meets an unconstrained bound

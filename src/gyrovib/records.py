@@ -34,13 +34,15 @@ class Column(Generic[Row]):
     ``frame_only``: a column the DataFrame has and the CSV leaves out (a list, a text the
     JSON nests, a figure the CSV's documented header does not carry). ``cell``: how the CSV
     writes the value, where it differs from the frame (:func:`known`: a non-finite number
-    empty)."""
+    empty). ``key``: where the JSON keeps it, a path of keys joined by dots (a number
+    part: the place in a list, ``rate.0``); None: under its name."""
 
     name: str
     unit: str | None
     value: Callable[[Row], Any]
     frame_only: bool = False
     cell: Callable[[Any], Any] | None = None
+    key: str | None = None
 
 
 def known(value: float) -> float | None:

@@ -230,38 +230,48 @@ def _limit_columns(b: Any, unit: str, bounds: str = "",
     """A profile's coefficient bounds, its candidates (k4/k5 and those of locked harmonics,
     docs/model.md section 10) and its VRE bound (section 8; a CSV column only with linear
     vibration, else the frame's ``inf``), named with the prefixes ``bounds`` and
-    ``parts``."""
+    ``parts`` (JSON: under ``bounds`` and ``parts``, null where unbounded)."""
     present = PARTS + tuple(n for n in ODD_PARTS if getattr(b, n) is not None)
     vre = f"{unit}/g^2"
-    return [*(Column(bounds + n, coefficient_unit(n, unit), _of_row(getattr(b, n)))
-              for n in BOUNDED),
-            *(Column(parts + n, coefficient_unit(n, unit), _of_row(getattr(b, n)))
-              for n in present),
-            Column(bounds + "vre", vre, lambda j: math.inf, frame_only=True)
-            if b.vre is None else Column(bounds + "vre", vre, _of_row(b.vre))]
+    return [*(Column(bounds + n, coefficient_unit(n, unit), _of_row(getattr(b, n)),
+                     key=f"bounds.{n}") for n in BOUNDED),
+            *(Column(parts + n, coefficient_unit(n, unit), _of_row(getattr(b, n)),
+                     key=f"parts.{n}") for n in present),
+            Column(bounds + "vre", vre, _constant(math.inf), frame_only=True, key="bounds.vre")
+            if b.vre is None else Column(bounds + "vre", vre, _of_row(b.vre), key="bounds.vre")]
+
+
+def profile_columns(profiles: tuple[str, ...], rates: Any, b: Any,
+                    unit: str) -> list[Column[int]]:
+    """One row per profile (its index): its id, its carrier rate Ω_K (JSON: the ``rate``
+    list) and its bounds (:func:`_limit_columns`): the ``profiles`` entries of ``bounds``
+    and ``select``."""
+    listed = np.asarray(rates, dtype=float).reshape(-1, 3).tolist()
+    return [Column("profile", None, lambda j: profiles[j]),
+            *(Column(f"rate_{axis}", "rate", _of_profile(listed, k, lambda j: j),
+                     key=f"rate.{k}") for k, axis in enumerate(AXES)),
+            *_limit_columns(b, unit)]
 
 
 def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
     """``bounds``'s records, declared once, one row per profile (its index): the CSV's
-    columns and the frame's, in order. An unconstrained bound is ``inf``; ``vre`` is a CSV
-    column only when some profile has linear vibration (the frame: ``inf`` without);
-    ``--range`` adds the allowable datasheet figures (the frame also their reading)."""
-    b = result.bounds
-    rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
-    columns: list[Column[int]] = [
-        Column("profile", None, lambda j: result.profiles[j]),
-        *(Column(f"rate_{axis}", "rate", _of_profile(rates, k, lambda j: j))
-          for k, axis in enumerate(AXES)),
-        *_limit_columns(b, result.unit)]
+    columns, the frame's and the JSON's ``profiles`` entries, in order. An unconstrained
+    bound is ``inf`` (JSON: null); ``vre`` is a CSV column only when some profile has
+    linear vibration (the frame: ``inf`` without); ``--range`` adds the allowable
+    datasheet figures (the frame and the JSON also their reading)."""
+    columns = profile_columns(result.profiles, result.rates, result.bounds, result.unit)
     sb = result.spec_bounds
     if sb is not None:  # bounds --range: the allowable datasheet figures
-        columns += [Column("spec_nonlinearity", "%FS", _of_row(sb.nonlinearity)),
+        nl = "spec_bounds.nonlinearity"
+        columns += [Column("spec_nonlinearity", "%FS", _of_row(sb.nonlinearity),
+                           key=f"{nl}.value"),
                     *(Column(f"spec_nonlinearity_{key}", None, _constant(value),
-                             frame_only=True)
+                             frame_only=True, key=f"{nl}.{key}")
                       for key, value in (("unit", "%FS"), ("fit", sb.fit),
                                          ("measure", sb.measure), ("of", sb.of),
                                          ("range", sb.range))),
-                    Column("spec_vre", f"{result.unit}/g^2", _of_row(sb.vre))]
+                    Column("spec_vre", f"{result.unit}/g^2", _of_row(sb.vre),
+                           key="spec_bounds.vre")]
     return tuple(columns)
 
 

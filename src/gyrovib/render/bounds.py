@@ -12,15 +12,13 @@ from rich.text import Text
 from gyrovib.api import BoundsResult
 from gyrovib.core.synthesis import (
     BOUNDED,
-    ODD_PARTS,
-    PARTS,
     AllocationConstants,
     CoefficientBounds,
 )
 from gyrovib.presentation.frames import bounds_columns
 from gyrovib.presentation.reasons import coefficient_unit as coefficient_unit
-from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
-from gyrovib.render.formats import csv_of
+from gyrovib.render.common import dumps, fmt, header, markdown_table, rich_text
+from gyrovib.render.formats import csv_of, json_of
 
 
 #: Unit of the VRE bound in an output rate unit (rate per g², docs/model.md section 8).
@@ -29,52 +27,13 @@ def vre_unit(unit: str) -> str:
     return f"{unit}/g^2"
 
 
-def bounds_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
-    """The seven bounds of profile ``j`` for JSON (``null`` = unconstrained), and ``vre``
-    (rate/g², ``null`` without linear vibration)."""
-    out = {name: number(getattr(bounds, name)[j]) for name in BOUNDED}
-    out["vre"] = None if bounds.vre is None else number(bounds.vre[j])
-    return out
-
-
-def part_names(bounds: CoefficientBounds) -> tuple[str, ...]:
-    """The candidates the bounds carry: the k4/k5 ones, and those of locked harmonics
-    (:data:`~gyrovib.core.synthesis.ODD_PARTS`, docs/model.md section 10) where they exist."""
-    return PARTS + tuple(n for n in ODD_PARTS if getattr(bounds, n) is not None)
-
-
-def parts_dict(bounds: CoefficientBounds, j: int) -> dict[str, float | None]:
-    """The candidates of profile ``j`` for JSON."""
-    return {name: number(getattr(bounds, name)[j]) for name in part_names(bounds)}
-
-
-def profiles_json(profiles: tuple[str, ...], rates: Any, bounds: CoefficientBounds) -> list[Any]:
-    """The ``profiles`` list shared by ``bounds`` and ``select`` JSON."""
-    return [
-        {"profile": p, "rate": [float(x) for x in rates[j]],
-         "bounds": bounds_dict(bounds, j), "parts": parts_dict(bounds, j)}
-        for j, p in enumerate(profiles)
-    ]
-
-
 def to_json(result: BoundsResult) -> str:
-    """``bounds --format json`` (docs/output.md)."""
+    """``bounds --format json`` (docs/output.md): its ``profiles`` are the result's records
+    (:func:`gyrovib.presentation.frames.bounds_columns`, as the CSV and the frame)."""
     document = header(result.method, result.unit)
     document["budget"] = result.budget
-    document["profiles"] = profiles_json(result.profiles, result.rates, result.bounds)
-    if result.spec_bounds is not None:
-        for j, entry in enumerate(document["profiles"]):
-            entry["spec_bounds"] = spec_bounds_dict(result, j)
+    document["profiles"] = json_of(bounds_columns(result), range(len(result.profiles)))
     return dumps(document)
-
-
-def spec_bounds_dict(result: BoundsResult, j: int) -> dict[str, Any]:
-    """``spec_bounds`` of profile ``j`` (``bounds --range``): allowable NL (%FS) and VRE."""
-    sb = result.spec_bounds
-    assert sb is not None
-    return {"nonlinearity": {"value": number(sb.nonlinearity[j]), "unit": "%FS", "fit": sb.fit,
-                             "measure": sb.measure, "of": sb.of, "range": sb.range},
-            "vre": number(sb.vre[j])}
 
 
 def to_csv(result: BoundsResult) -> str:

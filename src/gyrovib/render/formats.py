@@ -1,14 +1,15 @@
-"""The generic writers over a result's declared records (:mod:`gyrovib.records`): CSV now;
-one writer for every result that declares its columns, so its header and cells cannot
-drift from its DataFrame."""
+"""The generic writers over a result's declared records (:mod:`gyrovib.records`): CSV and
+the JSON entries; one writer for every result that declares its columns, so its header,
+cells and JSON keys cannot drift from its DataFrame."""
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable, Sequence
 from typing import Any, TypeVar
 
 from gyrovib.records import Column, in_csv, names, records
-from gyrovib.render.common import csv_text
+from gyrovib.render.common import csv_text, number
 
 Row = TypeVar("Row")
 
@@ -39,3 +40,27 @@ def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row], *,
     cells = [default if c.cell is None else c.cell for c in written]
     return csv_text(names(written), ([cell(v) for cell, v in zip(cells, values, strict=True)]
                                      for values in records(written, rows)))
+
+
+def _json_value(value: Any) -> Any:
+    """A value as JSON writes it: a float that is not finite (unbounded, unknown) as null."""
+    return number(value) if isinstance(value, float) else value
+
+
+def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[str, Any]]:
+    """One JSON object per row: each column's value at its key path (:attr:`Column.key`,
+    else its name), nested objects and lists made in the columns' order."""
+    paths = [(c.key or c.name).split(".") for c in columns]
+    out = []
+    for values in records(columns, rows):
+        entry: dict[str, Any] = {}
+        for path, value in zip(paths, values, strict=True):
+            node: Any = entry
+            for part, after in itertools.pairwise(path):
+                node = node.setdefault(part, [] if after.isdigit() else {})
+            if path[-1].isdigit():
+                node.append(_json_value(value))
+            else:
+                node[path[-1]] = _json_value(value)
+        out.append(entry)
+    return out

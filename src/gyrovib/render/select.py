@@ -13,13 +13,12 @@ from rich.text import Text
 
 from gyrovib.api import SelectionResult
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.presentation.frames import selection_cells, selection_columns
+from gyrovib.presentation.frames import profile_columns, selection_cells, selection_columns
 from gyrovib.presentation.reasons import failures as _failures
 from gyrovib.presentation.reasons import reason, saturation_text, unknown_label, yield_text
 from gyrovib.render.analysis_cells import SATURATED_MARK
 from gyrovib.render.bounds import (
     coefficient_unit,
-    profiles_json,
     shares_text,
     unit_note,
     vre_unit,
@@ -33,7 +32,7 @@ from gyrovib.render.common import (
     number,
     rich_text,
 )
-from gyrovib.render.formats import csv_of
+from gyrovib.render.formats import csv_of, json_of
 
 _CRITERION = {
     "bounds": "every |coefficient| within its bound (eq. 23, 25; sufficient, not necessary)",
@@ -227,7 +226,9 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     """
     document = header(result.method, result.unit)
     document["budget"] = result.budget
-    document["profiles"] = profiles_json(result.profiles, result.rates, result.profile_bounds)
+    document["profiles"] = json_of(profile_columns(result.profiles, result.rates,
+                                                   result.profile_bounds, result.unit),
+                                   range(len(result.profiles)))
     document["criterion"] = result.criterion
     document["require"] = result.require
     document["assume_unknown"] = result.assume_unknown
