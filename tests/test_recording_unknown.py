@@ -464,3 +464,47 @@ def test_sweep_on_a_fitted_profile_reads_unknown_where_an_axis_is_missing(
     table = invoke(*args).stdout
     cross = table[table.index("cross / "):]
     assert "nan" not in table and cross.count("?") >= 6  # Δ_V and Δ_V(RMS) at 3 rates
+
+
+def test_select_checks_that_rest_on_an_unrecorded_axis_are_unknown(tmp_path: Path) -> None:
+    """A cell made unverified by a missing axis shows no check computed without it: each
+    bound that depends on the axis is unknown (docs/model.md section 13: m31's bound rests
+    on x1, every bound on x3), and a check of a coefficient that is not 0 against an
+    unknown bound is neither passed nor failed; the cell's margin is unknown too. A
+    coefficient that is 0 is within any bound (0 ≤ b for every b ≥ 0), so k2-only's m31
+    check still passes."""
+    path = _csv(tmp_path, "gy,gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,gy,gz", "-o", out).exit_code == 0
+    cat = _catalogue(tmp_path)
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    cells = {s["sensor"]: s["profiles"][0] for s in json.loads(r.stdout)["sensors"]}
+    cross, alone = cells["cross"], cells["k2-only"]
+    assert cross["status"] == "unverified" and cross["criterion_margin"] is None
+    assert cross["checks"]["m31"] == {"value": 2.0e-3, "bound": None, "pass": None}
+    assert alone["checks"]["m31"]["bound"] is None and alone["checks"]["m31"]["pass"] is True
+    # the bounds resting on x2 and x3 alone, which were recorded, are still figures
+    assert cross["checks"]["k2"]["bound"] == alone["checks"]["k2"]["bound"] > 0
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "csv")
+    rows = {row.split(",")[0]: row.split(",") for row in r.stdout.splitlines()}
+    head = rows["sensor"]
+    cell = dict(zip(head, rows["cross"], strict=False))
+    assert (cell["bound_m31"], cell["pass_m31"], cell["criterion_margin"]) == ("", "", "")
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "junit")
+    assert "nan" not in r.stdout.lower()
+
+
+def test_select_without_the_sensitive_axis_knows_no_bound(tmp_path: Path) -> None:
+    """Without x3 every bound is unknown (each rests on x3): no check passes on a
+    coefficient that is not 0, and no sensor is ranked."""
+    path = _csv(tmp_path, "gx,gy")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "gx,gy,-", "-o", out).exit_code == 0
+    r = invoke("select", _catalogue(tmp_path), out, "--budget", "10deg/s", "--format", "json")
+    assert r.exit_code == 1, r.stderr  # the requirement is not met: nothing is verified
+    for sensor in json.loads(r.stdout)["sensors"]:
+        cell = sensor["profiles"][0]
+        assert cell["status"] == "unverified"
+        assert cell["checks"]["k2"] == {"value": 1.0e-3, "bound": None, "pass": None}
+        assert all(c["bound"] is None for c in cell["checks"].values())
