@@ -508,3 +508,23 @@ def test_select_without_the_sensitive_axis_knows_no_bound(tmp_path: Path) -> Non
         assert cell["status"] == "unverified"
         assert cell["checks"]["k2"] == {"value": 1.0e-3, "bound": None, "pass": None}
         assert all(c["bound"] is None for c in cell["checks"].values())
+
+
+def test_a_mission_allowance_on_an_unknown_error_is_unknown(tmp_path: Path) -> None:
+    """The largest noise figure that meets the angle budget is θ* − |θ_V| shared out
+    (docs/model.md section 15): with θ_V unknown (the sensor needs x1, not recorded) it
+    is unknown — null in JSON with no 'limited_by' reason, '?' in the table — never 'nan'."""
+    path = _csv(tmp_path, "gy,gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,gy,gz", "-o", out).exit_code == 0
+    args = ("mission", _catalogue(tmp_path), out, "--mission", "rec-fitted-mission",
+            "--angle-budget", "1000deg")
+    r = invoke(*args, "--format", "json")
+    rows = {row["sensor"]: row for row in json.loads(r.stdout)["mission"]}
+    allowed = rows["cross"]["budget"]["allowed"]
+    assert allowed["arw"] is None and "arw" not in allowed["limited_by"]
+    table = invoke(*args, env={"COLUMNS": "240"})
+    assert "nan" not in table.stdout.lower()
+    cross = next(line for line in table.stdout.splitlines()
+                 if "cross" in line and "≤" in line)
+    assert cross.count("?") == 4  # N, B, K, R
