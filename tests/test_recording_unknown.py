@@ -6,6 +6,7 @@ and damaged files are located errors or labelled answers, never a crash."""
 from __future__ import annotations
 
 import json
+import re
 import shutil
 from pathlib import Path
 
@@ -528,3 +529,20 @@ def test_a_mission_allowance_on_an_unknown_error_is_unknown(tmp_path: Path) -> N
     cross = next(line for line in table.stdout.splitlines()
                  if "cross" in line and "≤" in line)
     assert cross.count("?") == 4  # N, B, K, R
+
+
+def test_the_report_of_a_mission_draws_no_unknown_angle(tmp_path: Path) -> None:
+    """A mission whose θ_V is unknown for a sensor (it needs x1, not recorded): the report's
+    verdict table and segment table read '?', and no θ(t) chart is drawn from NaN (an
+    SVG of 'nan' coordinates draws nothing a reader can tell from an empty chart)."""
+    path = _csv(tmp_path, "gy,gz")
+    fitted = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,gy,gz", "-o", fitted).exit_code == 0
+    out = tmp_path / "r.html"
+    r = invoke("report", _catalogue(tmp_path), fitted, "--budget", "10deg/s", "--mission",
+               "rec-fitted-mission", "--angle-budget", "1000deg", "-o", out)
+    assert r.exit_code in (0, 1), r.stderr
+    html = out.read_text(encoding="utf-8")
+    assert re.search(r"\bnan\b", html, re.IGNORECASE) is None
+    assert "cross: θ(t) unknown" in html
+    assert "<tr><td>cross</td><td>-</td><td>?</td><td>?</td>" in html
