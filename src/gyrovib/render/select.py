@@ -322,14 +322,11 @@ def _get(array: Any, i: int, j: int) -> Any:
     return array[i, j]
 
 
-def _csv_float(value: float) -> float | str:
-    """A CSV number: empty where unknown (NaN), ``inf`` where unconstrained."""
+def _csv_float(value: float | bool | None) -> float | bool | str:
+    """A CSV cell: empty where unknown (NaN, None), ``inf`` where unconstrained."""
+    if value is None or isinstance(value, bool):
+        return "" if value is None else value
     return "" if math.isnan(value) else float(value)
-
-
-def _csv_bool(value: bool | None) -> bool | str:
-    """A CSV verdict: empty where unknown (None)."""
-    return "" if value is None else value
 
 
 def _csv_checks(result: SelectionResult, sensor: str, profile: str, i: int,
@@ -341,7 +338,7 @@ def _csv_checks(result: SelectionResult, sensor: str, profile: str, i: int,
     for b in range(len(BOUNDED)):
         row += (["", "", ""] if spec else
                 [float(result.values[i, j, b]), _csv_float(result.bounds[i, j, b]),
-                 _csv_bool(result.check(i, j, b))])
+                 _csv_float(result.check(i, j, b))])
     return row
 
 
@@ -357,10 +354,9 @@ def _csv_specs(result: SelectionResult, i: int, j: int, with_specs: bool,
     if spec:
         value = float(_get(result.vre_value, i, j))
         row += ["" if math.isnan(value) else value, _csv_float(_get(result.vre_bound, i, j)),
-                _csv_bool(result.vre_check(i, j))]
+                _csv_float(result.vre_check(i, j))]
     elif vre:
-        row += [("" if math.isnan(v) else v) for v in _vre(result, i, j)]
-        row += [_csv_bool(result.vre_check(i, j))]
+        row += [*map(_csv_float, _vre(result, i, j)), _csv_float(result.vre_check(i, j))]
     elif with_specs:
         row += [""] * 3
     return row
