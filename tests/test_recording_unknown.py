@@ -546,3 +546,27 @@ def test_the_report_of_a_mission_draws_no_unknown_angle(tmp_path: Path) -> None:
     assert re.search(r"\bnan\b", html, re.IGNORECASE) is None
     assert "cross: θ(t) unknown" in html
     assert "<tr><td>cross</td><td>-</td><td>?</td><td>?</td>" in html
+
+
+def test_a_datasheet_part_without_the_sensitive_axis_has_no_allowable_figures(
+        tmp_path: Path) -> None:
+    """A datasheet part's allowable NL and VRE rest on x3 and the accelerations (docs/model.md
+    section 11): without them both are unknown, and so are the checks against them."""
+    path = _csv(tmp_path, "gx,gy")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "gx,gy,-", "-o", out).exit_code == 0
+    cat = tmp_path / "ds.gyrovib.yaml"
+    cat.write_text("gyrovib: 1\nunits: {rate: deg/s, acceleration: g}\nsensors:\n"
+                   "  - id: ds\n    specs:\n      range: 300\n"
+                   "      nonlinearity: {value: 0.1, unit: '%FS', fit: least-squares, "
+                   "measure: max, of: range}\n      vre: 0.01\n", encoding="utf-8")
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "json")
+    cell = json.loads(r.stdout)["sensors"][0]["profiles"][0]
+    assert cell["status"] == "unverified"
+    for name in ("nonlinearity", "vre"):
+        assert (cell["checks"][name]["bound"], cell["checks"][name]["pass"]) == (None, None)
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "csv")
+    head, row = (line.split(",") for line in r.stdout.splitlines()[:2])
+    cells = dict(zip(head, row, strict=False))
+    assert [cells[k] for k in ("bound_nonlinearity", "pass_nonlinearity", "bound_vre",
+                               "pass_vre")] == ["", "", "", ""]

@@ -326,12 +326,13 @@ def _datasheet_check_columns(result: SelectionResult, spec_rows: Any) -> dict[st
     """Datasheet (spec-form) sensors' nonlinearity check: NaN, None on coefficient rows."""
     if result.nl_value is None:
         return {}
+    n_p = len(result.profiles)
     return {
         "checks.nonlinearity.value": np.asarray(result.nl_value).reshape(-1),
         "checks.nonlinearity.bound": np.asarray(result.nl_bound).reshape(-1),
         "checks.nonlinearity.pass": [
-            bool(v) if sp else None for sp, v in
-            zip(spec_rows, np.asarray(result.nl_pass).reshape(-1), strict=True)],
+            result.nl_check(k // n_p, k % n_p) if sp else None
+            for k, sp in enumerate(spec_rows.tolist())],
         "checks.nonlinearity.unit": ["%FS" if sp else None for sp in spec_rows.tolist()],
     }
 

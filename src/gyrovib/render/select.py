@@ -311,7 +311,7 @@ def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
     return {
         "nonlinearity": {"value": number(result.nl_value[i, j]), "unit": "%FS",
                          "bound": number(result.nl_bound[i, j]),
-                         "pass": bool(result.nl_pass[i, j])},
+                         "pass": result.nl_check(i, j)},
         "vre": {"value": None if math.isnan(vre) else vre,
                 "bound": number(result.vre_bound[i, j]), "pass": result.vre_check(i, j)},
     }
@@ -350,7 +350,7 @@ def _csv_specs(result: SelectionResult, i: int, j: int, with_specs: bool,
     if with_specs:
         row += [result.source(i), float(_get(result.total, i, j))]
         row += ([float(_get(result.nl_value, i, j)), _csv_float(_get(result.nl_bound, i, j)),
-                 bool(_get(result.nl_pass, i, j))] if spec else [""] * 3)
+                 _csv_float(result.nl_check(i, j))] if spec else [""] * 3)
     if spec:
         value = float(_get(result.vre_value, i, j))
         row += ["" if math.isnan(value) else value, _csv_float(_get(result.vre_bound, i, j)),

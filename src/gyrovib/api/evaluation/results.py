@@ -424,6 +424,13 @@ class SelectionResult(SensorsByProfiles):
             return None
         return bool(self.vre_pass[i, j])
 
+    def nl_check(self, i: int, j: int) -> bool | None:
+        """A datasheet part's nonlinearity check of cell ``(i, j)`` as :meth:`check` (None:
+        no such check, or its allowable NL unknown, x3 not recorded)."""
+        if self.nl_pass is None or self.nl_bound is None or np.isnan(self.nl_bound[i, j]):
+            return None
+        return bool(self.nl_pass[i, j])
+
     def sensor_status(self, i: int) -> str:
         """Sensor ``i`` over every profile: ``fail`` if it fails one, else ``unverified``
         if one is unverified, else ``pass``."""
