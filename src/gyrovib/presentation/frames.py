@@ -345,9 +345,12 @@ def selection_columns(result: SelectionResult, *, csv: bool) -> tuple[Column[Cel
 
 def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
     """``checks.<coefficient>.value|bound|pass`` (eq. 23, 25): NaN, None on a datasheet
-    (spec-form) sensor's rows, which have no coefficient checks."""
-    values = np.asarray(result.values, dtype=float).tolist()
-    bounds = np.asarray(result.bounds, dtype=float).tolist()
+    (spec-form) sensor's rows, which have no coefficient checks; a check against a bound
+    a fitted profile's recording leaves unknown decides nothing (None,
+    :meth:`~gyrovib.api.SelectionResult.check`)."""
+    array = np.asarray(result.values, dtype=float)
+    unknown = (np.isnan(result.bounds) & (array != 0)).tolist()
+    values, bounds = array.tolist(), np.asarray(result.bounds, dtype=float).tolist()
     checks = np.asarray(result.check_pass, dtype=bool).tolist()
 
     def read(table: list[Any], b: int, empty: Any) -> Callable[[Cell], Any]:
@@ -357,8 +360,15 @@ def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Colu
     for b, name in enumerate(BOUNDED):
         columns += [Column(f"value_{name}", None, read(values, b, math.nan)),
                     Column(f"bound_{name}", None, read(bounds, b, math.nan)),
-                    Column(f"pass_{name}", None, read(checks, b, None))]
+                    Column(f"pass_{name}", None, _check(checks, unknown, specs, b))]
     return columns
+
+
+def _check(checks: list[Any], unknown: list[Any], specs: list[bool],
+           b: int) -> Callable[[Cell], bool | None]:
+    """Coefficient ``b``'s check at a row: None on a datasheet row or where it is unknown."""
+    return lambda c: (None if specs[c[0]] or unknown[c[0]][c[1]][b]
+                      else checks[c[0]][c[1]][b])
 
 
 def _datasheet_checks(result: SelectionResult, specs: list[bool],
@@ -386,12 +396,11 @@ def _nonlinearity_checks(result: SelectionResult, specs: list[bool],
     """A datasheet sensor's nonlinearity check (%FS): the CSV's cells empty on coefficient
     rows; the frame has the values throughout and the unit on datasheet rows."""
     value, bound = _float_cell(result.nl_value), _float_cell(result.nl_bound)
-    passed = np.asarray(result.nl_pass, dtype=bool).tolist()
     shown: Callable[[Cell], bool] = (lambda c: specs[c[0]]) if csv else _always
     return [Column("value_nonlinearity", "%FS", lambda c: value(c) if shown(c) else math.nan),
             Column("bound_nonlinearity", "%FS", lambda c: bound(c) if shown(c) else math.nan),
             Column("pass_nonlinearity", None,
-                   lambda c: passed[c[0]][c[1]] if specs[c[0]] else None),
+                   lambda c: result.nl_check(*c) if specs[c[0]] else None),
             Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
                    frame_only=True)]
 
@@ -402,10 +411,9 @@ def _vre_checks(result: SelectionResult, specs: list[bool], csv: bool,
     where it cannot bind (no linear vibration)."""
     checked: Callable[[Cell], bool] = (lambda c: specs[c[0]] or vre) if csv else _always
     value, bound = _float_cell(result.vre_value), _float_cell(result.vre_bound)
-    passed = np.asarray(result.vre_pass, dtype=bool).tolist()
     return [Column("value_vre", None, lambda c: value(c) if checked(c) else math.nan),
             Column("bound_vre", None, lambda c: bound(c) if checked(c) else math.nan),
-            Column("pass_vre", None, lambda c: passed[c[0]][c[1]] if checked(c) else None)]
+            Column("pass_vre", None, lambda c: result.vre_check(*c) if checked(c) else None)]
 
 
 def _yield_cells(result: SelectionResult, csv: bool) -> list[Column[Cell]]:

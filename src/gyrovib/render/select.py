@@ -264,13 +264,13 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
             checks = _spec_checks(result, i, j) if spec else {
                 name: {"value": number(result.values[i, j, b]),
                        "bound": number(result.bounds[i, j, b]),
-                       "pass": bool(result.check_pass[i, j, b])}
+                       "pass": result.check(i, j, b)}
                 for b, name in enumerate(BOUNDED)
             }
             if result.vre_pass is not None and not spec:
                 value, bound = _vre(result, i, j)
                 checks["vre"] = {"value": number(value), "bound": number(bound),
-                                 "pass": bool(result.vre_pass[i, j])}
+                                 "pass": result.vre_check(i, j)}
             cell = {"profile": profile, "pass": bool(result.passed[i, j]),
                     "status": result.status(i, j),
                     "unknown": list(result.unknown.get((i, j), ())),
@@ -313,9 +313,9 @@ def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
     return {
         "nonlinearity": {"value": number(result.nl_value[i, j]), "unit": "%FS",
                          "bound": number(result.nl_bound[i, j]),
-                         "pass": bool(result.nl_pass[i, j])},
+                         "pass": result.nl_check(i, j)},
         "vre": {"value": None if math.isnan(vre) else vre,
-                "bound": number(result.vre_bound[i, j]), "pass": bool(result.vre_pass[i, j])},
+                "bound": number(result.vre_bound[i, j]), "pass": result.vre_check(i, j)},
     }
 
 
