@@ -98,11 +98,11 @@ def _frame_and_csv_agree(columns, rows, frame, text: str) -> int:
     columns the whole declaration, in order; each CSV cell is its frame value as the
     column writes it (a number as its repr, unknown empty, a flag true/false or
     True/False). Returns how many cells were compared."""
-    from gyrovib.records import in_csv
+    from gyrovib.records import in_csv, written
 
     table = _csv(text)
     assert tuple(table[0]) == names(in_csv(columns))
-    assert tuple(frame.columns) == names(columns)
+    assert tuple(frame.columns) == names(written(columns, "frame"))
     assert len(table) - 1 == len(rows) == len(frame)
     compared = 0
     for k, cells in enumerate(table[1:]):
@@ -203,6 +203,30 @@ def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
                                gyrovib.load())
     assert _frame_and_csv_agree(result.records(), range(len(result.sensors)),
                                 result.to_frame(), render_recording.to_csv(result)) > 50
+    # the JSON's results come from the same declaration: the frame's values under their
+    # key paths (unknown: null), and what only the JSON has (each row's source)
+    import json
+
+    rows = json.loads(render_recording.to_json(result))["results"]
+    frame = result.to_frame()
+    known = unknown = 0
+    for k, row in enumerate(rows):
+        for column in result.records():
+            if "json" in column.skip or "frame" in column.skip:
+                continue
+            value: object = row
+            for part in (column.key or column.name).split("."):
+                value = value[part]  # type: ignore[index]
+            expected = frame[column.name].iloc[k]
+            if isinstance(expected, float) and np.isnan(expected):
+                assert value is None, column.name
+                unknown += 1
+            else:
+                assert value == expected, column.name
+                known += isinstance(expected, float)
+        assert row["source"] in ("specs", "coefficients") and "unit" not in row
+    assert unknown  # the probe meets unknown figures (null) as well as numbers
+    assert known  # the probe compares numbers, not only nulls
 
 
 def test_runup_csv_sections_are_the_declarations() -> None:

@@ -31,8 +31,9 @@ class Column(Generic[Row]):
     """One column of a result's records: its ``name`` (the CSV header, the DataFrame
     column), its ``unit`` (``None``: a name, a count, a flag) and ``value``, how to read it
     from one row (``None``: unknown, written empty in CSV, kept as None in a frame).
-    ``frame_only``: a column the DataFrame has and the CSV leaves out (a list, a text the
-    JSON nests, a figure the CSV's documented header does not carry). ``cell``: how the CSV
+    ``skip``: the outputs that leave it out, among ``csv``, ``frame`` and ``json`` (a list
+    or a text the CSV's documented header does not carry; what only the JSON has, as a
+    row's warnings). ``cell``: how the CSV
     writes the value, where it differs from the frame (:func:`known`: a non-finite number
     empty). ``key``: where the JSON keeps it, a path of keys joined by dots (a number
     part: the place in a list, ``rate.0``); None: under its name."""
@@ -40,7 +41,7 @@ class Column(Generic[Row]):
     name: str
     unit: str | None
     value: Callable[[Row], Any]
-    frame_only: bool = False
+    skip: tuple[str, ...] = ()
     cell: Callable[[Any], Any] | None = None
     key: str | None = None
 
@@ -50,9 +51,14 @@ def known(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
+def written(columns: Sequence[Column[Row]], output: str) -> tuple[Column[Row], ...]:
+    """The columns ``output`` (``csv``, ``frame``, ``json``) has, in order."""
+    return tuple(c for c in columns if output not in c.skip)
+
+
 def in_csv(columns: Sequence[Column[Row]]) -> tuple[Column[Row], ...]:
-    """The columns the CSV writes (every one but the frame-only ones), in order."""
-    return tuple(c for c in columns if not c.frame_only)
+    """The columns the CSV writes, in order."""
+    return written(columns, "csv")
 
 
 def names(columns: Sequence[Column[Any]]) -> tuple[str, ...]:
@@ -92,6 +98,7 @@ def frame_of(columns: Sequence[Column[Row]], rows: Sequence[Row],
              attrs: dict[str, Any] | None = None) -> Any:
     """The DataFrame of the records: one row per row, the columns in order; with
     ``attrs`` (the document-level fields), :func:`dataframe`'s ``frame.attrs``."""
+    shown = written(columns, "frame")
     if attrs is None:
-        return pandas().DataFrame(columns_of(columns, rows))
-    return dataframe(columns_of(columns, rows), attrs)
+        return pandas().DataFrame(columns_of(shown, rows))
+    return dataframe(columns_of(shown, rows), attrs)

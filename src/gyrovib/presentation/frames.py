@@ -237,7 +237,7 @@ def _limit_columns(b: Any, unit: str, bounds: str = "",
                      key=f"bounds.{n}") for n in BOUNDED),
             *(Column(parts + n, coefficient_unit(n, unit), _of_row(getattr(b, n)),
                      key=f"parts.{n}") for n in present),
-            Column(bounds + "vre", vre, _constant(math.inf), frame_only=True, key="bounds.vre")
+            Column(bounds + "vre", vre, _constant(math.inf), skip=("csv",), key="bounds.vre")
             if b.vre is None else Column(bounds + "vre", vre, _of_row(b.vre), key="bounds.vre")]
 
 
@@ -266,7 +266,7 @@ def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
         columns += [Column("spec_nonlinearity", "%FS", _of_row(sb.nonlinearity),
                            key=f"{nl}.value"),
                     *(Column(f"spec_nonlinearity_{key}", None, _constant(value),
-                             frame_only=True, key=f"{nl}.{key}")
+                             skip=("csv",), key=f"{nl}.{key}")
                       for key, value in (("unit", "%FS"), ("fit", sb.fit),
                                          ("measure", sb.measure), ("of", sb.of),
                                          ("range", sb.range))),
@@ -319,7 +319,7 @@ def selection_columns(result: SelectionResult, *, csv: bool) -> tuple[Column[Cel
         Column("profile", None, lambda c: result.profiles[c[1]]),
         Column("passed", None, lambda c: bool(result.passed[c[0], c[1]])),
         Column("sensor_pass", None, lambda c: sensor_pass[c[0]]),
-        Column("sensor_status", None, lambda c: result.sensor_status(c[0]), frame_only=True),
+        Column("sensor_status", None, lambda c: result.sensor_status(c[0]), skip=("csv",)),
         Column("rms", "rate", _float_cell(result.rms)),
         Column("margin", None, _float_cell(result.margin)),
         *_coefficient_checks(result, specs),
@@ -335,9 +335,9 @@ def selection_columns(result: SelectionResult, *, csv: bool) -> tuple[Column[Cel
                else (lambda c: reason(result, *c))),
     ]
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
-    columns += [Column(f"rate_{axis}", "rate", _of_profile(rates, k), frame_only=True)
+    columns += [Column(f"rate_{axis}", "rate", _of_profile(rates, k), skip=("csv",))
                 for k, axis in enumerate(AXES)]
-    columns += [Column(c.name, c.unit, _of_profile_row(c.value), frame_only=True)
+    columns += [Column(c.name, c.unit, _of_profile_row(c.value), skip=("csv",))
                 for c in _limit_columns(result.profile_bounds, result.unit, "profile_bounds_",
                                         "profile_parts_")]
     return tuple(columns)
@@ -380,10 +380,10 @@ def _datasheet_checks(result: SelectionResult, specs: list[bool],
     with_specs = "specs" in result.sources
     vre = result.has_linear and result.vre_pass is not None
     columns: list[Column[Cell]] = [Column("source", None, lambda c: result.source(c[0]),
-                                          frame_only=not with_specs)]
+                                          skip=() if with_specs else ("csv",))]
     if result.total is not None:
         columns.append(Column("total", "rate", _float_cell(result.total),
-                              frame_only=not with_specs))
+                              skip=() if with_specs else ("csv",)))
     if result.nl_value is not None and (with_specs or not csv):
         columns += _nonlinearity_checks(result, specs, csv)
     if result.vre_pass is not None and (with_specs or vre or not csv):
@@ -402,7 +402,7 @@ def _nonlinearity_checks(result: SelectionResult, specs: list[bool],
             Column("pass_nonlinearity", None,
                    lambda c: result.nl_check(*c) if specs[c[0]] else None),
             Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
-                   frame_only=True)]
+                   skip=("csv",))]
 
 
 def _vre_checks(result: SelectionResult, specs: list[bool], csv: bool,

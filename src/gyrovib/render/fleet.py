@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from gyrovib import units
@@ -36,12 +37,12 @@ def to_json(result: RecordingsAnalysis) -> str:
     scale = units.scale(result.unit)
     document = header("recording", result.unit)
     document["recordings"] = [
-        {"results": one._rows(a), "recording": one.recording_info(a.fit, scale),
+        {"results": one.rows_json(a), "recording": one.recording_info(a.fit, scale),
          "warnings": list(a.fit.warnings)} for a in result.analyses]
     worst = []
     for k, sensor in enumerate(result.sensors):
         i = result.worst[k]
-        row = one._rows(result.analyses[i])[k] if i >= 0 else {"sensor": sensor}
+        row = one.rows_json(result.analyses[i])[k] if i >= 0 else {"sensor": sensor}
         worst.append({**row, "recording": _name(result.analyses[i]) if i >= 0 else None,
                       "index": i if i >= 0 else None,
                       "saturated_on": _saturated_on(result, k)})
@@ -60,8 +61,7 @@ def to_csv(result: RecordingsAnalysis) -> str:
     first = result.analyses[0].records()
     by_name = [{c.name: c.value for c in a.records()} for a in result.analyses]
     columns = (Column("recording", None, lambda r: _name(result.analyses[r[0]])),
-               *(Column(c.name, c.unit, _in_recording(by_name, c.name), cell=c.cell)
-                 for c in first))
+               *(replace(c, value=_in_recording(by_name, c.name)) for c in first))
     return csv_of(columns, [(n, i) for n, a in enumerate(result.analyses)
                             for i in range(len(a.sensors))])
 

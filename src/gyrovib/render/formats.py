@@ -8,7 +8,7 @@ import itertools
 from collections.abc import Iterable, Sequence
 from typing import Any, TypeVar
 
-from gyrovib.records import Column, in_csv, names, records
+from gyrovib.records import Column, in_csv, names, records, written
 from gyrovib.render.common import csv_text, number
 
 Row = TypeVar("Row")
@@ -49,10 +49,12 @@ def _json_value(value: Any) -> Any:
 
 def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[str, Any]]:
     """One JSON object per row: each column's value at its key path (:attr:`Column.key`,
-    else its name), nested objects and lists made in the columns' order."""
-    paths = [(c.key or c.name).split(".") for c in columns]
+    else its name; a column that skips ``json`` left out), nested objects and lists made
+    in the columns' order."""
+    shown = written(columns, "json")
+    paths = [(c.key or c.name).split(".") for c in shown]
     out = []
-    for values in records(columns, rows):
+    for values in records(shown, rows):
         entry: dict[str, Any] = {}
         for path, value in zip(paths, values, strict=True):
             node: Any = entry

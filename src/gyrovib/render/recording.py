@@ -11,9 +11,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from gyrovib import units
-from gyrovib.coefficients import BOUNDED
 from gyrovib.render.common import dumps, header
-from gyrovib.render.formats import csv_of
+from gyrovib.render.formats import csv_of, json_of
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
 if TYPE_CHECKING:
@@ -21,7 +20,6 @@ if TYPE_CHECKING:
     from gyrovib.api.recordings.results import AxisHonesty, RecordingFit
 
 AXES = ("X", "Y", "Z")
-_TERMS = BOUNDED
 
 
 def _num(v: float) -> float | None:
@@ -93,30 +91,16 @@ def honesty_table(fit: RecordingFit) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _rows(result: RecordingAnalysis) -> list[dict[str, Any]]:
-    rows = []
-    for i, sensor in enumerate(result.sensors):
-        rows.append({
-            "sensor": sensor,
-            "recorded": {"total": _num(result.recorded[i]),
-                         "additive_terms": {t: _num(result.terms[i, k])
-                                            for k, t in enumerate(_TERMS)},
-                         "g2": _num(result.g2[i])},
-            "fitted": {"total": _num(result.fitted[i]), "rms": _num(result.fitted_rms[i])},
-            "ratio": _num(result.ratio[i]),
-            "saturated": bool(result.saturated[i]),
-            "peak_rate": _num(result.peak_rate[i]),
-            "source": "specs" if result.spec[i] else "coefficients",
-            "warnings": list(result.warnings.get(i, ())),
-        })
-    return rows
+def rows_json(result: RecordingAnalysis) -> list[dict[str, Any]]:
+    """The JSON's ``results``: one object per sensor, the result's records."""
+    return json_of(result.records(), range(len(result.sensors)))
 
 
 def to_json(result: RecordingAnalysis) -> str:
     """``analyze --recording --format json``."""
 
     document = header("recording", result.unit)
-    document["results"] = _rows(result)
+    document["results"] = rows_json(result)
     document["recording"] = recording_info(result.fit, units.scale(result.unit))
     document["warnings"] = list(result.fit.warnings)
     return dumps(document)

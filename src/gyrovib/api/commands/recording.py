@@ -375,22 +375,29 @@ class RecordingAnalysis(Frozen):
     warnings: dict[int, tuple[str, ...]]
 
     def records(self) -> tuple[Column[int], ...]:
-        """The columns of the CSV and the DataFrame, in order, one row per sensor (its
-        index): a number that is not finite is unknown (an empty CSV cell)."""
+        """The columns of the CSV, the DataFrame and the JSON's ``results``, in order, one
+        row per sensor (its index): a number that is not finite is unknown (an empty CSV
+        cell, JSON null); the JSON alone has each row's source and warnings."""
         def of(values: Any) -> Callable[[int], float]:
             listed = np.asarray(values, dtype=float).tolist()
             return lambda i: listed[i]
 
-        numbers = [("recorded", self.recorded),
-                   *((f"recorded_{m}", self.terms[:, k]) for k, m in enumerate(MOMENTS)),
-                   ("recorded_g2", self.g2), ("fitted", self.fitted),
-                   ("fitted_rms", self.fitted_rms), ("ratio", self.ratio)]
+        numbers = [("recorded", "recorded.total", self.recorded),
+                   *((f"recorded_{m}", f"recorded.additive_terms.{m}", self.terms[:, k])
+                     for k, m in enumerate(MOMENTS)),
+                   ("recorded_g2", "recorded.g2", self.g2), ("fitted", "fitted.total",
+                                                             self.fitted),
+                   ("fitted_rms", "fitted.rms", self.fitted_rms), ("ratio", None, self.ratio)]
         return (Column("sensor", None, lambda i: self.sensors[i]),
-                *(Column(name, None if name == "ratio" else "rate", of(values), cell=known)
-                  for name, values in numbers),
+                *(Column(name, None if name == "ratio" else "rate", of(values), cell=known,
+                         key=key) for name, key, values in numbers),
                 Column("saturated", None, lambda i: bool(self.saturated[i])),
                 Column("peak_rate", "rate", of(self.peak_rate)),
-                Column("unit", None, lambda i: self.unit))
+                Column("unit", None, lambda i: self.unit, skip=("json",)),
+                Column("source", None, lambda i: "specs" if self.spec[i] else "coefficients",
+                       skip=("csv", "frame")),
+                Column("warnings", None, lambda i: list(self.warnings.get(i, ())),
+                       skip=("csv", "frame")))
 
     def to_frame(self) -> Any:
         """One row per sensor (pandas DataFrame): the columns of :meth:`records`."""
