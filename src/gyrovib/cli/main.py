@@ -30,22 +30,35 @@ escaped (:func:`~gyrovib.cli.common.printable`).
 
 from __future__ import annotations
 
-import importlib
 import os
 import signal
 import sys
 import warnings
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import Any, NoReturn
 
 import click
 
 from gyrovib._version import __version__
+from gyrovib.cli.allan import allan
+from gyrovib.cli.analyze import analyze
+from gyrovib.cli.bounds import bounds
+from gyrovib.cli.catalog import catalog
+from gyrovib.cli.common import Settings, say, silence_stderr
 from gyrovib.cli.early import early_exit
+from gyrovib.cli.fit import fit
+from gyrovib.cli.mission import mission
+from gyrovib.cli.options import as_option
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
+from gyrovib.cli.profile import profile
+from gyrovib.cli.progress import terminal_progress
+from gyrovib.cli.report import report
+from gyrovib.cli.runup import runup
+from gyrovib.cli.schema import schema
+from gyrovib.cli.select import select
+from gyrovib.cli.sweep import sweep
+from gyrovib.cli.validate import validate
 from gyrovib.errors import Crash, GyrovibError
-
-if TYPE_CHECKING:
-    from gyrovib.cli.common import Settings
+from gyrovib.render.github import annotation, problems_to_github
 
 EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 EXIT_WRITE_FAILED = 74  # EX_IOERR of sysexits.h
@@ -105,21 +118,6 @@ def _signal_status(exc: KeyboardInterrupt) -> int:
     return 128 + (exc.signum if isinstance(exc, Terminated) else signal.SIGINT)
 
 
-def say(line: str) -> None:
-    """:func:`gyrovib.cli.common.say`, imported when there is something to say (``--help``
-    does without the module)."""
-    from gyrovib.cli.common import say as write
-
-    write(line)
-
-
-def silence_stderr() -> None:
-    """:func:`gyrovib.cli.common.silence_stderr`, imported as :func:`say` is."""
-    from gyrovib.cli.common import silence_stderr as silence
-
-    silence()
-
-
 def _debug() -> bool:
     """Whether ``GYROVIB_DEBUG`` asks for tracebacks: 1, true or yes, in any case."""
     return os.environ.get("GYROVIB_DEBUG", "").strip().lower() in ("1", "true", "yes")
@@ -144,8 +142,6 @@ def _report(exc: GyrovibError, settings: Settings | None) -> None:
     for problem in exc.problems:
         say(f"gyrovib: error: {problem}" if problem.file is None else str(problem))
     if settings is not None and settings.github:
-        from gyrovib.render.github import problems_to_github
-
         try:
             sys.stdout.write(problems_to_github(exc.problems))
             sys.stdout.flush()
@@ -202,32 +198,13 @@ class _Group(click.Group):
     _argv: list[str] | None = None
 
     def list_commands(self, ctx: click.Context) -> list[str]:
-        return list(COMMANDS)  # in the order registered, not sorted
-
-    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
-        """The command ``cmd_name``, its module imported now (cli/NAME.py declares it)."""
-        if cmd_name not in COMMANDS:
-            return None
-        command: click.Command = getattr(importlib.import_module(f"gyrovib.cli.{cmd_name}"),
-                                         cmd_name)
-        command.short_help = COMMANDS[cmd_name]
-        return command
-
-    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
-        """The commands and their one line each, from :data:`COMMANDS` alone: listing them
-        imports none of their modules."""
-        with formatter.section("Commands"):
-            formatter.write_dl(list(COMMANDS.items()))
+        return list(self.commands)  # in the order registered (COMMANDS), not sorted
 
     def main(self, args: Any = None, *rest: Any, **extra: Any) -> Any:
         self._argv = None if args is None else [str(a) for a in args]
         return super().main(args, *rest, **extra)
 
     def invoke(self, ctx: click.Context) -> Any:
-        # lazy: the option declarations and the progress display are not needed by --help
-        from gyrovib.cli.options import as_option
-        from gyrovib.cli.progress import terminal_progress
-
         start_run()
         try:
             with warnings.catch_warnings(), terminal_progress():
@@ -236,14 +213,10 @@ class _Group(click.Group):
                                         module=r"(gyrovib|numpy)(\..*)?$")
                 return super().invoke(ctx)
         except GyrovibError as exc:
-            from gyrovib.cli.common import Settings
-
             _report(as_option(exc), ctx.find_object(Settings))
             ctx.exit(EXIT_BAD_INPUT)
         except click.exceptions.UsageError as exc:
             if _wants_github(sys.argv[1:] if self._argv is None else self._argv):
-                from gyrovib.render.github import annotation
-
                 try:
                     sys.stdout.write(annotation(exc.format_message(), title="gyrovib usage")
                                      + "\n")
@@ -294,30 +267,16 @@ def cli(ctx: click.Context, color: str) -> None:
     74 the output could not be written, 129 hung up, 130 interrupted,
     143 terminated, 141 standard output closed early.
     """
-    from gyrovib.cli.common import Settings
-
     ctx.obj = Settings(color=color)
 
 
-#: Every command, registered once, in the order ``gyrovib --help`` lists them, with the
-#: line it shows for each (the command's short help). ``gyrovib/cli/NAME.py`` declares
-#: ``gyrovib NAME``; its module is imported only when the command runs or shows its own
-#: help, so listing them all costs no option declarations.
-COMMANDS: dict[str, str] = {
-    "analyze": "The vibration error of every sensor under every profile.",
-    "bounds": "The largest coefficients that keep the error within a budget.",
-    "select": "Check every sensor against a budget: pass/fail and a ranking.",
-    "sweep": "Δ_V and Δ_V(RMS) over a range of the carrier rate Ω_K3.",
-    "report": "A trade-study report: one self-contained HTML file.",
-    "validate": "Parse and validate catalogue files only.",
-    "schema": "The JSON Schema of the catalogue format.",
-    "fit": "Fit rate-table data: each unit's coefficients and uncertainty.",
-    "profile": "Fit a profile (and its carrier mission) to recordings.",
-    "allan": "The Allan deviation of a static recording and its noise terms.",
-    "catalog": "The catalogues bundled with gyrovib.",
-    "mission": "Each sensor over each mission: angle θ_V and the angle budget.",
-    "runup": "The installed sensor's rectification, measured from a run-up test.",
-}
+#: Every command, registered once, in the order ``gyrovib --help`` lists them. A command
+#: module declares its options at import and imports the library and the renderers only
+#: inside its function, so listing them all costs click's declarations alone.
+COMMANDS: tuple[click.Command, ...] = (analyze, bounds, select, sweep, report, validate,
+                                       schema, fit, profile, allan, catalog, mission, runup)
+for _each in COMMANDS:
+    cli.add_command(_each)
 
 
 def main(args: list[str] | None = None) -> NoReturn:
@@ -351,9 +310,9 @@ def _command(args: list[str] | None) -> int:
     """Run the command; its status, every exception but a signal's turned into one."""
     try:
         code = cli.main(args, prog_name="gyrovib", standalone_mode=False)
-    except click.exceptions.Abort:  # a signal while click parsed (or imported) the command
-        code = _interrupted_status() or EXIT_INTERRUPTED  # SIGTERM, SIGHUP: not Ctrl-C
-        _echo_interrupted(code)
+    except click.exceptions.Abort:  # a KeyboardInterrupt while click parsed the group
+        _echo_interrupted(EXIT_INTERRUPTED)
+        code = EXIT_INTERRUPTED
     except click.exceptions.ClickException as exc:
         try:
             exc.show()
