@@ -53,6 +53,8 @@ FINE_STEP = 1e-6
 #: Compass step below which Newton's method takes over (rad), and its difference step.
 NEWTON_FROM = 0.3
 NEWTON_H = 1e-4
+#: Step (rad) along a direction of non-negative curvature off a saddle.
+SADDLE_STEP = 0.25
 
 
 def free_offsets(groups: Sequence[LockedGroup]) -> list[tuple[int, int]]:
@@ -120,9 +122,9 @@ def _coarse(dims: int, snap: Sequence[int] = ()) -> FloatArray:
 Refinement = Generator[FloatArray, FloatArray, tuple[FloatArray, float]]
 
 
-def _compass(k: int, best: FloatArray, value: float, step: float, stop: float
+def _compass(best: FloatArray, value: float, step: float, stop: float
              ) -> Generator[FloatArray, FloatArray, tuple[FloatArray, float]]:
-    """Compass search on objective ``k`` from ``best`` until the step is below ``stop``
+    """Compass search on one objective from ``best`` until the step is below ``stop``
     (a coroutine: it yields its trial points and is sent their values)."""
     dims = best.size
     moves = np.concatenate([np.eye(dims), -np.eye(dims)])
@@ -164,16 +166,18 @@ def _hessian(f: FloatArray, dims: int, h: float) -> tuple[FloatArray, FloatArray
     return grad, hess
 
 
-def _newton(k: int, best: FloatArray, value: float
+def _newton(best: FloatArray, value: float
             ) -> Generator[FloatArray, FloatArray, tuple[FloatArray, float, bool]]:
-    """Newton's method on objective ``k`` with central differences (step :data:`NEWTON_H`).
+    """Newton's method on one objective with central differences (step :data:`NEWTON_H`).
 
     Near a smooth maximum it converges quadratically (a handful of steps of
     1 + 2D² evaluations where the compass search took hundreds of steps of 2D).
     Each step is tried whole first; only when that does not improve are its halves
     (down to 1/128) tried, and the best taken. Returns the point, its value and
-    whether it converged (False: the Hessian is not negative definite there, or a
-    step did not improve). A coroutine, as :func:`_compass`.
+    whether it converged (False: a step did not improve). At a saddle (an eigenvalue
+    of the Hessian ≥ 0) it steps along the eigenvectors of non-negative curvature
+    instead, and goes on from the best of them if one improves. A coroutine, as
+    :func:`_compass`.
     """
     dims = best.size
     stencil = _stencil(dims)
@@ -181,8 +185,21 @@ def _newton(k: int, best: FloatArray, value: float
     for _ in range(12):
         f = yield np.mod(best[None, :] + h * stencil, 2.0 * math.pi)
         grad, hess = _hessian(f, dims, h)
-        if not np.all(np.isfinite(hess)) or np.max(np.linalg.eigvalsh(hess)) >= 0:
+        if not np.all(np.isfinite(hess)):
             return best, value, False
+        lam, vec = np.linalg.eigh(hess)
+        if lam[-1] >= 0:
+            # a saddle: f rises both ways along an eigenvector of curvature ≥ 0, whatever
+            # the gradient there; try steps of SADDLE_STEP along each, both signs
+            up = vec[:, lam >= 0].T
+            trials = np.mod(best[None, :] + SADDLE_STEP * np.concatenate([up, -up]),
+                            2.0 * math.pi)
+            got = yield trials
+            i = int(np.argmax(got))
+            if not got[i] > value + 1e-14 * abs(value):
+                return best, value, False
+            best, value = trials[i], float(got[i])
+            continue
         move = -np.linalg.solve(hess, grad)
         size = float(np.max(np.abs(move)))
         if size > 1.0:
@@ -203,14 +220,26 @@ def _newton(k: int, best: FloatArray, value: float
     return best, value, False
 
 
-def _refine(k: int, best: FloatArray, value: float, start: float) -> Refinement:
-    """Objective ``k`` from its best coarse node: the compass search down to
-    :data:`NEWTON_FROM`, Newton's method, and where that fails the compass search on
-    down to :data:`FINE_STEP`."""
-    point, value = yield from _compass(k, best, value, start, NEWTON_FROM)
-    point, value, done = yield from _newton(k, point, value)
-    if not done:
-        point, value = yield from _compass(k, point, value, NEWTON_FROM, FINE_STEP)
+#: Newton's method tried this many times, with compass moves between (off a saddle).
+NEWTON_TRIES = 3
+
+
+def _refine(best: FloatArray, value: float, start: float) -> Refinement:
+    """One objective from its best coarse node: the compass search down to
+    :data:`NEWTON_FROM`, then Newton's method. Where Newton's method fails (a saddle
+    or a ridge: the Hessian is not negative definite), compass moves of 2·NEWTON_FROM
+    down to NEWTON_FROM/4 leave it and Newton's method is tried again (at most
+    :data:`NEWTON_TRIES` times); past that, the compass search goes on down to
+    :data:`FINE_STEP`."""
+    point, value = yield from _compass(best, value, start, NEWTON_FROM)
+    for attempt in range(NEWTON_TRIES):
+        point, value, done = yield from _newton(point, value)
+        if done:
+            return point, value
+        if attempt + 1 < NEWTON_TRIES:
+            point, value = yield from _compass(point, value, 2.0 * NEWTON_FROM,
+                                               0.25 * NEWTON_FROM)
+    point, value = yield from _compass(point, value, NEWTON_FROM, FINE_STEP)
     return point, value
 
 
@@ -227,7 +256,7 @@ def _lockstep(rows_objective: RowObjective, starts: FloatArray, values: FloatArr
     running: dict[int, Refinement] = {}
     asks: dict[int, FloatArray] = {}
     for k in range(starts.shape[0]):
-        gen = _refine(k, starts[k].copy(), float(values[k]), step)
+        gen = _refine(starts[k].copy(), float(values[k]), step)
         running[k] = gen
         try:
             asks[k] = next(gen)
