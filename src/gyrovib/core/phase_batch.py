@@ -244,10 +244,10 @@ class BatchedProfile:
             out[:] = np.where(crossing, inside, np.mean(e, axis=1))
             return out
         keys = np.concatenate([psi[:, self.folded_offsets()], omega[:, None]], axis=1)
-        _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-        inverse = inverse.reshape(-1)
-        for u, row in enumerate(first.tolist()):
-            rows = np.flatnonzero(inverse == u)
+        _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+        order = np.argsort(inverse.reshape(-1), kind="stable")
+        for rows in np.split(order, np.cumsum(counts)[:-1]):
+            row = int(rows[0])
             start, coef = self._fold(psi[row], float(omega[row]))
             e = self._signed(s[rows], start, coef)
             inside = np.mean(e + np.abs(s[rows]), axis=1) - np.abs(omega[rows])

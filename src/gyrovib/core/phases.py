@@ -53,8 +53,10 @@ FINE_STEP = 1e-6
 #: Compass step below which Newton's method takes over (rad), and its difference step.
 NEWTON_FROM = 0.3
 NEWTON_H = 1e-4
-#: Step (rad) along a direction of non-negative curvature off a saddle.
+#: Step (rad) along a direction of positive curvature off a saddle.
 SADDLE_STEP = 0.25
+#: Hessian eigenvalues within this fraction of the largest are a flat direction.
+FLAT = 1e-6
 
 
 def free_offsets(groups: Sequence[LockedGroup]) -> list[tuple[int, int]]:
@@ -174,9 +176,10 @@ def _newton(best: FloatArray, value: float
     1 + 2D² evaluations where the compass search took hundreds of steps of 2D).
     Each step is tried whole first; only when that does not improve are its halves
     (down to 1/128) tried, and the best taken. Returns the point, its value and
-    whether it converged (False: a step did not improve). At a saddle (an eigenvalue
-    of the Hessian ≥ 0) it steps along the eigenvectors of non-negative curvature
-    instead, and goes on from the best of them if one improves. A coroutine, as
+    whether it converged (False: a step did not improve). A direction of no curvature
+    (:data:`FLAT`) is one the objective does not depend on: the step leaves it alone.
+    At a saddle (an eigenvalue of the Hessian > 0) it steps along the eigenvectors of
+    positive curvature instead, and goes on from the best of them if one improves. A coroutine, as
     :func:`_compass`.
     """
     dims = best.size
@@ -188,10 +191,14 @@ def _newton(best: FloatArray, value: float
         if not np.all(np.isfinite(hess)):
             return best, value, False
         lam, vec = np.linalg.eigh(hess)
-        if lam[-1] >= 0:
-            # a saddle: f rises both ways along an eigenvector of curvature ≥ 0, whatever
+        # a curvature within FLAT of the largest is none: a direction the objective does
+        # not depend on (a moment of one group along another group's offset); the step
+        # leaves it alone
+        flat = np.abs(lam) <= FLAT * float(np.max(np.abs(lam)))
+        if np.any(lam[~flat] > 0):
+            # a saddle: f rises both ways along an eigenvector of curvature > 0, whatever
             # the gradient there; try steps of SADDLE_STEP along each, both signs
-            up = vec[:, lam >= 0].T
+            up = vec[:, (lam > 0) & ~flat].T
             trials = np.mod(best[None, :] + SADDLE_STEP * np.concatenate([up, -up]),
                             2.0 * math.pi)
             got = yield trials
@@ -200,7 +207,8 @@ def _newton(best: FloatArray, value: float
                 return best, value, False
             best, value = trials[i], float(got[i])
             continue
-        move = -np.linalg.solve(hess, grad)
+        bent = vec[:, ~flat]
+        move = -bent @ ((bent.T @ grad) / lam[~flat])
         size = float(np.max(np.abs(move)))
         if size > 1.0:
             move *= 1.0 / size
@@ -433,38 +441,57 @@ def worst_phase_multipliers(
 ) -> Multipliers:
     """Per term, the largest |multiplier| over the unknown phases (synthesis, exact).
 
-    g_A = ½E(Ω), M4, |M3| and |M5| are each maximised on their own at every
-    rate in ``omega`` (any shape); M2, C31, C32 and the acceleration moments
-    do not depend on the phases. The result bounds every phase's share.
+    g_A = ½E(Ω), M4, |M3| and |M5| are each maximised on their own: M3, M4 and
+    M5 once (they do not depend on the rate), g_A at every rate in ``omega``
+    (any shape), all in one search (:func:`_lockstep`; the trial points on the
+    batched form of the profile, :mod:`gyrovib.core.phase_batch`, where it has
+    one); M2, C31, C32 and the acceleration moments do not depend on the phases.
+    The result bounds every phase's share.
     """
     w = np.asarray(omega, dtype=float)
     free = free_offsets(groups)
     flat = w.ravel()
-    fields: dict[str, list[float]] = {"asymmetry": [], "m3": [], "m4": [], "m5": []}
     base = profile_multipliers(vibration, w, "exact", locked=list(groups),
                                acceleration=acceleration)
-    for i, rate in enumerate(flat):
-        advance("phase: worst, rates", i, flat.size)
+    fast = batched(vibration, groups, free, None)
 
-        def objective(psi: FloatArray, rate: float = float(rate)) -> FloatArray:
+    def values(psi: FloatArray, rates: FloatArray) -> FloatArray:
+        """(C, 4): |g_A| at each row's rate, |M3|, M4, |M5|."""
+        if fast is not None:
+            mu = fast.multipliers(psi, rates)
+        else:
             mu = stack_multipliers([
-                profile_multipliers(vibration, np.asarray(rate), "exact",
+                profile_multipliers(vibration, np.asarray(float(rate)), "exact",
                                     locked=apply_offsets(groups, free, row))
-                for row in psi])
-            assert mu.m3 is not None and mu.m5 is not None
-            out: FloatArray = np.stack([np.abs(mu.asymmetry), np.abs(mu.m3), mu.m4,
-                                        np.abs(mu.m5)], axis=1)
+                for row, rate in zip(psi, rates, strict=True)])
+        assert mu.m3 is not None and mu.m5 is not None
+        out: FloatArray = np.stack([np.abs(mu.asymmetry), np.abs(mu.m3), mu.m4,
+                                    np.abs(mu.m5)], axis=1)
+        return out
+
+    dims = len(free)
+    if dims == 0:
+        got = values(np.zeros((flat.size, 0)), flat)
+        best = np.concatenate([got[0, 1:], got[:, 0]])
+    else:
+        nodes = _coarse(dims, () if fast is None else fast.folded_offsets())
+        n = nodes.shape[0]
+        v = values(np.tile(nodes, (flat.size, 1)), np.repeat(flat, n))
+        v = v.reshape(flat.size, n, 4)
+        # objectives: |M3|, M4, |M5| (any rate), then g_A at each rate
+        table = np.concatenate([v[0, :, 1:], v[:, :, 0].T], axis=1)
+
+        def rows_objective(psi: FloatArray, which: NDArray[np.intp]) -> FloatArray:
+            moment = which < 3
+            got = values(psi, flat[np.where(moment, 0, which - 3)])
+            out: FloatArray = got[np.arange(psi.shape[0]), np.where(moment, which + 1, 0)]
             return out
 
-        _, values = maximise_on_torus(objective, len(free))
-        for name, v in zip(("asymmetry", "m3", "m4", "m5"), values, strict=True):
-            fields[name].append(float(v))
-    advance("phase: worst, rates", flat.size, flat.size)
-    shaped = {k: np.asarray(v).reshape(w.shape) for k, v in fields.items()}
+        _, best = _searched(nodes, table, rows_objective)
+    m3, m4, m5 = (np.full(w.shape, float(best[i])) for i in range(3))
     return Multipliers(
-        asymmetry=shaped["asymmetry"], m2=base.m2, m4=shaped["m4"], c31=base.c31,
-        c32=base.c32, omega=w.copy(), m3=shaped["m3"], m5=shaped["m5"],
-        acceleration=base.acceleration,
+        asymmetry=best[3:].reshape(w.shape), m2=base.m2, m4=m4, c31=base.c31,
+        c32=base.c32, omega=w.copy(), m3=m3, m5=m5, acceleration=base.acceleration,
     )
 
 

@@ -15,16 +15,23 @@ import importlib.util
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.commands.analyze import analyze
 from gyrovib.api.commands.mission import mission
+from gyrovib.api.commands.recording_honesty import (
+    RATIO_RANGE,
+    at_mean_warnings,
+    ratio_warnings,
+    unknown_warnings,
+)
 from gyrovib.api.datasheet.specs import figures, is_spec
-from gyrovib.api.evaluation.unknown import depends_on, not_recorded, words
+from gyrovib.api.evaluation.unknown import depends_on, not_recorded
 from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.api.recordings.results import (
@@ -54,8 +61,6 @@ DEFAULT_CROSSOVER = 5.0
 DEFAULT_RESOLUTION = 0.5
 DEFAULT_THRESHOLD = 10.0
 DEFAULT_BREAKPOINTS = 12
-#: The fitted mission's closed form and Δ_V,rec should agree within this range.
-RATIO_RANGE = (0.8, 1.25)
 #: A vibration whose rms is below this fraction of the signal's is rounding: none.
 NEGLIGIBLE = 1e-10
 #: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.
@@ -355,7 +360,12 @@ class RecordingAnalysis(Frozen):
     ``fitted`` (N,) the time-weighted closed form over the fitted mission,
     ``fitted_rms`` (N,); ``ratio`` (N,) fitted/recorded (NaN where either is 0);
     ``saturated`` (N,), ``peak_rate`` (N,) max |ω3| at the element;
-    ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope).
+    ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope);
+    ``at_mean`` (N,) the fitted profile's closed form at its own (mean) rate, the
+    number ``analyze`` gives on the written file, and ``at_mean_ratio`` (N,) its ratio
+    to Δ_V,rec (NaN where either is 0 or unknown), warned of outside
+    :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the fitted mission
+    keeps it).
     """
 
     unit: str
@@ -371,6 +381,17 @@ class RecordingAnalysis(Frozen):
     spec: NDArray[np.bool_]
     fit: RecordingFit
     warnings: dict[int, tuple[str, ...]]
+    at_mean: FloatArray = field(default_factory=lambda: np.zeros(0))
+    at_mean_ratio: FloatArray = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def at_mean_outside(self) -> NDArray[np.bool_]:
+        """Per sensor: the profile at its mean rate and the recording disagree by more
+        than :data:`RATIO_RANGE` (False where the ratio is unknown)."""
+        lo, hi = RATIO_RANGE
+        r = self.at_mean_ratio
+        out: NDArray[np.bool_] = np.isfinite(r) & ((r < lo) | (r > hi))
+        return out
 
     def to_frame(self) -> Any:
         """One row per sensor (pandas DataFrame); columns as the CSV output's."""
@@ -383,7 +404,8 @@ class RecordingAnalysis(Frozen):
         data.update({"recorded_g2": self.g2, "fitted": self.fitted,
                      "fitted_rms": self.fitted_rms, "ratio": self.ratio,
                      "saturated": self.saturated, "peak_rate": self.peak_rate,
-                     "unit": self.unit})
+                     "unit": self.unit, "at_mean_rate": self.at_mean,
+                     "at_mean_ratio": self.at_mean_ratio})
         frame = pd.DataFrame(data)
         fit = self.fit
         frame.attrs.update({"unit": self.unit, "file": os.path.basename(fit.file),
@@ -455,62 +477,31 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
                                                terms, g2_part, figures)
     ranges = sensor_ranges(entries)
     saturated = peak > ranges
-    fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries])
+    fitted, fitted_rms, at_mean = _fitted_mission(fit, catalog,
+                                                  [e.sensor.id for e in entries])
     unknown = depends_on(entries, fit_missing(fit), spec_cross=False)
     for i, parts in enumerate(unknown):
         if parts:  # unknown, never 0 (docs/model.md section 13)
             total[i] = terms[i] = g2_part[i] = fitted[i] = fitted_rms[i] = np.nan
+            at_mean[i] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
+        at_mean_ratio = np.where((total != 0) & (at_mean != 0), at_mean / total, np.nan)
     s = units.scale(unit)
-    warnings = _unknown_warnings(unknown, _warnings(fit, ratio, saturated, peak / s,
+    warnings = unknown_warnings(unknown, ratio_warnings(fit, ratio, saturated, peak / s,
                                                     ranges / s, unit))
+    at_mean_warnings(fit, at_mean_ratio, warnings)
     return RecordingAnalysis(
         unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
-        warnings=warnings)
-
-
-def _unknown_warnings(unknown: Sequence[tuple[str, ...]],
-                      warnings: dict[int, tuple[str, ...]]) -> dict[int, tuple[str, ...]]:
-    """``warnings`` with, first on each row whose Δ_V,rec is unknown, the parts it lacks."""
-    for i, parts in enumerate(unknown):
-        if parts:
-            warnings[i] = (f"Δ_V,rec unknown: {words(parts)}, and this sensor's error "
-                           "depends on it (an axis not recorded is unknown, never 0)",
-                           *warnings.get(i, ()))
-    return warnings
+        warnings=warnings, at_mean=at_mean / s, at_mean_ratio=at_mean_ratio)
 
 
 def fit_missing(fit: RecordingFit) -> tuple[str, ...]:
     """The parts the fitted recording did not record (rate axes, accelerations)."""
     accel = fit.linear is not None and bool(np.all(np.isfinite(fit.linear.variance)))
     return not_recorded(fit.rate_axes, accel)
-
-
-def _warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_],
-              peak: FloatArray, ranges: FloatArray, unit: str) -> dict[int, tuple[str, ...]]:
-    """Per sensor row the warnings of ``analyze --recording`` (peak and range in ``unit``)."""
-    warnings: dict[int, tuple[str, ...]] = {}
-    lo, hi = RATIO_RANGE
-    for i in range(ratio.size):
-        w: list[str] = []
-        if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
-            worst = (" (the fitted harmonics take their worst relative phases, so the closed "
-                     "form is a bound over phases the recording does not show: "
-                     "--independent-tones compares like with like)"
-                     if fit.angular.harmonics else "")
-            w.append(f"the fitted profile's closed form is {ratio[i]:.3g} × Δ_V,rec, outside "
-                     f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
-                     f"stationary, and Δ_V,rec is the number to trust{worst}")
-        if saturated[i]:
-            w.append(f"max |ω3| = {peak[i]:.6g} {unit} on the recording exceeds the "
-                     f"sensor's range {ranges[i]:.6g} {unit}: the static model does not "
-                     "hold in saturation")
-        if w:
-            warnings[i] = tuple(w)
-    return warnings
 
 
 def recorded_totals(entries: Sequence[Any], moments: FloatArray,
@@ -558,10 +549,11 @@ def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: Flo
     return total, terms, g2_part
 
 
-def _fitted_mission(fit: RecordingFit, catalog: Any,
-                    sensor_ids: Sequence[str]) -> tuple[FloatArray, FloatArray]:
+def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str]
+                    ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The fitted mission's closed form, deg/s: :func:`gyrovib.api.mission` on the mission
-    the written YAML holds (the same numbers as ``gyrovib mission`` on that file).
+    the written YAML holds (the same numbers as ``gyrovib mission`` on that file), and
+    the fitted profile's at its own mean rate (as ``gyrovib analyze`` on that file).
 
     Δ̄ = Σ T_b·Δ_V(Ω_b)/ΣT over the carrier histogram's bins, and the mean RMS
     √(Σ T_b·Δ_V(RMS)_b²/ΣT) (docs/model.md section 12). A spec-form sensor's Δ̄
@@ -574,4 +566,7 @@ def _fitted_mission(fit: RecordingFit, catalog: Any,
     rows = {r.sensor: r for r in result.rows}
     total = np.array([rows[s].mean for s in sensor_ids], dtype=float)
     rms = np.array([rows[s].rms for s in sensor_ids], dtype=float)
-    return total, rms
+    at_rate = analyze(combined, sensors=sensor_ids, profiles=(fit.profile_id,), unit="deg/s")
+    where = {s: i for i, s in enumerate(at_rate.sensors)}
+    at_mean = np.array([at_rate.error.total[where[s], 0] for s in sensor_ids], dtype=float)
+    return total, rms, at_mean
