@@ -194,21 +194,18 @@ class BatchedProfile:
         h = self.h
         live = self.live.bound if self.live is not None else 0.0
         later = sum(p.bound for p, _ in self.folded)
-        lo, hi = _window(omega - live - later, omega + live + later, h)
-        c: FloatArray = h * np.arange(lo, hi + 1, dtype=float)
-        e = _interpolate(c, h, self.reach, self.base)
-        values = np.log(np.maximum(e, 1e-300))
-        coef = _window_polynomials(values, lo)
-        start = lo
-        for part, m in self.folded:
+        start, coef = 0, self.base
+        for step, (part, m) in enumerate(self.folded):
             later -= part.bound
             lo, hi = _window(omega - live - later, omega + live + later, h)
-            c = h * np.arange(lo, hi + 1, dtype=float)
+            c: FloatArray = h * np.arange(lo, hi + 1, dtype=float)
             theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
             phasors = part.phasors_at(np.asarray(psi_row, float)[None, :])[0]
             y = group_signal(part.orders, phasors[:, 2:3], theta)[0]       # (m,)
             s = c[:, None] + y[None, :]
-            e_s = self._signed(s, start, coef)
+            # the first fold reads E_Y from the tones' and Gaussian part's own table
+            e_s = (_interpolate(s, h, self.reach, self.base) if step == 0
+                   else self._signed(s, start, coef))
             inside = np.mean(e_s + np.abs(s), axis=1) - np.abs(c)
             new = np.where(np.abs(c) < part.bound, inside, np.mean(e_s, axis=1))
             coef = _window_polynomials(np.log(np.maximum(new, 1e-300)), lo)

@@ -22,10 +22,12 @@ objective with the compass search alone, 700 so.
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
 from functools import partial
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -360,6 +362,41 @@ def worst_phase_error(
                               acceleration=acceleration, g2_sensitivity=g2_sensitivity)[0]
 
 
+def _search_key(*parts: object) -> bytes:
+    """Bytes that identify a search's inputs (arrays by shape, dtype and content)."""
+    out = []
+    for part in parts:
+        if part is None:
+            out.append(b"-")
+        elif isinstance(part, LockedGroup):
+            out.append(_search_key(part.orders, part.phasors, part.worst))
+        elif isinstance(part, Vibration):
+            out.append(_search_key(part.phasors, part.sigma, part.coherence,
+                                   np.asarray(part.has_random)))
+        elif isinstance(part, (list, tuple)):
+            out.append(_search_key(*part))
+        else:
+            a = np.ascontiguousarray(part)
+            out.append(f"{a.dtype.str}{a.shape}".encode() + a.tobytes())
+    return b"|".join(out)
+
+
+#: The last searches made, by their inputs: a report asks ``analyze`` and ``select`` the
+#: same profile's worst phases, and ``bounds`` and ``sweep`` its worst multipliers.
+_SEARCHES: dict[bytes, Any] = {}
+_KEPT_SEARCHES = 32
+
+
+def _remembered(key: bytes, compute: Callable[[], Any]) -> Any:
+    """``compute()``, or a copy of what it gave for ``key`` before (kept for the last few
+    keys; a copy, so that a caller's changes never reach the next one)."""
+    if key not in _SEARCHES:
+        if len(_SEARCHES) >= _KEPT_SEARCHES:
+            _SEARCHES.pop(next(iter(_SEARCHES)))
+        _SEARCHES[key] = compute()
+    return copy.deepcopy(_SEARCHES[key])
+
+
 def worst_phase_errors(
     coefficients: ArrayLike,
     vibration: Vibration,
@@ -376,8 +413,28 @@ def worst_phase_errors(
     (:func:`_lockstep`), each trial point on the batched form of the profile
     (:mod:`gyrovib.core.phase_batch`) where it has one. The error reported is
     recomputed at the phases found by
-    :func:`~gyrovib.core.analysis.profile_multipliers`, the one-point path.
+    :func:`~gyrovib.core.analysis.profile_multipliers`, the one-point path. A search
+    with the same inputs as one of the last few is not made again.
     """
+    key = _search_key("errors", np.asarray(coefficients, dtype=float), vibration,
+                      list(groups), np.asarray(omegas, dtype=float), acceleration,
+                      g2_sensitivity)
+    found: list[WorstPhases] = _remembered(key, lambda: _worst_phase_errors(
+        coefficients, vibration, groups, omegas, acceleration=acceleration,
+        g2_sensitivity=g2_sensitivity))
+    return list(found)
+
+
+def _worst_phase_errors(
+    coefficients: ArrayLike,
+    vibration: Vibration,
+    groups: Sequence[LockedGroup],
+    omegas: ArrayLike,
+    *,
+    acceleration: ArrayLike | None = None,
+    g2_sensitivity: ArrayLike | None = None,
+) -> list[WorstPhases]:
+    """:func:`worst_phase_errors`, computed."""
     c = np.asarray(coefficients, dtype=float)
     rates = np.asarray(omegas, dtype=float).reshape(-1)
     free = free_offsets(groups)
@@ -446,8 +503,20 @@ def worst_phase_multipliers(
     (any shape), all in one search (:func:`_lockstep`; the trial points on the
     batched form of the profile, :mod:`gyrovib.core.phase_batch`, where it has
     one); M2, C31, C32 and the acceleration moments do not depend on the phases.
-    The result bounds every phase's share.
+    The result bounds every phase's share. A search with the same inputs as one of the
+    last few is not made again.
     """
+    key = _search_key("multipliers", vibration, list(groups), np.asarray(omega, float),
+                      acceleration)
+    found: Multipliers = _remembered(key, lambda: _worst_phase_multipliers(
+        vibration, groups, omega, acceleration=acceleration))
+    return found
+
+
+def _worst_phase_multipliers(vibration: Vibration, groups: Sequence[LockedGroup],
+                             omega: ArrayLike, *, acceleration: ArrayLike | None = None
+                             ) -> Multipliers:
+    """:func:`worst_phase_multipliers`, computed."""
     w = np.asarray(omega, dtype=float)
     free = free_offsets(groups)
     flat = w.ravel()
