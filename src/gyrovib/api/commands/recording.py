@@ -55,6 +55,7 @@ from gyrovib.core.recording import MOMENTS, recorded_error
 from gyrovib.core.transmissibility import as_table, psd_variance
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 
 #: Defaults of the options (INTERFACE.md, third round).
 DEFAULT_CROSSOVER = 5.0
@@ -163,6 +164,10 @@ def _need_scipy(recording: Recording) -> None:
             "pip install 'gyrovib[recording]'", recording.file))
 
 
+#: The progress label of :func:`fit_recording`.
+_FITTING = "fitting the recording"
+
+
 def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                   resolution: float = DEFAULT_RESOLUTION,
                   tone_threshold: float = DEFAULT_THRESHOLD,
@@ -182,12 +187,15 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     kept, warnings = _kept(recording, crossover)
     warnings += _short_for_welch(kept, fs, resolution)
     n_total = sum(hi - lo for lo, hi in kept)
+    advance(_FITTING, 0, 3)  # split, spectra, accelerations: a bar on a terminal
     measured = rate_pass(recording, kept, crossover, responses)
+    advance(_FITTING, 1, 3)
     moments = {key: value / n_total for key, value in measured.moments.items()}
     var, skew, kurt = _statistics(measured, n_total, recording.rate_axes)
     angular = _fit_part(recording.file, measured.x, fs, resolution, tone_threshold, breakpoints,
                         independent_tones, crossover, var, rate=True)
     measured.x.clear()  # the angular vibration is done with before the linear one is made
+    advance(_FITTING, 2, 3)
     g2_moments, linear = None, None
     if recording.store.has_accel:
         g2_sums, xa_segments = accel_pass(recording, kept, crossover)
@@ -196,6 +204,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
                            breakpoints, True, crossover, var_a, rate=False)
         del xa_segments
+    advance(_FITTING, 3, 3)
     rate = measured.carrier_sum / n_total
     # the fitted mission keeps the carrier of every axis: the joint carrier in at most
     # 16 groups (a histogram of Ω_K3 alone left a triad's X and Y sensors no carrier)
