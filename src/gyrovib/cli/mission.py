@@ -197,4 +197,5 @@ def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[s
         placement=parse_placement(placement))
     noise = {e.sensor.id: ({} if e.sensor.noise is None else e.sensor.noise.figures())
              for e in catalog.sensors if e.sensor.id in result.sensors}  # type: ignore[attr-defined]
-    return section(result, noise)
+    rate_units = {e.mission.id: e.unit for e in catalog.missions}  # type: ignore[attr-defined]
+    return section(result, noise, rate_units)

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from gyrovib import units
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
 from gyrovib.render.mission import known
@@ -74,28 +75,54 @@ def budget_lengths(row: MissionRow) -> list[float]:
     return [abs(b.vibration), *((noise * t * t / var) if var > 0 else 0.0 for t in terms)]
 
 
+#: Largest ratio of the budget totals drawn on one common axis; past it each bar is drawn
+#: on its own scale (the parts as shares of its total), which a common axis would
+#: flatten to nothing beside the largest.
+COMMON_SCALE_SPREAD = 20.0
+
+
 def budget_chart(result: MissionResult, mission: str) -> str:
-    """The whole angle budget per sensor as a stacked bar: which term dominates."""
+    """The whole angle budget per sensor as a stacked bar: which term dominates. On one
+    axis in deg when the totals are within :data:`COMMON_SCALE_SPREAD` of each other,
+    else each bar as the shares of its own total (the total written with the name); the
+    tooltips give each part in deg either way."""
     rows = _shown(result, mission)
     names = [r.sensor + (f" ({r.axis})" if r.axis else "") for r in rows]
+    lengths = [budget_lengths(r) for r in rows]
+    tips = [[f"{fmt(v)} deg" for v in row] for row in lengths]
+    totals = [sum(v for v in row if v > 0) for row in lengths]
+    positive = [t for t in totals if t > 0]
+    title = f"Angle budget over {mission}: |θ_V| + {fmt(result.coverage)}·RSS(noise)"
+    note = ("the noise part split by each term's share of the variance; ≥ ?: a noise "
+            "figure unknown, the total a lower bound")
+    open_end = [bool(r.budget and r.budget.lower_bound) for r in rows]
+    if positive and max(positive) > COMMON_SCALE_SPREAD * min(positive):
+        shares = [[100.0 * v / t if t > 0 else 0.0 for v in row]
+                  for row, t in zip(lengths, totals, strict=True)]
+        names = [f"{n} ({fmt(t)} deg)" for n, t in zip(names, totals, strict=True)]
+        return stacked_bar_chart(
+            title, f"% of each bar's own total, written by its name (the totals span over "
+            f"{fmt(COMMON_SCALE_SPREAD)}×); {note}",
+            names, BUDGET_PARTS, shares, open_end, None, tips)
     marker = (None if result.angle_budget is None or result.angle_unit != "deg" else
               Marker(f"θ* = {fmt(result.angle_budget, 3)} deg", x=float(result.angle_budget)))
-    return stacked_bar_chart(
-        f"Angle budget over {mission}: |θ_V| + {fmt(result.coverage)}·RSS(noise)",
-        "deg; the noise part split by each term's share of the variance; ≥ ?: a noise "
-        "figure unknown, the total a lower bound", names, BUDGET_PARTS,
-        [budget_lengths(r) for r in rows],
-        [bool(r.budget and r.budget.lower_bound) for r in rows], marker)
+    return stacked_bar_chart(title, f"deg; {note}", names, BUDGET_PARTS, lengths, open_end,
+                             marker, tips)
 
 
-def _segments_table(result: MissionResult, row: MissionRow) -> str:
-    head = ["#", "profile", "T_s (s)", f"Ω_K3 ({result.unit})", f"Δ_V,s ({result.unit})",
+def _segments_table(result: MissionResult, row: MissionRow, rate_unit: str | None = None
+                    ) -> str:
+    """A row's segments; the carrier Ω_K3 in ``rate_unit`` (the unit the mission's file
+    writes its rates in; default the result's), the errors in the result's unit."""
+    rate_unit = rate_unit or result.unit
+    to_rate = units.scale(result.unit) / units.scale(rate_unit)
+    head = ["#", "profile", "T_s (s)", f"Ω_K3 ({rate_unit})", f"Δ_V,s ({result.unit})",
             f"T_s·Δ_V,s ({result.angle_unit})", f"Δ_V(RMS),s ({result.unit})", "saturated"]
 
     factor = ANGLE_UNITS[result.unit][1]
     body = []
     for k, s in enumerate(row.segments):
-        cells = [str(k + 1), s.profile, fmt(s.duration), fmt(s.rate[2]), fmt(s.total),
+        cells = [str(k + 1), s.profile, fmt(s.duration), fmt(s.rate[2] * to_rate), fmt(s.total),
                  fmt(s.duration * s.total * factor), fmt(s.rms), "yes" if s.saturated else ""]
         style = ' class="worst"' if k == row.worst_index else ""
         body.append(f"<tr{style}>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
@@ -242,8 +269,10 @@ def noise_table(noise: dict[str, dict[str, Any]]) -> str:
 
 
 def mission_section(result: MissionResult,
-                    noise: dict[str, dict[str, Any]] | None = None) -> str:
-    """The HTML of the report's mission section."""
+                    noise: dict[str, dict[str, Any]] | None = None,
+                    rate_units: dict[str, str] | None = None) -> str:
+    """The HTML of the report's mission section (``rate_units``: mission id → the rate
+    unit of its file, in which its segments' carrier rates are shown)."""
     budget = ("no budget" if result.angle_budget is None and result.budget is None else
               f"angle budget |θ_V| ≤ {fmt(result.angle_budget)} {result.angle_unit}"
               if result.angle_budget is not None else
@@ -266,6 +295,7 @@ def mission_section(result: MissionResult,
         parts.append('<div class="charts">' + "".join(
             f"<figure>{theta_chart(result, r)}</figure>" for r in _shown(result, mission))
             + "</div>")
-        parts.extend(_segments_table(result, r) for r in _shown(result, mission))
+        parts.extend(_segments_table(result, r, (rate_units or {}).get(mission))
+                     for r in _shown(result, mission))
         parts.append("</section>")
     return "\n".join(parts)
