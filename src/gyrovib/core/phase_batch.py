@@ -55,6 +55,8 @@ from gyrovib.core.statistics import Vibration
 
 #: Folded tables kept per batched profile (each a window of a few hundred values).
 MAX_KEPT_FOLDS = 4096
+#: Grid points evaluated at a time (rows × nodes): temporaries of 512 kB.
+_BLOCK = 1 << 16
 
 
 @dataclass(frozen=True)
@@ -145,8 +147,9 @@ class BatchedProfile:
         self._folds: dict[tuple[bytes, float], tuple[int, FloatArray]] = {}
         m = self.live_nodes
         theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
-        self._live_basis = (np.exp(1j * np.asarray(self.live.orders, float)[:, None]
-                                   * theta[None, :]) if self.live is not None else None)
+        angles = (np.asarray(self.live.orders, float)[:, None] * theta[None, :]
+                  if self.live is not None else None)
+        self._live_basis = None if angles is None else (np.sin(angles), np.cos(angles))
         self._moment_grids = [np.exp(1j * p.orders.astype(float)[:, None]
                                      * period_grid(int(p.orders.max()))[None, :])
                               for p in self.parts]
@@ -216,39 +219,65 @@ class BatchedProfile:
         return start, coef
 
     def _signed(self, c: FloatArray, start: int, coef: FloatArray) -> FloatArray:
-        """E at ``c`` from a window table starting at index ``start``."""
-        inside = np.abs(c) < self.reach
-        out = np.zeros(np.shape(c))
-        x = np.clip(np.asarray(c)[inside] / self.h - start, 0.0, None)
-        out[inside] = np.exp(_horner(x, coef))
+        """E at ``c`` from a window table starting at index ``start`` (0 past the reach,
+        where E underflows)."""
+        c = np.asarray(c, dtype=float)
+        x = c / self.h
+        x -= start
+        np.maximum(x, 0.0, out=x)
+        out = _horner(x, coef)
+        np.exp(out, out=out)
+        far = np.abs(c) >= self.reach
+        if far.any():
+            out[far] = 0.0
         return out
 
     def _excess(self, psi: FloatArray, omega: FloatArray) -> FloatArray:
-        """E(Ω) of each row of ``psi`` at its rate ``omega`` (C,)."""
+        """E(Ω) of each row of ``psi`` at its rate ``omega`` (C,): rows sharing their
+        folded groups' offsets and rate on one table, a few at a time (each block's
+        temporaries stay small enough for the cache)."""
         out = np.zeros(psi.shape[0])
         if self.live is None:
-            e = _interpolate(omega, self.h, self.reach, self.base)
-            out[:] = e
+            out[:] = _interpolate(omega, self.h, self.reach, self.base)
             return out
-        assert self._live_basis is not None
+        if self.folded:
+            keys = np.concatenate([psi[:, self.folded_offsets()], omega[:, None]], axis=1)
+            _, inverse, counts = np.unique(keys, axis=0, return_inverse=True,
+                                           return_counts=True)
+            order = np.argsort(inverse.reshape(-1), kind="stable")
+            sets = np.split(order, np.cumsum(counts)[:-1])
+        else:
+            sets = [np.arange(psi.shape[0])]
+        step = max(1, _BLOCK // self.live_nodes)
+        for rows in sets:
+            table = (self._fold(psi[rows[0]], float(omega[rows[0]])) if self.folded
+                     else None)
+            for lo in range(0, rows.size, step):
+                part = rows[lo:lo + step]
+                out[part] = self._block_excess(psi[part], omega[part], table)
+        return out
+
+    def _block_excess(self, psi: FloatArray, omega: FloatArray,
+                      table: tuple[int, FloatArray] | None) -> FloatArray:
+        """E(Ω) of a few rows on the folded ``table`` (None: the table of E_Y itself)."""
+        assert self.live is not None and self._live_basis is not None
         p = self.live.phasors_at(psi)[:, :, 2]                              # (C, N)
-        shift = (p @ self._live_basis).imag                                 # (C, m)
-        s = omega[:, None] + shift
-        crossing = np.abs(omega) < self.live.bound
-        if not self.folded:
+        # Im(p·e^{jnθ}) = Re p·sin nθ + Im p·cos nθ, by einsum's own loops: a BLAS call
+        # per block would wake its threads, about 10 ms each on a loaded machine
+        sin, cos = self._live_basis
+        s = np.einsum("cn,nm->cm", np.ascontiguousarray(p.real), sin)        # (C, m)
+        s += np.einsum("cn,nm->cm", np.ascontiguousarray(p.imag), cos)
+        s += omega[:, None]
+        if table is None:
             e = _interpolate(s, self.h, self.reach, self.base)
-            inside = np.mean(e + np.abs(s), axis=1) - np.abs(omega)
-            out[:] = np.where(crossing, inside, np.mean(e, axis=1))
-            return out
-        keys = np.concatenate([psi[:, self.folded_offsets()], omega[:, None]], axis=1)
-        _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-        order = np.argsort(inverse.reshape(-1), kind="stable")
-        for rows in np.split(order, np.cumsum(counts)[:-1]):
-            row = int(rows[0])
-            start, coef = self._fold(psi[row], float(omega[row]))
-            e = self._signed(s[rows], start, coef)
-            inside = np.mean(e + np.abs(s[rows]), axis=1) - np.abs(omega[rows])
-            out[rows] = np.where(crossing[rows], inside, np.mean(e, axis=1))
+        else:
+            e = self._signed(s, *table)
+        mean_e: FloatArray = np.mean(e, axis=1)
+        crossing = np.abs(omega) < self.live.bound
+        if not crossing.any():
+            return mean_e
+        inside = np.mean(e + np.abs(s), axis=1) - np.abs(omega)
+        out: FloatArray = np.where(crossing, inside, mean_e)
         return out
 
     def multipliers(self, psi: ArrayLike, omega: ArrayLike) -> Multipliers:
