@@ -47,7 +47,7 @@ from gyrovib.core.harmonic_mixtures import (
     _cached_table,
     _horner,
     _interpolate,
-    _interval_polynomials,
+    _lagrange_to_power,
     table_size,
 )
 from gyrovib.core.harmonics import LockedGroup, combine_moments, group_signal, period_grid
@@ -100,15 +100,30 @@ def _window(c_low: float, c_high: float, h: float) -> tuple[int, int]:
     return lo, hi
 
 
+def _polynomials(log: FloatArray) -> FloatArray:
+    """:func:`gyrovib.core.harmonic_mixtures._interval_polynomials` (the same stencils and
+    basis), the products by einsum: a window is short, and a BLAS call per fold would wake
+    its threads."""
+    intervals = log.size - 1
+    base = np.clip(np.arange(intervals) - (_STENCIL // 2 - 1), 0, log.size - _STENCIL)
+    offset = np.arange(intervals) - base
+    windows = log[base[:, None] + np.arange(_STENCIL)[None, :]]
+    coef = np.empty((_STENCIL, intervals))
+    for d in np.unique(offset).tolist():
+        rows = offset == d
+        coef[:, rows] = np.einsum("pj,ij->pi", _lagrange_to_power(int(d)), windows[rows])
+    return coef
+
+
 def _window_polynomials(log: FloatArray, lo: int) -> FloatArray:
     """Per-interval polynomials of a window starting at index ``lo``; split at c = 0
     (E has a kink there) when the window holds it."""
     if lo < 0 < lo + log.size - 1:
         zero = -lo
-        out: FloatArray = np.concatenate([_interval_polynomials(log[:zero + 1]),
-                                          _interval_polynomials(log[zero:])], axis=1)
+        out: FloatArray = np.concatenate([_polynomials(log[:zero + 1]),
+                                          _polynomials(log[zero:])], axis=1)
         return out
-    return _interval_polynomials(log)
+    return _polynomials(log)
 
 
 class BatchedProfile:
