@@ -4,6 +4,7 @@ segments that make it up."""
 
 from __future__ import annotations
 
+import math
 from html import escape
 from typing import TYPE_CHECKING, Any
 
@@ -12,7 +13,7 @@ import numpy as np
 from gyrovib import units
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
-from gyrovib.render.mission import known
+from gyrovib.render.mission import budget_total, known
 from gyrovib.render.mission_answer import allowance_cells, allowance_head, answer_line
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
@@ -89,7 +90,7 @@ def budget_chart(result: MissionResult, mission: str) -> str:
     rows = _shown(result, mission)
     names = [r.sensor + (f" ({r.axis})" if r.axis else "") for r in rows]
     lengths = [budget_lengths(r) for r in rows]
-    tips = [[f"{fmt(v)} deg" for v in row] for row in lengths]
+    tips = [[f"{known(v)} deg" for v in row] for row in lengths]
     totals = [sum(v for v in row if v > 0) for row in lengths]
     positive = [t for t in totals if t > 0]
     title = f"Angle budget over {mission}: |θ_V| + {fmt(result.coverage)}·RSS(noise)"
@@ -99,7 +100,8 @@ def budget_chart(result: MissionResult, mission: str) -> str:
     if positive and max(positive) > COMMON_SCALE_SPREAD * min(positive):
         shares = [[100.0 * v / t if t > 0 else 0.0 for v in row]
                   for row, t in zip(lengths, totals, strict=True)]
-        names = [f"{n} ({fmt(t)} deg)" for n, t in zip(names, totals, strict=True)]
+        names = [f"{n} ({'?' if any(math.isnan(v) for v in row) else fmt(t)} deg)"
+                 for n, t, row in zip(names, totals, lengths, strict=True)]
         return stacked_bar_chart(
             title, f"% of each bar's own total, written by its name (the totals span over "
             f"{fmt(COMMON_SCALE_SPREAD)}×); {note}",
@@ -122,8 +124,9 @@ def _segments_table(result: MissionResult, row: MissionRow, rate_unit: str | Non
     factor = ANGLE_UNITS[result.unit][1]
     body = []
     for k, s in enumerate(row.segments):
-        cells = [str(k + 1), s.profile, fmt(s.duration), fmt(s.rate[2] * to_rate), fmt(s.total),
-                 fmt(s.duration * s.total * factor), fmt(s.rms), "yes" if s.saturated else ""]
+        cells = [str(k + 1), s.profile, fmt(s.duration), fmt(s.rate[2] * to_rate),
+                 known(s.total), known(s.duration * s.total * factor), known(s.rms),
+                 "yes" if s.saturated else ""]
         style = ' class="worst"' if k == row.worst_index else ""
         body.append(f"<tr{style}>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
     where = f" with x3 on {row.axis}" if row.axis else ""
@@ -153,6 +156,9 @@ def theta_chart(result: MissionResult, row: MissionRow) -> str:
     b = row.budget
     if b is None or not row.timeline:
         return ""
+    if math.isnan(b.total):  # θ_V rests on an axis the recording did not record
+        return (f"<p>{_e(row.sensor)}: θ(t) unknown, its vibration error resting on an axis "
+                "the recording did not record (unknown, not 0).</p>")
     span = row.duration
     t, vib, upper, lower = _cone(row, b, span)
     top = max(float(np.max(np.abs(np.concatenate([upper, lower])))),
@@ -226,11 +232,10 @@ def verdict_table(result: MissionResult, mission: str) -> str:
         head += allowance_head()
     body = []
     for r in rows:
-        b = r.budget
-        total = "-" if b is None else ("≥ " if b.lower_bound else "") + fmt(b.total)
         budget = ("-" if result.angle_budget is None else
                   f"{fmt(result.angle_budget)} {result.angle_unit}")
-        cells = [r.sensor, r.axis or "-", fmt(abs(r.angle)), total, budget, _WORDS[r.status]]
+        cells = [r.sensor, r.axis or "-", known(abs(r.angle)), budget_total(r), budget,
+                 _WORDS[r.status]]
         if with_allowance:
             cells += allowance_cells(r)
         body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
