@@ -83,9 +83,10 @@ def test_budget_bars_keep_each_sensor_readable_and_tooltips_in_deg() -> None:
     fine = next(r for r in result.rows if r.sensor == "fine")
     from gyrovib.render.common import fmt
 
+    total = fmt(sum(budget_lengths(fine)))
     for value in budget_lengths(fine):
         if value > 0:
-            assert f"{fmt(value)} deg</title>" in svg
+            assert f"{fmt(value)} deg of {total} deg</title>" in svg
     # each bar spans the same width: its parts are shares of its own total
     widths: dict[float, float] = {}
     for y, w in re.findall(r'<rect x="[-0-9.]+" y="([-0-9.]+)" width="([-0-9.]+)" '

@@ -82,30 +82,43 @@ def budget_lengths(row: MissionRow) -> list[float]:
 COMMON_SCALE_SPREAD = 20.0
 
 
+def _total_text(lengths: list[float]) -> str:
+    """A budget bar's total in deg, '?' when a part of it is unknown."""
+    if any(math.isnan(v) for v in lengths):
+        return "?"
+    return fmt(sum(v for v in lengths if v > 0))
+
+
+def _own_scale(lengths: list[list[float]]) -> bool:
+    """Whether the bars' totals span more than :data:`COMMON_SCALE_SPREAD`."""
+    totals = [t for t in (sum(v for v in row if v > 0) for row in lengths) if t > 0]
+    return bool(totals) and max(totals) > COMMON_SCALE_SPREAD * min(totals)
+
+
+def _shares(row: list[float]) -> list[float]:
+    """A bar's parts as percentages of its own total."""
+    total = sum(v for v in row if v > 0)
+    return [100.0 * v / total if total > 0 else 0.0 for v in row]
+
+
 def budget_chart(result: MissionResult, mission: str) -> str:
     """The whole angle budget per sensor as a stacked bar: which term dominates. On one
     axis in deg when the totals are within :data:`COMMON_SCALE_SPREAD` of each other,
-    else each bar as the shares of its own total (the total written with the name); the
-    tooltips give each part in deg either way."""
+    else each bar as the shares of its own total; the tooltips give each part and its
+    bar's total in deg either way."""
     rows = _shown(result, mission)
     names = [r.sensor + (f" ({r.axis})" if r.axis else "") for r in rows]
     lengths = [budget_lengths(r) for r in rows]
-    tips = [[f"{known(v)} deg" for v in row] for row in lengths]
-    totals = [sum(v for v in row if v > 0) for row in lengths]
-    positive = [t for t in totals if t > 0]
+    tips = [[f"{known(v)} deg of {_total_text(row)} deg" for v in row] for row in lengths]
     title = f"Angle budget over {mission}: |θ_V| + {fmt(result.coverage)}·RSS(noise)"
     note = ("the noise part split by each term's share of the variance; ≥ ?: a noise "
             "figure unknown, the total a lower bound")
     open_end = [bool(r.budget and r.budget.lower_bound) for r in rows]
-    if positive and max(positive) > COMMON_SCALE_SPREAD * min(positive):
-        shares = [[100.0 * v / t if t > 0 else 0.0 for v in row]
-                  for row, t in zip(lengths, totals, strict=True)]
-        names = [f"{n} ({'?' if any(math.isnan(v) for v in row) else fmt(t)} deg)"
-                 for n, t, row in zip(names, totals, lengths, strict=True)]
+    if _own_scale(lengths):
         return stacked_bar_chart(
-            title, f"% of each bar's own total, written by its name (the totals span over "
+            title, f"% of each bar's own total, in its tooltips (the totals span over "
             f"{fmt(COMMON_SCALE_SPREAD)}×); {note}",
-            names, BUDGET_PARTS, shares, open_end, None, tips)
+            names, BUDGET_PARTS, [_shares(row) for row in lengths], open_end, None, tips)
     marker = (None if result.angle_budget is None or result.angle_unit != "deg" else
               Marker(f"θ* = {fmt(result.angle_budget, 3)} deg", x=float(result.angle_budget)))
     return stacked_bar_chart(title, f"deg; {note}", names, BUDGET_PARTS, lengths, open_end,
