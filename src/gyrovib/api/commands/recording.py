@@ -15,16 +15,23 @@ import importlib.util
 import math
 import os
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.commands.analyze import analyze
 from gyrovib.api.commands.mission import mission
+from gyrovib.api.commands.recording_honesty import (
+    RATIO_RANGE,
+    at_mean_warnings,
+    ratio_warnings,
+    unknown_warnings,
+)
 from gyrovib.api.datasheet.specs import figures, is_spec
-from gyrovib.api.evaluation.unknown import depends_on, not_recorded, words
+from gyrovib.api.evaluation.unknown import depends_on, not_recorded
 from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.api.recordings.results import (
@@ -48,6 +55,7 @@ from gyrovib.core.recording import MOMENTS, recorded_error
 from gyrovib.core.transmissibility import as_table, psd_variance
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 from gyrovib.records import Column, frame_of, known
 
 #: Defaults of the options (INTERFACE.md, third round).
@@ -55,8 +63,6 @@ DEFAULT_CROSSOVER = 5.0
 DEFAULT_RESOLUTION = 0.5
 DEFAULT_THRESHOLD = 10.0
 DEFAULT_BREAKPOINTS = 12
-#: The fitted mission's closed form and Δ_V,rec should agree within this range.
-RATIO_RANGE = (0.8, 1.25)
 #: A vibration whose rms is below this fraction of the signal's is rounding: none.
 NEGLIGIBLE = 1e-10
 #: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.
@@ -160,6 +166,10 @@ def _need_scipy(recording: Recording) -> None:
             "pip install 'gyrovib[recording]'", recording.file))
 
 
+#: The progress label of :func:`fit_recording`.
+_FITTING = "fitting the recording"
+
+
 def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                   resolution: float = DEFAULT_RESOLUTION,
                   tone_threshold: float = DEFAULT_THRESHOLD,
@@ -179,12 +189,15 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     kept, warnings = _kept(recording, crossover)
     warnings += _short_for_welch(kept, fs, resolution)
     n_total = sum(hi - lo for lo, hi in kept)
+    advance(_FITTING, 0, 3)  # split, spectra, accelerations: a bar on a terminal
     measured = rate_pass(recording, kept, crossover, responses)
+    advance(_FITTING, 1, 3)
     moments = {key: value / n_total for key, value in measured.moments.items()}
     var, skew, kurt = _statistics(measured, n_total, recording.rate_axes)
     angular = _fit_part(recording.file, measured.x, fs, resolution, tone_threshold, breakpoints,
                         independent_tones, crossover, var, rate=True)
     measured.x.clear()  # the angular vibration is done with before the linear one is made
+    advance(_FITTING, 2, 3)
     g2_moments, linear = None, None
     if recording.store.has_accel:
         g2_sums, xa_segments = accel_pass(recording, kept, crossover)
@@ -193,6 +206,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
                            breakpoints, True, crossover, var_a, rate=False)
         del xa_segments
+    advance(_FITTING, 3, 3)
     rate = measured.carrier_sum / n_total
     # the fitted mission keeps the carrier of every axis: the joint carrier in at most
     # 16 groups (a histogram of Ω_K3 alone left a triad's X and Y sensors no carrier)
@@ -357,7 +371,12 @@ class RecordingAnalysis(Frozen):
     ``fitted`` (N,) the time-weighted closed form over the fitted mission,
     ``fitted_rms`` (N,); ``ratio`` (N,) fitted/recorded (NaN where either is 0);
     ``saturated`` (N,), ``peak_rate`` (N,) max |ω3| at the element;
-    ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope).
+    ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope);
+    ``at_mean`` (N,) the fitted profile's closed form at its own (mean) rate, the
+    number ``analyze`` gives on the written file, and ``at_mean_ratio`` (N,) its ratio
+    to Δ_V,rec (NaN where either is 0 or unknown), warned of outside
+    :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the fitted mission
+    keeps it).
     """
 
     unit: str
@@ -373,40 +392,56 @@ class RecordingAnalysis(Frozen):
     spec: NDArray[np.bool_]
     fit: RecordingFit
     warnings: dict[int, tuple[str, ...]]
+    at_mean: FloatArray = field(default_factory=lambda: np.zeros(0))
+    at_mean_ratio: FloatArray = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def at_mean_outside(self) -> NDArray[np.bool_]:
+        """Per sensor: the profile at its mean rate and the recording disagree by more
+        than :data:`RATIO_RANGE` (False where the ratio is unknown)."""
+        lo, hi = RATIO_RANGE
+        r = self.at_mean_ratio
+        out: NDArray[np.bool_] = np.isfinite(r) & ((r < lo) | (r > hi))
+        return out
 
     def records(self) -> tuple[Column[int], ...]:
-        """The columns of the CSV, the DataFrame and the JSON's ``results``, in order, one
-        row per sensor (its index): a number that is not finite is unknown (an empty CSV
-        cell, JSON null); the JSON alone has each row's source and warnings."""
+        """The columns of the CSV, the frame and the JSON's ``results``, one row per sensor
+        (its index); a number that is not finite is unknown (CSV: empty, JSON: null)."""
         def of(values: Any) -> Callable[[int], float]:
             listed = np.asarray(values, dtype=float).tolist()
             return lambda i: listed[i]
 
         numbers = [("recorded", "recorded.total", self.recorded),
                    *((f"recorded_{m}", f"recorded.additive_terms.{m}", self.terms[:, k])
-                     for k, m in enumerate(MOMENTS)),
-                   ("recorded_g2", "recorded.g2", self.g2), ("fitted", "fitted.total",
-                                                             self.fitted),
+                     for k, m in enumerate(MOMENTS)), ("recorded_g2", "recorded.g2", self.g2),
+                   ("fitted", "fitted.total", self.fitted),
                    ("fitted_rms", "fitted.rms", self.fitted_rms), ("ratio", None, self.ratio)]
+        json: tuple[str, ...] = ("csv", "frame")  # what only the JSON has
+        at_mean, at_ratio = of(self.at_mean), of(self.at_mean_ratio)
+        outside = self.at_mean_outside.tolist()
         return (Column("sensor", None, lambda i: self.sensors[i]),
                 *(Column(name, None if name == "ratio" else "rate", of(values), cell=known,
                          key=key) for name, key, values in numbers),
+                # the profile at its mean rate: nested after the ratio in JSON, last in CSV
+                Column("at_mean_rate.total", "rate", at_mean, skip=json),
+                Column("at_mean_rate.ratio", None, at_ratio, skip=json),
+                Column("at_mean_rate.outside", None, lambda i: bool(outside[i]), skip=json),
                 Column("saturated", None, lambda i: bool(self.saturated[i])),
                 Column("peak_rate", "rate", of(self.peak_rate)),
                 Column("unit", None, lambda i: self.unit, skip=("json",)),
+                Column("at_mean_rate", "rate", at_mean, cell=known, skip=("json",)),
+                Column("at_mean_ratio", None, at_ratio, cell=known, skip=("json",)),
                 Column("source", None, lambda i: "specs" if self.spec[i] else "coefficients",
-                       skip=("csv", "frame")),
-                Column("warnings", None, lambda i: list(self.warnings.get(i, ())),
-                       skip=("csv", "frame")))
+                       skip=json),
+                Column("warnings", None, lambda i: list(self.warnings.get(i, ())), skip=json))
 
     def to_frame(self) -> Any:
         """One row per sensor (pandas DataFrame): the columns of :meth:`records`."""
         fit = self.fit
         return frame_of(self.records(), range(len(self.sensors)), {
             "unit": self.unit, "file": os.path.basename(fit.file), "topic": fit.topic,
-            "instance": fit.instance, "sha256": fit.sha256, "samples": fit.samples,
-            "fs": fit.fs, "crossover": fit.crossover, "segments": fit.segments,
-            "duration": fit.duration})
+            "instance": fit.instance, "sha256": fit.sha256, "samples": fit.samples, "fs": fit.fs,
+            "crossover": fit.crossover, "segments": fit.segments, "duration": fit.duration})
 
 
 def analyze_recording(recording: Recording, catalog: Any, *, sensors: Sequence[str] = (),
@@ -470,62 +505,31 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
                                                terms, g2_part, figures)
     ranges = sensor_ranges(entries)
     saturated = peak > ranges
-    fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries])
+    fitted, fitted_rms, at_mean = _fitted_mission(fit, catalog,
+                                                  [e.sensor.id for e in entries])
     unknown = depends_on(entries, fit_missing(fit), spec_cross=False)
     for i, parts in enumerate(unknown):
         if parts:  # unknown, never 0 (docs/model.md section 13)
             total[i] = terms[i] = g2_part[i] = fitted[i] = fitted_rms[i] = np.nan
+            at_mean[i] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
+        at_mean_ratio = np.where((total != 0) & (at_mean != 0), at_mean / total, np.nan)
     s = units.scale(unit)
-    warnings = _unknown_warnings(unknown, _warnings(fit, ratio, saturated, peak / s,
+    warnings = unknown_warnings(unknown, ratio_warnings(fit, ratio, saturated, peak / s,
                                                     ranges / s, unit))
+    at_mean_warnings(fit, at_mean_ratio, warnings)
     return RecordingAnalysis(
         unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
-        warnings=warnings)
-
-
-def _unknown_warnings(unknown: Sequence[tuple[str, ...]],
-                      warnings: dict[int, tuple[str, ...]]) -> dict[int, tuple[str, ...]]:
-    """``warnings`` with, first on each row whose Δ_V,rec is unknown, the parts it lacks."""
-    for i, parts in enumerate(unknown):
-        if parts:
-            warnings[i] = (f"Δ_V,rec unknown: {words(parts)}, and this sensor's error "
-                           "depends on it (an axis not recorded is unknown, never 0)",
-                           *warnings.get(i, ()))
-    return warnings
+        warnings=warnings, at_mean=at_mean / s, at_mean_ratio=at_mean_ratio)
 
 
 def fit_missing(fit: RecordingFit) -> tuple[str, ...]:
     """The parts the fitted recording did not record (rate axes, accelerations)."""
     accel = fit.linear is not None and bool(np.all(np.isfinite(fit.linear.variance)))
     return not_recorded(fit.rate_axes, accel)
-
-
-def _warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_],
-              peak: FloatArray, ranges: FloatArray, unit: str) -> dict[int, tuple[str, ...]]:
-    """Per sensor row the warnings of ``analyze --recording`` (peak and range in ``unit``)."""
-    warnings: dict[int, tuple[str, ...]] = {}
-    lo, hi = RATIO_RANGE
-    for i in range(ratio.size):
-        w: list[str] = []
-        if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
-            worst = (" (the fitted harmonics take their worst relative phases, so the closed "
-                     "form is a bound over phases the recording does not show: "
-                     "--independent-tones compares like with like)"
-                     if fit.angular.harmonics else "")
-            w.append(f"the fitted profile's closed form is {ratio[i]:.3g} × Δ_V,rec, outside "
-                     f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
-                     f"stationary, and Δ_V,rec is the number to trust{worst}")
-        if saturated[i]:
-            w.append(f"max |ω3| = {peak[i]:.6g} {unit} on the recording exceeds the "
-                     f"sensor's range {ranges[i]:.6g} {unit}: the static model does not "
-                     "hold in saturation")
-        if w:
-            warnings[i] = tuple(w)
-    return warnings
 
 
 def recorded_totals(entries: Sequence[Any], moments: FloatArray,
@@ -573,10 +577,11 @@ def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: Flo
     return total, terms, g2_part
 
 
-def _fitted_mission(fit: RecordingFit, catalog: Any,
-                    sensor_ids: Sequence[str]) -> tuple[FloatArray, FloatArray]:
+def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str]
+                    ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The fitted mission's closed form, deg/s: :func:`gyrovib.api.mission` on the mission
-    the written YAML holds (the same numbers as ``gyrovib mission`` on that file).
+    the written YAML holds (the same numbers as ``gyrovib mission`` on that file), and
+    the fitted profile's at its own mean rate (as ``gyrovib analyze`` on that file).
 
     Δ̄ = Σ T_b·Δ_V(Ω_b)/ΣT over the carrier histogram's bins, and the mean RMS
     √(Σ T_b·Δ_V(RMS)_b²/ΣT) (docs/model.md section 12). A spec-form sensor's Δ̄
@@ -589,4 +594,7 @@ def _fitted_mission(fit: RecordingFit, catalog: Any,
     rows = {r.sensor: r for r in result.rows}
     total = np.array([rows[s].mean for s in sensor_ids], dtype=float)
     rms = np.array([rows[s].rms for s in sensor_ids], dtype=float)
-    return total, rms
+    at_rate = analyze(combined, sensors=sensor_ids, profiles=(fit.profile_id,), unit="deg/s")
+    where = {s: i for i, s in enumerate(at_rate.sensors)}
+    at_mean = np.array([at_rate.error.total[where[s], 0] for s in sensor_ids], dtype=float)
+    return total, rms, at_mean
