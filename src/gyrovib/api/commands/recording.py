@@ -221,6 +221,10 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                                 float(kurt[j]), float(angular.shape_db[j]),
                                 float(angular.off_3db[j])) for j in range(3))
     warnings += shape_warnings(angular, "rate") + shape_warnings(linear, "acceleration")
+    if angular.released:
+        warnings.append("lines at " + ", ".join(f"{f:.4g}" for f in angular.released)
+                        + " Hz, orders of a fundamental, are written as independent tones: a "
+                        "phase: worst search over every order would exceed its budget")
     base = os.path.basename(recording.file)
     pid = profile_id or _default_id(base)
     fit = RecordingFit(
@@ -281,12 +285,12 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     band = (f >= crossover) & (f < f[-1])
     tables, sigma2, shape = random_tables(f[band], random[:, band], variance, breakpoints)
     coh = _coherences(psd, spectra, band & ~in_line, df, rate)
-    tones, harmonics = _tones(lines, grouped=not independent and rate)
+    tones, harmonics, released = _tones(lines, grouped=not independent and rate)
     tone_var = sum((ln.amplitude**2 / 2 for ln in lines), np.zeros(3))
     with np.errstate(invalid="ignore", divide="ignore"):
         held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
     return FittedPart(tones, harmonics, tables, coh, f, psd, median, variance, held,
-                      shape_db=shape[0], off_3db=shape[1])
+                      shape_db=shape[0], off_3db=shape[1], released=released)
 
 
 def random_tables(f: FloatArray, random: FloatArray, variance: FloatArray,
@@ -323,14 +327,18 @@ def _coherences(psd: FloatArray, spectra: NDArray[np.complex128], keep: NDArray[
 
 
 def _tones(lines: Sequence[Any], *, grouped: bool,
-           ) -> tuple[tuple[FittedTone, ...], tuple[FittedHarmonics, ...]]:
+           ) -> tuple[tuple[FittedTone, ...], tuple[FittedHarmonics, ...], tuple[float, ...]]:
     """The lines as tones, those at integer multiples of a fundamental as phase-locked
-    groups when ``grouped``."""
+    groups when ``grouped``, and the frequencies of the orders let go of their group to
+    keep its search within budget (:func:`gyrovib.core.recording.fitted_groups`)."""
 
     harmonics: list[FittedHarmonics] = []
     taken: set[int] = set()
+    released: list[int] = []
     if grouped:
-        for f0, members, orders in core.harmonic_groups([ln.frequency for ln in lines]):
+        groups, released = core.fitted_groups([ln.frequency for ln in lines],
+                                       [float(np.linalg.norm(ln.amplitude)) for ln in lines])
+        for f0, members, orders in groups:
             order_sort = np.argsort(orders)
             mem = [members[k] for k in order_sort]
             harmonics.append(FittedHarmonics(
@@ -340,7 +348,7 @@ def _tones(lines: Sequence[Any], *, grouped: bool,
             taken.update(members)
     tones = tuple(FittedTone(ln.frequency, ln.amplitude, ln.phase)
                   for k, ln in enumerate(lines) if k not in taken)
-    return tones, tuple(harmonics)
+    return tones, tuple(harmonics), tuple(float(lines[k].frequency) for k in released)
 
 
 def shape_warnings(part: FittedPart | None, kind: str) -> list[str]:
