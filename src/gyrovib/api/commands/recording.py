@@ -14,7 +14,7 @@ import dataclasses
 import importlib.util
 import math
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -30,6 +30,7 @@ from gyrovib.api.commands.recording_honesty import (
     ratio_warnings,
     unknown_warnings,
 )
+from gyrovib.api.commands.recording_records import recording_columns
 from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.evaluation.unknown import depends_on, not_recorded
 from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier, rate_pass
@@ -51,12 +52,12 @@ from gyrovib.core import recording as core
 from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
 from gyrovib.core.envelope import worst_case
-from gyrovib.core.recording import MOMENTS, recorded_error
+from gyrovib.core.recording import recorded_error
 from gyrovib.core.transmissibility import as_table, psd_variance
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
-from gyrovib.records import Column, frame_of, known
+from gyrovib.records import Column, frame_of
 
 #: Defaults of the options (INTERFACE.md, third round).
 DEFAULT_CROSSOVER = 5.0
@@ -414,34 +415,8 @@ class RecordingAnalysis(Frozen):
 
     def records(self) -> tuple[Column[int], ...]:
         """The columns of the CSV, the frame and the JSON's ``results``, one row per sensor
-        (its index); a number that is not finite is unknown (CSV: empty, JSON: null)."""
-        def of(values: Any) -> Callable[[int], float]:
-            listed = np.asarray(values, dtype=float).tolist()
-            return lambda i: listed[i]
-
-        numbers = [("recorded", "recorded.total", self.recorded),
-                   *((f"recorded_{m}", f"recorded.additive_terms.{m}", self.terms[:, k])
-                     for k, m in enumerate(MOMENTS)), ("recorded_g2", "recorded.g2", self.g2),
-                   ("fitted", "fitted.total", self.fitted),
-                   ("fitted_rms", "fitted.rms", self.fitted_rms), ("ratio", None, self.ratio)]
-        json: tuple[str, ...] = ("csv", "frame")  # what only the JSON has
-        at_mean, at_ratio = of(self.at_mean), of(self.at_mean_ratio)
-        outside = self.at_mean_outside.tolist()
-        return (Column("sensor", None, lambda i: self.sensors[i]),
-                *(Column(name, None if name == "ratio" else "rate", of(values), cell=known,
-                         key=key) for name, key, values in numbers),
-                # the profile at its mean rate: nested after the ratio in JSON, last in CSV
-                Column("at_mean_rate.total", "rate", at_mean, skip=json),
-                Column("at_mean_rate.ratio", None, at_ratio, skip=json),
-                Column("at_mean_rate.outside", None, lambda i: bool(outside[i]), skip=json),
-                Column("saturated", None, lambda i: bool(self.saturated[i])),
-                Column("peak_rate", "rate", of(self.peak_rate)),
-                Column("unit", None, lambda i: self.unit, skip=("json",)),
-                Column("at_mean_rate", "rate", at_mean, cell=known, skip=("json",)),
-                Column("at_mean_ratio", None, at_ratio, cell=known, skip=("json",)),
-                Column("source", None, lambda i: "specs" if self.spec[i] else "coefficients",
-                       skip=json),
-                Column("warnings", None, lambda i: list(self.warnings.get(i, ())), skip=json))
+        (its index): :func:`~gyrovib.api.commands.recording_records.recording_columns`."""
+        return recording_columns(self)
 
     def to_frame(self) -> Any:
         """One row per sensor (pandas DataFrame): the columns of :meth:`records`."""
