@@ -4,19 +4,18 @@ columns its CSV, DataFrame and JSON ``results`` are written from (:mod:`gyrovib.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from gyrovib.core.recording import MOMENTS
 from gyrovib.records import Column, known
 
-if TYPE_CHECKING:
-    from gyrovib.api.commands.recording import RecordingAnalysis
 
-
-def recording_columns(a: RecordingAnalysis) -> tuple[Column[int], ...]:
-    """One row per sensor (its index): Δ_V,rec and its parts, the fitted profile's closed
+def recording_columns(a: Any) -> tuple[Column[int], ...]:
+    """The records of ``a``, a :class:`~gyrovib.api.commands.recording.RecordingAnalysis`
+    (typed loosely: this module is below the one that defines it). One row per sensor
+    (its index): Δ_V,rec and its parts, the fitted profile's closed
     form and their ratio, the profile at its mean rate, saturation and the peak rate; a
     number that is not finite is unknown (CSV: empty, JSON: null). The JSON nests the
     figures under its keys and alone has each row's source and warnings."""
