@@ -29,7 +29,16 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
                                 "src"))
 
 from gyrovib.core.allan import oadev, tau_grid
-from gyrovib.core.allan_fit import TERMS, noise_model
+from gyrovib.core.allan_fit import (
+    METHOD,
+    SIM_CAP,
+    TERMS,
+    Curve,
+    bootstrap,
+    fit,
+    roll_off,
+    terms,
+)
 from gyrovib.core.allan_sim import Truth, simulate
 
 TAU0 = 1.0
@@ -50,44 +59,39 @@ def truth_values(truth: Truth) -> tuple[float, ...]:
     return (truth.quantization, truth.arw, truth.bias_instability, truth.rrw, truth.rate_ramp)
 
 
-def run(records: int, samples: int, first_seed: int,
-        method: str = "pivot") -> dict[str, list[tuple[str, bool, bool]]]:
-    """Per term: (case, held at 68 %, held at 95 %) for resolved terms, and
-    ('bound', holds, holds) for bounds."""
-    out: dict[str, list[tuple[str, bool, bool]]] = {name: [] for name in TERMS}
-    m = tau_grid(samples)
+def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
+        sim_cap: int = SIM_CAP) -> dict[str, dict[str, list[tuple[str, bool, bool]]]]:
+    """Per interval method and term: (case, held at 68 %, held at 95 %) for resolved
+    terms, and ('bound', holds, holds) for bounds — every method from the same fit and
+    the same bootstrap replicates of each record."""
+    out = {meth: {name: [] for name in TERMS} for meth in methods}
+    m_all = tau_grid(samples)
     for r in range(records):
         name, truth = CASES[r % len(CASES)]
-        rng = np.random.default_rng(first_seed + r)
-        y = simulate(truth, samples, TAU0, rng)
-        tau, adev = oadev(y, TAU0, m)
-        model = noise_model(tau, adev, m, samples, TAU0, seed=10_000 + r, method=method)
-        for term, found, true in zip(TERMS, model.terms, truth_values(truth), strict=False):
-            if found.resolved:
-                assert found.value is not None
-                (lo68, hi68), (lo95, hi95) = found.intervals
-                out[term].append((name if true > 0 else "absent", lo68 <= true <= hi68,
-                                  lo95 <= true <= hi95))
-            elif true > 0:
-                assert found.bound is not None
-                out[term].append(("bound", true <= found.bound, true <= found.bound))
+        y = simulate(truth, samples, TAU0, np.random.default_rng(first_seed + r))
+        tau, adev = oadev(y, TAU0, m_all)
+        start = roll_off(tau, adev)
+        tau, var, m = tau[start:], adev[start:] ** 2, m_all[start:]
+        fitted = fit(tau, var, m, samples + 1, filtered=start > 0)
+        coefs = bootstrap(fitted, tau, m, samples, TAU0, seed=10_000 + r, sim_cap=sim_cap)
+        curve = Curve(tau, var, m, samples + 1, fitted)
+        for meth in methods:
+            found = terms(fitted, tau, var, coefs, (0.68, 0.95), meth, curve)
+            for term, got, true in zip(TERMS, found, truth_values(truth), strict=False):
+                if got.resolved:
+                    (lo68, hi68), (lo95, hi95) = got.intervals
+                    out[meth][term].append((name if true > 0 else "absent",
+                                            lo68 <= true <= hi68, lo95 <= true <= hi95))
+                elif true > 0:
+                    assert got.bound is not None
+                    out[meth][term].append(("bound", true <= got.bound, true <= got.bound))
+        if (r + 1) % 20 == 0:
+            print(f"  {r + 1} records", file=sys.stderr, flush=True)
     return out
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--records", type=int, default=200)
-    parser.add_argument("--samples", type=int, default=1 << 15)
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--interval", choices=("pivot", "percentile"), default="pivot",
-                        help="the bootstrap interval (pivot: gyrovib's)")
-    args = parser.parse_args()
-    start = time.perf_counter()
-    result = run(args.records, args.samples, args.seed, args.interval)
-    took = time.perf_counter() - start
-    print(f"{args.records} records of {args.samples} samples at {TAU0} s "
-          f"(seeds {args.seed}…{args.seed + args.records - 1}), {args.interval} intervals, "
-          f"{took:.0f} s")
+def table(result: dict[str, list[tuple[str, bool, bool]]]) -> None:
+    """The coverage table of one method."""
     print(f"{'term':18} {'values':>7} {'68 % cover':>11} {'95 % cover':>11} "
           f"{'bounds':>7} {'bounds hold':>12}")
     for term, rows in result.items():
@@ -99,6 +103,31 @@ def main() -> None:
         hold = f"{100 * np.mean([r[1] for r in bounds]):.1f} %" if bounds else "-"
         print(f"{term:18} {len(values):7d} {c68:>11} {c95:>11} {len(bounds):7d} {hold:>12}"
               + (f"   ({len(absent)} values of a term the truth lacks)" if absent else ""))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--records", type=int, default=200)
+    parser.add_argument("--samples", type=int, default=1 << 15)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--interval", default=f"{METHOD},pivot",
+                        help="the bootstrap intervals to compare, comma-separated "
+                             f"(studentized, pivot, percentile; gyrovib's: {METHOD})")
+    parser.add_argument("--sim-cap", type=int, default=SIM_CAP,
+                        help="the longest record the bootstrap simulates whole: below "
+                             "--samples it exercises the shortened bootstrap of long records")
+    args = parser.parse_args()
+    methods = tuple(args.interval.split(","))
+    start = time.perf_counter()
+    result = run(args.records, args.samples, args.seed, methods, args.sim_cap)
+    took = time.perf_counter() - start
+    short = (f", shortened bootstrap (whole records simulated up to {args.sim_cap} samples)"
+             if args.sim_cap < args.samples else "")
+    print(f"{args.records} records of {args.samples} samples at {TAU0} s "
+          f"(seeds {args.seed}…{args.seed + args.records - 1}){short}, {took:.0f} s")
+    for meth in methods:
+        print(f"\n{meth} intervals" + (" (gyrovib's)" if meth == METHOD else ""))
+        table(result[meth])
     print("binomial 1σ of a coverage over v values: √(p(1 − p)/v), "
           f"e.g. {100 * math.sqrt(0.68 * 0.32 / 40):.1f} points at 68 % over 40")
 
