@@ -34,8 +34,10 @@ from gyrovib.core.allan_fit import (
     SIM_CAP,
     TERMS,
     Curve,
+    Fit,
     bootstrap,
     fit,
+    intervals,
     roll_off,
     terms,
 )
@@ -60,14 +62,19 @@ def truth_values(truth: Truth) -> tuple[float, ...]:
 
 
 def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
-        sim_cap: int = SIM_CAP) -> dict[str, dict[str, list[tuple[str, bool, bool]]]]:
+        sim_cap: int = SIM_CAP, cases: tuple[int, ...] = tuple(range(len(CASES)))
+        ) -> dict[str, dict[str, list[tuple[str, bool, bool]]]]:
     """Per interval method and term: (case, held at 68 %, held at 95 %) for resolved
     terms, and ('bound', holds, holds) for bounds — every method from the same fit and
-    the same bootstrap replicates of each record."""
+    the same bootstrap replicates of each record; and per method + " (every record)"
+    the same for every term present in the truth, its interval taken whether or not the
+    record resolves it (a term fitted at 0 counts as a miss): the coverage before the
+    choice between a value and a bound."""
     out = {meth: {name: [] for name in TERMS} for meth in methods}
+    out.update({meth + " (every record)": {name: [] for name in TERMS} for meth in methods})
     m_all = tau_grid(samples)
     for r in range(records):
-        name, truth = CASES[r % len(CASES)]
+        name, truth = CASES[cases[r % len(cases)]]
         y = simulate(truth, samples, TAU0, np.random.default_rng(first_seed + r))
         tau, adev = oadev(y, TAU0, m_all)
         start = roll_off(tau, adev)
@@ -85,9 +92,25 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
                 elif true > 0:
                     assert got.bound is not None
                     out[meth][term].append(("bound", true <= got.bound, true <= got.bound))
+            every = out[meth + " (every record)"]
+            for j, (term, true) in enumerate(zip(TERMS, truth_values(truth), strict=False)):
+                if true > 0:
+                    every[term].append((name, *_held(fitted, coefs, curve, j, true, meth)))
         if (r + 1) % 20 == 0:
             print(f"  {r + 1} records", file=sys.stderr, flush=True)
     return out
+
+
+def _held(fitted: Fit, coefs: np.ndarray, curve: Curve, j: int, true: float,
+          method: str) -> tuple[bool, bool]:
+    """Whether term j's 68 % and 95 % intervals hold ``true``, resolved or not."""
+    if fitted.coef[j] <= 0:
+        return False, False          # no interval around a value (a term fitted at 0)
+    value = float(np.sqrt(fitted.coef[j]))
+    everything = np.ones(fitted.coef.size, dtype=bool) & (fitted.coef > 0)
+    (lo68, hi68), (lo95, hi95) = intervals(value, j, coefs, (0.68, 0.95), method, curve,
+                                           everything)
+    return bool(lo68 <= true <= hi68), bool(lo95 <= true <= hi95)
 
 
 def table(result: dict[str, list[tuple[str, bool, bool]]]) -> None:
@@ -113,19 +136,23 @@ def main() -> None:
     parser.add_argument("--interval", default=f"{METHOD},pivot",
                         help="the bootstrap intervals to compare, comma-separated "
                              f"(studentized, pivot, percentile; gyrovib's: {METHOD})")
+    parser.add_argument("--cases", default=",".join(str(k) for k in range(len(CASES))),
+                        help="which cases, by number (0–4: " + ", ".join(
+                            name for name, _ in CASES) + ")")
     parser.add_argument("--sim-cap", type=int, default=SIM_CAP,
                         help="the longest record the bootstrap simulates whole: below "
                              "--samples it exercises the shortened bootstrap of long records")
     args = parser.parse_args()
     methods = tuple(args.interval.split(","))
     start = time.perf_counter()
-    result = run(args.records, args.samples, args.seed, methods, args.sim_cap)
+    cases = tuple(int(k) for k in args.cases.split(","))
+    result = run(args.records, args.samples, args.seed, methods, args.sim_cap, cases)
     took = time.perf_counter() - start
     short = (f", shortened bootstrap (whole records simulated up to {args.sim_cap} samples)"
              if args.sim_cap < args.samples else "")
     print(f"{args.records} records of {args.samples} samples at {TAU0} s "
           f"(seeds {args.seed}…{args.seed + args.records - 1}){short}, {took:.0f} s")
-    for meth in methods:
+    for meth in result:
         print(f"\n{meth} intervals" + (" (gyrovib's)" if meth == METHOD else ""))
         table(result[meth])
     print("binomial 1σ of a coverage over v values: √(p(1 − p)/v), "

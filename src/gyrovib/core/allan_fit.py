@@ -419,17 +419,17 @@ def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
     out = []
     for j in range(fitted.coef.size):
         value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(max(fitted.coef[j], 0.0))
-        intervals = _intervals(value, j, replicates, confidences, method, curve,
-                               resolved) if resolved[j] else None
-        if intervals is None or intervals[-1][0] <= 0.0:  # its 95 % interval reaches 0
+        found = intervals(value, j, replicates, confidences, method, curve,
+                          resolved) if resolved[j] else None
+        if found is None or found[-1][0] <= 0.0:  # its 95 % interval reaches 0
             bound = max(envelope_bound(basis[:, j], var, fitted.nu), value)
             out.append(Term(None, (), bound))
             continue
-        out.append(Term(value, intervals, None))
+        out.append(Term(value, found, None))
     return tuple(out)
 
 
-def _intervals(value: float, j: int, replicates: FloatArray, confidences: tuple[float, ...],
+def intervals(value: float, j: int, replicates: FloatArray, confidences: tuple[float, ...],
                method: str, curve: Curve | None, resolved: NDArray[np.bool_]
                ) -> tuple[tuple[float, float], ...]:
     """Term j's interval at each confidence (see :func:`terms`)."""
@@ -547,6 +547,7 @@ __all__ = [
     "envelope_bound",
     "fit",
     "gm_basis",
+    "intervals",
     "nnls",
     "noise_model",
     "refit",
