@@ -152,3 +152,16 @@ def test_coverage_at_a_small_scale(sim_cap: int) -> None:
     assert held["arw"][0] == 12 and held["arw"][2] >= 10 and 4 <= held["arw"][1] <= 11
     resolved, _, b95 = held["bias_instability"]
     assert resolved >= 8 and b95 >= resolved - 3
+
+
+def test_a_term_alone_in_its_model_gets_the_pivot_interval() -> None:
+    # White noise alone: the fit's information gives N² a standard error proportional to
+    # N² (every weight is ν/(2·(N²/τ)²)), so inverting (ĉ − c)/s(c) between the
+    # replicates' quantiles of (c* − ĉ)/s(ĉ) gives ĉ/r_hi … ĉ/r_lo, r = c*/ĉ: the ratio
+    # pivot, by algebra. The same replicates (same seed) must give the same interval.
+    truth = Truth(arw=0.2 / 60)
+    studentized = _model(truth, 20_000, 0.1, seed=4, method="studentized").terms[1]
+    pivot = _model(truth, 20_000, 0.1, seed=4, method="pivot").terms[1]
+    assert studentized.resolved and pivot.resolved
+    for got, ref in zip(studentized.intervals, pivot.intervals, strict=True):
+        assert got == pytest.approx(ref, rel=1e-6)

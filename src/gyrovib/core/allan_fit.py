@@ -376,7 +376,8 @@ def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[
     """The interval of θ_j = √c_j by inverting the studentized root: the c with
     q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) = :func:`scale` at the fit with c_j = c and the other
     resolved terms refitted (:func:`profile`), q the quantiles of the replicates'
-    (c* − ĉ)/s(ĉ). None where it has no upper end (the pivot's is then used)."""
+    (c* − ĉ)/s(ĉ). None where it has no upper end or the fit no standard error (the
+    pivot's interval is then used)."""
     fitted = curve.fitted
     free = resolved.copy()
     free[j] = False
@@ -387,7 +388,10 @@ def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[
     active = free.copy()
     active[j] = True
     c_hat = float(fitted.coef[j])
-    t_star = (replicates[:, j] - c_hat) / scale(curve, fitted.coef, j, active)
+    s_hat = scale(curve, fitted.coef, j, active)
+    if not math.isfinite(s_hat):  # no information at the fit itself: the pivot's
+        return None
+    t_star = (replicates[:, j] - c_hat) / s_hat
     q_lo, q_hi = (float(q) for q in np.quantile(t_star, [(1.0 - confidence) / 2.0,
                                                           (1.0 + confidence) / 2.0]))
 
