@@ -4,6 +4,9 @@ Run on demand (it is not part of the test suite)::
 
     python benchmarks/bench_allan_coverage.py                 # 200 records
     python benchmarks/bench_allan_coverage.py --records 40    # a quicker look
+    python benchmarks/bench_allan_coverage.py --seed 1001     # records not seen before
+    python benchmarks/bench_allan_coverage.py --sim-cap 4096  # the long records' bootstrap
+    python benchmarks/bench_allan_coverage.py --cases 2,3     # only the cases with K
 
 Records of known terms are simulated (white rate noise, flicker, a rate random walk, a
 rate ramp, angle quantization, in combinations cycled over the records; the numbers are
@@ -12,7 +15,11 @@ synthetic, drawn by ``gyrovib.core.allan_sim``), each analysed as ``gyrovib alla
 the truth the fraction of records whose 68 % and 95 % intervals hold it is printed,
 with the number of records where the term was resolved (a value) and where it was
 given as a bound (then whether the bound holds). Terms absent from the truth must come
-out as bounds (or values whose interval is counted as a miss).
+out as bounds (or values whose interval is counted as a miss). Every interval method
+named (--interval) is computed from the same replicates, and each is also counted over
+every record whose truth has the term, resolved or not ("every record"): the coverage
+before the choice between a value and a bound, which otherwise leaves out the records
+where the term came out lowest.
 """
 
 from __future__ import annotations
