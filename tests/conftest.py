@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import textwrap
 from collections.abc import Mapping
 from pathlib import Path
@@ -24,6 +25,17 @@ settings.register_profile("ci", derandomize=True, deadline=None, max_examples=50
 settings.register_profile("explore", derandomize=False, deadline=None, max_examples=500,
                           print_blob=True)
 settings.load_profile(os.environ.get("GYROVIB_HYPOTHESIS_PROFILE", "ci"))
+
+# The suite's subprocesses answer SIGINT, SIGTERM and SIGHUP as a program started from a
+# terminal does, whatever the shell that started pytest set to be ignored: a background
+# job (`cmd &` in a script) ignores SIGINT and `nohup` ignores SIGHUP, children inherit
+# an ignored signal, and gyrovib rightly keeps a signal its parent ignores ignored, so a
+# test that interrupts gyrovib with it would wait for a run that never hears it. The
+# test of that rule sets the ignore itself in the child.
+for _signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+    if signal.getsignal(_signum) is signal.SIG_IGN:
+        signal.signal(_signum, signal.default_int_handler if _signum == signal.SIGINT
+                      else signal.SIG_DFL)
 
 VALID = """\
 gyrovib: 1

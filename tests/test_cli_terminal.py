@@ -63,12 +63,38 @@ def _interrupt(args: list[str], sig: int, after: float, cwd: Path) -> tuple[int,
     ])
     process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True, cwd=cwd, env=clean_env())
-    assert process.stderr is not None
-    assert process.stderr.readline() == "ready\n"
-    time.sleep(after)
-    process.send_signal(sig)
-    _, err = process.communicate(timeout=60)
+    try:
+        assert process.stderr is not None
+        assert process.stderr.readline() == "ready\n"
+        time.sleep(after)
+        process.send_signal(sig)
+        _, err = process.communicate(timeout=60)
+    finally:  # a run that did not stop must not outlive its test (it computes for minutes)
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
     return process.returncode, err
+
+
+def test_a_signal_the_parent_ignores_stays_ignored(tmp_path: Path) -> None:
+    # under nohup a hang-up must not end the run (the parent's choice stands); the
+    # terminate that follows still does, in one line with its status
+    code = "\n".join([
+        "import os, signal, subprocess, sys, time",
+        f"args = [sys.executable, '-m', 'gyrovib', *{LONG!r}]",
+        "child = subprocess.Popen(args, stderr=subprocess.PIPE, text=True,",
+        "                         preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN))",
+        "time.sleep(3.0)",
+        "child.send_signal(signal.SIGHUP)",
+        "time.sleep(1.0)",
+        "alive = child.poll() is None",
+        "child.send_signal(signal.SIGTERM)",
+        "err = child.communicate(timeout=60)[1]",
+        "print(alive, child.returncode, repr(err.strip()))",
+    ])
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=tmp_path, env=clean_env(), timeout=120, check=False)
+    assert run.stdout.strip() == "True 143 'gyrovib: terminated'", run.stderr
 
 
 def test_ctrl_c_exits_130_in_one_line_and_leaves_output_untouched(tmp_path: Path) -> None:

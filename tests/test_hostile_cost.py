@@ -10,6 +10,8 @@ lands on another line.
 
 from __future__ import annotations
 
+import contextlib
+import os
 import re
 import signal
 import subprocess
@@ -208,6 +210,24 @@ def test_tone_on_a_tiny_random_part_is_quick_and_exact() -> None:
         assert value == pytest.approx(want, rel=1e-9, abs=1e-300), w
 
 
+def _wait_for_cpu(process: subprocess.Popen[str], seconds: float) -> None:
+    """Until ``process`` has used ``seconds`` of CPU (Linux's /proc), or has ended; where
+    /proc is not there, ``seconds`` of wall time. On a loaded machine a wall-clock wait
+    may end before the process has even loaded its catalogue."""
+    stat = Path(f"/proc/{process.pid}/stat")
+    if not stat.exists():
+        time.sleep(seconds)
+        return
+    tick = os.sysconf("SC_CLK_TCK")
+    deadline = time.monotonic() + 300
+    while process.poll() is None and time.monotonic() < deadline:
+        with contextlib.suppress(OSError, IndexError, ValueError):
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+            if (int(fields[11]) + int(fields[12])) / tick >= seconds:  # utime + stime
+                return
+        time.sleep(0.05)
+
+
 @pytest.mark.parametrize("sig, code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_a_signal_acts_inside_long_numeric_work(tmp_path: Path, sig: int,
                                                                   code: int) -> None:
@@ -233,8 +253,10 @@ def test_a_signal_acts_inside_long_numeric_work(tmp_path: Path, sig: int,
         [sys.executable, "-m", "gyrovib", "select", "s.yaml", "p.yaml", "--budget", "1",
          "--format", "csv", "-o", str(tmp_path / "out.csv")],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
-    time.sleep(2.0)
-    assert process.poll() is None, "finished before the signal"
+    _wait_for_cpu(process, 2.0)  # past start-up and loading, inside the work
+    if process.poll() is not None:
+        _, err = process.communicate()
+        pytest.fail(f"finished before the signal, status {process.returncode}: {err[-600:]}")
     process.send_signal(sig)
     _, err = process.communicate(timeout=30)
     assert process.returncode == code, err

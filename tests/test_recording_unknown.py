@@ -6,6 +6,7 @@ and damaged files are located errors or labelled answers, never a crash."""
 from __future__ import annotations
 
 import json
+import re
 import shutil
 from pathlib import Path
 
@@ -464,3 +465,108 @@ def test_sweep_on_a_fitted_profile_reads_unknown_where_an_axis_is_missing(
     table = invoke(*args).stdout
     cross = table[table.index("cross / "):]
     assert "nan" not in table and cross.count("?") >= 6  # Δ_V and Δ_V(RMS) at 3 rates
+
+
+def test_select_checks_that_rest_on_an_unrecorded_axis_are_unknown(tmp_path: Path) -> None:
+    """A cell made unverified by a missing axis shows no check computed without it: each
+    bound that depends on the axis is unknown (docs/model.md section 13: m31's bound rests
+    on x1, every bound on x3), and a check of a coefficient that is not 0 against an
+    unknown bound is neither passed nor failed; the cell's margin is unknown too. A
+    coefficient that is 0 is within any bound (0 ≤ b for every b ≥ 0), so k2-only's m31
+    check still passes."""
+    path = _csv(tmp_path, "gy,gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,gy,gz", "-o", out).exit_code == 0
+    cat = _catalogue(tmp_path)
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    cells = {s["sensor"]: s["profiles"][0] for s in json.loads(r.stdout)["sensors"]}
+    cross, alone = cells["cross"], cells["k2-only"]
+    assert cross["status"] == "unverified" and cross["criterion_margin"] is None
+    assert cross["checks"]["m31"] == {"value": 2.0e-3, "bound": None, "pass": None}
+    assert alone["checks"]["m31"]["bound"] is None and alone["checks"]["m31"]["pass"] is True
+    # the bounds resting on x2 and x3 alone, which were recorded, are still figures
+    assert cross["checks"]["k2"]["bound"] == alone["checks"]["k2"]["bound"] > 0
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "csv")
+    rows = {row.split(",")[0]: row.split(",") for row in r.stdout.splitlines()}
+    head = rows["sensor"]
+    cell = dict(zip(head, rows["cross"], strict=False))
+    assert (cell["bound_m31"], cell["pass_m31"], cell["criterion_margin"]) == ("", "", "")
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "junit")
+    assert "nan" not in r.stdout.lower()
+
+
+def test_select_without_the_sensitive_axis_knows_no_bound(tmp_path: Path) -> None:
+    """Without x3 every bound is unknown (each rests on x3): no check passes on a
+    coefficient that is not 0, and no sensor is ranked."""
+    path = _csv(tmp_path, "gx,gy")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "gx,gy,-", "-o", out).exit_code == 0
+    r = invoke("select", _catalogue(tmp_path), out, "--budget", "10deg/s", "--format", "json")
+    assert r.exit_code == 1, r.stderr  # the requirement is not met: nothing is verified
+    for sensor in json.loads(r.stdout)["sensors"]:
+        cell = sensor["profiles"][0]
+        assert cell["status"] == "unverified"
+        assert cell["checks"]["k2"] == {"value": 1.0e-3, "bound": None, "pass": None}
+        assert all(c["bound"] is None for c in cell["checks"].values())
+
+
+def test_a_mission_allowance_on_an_unknown_error_is_unknown(tmp_path: Path) -> None:
+    """The largest noise figure that meets the angle budget is θ* − |θ_V| shared out
+    (docs/model.md section 15): with θ_V unknown (the sensor needs x1, not recorded) it
+    is unknown — null in JSON with no 'limited_by' reason, '?' in the table — never 'nan'."""
+    path = _csv(tmp_path, "gy,gz")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,gy,gz", "-o", out).exit_code == 0
+    args = ("mission", _catalogue(tmp_path), out, "--mission", "rec-fitted-mission",
+            "--angle-budget", "1000deg")
+    r = invoke(*args, "--format", "json")
+    rows = {row["sensor"]: row for row in json.loads(r.stdout)["mission"]}
+    allowed = rows["cross"]["budget"]["allowed"]
+    assert allowed["arw"] is None and "arw" not in allowed["limited_by"]
+    table = invoke(*args, env={"COLUMNS": "240"})
+    assert "nan" not in table.stdout.lower()
+    cross = next(line for line in table.stdout.splitlines()
+                 if "cross" in line and "≤" in line)
+    assert cross.count("?") == 4  # N, B, K, R
+
+
+def test_the_report_of_a_mission_draws_no_unknown_angle(tmp_path: Path) -> None:
+    """A mission whose θ_V is unknown for a sensor (it needs x1, not recorded): the report's
+    verdict table and segment table read '?', and no θ(t) chart is drawn from NaN (an
+    SVG of 'nan' coordinates draws nothing a reader can tell from an empty chart)."""
+    path = _csv(tmp_path, "gy,gz")
+    fitted = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "-,gy,gz", "-o", fitted).exit_code == 0
+    out = tmp_path / "r.html"
+    r = invoke("report", _catalogue(tmp_path), fitted, "--budget", "10deg/s", "--mission",
+               "rec-fitted-mission", "--angle-budget", "1000deg", "-o", out)
+    assert r.exit_code in (0, 1), r.stderr
+    html = out.read_text(encoding="utf-8")
+    assert re.search(r"\bnan\b", html, re.IGNORECASE) is None
+    assert "cross: θ(t) unknown" in html
+    assert "<tr><td>cross</td><td>-</td><td>?</td><td>?</td>" in html
+
+
+def test_a_datasheet_part_without_the_sensitive_axis_has_no_allowable_figures(
+        tmp_path: Path) -> None:
+    """A datasheet part's allowable NL and VRE rest on x3 and the accelerations (docs/model.md
+    section 11): without them both are unknown, and so are the checks against them."""
+    path = _csv(tmp_path, "gx,gy")
+    out = tmp_path / "p.gyrovib.yaml"
+    assert invoke("profile", path, "--rate-columns", "gx,gy,-", "-o", out).exit_code == 0
+    cat = tmp_path / "ds.gyrovib.yaml"
+    cat.write_text("gyrovib: 1\nunits: {rate: deg/s, acceleration: g}\nsensors:\n"
+                   "  - id: ds\n    specs:\n      range: 300\n"
+                   "      nonlinearity: {value: 0.1, unit: '%FS', fit: least-squares, "
+                   "measure: max, of: range}\n      vre: 0.01\n", encoding="utf-8")
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "json")
+    cell = json.loads(r.stdout)["sensors"][0]["profiles"][0]
+    assert cell["status"] == "unverified"
+    for name in ("nonlinearity", "vre"):
+        assert (cell["checks"][name]["bound"], cell["checks"][name]["pass"]) == (None, None)
+    r = invoke("select", cat, out, "--budget", "10deg/s", "--format", "csv")
+    head, row = (line.split(",") for line in r.stdout.splitlines()[:2])
+    cells = dict(zip(head, row, strict=False))
+    assert [cells[k] for k in ("bound_nonlinearity", "pass_nonlinearity", "bound_vre",
+                               "pass_vre")] == ["", "", "", ""]

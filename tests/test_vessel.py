@@ -21,11 +21,61 @@ import pytest
 from gyrovib.api.noise import allowance, budget, timeline
 from gyrovib.core.harmonic_mixtures import locked_mixture_excess
 from gyrovib.core.harmonics import group_signal, locked_group
-from gyrovib.core.recording import harmonic_groups
+from gyrovib.core.recording import affordable_groups, harmonic_groups
 from tests.conftest import invoke
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tools"))
 import make_vessel
+
+#: A coefficient sensor with every nonlinear term (made up for the test).
+CATALOGUE_TEXT = ("gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n  - id: s\n    range: 500\n"
+                  "    coefficients: {k2: 2.0e-4, k3: 1.0e-5, k4: -3.0e-7, k5: 1.0e-8}\n")
+
+
+def test_groups_are_trimmed_weakest_order_first_to_an_affordable_search() -> None:
+    # two groups of orders 1-4 (six unknown phases); a budget of four lets the weakest
+    # non-fundamental orders go first (strength: the line's amplitude), and a group left
+    # with its fundamental alone is no group (its fundamental goes too)
+    groups = [(10.0, [0, 1, 2, 3], [1, 2, 3, 4]), (17.0, [4, 5, 6, 7], [1, 2, 3, 4])]
+    strength = [9.0, 8.0, 0.5, 7.0, 9.0, 0.1, 0.2, 0.3]
+    kept, released = affordable_groups(groups, strength, lambda dims, n_max: dims <= 4)
+    assert kept == [(10.0, [0, 1, 2, 3], [1, 2, 3, 4]), (17.0, [4, 7], [1, 4])]
+    assert released == [5, 6]
+    kept, released = affordable_groups(groups, strength, lambda dims, n_max: dims <= 2)
+    assert kept == [(10.0, [0, 1, 3], [1, 2, 4])] and released == [2, 4, 5, 6, 7]
+    # already affordable: unchanged
+    assert affordable_groups(groups, strength, lambda d, n: True) == (
+        [(f0, list(m), list(o)) for f0, m, o in groups], [])
+
+
+def test_a_profile_fitted_from_many_harmonics_is_one_the_commands_compute(
+        tmp_path: Path) -> None:
+    # SYNTHETIC: two engines (30 Hz and 47.3 Hz) of nine orders each on white noise; all
+    # eighteen lines as two phase: worst groups would be a search of sixteen unknown
+    # phases, refused by analyze as over its budget. profile writes the weakest orders as
+    # independent tones instead, says so, and what it wrote is computed.
+    rng = np.random.default_rng(7)
+    t = np.arange(20000) / 1000.0  # 20 s at 1 kHz
+    gz = rng.normal(0.0, 0.5, t.size) + 2.0
+    for f0 in (30.0, 47.3):
+        for n in range(1, 10):
+            gz += (3.0 / n) * np.sin(2 * np.pi * n * f0 * t + rng.uniform(0, 2 * np.pi))
+    path = tmp_path / "engines.csv"
+    np.savetxt(path, np.column_stack([t, 0.2 * rng.normal(size=t.size),
+                                      0.2 * rng.normal(size=t.size), gz]),
+               delimiter=",", header="t,gx,gy,gz", comments="", fmt="%.6f")
+    fitted = tmp_path / "engines.gyrovib.yaml"
+    r = invoke("profile", path, "--rate-columns", "gx,gy,gz", "-o", fitted)
+    assert r.exit_code == 0, r.stderr
+    assert "are written as independent tones" in r.stderr
+    text = fitted.read_text(encoding="utf-8")
+    assert text.count("fundamental:") >= 1
+    cat = tmp_path / "s.gyrovib.yaml"
+    cat.write_text(CATALOGUE_TEXT, encoding="utf-8")
+    # analyze searches one objective; bounds and select five, which the trim is sized for
+    # (the same cost bound, at a few seconds each: benchmarks/bench_vessel.py times them)
+    run = invoke("analyze", cat, fitted, "--format", "json")
+    assert run.exit_code == 0, run.stderr
 
 
 def test_a_slam_mode_and_an_engine_order_are_no_harmonic_series() -> None:

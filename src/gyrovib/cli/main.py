@@ -310,9 +310,9 @@ def _command(args: list[str] | None) -> int:
     """Run the command; its status, every exception but a signal's turned into one."""
     try:
         code = cli.main(args, prog_name="gyrovib", standalone_mode=False)
-    except click.exceptions.Abort:  # a KeyboardInterrupt while click parsed the group
-        _echo_interrupted(EXIT_INTERRUPTED)
-        code = EXIT_INTERRUPTED
+    except click.exceptions.Abort:  # a signal while click parsed (or imported) the command
+        code = _interrupted_status() or EXIT_INTERRUPTED  # SIGTERM, SIGHUP: not Ctrl-C
+        _echo_interrupted(code)
     except click.exceptions.ClickException as exc:
         try:
             exc.show()

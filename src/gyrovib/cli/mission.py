@@ -6,7 +6,14 @@ from typing import TYPE_CHECKING
 
 import click
 
-from gyrovib.cli.common import load_catalog, rendered, say
+from gyrovib.cli.common import (
+    load_catalog,
+    page_width,
+    plain_ascii,
+    rendered,
+    say,
+    use_color,
+)
 from gyrovib.cli.options import (
     files_argument,
     format_option,
@@ -57,6 +64,11 @@ coverage_option = click.option(
                    "chosen mission (on every axis of a triad).")
 @format_option("table", "json", "csv", "markdown", "junit")
 @output_option
+@click.option("--segments", is_flag=True,
+              help="Also the budget segment by segment: each segment's Δ_V and, at its end, "
+                   "θ_V summed so far, the noise terms over the time flown and the total "
+                   "(a second table; with --format csv, one row per segment instead of one "
+                   "per sensor; JSON always has them).")
 @click.option("--plot", metavar="PNG", default=None,
               help="Also draw θ(t) per sensor to PNG: the vibration angle segment by "
                    "segment inside the ±k·σ(t) noise cone, and the angle budget "
@@ -66,7 +78,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
             sensors: tuple[str, ...], budget: str | None, angle_budget: str | None,
             unit: str | None, placement: str | None, peak_factor: float,
             assume_unknown: str | None, require: str, fmt: str, output: str | None,
-            coverage: float, plot: str | None) -> None:
+            coverage: float, segments: bool, plot: str | None) -> None:
     """Each sensor over each mission: mean error, angle θ_V, mean RMS, worst segment,
     and the whole angle budget.
 
@@ -101,16 +113,20 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
-    _show(result, fmt, output)
+    if segments and fmt not in ("table", "csv", "json"):
+        raise OptionError("--segments: use --format table, csv or json (JSON always has "
+                          "the segments)")
+    _show(result, fmt, output, segments=segments)
     if plot is not None:
         write_binary(theta_png(result), plot)
     if not result.requirement_met:
         ctx.exit(1)
 
 
-def _show(result: MissionResult, fmt: str, output: str | None) -> None:
+def _show(result: MissionResult, fmt: str, output: str | None, segments: bool = False) -> None:
     """The result's notes on standard error, then the result in ``fmt`` (table, json, csv,
-    markdown or junit) to standard output or ``output``."""
+    markdown or junit) to standard output or ``output``; ``segments``: the budget segment
+    by segment too (table, csv)."""
     # lazy: the library and the renderers load when it runs, not for --help
     from gyrovib.render import mission as render
     from gyrovib.render.mission_answer import answer_line
@@ -120,7 +136,15 @@ def _show(result: MissionResult, fmt: str, output: str | None) -> None:
     answer = answer_line(result)
     if answer is not None:  # the answer first, on standard error: the data stay clean
         say(f"gyrovib: {answer}")
-    write_output(rendered(render, result, fmt, output), output)
+    if segments and fmt == "table":
+        document = render.to_table(result, color=use_color(output),
+                                   width=page_width(output), ascii=plain_ascii(output),
+                                   segments=True)
+    elif segments and fmt == "csv":
+        document = render.to_csv(result, segments=True)
+    else:
+        document = rendered(render, result, fmt, output)
+    write_output(document, output)
 
 
 def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tuple[str, ...],
@@ -173,4 +197,5 @@ def mission_section(catalog: object, missions: tuple[str, ...], sensors: tuple[s
         placement=parse_placement(placement))
     noise = {e.sensor.id: ({} if e.sensor.noise is None else e.sensor.noise.figures())
              for e in catalog.sensors if e.sensor.id in result.sensors}  # type: ignore[attr-defined]
-    return section(result, noise)
+    rate_units = {e.mission.id: e.unit for e in catalog.missions}  # type: ignore[attr-defined]
+    return section(result, noise, rate_units)

@@ -22,13 +22,15 @@ objective with the compass search alone, 700 so.
 
 from __future__ import annotations
 
+import copy
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import (
@@ -39,6 +41,7 @@ from gyrovib.core.analysis import (
     vibration_error,
 )
 from gyrovib.core.harmonics import LockedGroup
+from gyrovib.core.phase_batch import batched
 from gyrovib.core.statistics import Vibration
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
@@ -52,6 +55,10 @@ FINE_STEP = 1e-6
 #: Compass step below which Newton's method takes over (rad), and its difference step.
 NEWTON_FROM = 0.3
 NEWTON_H = 1e-4
+#: Step (rad) along a direction of positive curvature off a saddle.
+SADDLE_STEP = 0.25
+#: Hessian eigenvalues within this fraction of the largest are a flat direction.
+FLAT = 1e-6
 
 
 def free_offsets(groups: Sequence[LockedGroup]) -> list[tuple[int, int]]:
@@ -79,12 +86,20 @@ def apply_offsets(groups: Sequence[LockedGroup], free: Sequence[tuple[int, int]]
     return out
 
 
-def _coarse(dims: int) -> FloatArray:
+#: Most distinct values the snapped offsets of :func:`_coarse` take together.
+SNAPPED_VALUES = 16
+
+
+def _coarse(dims: int, snap: Sequence[int] = ()) -> FloatArray:
     """The coarse nodes: a uniform grid of at most :data:`COARSE_NODES` with at least
     :data:`MIN_PER_AXIS` per offset; past that (5 or more offsets), the first
     COARSE_NODES points of the R_d Kronecker sequence (fractional parts of i·α_j,
     α_j = φ_d^−(j+1), φ_d the root of x^(d+1) = x + 1), which fill the torus evenly
-    in any dimension (a full grid of 4 per axis would have 4^d nodes)."""
+    in any dimension (a full grid of 4 per axis would have 4^d nodes).
+
+    ``snap``: offsets whose every distinct value costs a table (the folded groups' of
+    :mod:`gyrovib.core.phase_batch`): on the Kronecker nodes they are rounded to a
+    uniform grid, so that together they take at most :data:`SNAPPED_VALUES` values."""
     if MIN_PER_AXIS**dims > COARSE_NODES:
         phi = 2.0
         for _ in range(60):
@@ -92,6 +107,11 @@ def _coarse(dims: int) -> FloatArray:
         alpha = phi ** -np.arange(1.0, dims + 1.0)
         i = np.arange(1, COARSE_NODES + 1)[:, None]
         lattice: FloatArray = 2.0 * math.pi * np.mod(0.5 + i * alpha[None, :], 1.0)
+        if snap:
+            q = max(2, math.floor(SNAPPED_VALUES ** (1.0 / len(snap)) + 1e-9))
+            cols = list(snap)
+            unit = 2.0 * math.pi / q
+            lattice[:, cols] = np.mod(np.round(lattice[:, cols] / unit), q) * unit
         return lattice
     per = max(MIN_PER_AXIS, math.floor(COARSE_NODES ** (1.0 / dims) + 1e-9))
     while per**dims > COARSE_NODES and per > MIN_PER_AXIS:
@@ -102,14 +122,19 @@ def _coarse(dims: int) -> FloatArray:
     return out
 
 
-def _compass(objective: Callable[[FloatArray], FloatArray], k: int, best: FloatArray,
-             value: float, step: float, stop: float) -> tuple[FloatArray, float]:
-    """Compass search on objective ``k`` from ``best`` until the step is below ``stop``."""
+#: A request of a refinement: trial offsets (T, D); it is sent back their values (T,).
+Refinement = Generator[FloatArray, FloatArray, tuple[FloatArray, float]]
+
+
+def _compass(best: FloatArray, value: float, step: float, stop: float
+             ) -> Generator[FloatArray, FloatArray, tuple[FloatArray, float]]:
+    """Compass search on one objective from ``best`` until the step is below ``stop``
+    (a coroutine: it yields its trial points and is sent their values)."""
     dims = best.size
     moves = np.concatenate([np.eye(dims), -np.eye(dims)])
     while step > stop:
         trial = np.mod(best[None, :] + step * moves, 2.0 * math.pi)
-        got = objective(trial)[:, k]
+        got = yield trial
         i = int(np.argmax(got))
         # (an improvement within rounding is none: on a flat ridge it would walk
         # the search at a fixed step for hundreds of evaluations)
@@ -131,46 +156,152 @@ def _stencil(dims: int) -> FloatArray:
     return np.asarray(rows)
 
 
-def _newton(objective: Callable[[FloatArray], FloatArray], k: int, best: FloatArray,
-            value: float) -> tuple[FloatArray, float, bool]:
-    """Newton's method on objective ``k`` with central differences (step :data:`NEWTON_H`).
+def _hessian(f: FloatArray, dims: int, h: float) -> tuple[FloatArray, FloatArray]:
+    """Gradient and Hessian from the values ``f`` on :func:`_stencil` (step ``h``)."""
+    f0 = f[0]
+    grad = (f[1:1 + dims] - f[1 + dims:1 + 2 * dims]) / (2.0 * h)
+    hess = np.diag((f[1:1 + dims] + f[1 + dims:1 + 2 * dims] - 2.0 * f0) / (h * h))
+    at = 1 + 2 * dims
+    for i in range(dims):
+        for j in range(i + 1, dims):
+            pp, pm, mp, mm = f[at:at + 4]
+            hess[i, j] = hess[j, i] = (pp - pm - mp + mm) / (4.0 * h * h)
+            at += 4
+    return grad, hess
+
+
+def _newton(best: FloatArray, value: float
+            ) -> Generator[FloatArray, FloatArray, tuple[FloatArray, float, bool]]:
+    """Newton's method on one objective with central differences (step :data:`NEWTON_H`).
 
     Near a smooth maximum it converges quadratically (a handful of steps of
     1 + 2D² evaluations where the compass search took hundreds of steps of 2D).
-    Returns the point, its value and whether it converged (False: the Hessian
-    is not negative definite there, or a step did not improve).
+    Each step is tried whole first; only when that does not improve are its halves
+    (down to 1/128) tried, and the best taken. Returns the point, its value and
+    whether it converged (False: a step did not improve). A direction of no curvature
+    (:data:`FLAT`) is one the objective does not depend on: the step leaves it alone.
+    At a saddle (an eigenvalue of the Hessian > 0) it steps along the eigenvectors of
+    positive curvature instead, and goes on from the best of them if one improves. A coroutine, as
+    :func:`_compass`.
     """
     dims = best.size
     stencil = _stencil(dims)
     h = NEWTON_H
     for _ in range(12):
-        f = objective(np.mod(best[None, :] + h * stencil, 2.0 * math.pi))[:, k]
-        f0 = f[0]
-        grad = (f[1:1 + dims] - f[1 + dims:1 + 2 * dims]) / (2.0 * h)
-        hess = np.diag((f[1:1 + dims] + f[1 + dims:1 + 2 * dims] - 2.0 * f0) / (h * h))
-        at = 1 + 2 * dims
-        for i in range(dims):
-            for j in range(i + 1, dims):
-                pp, pm, mp, mm = f[at:at + 4]
-                hess[i, j] = hess[j, i] = (pp - pm - mp + mm) / (4.0 * h * h)
-                at += 4
-        if not np.all(np.isfinite(hess)) or np.max(np.linalg.eigvalsh(hess)) >= 0:
+        f = yield np.mod(best[None, :] + h * stencil, 2.0 * math.pi)
+        grad, hess = _hessian(f, dims, h)
+        if not np.all(np.isfinite(hess)):
             return best, value, False
-        move = -np.linalg.solve(hess, grad)
+        lam, vec = np.linalg.eigh(hess)
+        # a curvature within FLAT of the largest is none: a direction the objective does
+        # not depend on (a moment of one group along another group's offset); the step
+        # leaves it alone
+        flat = np.abs(lam) <= FLAT * float(np.max(np.abs(lam)))
+        if np.any(lam[~flat] > 0):
+            # a saddle: f rises both ways along an eigenvector of curvature > 0, whatever
+            # the gradient there; try steps of SADDLE_STEP along each, both signs
+            up = vec[:, (lam > 0) & ~flat].T
+            trials = np.mod(best[None, :] + SADDLE_STEP * np.concatenate([up, -up]),
+                            2.0 * math.pi)
+            got = yield trials
+            i = int(np.argmax(got))
+            if not got[i] > value + 1e-14 * abs(value):
+                return best, value, False
+            best, value = trials[i], float(got[i])
+            continue
+        bent = vec[:, ~flat]
+        move = -bent @ ((bent.T @ grad) / lam[~flat])
         size = float(np.max(np.abs(move)))
         if size > 1.0:
             move *= 1.0 / size
         if size < FINE_STEP:
-            return best, max(value, float(f0)), True
-        # backtracking: the step, then halves of it, in one call
+            return best, max(value, float(f[0])), True
         trials = np.mod(best[None, :] + np.exp2(-np.arange(8.0))[:, None] * move[None, :],
                         2.0 * math.pi)
-        got = objective(trials)[:, k]
+        whole = yield trials[:1]
+        if whole[0] >= value:
+            best, value = trials[0], float(whole[0])
+            continue
+        got = yield trials[1:]
         i = int(np.argmax(got))
         if not got[i] >= value:
             return best, value, False
-        best, value = trials[i], float(got[i])
+        best, value = trials[1 + i], float(got[i])
     return best, value, False
+
+
+#: Newton's method tried this many times, with compass moves between (off a saddle).
+NEWTON_TRIES = 3
+
+
+def _refine(best: FloatArray, value: float, start: float) -> Refinement:
+    """One objective from its best coarse node: the compass search down to
+    :data:`NEWTON_FROM`, then Newton's method. Where Newton's method fails (a saddle
+    or a ridge: the Hessian is not negative definite), compass moves of 2·NEWTON_FROM
+    down to NEWTON_FROM/4 leave it and Newton's method is tried again (at most
+    :data:`NEWTON_TRIES` times); past that, the compass search goes on down to
+    :data:`FINE_STEP`."""
+    point, value = yield from _compass(best, value, start, NEWTON_FROM)
+    for attempt in range(NEWTON_TRIES):
+        point, value, done = yield from _newton(point, value)
+        if done:
+            return point, value
+        if attempt + 1 < NEWTON_TRIES:
+            point, value = yield from _compass(point, value, 2.0 * NEWTON_FROM,
+                                               0.25 * NEWTON_FROM)
+    point, value = yield from _compass(point, value, NEWTON_FROM, FINE_STEP)
+    return point, value
+
+
+#: Rows' values of their own objective: (offsets (T, D), objective of each row (T,)) → (T,).
+RowObjective = Callable[[FloatArray, NDArray[np.intp]], FloatArray]
+
+
+def _lockstep(rows_objective: RowObjective, starts: FloatArray, values: FloatArray,
+              step: float) -> tuple[FloatArray, FloatArray]:
+    """Every objective's refinement (:func:`_refine`) in step: at each round the trial
+    points all objectives ask for are evaluated in one call. Each objective takes the
+    same path as it would alone."""
+    best, best_value = starts.copy(), values.copy()
+    running: dict[int, Refinement] = {}
+    asks: dict[int, FloatArray] = {}
+    for k in range(starts.shape[0]):
+        gen = _refine(starts[k].copy(), float(values[k]), step)
+        running[k] = gen
+        try:
+            asks[k] = next(gen)
+        except StopIteration as stop:
+            best[k], best_value[k] = stop.value
+            del running[k]
+    total = starts.shape[0]
+    while running:
+        advance("phase: worst search", total - len(running), total)
+        ks = list(running)
+        psi = np.concatenate([asks[k] for k in ks])
+        which = np.concatenate([np.full(asks[k].shape[0], k, dtype=np.intp) for k in ks])
+        got = rows_objective(psi, which)
+        at = 0
+        for k in ks:
+            n = asks[k].shape[0]
+            part, at = got[at:at + n], at + n
+            try:
+                asks[k] = running[k].send(part)
+            except StopIteration as stop:
+                best[k], best_value[k] = stop.value
+                del running[k], asks[k]
+    advance("phase: worst search", total, total)
+    return best, best_value
+
+
+def _searched(coarse: FloatArray, values: FloatArray, rows_objective: RowObjective
+              ) -> tuple[FloatArray, FloatArray]:
+    """Each objective's best coarse node (``values``: (nodes, K)), refined in step."""
+    dims = coarse.shape[1]
+    best_index = np.argmax(values, axis=0)
+    best = coarse[best_index].copy()
+    best_value = values[best_index, np.arange(values.shape[1])].copy()
+    per_axis = max(2, round(coarse.shape[0] ** (1.0 / dims)))
+    return _lockstep(rows_objective, best, best_value, 2.0 * math.pi / per_axis)
 
 
 def maximise_on_torus(objective: Callable[[FloatArray], FloatArray], dims: int
@@ -181,27 +312,19 @@ def maximise_on_torus(objective: Callable[[FloatArray], FloatArray], dims: int
     offsets (K, dims) and values (K,). The coarse grid's best node of each
     objective is refined by a compass search down to a step of
     :data:`NEWTON_FROM`, then by Newton's method (:func:`_newton`); where
-    that fails, by the compass search on down to :data:`FINE_STEP`.
+    that fails, by the compass search on down to :data:`FINE_STEP`. The
+    objectives are refined in step (:func:`_lockstep`).
     """
     if dims == 0:
         values = objective(np.zeros((1, 0)))[0]
         return np.zeros((values.size, 0)), values
     nodes = _coarse(dims)
-    values = objective(nodes)
-    best_index = np.argmax(values, axis=0)
-    best = nodes[best_index].copy()
-    best_value = values[best_index, np.arange(values.shape[1])].copy()
-    per_axis = max(2, round(nodes.shape[0] ** (1.0 / dims)))
-    start = 2.0 * math.pi / per_axis
-    for k in range(best.shape[0]):
-        advance("phase: worst search", k, best.shape[0])
-        point, value = _compass(objective, k, best[k], float(best_value[k]), start, NEWTON_FROM)
-        point, value, done = _newton(objective, k, point, value)
-        if not done:
-            point, value = _compass(objective, k, point, value, NEWTON_FROM, FINE_STEP)
-        best[k], best_value[k] = point, value
-    advance("phase: worst search", best.shape[0], best.shape[0])
-    return best, best_value
+
+    def rows_objective(psi: FloatArray, which: NDArray[np.intp]) -> FloatArray:
+        out: FloatArray = objective(psi)[np.arange(psi.shape[0]), which]
+        return out
+
+    return _searched(nodes, objective(nodes), rows_objective)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -235,36 +358,134 @@ def worst_phase_error(
     :func:`gyrovib.core.analysis.profile_multipliers` and
     :func:`~gyrovib.core.analysis.vibration_error`.
     """
+    return worst_phase_errors(coefficients, vibration, groups, [omega],
+                              acceleration=acceleration, g2_sensitivity=g2_sensitivity)[0]
+
+
+def _search_key(*parts: object) -> bytes:
+    """Bytes that identify a search's inputs (arrays by shape, dtype and content)."""
+    out = []
+    for part in parts:
+        if part is None:
+            out.append(b"-")
+        elif isinstance(part, LockedGroup):
+            out.append(_search_key(part.orders, part.phasors, part.worst))
+        elif isinstance(part, Vibration):
+            out.append(_search_key(part.phasors, part.sigma, part.coherence,
+                                   np.asarray(part.has_random)))
+        elif isinstance(part, (list, tuple)):
+            out.append(_search_key(*part))
+        else:
+            a = np.ascontiguousarray(part)
+            out.append(f"{a.dtype.str}{a.shape}".encode() + a.tobytes())
+    return b"|".join(out)
+
+
+#: The last searches made, by their inputs: a report asks ``analyze`` and ``select`` the
+#: same profile's worst phases, and ``bounds`` and ``sweep`` its worst multipliers.
+_SEARCHES: dict[bytes, Any] = {}
+_KEPT_SEARCHES = 32
+
+
+def _remembered(key: bytes, compute: Callable[[], Any]) -> Any:
+    """``compute()``, or a copy of what it gave for ``key`` before (kept for the last few
+    keys; a copy, so that a caller's changes never reach the next one)."""
+    if key not in _SEARCHES:
+        if len(_SEARCHES) >= _KEPT_SEARCHES:
+            _SEARCHES.pop(next(iter(_SEARCHES)))
+        _SEARCHES[key] = compute()
+    return copy.deepcopy(_SEARCHES[key])
+
+
+def worst_phase_errors(
+    coefficients: ArrayLike,
+    vibration: Vibration,
+    groups: Sequence[LockedGroup],
+    omegas: ArrayLike,
+    *,
+    acceleration: ArrayLike | None = None,
+    g2_sensitivity: ArrayLike | None = None,
+) -> list[WorstPhases]:
+    """:func:`worst_phase_error` at each rate of ``omegas`` (R,), one search for all.
+
+    The objectives are |Δ_V| of every (rate, sensor): the coarse nodes are
+    evaluated once for all of them and their refinements run in step
+    (:func:`_lockstep`), each trial point on the batched form of the profile
+    (:mod:`gyrovib.core.phase_batch`) where it has one. The error reported is
+    recomputed at the phases found by
+    :func:`~gyrovib.core.analysis.profile_multipliers`, the one-point path. A search
+    with the same inputs as one of the last few is not made again.
+    """
+    key = _search_key("errors", np.asarray(coefficients, dtype=float), vibration,
+                      list(groups), np.asarray(omegas, dtype=float), acceleration,
+                      g2_sensitivity)
+    found: list[WorstPhases] = _remembered(key, lambda: _worst_phase_errors(
+        coefficients, vibration, groups, omegas, acceleration=acceleration,
+        g2_sensitivity=g2_sensitivity))
+    return list(found)
+
+
+def _worst_phase_errors(
+    coefficients: ArrayLike,
+    vibration: Vibration,
+    groups: Sequence[LockedGroup],
+    omegas: ArrayLike,
+    *,
+    acceleration: ArrayLike | None = None,
+    g2_sensitivity: ArrayLike | None = None,
+) -> list[WorstPhases]:
+    """:func:`worst_phase_errors`, computed."""
     c = np.asarray(coefficients, dtype=float)
+    rates = np.asarray(omegas, dtype=float).reshape(-1)
     free = free_offsets(groups)
     g2 = None if g2_sensitivity is None else np.asarray(g2_sensitivity, dtype=float)
+    sensors = c.shape[0]
+    fast = batched(vibration, groups, free, acceleration)
 
-    def multipliers_at(psi: FloatArray) -> Multipliers:
-        return stack_multipliers([
-            profile_multipliers(vibration, np.asarray(float(omega)), "exact",
-                                locked=apply_offsets(groups, free, row),
-                                acceleration=acceleration)
-            for row in psi])
+    def one_point(row: FloatArray, omega: float) -> Multipliers:
+        return profile_multipliers(vibration, np.asarray(float(omega)), "exact",
+                                   locked=apply_offsets(groups, free, row),
+                                   acceleration=acceleration)
 
-    def objective(psi: FloatArray) -> FloatArray:
-        err = vibration_error(c, multipliers_at(psi), g2)
-        out: FloatArray = np.abs(err.total).T  # (C, sensors)
+    def errors_at(psi: FloatArray, omega: FloatArray) -> FloatArray:
+        if fast is not None:
+            mu = fast.multipliers(psi, omega)
+        else:
+            mu = stack_multipliers([one_point(row, float(w))
+                                    for row, w in zip(psi, omega, strict=True)])
+        out: FloatArray = np.abs(vibration_error(c, mu, g2).total).T  # (C, sensors)
         return out
 
-    best, _ = maximise_on_torus(objective, len(free))
-    per_sensor = [multipliers_at(best[k : k + 1]) for k in range(c.shape[0])]
-    errors = [vibration_error(c[k : k + 1], mu,
+    def rows_objective(psi: FloatArray, which: NDArray[np.intp]) -> FloatArray:
+        got = errors_at(psi, rates[which // sensors])
+        out: FloatArray = got[np.arange(psi.shape[0]), which % sensors]
+        return out
+
+    dims = len(free)
+    if dims == 0:
+        best = np.zeros((rates.size * sensors, 0))
+    else:
+        nodes = _coarse(dims, () if fast is None else fast.folded_offsets())
+        n = nodes.shape[0]
+        values = errors_at(np.tile(nodes, (rates.size, 1)), np.repeat(rates, n))
+        values = values.reshape(rates.size, n, sensors).transpose(1, 0, 2).reshape(n, -1)
+        best, _ = _searched(nodes, values, rows_objective)
+    return [_found(c, g2, free, best[r * sensors:(r + 1) * sensors],
+                   partial(one_point, omega=w))
+            for r, w in enumerate(rates.tolist())]
+
+
+def _found(c: FloatArray, g2: FloatArray | None, free: Sequence[tuple[int, int]],
+           best: FloatArray, one_point: Callable[[FloatArray], Multipliers]) -> WorstPhases:
+    """The error of each sensor at its phases ``best`` (sensors, D), on the one-point path."""
+    per_sensor = [one_point(best[k]) for k in range(c.shape[0])]
+    errors = [vibration_error(c[k : k + 1], stack_multipliers([mu]),
                               None if g2 is None else g2[k : k + 1])
               for k, mu in enumerate(per_sensor)]
     error = VibrationError(**{
         name: np.concatenate([getattr(e, name)[:, 0] for e in errors])
         for name in VibrationError.__dataclass_fields__})
-    rows: list[Multipliers] = []
-    for m in per_sensor:
-        row: dict[str, Any] = {f: None if getattr(m, f) is None else getattr(m, f)[0]
-                               for f in Multipliers.__dataclass_fields__}
-        rows.append(Multipliers(**row))
-    stacked = stack_multipliers(rows)
+    stacked = stack_multipliers(per_sensor)
     return WorstPhases(offsets=best, free=tuple(free), error=error, multipliers=stacked)
 
 
@@ -277,38 +498,69 @@ def worst_phase_multipliers(
 ) -> Multipliers:
     """Per term, the largest |multiplier| over the unknown phases (synthesis, exact).
 
-    g_A = ½E(Ω), M4, |M3| and |M5| are each maximised on their own at every
-    rate in ``omega`` (any shape); M2, C31, C32 and the acceleration moments
-    do not depend on the phases. The result bounds every phase's share.
+    g_A = ½E(Ω), M4, |M3| and |M5| are each maximised on their own: M3, M4 and
+    M5 once (they do not depend on the rate), g_A at every rate in ``omega``
+    (any shape), all in one search (:func:`_lockstep`; the trial points on the
+    batched form of the profile, :mod:`gyrovib.core.phase_batch`, where it has
+    one); M2, C31, C32 and the acceleration moments do not depend on the phases.
+    The result bounds every phase's share. A search with the same inputs as one of the
+    last few is not made again.
     """
+    key = _search_key("multipliers", vibration, list(groups), np.asarray(omega, float),
+                      acceleration)
+    found: Multipliers = _remembered(key, lambda: _worst_phase_multipliers(
+        vibration, groups, omega, acceleration=acceleration))
+    return found
+
+
+def _worst_phase_multipliers(vibration: Vibration, groups: Sequence[LockedGroup],
+                             omega: ArrayLike, *, acceleration: ArrayLike | None = None
+                             ) -> Multipliers:
+    """:func:`worst_phase_multipliers`, computed."""
     w = np.asarray(omega, dtype=float)
     free = free_offsets(groups)
     flat = w.ravel()
-    fields: dict[str, list[float]] = {"asymmetry": [], "m3": [], "m4": [], "m5": []}
     base = profile_multipliers(vibration, w, "exact", locked=list(groups),
                                acceleration=acceleration)
-    for i, rate in enumerate(flat):
-        advance("phase: worst, rates", i, flat.size)
+    fast = batched(vibration, groups, free, None)
 
-        def objective(psi: FloatArray, rate: float = float(rate)) -> FloatArray:
+    def values(psi: FloatArray, rates: FloatArray) -> FloatArray:
+        """(C, 4): |g_A| at each row's rate, |M3|, M4, |M5|."""
+        if fast is not None:
+            mu = fast.multipliers(psi, rates)
+        else:
             mu = stack_multipliers([
-                profile_multipliers(vibration, np.asarray(rate), "exact",
+                profile_multipliers(vibration, np.asarray(float(rate)), "exact",
                                     locked=apply_offsets(groups, free, row))
-                for row in psi])
-            assert mu.m3 is not None and mu.m5 is not None
-            out: FloatArray = np.stack([np.abs(mu.asymmetry), np.abs(mu.m3), mu.m4,
-                                        np.abs(mu.m5)], axis=1)
+                for row, rate in zip(psi, rates, strict=True)])
+        assert mu.m3 is not None and mu.m5 is not None
+        out: FloatArray = np.stack([np.abs(mu.asymmetry), np.abs(mu.m3), mu.m4,
+                                    np.abs(mu.m5)], axis=1)
+        return out
+
+    dims = len(free)
+    if dims == 0:
+        got = values(np.zeros((flat.size, 0)), flat)
+        best = np.concatenate([got[0, 1:], got[:, 0]])
+    else:
+        nodes = _coarse(dims, () if fast is None else fast.folded_offsets())
+        n = nodes.shape[0]
+        v = values(np.tile(nodes, (flat.size, 1)), np.repeat(flat, n))
+        v = v.reshape(flat.size, n, 4)
+        # objectives: |M3|, M4, |M5| (any rate), then g_A at each rate
+        table = np.concatenate([v[0, :, 1:], v[:, :, 0].T], axis=1)
+
+        def rows_objective(psi: FloatArray, which: NDArray[np.intp]) -> FloatArray:
+            moment = which < 3
+            got = values(psi, flat[np.where(moment, 0, which - 3)])
+            out: FloatArray = got[np.arange(psi.shape[0]), np.where(moment, which + 1, 0)]
             return out
 
-        _, values = maximise_on_torus(objective, len(free))
-        for name, v in zip(("asymmetry", "m3", "m4", "m5"), values, strict=True):
-            fields[name].append(float(v))
-    advance("phase: worst, rates", flat.size, flat.size)
-    shaped = {k: np.asarray(v).reshape(w.shape) for k, v in fields.items()}
+        _, best = _searched(nodes, table, rows_objective)
+    m3, m4, m5 = (np.full(w.shape, float(best[i])) for i in range(3))
     return Multipliers(
-        asymmetry=shaped["asymmetry"], m2=base.m2, m4=shaped["m4"], c31=base.c31,
-        c32=base.c32, omega=w.copy(), m3=shaped["m3"], m5=shaped["m5"],
-        acceleration=base.acceleration,
+        asymmetry=best[3:].reshape(w.shape), m2=base.m2, m4=m4, c31=base.c31,
+        c32=base.c32, omega=w.copy(), m3=m3, m5=m5, acceleration=base.acceleration,
     )
 
 

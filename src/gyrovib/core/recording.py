@@ -10,7 +10,7 @@ accelerations in g, frequencies in Hz, time in s.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -342,6 +342,47 @@ def harmonic_groups(frequencies: ArrayLike,
             used[members] = True
             groups.append((float(f0), members, orders))
     return groups
+
+
+def affordable_groups(groups: Sequence[tuple[float, list[int], list[int]]],
+                      strength: Sequence[float],
+                      affordable: Callable[[int, int], bool],
+                      ) -> tuple[list[tuple[float, list[int], list[int]]], list[int]]:
+    """:func:`harmonic_groups` trimmed until a ``phase: worst`` search over all their
+    orders is ``affordable(unknown phases, highest order)`` (a group of n orders, each
+    ``phase: worst``, has n − 1 unknown relative phases): the weakest order above a
+    fundamental (by ``strength``, per line) leaves its group first, and a group left with
+    its fundamental alone is no group. Returns the groups kept and the lines let go (each
+    then an independent tone), so that a profile fitted from a recording is always one
+    the commands compute."""
+    kept = [(f0, list(m), list(o)) for f0, m, o in groups]
+    released: list[int] = []
+    while kept and not affordable(sum(len(m) - 1 for _, m, _ in kept),
+                                  max(max(o) for _, _, o in kept)):
+        g, k = min(((g, k) for g, (_, m, o) in enumerate(kept) for k in range(len(m))
+                    if o[k] != 1), key=lambda gk: strength[kept[gk[0]][1][gk[1]]])
+        released.append(kept[g][1].pop(k))
+        kept[g][2].pop(k)
+        if len(kept[g][1]) < 2:
+            released.extend(kept.pop(g)[1])
+    return kept, sorted(released)
+
+
+#: The objectives a fitted profile's ``phase: worst`` search is sized for: the analysis
+#: (one) and the synthesis of ``bounds``/``select`` at the profile's own rate (four).
+FITTED_OBJECTIVES = 5
+
+
+def fitted_groups(frequencies: ArrayLike, strength: Sequence[float],
+                  ) -> tuple[list[tuple[float, list[int], list[int]]], list[int]]:
+    """The phase-locked groups a fitted profile writes (every order ``phase: worst``):
+    :func:`harmonic_groups`, trimmed by :func:`affordable_groups` to a search within
+    :data:`~gyrovib.core.phases.MAX_SEARCH_COST` for :data:`FITTED_OBJECTIVES`."""
+    from gyrovib.core.phases import MAX_SEARCH_COST, search_cost
+
+    return affordable_groups(
+        harmonic_groups(frequencies), strength,
+        lambda dims, n_max: search_cost(dims, FITTED_OBJECTIVES, n_max) <= MAX_SEARCH_COST)
 
 
 def power_sums(x: ArrayLike, order: int = 4) -> FloatArray:

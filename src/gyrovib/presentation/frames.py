@@ -302,17 +302,23 @@ def _coefficient_check_columns(result: SelectionResult, spec_rows: Any) -> dict[
     values = np.asarray(result.values).reshape(rows, -1)
     bounds = np.asarray(result.bounds).reshape(rows, -1)
     checks = np.asarray(result.check_pass, dtype=bool).reshape(rows, -1)
+    # a bound a fitted profile's recording leaves unknown decides nothing (None)
+    unknown = np.isnan(bounds) & (values != 0)
     out: dict[str, Any] = {}
     for b, name in enumerate(BOUNDED):
         out[f"checks.{name}.value"] = np.where(spec_rows, np.nan, values[:, b])
         out[f"checks.{name}.bound"] = np.where(spec_rows, np.nan, bounds[:, b])
-        out[f"checks.{name}.pass"] = (checks[:, b] if not spec_rows.any() else
-                                      [None if sp else bool(c) for sp, c in
-                                       zip(spec_rows, checks[:, b], strict=True)])
+        out[f"checks.{name}.pass"] = (checks[:, b] if not (spec_rows.any()
+                                                           or unknown[:, b].any()) else
+                                      [None if sp or u else bool(c) for sp, u, c in
+                                       zip(spec_rows, unknown[:, b], checks[:, b],
+                                           strict=True)])
     if result.vre_pass is not None:
+        n_s, n_p = len(result.sensors), len(result.profiles)
         out["checks.vre.value"] = np.asarray(result.vre_value).reshape(-1)
         out["checks.vre.bound"] = np.asarray(result.vre_bound).reshape(-1)
-        out["checks.vre.pass"] = np.asarray(result.vre_pass, dtype=bool).reshape(-1)
+        out["checks.vre.pass"] = [result.vre_check(i, j) for i in range(n_s)
+                                  for j in range(n_p)]
     return out
 
 
@@ -320,12 +326,13 @@ def _datasheet_check_columns(result: SelectionResult, spec_rows: Any) -> dict[st
     """Datasheet (spec-form) sensors' nonlinearity check: NaN, None on coefficient rows."""
     if result.nl_value is None:
         return {}
+    n_p = len(result.profiles)
     return {
         "checks.nonlinearity.value": np.asarray(result.nl_value).reshape(-1),
         "checks.nonlinearity.bound": np.asarray(result.nl_bound).reshape(-1),
         "checks.nonlinearity.pass": [
-            bool(v) if sp else None for sp, v in
-            zip(spec_rows, np.asarray(result.nl_pass).reshape(-1), strict=True)],
+            result.nl_check(k // n_p, k % n_p) if sp else None
+            for k, sp in enumerate(spec_rows.tolist())],
         "checks.nonlinearity.unit": ["%FS" if sp else None for sp in spec_rows.tolist()],
     }
 

@@ -13,6 +13,7 @@ from gyrovib.presentation.reasons import unverified_text
 from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
 from gyrovib.render.formats import csv_of
 from gyrovib.render.mission_answer import allowance_cells, allowance_head, allowance_json
+from gyrovib.render.mission_segments import segments_csv, segments_table
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
@@ -194,8 +195,10 @@ def _rank_notes(result: MissionResult) -> list[str]:
 
 
 def to_table(result: MissionResult, width: int | None = None, color: bool = False,
-             ascii: bool = False) -> str:
-    """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict."""
+             ascii: bool = False, segments: bool = False) -> str:
+    """One row per sensor × mission × axis: mean, angle, mean RMS, worst segment, verdict;
+    with ``segments``, the budget segment by segment under it
+    (:func:`gyrovib.render.mission_segments.segments_table`)."""
 
     table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
                   f"({_budget_text(result)})", title_justify="left")
@@ -212,6 +215,8 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
     out: list[Any] = [table]
     if any(r.budget is not None and r.budget.allowed is not None for r in result.rows):
         out.append(_allowance_table(result))
+    if segments:
+        out.append(segments_table(result))
     notes = _table_notes(result)
     out.append(Text(" ".join(notes), style="dim"))
     out.extend(Text(note) for note in _unknown_notes(result))
@@ -336,9 +341,12 @@ def to_json(result: MissionResult) -> str:
     return dumps(document)
 
 
-def to_csv(result: MissionResult) -> str:
+def to_csv(result: MissionResult, segments: bool = False) -> str:
     """One row per sensor × mission × axis: the result's records
-    (:meth:`MissionResult.records`), as its DataFrame has them."""
+    (:meth:`MissionResult.records`), as its DataFrame has them; with ``segments``, one
+    row per segment instead (:func:`gyrovib.render.mission_segments.segments_csv`)."""
+    if segments:
+        return segments_csv(result)
     return csv_of(result.records(), result.rows)
 
 

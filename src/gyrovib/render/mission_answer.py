@@ -5,6 +5,7 @@ and each row's allowance — the largest figure that still meets the angle budge
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 from gyrovib.api.noise.results import ALLOWANCE_UNITS
@@ -35,8 +36,9 @@ def allowance_json(row: MissionRow) -> dict[str, Any] | None:
 
 
 def allowance_cells(row: MissionRow) -> list[str]:
-    """One cell per term: '≤ value' (with '*' where it is only an upper limit), or
-    'none (<term>)': no value passes, that term alone uses the allowance."""
+    """One cell per term: '≤ value' (with '*' where it is only an upper limit),
+    'none (<term>)': no value passes, that term alone uses the allowance, or '?' where
+    the allowance rests on an error that is unknown."""
     if row.budget is None or row.budget.allowed is None:
         return ["-"] * len(TERMS)
     a = row.budget.allowed
@@ -46,6 +48,8 @@ def allowance_cells(row: MissionRow) -> list[str]:
         if value is None:
             limit = a.limit(name) or "vibration"
             cells.append(f"none ({TERMS[limit][1]})")
+        elif math.isnan(value):  # it rests on an error that is unknown
+            cells.append("?")
         else:
             cells.append(f"≤ {fmt(value)}" + ("*" if name in a.upper else ""))
     return cells

@@ -64,6 +64,15 @@ def theta_png(result: MissionResult, *, dpi: int = 100) -> bytes:
     for ax, row in zip(axes, rows, strict=False):
         b = row.budget
         assert b is not None
+        axis = f", x3 on {row.axis}" if row.axis else ""
+        if np.isnan(b.total):  # θ_V rests on an axis the recording did not record
+            ax.set_title(f"{row.sensor} — {row.mission}{axis}: total unknown "
+                         f"({row.status or 'no budget'})", fontsize=10, loc="left")
+            ax.text(0.5, 0.5, "θ(t) unknown: the vibration error rests on an axis the "
+                    "recording did not record (unknown, not 0)", ha="center", va="center",
+                    transform=ax.transAxes, fontsize=9)
+            ax.set_axis_off()
+            continue
         t, theta = staircase(row)
         dense = np.linspace(0.0, t[-1], max(2, _PER_SEGMENT * len(row.segments)))
         vib = np.interp(dense, t, theta)
@@ -75,8 +84,8 @@ def theta_png(result: MissionResult, *, dpi: int = 100) -> bytes:
         if result.angle_budget is not None:
             for sign in (1.0, -1.0):
                 ax.axhline(sign * result.angle_budget, color="k", ls="--", lw=0.9)
-        axis = f", x3 on {row.axis}" if row.axis else ""
-        ax.set_title(f"{row.sensor} — {row.mission}{axis}: total {b.total:.4g} deg "
+        ax.set_title(f"{row.sensor} — {row.mission}{axis}: total "
+                     f"{'≥ ' if b.lower_bound else ''}{b.total:.4g} deg "
                      f"({row.status or 'no budget'})", fontsize=10, loc="left")
         ax.set_ylabel("heading error (deg)")
         ax.grid(True, alpha=0.3)

@@ -105,6 +105,9 @@ def _rows(result: RecordingAnalysis) -> list[dict[str, Any]]:
                          "g2": _num(result.g2[i])},
             "fitted": {"total": _num(result.fitted[i]), "rms": _num(result.fitted_rms[i])},
             "ratio": _num(result.ratio[i]),
+            "at_mean_rate": {"total": _num(result.at_mean[i]),
+                             "ratio": _num(result.at_mean_ratio[i]),
+                             "outside": bool(result.at_mean_outside[i])},
             "saturated": bool(result.saturated[i]),
             "peak_rate": _num(result.peak_rate[i]),
             "source": "specs" if result.spec[i] else "coefficients",
@@ -124,7 +127,8 @@ def to_json(result: RecordingAnalysis) -> str:
 
 
 _CSV_HEAD = ["sensor", "recorded", *[f"recorded_{t}" for t in _TERMS], "recorded_g2",
-             "fitted", "fitted_rms", "ratio", "saturated", "peak_rate", "unit"]
+             "fitted", "fitted_rms", "ratio", "saturated", "peak_rate", "unit",
+             "at_mean_rate", "at_mean_ratio"]
 
 
 def to_csv(result: RecordingAnalysis) -> str:
@@ -137,7 +141,9 @@ def to_csv(result: RecordingAnalysis) -> str:
                   result.fitted_rms[i], result.ratio[i]]
         w.writerow([sensor, *(repr(float(v)) if math.isfinite(v) else "" for v in values),
                     "true" if result.saturated[i] else "false", repr(float(result.peak_rate[i])),
-                    result.unit])
+                    result.unit,
+                    *(repr(float(v)) if math.isfinite(v) else ""
+                      for v in (result.at_mean[i], result.at_mean_ratio[i]))])
     return buf.getvalue()
 
 

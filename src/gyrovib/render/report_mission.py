@@ -4,14 +4,16 @@ segments that make it up."""
 
 from __future__ import annotations
 
+import math
 from html import escape
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from gyrovib import units
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
-from gyrovib.render.mission import known
+from gyrovib.render.mission import budget_total, known
 from gyrovib.render.mission_answer import allowance_cells, allowance_head, answer_line
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
@@ -74,29 +76,70 @@ def budget_lengths(row: MissionRow) -> list[float]:
     return [abs(b.vibration), *((noise * t * t / var) if var > 0 else 0.0 for t in terms)]
 
 
+#: Largest ratio of the budget totals drawn on one common axis; past it each bar is drawn
+#: on its own scale (the parts as shares of its total), which a common axis would
+#: flatten to nothing beside the largest.
+COMMON_SCALE_SPREAD = 20.0
+
+
+def _total_text(lengths: list[float]) -> str:
+    """A budget bar's total in deg, '?' when a part of it is unknown."""
+    if any(math.isnan(v) for v in lengths):
+        return "?"
+    return fmt(sum(v for v in lengths if v > 0))
+
+
+def _own_scale(lengths: list[list[float]]) -> bool:
+    """Whether the bars' totals span more than :data:`COMMON_SCALE_SPREAD`."""
+    totals = [t for t in (sum(v for v in row if v > 0) for row in lengths) if t > 0]
+    return bool(totals) and max(totals) > COMMON_SCALE_SPREAD * min(totals)
+
+
+def _shares(row: list[float]) -> list[float]:
+    """A bar's parts as percentages of its own total."""
+    total = sum(v for v in row if v > 0)
+    return [100.0 * v / total if total > 0 else 0.0 for v in row]
+
+
 def budget_chart(result: MissionResult, mission: str) -> str:
-    """The whole angle budget per sensor as a stacked bar: which term dominates."""
+    """The whole angle budget per sensor as a stacked bar: which term dominates. On one
+    axis in deg when the totals are within :data:`COMMON_SCALE_SPREAD` of each other,
+    else each bar as the shares of its own total; the tooltips give each part and its
+    bar's total in deg either way."""
     rows = _shown(result, mission)
     names = [r.sensor + (f" ({r.axis})" if r.axis else "") for r in rows]
+    lengths = [budget_lengths(r) for r in rows]
+    tips = [[f"{known(v)} deg of {_total_text(row)} deg" for v in row] for row in lengths]
+    title = f"Angle budget over {mission}: |θ_V| + {fmt(result.coverage)}·RSS(noise)"
+    note = ("the noise part split by each term's share of the variance; ≥ ?: a noise "
+            "figure unknown, the total a lower bound")
+    open_end = [bool(r.budget and r.budget.lower_bound) for r in rows]
+    if _own_scale(lengths):
+        return stacked_bar_chart(
+            title, f"% of each bar's own total, in its tooltips (the totals span over "
+            f"{fmt(COMMON_SCALE_SPREAD)}×); {note}",
+            names, BUDGET_PARTS, [_shares(row) for row in lengths], open_end, None, tips)
     marker = (None if result.angle_budget is None or result.angle_unit != "deg" else
               Marker(f"θ* = {fmt(result.angle_budget, 3)} deg", x=float(result.angle_budget)))
-    return stacked_bar_chart(
-        f"Angle budget over {mission}: |θ_V| + {fmt(result.coverage)}·RSS(noise)",
-        "deg; the noise part split by each term's share of the variance; ≥ ?: a noise "
-        "figure unknown, the total a lower bound", names, BUDGET_PARTS,
-        [budget_lengths(r) for r in rows],
-        [bool(r.budget and r.budget.lower_bound) for r in rows], marker)
+    return stacked_bar_chart(title, f"deg; {note}", names, BUDGET_PARTS, lengths, open_end,
+                             marker, tips)
 
 
-def _segments_table(result: MissionResult, row: MissionRow) -> str:
-    head = ["#", "profile", "T_s (s)", f"Ω_K3 ({result.unit})", f"Δ_V,s ({result.unit})",
+def _segments_table(result: MissionResult, row: MissionRow, rate_unit: str | None = None
+                    ) -> str:
+    """A row's segments; the carrier Ω_K3 in ``rate_unit`` (the unit the mission's file
+    writes its rates in; default the result's), the errors in the result's unit."""
+    rate_unit = rate_unit or result.unit
+    to_rate = units.scale(result.unit) / units.scale(rate_unit)
+    head = ["#", "profile", "T_s (s)", f"Ω_K3 ({rate_unit})", f"Δ_V,s ({result.unit})",
             f"T_s·Δ_V,s ({result.angle_unit})", f"Δ_V(RMS),s ({result.unit})", "saturated"]
 
     factor = ANGLE_UNITS[result.unit][1]
     body = []
     for k, s in enumerate(row.segments):
-        cells = [str(k + 1), s.profile, fmt(s.duration), fmt(s.rate[2]), fmt(s.total),
-                 fmt(s.duration * s.total * factor), fmt(s.rms), "yes" if s.saturated else ""]
+        cells = [str(k + 1), s.profile, fmt(s.duration), fmt(s.rate[2] * to_rate),
+                 known(s.total), known(s.duration * s.total * factor), known(s.rms),
+                 "yes" if s.saturated else ""]
         style = ' class="worst"' if k == row.worst_index else ""
         body.append(f"<tr{style}>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
     where = f" with x3 on {row.axis}" if row.axis else ""
@@ -126,6 +169,9 @@ def theta_chart(result: MissionResult, row: MissionRow) -> str:
     b = row.budget
     if b is None or not row.timeline:
         return ""
+    if math.isnan(b.total):  # θ_V rests on an axis the recording did not record
+        return (f"<p>{_e(row.sensor)}: θ(t) unknown, its vibration error resting on an axis "
+                "the recording did not record (unknown, not 0).</p>")
     span = row.duration
     t, vib, upper, lower = _cone(row, b, span)
     top = max(float(np.max(np.abs(np.concatenate([upper, lower])))),
@@ -199,11 +245,10 @@ def verdict_table(result: MissionResult, mission: str) -> str:
         head += allowance_head()
     body = []
     for r in rows:
-        b = r.budget
-        total = "-" if b is None else ("≥ " if b.lower_bound else "") + fmt(b.total)
         budget = ("-" if result.angle_budget is None else
                   f"{fmt(result.angle_budget)} {result.angle_unit}")
-        cells = [r.sensor, r.axis or "-", fmt(abs(r.angle)), total, budget, _WORDS[r.status]]
+        cells = [r.sensor, r.axis or "-", known(abs(r.angle)), budget_total(r), budget,
+                 _WORDS[r.status]]
         if with_allowance:
             cells += allowance_cells(r)
         body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
@@ -242,8 +287,10 @@ def noise_table(noise: dict[str, dict[str, Any]]) -> str:
 
 
 def mission_section(result: MissionResult,
-                    noise: dict[str, dict[str, Any]] | None = None) -> str:
-    """The HTML of the report's mission section."""
+                    noise: dict[str, dict[str, Any]] | None = None,
+                    rate_units: dict[str, str] | None = None) -> str:
+    """The HTML of the report's mission section (``rate_units``: mission id → the rate
+    unit of its file, in which its segments' carrier rates are shown)."""
     budget = ("no budget" if result.angle_budget is None and result.budget is None else
               f"angle budget |θ_V| ≤ {fmt(result.angle_budget)} {result.angle_unit}"
               if result.angle_budget is not None else
@@ -266,6 +313,7 @@ def mission_section(result: MissionResult,
         parts.append('<div class="charts">' + "".join(
             f"<figure>{theta_chart(result, r)}</figure>" for r in _shown(result, mission))
             + "</div>")
-        parts.extend(_segments_table(result, r) for r in _shown(result, mission))
+        parts.extend(_segments_table(result, r, (rate_units or {}).get(mission))
+                     for r in _shown(result, mission))
         parts.append("</section>")
     return "\n".join(parts)

@@ -262,13 +262,13 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
             checks = _spec_checks(result, i, j) if spec else {
                 name: {"value": number(result.values[i, j, b]),
                        "bound": number(result.bounds[i, j, b]),
-                       "pass": bool(result.check_pass[i, j, b])}
+                       "pass": result.check(i, j, b)}
                 for b, name in enumerate(BOUNDED)
             }
             if result.vre_pass is not None and not spec:
                 value, bound = _vre(result, i, j)
                 checks["vre"] = {"value": number(value), "bound": number(bound),
-                                 "pass": bool(result.vre_pass[i, j])}
+                                 "pass": result.vre_check(i, j)}
             cell = {"profile": profile, "pass": bool(result.passed[i, j]),
                     "status": result.status(i, j),
                     "unknown": list(result.unknown.get((i, j), ())),
@@ -311,9 +311,9 @@ def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
     return {
         "nonlinearity": {"value": number(result.nl_value[i, j]), "unit": "%FS",
                          "bound": number(result.nl_bound[i, j]),
-                         "pass": bool(result.nl_pass[i, j])},
+                         "pass": result.nl_check(i, j)},
         "vre": {"value": None if math.isnan(vre) else vre,
-                "bound": number(result.vre_bound[i, j]), "pass": bool(result.vre_pass[i, j])},
+                "bound": number(result.vre_bound[i, j]), "pass": result.vre_check(i, j)},
     }
 
 
@@ -322,8 +322,10 @@ def _get(array: Any, i: int, j: int) -> Any:
     return array[i, j]
 
 
-def _csv_float(value: float) -> float | str:
-    """A CSV number: empty where unknown (NaN), ``inf`` where unconstrained."""
+def _csv_float(value: float | bool | None) -> float | bool | str:
+    """A CSV cell: empty where unknown (NaN, None), ``inf`` where unconstrained."""
+    if value is None or isinstance(value, bool):
+        return "" if value is None else value
     return "" if math.isnan(value) else float(value)
 
 
@@ -335,8 +337,8 @@ def _csv_checks(result: SelectionResult, sensor: str, profile: str, i: int,
     spec = result.source(i) == "specs"
     for b in range(len(BOUNDED)):
         row += (["", "", ""] if spec else
-                [float(result.values[i, j, b]), float(result.bounds[i, j, b]),
-                 bool(result.check_pass[i, j, b])])
+                [float(result.values[i, j, b]), _csv_float(result.bounds[i, j, b]),
+                 _csv_float(result.check(i, j, b))])
     return row
 
 
@@ -347,15 +349,14 @@ def _csv_specs(result: SelectionResult, i: int, j: int, with_specs: bool,
     row: list[Any] = []
     if with_specs:
         row += [result.source(i), float(_get(result.total, i, j))]
-        row += ([float(_get(result.nl_value, i, j)), float(_get(result.nl_bound, i, j)),
-                 bool(_get(result.nl_pass, i, j))] if spec else [""] * 3)
+        row += ([float(_get(result.nl_value, i, j)), _csv_float(_get(result.nl_bound, i, j)),
+                 _csv_float(result.nl_check(i, j))] if spec else [""] * 3)
     if spec:
         value = float(_get(result.vre_value, i, j))
-        row += ["" if math.isnan(value) else value, float(_get(result.vre_bound, i, j)),
-                bool(_get(result.vre_pass, i, j))]
+        row += ["" if math.isnan(value) else value, _csv_float(_get(result.vre_bound, i, j)),
+                _csv_float(result.vre_check(i, j))]
     elif vre:
-        row += [("" if math.isnan(v) else v) for v in _vre(result, i, j)]
-        row += [bool(_get(result.vre_pass, i, j))]
+        row += [*map(_csv_float, _vre(result, i, j)), _csv_float(result.vre_check(i, j))]
     elif with_specs:
         row += [""] * 3
     return row

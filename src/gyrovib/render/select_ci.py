@@ -44,7 +44,9 @@ def to_junit(result: SelectionResult) -> str:
             case = ET.SubElement(suite, "testcase", classname=sensor, name=profile, time="0")
             out = ET.SubElement(case, "system-out")
             names = ", ".join(_unknown_names(result, i, j))
-            if result.is_unverified(i, j):
+            if result.is_unverified(i, j) and math.isnan(result.rms[i, j]):
+                out.text = f"unverified ({names} unknown); Δ_V(RMS) unknown"
+            elif result.is_unverified(i, j):
                 out.text = (f"unverified ({names} unknown); on the published figures "
                             f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}")
             else:

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from html import escape
 
 #: Ten distinguishable colours (the "tab10" cycle); more series reuse them dashed.
@@ -246,7 +246,7 @@ class LineChart:
         out += _axes(x, y, self.xlabel, self.ylabel)
         for s in self.series:
             out += _series_svg(s, x, y, self.xlog, self.ylog)
-        for m in self.markers:
+        for m in _packed(self.markers, x):
             out += _marker_svg(m, x, y)
         out += _legend([s.name for s in self.series], [(s.stroke, s.pattern) for s in self.series])
         out.append("</svg>")
@@ -266,6 +266,36 @@ def _series_svg(s: Series, x: Scale, y: Scale, xlog: bool, ylog: bool) -> list[s
         else:
             out.append(f'<polyline points="{points}" fill="none" stroke="{s.stroke}" '
                        f'stroke-width="1.8"{extra}/>')
+    return out
+
+
+def _label_span(text: str, px: float, right: float) -> tuple[float, float]:
+    """The horizontal extent (px) :func:`_marker_label` gives a vertical marker's label."""
+    width = text_width(text, SIZES["ml"]) + 3
+    after, before = right - px - 3, px - 3 - 4
+    if width - 3 <= after or after >= before:
+        return px, px + min(width, after + 3)
+    return px - min(width, before + 3), px
+
+
+def _packed(markers: Sequence[Marker], x: Scale) -> list[Marker]:
+    """The markers with the labels of vertical ones on label lines where none overlaps
+    another: each, from the left, on the first line whose labels end before it starts
+    (nearby tones on a log axis otherwise write over each other)."""
+    ends: list[float] = []
+    out = []
+    placed = sorted(((x(m.x), k) for k, m in enumerate(markers)
+                     if m.x is not None and x.lo <= m.x <= x.hi))
+    rows: dict[int, int] = {}
+    for px, k in placed:
+        lo, hi = _label_span(markers[k].label, px, WIDTH - RIGHT)
+        line = next((i for i, end in enumerate(ends) if end + 2 <= lo), len(ends))
+        if line == len(ends):
+            ends.append(hi)
+        ends[line] = hi
+        rows[k] = line
+    for k, m in enumerate(markers):
+        out.append(replace(m, row=rows[k]) if k in rows else m)
     return out
 
 
@@ -396,10 +426,12 @@ def share_chart(title: str, names: Sequence[str], parts: Sequence[str],
 
 def stacked_bar_chart(title: str, xlabel: str, names: Sequence[str], parts: Sequence[str],
                       lengths: Sequence[Sequence[float]], open_end: Sequence[bool],
-                      reference: Marker | None = None) -> str:
+                      reference: Marker | None = None,
+                      tips: Sequence[Sequence[str]] | None = None) -> str:
     """Horizontal bars on a linear axis from 0, row k made of ``lengths[k]`` end to end
     (one colour per part, legend at the right); ``open_end[k]``: the bar is a lower
-    bound, drawn with a '≥ ?' past its end. An optional vertical reference line."""
+    bound, drawn with a '≥ ?' past its end. An optional vertical reference line.
+    ``tips[k][p]``: the tooltip's value of part p of row k (default: its length)."""
     row = 18
     top = TOP + 12
     height = max(top + BOTTOM + row * max(len(names), 1), legend_bottom(len(parts), top))
@@ -419,7 +451,8 @@ def stacked_bar_chart(title: str, xlabel: str, names: Sequence[str], parts: Sequ
         out.append(f'<line x1="{px:.1f}" y1="{top}" x2="{px:.1f}" y2="{bottom}" class="grid"/>')
         out.append(f'<text x="{px:.1f}" y="{bottom + 14}" class="tx">{escape(label(t))}</text>')
     for k, name in enumerate(names):
-        out += _stacked_row(name, parts, lengths[k], open_end[k], x, top + row * k, row)
+        out += _stacked_row(name, parts, lengths[k], open_end[k], x, top + row * k, row,
+                            None if tips is None else tips[k])
     if reference is not None and reference.x is not None:
         px = x(reference.x)
         out.append(f'<line x1="{px:.1f}" y1="{top - 4}" x2="{px:.1f}" y2="{bottom}" '
@@ -433,7 +466,7 @@ def stacked_bar_chart(title: str, xlabel: str, names: Sequence[str], parts: Sequ
 
 
 def _stacked_row(name: str, parts: Sequence[str], lengths: Sequence[float], open_end: bool,
-                 x: Scale, y: float, row: int) -> list[str]:
+                 x: Scale, y: float, row: int, tips: Sequence[str] | None = None) -> list[str]:
     """One bar of :func:`stacked_bar_chart`: its name, its parts end to end, '≥ ?'."""
     out = [f'<text x="{x.start - 5}" y="{y + 13}" class="ty">'
            f'{escape(fit(name, x.start - 9, SIZES["ty"]))}</text>']
@@ -444,7 +477,8 @@ def _stacked_row(name: str, parts: Sequence[str], lengths: Sequence[float], open
         a, b = x(start), x(start + value)
         out.append(f'<rect x="{a:.1f}" y="{y + 3}" width="{max(b - a, 0.5):.1f}" '
                    f'height="{row - 6}" fill="{color(p)}"><title>{escape(name)}: '
-                   f'{escape(parts[p])} {escape(label(value))}</title></rect>')
+                   f'{escape(parts[p])} {escape(label(value) if tips is None else tips[p])}'
+                   '</title></rect>')
         start += value
     if open_end:
         out.append(f'<text x="{x(start) + 3:.1f}" y="{y + 13}" class="lg">≥ ?</text>')

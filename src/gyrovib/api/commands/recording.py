@@ -15,16 +15,23 @@ import importlib.util
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.commands.analyze import analyze
 from gyrovib.api.commands.mission import mission
+from gyrovib.api.commands.recording_honesty import (
+    RATIO_RANGE,
+    at_mean_warnings,
+    ratio_warnings,
+    unknown_warnings,
+)
 from gyrovib.api.datasheet.specs import figures, is_spec
-from gyrovib.api.evaluation.unknown import depends_on, not_recorded, words
+from gyrovib.api.evaluation.unknown import depends_on, not_recorded
 from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
 from gyrovib.api.recordings.results import (
@@ -48,14 +55,13 @@ from gyrovib.core.recording import MOMENTS, recorded_error
 from gyrovib.core.transmissibility import as_table, psd_variance
 from gyrovib.errors import GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
+from gyrovib.progress import advance
 
 #: Defaults of the options (INTERFACE.md, third round).
 DEFAULT_CROSSOVER = 5.0
 DEFAULT_RESOLUTION = 0.5
 DEFAULT_THRESHOLD = 10.0
 DEFAULT_BREAKPOINTS = 12
-#: The fitted mission's closed form and Δ_V,rec should agree within this range.
-RATIO_RANGE = (0.8, 1.25)
 #: A vibration whose rms is below this fraction of the signal's is rounding: none.
 NEGLIGIBLE = 1e-10
 #: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.
@@ -158,6 +164,10 @@ def _need_scipy(recording: Recording) -> None:
             "pip install 'gyrovib[recording]'", recording.file))
 
 
+#: The progress label of :func:`fit_recording`.
+_FITTING = "fitting the recording"
+
+
 def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                   resolution: float = DEFAULT_RESOLUTION,
                   tone_threshold: float = DEFAULT_THRESHOLD,
@@ -177,12 +187,15 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     kept, warnings = _kept(recording, crossover)
     warnings += _short_for_welch(kept, fs, resolution)
     n_total = sum(hi - lo for lo, hi in kept)
+    advance(_FITTING, 0, 3)  # split, spectra, accelerations: a bar on a terminal
     measured = rate_pass(recording, kept, crossover, responses)
+    advance(_FITTING, 1, 3)
     moments = {key: value / n_total for key, value in measured.moments.items()}
     var, skew, kurt = _statistics(measured, n_total, recording.rate_axes)
     angular = _fit_part(recording.file, measured.x, fs, resolution, tone_threshold, breakpoints,
                         independent_tones, crossover, var, rate=True)
     measured.x.clear()  # the angular vibration is done with before the linear one is made
+    advance(_FITTING, 2, 3)
     g2_moments, linear = None, None
     if recording.store.has_accel:
         g2_sums, xa_segments = accel_pass(recording, kept, crossover)
@@ -191,6 +204,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         linear = _fit_part(recording.file, xa_segments, fs, resolution, tone_threshold,
                            breakpoints, True, crossover, var_a, rate=False)
         del xa_segments
+    advance(_FITTING, 3, 3)
     rate = measured.carrier_sum / n_total
     # the fitted mission keeps the carrier of every axis: the joint carrier in at most
     # 16 groups (a histogram of Ω_K3 alone left a triad's X and Y sensors no carrier)
@@ -205,6 +219,10 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
                                 float(kurt[j]), float(angular.shape_db[j]),
                                 float(angular.off_3db[j])) for j in range(3))
     warnings += shape_warnings(angular, "rate") + shape_warnings(linear, "acceleration")
+    if angular.released:
+        warnings.append("lines at " + ", ".join(f"{f:.4g}" for f in angular.released)
+                        + " Hz, orders of a fundamental, are written as independent tones: a "
+                        "phase: worst search over every order would exceed its budget")
     base = os.path.basename(recording.file)
     pid = profile_id or _default_id(base)
     fit = RecordingFit(
@@ -265,12 +283,12 @@ def _fit_part(file: str, segments: list[FloatArray], fs: float, resolution: floa
     band = (f >= crossover) & (f < f[-1])
     tables, sigma2, shape = random_tables(f[band], random[:, band], variance, breakpoints)
     coh = _coherences(psd, spectra, band & ~in_line, df, rate)
-    tones, harmonics = _tones(lines, grouped=not independent and rate)
+    tones, harmonics, released = _tones(lines, grouped=not independent and rate)
     tone_var = sum((ln.amplitude**2 / 2 for ln in lines), np.zeros(3))
     with np.errstate(invalid="ignore", divide="ignore"):
         held = np.where(variance > 0, (tone_var + sigma2) / variance, np.nan)
     return FittedPart(tones, harmonics, tables, coh, f, psd, median, variance, held,
-                      shape_db=shape[0], off_3db=shape[1])
+                      shape_db=shape[0], off_3db=shape[1], released=released)
 
 
 def random_tables(f: FloatArray, random: FloatArray, variance: FloatArray,
@@ -307,14 +325,18 @@ def _coherences(psd: FloatArray, spectra: NDArray[np.complex128], keep: NDArray[
 
 
 def _tones(lines: Sequence[Any], *, grouped: bool,
-           ) -> tuple[tuple[FittedTone, ...], tuple[FittedHarmonics, ...]]:
+           ) -> tuple[tuple[FittedTone, ...], tuple[FittedHarmonics, ...], tuple[float, ...]]:
     """The lines as tones, those at integer multiples of a fundamental as phase-locked
-    groups when ``grouped``."""
+    groups when ``grouped``, and the frequencies of the orders let go of their group to
+    keep its search within budget (:func:`gyrovib.core.recording.fitted_groups`)."""
 
     harmonics: list[FittedHarmonics] = []
     taken: set[int] = set()
+    released: list[int] = []
     if grouped:
-        for f0, members, orders in core.harmonic_groups([ln.frequency for ln in lines]):
+        groups, released = core.fitted_groups([ln.frequency for ln in lines],
+                                       [float(np.linalg.norm(ln.amplitude)) for ln in lines])
+        for f0, members, orders in groups:
             order_sort = np.argsort(orders)
             mem = [members[k] for k in order_sort]
             harmonics.append(FittedHarmonics(
@@ -324,7 +346,7 @@ def _tones(lines: Sequence[Any], *, grouped: bool,
             taken.update(members)
     tones = tuple(FittedTone(ln.frequency, ln.amplitude, ln.phase)
                   for k, ln in enumerate(lines) if k not in taken)
-    return tones, tuple(harmonics)
+    return tones, tuple(harmonics), tuple(float(lines[k].frequency) for k in released)
 
 
 def shape_warnings(part: FittedPart | None, kind: str) -> list[str]:
@@ -355,7 +377,12 @@ class RecordingAnalysis(Frozen):
     ``fitted`` (N,) the time-weighted closed form over the fitted mission,
     ``fitted_rms`` (N,); ``ratio`` (N,) fitted/recorded (NaN where either is 0);
     ``saturated`` (N,), ``peak_rate`` (N,) max |ω3| at the element;
-    ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope).
+    ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope);
+    ``at_mean`` (N,) the fitted profile's closed form at its own (mean) rate, the
+    number ``analyze`` gives on the written file, and ``at_mean_ratio`` (N,) its ratio
+    to Δ_V,rec (NaN where either is 0 or unknown), warned of outside
+    :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the fitted mission
+    keeps it).
     """
 
     unit: str
@@ -371,6 +398,17 @@ class RecordingAnalysis(Frozen):
     spec: NDArray[np.bool_]
     fit: RecordingFit
     warnings: dict[int, tuple[str, ...]]
+    at_mean: FloatArray = field(default_factory=lambda: np.zeros(0))
+    at_mean_ratio: FloatArray = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def at_mean_outside(self) -> NDArray[np.bool_]:
+        """Per sensor: the profile at its mean rate and the recording disagree by more
+        than :data:`RATIO_RANGE` (False where the ratio is unknown)."""
+        lo, hi = RATIO_RANGE
+        r = self.at_mean_ratio
+        out: NDArray[np.bool_] = np.isfinite(r) & ((r < lo) | (r > hi))
+        return out
 
     def to_frame(self) -> Any:
         """One row per sensor (pandas DataFrame); columns as the CSV output's."""
@@ -383,7 +421,8 @@ class RecordingAnalysis(Frozen):
         data.update({"recorded_g2": self.g2, "fitted": self.fitted,
                      "fitted_rms": self.fitted_rms, "ratio": self.ratio,
                      "saturated": self.saturated, "peak_rate": self.peak_rate,
-                     "unit": self.unit})
+                     "unit": self.unit, "at_mean_rate": self.at_mean,
+                     "at_mean_ratio": self.at_mean_ratio})
         frame = pd.DataFrame(data)
         fit = self.fit
         frame.attrs.update({"unit": self.unit, "file": os.path.basename(fit.file),
@@ -455,62 +494,31 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
                                                terms, g2_part, figures)
     ranges = sensor_ranges(entries)
     saturated = peak > ranges
-    fitted, fitted_rms = _fitted_mission(fit, catalog, [e.sensor.id for e in entries])
+    fitted, fitted_rms, at_mean = _fitted_mission(fit, catalog,
+                                                  [e.sensor.id for e in entries])
     unknown = depends_on(entries, fit_missing(fit), spec_cross=False)
     for i, parts in enumerate(unknown):
         if parts:  # unknown, never 0 (docs/model.md section 13)
             total[i] = terms[i] = g2_part[i] = fitted[i] = fitted_rms[i] = np.nan
+            at_mean[i] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
+        at_mean_ratio = np.where((total != 0) & (at_mean != 0), at_mean / total, np.nan)
     s = units.scale(unit)
-    warnings = _unknown_warnings(unknown, _warnings(fit, ratio, saturated, peak / s,
+    warnings = unknown_warnings(unknown, ratio_warnings(fit, ratio, saturated, peak / s,
                                                     ranges / s, unit))
+    at_mean_warnings(fit, at_mean_ratio, warnings)
     return RecordingAnalysis(
         unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
-        warnings=warnings)
-
-
-def _unknown_warnings(unknown: Sequence[tuple[str, ...]],
-                      warnings: dict[int, tuple[str, ...]]) -> dict[int, tuple[str, ...]]:
-    """``warnings`` with, first on each row whose Δ_V,rec is unknown, the parts it lacks."""
-    for i, parts in enumerate(unknown):
-        if parts:
-            warnings[i] = (f"Δ_V,rec unknown: {words(parts)}, and this sensor's error "
-                           "depends on it (an axis not recorded is unknown, never 0)",
-                           *warnings.get(i, ()))
-    return warnings
+        warnings=warnings, at_mean=at_mean / s, at_mean_ratio=at_mean_ratio)
 
 
 def fit_missing(fit: RecordingFit) -> tuple[str, ...]:
     """The parts the fitted recording did not record (rate axes, accelerations)."""
     accel = fit.linear is not None and bool(np.all(np.isfinite(fit.linear.variance)))
     return not_recorded(fit.rate_axes, accel)
-
-
-def _warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_],
-              peak: FloatArray, ranges: FloatArray, unit: str) -> dict[int, tuple[str, ...]]:
-    """Per sensor row the warnings of ``analyze --recording`` (peak and range in ``unit``)."""
-    warnings: dict[int, tuple[str, ...]] = {}
-    lo, hi = RATIO_RANGE
-    for i in range(ratio.size):
-        w: list[str] = []
-        if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
-            worst = (" (the fitted harmonics take their worst relative phases, so the closed "
-                     "form is a bound over phases the recording does not show: "
-                     "--independent-tones compares like with like)"
-                     if fit.angular.harmonics else "")
-            w.append(f"the fitted profile's closed form is {ratio[i]:.3g} × Δ_V,rec, outside "
-                     f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
-                     f"stationary, and Δ_V,rec is the number to trust{worst}")
-        if saturated[i]:
-            w.append(f"max |ω3| = {peak[i]:.6g} {unit} on the recording exceeds the "
-                     f"sensor's range {ranges[i]:.6g} {unit}: the static model does not "
-                     "hold in saturation")
-        if w:
-            warnings[i] = tuple(w)
-    return warnings
 
 
 def recorded_totals(entries: Sequence[Any], moments: FloatArray,
@@ -558,10 +566,11 @@ def _spec_recorded(entries: Sequence[Any], spec: NDArray[np.bool_], moments: Flo
     return total, terms, g2_part
 
 
-def _fitted_mission(fit: RecordingFit, catalog: Any,
-                    sensor_ids: Sequence[str]) -> tuple[FloatArray, FloatArray]:
+def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str]
+                    ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The fitted mission's closed form, deg/s: :func:`gyrovib.api.mission` on the mission
-    the written YAML holds (the same numbers as ``gyrovib mission`` on that file).
+    the written YAML holds (the same numbers as ``gyrovib mission`` on that file), and
+    the fitted profile's at its own mean rate (as ``gyrovib analyze`` on that file).
 
     Δ̄ = Σ T_b·Δ_V(Ω_b)/ΣT over the carrier histogram's bins, and the mean RMS
     √(Σ T_b·Δ_V(RMS)_b²/ΣT) (docs/model.md section 12). A spec-form sensor's Δ̄
@@ -574,4 +583,7 @@ def _fitted_mission(fit: RecordingFit, catalog: Any,
     rows = {r.sensor: r for r in result.rows}
     total = np.array([rows[s].mean for s in sensor_ids], dtype=float)
     rms = np.array([rows[s].rms for s in sensor_ids], dtype=float)
-    return total, rms
+    at_rate = analyze(combined, sensors=sensor_ids, profiles=(fit.profile_id,), unit="deg/s")
+    where = {s: i for i, s in enumerate(at_rate.sensors)}
+    at_mean = np.array([at_rate.error.total[where[s], 0] for s in sensor_ids], dtype=float)
+    return total, rms, at_mean

@@ -31,7 +31,12 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import Limit, SelectionResult
-from gyrovib.api.evaluation.unknown import unknown_bounds, unknown_errors, unrecorded_cells
+from gyrovib.api.evaluation.unknown import (
+    unknown_bounds,
+    unknown_errors,
+    unrecorded_cells,
+    unrecorded_limits,
+)
 from gyrovib.api.lots.yields import (
     DEFAULT_DRAWS,
     DEFAULT_SEED,
@@ -236,10 +241,17 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         if yields is not None:
             limits = yield_limits(yields, limits, sensor_pass, found.saturated)
     met = bool(np.any(sensor_pass)) if require == "any" else bool(np.all(sensor_pass))
-    rms, total, margin = unknown_errors(unknown, rms, total, margin)
+    criterion_margin = _criterion_margin(criterion, largest, rms, total, budget)
+    rms, total, margin, criterion_margin = unknown_errors(unknown, rms, total, margin,
+                                                          criterion_margin)
     fields = spec_bounds.selection_fields(len(prepared.sensors), len(prepared.profiles), spec,
                                           own, total, unit,
                                           (checks.vre, vre_bound_deg, checks.vre_pass))
+    limits_out, fields["vre_bound"] = unrecorded_limits(prepared.profiles, limits_out,
+                                                        fields["vre_bound"], BOUNDED)
+    if fields.get("nl_bound") is not None:  # a datasheet part's NL bound rests on x3
+        fields["nl_bound"] = unrecorded_limits(prepared.profiles, fields["nl_bound"][..., None],
+                                               fields["vre_bound"], ("k2",))[0][..., 0]
     if assume_unknown != "zero":
         _unknown_vre_shown(fields, unknown)
     s = units.scale(unit)
@@ -272,7 +284,7 @@ def selection_of(study: Study, *, method: str = "exact", budget: float, unit: st
         saturation=saturating,
         peak_factor=peak_factor,
         unverified=unverified,
-        criterion_margin=_criterion_margin(criterion, largest, rms, total, budget),
+        criterion_margin=criterion_margin,
         disagrees=disagrees,
         unknown=unknown,
         questions=questions,

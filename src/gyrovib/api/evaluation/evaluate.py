@@ -43,7 +43,7 @@ from gyrovib.api.study.study import Study, omega_key
 from gyrovib.catalog.loader import SensorEntry
 from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import EXTRA_TERMS, vibration_error
-from gyrovib.core.phases import WorstPhases, worst_phase_error
+from gyrovib.core.phases import WorstPhases, worst_phase_errors
 from gyrovib.core.saturation import saturated as saturated_at
 from gyrovib.frozen import Frozen
 from gyrovib.progress import part_of
@@ -126,19 +126,27 @@ class CoefficientForm:
     def phase_search(self, prepared: Prepared, group: Group,
                      rows: NDArray[np.intp]) -> Iterator[tuple[int, WorstPhases]]:
         """Per profile with ``phase: worst`` orders, the phases maximising |Δ_V| of each of
-        ``rows`` (its sensors of ``group``) and the error there (docs/model.md section 10)."""
+        ``rows`` (its sensors of ``group``) and the error there (docs/model.md section 10).
+
+        Profiles that differ only in their rate Ω_K3 (a mission's segments flown on one
+        profile at several rates, in one placement) are searched together
+        (:func:`~gyrovib.core.phases.worst_phase_errors`): their coarse nodes and
+        trial points are shared, and the search runs once, not once per rate."""
         searched = [j for j, locked in enumerate(group.locked)
                     if any(g.worst.any() for g in locked)]
-        for part, j in enumerate(searched):
-            v = group.vibrations[j]
+        alike: dict[bytes, list[int]] = {}
+        for j in searched:
+            alike.setdefault(_search_key(prepared, group, j), []).append(j)
+        for part, same in enumerate(alike.values()):
+            j = same[0]
             linear = prepared.linear[j] if prepared.linear else None
-            with part_of(part, len(searched)):  # one bar over every profile's search
-                found = worst_phase_error(
-                    prepared.coefficients[rows], v, group.locked[j],
-                    float(prepared.rates[j, 2]),
+            with part_of(part, len(alike)):  # one bar over every profile's search
+                found = worst_phase_errors(
+                    prepared.coefficients[rows], group.vibrations[j], group.locked[j],
+                    [float(prepared.rates[i, 2]) for i in same],
                     acceleration=None if linear is None else linear.moments(),
                     g2_sensitivity=None if linear is None else prepared.g2[rows])
-            yield j, found
+            yield from zip(same, found, strict=True)
 
     def polynomials(self, block: FloatArray, at: NDArray[np.intp], sensors: NDArray[np.intp],
                     profile: int, spec: specs.SpecResults | None) -> None:
@@ -152,6 +160,18 @@ class CoefficientForm:
                      own: SpecChecks | None) -> BoundVerdict:
         """Each coefficient against eq. (23)/(25), the effective VRE against its bound."""
         return CoefficientVerdict.of(rows, checks)
+
+
+def _search_key(prepared: Prepared, group: Group, j: int) -> bytes:
+    """What a ``phase: worst`` search of profile ``j`` depends on, but its rate: the
+    vibration at the sensor, the locked groups and the linear vibration's moments."""
+    v = group.vibrations[j]
+    linear = prepared.linear[j] if prepared.linear else None
+    parts = [v.phasors, v.sigma, v.coherence, np.asarray(v.has_random)]
+    for g in group.locked[j]:
+        parts += [g.orders, g.phasors, g.worst, np.asarray(len(g.orders))]
+    parts.append(np.zeros(0) if linear is None else np.asarray(linear.moments(), float))
+    return b"|".join(np.ascontiguousarray(p).tobytes() for p in parts)
 
 
 def _take_whole(err: Any, shape: tuple[int, ...], parts: dict[str, FloatArray],

@@ -406,6 +406,31 @@ class SelectionResult(SensorsByProfiles):
             return "pass"
         return "unverified" if self.is_unverified(i, j) else "fail"
 
+    def check(self, i: int, j: int, b: int) -> bool | None:
+        """Whether coefficient ``b`` (of :data:`BOUNDED`) of sensor ``i`` is within its bound
+        under profile ``j``; None where the bound is unknown (the profile was fitted from a
+        recording without an axis it depends on) and the coefficient is not 0."""
+        if np.isnan(self.bounds[i, j, b]) and self.values[i, j, b] != 0:
+            return None
+        return bool(self.check_pass[i, j, b])
+
+    def vre_check(self, i: int, j: int) -> bool | None:
+        """The VRE check of cell ``(i, j)`` as :meth:`check` (None: no VRE check, or its
+        bound unknown for a VRE that is not 0)."""
+        if self.vre_pass is None:
+            return None
+        if self.vre_bound is not None and np.isnan(self.vre_bound[i, j]) and (
+                self.vre_value is None or self.vre_value[i, j] != 0):
+            return None
+        return bool(self.vre_pass[i, j])
+
+    def nl_check(self, i: int, j: int) -> bool | None:
+        """A datasheet part's nonlinearity check of cell ``(i, j)`` as :meth:`check` (None:
+        no such check, or its allowable NL unknown, x3 not recorded)."""
+        if self.nl_pass is None or self.nl_bound is None or np.isnan(self.nl_bound[i, j]):
+            return None
+        return bool(self.nl_pass[i, j])
+
     def sensor_status(self, i: int) -> str:
         """Sensor ``i`` over every profile: ``fail`` if it fails one, else ``unverified``
         if one is unverified, else ``pass``."""

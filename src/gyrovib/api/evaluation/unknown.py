@@ -136,6 +136,37 @@ def unknown_cells(prepared: Any, error: Any,
                                     *warnings.get((i, j), ()))
 
 
+def _bound_needs(name: str, gone: set[str]) -> bool:
+    """Whether the bound on ``name`` (a coefficient of :data:`BOUNDED`, or ``vre``) depends
+    on a part in ``gone``: every coefficient's on x3, m31's also on x1, m32's also on x2,
+    the VRE's on the accelerations."""
+    if name == "vre":
+        return "acceleration" in gone
+    return ("x3" in gone or (name == "m31" and "x1" in gone)
+            or (name == "m32" and "x2" in gone))
+
+
+def unrecorded_limits(profiles: Sequence[Any], limits: Any, vre_bound: Any,
+                      names: Sequence[str]) -> tuple[Any, Any]:
+    """Each sensor's own bounds (sensors, profiles, ``names``) and VRE bounds (sensors,
+    profiles) with NaN under a profile fitted from a recording that lacks what the bound
+    depends on (as :func:`unknown_bounds`): unknown, not the bound computed with 0 there,
+    which would read as looser than the truth or as 'nothing to bound'."""
+    out, vre = limits, vre_bound
+    for j, p in enumerate(profiles):
+        gone = set(p.profile.not_recorded)
+        if not gone:
+            continue
+        if out is limits:
+            out, vre = np.array(limits, dtype=float), np.array(vre_bound, dtype=float)
+        for b, name in enumerate(names):
+            if _bound_needs(name, gone):
+                out[:, j, b] = np.nan
+        if _bound_needs("vre", gone):
+            vre[:, j] = np.nan
+    return out, vre
+
+
 def unknown_bounds(profiles: Sequence[Any], bounds: Any) -> Any:
     """``bounds`` (per profile) with NaN where a profile fitted from a recording lacks what
     a bound depends on: every bound without x3, m31's without x1, m32's without x2, the
@@ -148,11 +179,7 @@ def unknown_bounds(profiles: Sequence[Any], bounds: Any) -> Any:
         if not gone:
             continue
         names = [f.name for f in dataclasses.fields(bounds)
-                 if getattr(bounds, f.name) is not None and (
-                     "x3" in gone or (f.name == "m31" and "x1" in gone)
-                     or (f.name == "m32" and "x2" in gone))]
-        if "acceleration" in gone and bounds.vre is not None:
-            names.append("vre")
+                 if getattr(bounds, f.name) is not None and _bound_needs(f.name, gone)]
         for name in dict.fromkeys(names):
             array = update.setdefault(name, np.array(getattr(bounds, name), dtype=float))
             array[j] = np.nan

@@ -267,7 +267,9 @@ def _fitted(s: SpectrumEnvelope, crossover: float, breakpoints: int, independent
     harmonics: list[FittedHarmonics] = []
     grouped: set[int] = set()
     if rate and not independent:
-        for f0, members, orders in core.harmonic_groups([ln[0] for ln in lines]):
+        groups, _ = core.fitted_groups([ln[0] for ln in lines],
+                                       [float(np.linalg.norm(ln[1])) for ln in lines])
+        for f0, members, orders in groups:
             ranked = sorted(range(len(members)), key=lambda m: orders[m])
             harmonics.append(FittedHarmonics(
                 f0, tuple(int(orders[m]) for m in ranked),

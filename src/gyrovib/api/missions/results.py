@@ -202,6 +202,16 @@ class MissionResult(Frozen):
         """One row per sensor × mission × axis (pandas): the columns of the CSV."""
         return frame_of(self.records(), self.rows)
 
+    def segment_rows(self) -> tuple[SegmentRecord, ...]:
+        """One record per sensor × mission × axis × segment, in the rows' order."""
+        return tuple(SegmentRecord(row, k) for row in self.rows
+                     for k in range(len(row.segments)))
+
+    def segments_frame(self) -> pd.DataFrame:
+        """One row per segment (pandas): the columns of ``--segments --format csv``
+        (:data:`SEGMENT_COLUMNS`)."""
+        return frame_of(SEGMENT_COLUMNS, self.segment_rows())
+
 
 def _budget(name: str) -> Callable[[MissionRow], float | None]:
     """A figure of a row's budget (None: unknown, or no budget computed)."""
@@ -247,4 +257,63 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
     Column("allowed_rrw", "deg/h/sqrt(h)", _allowed("rrw")),
     Column("allowed_repeatability", "deg/h", _allowed("repeatability")),
     Column("typical", None, lambda r: "" if r.budget is None else " ".join(r.budget.typical)),
+)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SegmentRecord(Frozen):
+    """Segment ``index`` (0-based) of one row: what one line of the per-segment records
+    reads (:data:`SEGMENT_COLUMNS`)."""
+
+    row: MissionRow
+    index: int
+
+    @property
+    def segment(self) -> SegmentResult:
+        return self.row.segments[self.index]
+
+    @property
+    def start(self) -> float:
+        """Seconds from the mission's start to this segment's."""
+        return sum(s.duration for s in self.row.segments[:self.index])
+
+    @property
+    def budget(self) -> Budget | None:
+        """The budget at the segment's end (θ_V summed so far, the noise over the time
+        flown), None when the row has no timeline."""
+        return self.row.timeline[self.index] if self.row.timeline else None
+
+
+def _at_end(name: str) -> Callable[[SegmentRecord], float | None]:
+    """A figure of the budget at a segment's end (None: unknown, or no budget)."""
+    return lambda r: None if r.budget is None else getattr(r.budget, name)
+
+
+#: The per-segment records (``mission --segments``), declared once: one line per sensor ×
+#: mission × axis × segment. ``rate`` is the result's unit; the budget at the segment's
+#: end (``theta_*``, ``budget_total``) is in deg: θ_V summed segment by segment so far,
+#: each noise term over the time flown so far, their total with the coverage factor.
+SEGMENT_COLUMNS: tuple[Column[SegmentRecord], ...] = (
+    Column("sensor", None, lambda r: r.row.sensor),
+    Column("mission", None, lambda r: r.row.mission),
+    Column("placement", None, lambda r: r.row.placement),
+    Column("axis", None, lambda r: r.row.axis),
+    Column("segment", None, lambda r: r.index + 1),
+    Column("profile", None, lambda r: r.segment.profile),
+    Column("start", "s", lambda r: r.start),
+    Column("duration", "s", lambda r: r.segment.duration),
+    Column("end", "s", lambda r: r.start + r.segment.duration),
+    Column("rate_x1", "rate", lambda r: r.segment.rate[0]),
+    Column("rate_x2", "rate", lambda r: r.segment.rate[1]),
+    Column("rate_x3", "rate", lambda r: r.segment.rate[2]),
+    Column("total", "rate", lambda r: r.segment.total),
+    Column("rms", "rate", lambda r: r.segment.rms),
+    Column("saturated", None, lambda r: r.segment.saturated),
+    Column("theta_vibration", "deg", _at_end("vibration")),
+    Column("theta_arw", "deg", _at_end("arw")),
+    Column("theta_bias_instability", "deg", _at_end("bias_instability")),
+    Column("theta_rrw", "deg", _at_end("rrw")),
+    Column("theta_repeatability", "deg", _at_end("repeatability")),
+    Column("budget_total", "deg", _at_end("total")),
+    Column("coverage", None, _at_end("coverage")),
 )

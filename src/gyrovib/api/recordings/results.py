@@ -72,6 +72,9 @@ class FittedPart(Frozen):
     held: FloatArray
     shape_db: FloatArray = field(default_factory=lambda: np.full(3, np.nan))
     off_3db: FloatArray = field(default_factory=lambda: np.full(3, np.nan))
+    #: Lines at orders of a fundamental (Hz) written as independent tones, so that the
+    #: ``phase: worst`` search over the groups stays within its budget.
+    released: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True, eq=False, repr=False)
