@@ -4,6 +4,9 @@ Run on demand (it is not part of the test suite)::
 
     python benchmarks/bench_allan_coverage.py                 # 200 records
     python benchmarks/bench_allan_coverage.py --records 40    # a quicker look
+    python benchmarks/bench_allan_coverage.py --seed 1001     # records not seen before
+    python benchmarks/bench_allan_coverage.py --sim-cap 4096  # the long records' bootstrap
+    python benchmarks/bench_allan_coverage.py --cases 2,3     # only the cases with K
 
 Records of known terms are simulated (white rate noise, flicker, a rate random walk, a
 rate ramp, angle quantization, in combinations cycled over the records; the numbers are
@@ -12,7 +15,11 @@ synthetic, drawn by ``gyrovib.core.allan_sim``), each analysed as ``gyrovib alla
 the truth the fraction of records whose 68 % and 95 % intervals hold it is printed,
 with the number of records where the term was resolved (a value) and where it was
 given as a bound (then whether the bound holds). Terms absent from the truth must come
-out as bounds (or values whose interval is counted as a miss).
+out as bounds (or values whose interval is counted as a miss). Every interval method
+named (--interval) is computed from the same replicates, and each is also counted over
+every record whose truth has the term, resolved or not ("every record"): the coverage
+before the choice between a value and a bound, which otherwise leaves out the records
+where the term came out lowest.
 """
 
 from __future__ import annotations
@@ -29,7 +36,18 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
                                 "src"))
 
 from gyrovib.core.allan import oadev, tau_grid
-from gyrovib.core.allan_fit import TERMS, noise_model
+from gyrovib.core.allan_fit import (
+    METHOD,
+    SIM_CAP,
+    TERMS,
+    Curve,
+    Fit,
+    bootstrap,
+    fit,
+    intervals,
+    roll_off,
+    terms,
+)
 from gyrovib.core.allan_sim import Truth, simulate
 
 TAU0 = 1.0
@@ -50,44 +68,60 @@ def truth_values(truth: Truth) -> tuple[float, ...]:
     return (truth.quantization, truth.arw, truth.bias_instability, truth.rrw, truth.rate_ramp)
 
 
-def run(records: int, samples: int, first_seed: int,
-        method: str = "pivot") -> dict[str, list[tuple[str, bool, bool]]]:
-    """Per term: (case, held at 68 %, held at 95 %) for resolved terms, and
-    ('bound', holds, holds) for bounds."""
-    out: dict[str, list[tuple[str, bool, bool]]] = {name: [] for name in TERMS}
-    m = tau_grid(samples)
+def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
+        sim_cap: int = SIM_CAP, cases: tuple[int, ...] = tuple(range(len(CASES)))
+        ) -> dict[str, dict[str, list[tuple[str, bool, bool]]]]:
+    """Per interval method and term: (case, held at 68 %, held at 95 %) for resolved
+    terms, and ('bound', holds, holds) for bounds — every method from the same fit and
+    the same bootstrap replicates of each record; and per method + " (every record)"
+    the same for every term present in the truth, its interval taken whether or not the
+    record resolves it (a term fitted at 0 counts as a miss): the coverage before the
+    choice between a value and a bound."""
+    out = {meth: {name: [] for name in TERMS} for meth in methods}
+    out.update({meth + " (every record)": {name: [] for name in TERMS} for meth in methods})
+    m_all = tau_grid(samples)
     for r in range(records):
-        name, truth = CASES[r % len(CASES)]
-        rng = np.random.default_rng(first_seed + r)
-        y = simulate(truth, samples, TAU0, rng)
-        tau, adev = oadev(y, TAU0, m)
-        model = noise_model(tau, adev, m, samples, TAU0, seed=10_000 + r, method=method)
-        for term, found, true in zip(TERMS, model.terms, truth_values(truth), strict=False):
-            if found.resolved:
-                assert found.value is not None
-                (lo68, hi68), (lo95, hi95) = found.intervals
-                out[term].append((name if true > 0 else "absent", lo68 <= true <= hi68,
-                                  lo95 <= true <= hi95))
-            elif true > 0:
-                assert found.bound is not None
-                out[term].append(("bound", true <= found.bound, true <= found.bound))
+        name, truth = CASES[cases[r % len(cases)]]
+        y = simulate(truth, samples, TAU0, np.random.default_rng(first_seed + r))
+        tau, adev = oadev(y, TAU0, m_all)
+        start = roll_off(tau, adev)
+        tau, var, m = tau[start:], adev[start:] ** 2, m_all[start:]
+        fitted = fit(tau, var, m, samples + 1, filtered=start > 0)
+        coefs = bootstrap(fitted, tau, m, samples, TAU0, seed=10_000 + r, sim_cap=sim_cap)
+        curve = Curve(tau, var, m, samples + 1, fitted)
+        for meth in methods:
+            found = terms(fitted, tau, var, coefs, (0.68, 0.95), meth, curve)
+            for term, got, true in zip(TERMS, found, truth_values(truth), strict=False):
+                if got.resolved:
+                    (lo68, hi68), (lo95, hi95) = got.intervals
+                    out[meth][term].append((name if true > 0 else "absent",
+                                            lo68 <= true <= hi68, lo95 <= true <= hi95))
+                elif true > 0:
+                    assert got.bound is not None
+                    out[meth][term].append(("bound", true <= got.bound, true <= got.bound))
+            every = out[meth + " (every record)"]
+            for j, (term, true) in enumerate(zip(TERMS, truth_values(truth), strict=False)):
+                if true > 0:
+                    every[term].append((name, *_held(fitted, coefs, curve, j, true, meth)))
+        if (r + 1) % 20 == 0:
+            print(f"  {r + 1} records", file=sys.stderr, flush=True)
     return out
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--records", type=int, default=200)
-    parser.add_argument("--samples", type=int, default=1 << 15)
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--interval", choices=("pivot", "percentile"), default="pivot",
-                        help="the bootstrap interval (pivot: gyrovib's)")
-    args = parser.parse_args()
-    start = time.perf_counter()
-    result = run(args.records, args.samples, args.seed, args.interval)
-    took = time.perf_counter() - start
-    print(f"{args.records} records of {args.samples} samples at {TAU0} s "
-          f"(seeds {args.seed}…{args.seed + args.records - 1}), {args.interval} intervals, "
-          f"{took:.0f} s")
+def _held(fitted: Fit, coefs: np.ndarray, curve: Curve, j: int, true: float,
+          method: str) -> tuple[bool, bool]:
+    """Whether term j's 68 % and 95 % intervals hold ``true``, resolved or not."""
+    if fitted.coef[j] <= 0:
+        return False, False          # no interval around a value (a term fitted at 0)
+    value = float(np.sqrt(fitted.coef[j]))
+    everything = np.ones(fitted.coef.size, dtype=bool) & (fitted.coef > 0)
+    (lo68, hi68), (lo95, hi95) = intervals(value, j, coefs, (0.68, 0.95), method, curve,
+                                           everything)
+    return bool(lo68 <= true <= hi68), bool(lo95 <= true <= hi95)
+
+
+def table(result: dict[str, list[tuple[str, bool, bool]]]) -> None:
+    """The coverage table of one method."""
     print(f"{'term':18} {'values':>7} {'68 % cover':>11} {'95 % cover':>11} "
           f"{'bounds':>7} {'bounds hold':>12}")
     for term, rows in result.items():
@@ -99,6 +133,35 @@ def main() -> None:
         hold = f"{100 * np.mean([r[1] for r in bounds]):.1f} %" if bounds else "-"
         print(f"{term:18} {len(values):7d} {c68:>11} {c95:>11} {len(bounds):7d} {hold:>12}"
               + (f"   ({len(absent)} values of a term the truth lacks)" if absent else ""))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--records", type=int, default=200)
+    parser.add_argument("--samples", type=int, default=1 << 15)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--interval", default=f"{METHOD},pivot",
+                        help="the bootstrap intervals to compare, comma-separated "
+                             f"(studentized, pivot, percentile; gyrovib's: {METHOD})")
+    parser.add_argument("--cases", default=",".join(str(k) for k in range(len(CASES))),
+                        help="which cases, by number (0–4: " + ", ".join(
+                            name for name, _ in CASES) + ")")
+    parser.add_argument("--sim-cap", type=int, default=SIM_CAP,
+                        help="the longest record the bootstrap simulates whole: below "
+                             "--samples it exercises the shortened bootstrap of long records")
+    args = parser.parse_args()
+    methods = tuple(args.interval.split(","))
+    start = time.perf_counter()
+    cases = tuple(int(k) for k in args.cases.split(","))
+    result = run(args.records, args.samples, args.seed, methods, args.sim_cap, cases)
+    took = time.perf_counter() - start
+    short = (f", shortened bootstrap (whole records simulated up to {args.sim_cap} samples)"
+             if args.sim_cap < args.samples else "")
+    print(f"{args.records} records of {args.samples} samples at {TAU0} s "
+          f"(seeds {args.seed}…{args.seed + args.records - 1}){short}, {took:.0f} s")
+    for meth in result:
+        print(f"\n{meth} intervals" + (" (gyrovib's)" if meth == METHOD else ""))
+        table(result[meth])
     print("binomial 1σ of a coverage over v values: √(p(1 − p)/v), "
           f"e.g. {100 * math.sqrt(0.68 * 0.32 / 40):.1f} points at 68 % over 40")
 

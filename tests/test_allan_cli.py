@@ -175,3 +175,34 @@ def test_the_accelerometer_where_recorded_in_json_table_and_kalibr(tmp_path: Pat
     assert imu["accelerometer_noise_density"] == pytest.approx(az["arw"]["value"] / 60.0,
                                                                rel=1e-5)
     assert imu["accelerometer_random_walk"] > 0            # a bound here, said in a comment
+
+
+def test_the_accelerometer_on_the_streamed_path_equals_the_held_one(tmp_path: Path) -> None:
+    # A record read a block at a time (forced by a small stream_samples) gives the
+    # accelerometer's figures too, and on the same τ grid the same ones as the record
+    # held in memory: the streamed curve equals the held one to rounding (tests/
+    # test_allan.py checks it against allantools), and the fit and bootstrap are the same.
+    from gyrovib.api.noise import allan
+    from gyrovib.api.recordings import read_recording
+
+    g = np.random.default_rng(12)
+    n, fs, vrw = 6_000, 100.0, 0.05 / 60.0
+    gyro = g.standard_normal(n) * N_DEG_SQRT_S * math.sqrt(fs)
+    accel = 1.0 + g.standard_normal((n, 2)) * vrw * math.sqrt(fs) / 9.80665
+    accel[:, 1] = 1.0                                  # a constant axis: no noise seen
+    path = tmp_path / "imu.csv"
+    np.savetxt(path, np.column_stack([np.arange(n) / fs, gyro, accel]), delimiter=",",
+               header="t,gz,ax,ay", comments="", fmt="%.12g")
+    rec = read_recording(str(path), rate_columns=[None, None, "gz"],
+                         accel_columns=["ax", "ay", None])
+    held = allan(rec, per_decade=5)
+    streamed = allan(rec, per_decade=5, stream_samples=1_000)
+    assert [a.axis for a in held.accel] == [a.axis for a in streamed.accel] == ["X"]
+    assert any("accelerometer axis Y: no noise seen" in w for w in streamed.warnings)
+    h, s = held.accel[0], streamed.accel[0]
+    assert s.unit == "m/s^2" and np.allclose(s.adev, h.adev, rtol=1e-9)
+    assert s.arw.value == pytest.approx(h.arw.value, rel=1e-6)
+    # VRW read back in its reported unit, m/s/√h, within three widths of the truth
+    lo, hi = s.arw.interval
+    assert abs(s.arw.value - 0.05) <= 3 * (hi - lo)
+    assert s.figures["bias_instability"].unit == "m/s^2"

@@ -64,18 +64,27 @@ def _covers(term, truth: float, level: int = 1) -> bool:  # type: ignore[no-unty
 
 
 def test_a_four_hour_log_with_flicker_gives_n_and_b_in_their_intervals() -> None:
-    # 4 h at 10 Hz of N = 0.1 deg/√h and B = 1 deg/h (the issue's case), 95 % intervals.
-    # A seed on which both hold: on seeds 41 and 42 N fell just outside its 95 % interval
-    # (by 0.1 % of N and by 0.001 %), a hint that for records longer than the bootstrap's
-    # 2¹⁵ samples N's interval is somewhat narrow (the report says so)
+    # 4 h at 10 Hz of N = 0.1 deg/√h and B = 1 deg/h (the issue's case): 144 000 samples,
+    # so the shortened bootstrap of long records (k = 5), on seeds 41–43. Over 100 seeds
+    # (0–99) of this record the fit's B scatters by 6.2 % and N by 0.32 % (measured); N's
+    # scatter is two populations: where the fit puts a little quantization (47 seeds)
+    # N comes out 0.26 % low, where it puts none 0.13 % high, and the bootstrap of a fit
+    # with none reproduces the first population in its replicates but not the second's
+    # offset, so N's 95 % interval is a little narrow here (about 0.25 % a side at 68 %
+    # against the 0.32 % scatter): on seed 42 it misses by 0.01 % of N
+    # (docs/error-budget.md, section 5). B's holds on all three, N's on two of three.
     truth = Truth(arw=0.1 / 60, bias_instability=1 / 3600)
-    model = _model(truth, 144_000, 0.1, seed=43)
-    arw, bias = model.terms[1], model.terms[2]
-    assert arw.resolved and bias.resolved
-    assert _covers(arw, truth.arw) and _covers(bias, truth.bias_instability)
-    # and the terms the record does not hold are bounds, never values of 0
-    for k in (3, 4):
-        assert not model.terms[k].resolved and model.terms[k].bound > 0
+    n_held = 0
+    for seed in (41, 42, 43):
+        model = _model(truth, 144_000, 0.1, seed=seed)
+        arw, bias = model.terms[1], model.terms[2]
+        assert arw.resolved and bias.resolved
+        assert _covers(bias, truth.bias_instability)
+        n_held += _covers(arw, truth.arw)
+        # and the terms the record does not hold are bounds, never values of 0
+        for k in (3, 4):
+            assert not model.terms[k].resolved and model.terms[k].bound > 0
+    assert n_held >= 2
 
 
 def test_white_noise_gives_k_as_a_bound_that_holds() -> None:
@@ -87,19 +96,25 @@ def test_white_noise_gives_k_as_a_bound_that_holds() -> None:
     assert rrw.bound is not None and 0 < rrw.bound < 5e-4
 
 
-def test_n_is_not_read_on_a_20_hz_roll_off() -> None:
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_n_is_not_read_on_a_20_hz_roll_off(seed: int) -> None:
     scipy_signal = pytest.importorskip("scipy.signal")
     fs, n_true = 200.0, 0.1 / 60
-    y = np.random.default_rng(3).standard_normal(int(fs * 3600)) * n_true * math.sqrt(fs)
+    y = np.random.default_rng(seed).standard_normal(int(fs * 3600)) * n_true * math.sqrt(fs)
     y = scipy_signal.sosfilt(scipy_signal.butter(4, 20.0, fs=fs, output="sos"), y)
     m = tau_grid(y.size)
     tau, adev = oadev(y, 1 / fs, m)
     model = noise_model(tau, adev, m, y.size, 1 / fs)
     assert model.start > 0 and tau[model.start] > 1 / 20   # the roll-off left out
     arw = model.terms[1]
-    # within its 95 % interval on this seed; over seeds the fit past the roll-off still
-    # reads N about 1 % low (docs/error-budget.md), so the error is held to 2.5 % too
-    assert arw.resolved and _covers(arw, n_true) and abs(arw.value / n_true - 1) < 0.025
+    # N within its 95 % interval. Past the roll-off the filter's tail is fitted beside N,
+    # which costs N precision: over seeds 100–129 its fit scattered by 1.2 % about the
+    # truth (mean +0.07 %; measured), against 0.09 % on the same noise unfiltered, so
+    # the 68 % interval must be about that wide — the earlier bootstrap, whose
+    # replicates held the filter's column at 0, gave a third of it and missed on seed 3
+    assert arw.resolved and _covers(arw, n_true)
+    lo, hi = arw.intervals[0]
+    assert 0.006 < (hi - lo) / 2 / n_true < 0.02
     # read on the roll-off (the first point, N = σ·√τ) it would be far too small
     assert adev[0] * math.sqrt(tau[0]) < 0.5 * n_true
 
@@ -114,15 +129,17 @@ def test_a_vibration_the_model_cannot_hold_is_a_misfit() -> None:
     assert model.misfit.size > tau.size // 10
 
 
-def test_coverage_at_a_small_scale() -> None:
+@pytest.mark.parametrize("sim_cap", [1 << 15, 1 << 11])
+def test_coverage_at_a_small_scale(sim_cap: int) -> None:
     # 12 records of white noise and flicker (seeds unseen by the benchmark): N's 95 %
     # interval must hold the truth in 10 of 12 at least (P ≈ 0.98 at 95 % coverage), its
     # 68 % interval in 4 to 11 (P ≈ 0.95 at 68 %); B's 95 % in 9 at least, over those
-    # resolved. An interval of zero width, or one a mile wide, fails.
+    # resolved. An interval of zero width, or one a mile wide, fails. With sim_cap 2¹¹
+    # the 2¹⁴-sample records take the shortened bootstrap of long records (k = 8).
     truth = Truth(arw=0.1 / 60, bias_instability=1 / 3600)
     held = {"arw": [0, 0, 0], "bias_instability": [0, 0, 0]}
     for seed in range(500, 512):
-        model = _model(truth, 1 << 14, 1.0, seed, replicates=100)
+        model = _model(truth, 1 << 14, 1.0, seed, replicates=100, sim_cap=sim_cap)
         for name in held:
             term = model.terms[TERMS.index(name)]
             if term.resolved:
@@ -135,3 +152,16 @@ def test_coverage_at_a_small_scale() -> None:
     assert held["arw"][0] == 12 and held["arw"][2] >= 10 and 4 <= held["arw"][1] <= 11
     resolved, _, b95 = held["bias_instability"]
     assert resolved >= 8 and b95 >= resolved - 3
+
+
+def test_a_term_alone_in_its_model_gets_the_pivot_interval() -> None:
+    # White noise alone: the fit's information gives N² a standard error proportional to
+    # N² (every weight is ν/(2·(N²/τ)²)), so inverting (ĉ − c)/s(c) between the
+    # replicates' quantiles of (c* − ĉ)/s(ĉ) gives ĉ/r_hi … ĉ/r_lo, r = c*/ĉ: the ratio
+    # pivot, by algebra. The same replicates (same seed) must give the same interval.
+    truth = Truth(arw=0.2 / 60)
+    studentized = _model(truth, 20_000, 0.1, seed=4, method="studentized").terms[1]
+    pivot = _model(truth, 20_000, 0.1, seed=4, method="pivot").terms[1]
+    assert studentized.resolved and pivot.resolved
+    for got, ref in zip(studentized.intervals, pivot.intervals, strict=True):
+        assert got == pytest.approx(ref, rel=1e-6)

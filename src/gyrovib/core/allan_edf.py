@@ -25,6 +25,7 @@ Confidence limits of σ² at level c: σ̂²·ν/χ²_ν(1 − (1 − c)/2) … 
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -80,9 +81,11 @@ def _direct(lags: int, big_m: float, stride: float, f: float, alpha: int) -> flo
     return z0 * z0 * big_m / _basic_sum(lags, big_m, stride, f, alpha)
 
 
+@functools.lru_cache(maxsize=4096)
 def edf_one(alpha: int, m: int, points: int) -> float:
     """ν of the overlapping Allan variance at cluster size ``m`` from ``points`` angle
-    points (n + 1), noise type ``alpha`` (2, 1, 0, −1 or −2); at least 1."""
+    points (n + 1), noise type ``alpha`` (2, 1, 0, −1 or −2); at least 1. Remembered:
+    the bootstrap refits many curves of one record, whose (α, m) pairs repeat."""
     big_m = float(points - 2 * m)
     if big_m < 1:
         raise ValueError(f"cluster size {m} needs at least {2 * m + 1} angle points")

@@ -20,21 +20,33 @@ way the five terms cannot).
 **Intervals: a parametric bootstrap.** Records of the fitted model, as long as the
 record (beyond :data:`SIM_CAP` samples: see :func:`_replicate_curves`), are
 simulated (:mod:`gyrovib.core.allan_sim`), their Allan variance taken at the same τ and
-refitted with the same weights: so each replicate carries the correlation between
-neighbouring τ and every other term's pull on the term, which a formula per point does
-not. A term θ (the square root of its coefficient) gets the pivot interval
-θ̂/q_{(1+c)/2} … θ̂/q_{(1−c)/2}, q the quantiles of the replicates' θ*/θ̂ (a scale
-family's interval: exact when the estimate's law scales with the truth).
+refitted by the record's own estimator (weights refined from each replicate, as the
+record's were): so each replicate carries the correlation between neighbouring τ,
+every other term's pull on the term and the weights' own variability, which a formula
+per point does not. The interval of a term inverts a studentized root
+(:func:`studentized`): c = θ² is in it where q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) the
+standard error the fit's information gives c with the term held at c and the other
+resolved terms refitted, q the quantiles of the replicates' (c* − ĉ)/s(ĉ). Only s's
+dependence on c is taken from the information (which ignores the correlation between
+τ); its scale, the skew and any bias come from the replicates. Where s grows as c (a
+term alone in its stretch of the curve) this is the pivot θ̂/q'_hi … θ̂/q'_lo of the
+replicates' ratios θ*/θ̂; where s hardly moves with c (a rate random walk seen against
+white noise and flicker, whose scatter is the other terms') it is the difference
+interval; and where a term's scatter grows with another term that the record knows
+poorly (bias instability with a random walk beside it), holding the term lower lets
+the other grow, and the interval follows. The pivot ("pivot") and the percentile
+interval ("percentile") remain for the coverage study's comparison.
 
 **Roll-off.** A sensor's low-pass filter flattens the curve below a few times its time
 constant: read there, N would come out too small. A leading stretch flatter than white
 noise and below the −½ line of the first white point (:func:`roll_off`) is left out of
 the fit (and said), and past it the filter's tail, σ² lowered by about c/τ², takes the
-place of quantization in the fit (a non-negative c of −1/τ²; quantization behind a
-filter is then only bounded).
+place of quantization in the fit (c·(−1/τ²), c of either sign: the filter's tail
+less any quantization behind it, so that the estimate is never held at a limit the
+bootstrap would not reproduce; quantization behind a filter is then only bounded).
 
 **Bounds.** A term is *unresolved* when it is absent from the fit, when 2.5 % or more of
-the replicates fit it at 0 (its 95 % interval reaches 0), or when it dominates the model
+the replicates fit it at 0 or its 95 % interval reaches 0, or when it dominates the model
 (half its σ²) at no τ of the record (its slope region is absent). It is then given as an
 upper bound at 95 %: the least, over τ, of the one-sided χ² upper limit of σ²(τ)
 divided by the term's basis function — each point alone caps the term, since the other
@@ -46,6 +58,7 @@ hold in only 6 of 11 records).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -71,6 +84,8 @@ SIM_CAP = 1 << 15
 #: Weighted misfit per point above which the five terms are said not to fit (and a
 #: Gauss–Markov term is tried): twice what a fitting model leaves on average.
 MISFIT = 2.0
+#: The interval of a resolved term (:func:`terms`).
+METHOD = "studentized"
 #: Confidence of a bound; share of the model a term must reach somewhere to be resolved.
 BOUND_CONFIDENCE, RESOLVED_SHARE = 0.95, 0.5
 
@@ -143,9 +158,18 @@ class Fit:
         return out
 
 
-def _weighted(a: FloatArray, var: FloatArray, weight: FloatArray) -> tuple[FloatArray, float]:
+def _weighted(a: FloatArray, var: FloatArray, weight: FloatArray,
+              signed_first: bool = False) -> tuple[FloatArray, float]:
+    """The weighted non-negative fit; ``signed_first``: the first coefficient takes either
+    sign (a filtered curve's 1/τ² term, see :func:`design`)."""
     w = np.sqrt(weight)
-    coef = nnls(a * w[:, None], var * w)
+    aw = a * w[:, None]
+    if signed_first:  # c₀ = c₀⁺ − c₀⁻, both non-negative
+        both = nnls(np.column_stack([aw, -aw[:, 0]]), var * w)
+        coef = both[:-1].copy()
+        coef[0] -= both[-1]
+    else:
+        coef = nnls(aw, var * w)
     r = (a @ coef - var) * w
     return coef, float(r @ r)
 
@@ -153,7 +177,7 @@ def _weighted(a: FloatArray, var: FloatArray, weight: FloatArray) -> tuple[Float
 def _refine(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
             tau_c: float | None, filtered: bool) -> Fit:
     a = design(tau, tau_c, filtered)
-    coef, _ = _weighted(a, var, 1.0 / var ** 2)
+    coef, _ = _weighted(a, var, 1.0 / var ** 2, filtered)
     nu = np.ones_like(var)
     weight = 1.0 / var ** 2
     for _ in range(3):
@@ -161,7 +185,7 @@ def _refine(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
         model = np.where(model > 0, model, var)
         nu = edfs.edf(dominant_alpha(a * coef, tau, tau_c), m, points)
         weight = nu / (2.0 * model ** 2)
-        coef, _ = _weighted(a, var, weight)
+        coef, _ = _weighted(a, var, weight, filtered)
     r = (a @ coef - var) * np.sqrt(weight)
     return Fit(coef, tau_c, nu, weight, float(r @ r), filtered)
 
@@ -170,7 +194,9 @@ def fit(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
         gauss_markov: bool = True, filtered: bool = False) -> Fit:
     """The weighted non-negative fit of the module docstring to σ̂² = ``var`` at τ = m·τ0
     (all > 0), ``points`` = n + 1 angle points of the record; ``filtered``: the curve
-    follows a filter's roll-off, whose −1/τ² tail takes quantization's column."""
+    follows a filter's roll-off, whose −1/τ² tail takes quantization's column, its
+    coefficient of either sign (the filter's tail less any quantization behind it: an
+    estimate inside its range, which the bootstrap reproduces, not one held at 0)."""
     best = _refine(tau, var, m, points, None, filtered)
     if not gauss_markov or tau.size < 8 or best.cost <= MISFIT * tau.size:
         return best
@@ -183,43 +209,63 @@ def fit(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
 
 
 def refit(a: FloatArray, var: FloatArray, weight: FloatArray) -> FloatArray:
-    """One replicate's coefficients: the same design and weights."""
+    """One curve's coefficients with the design and weights held (no reweighting)."""
     return _weighted(a, var, weight)[0]
 
 
+def simulated_truth(fitted: Fit) -> Truth:
+    """The bootstrap's world: the fitted terms as a record's truth (a filter's tail is
+    not a noise term: the simulation has no filter)."""
+    c = fitted.coef
+    return Truth(quantization=0.0 if fitted.filtered else math.sqrt(c[0]), arw=math.sqrt(c[1]),
+                 bias_instability=math.sqrt(c[2]), rrw=math.sqrt(c[3]),
+                 rate_ramp=math.sqrt(c[4]),
+                 gm_sigma=math.sqrt(c[5]) if fitted.tau_c is not None else 0.0,
+                 gm_tau=fitted.tau_c or 0.0)
+
+
 def _replicate_curves(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
-                      replicates: int, rng: np.random.Generator) -> FloatArray:
+                      replicates: int, rng: np.random.Generator,
+                      sim_cap: int = SIM_CAP) -> FloatArray:
     """σ̂²(τ) of ``replicates`` records of the fitted model (rows), at the record's τ.
 
-    Beyond :data:`SIM_CAP` samples a replicate is two simulations: one as long as the
-    record at a coarser interval k·τ0 (k = ⌈n/SIM_CAP⌉), which gives the points from
-    m = 2k on, and one of :data:`SIM_CAP` samples at τ0 for the points below, whose
-    relative fluctuations are scaled by √(SIM_CAP/n) (at a fixed short τ the estimate's
-    spread falls as 1/√n) — so that those points keep their correlation across τ."""
-    c = fitted.coef
-    truth = Truth(quantization=0.0 if fitted.filtered else math.sqrt(c[0]), arw=math.sqrt(c[1]),
-                  bias_instability=math.sqrt(c[2]), rrw=math.sqrt(c[3]),
-                  rate_ramp=math.sqrt(c[4]),
-                  gm_sigma=math.sqrt(c[5]) if fitted.tau_c is not None else 0.0,
-                  gm_tau=fitted.tau_c or 0.0)
-    k = max(1, math.ceil(n / SIM_CAP))
+    Each replicate is the fitted model times the relative fluctuation of a simulated
+    record about its own expectation (:func:`simulated_truth`): the same as the
+    simulated curve where the model is the simulation's, and where the fit holds a
+    filter's tail (which the simulation has not) the fluctuation is put on the filtered
+    model, so that a replicate is a curve as the record's would be.
+
+    Beyond ``sim_cap`` samples a replicate is two simulations: one as long as the
+    record at a coarser interval k·τ0 (k = ⌈n/sim_cap⌉), which gives the points from
+    m = 2k on, and one of ``sim_cap`` samples at τ0 for the points below, whose
+    relative fluctuations are scaled by √(sim_cap/n) (at a fixed short τ the estimate's
+    spread falls as 1/√n); points of the second beyond its own reach (m > sim_cap/3)
+    are drawn from χ² with their EDF."""
+    truth = simulated_truth(fitted)
+    sim_coef = fitted.coef.copy()
+    if fitted.filtered:
+        sim_coef[0] = 0.0
+    tiny = np.finfo(float).tiny
+    plain = np.maximum(design(tau, fitted.tau_c) @ sim_coef, tiny)
     model = fitted.model(tau)
+    k = max(1, math.ceil(n / sim_cap))
     coarse = m >= 2 * k if k > 1 else np.ones(m.shape, dtype=bool)
     mk = np.maximum(np.round(m[coarse] / k), 1).astype(np.int64)
     uniq, inverse = np.unique(mk, return_inverse=True)
     tau_k = np.multiply(uniq, k * tau0, dtype=np.float64)
+    plain_k = np.maximum(design(tau_k, fitted.tau_c) @ sim_coef, tiny)
     fine = np.flatnonzero(~coarse)
-    short = fine[m[fine] <= SIM_CAP // 3]
-    drawn = fine[m[fine] > SIM_CAP // 3]
-    shrink = math.sqrt(SIM_CAP / n)
+    short = fine[m[fine] <= sim_cap // 3]
+    drawn = fine[m[fine] > sim_cap // 3]
+    shrink = math.sqrt(sim_cap / n)
     out = np.empty((replicates, tau.size))
     for i in range(replicates):
         y = simulate(truth, n // k, k * tau0, rng)
-        ratio = oadev(y, k * tau0, uniq)[1] ** 2 / fitted.model(tau_k)
+        ratio = oadev(y, k * tau0, uniq)[1] ** 2 / plain_k
         out[i, coarse] = model[coarse] * ratio[inverse]
         if short.size:
-            y = simulate(truth, SIM_CAP, tau0, rng)
-            r = oadev(y, tau0, m[short])[1] ** 2 / model[short]
+            y = simulate(truth, sim_cap, tau0, rng)
+            r = oadev(y, tau0, m[short])[1] ** 2 / plain[short]
             out[i, short] = model[short] * (1.0 + (r - 1.0) * shrink)
         if drawn.size:
             nu = fitted.nu[drawn]
@@ -251,34 +297,157 @@ def envelope_bound(basis: FloatArray, var: FloatArray, nu: FloatArray) -> float:
     return math.sqrt(float(np.min(upper / basis)))
 
 
-def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
-          confidences: tuple[float, ...], method: str = "pivot") -> tuple[Term, ...]:
-    """Each of the five terms (and the Gauss–Markov σ, sixth, when fitted) from the fit
-    and the replicates' coefficients (rows), see the module docstring."""
-    a = fitted.design(tau)
-    parts = a * fitted.coef
+def resolution(fitted: Fit, tau: FloatArray, replicates: FloatArray) -> NDArray[np.bool_]:
+    """Which coefficients the record resolves (module docstring: present, fewer than
+    2.5 % of the replicates at 0, and half the model somewhere); a filter's tail never."""
+    parts = np.maximum(fitted.design(tau) * fitted.coef, 0.0)  # a filter's tail: no noise
     share = parts / np.maximum(parts.sum(axis=1, keepdims=True), np.finfo(float).tiny)
+    zeros = np.mean(replicates <= 0.0, axis=0)
+    out: NDArray[np.bool_] = ((fitted.coef > 0) & (zeros < (1.0 - BOUND_CONFIDENCE) / 2.0)
+                              & (share.max(axis=0) >= RESOLVED_SHARE))
+    if fitted.filtered:
+        out[0] = False
+    return out
+
+
+@dataclass(frozen=True, slots=True)
+class Curve:
+    """What the studentized interval needs of the record: its fitted points (τ, σ̂², m),
+    angle points n + 1, and the fit."""
+
+    tau: FloatArray
+    var: FloatArray
+    m: IntArray
+    points: int
+    fitted: Fit
+
+
+def scale(curve: Curve, coef: FloatArray, j: int, active: NDArray[np.bool_]) -> float:
+    """s_j(c): the standard error of coefficient j that the fit's information gives at
+    coefficients ``coef`` — inverse of Aᵀ·W·A over the ``active`` columns, W = ν/(2·model²)
+    with ν the EDF of the type that dominates ``coef``'s model at each τ. It ignores the
+    correlation between neighbouring τ, so only its dependence on ``coef`` is used (the
+    bootstrap sets the scale)."""
+    fitted = curve.fitted
+    a = fitted.design(curve.tau)
+    model = a @ coef
+    if not np.all(model > 0):
+        return math.inf
+    nu = edfs.edf(dominant_alpha(a * coef, curve.tau, fitted.tau_c), curve.m, curve.points)
+    idx = np.flatnonzero(active)
+    info = (a[:, idx] * (nu / (2.0 * model ** 2))[:, None]).T @ a[:, idx]
+    try:
+        cov = np.linalg.inv(info)
+    except np.linalg.LinAlgError:
+        return math.inf
+    k = int(np.flatnonzero(idx == j)[0])
+    return math.sqrt(max(float(cov[k, k]), 0.0)) or math.inf
+
+
+def profile(curve: Curve, j: int, cj: float, free: NDArray[np.bool_]) -> FloatArray:
+    """The fit's coefficients with c_j held at ``cj`` and the ``free`` columns refitted
+    (the fit's weights; the others held at their fitted values)."""
+    fitted = curve.fitted
+    a = fitted.design(curve.tau)
+    coef = fitted.coef.copy()
+    coef[j] = cj
+    cols = np.flatnonzero(free)
+    if cols.size:
+        held = np.setdiff1d(np.arange(coef.size), cols)
+        rest = curve.var - a[:, held] @ coef[held]
+        coef[cols] = _weighted(a[:, cols], rest, fitted.weight,
+                               signed_first=bool(fitted.filtered and cols[0] == 0))[0]
+    return coef
+
+
+def _root(f: Callable[[float], float], lo: float, hi: float, target: float) -> float:
+    """x in [lo, hi] where the decreasing f crosses ``target`` (bisection)."""
+    for _ in range(48):
+        mid = 0.5 * (lo + hi)
+        if f(mid) > target:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[np.bool_],
+                confidence: float) -> tuple[float, float] | None:
+    """The interval of θ_j = √c_j by inverting the studentized root: the c with
+    q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) = :func:`scale` at the fit with c_j = c and the other
+    resolved terms refitted (:func:`profile`), q the quantiles of the replicates'
+    (c* − ĉ)/s(ĉ). None where it has no upper end or the fit no standard error (the
+    pivot's interval is then used)."""
+    fitted = curve.fitted
+    free = resolved.copy()
+    free[j] = False
+    if fitted.filtered:
+        free[0] = True
+    if fitted.tau_c is not None:
+        free[5] = True
+    active = free.copy()
+    active[j] = True
+    c_hat = float(fitted.coef[j])
+    s_hat = scale(curve, fitted.coef, j, active)
+    if not math.isfinite(s_hat):  # no information at the fit itself: the pivot's
+        return None
+    t_star = (replicates[:, j] - c_hat) / s_hat
+    q_lo, q_hi = (float(q) for q in np.quantile(t_star, [(1.0 - confidence) / 2.0,
+                                                          (1.0 + confidence) / 2.0]))
+
+    def root(c: float) -> float:
+        return (c_hat - c) / scale(curve, profile(curve, j, c, free), j, active)
+
+    # the least c tried is a little above 0: at 0 a term alone in its model has none
+    floor = c_hat * 1e-12
+    lo = c_hat if q_hi <= 0 else (0.0 if root(floor) <= q_hi else _root(root, floor, c_hat,
+                                                                          q_hi))
+    if q_lo >= 0:
+        return math.sqrt(lo), math.sqrt(c_hat)
+    top = 2.0 * c_hat
+    while root(top) > q_lo:
+        top *= 2.0
+        if top > c_hat * 2.0 ** 40:
+            return None
+    return math.sqrt(lo), math.sqrt(_root(root, c_hat, top, q_lo))
+
+
+def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
+          confidences: tuple[float, ...], method: str = "pivot",
+          curve: Curve | None = None) -> tuple[Term, ...]:
+    """Each of the five terms (and the Gauss–Markov σ, sixth, when fitted) from the fit
+    and the replicates' coefficients (rows), see the module docstring; ``method``
+    "studentized" needs the ``curve``."""
+    resolved = resolution(fitted, tau, replicates)
     basis = design(tau, fitted.tau_c)  # quantization's own column for its bound
     out = []
-    for j in range(a.shape[1]):
-        value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(fitted.coef[j])
-        star = np.sqrt(np.maximum(replicates[:, j], 0.0))
-        zeros = float(np.mean(star <= 0.0))
-        resolved = (value > 0 and zeros < (1.0 - BOUND_CONFIDENCE) / 2.0
-                    and float(share[:, j].max()) >= RESOLVED_SHARE)
-        if not resolved:
+    for j in range(fitted.coef.size):
+        value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(max(fitted.coef[j], 0.0))
+        found = intervals(value, j, replicates, confidences, method, curve,
+                          resolved) if resolved[j] else None
+        if found is None or found[-1][0] <= 0.0:  # its 95 % interval reaches 0
             bound = max(envelope_bound(basis[:, j], var, fitted.nu), value)
             out.append(Term(None, (), bound))
             continue
-        ratio = star / value
-        intervals = []
-        for c in confidences:
-            lo_q, hi_q = np.quantile(ratio, [(1.0 - c) / 2.0, (1.0 + c) / 2.0])
-            if method == "pivot":
-                intervals.append((value / float(hi_q), value / float(lo_q)))
-            else:  # the percentile interval, for the coverage study's comparison
-                intervals.append((value * float(lo_q), value * float(hi_q)))
-        out.append(Term(value, tuple(intervals), None))
+        out.append(Term(value, found, None))
+    return tuple(out)
+
+
+def intervals(value: float, j: int, replicates: FloatArray, confidences: tuple[float, ...],
+               method: str, curve: Curve | None, resolved: NDArray[np.bool_]
+               ) -> tuple[tuple[float, float], ...]:
+    """Term j's interval at each confidence (see :func:`terms`)."""
+    ratio = np.sqrt(np.maximum(replicates[:, j], 0.0)) / value
+    out = []
+    for c in confidences:
+        lo_q, hi_q = (float(q) for q in np.quantile(ratio, [(1.0 - c) / 2.0, (1.0 + c) / 2.0]))
+        pivot = (value / hi_q, value / lo_q if lo_q > 0 else math.inf)
+        if method == "studentized" and curve is not None:
+            out.append(studentized(curve, j, replicates, resolved, c) or pivot)
+        elif method == "percentile":  # for the coverage study's comparison
+            out.append((value * lo_q, value * hi_q))
+        else:
+            out.append(pivot)
     return tuple(out)
 
 
@@ -327,26 +496,36 @@ def roll_off(tau: FloatArray, adev: FloatArray) -> int:
     return j
 
 
+def bootstrap(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
+              replicates: int = REPLICATES, seed: int = 0,
+              sim_cap: int = SIM_CAP) -> FloatArray:
+    """The replicates' coefficients (rows): records of the fitted model
+    (:func:`_replicate_curves`), each refitted by the record's own estimator (its weights
+    refined from the replicate, the record's τ_c and filter), so that their spread is the
+    estimator's."""
+    curves = _replicate_curves(fitted, tau, m, n, tau0, replicates,
+                               np.random.default_rng(seed), sim_cap)
+    return np.array([_refine(tau, curve, m, n + 1, fitted.tau_c, fitted.filtered).coef
+                     for curve in curves])
+
+
 def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: float,
                 confidences: tuple[float, ...] = (0.68, 0.95), seed: int = 0,
                 replicates: int = REPLICATES, gauss_markov: bool = True,
-                method: str = "pivot") -> Model:
+                method: str = METHOD, sim_cap: int = SIM_CAP) -> Model:
     """The fit, bootstrap and bounds of the module docstring for the Allan deviation
     ``adev`` (deg/s, all > 0) at τ = m·τ0 of a record of ``n`` samples; a leading
-    stretch on a filter's roll-off (:func:`roll_off`) is left out of the fit."""
+    stretch on a filter's roll-off (:func:`roll_off`) is left out of the fit. ``method``:
+    the interval ("studentized", "pivot" or "percentile"); ``sim_cap``: the longest record
+    the bootstrap simulates whole (:func:`_replicate_curves`)."""
     m_all = np.asarray(m, dtype=np.int64)
     start = roll_off(tau, np.asarray(adev, dtype=float))
     var_all = np.asarray(adev, dtype=float) ** 2
     tau, var, m = tau[start:], var_all[start:], m[start:]
     fitted = fit(tau, var, m, n + 1, gauss_markov, filtered=start > 0)
-    rng = np.random.default_rng(seed)
-    curves = _replicate_curves(fitted, tau, m, n, tau0, replicates, rng)
-    a = fitted.design(tau)
-    if fitted.filtered:  # the replicates have no filter: its column would only pull N up
-        a = a.copy()
-        a[:, 0] = 0.0
-    coefs = np.array([refit(a, curve, fitted.weight) for curve in curves])
-    found = terms(fitted, tau, var, coefs, confidences, method)
+    coefs = bootstrap(fitted, tau, m, n, tau0, replicates, seed, sim_cap)
+    found = terms(fitted, tau, var, coefs, confidences, method,
+                  Curve(tau, var, m, n + 1, fitted))
     # the points left out (a roll-off) get the EDF of white noise, the type they follow
     nu = np.concatenate([edfs.edf(np.full(start, edfs.WHITE), m_all[:start], n + 1),
                          fitted.nu])
@@ -360,15 +539,19 @@ def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: fl
 __all__ = [
     "BOUND_CONFIDENCE",
     "FLICKER_FLOOR",
+    "METHOD",
     "REPLICATES",
     "TERMS",
+    "Curve",
     "Fit",
     "Model",
     "Term",
+    "bootstrap",
     "design",
     "envelope_bound",
     "fit",
     "gm_basis",
+    "intervals",
     "nnls",
     "noise_model",
     "refit",

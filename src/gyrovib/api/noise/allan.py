@@ -146,8 +146,7 @@ def accel_axes(recording: Recording, lo: int, hi: int, per_decade: int,
         try:
             seen_noise(y, name, recording.file)
         except RecordingError:
-            notes.append(f"accelerometer axis {name}: no noise seen (a constant, or changes "
-                         "below one step of quantisation): its figures are not given")
+            notes.append(_no_accel_noise(name))
             continue
         m = kernel.tau_grid(y.size, per_decade)
         out.append(axis_from_curve(name, m, kernel.oadev(y, 1.0 / recording.fs, m)[1],
@@ -195,26 +194,74 @@ def _streamed(recording: Recording, lo: int, hi: int, chosen: list[tuple[int, st
     """The curves of a long record read a block at a time (core/allan_stream.py), the
     record never held: a pass checks that noise is seen, one takes the mean and writes
     the angle to a scratch file, one per τ reads it back."""
-    cols = [k for k, _ in chosen]
+    read_rows = _block_reader(recording, "rate", lo, [k for k, _ in chosen], 1.0)
     n = hi - lo
+    low, high, changes = _levels_blockwise(read_rows, n, len(chosen))
+    for j, (_, name) in enumerate(chosen):
+        refuse_unseen(name, float(low[j]), float(high[j]), int(changes[j]), n, recording.file)
+    return _streamed_axes(recording, read_rows, n, chosen, unit, per_decade, confidence)
 
+
+def _block_reader(recording: Recording, kind: str, lo: int, cols: list[int],
+                  scale: float) -> Callable[[int, int], np.ndarray]:
+    """Rows a:b of the segment from ``lo``, the ``cols`` of ``kind`` (rate or accel),
+    times ``scale``, read from the store a block at a time."""
     def read_rows(a: int, b: int) -> np.ndarray:
-        return recording.store.block("rate", lo + a, lo + b)[:, cols]
+        block = recording.store.block(kind, lo + a, lo + b)[:, cols]
+        return block * scale if scale != 1.0 else block
 
-    _seen_blockwise(read_rows, n, chosen, recording.file)
+    return read_rows
+
+
+def _streamed_axes(recording: Recording, read_rows: Callable[[int, int], np.ndarray], n: int,
+                   chosen: list[tuple[int, str]], unit: str, per_decade: int | None,
+                   confidence: float, accel: bool = False) -> tuple[AxisAllan, ...]:
+    """The angle of the ``chosen`` columns written to a scratch file, σ(τ) read back from
+    it, and each axis's noise model (an ``accel`` axis in m/s²)."""
     m = allan_stream.octave_grid(n) if per_decade is None else kernel.tau_grid(n, per_decade)
     with tempfile.TemporaryFile(prefix="gyrovib-allan-") as scratch:
-        allan_stream.write_angle(read_rows, n, len(cols), 1.0 / recording.fs, scratch)
-        curves = allan_stream.oadev_scratch(scratch, n, len(cols), 1.0 / recording.fs, m)
-    return tuple(axis_from_curve(name, m, curves[:, j], n, recording.fs, unit, confidence)
+        allan_stream.write_angle(read_rows, n, len(chosen), 1.0 / recording.fs, scratch)
+        curves = allan_stream.oadev_scratch(scratch, n, len(chosen), 1.0 / recording.fs, m)
+    return tuple(axis_from_curve(name, m, curves[:, j], n, recording.fs, unit, confidence,
+                                 accel=accel)
                  for j, (_, name) in enumerate(chosen))
 
 
-def _seen_blockwise(read_rows: Callable[[int, int], np.ndarray], n: int,
-                    chosen: list[tuple[int, str]], file: str) -> None:
-    """:func:`refuse_unseen` of every column, a block at a time (the level changes
-    counted across blocks)."""
-    cols = len(chosen)
+def _streamed_accel(recording: Recording, lo: int, hi: int, per_decade: int | None,
+                    confidence: float) -> tuple[tuple[AxisAllan, ...], tuple[str, ...]]:
+    """:func:`accel_axes` for a long record: the specific force (m/s²) read a block at a
+    time like the rate, its axes without noise left out and said."""
+    cols = [k for k in range(3) if recording.accel_axes[k]]
+    if not cols:
+        return (), ()
+    read_all = _block_reader(recording, "accel", lo, cols, units.STANDARD_GRAVITY)
+    n = hi - lo
+    low, high, changes = _levels_blockwise(read_all, n, len(cols))
+    kept, notes = [], []
+    for j, k in enumerate(cols):
+        try:
+            refuse_unseen(AXES[k], float(low[j]), float(high[j]), int(changes[j]), n,
+                          recording.file)
+            kept.append(k)
+        except RecordingError:
+            notes.append(_no_accel_noise(AXES[k]))
+    if not kept:
+        return (), tuple(notes)
+    read_rows = _block_reader(recording, "accel", lo, kept, units.STANDARD_GRAVITY)
+    chosen = [(k, AXES[k]) for k in kept]
+    return (_streamed_axes(recording, read_rows, n, chosen, "m/s^2", per_decade, confidence,
+                           accel=True), tuple(notes))
+
+
+def _no_accel_noise(name: str) -> str:
+    return (f"accelerometer axis {name}: no noise seen (a constant, or changes below one "
+            "step of quantisation): its figures are not given")
+
+
+def _levels_blockwise(read_rows: Callable[[int, int], np.ndarray], n: int,
+                      cols: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each column's least and greatest value and how often its level changes, a block
+    at a time (changes counted across blocks): what :func:`refuse_unseen` judges."""
     low, high = np.full(cols, np.inf), np.full(cols, -np.inf)
     changes = np.zeros(cols, dtype=np.int64)
     last = None
@@ -225,8 +272,7 @@ def _seen_blockwise(read_rows: Callable[[int, int], np.ndarray], n: int,
         if last is not None:
             changes += y[0] != last
         last = y[-1].copy()
-    for j, (_, name) in enumerate(chosen):
-        refuse_unseen(name, float(low[j]), float(high[j]), int(changes[j]), n, file)
+    return low, high, changes
 
 
 def allan(recording: Recording, unit: str = "deg/h",
@@ -259,8 +305,9 @@ def allan(recording: Recording, unit: str = "deg/h",
         axes = tuple(allan_axis(name, rate[k], recording.fs, unit,
                                 per_decade or kernel.PER_DECADE, confidence)
                      for k, name in chosen)
-    accel, notes = ((), ()) if hi - lo > stream_samples else accel_axes(
-        recording, lo, hi, per_decade or kernel.PER_DECADE, confidence)
+    accel, notes = (_streamed_accel(recording, lo, hi, per_decade, confidence)
+                    if hi - lo > stream_samples else
+                    accel_axes(recording, lo, hi, per_decade or kernel.PER_DECADE, confidence))
     warnings = tuple(w for ax in axes for w in (roll_off_warning(ax), misfit_warning(ax))
                      if w is not None) + notes
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
