@@ -14,7 +14,6 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.options import BUNDLED_KEY
 from gyrovib.errors import CatalogError, OptionError, Problem
 
 
@@ -211,6 +210,8 @@ def load_catalog(files: tuple[str, ...]) -> Any:
 
 def _bundled() -> str | None:
     """The command's ``--bundled`` choice (:func:`gyrovib.cli.options.bundled_option`)."""
+    from gyrovib.cli.options import BUNDLED_KEY  # lazy: --help declares no options
+
     ctx = click.get_current_context(silent=True)
     found = None if ctx is None else ctx.meta.get(BUNDLED_KEY)
     return found if isinstance(found, str) else None

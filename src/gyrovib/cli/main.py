@@ -35,18 +35,17 @@ import os
 import signal
 import sys
 import warnings
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import click
 
 from gyrovib._version import __version__
-from gyrovib.cli.common import Settings, say, silence_stderr
 from gyrovib.cli.early import early_exit
-from gyrovib.cli.options import as_option
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
-from gyrovib.cli.progress import terminal_progress
 from gyrovib.errors import Crash, GyrovibError
-from gyrovib.render.github import annotation, problems_to_github
+
+if TYPE_CHECKING:
+    from gyrovib.cli.common import Settings
 
 EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 EXIT_WRITE_FAILED = 74  # EX_IOERR of sysexits.h
@@ -106,6 +105,21 @@ def _signal_status(exc: KeyboardInterrupt) -> int:
     return 128 + (exc.signum if isinstance(exc, Terminated) else signal.SIGINT)
 
 
+def say(line: str) -> None:
+    """:func:`gyrovib.cli.common.say`, its module imported when there is something to say
+    (``gyrovib --help`` does without it)."""
+    from gyrovib.cli.common import say as write
+
+    write(line)
+
+
+def silence_stderr() -> None:
+    """:func:`gyrovib.cli.common.silence_stderr`, imported as :func:`say` is."""
+    from gyrovib.cli.common import silence_stderr as silence
+
+    silence()
+
+
 def _debug() -> bool:
     """Whether ``GYROVIB_DEBUG`` asks for tracebacks: 1, true or yes, in any case."""
     return os.environ.get("GYROVIB_DEBUG", "").strip().lower() in ("1", "true", "yes")
@@ -130,6 +144,8 @@ def _report(exc: GyrovibError, settings: Settings | None) -> None:
     for problem in exc.problems:
         say(f"gyrovib: error: {problem}" if problem.file is None else str(problem))
     if settings is not None and settings.github:
+        from gyrovib.render.github import problems_to_github
+
         try:
             sys.stdout.write(problems_to_github(exc.problems))
             sys.stdout.flush()
@@ -210,6 +226,11 @@ class _Group(click.Group):
         return super().main(args, *rest, **extra)
 
     def invoke(self, ctx: click.Context) -> Any:
+        # lazy: --help needs neither the option declarations nor the progress display
+        from gyrovib.cli.common import Settings
+        from gyrovib.cli.options import as_option
+        from gyrovib.cli.progress import terminal_progress
+
         start_run()
         try:
             with warnings.catch_warnings(), terminal_progress():
@@ -222,6 +243,8 @@ class _Group(click.Group):
             ctx.exit(EXIT_BAD_INPUT)
         except click.exceptions.UsageError as exc:
             if _wants_github(sys.argv[1:] if self._argv is None else self._argv):
+                from gyrovib.render.github import annotation
+
                 try:
                     sys.stdout.write(annotation(exc.format_message(), title="gyrovib usage")
                                      + "\n")
@@ -272,6 +295,8 @@ def cli(ctx: click.Context, color: str) -> None:
     74 the output could not be written, 129 hung up, 130 interrupted,
     143 terminated, 141 standard output closed early.
     """
+    from gyrovib.cli.common import Settings
+
     ctx.obj = Settings(color=color)
 
 
