@@ -62,6 +62,16 @@ def test_segments_table_and_formats(tmp_path: Path) -> None:
     assert len(invoke("mission", path, "--format", "csv").stdout.splitlines()) == 3
     refused = invoke("mission", path, "--segments", "--format", "junit")
     assert refused.exit_code == 2 and "--segments" in refused.stderr
+    # Markdown: the same segment table under the rows, the same cells as the CSV's
+    md = invoke("mission", path, "--segments", "--format", "markdown", "--coverage", "2")
+    assert md.exit_code == 0, md.stderr
+    assert md.stdout.startswith(invoke("mission", path, "--format", "markdown",
+                                       "--coverage", "2").stdout)
+    lines = md.stdout.split("Segment by segment")[1].splitlines()
+    rows = [line for line in lines if line.startswith("| full ")]
+    assert len(rows) == 2 and rows[1].split(" | ")[2] == "2"  # its segment number
+    silent = [line for line in lines if line.startswith("| silent ")]
+    assert all("| ? |" in line for line in silent)  # unknown noise: '?', never 0
 
 
 def test_segment_csv_and_frame_come_from_one_declaration() -> None:

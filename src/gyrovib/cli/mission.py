@@ -67,7 +67,8 @@ coverage_option = click.option(
 @click.option("--segments", is_flag=True,
               help="Also the budget segment by segment: each segment's Δ_V and, at its end, "
                    "θ_V summed so far, the noise terms over the time flown and the total "
-                   "(a second table; with --format csv, one row per segment instead of one "
+                   "(a second table, also in markdown; with --format csv, one row per "
+                   "segment instead of one "
                    "per sensor; JSON always has them).")
 @click.option("--plot", metavar="PNG", default=None,
               help="Also draw θ(t) per sensor to PNG: the vibration angle segment by "
@@ -113,9 +114,9 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         angle_budget=None if angle_budget is None else parse_angle_budget(angle_budget),
         unit=unit, require=require, placement=parse_placement(placement),
         peak_factor=peak_factor, assume_unknown=assume_unknown or "none", coverage=coverage)
-    if segments and fmt not in ("table", "csv", "json"):
-        raise OptionError("--segments: use --format table, csv or json (JSON always has "
-                          "the segments)")
+    if segments and fmt not in ("table", "csv", "json", "markdown"):
+        raise OptionError("--segments: use --format table, markdown, csv or json (JSON "
+                          "always has the segments)")
     _show(result, fmt, output, segments=segments)
     if plot is not None:
         write_binary(theta_png(result), plot)
@@ -126,7 +127,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
 def _show(result: MissionResult, fmt: str, output: str | None, segments: bool = False) -> None:
     """The result's notes on standard error, then the result in ``fmt`` (table, json, csv,
     markdown or junit) to standard output or ``output``; ``segments``: the budget segment
-    by segment too (table, csv)."""
+    by segment too (table, markdown, csv)."""
     # lazy: the library and the renderers load when it runs, not for --help
     from gyrovib.render import mission as render
     from gyrovib.render.mission_answer import answer_line
@@ -140,8 +141,8 @@ def _show(result: MissionResult, fmt: str, output: str | None, segments: bool = 
         document = render.to_table(result, color=use_color(output),
                                    width=page_width(output), ascii=plain_ascii(output),
                                    segments=True)
-    elif segments and fmt == "csv":
-        document = render.to_csv(result, segments=True)
+    elif segments and fmt in ("csv", "markdown"):
+        document = getattr(render, f"to_{fmt}")(result, segments=True)
     else:
         document = rendered(render, result, fmt, output)
     write_output(document, output)

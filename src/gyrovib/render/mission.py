@@ -13,7 +13,7 @@ from gyrovib.presentation.reasons import unverified_text
 from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
 from gyrovib.render.formats import csv_of
 from gyrovib.render.mission_answer import allowance_cells, allowance_head, allowance_json
-from gyrovib.render.mission_segments import segments_csv, segments_table
+from gyrovib.render.mission_segments import segments_csv, segments_markdown, segments_table
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
@@ -350,14 +350,17 @@ def to_csv(result: MissionResult, segments: bool = False) -> str:
     return csv_of(result.records(), result.rows)
 
 
-def to_markdown(result: MissionResult) -> str:
+def to_markdown(result: MissionResult, segments: bool = False) -> str:
+    """The rows as a Markdown table with their notes; with ``segments``, the budget
+    segment by segment under them (:func:`~gyrovib.render.mission_segments.segments_markdown`)."""
     head = [*_HEAD]
     head[3] += f" ({result.unit})"
     head[4] += f" ({result.angle_unit})"
     head[5] += f" ({result.unit})"
     text = markdown_table(head, (_cells(result, r) for r in result.rows))
     notes = _unknown_notes(result) + _rank_notes(result)
-    return text + ("\n" + "\n\n".join(notes) + "\n" if notes else "")
+    text += "\n" + "\n\n".join(notes) + "\n" if notes else ""
+    return text + ("\n" + segments_markdown(result) if segments else "")
 
 
 def to_junit(result: MissionResult) -> str:

@@ -3,8 +3,8 @@
 Per sensor × mission × axis, each segment's error and the angle budget at its end:
 θ_V summed segment by segment so far, each noise term over the time flown so far, and
 their total with the coverage factor — the numbers of the θ(t) plot and of each JSON
-segment's ``budget``. As a table (under the main one) and as CSV records, one line per
-segment (:data:`gyrovib.api.missions.results.SEGMENT_COLUMNS`).
+segment's ``budget``. As a table under the main one (terminal or Markdown) and as CSV
+records, one line per segment (:data:`gyrovib.api.missions.results.SEGMENT_COLUMNS`).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from rich.table import Table
 
 from gyrovib.api.missions.results import SEGMENT_COLUMNS
-from gyrovib.render.common import fmt
+from gyrovib.render.common import fmt, markdown_table
 from gyrovib.render.formats import csv_of
 
 if TYPE_CHECKING:
@@ -46,15 +46,28 @@ def _cells(result: MissionResult, r: SegmentRecord) -> list[str]:
     return [*head, _known(b.vibration), *(_known(getattr(b, n)) for n in _NOISE), _total(b)]
 
 
-def segments_table(result: MissionResult) -> Table:
-    """One line per sensor × axis × segment: the segment's Δ_V and the budget at its end."""
-    title = ("Segment by segment: Δ_V of each segment, and at its end θ_V summed so far, "
-             "the noise terms over the time flown and the total"
-             + (f" (k = {fmt(result.coverage)})" if result.coverage != 1.0 else ""))
-    table = Table(header_style="bold", title=title, title_justify="left")
-    head = ["sensor", "axis", "segment", "profile", "end (s)", f"Ω_K3 ({result.unit})",
+def _title(result: MissionResult) -> str:
+    return ("Segment by segment: Δ_V of each segment, and at its end θ_V summed so far, "
+            "the noise terms over the time flown and the total"
+            + (f" (k = {fmt(result.coverage)})" if result.coverage != 1.0 else ""))
+
+
+def _head(result: MissionResult) -> list[str]:
+    return ["sensor", "axis", "segment", "profile", "end (s)", f"Ω_K3 ({result.unit})",
             f"Δ_V ({result.unit})", "θ_V (deg)", "θ_ARW (deg)", "θ_B (deg)", "θ_RRW (deg)",
             "θ_R (deg)", "total (deg)"]
+
+
+def segments_markdown(result: MissionResult) -> str:
+    """:func:`segments_table` as a Markdown table under its title."""
+    return (f"{_title(result)}:\n\n"
+            + markdown_table(_head(result), (_cells(result, r) for r in result.segment_rows())))
+
+
+def segments_table(result: MissionResult) -> Table:
+    """One line per sensor × axis × segment: the segment's Δ_V and the budget at its end."""
+    table = Table(header_style="bold", title=_title(result), title_justify="left")
+    head = _head(result)
     for k, name in enumerate(head):
         table.add_column(name, no_wrap=True, justify="left" if k in (0, 1, 3) else "right")
     for record in result.segment_rows():
