@@ -1,4 +1,4 @@
-"""`gyrovib allan`: JSON keys of INTERFACE.md (fourth and fifth rounds), the noise block it
+"""`gyrovib allan`: JSON keys of docs/output.md, the noise block it
 writes, Kalibr's imu.yaml, the reader options it shares with `profile`, and its
 refusals."""
 

@@ -1,4 +1,4 @@
-"""Flight logs as recordings (INTERFACE.md fifth round, "Readers"): ArduPilot DataFlash
+"""Flight logs as recordings (docs/recordings.md): ArduPilot DataFlash
 (IMU and the batch sampler), PX4 ULog high-rate FIFO with several instances, and the
 CSV of Betaflight's blackbox_decode.
 

@@ -1,5 +1,5 @@
 """Nothing read as zero from a recording (docs/model.md section 13, first paragraph;
-INTERFACE.md fifth round, "Unknown axes"): an axis not recorded is unknown, a lone
+docs/recordings.md): an axis not recorded is unknown, a lone
 rate column is placed by the user, duplicated recordings are refused, short segments
 and damaged files are located errors or labelled answers, never a crash."""
 

@@ -1,4 +1,4 @@
-"""`gyrovib runup`: JSON keys of INTERFACE.md (fifth round), CSV and table, the sensor entry
+"""`gyrovib runup`: JSON keys of docs/output.md, CSV and table, the sensor entry
 `-o` writes (read back by `analyze`), `--require`, `--plot`, and the refusals."""
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 
 def reader_options(f: F) -> F:
-    """How a recording is read (INTERFACE.md, third and fifth rounds): its columns, units,
+    """How a recording is read (docs/recordings.md): its columns, units,
     topic, instance, preset and sample rate, and whether damage is refused; shared by
     ``profile``, ``analyze --recording``, ``report --recording`` and ``allan``."""
     options = [
@@ -76,7 +76,7 @@ def recording_options(f: F) -> F:
 
 
 def jobs_option(f: F) -> F:
-    """``--jobs N``: recordings fitted in N worker processes (INTERFACE.md, fourth round)."""
+    """``--jobs N``: recordings fitted in N worker processes (docs/recordings.md)."""
     return click.option(
         "--jobs", type=click.IntRange(min=1), default=1, show_default=True, metavar="N",
         help="Fit the recordings in N worker processes (the output is the same as with 1; "

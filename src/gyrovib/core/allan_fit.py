@@ -1,5 +1,5 @@
 """The noise model fitted to an Allan variance curve, each term with an honest interval
-or an upper bound (docs/model.md section 15, fifth round; IEEE Std 952-1997 Annex C).
+or an upper bound (docs/model.md section 15; IEEE Std 952-1997 Annex C).
 
 Rate in deg/s, τ in s, the model is linear in its non-negative coefficients::
 

@@ -1,4 +1,4 @@
-"""Records of known noise terms (docs/model.md section 15, fifth round): the rate
+"""Records of known noise terms (docs/model.md section 15): the rate
 (deg/s) of a gyro at rest whose Allan variance is IEEE Std 952's five terms and a
 first-order Gauss–Markov bias. The parametric bootstrap of :mod:`gyrovib.core.allan_fit`
 draws from it; the coverage study (benchmarks/bench_allan_coverage.py) and the tests

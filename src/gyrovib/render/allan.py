@@ -1,5 +1,5 @@
 """Renderers of ``gyrovib allan`` (docs/model.md section 15): a table per axis, JSON
-(keys: INTERFACE.md, fourth and fifth rounds), the log-log plot with error bars, and
+(keys: docs/output.md), the log-log plot with error bars, and
 Kalibr's ``imu.yaml`` (render/kalibr.py)."""
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """``gyrovib allan --format kalibr``: the noise model as Kalibr's ``imu.yaml`` (also read
-by OpenVINS and VINS-Fusion; docs/model.md section 15, fifth round).
+by OpenVINS and VINS-Fusion; docs/model.md section 15).
 
 Kalibr's IMU noise model takes continuous-time densities in SI units:
 

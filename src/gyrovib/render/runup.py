@@ -1,5 +1,5 @@
 """Renderers of ``gyrovib runup`` (docs/model.md section 16): a table per step and the
-estimates, JSON (keys: INTERFACE.md, fifth round), CSV, Markdown and the plot.
+estimates, JSON (keys: docs/output.md), CSV, Markdown and the plot.
 
 An unknown figure is '?' in tables, null in JSON and empty in CSV.
 """

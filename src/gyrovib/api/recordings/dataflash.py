@@ -4,7 +4,7 @@ pymavlink's ``DFReader`` indexes the log: the formats it declares (``FMT``) and 
 byte offset of every message of each type. The samples are then read straight from
 the file with numpy, a block of messages at a time, each stored value promoted to
 float64 before any arithmetic (pymavlink's own message objects would cost a Python
-object per message). Two sources (``--topic``, INTERFACE.md fifth round):
+object per message). Two sources (``--topic``):
 
 * ``IMU`` (the default): ``GyrX/Y/Z`` in rad/s, ``AccX/Y/Z`` in m/s², ``TimeUS`` in
   µs, one message per sample at the logging rate; the instance is the ``I`` field,

@@ -1,6 +1,6 @@
 """PX4 ULog recordings (pyulog, the ``gyrovib[ulog]`` extra): a topic's instance as columns.
 
-Topics (INTERFACE.md, fifth round): ``sensor_combined`` (the default; ``gyro_rad[0..2]``
+Topics (docs/recordings.md): ``sensor_combined`` (the default; ``gyro_rad[0..2]``
 in rad/s, ``accelerometer_m_s2[0..2]`` in m/s²), ``sensor_gyro`` (``x``, ``y``,
 ``z``), any other topic whose columns ``--rate-columns`` names, and
 ``sensor_gyro_fifo``: the raw high-rate FIFO, kHz. A FIFO message holds up to 32
