@@ -81,16 +81,17 @@ def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[st
 class Cell(Generic[Row]):
     """One column of a result's human table, declared once for its Markdown and its
     terminal table: the heading ``title``, how one row's cell is written (``text``) and
-    how the terminal table aligns it (``justify``). ``of``: the name of the record
-    (:class:`~gyrovib.records.Column`) the cell shows; without ``text``, the cell is
-    that record's value as :func:`known` writes it (tests check every such cell
-    against the records)."""
+    how the terminal table draws it (``justify``, ``no_wrap``, ``style``). ``of``: the
+    name of the record (:class:`~gyrovib.records.Column`) the cell shows; without
+    ``text``, the cell is that record's value as :func:`known` writes it (a test checks
+    such cells against the records)."""
 
     title: str
     text: Callable[[Row], str] | None = None
     justify: str = "left"
     of: str | None = None
     no_wrap: bool = True
+    style: str | None = None
 
 
 def known(value: Any) -> str:
@@ -132,7 +133,7 @@ def table_of(cells: Sequence[Cell[Row]], rows: Iterable[Row],
 
     out = Table(**{"header_style": "bold", **table})
     for c in cells:
-        out.add_column(c.title, justify=c.justify, no_wrap=c.no_wrap)  # type: ignore[arg-type]
+        out.add_column(c.title, justify=c.justify, no_wrap=c.no_wrap, style=c.style)  # type: ignore[arg-type]
     for texts in cell_texts(cells, rows, records):
         out.add_row(*texts)
     return out
