@@ -136,7 +136,7 @@ def plain_table(cells: Sequence[Cell[int]], rows: Sequence[int],
     lines = [[c.title for c in cells], *cell_texts(cells, rows, records)]
     widths = [max(len(line[k]) for line in lines) for k in range(len(cells))]
     out = ["  ".join(c.ljust(widths[k]) if k in left else c.rjust(widths[k])
-                     for k, c in enumerate(line)) for line in lines]
+                     for k, c in enumerate(line)).rstrip() for line in lines]
     return [out[0], "  ".join("-" * w for w in widths), *out[1:]]
 
 
