@@ -238,15 +238,28 @@ def test_runup_csv_sections_are_the_declarations() -> None:
 
     from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
     from gyrovib.cli.main import cli
+    from gyrovib.records import in_csv, written
 
     example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "runup-quad.npz"
     done = CliRunner().invoke(cli, ["runup", str(example), "--fs", "200", "--accel-columns",
                                     "ax,ay,az", "--estimate", "k2,vre", "--format", "csv"])
     assert done.exit_code in (0, 1), done.output
     steps, estimates = done.stdout.split("\n\n")
-    assert tuple(_csv(steps)[0]) == names(STEP_RECORDS)
+    assert tuple(_csv(steps)[0]) == names(in_csv(STEP_RECORDS))
     assert tuple(_csv(estimates)[0]) == names(ESTIMATE_RECORDS)
     assert len(_csv(estimates)) == 3  # k2 and vre
+    # the JSON's steps are the same declaration: its keys in order, the CSV's values
+    import json
+
+    done = CliRunner().invoke(cli, ["runup", str(example), "--fs", "200", "--accel-columns",
+                                    "ax,ay,az", "--estimate", "k2,vre", "--format", "json"])
+    entries = json.loads(done.stdout)["steps"]
+    keys = [c.key or c.name for c in written(STEP_RECORDS, "json")]
+    assert [list(e) for e in entries] == [keys] * (len(_csv(steps)) - 1)
+    for entry, row in zip(entries, _csv(steps)[1:], strict=True):
+        line = dict(zip(_csv(steps)[0], row, strict=True))
+        assert str(entry["index"]) == line["step"]
+        assert repr(entry["shift"]) == line["shift"] and entry["predicted"] is None
 
 
 def test_bounds_json_entries_are_the_declaration() -> None:

@@ -15,7 +15,7 @@ from rich.text import Text
 
 from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
-from gyrovib.render.formats import Cell, csv_of, markdown_of, table_of
+from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
 
 if TYPE_CHECKING:
     from gyrovib.api.runup import Estimate, RunupResult, Step
@@ -26,18 +26,6 @@ UNIT = "deg/s"
 def _c(value: float, digits: int = 4) -> str:
     """A table cell: '?' for an unknown figure."""
     return fmt(value, digits) if math.isfinite(value) else "?"
-
-
-def _step_json(s: Step) -> dict[str, Any]:
-    return {"index": s.index, "start": s.start, "end": s.end, "duration": s.duration,
-            "baseline": s.baseline, "mean": number(s.mean), "x3_rms": number(s.x3_rms),
-            "accel_rms": number(s.accel_rms), "shift": number(s.shift),
-            "uncertainty": number(s.uncertainty),
-            "regressors": {k: number(v) for k, v in s.regressors},
-            "fitted": number(s.fitted), "predicted": number(s.predicted),
-            "predicted_bound": s.bound, "residual": number(s.residual),
-            "residual_sigma": number(s.residual / s.sigma) if s.sigma > 0 else None,
-            "status": s.status, "outlier": s.outlier, "moved": s.moved}
 
 
 def _estimate_json(e: Estimate) -> dict[str, Any]:
@@ -56,7 +44,7 @@ def to_json(result: RunupResult) -> str:
                       "samples": result.samples, "fs": result.fs,
                       "crossover": result.crossover, "steps_given": result.steps_given},
         "sensor": result.sensor,
-        "steps": [_step_json(s) for s in result.steps],
+        "steps": json_of(STEP_RECORDS, result.steps),
         "estimates": {e.name: _estimate_json(e) for e in result.estimates},
         "drift": {"value": number(result.drift), "uncertainty": number(result.drift_uncertainty),
                   "unit": "deg/s/s", "estimated": math.isfinite(result.drift),
