@@ -12,7 +12,7 @@ from rich.text import Text
 from gyrovib.api.missions.results import COLUMNS
 from gyrovib.presentation.reasons import unverified_text
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
-from gyrovib.render.formats import Case, Cell, csv_of, junit_of, markdown_of, table_of
+from gyrovib.render.formats import Case, Cell, csv_of, junit_of, known, markdown_of, table_of
 from gyrovib.render.mission_answer import allowance_cells, allowance_head, allowance_json
 from gyrovib.render.mission_segments import segments_csv, segments_markdown, segments_table
 
@@ -68,12 +68,6 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
 #: and records.
 _NOISE = ("arw", "bias_instability", "rrw", "repeatability")
 _NOISE_HEAD = ("θ_ARW", "θ_B", "θ_RRW", "θ_R")
-
-
-def known(value: float) -> str:
-    """:func:`fmt`, but '?' for a value that is unknown (NaN: an axis a fitted profile's
-    recording did not record), never 'nan' or 0."""
-    return "?" if math.isnan(value) else fmt(value)
 
 
 def budget_total(row: MissionRow) -> str:
@@ -269,14 +263,7 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
         "source": row.source,
     }
     if row.budget is not None:
-        b = row.budget
-        out["budget"] = {
-            "vibration": number(b.vibration),
-            **{name: None if getattr(b, name) is None else number(getattr(b, name))
-               for name in _NOISE},
-            "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
-            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
-            "bounds": list(b.bounds), "typical": list(b.typical)}
+        out["budget"] = {**_budget_json(row.budget), "typical": list(row.budget.typical)}
         allowed = allowance_json(row)
         if allowed is not None:
             out["budget"]["allowed"] = allowed

@@ -9,13 +9,12 @@ records, one line per segment (:data:`gyrovib.api.missions.results.SEGMENT_COLUM
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from gyrovib.api.missions.results import SEGMENT_COLUMNS
 from gyrovib.render.common import fmt
-from gyrovib.render.formats import Cell, csv_of, markdown_of, table_of
+from gyrovib.render.formats import Cell, csv_of, known, markdown_of, table_of
 
 if TYPE_CHECKING:
     from rich.table import Table
@@ -26,14 +25,9 @@ if TYPE_CHECKING:
 _NOISE = ("arw", "bias_instability", "rrw", "repeatability")
 
 
-def _known(value: float | None) -> str:
-    """A number, '?' where unknown (None or NaN: never shown as 0)."""
-    return "?" if value is None or math.isnan(value) else fmt(value)
-
-
 def _total(b: Budget) -> str:
     """The total at a segment's end: '≥ x' when a noise figure is unknown."""
-    return ("≥ " if b.lower_bound else "") + _known(b.total)
+    return ("≥ " if b.lower_bound else "") + known(b.total)
 
 
 def _budget(text: Callable[[Budget], str]) -> Callable[[SegmentRecord], str]:
@@ -44,15 +38,15 @@ def _budget(text: Callable[[Budget], str]) -> Callable[[SegmentRecord], str]:
 def _cells(result: MissionResult) -> tuple[Cell[SegmentRecord], ...]:
     """The columns of the segments' table (terminal and Markdown alike)."""
     def noise(name: str) -> Callable[[Budget], str]:
-        return lambda b: _known(getattr(b, name))
+        return lambda b: known(getattr(b, name))
 
     return (Cell("sensor", of="sensor"), Cell("axis", lambda r: r.row.axis or "-", of="axis"),
             Cell("segment", lambda r: str(r.index + 1), "right", of="segment"),
             Cell("profile", of="profile"), Cell("end (s)", justify="right", of="end"),
             Cell(f"Ω_K3 ({result.unit})", justify="right", of="rate_x3"),
-            Cell(f"Δ_V ({result.unit})", lambda r: _known(r.segment.total)
+            Cell(f"Δ_V ({result.unit})", lambda r: known(r.segment.total)
                  + (" (saturated)" if r.segment.saturated else ""), "right", of="total"),
-            Cell("θ_V (deg)", _budget(lambda b: _known(b.vibration)), "right",
+            Cell("θ_V (deg)", _budget(lambda b: known(b.vibration)), "right",
                  of="theta_vibration"),
             *(Cell(f"{title} (deg)", _budget(noise(name)), "right", of=f"theta_{name}")
               for title, name in zip(("θ_ARW", "θ_B", "θ_RRW", "θ_R"), _NOISE, strict=True)),
