@@ -13,7 +13,8 @@ import numpy as np
 from gyrovib import units
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
-from gyrovib.render.mission import budget_total, known
+from gyrovib.render.formats import known
+from gyrovib.render.mission import budget_total
 from gyrovib.render.mission_answer import allowance_cells, allowance_head, answer_line
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
