@@ -15,6 +15,7 @@ from gyrovib.records import Column, in_csv, names, records, written
 from gyrovib.render.common import csv_text, fmt, markdown_table, number
 
 if TYPE_CHECKING:  # at run time rich is imported by table_of
+    from rich.console import JustifyMethod
     from rich.table import Table
 
 Row = TypeVar("Row")
@@ -88,7 +89,7 @@ class Cell(Generic[Row]):
 
     title: str
     text: Callable[[Row], str] | None = None
-    justify: str = "left"
+    justify: JustifyMethod = "left"
     of: str | None = None
     no_wrap: bool = True
     style: str | None = None
@@ -107,13 +108,13 @@ def cell_texts(cells: Sequence[Cell[Row]], rows: Iterable[Row],
                records: Sequence[Column[Row]] = ()) -> Iterator[list[str]]:
     """Every row's cells, in the cells' order; a cell without ``text`` writes its
     record's value (``of``, looked up in ``records``) with :func:`known`."""
-    by_name = {c.name: c for c in records}
-    writers = [c.text or _record_text(by_name[c.of or c.title]) for c in cells]
+    by_name = {c.name: c.value for c in records}
+    writers = [c.text or _record_text(by_name[c.of or ""]) for c in cells]
     return ([text(row) for text in writers] for row in rows)
 
 
-def _record_text(column: Column[Row]) -> Callable[[Row], str]:
-    read = column.value
+def _record_text(read: Callable[[Row], Any]) -> Callable[[Row], str]:
+    """A record's value as the tables write it (:func:`known`)."""
     return lambda row: known(read(row))
 
 
@@ -133,7 +134,7 @@ def table_of(cells: Sequence[Cell[Row]], rows: Iterable[Row],
 
     out = Table(**{"header_style": "bold", **table})
     for c in cells:
-        out.add_column(c.title, justify=c.justify, no_wrap=c.no_wrap, style=c.style)  # type: ignore[arg-type]
+        out.add_column(c.title, justify=c.justify, no_wrap=c.no_wrap, style=c.style)
     for texts in cell_texts(cells, rows, records):
         out.add_row(*texts)
     return out
