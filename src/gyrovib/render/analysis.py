@@ -229,7 +229,8 @@ def to_csv(result: AnalysisResult) -> str:
 
 def markdown_cells(result: AnalysisResult) -> tuple[Cell[tuple[int, int]], ...]:
     """The Markdown table's columns, one row per sensor × profile, each naming the record
-    it shows (:func:`~gyrovib.presentation.frames.analysis_columns`): a row's numbers
+    it shows (:func:`~gyrovib.presentation.frames.analysis_columns`), each with its own
+    text (the records are not built for the Markdown): a row's numbers
     at 4 significant figures, those negligible beside its largest as 0 (:func:`row_cells`),
     an unknown term '?'."""
     e, odd = result.error, any(result.locked)
@@ -254,7 +255,8 @@ def markdown_cells(result: AnalysisResult) -> tuple[Cell[tuple[int, int]], ...]:
         return _lot_name(result, c[0]) + (f" ⚠{marks}" if marks else "")
 
     n, extra = len(shown), result.stderr
-    return (Cell("sensor", name, of="sensor"), Cell("profile", of="profile"),
+    return (Cell("sensor", name, of="sensor"),
+            Cell("profile", lambda c: result.profiles[c[1]], of="profile"),
             Cell(f"Ω_K3 ({result.unit})", lambda c: fmt(result.rates[c[1], 2]), of="rate_x3"),
             *(Cell(label, number(k), of=f"additive_{JSON_TERMS[t]}")
               for k, (label, t) in enumerate(zip(_labels(result, odd), shown, strict=True))),
@@ -287,7 +289,6 @@ def to_markdown(result: AnalysisResult) -> str:
     """A Markdown table (4 significant figures) with warnings as footnotes."""
     notes = [f"{message} ({cells_text(result, cells)})"
              for message, cells in grouped_warnings(result)]
-    table = markdown_of(markdown_cells(result), analysis_cells(result),
-                        analysis_columns(result, csv=False))
+    table = markdown_of(markdown_cells(result), analysis_cells(result))
     return (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
             + table + _markdown_notes(result, notes))
