@@ -13,7 +13,7 @@ from gyrovib.api.missions.results import COLUMNS
 from gyrovib.presentation.reasons import unverified_text
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
 from gyrovib.render.formats import Case, Cell, csv_of, junit_of, known, markdown_of, table_of
-from gyrovib.render.mission_answer import allowance_cells, allowance_head, allowance_json
+from gyrovib.render.mission_answer import allowance_cells, allowance_json
 from gyrovib.render.mission_segments import segments_csv, segments_markdown, segments_table
 
 if TYPE_CHECKING:
@@ -237,15 +237,11 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
 
 def _allowance_table(result: MissionResult) -> Table:
     """Per row, the largest value of each figure that still meets the angle budget."""
-    table = Table(header_style="bold", title="Largest figure that meets the budget, the "
-                  "others as given (none (X): X alone uses the allowance; *: an upper "
-                  "limit, a figure being unknown)", title_justify="left")
-    for name in ("sensor", "axis", *allowance_head()):
-        table.add_column(name, no_wrap=True, justify="left" if name in ("sensor", "axis")
-                         else "right")
-    for row in result.rows:
-        table.add_row(row.sensor, row.axis or "-", *allowance_cells(row))
-    return table
+    cells = (Cell("sensor", of="sensor"), Cell("axis", lambda r: r.axis or "-", of="axis"),
+             *allowance_cells())
+    return table_of(cells, result.rows, COLUMNS, title="Largest figure that meets the "
+                    "budget, the others as given (none (X): X alone uses the allowance; *: "
+                    "an upper limit, a figure being unknown)", title_justify="left")
 
 
 def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:

@@ -13,9 +13,9 @@ import numpy as np
 from gyrovib import units
 from gyrovib.core.mission import ANGLE_UNITS
 from gyrovib.render.common import fmt
-from gyrovib.render.formats import known
+from gyrovib.render.formats import cell_texts, known
 from gyrovib.render.mission import budget_total
-from gyrovib.render.mission_answer import allowance_cells, allowance_head, answer_line
+from gyrovib.render.mission_answer import allowance_cells, answer_line
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
@@ -241,17 +241,15 @@ def verdict_table(result: MissionResult, mission: str) -> str:
     and the largest figure of each kind that would meet the budget."""
     rows = _shown(result, mission)
     with_allowance = any(r.budget is not None and r.budget.allowed is not None for r in rows)
-    head = ["sensor", "axis", "|θ_V| (deg)", "total (deg)", "budget", "verdict"]
-    if with_allowance:
-        head += allowance_head()
+    allowance = allowance_cells() if with_allowance else ()
+    head = ["sensor", "axis", "|θ_V| (deg)", "total (deg)", "budget", "verdict",
+            *(c.title for c in allowance)]
     body = []
-    for r in rows:
+    for r, allowed in zip(rows, cell_texts(allowance, rows), strict=True):
         budget = ("-" if result.angle_budget is None else
                   f"{fmt(result.angle_budget)} {result.angle_unit}")
         cells = [r.sensor, r.axis or "-", known(abs(r.angle)), budget_total(r), budget,
-                 _WORDS[r.status]]
-        if with_allowance:
-            cells += allowance_cells(r)
+                 _WORDS[r.status], *allowed]
         body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
     return ("<table><caption>Each sensor's total and verdict (a triad: its worst axis); "
             "the largest value of each figure that meets the budget, the others as given "
