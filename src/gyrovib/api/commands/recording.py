@@ -59,7 +59,7 @@ from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
 from gyrovib.records import Column, frame_of
 
-#: Defaults of the options (INTERFACE.md, third round).
+#: Defaults of the options (docs/recordings.md).
 DEFAULT_CROSSOVER = 5.0
 DEFAULT_RESOLUTION = 0.5
 DEFAULT_THRESHOLD = 10.0
