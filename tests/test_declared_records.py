@@ -229,6 +229,10 @@ def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
         assert row["source"] in ("specs", "coefficients") and "unit" not in row
     assert unknown  # the probe meets unknown figures (null) as well as numbers
     assert known  # the probe compares numbers, not only nulls
+    # and its Markdown is its declared cells, each the frame's value of its record
+    assert _check_cells(render_recording.table_cells(result), result.records(),
+                        range(len(result.sensors)), frame,
+                        render_recording.to_markdown(result)) >= 2 * len(result.sensors)
 
 
 def test_runup_csv_sections_are_the_declarations() -> None:
@@ -471,3 +475,20 @@ def test_junit_has_one_case_per_verdict_row(mission_result) -> None:
     assert [c.find("failure") is not None for c in cases] == [
         not bool(result.passed[i, j]) for i in range(len(result.sensors))
         for j in range(len(result.profiles))]
+
+
+def test_select_and_bounds_markdown_headers_are_their_cells() -> None:
+    # tables that are not one row per record (select's matrix: a column per profile;
+    # bounds: a row per coefficient) still take their headers from their cells
+    from gyrovib.render import bounds as render_bounds
+    from gyrovib.render import select as render_select
+
+    result = gyrovib.select(budget="10deg/h")
+    table = _markdown(render_select.to_markdown(result))
+    assert table[0] == [c.title for c in render_select._matrix(result)]
+    assert table[0] == ["sensor", *result.profiles, "verdict"]
+    assert [line[0] for line in table[1:]] == list(result.sensors)
+    bounds = gyrovib.bounds(budget="10deg/h")
+    table = _markdown(render_bounds.to_markdown(bounds))
+    assert table[0] == [c.title for c in render_bounds._cells(bounds, 0)]
+    assert [line[0] for line in table[1:]] == render_bounds._rows(bounds, 0)
