@@ -54,7 +54,7 @@ from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
 from gyrovib.core.envelope import worst_case
 from gyrovib.core.recording import recorded_error
 from gyrovib.core.transmissibility import as_table, psd_variance
-from gyrovib.errors import GyrovibError, OptionError, Problem
+from gyrovib.errors import GyrovibError, Note, OptionError, Problem
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
 from gyrovib.records import Column, frame_of
@@ -361,10 +361,10 @@ def shape_warnings(part: FittedPart | None, kind: str) -> list[str]:
         return out
     for axis, db, off in zip("XYZ", part.shape_db, part.off_3db, strict=True):
         if db > SHAPE_DB_LIMIT or off > OFF_3DB_LIMIT:
-            out.append(f"the fitted {kind} PSD of axis {axis} is off the measured one by "
-                       f"{db:.2g} dB (power-weighted), {100 * off:.0f} % of the power by more "
-                       f"than 3 dB: its shape is not the recording's (raise --breakpoints, "
-                       "or read the plot)")
+            out.append(Note(f"the fitted {kind} PSD of axis {axis} is off the measured one "
+                            f"by {db:.2g} dB (power-weighted), {100 * off:.0f} % of the power "
+                            "by more than 3 dB: its shape is not the recording's (raise "
+                            "{breakpoints}, or read the plot)", ("breakpoints", None)))
     return out
 
 
