@@ -67,7 +67,7 @@ def _check_fit(fit: object, fs: float, fc: float, tone: float, amp: float,
 def _fit_and_check(tmp_path: Path, recording: object, w: np.ndarray, g: np.ndarray | None,
                    t: np.ndarray, fc: float, resolution: float) -> object:
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
 
     result = analyze_recording(recording, load([_sensor(tmp_path)]),  # type: ignore[arg-type]
                                crossover=fc, resolution=resolution)

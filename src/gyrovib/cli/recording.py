@@ -125,9 +125,9 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
                       jobs: int = 1) -> None:
     """``gyrovib analyze --recording`` (once or more): one library call, then the renderer."""
     # lazy: the library and the renderers load when it runs, not for --help
-    from gyrovib.api.commands.recording import analyze_recording as run
     from gyrovib.api.fleet.pool import one_thread
     from gyrovib.api.fleet.run import analyze_recordings
+    from gyrovib.api.recordings.analysis import analyze_recording as run
     from gyrovib.render import fleet as render_many
     from gyrovib.render import recording as render
 
@@ -168,7 +168,7 @@ def report_recording(path: str, catalog: Any, sensors: tuple[str, ...],
     """``gyrovib report --recording``: the catalogue with the fitted profile added, the
     profiles to study (the fitted one too when some were named), and the HTML section."""
     # lazy: the library and the renderers load when it runs, not for --help
-    from gyrovib.api.commands.recording import analyze_recording as run
+    from gyrovib.api.recordings.analysis import analyze_recording as run
     from gyrovib.api.recordings.yaml import with_fitted_profile
     from gyrovib.render.recording import report_section
 

@@ -16,7 +16,7 @@ from gyrovib.render.formats import csv_of, json_of
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
 if TYPE_CHECKING:
-    from gyrovib.api.commands.recording import RecordingAnalysis
+    from gyrovib.api.recordings.analysis import RecordingAnalysis
     from gyrovib.api.recordings.results import AxisHonesty, RecordingFit
 
 AXES = ("X", "Y", "Z")

@@ -32,9 +32,9 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.commands.recording import _LINE_FLOOR, random_tables
 from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.run import DEFAULTS, RecordingOptions, profile_one, run_recordings
+from gyrovib.api.recordings.analysis import _LINE_FLOOR, random_tables
 from gyrovib.api.recordings.results import (
     AxisHonesty,
     FittedHarmonics,

@@ -18,7 +18,7 @@ module                 what it holds
 =====================  =========================================================
 
 The fit and ``analyze --recording`` are the command view
-:mod:`gyrovib.api.commands.recording`; many recordings at once are
+:mod:`gyrovib.api.recordings.analysis`; many recordings at once are
 :mod:`gyrovib.api.fleet`.
 """
 

@@ -24,17 +24,17 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.commands.analyze import analyze
 from gyrovib.api.commands.mission import mission
-from gyrovib.api.commands.recording_honesty import (
+from gyrovib.api.datasheet.specs import figures, is_spec
+from gyrovib.api.evaluation.unknown import depends_on, not_recorded
+from gyrovib.api.recordings.honesty import (
     RATIO_RANGE,
     at_mean_warnings,
     ratio_warnings,
     unknown_warnings,
 )
-from gyrovib.api.commands.recording_records import recording_columns
-from gyrovib.api.datasheet.specs import figures, is_spec
-from gyrovib.api.evaluation.unknown import depends_on, not_recorded
 from gyrovib.api.recordings.passes import RatePass, accel_pass, carrier, rate_pass
 from gyrovib.api.recordings.reading import PADDING, Recording, RecordingError, iter_segments
+from gyrovib.api.recordings.records import recording_columns
 from gyrovib.api.recordings.results import (
     AxisHonesty,
     FittedHarmonics,
@@ -415,7 +415,7 @@ class RecordingAnalysis(Frozen):
 
     def records(self) -> tuple[Column[int], ...]:
         """The columns of the CSV, the frame and the JSON's ``results``, one row per sensor
-        (its index): :func:`~gyrovib.api.commands.recording_records.recording_columns`."""
+        (its index): :func:`~gyrovib.api.recordings.records.recording_columns`."""
         return recording_columns(self)
 
     def to_frame(self) -> Any:
