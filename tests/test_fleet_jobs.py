@@ -100,7 +100,7 @@ def test_workers_start_once_and_run_one_blas_thread() -> None:
 
 @pytest.mark.parametrize(("module", "name", "args"), [
     # the commands import the library when they run: patched where they take it from
-    ("gyrovib.api.recordings.analysis", "fit_recording", ["profile"]),
+    ("gyrovib.api.recordings.fit", "fit_recording", ["profile"]),
     ("gyrovib.api.recordings.analysis", "analyze_recording",
      ["analyze", "--sensor", "adxrs645", "--recording"]),
 ])

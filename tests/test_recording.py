@@ -615,7 +615,7 @@ def test_the_fitted_shape_is_reported_and_warned(tmp_path: Path,
     the figures in the YAML's comments, the plot's titles and the honesty table; with
     only 2 breakpoints
     the straight line misses the resonance and the warning says so."""
-    from gyrovib.api.recordings.analysis import fit_recording
+    from gyrovib.api.recordings.fit import fit_recording
     from gyrovib.api.recordings.reading import read_recording
 
     np.save(tmp_path / "res.npy", _shaped_noise(np.random.default_rng(30), 1000.0, 30.0))

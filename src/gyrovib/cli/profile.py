@@ -48,7 +48,7 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
     # lazy: the library and the renderers load when the command runs, not for --help
     from gyrovib.api.fleet.envelope import profile_recordings
     from gyrovib.api.fleet.pool import one_thread
-    from gyrovib.api.recordings.analysis import fit_recording
+    from gyrovib.api.recordings.fit import fit_recording
     from gyrovib.cli.recording import read, step_options
     from gyrovib.render import fleet as render
     from gyrovib.render.recording import honesty_table, plot_fit

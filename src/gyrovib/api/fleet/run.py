@@ -3,7 +3,7 @@ many recordings in worker processes.
 
 The one-recording step is :func:`profile_one`, a pure function of a path and a
 :class:`RecordingOptions`: it reads the recording, fits it
-(:func:`gyrovib.api.recordings.analysis.fit_recording`) and returns the
+(:func:`gyrovib.api.recordings.fit.fit_recording`) and returns the
 :class:`~gyrovib.api.recordings.results.RecordingFit` — spectra on the Welch grid,
 lines, carrier histogram, moments and honesty figures: tens of kB at 250 Hz, growing
 with fs/Δf and never with the recording's length; never its samples. It pickles, so
@@ -25,7 +25,8 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.pool import located, one_thread, raise_failure, run_in_processes
-from gyrovib.api.recordings.analysis import analysis_of_fit, fit_recording, recording_responses
+from gyrovib.api.recordings.analysis import analysis_of_fit, recording_responses
+from gyrovib.api.recordings.fit import fit_recording
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core._types import FloatArray, Table
