@@ -26,7 +26,13 @@ from gyrovib import units
 from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.pool import located, one_thread, raise_failure, run_in_processes
 from gyrovib.api.recordings.analysis import analysis_of_fit, recording_responses
-from gyrovib.api.recordings.fit import fit_recording
+from gyrovib.api.recordings.fit import (
+    DEFAULT_BREAKPOINTS,
+    DEFAULT_CROSSOVER,
+    DEFAULT_RESOLUTION,
+    DEFAULT_THRESHOLD,
+    fit_recording,
+)
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core._types import FloatArray, Table
@@ -49,10 +55,10 @@ class RecordingOptions(Frozen):
     rate_unit: str | None = None
     accel_unit: str | None = None
     topic: str | None = None
-    crossover: float = 5.0
-    resolution: float = 0.5
-    tone_threshold: float = 10.0
-    breakpoints: int = 12
+    crossover: float = DEFAULT_CROSSOVER
+    resolution: float = DEFAULT_RESOLUTION
+    tone_threshold: float = DEFAULT_THRESHOLD
+    breakpoints: int = DEFAULT_BREAKPOINTS
     independent_tones: bool = False
     profile_id: str | None = None
     responses: tuple[Table, ...] = ()
