@@ -68,6 +68,37 @@ def test_help_loads_neither_the_library_nor_a_renderer():
     assert done.stdout.strip() == "[]"
 
 
+def test_the_top_level_help_imports_neither_the_error_module_nor_shutil():
+    # The top-level listing's cost is click's own plus cli/main.py (docs/performance.md):
+    # gyrovib.errors (with dataclasses) is imported only once a command runs, and the
+    # help formatter reads the terminal's width without shutil and its compression modules.
+    probe = ("import contextlib, io, sys\n"
+             "from gyrovib.cli.main import cli\n"
+             "with contextlib.redirect_stdout(io.StringIO()):\n"
+             "    cli.main(['--help'], prog_name='gyrovib', standalone_mode=False)\n"
+             "print(sorted(m for m in ('gyrovib.errors', 'shutil', 'dataclasses')\n"
+             "             if m in sys.modules))\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          check=True, timeout=60)
+    assert done.stdout.strip() == "[]"
+
+
+@pytest.mark.parametrize("columns", ["40", "100", "", "x"])
+def test_the_help_width_is_the_one_click_would_choose(columns: str) -> None:
+    # click.HelpFormatter's own rule (COLUMNS, at most 80, less 2, at least 50) is the
+    # reference; the listing is the same text with either formatter.
+    import shutil
+
+    from gyrovib.cli.main import _Formatter
+
+    env = {"COLUMNS": columns}
+    with pytest.MonkeyPatch.context() as mp:
+        for key, value in env.items():
+            mp.setenv(key, value)
+        assert _Formatter().width == click.HelpFormatter().width
+        assert _Formatter().width == max(min(shutil.get_terminal_size().columns, 80) - 2, 50)
+
+
 def test_the_floor_program_reads_the_bundled_catalogues():
     # benchmarks/floor.py is what start-up is measured against (docs/performance.md): it
     # must keep validating the bundled files as they change

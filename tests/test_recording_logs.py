@@ -361,7 +361,7 @@ def test_log_options_are_refused_where_they_mean_nothing(tmp_path: Path) -> None
 
 
 def test_a_log_is_known_by_its_first_bytes_whatever_its_name(tmp_path: Path) -> None:
-    """INTERFACE.md: readers by content or extension. A ULog and a DataFlash log named
+    """docs/recordings.md: readers by content or extension. A ULog and a DataFlash log named
     .log are read as what they are."""
     pytest.importorskip("pyulog")
     pytest.importorskip("pymavlink")

@@ -131,7 +131,7 @@ def budget_unit_option(f: F) -> F:
 
 
 def resolve_unit(unit: str | None, budget: str) -> str:
-    """``--unit`` as given, else the unit ``--budget`` carries, else deg/s (INTERFACE.md)."""
+    """``--unit`` as given, else the unit ``--budget`` carries, else deg/s (README, "Units")."""
     if unit is not None:
         return parse_unit(unit)
     return units.quantity_unit(budget) or "deg/s"

@@ -53,7 +53,7 @@ def reader_options(f: F) -> F:
 
 
 def recording_options(f: F) -> F:
-    """The recording input and fit options of INTERFACE.md (third round)."""
+    """The recording input and fit options (docs/recordings.md)."""
     options = [
         click.option("--id", "profile_id", metavar="NAME",
                      help="Id of the fitted profile (default: the file's name + -fitted)."),

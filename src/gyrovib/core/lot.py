@@ -302,7 +302,7 @@ def term_matrix(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
 
 def correlation_from_pairs(names: Sequence[str], pairs: Mapping[str, float]) -> FloatArray:
     """The correlation matrix of ``names`` from pairs ``{"A1 k2": 0.3}`` (pairs not named
-    are 0; the catalogue's and the JSON's mapping, INTERFACE.md). Checked by
+    are 0; the catalogue's and the JSON's mapping, docs/rate-table.md). Checked by
     :func:`check_correlation`."""
     index = {n: i for i, n in enumerate(names)}
     out = np.eye(len(names))

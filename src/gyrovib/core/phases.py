@@ -547,8 +547,8 @@ MAX_SEARCH_COST = 3000.0
 
 
 def search_cost(dims: int, objectives: int, n_max: int) -> float:
-    """Estimated cost of the worst-phase search (:func:`worst_phase_errors`) over ``dims``
-    offsets, in evaluations of a profile's multipliers at one rate with small orders (~1.3 ms).
+    """Estimated cost of :func:`_searched` over ``dims`` offsets, in
+    evaluations of a profile's multipliers at one rate with small orders (~1.3 ms).
 
     The coarse nodes, then per objective a few compass rounds of 2D moves and
     about five Newton steps of 1 + 2D² differences (measured: four orders,

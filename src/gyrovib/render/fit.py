@@ -27,7 +27,7 @@ def _numbers(names: tuple[str, ...], values: Any) -> dict[str, float | None]:
 
 
 def unit_document(result: FitResult, i: int) -> dict[str, Any]:
-    """One unit as the JSON writes it (INTERFACE.md, "JSON additions": fit)."""
+    """One unit as the JSON writes it (docs/rate-table.md)."""
     f = result.fits[i]
     names = result.names
     return {
@@ -152,7 +152,7 @@ def to_markdown(result: FitResult) -> str:
 
 
 def yield_document(estimate: YieldEstimate, index: tuple[int, ...] = ()) -> dict[str, Any]:
-    """A yield as the JSON writes it (INTERFACE.md, ``select --yield``): ``{"value",
+    """A yield as the JSON writes it (docs/output.md, select): ``{"value",
     "method": "exact"|"monte-carlo", "interval": [lo, hi] | null, "draws"}``; ``index``
     picks one entry of an estimate made for several tests at once."""
     value = float(estimate.value[index])

@@ -323,7 +323,7 @@ def _optional_number(value: float | None) -> float | None:
 
 
 def to_json(result: MissionResult) -> str:
-    """The JSON document of INTERFACE.md (third round): one entry per sensor × mission
+    """The JSON document of docs/output.md (mission): one entry per sensor × mission
     (× axis), then each triad's summary and each sensor's verdict."""
     document = {
         **header("exact", result.unit), "angle_unit": result.angle_unit,

@@ -1,5 +1,5 @@
 """Renderers of recordings (docs/model.md section 13): the honesty table of a fit, and
-``analyze --recording`` as table, JSON, CSV and markdown (keys: INTERFACE.md)."""
+``analyze --recording`` as table, JSON, CSV and markdown (keys: docs/output.md)."""
 
 from __future__ import annotations
 

@@ -295,7 +295,7 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
 
 
 def _yield_json(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
-    """``{"value", "method", "interval": [lo, hi] | null, "draws"}`` (INTERFACE.md)."""
+    """``{"value", "method", "interval": [lo, hi] | null, "draws"}`` (docs/output.md, select)."""
     y = result.yields
     assert y is not None
     interval = (None if y.method == "exact"

@@ -37,7 +37,7 @@ from gyrovib.core.transmissibility import psd_variance
 from gyrovib.errors import GyrovibError, Note, OptionError, Problem
 from gyrovib.progress import advance
 
-#: Defaults of the options of the fit.
+#: Defaults of the options (docs/recordings.md).
 DEFAULT_CROSSOVER = 5.0
 DEFAULT_RESOLUTION = 0.5
 DEFAULT_THRESHOLD = 10.0
