@@ -189,7 +189,7 @@ def test_fit_csv_and_frame_come_from_one_declaration() -> None:
 
 def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
     pytest.importorskip("scipy.signal")
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
     from gyrovib.render import recording as render_recording
 

@@ -17,7 +17,7 @@ from gyrovib.render.formats import Cell, cell_texts, csv_of, json_of, markdown_o
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
 if TYPE_CHECKING:
-    from gyrovib.api.commands.recording import RecordingAnalysis
+    from gyrovib.api.recordings.analysis import RecordingAnalysis
     from gyrovib.api.recordings.results import AxisHonesty, RecordingFit
     from gyrovib.records import Column
 

@@ -32,9 +32,9 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.commands.recording import _LINE_FLOOR, random_tables
 from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.run import DEFAULTS, RecordingOptions, profile_one, run_recordings
+from gyrovib.api.recordings.fit import LINE_FLOOR, random_tables
 from gyrovib.api.recordings.results import (
     AxisHonesty,
     FittedHarmonics,
@@ -142,7 +142,7 @@ def _spectrum(part: FittedPart, crossover: float, tone_threshold: float, *,
     diagonal = np.zeros((3, 3, f.size), dtype=complex)
     for j in range(3):
         diagonal[j, j] = measured[j]
-    found, median = find_lines(f, diagonal, tone_threshold, fmin=_LINE_FLOOR * crossover)
+    found, median = find_lines(f, diagonal, tone_threshold, fmin=LINE_FLOOR * crossover)
     random = measured.copy()
     for line in found:
         random[:, line.lo:line.hi] = median[:, line.lo:line.hi]
