@@ -17,9 +17,9 @@ from gyrovib.render.common import dumps, header
 from gyrovib.render.formats import Cell, csv_of, markdown_of
 
 if TYPE_CHECKING:
-    from gyrovib.api.commands.recording import RecordingAnalysis
     from gyrovib.api.fleet.envelope import Envelope
     from gyrovib.api.fleet.run import RecordingsAnalysis
+    from gyrovib.api.recordings.analysis import RecordingAnalysis
     from gyrovib.api.recordings.results import RecordingFit
 
 
