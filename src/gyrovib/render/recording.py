@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from gyrovib import units
-from gyrovib.render.common import dumps, header
+from gyrovib.render.common import dumps, header, html_table
 from gyrovib.render.formats import Cell, cell_texts, csv_of, json_of, markdown_of
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
@@ -247,9 +247,9 @@ def report_section(result: RecordingAnalysis) -> str:
     rows = [[a, _fmt(h.variance), _percent(h.held), _fmt(h.skewness, 3),
              _fmt(h.excess_kurtosis, 3), _decibels(h.shape_db), _percent(h.off_3db)]
             for a, h in zip(AXES, fit.honesty, strict=True)]
-    honesty = _html_table(head, rows)
+    honesty = html_table(head, rows)
     cells = table_cells(result)
-    compare = _html_table([c.title for c in cells],
+    compare = html_table([c.title for c in cells],
                           list(cell_texts(cells, range(len(result.sensors)),
                                            result.records())))
     notes = "".join(f"<li>{escape(result.sensors[i])}: {escape(m)}</li>"
@@ -270,11 +270,3 @@ def report_section(result: RecordingAnalysis) -> str:
         f"<h3>Honesty of the fit</h3>{honesty}"
         + (f"<ul class=\"warnings\">{notes}</ul>" if notes else "")
         + f'<div class="charts">{figures}</div></section>')
-
-
-def _html_table(head: list[str], rows: list[list[str]]) -> str:
-
-    cells = "".join(f"<th>{escape(h)}</th>" for h in head)
-    body = "".join("<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>"
-                   for r in rows)
-    return f"<table><thead><tr>{cells}</tr></thead><tbody>{body}</tbody></table>"
