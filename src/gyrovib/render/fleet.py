@@ -124,6 +124,7 @@ def envelope_table(env: Envelope) -> str:
                  f"[{', '.join(f'{v:.4g}' for v in fit.rate)}] deg/s")
     lines.append("variance: of the envelope spectrum over f_c…fs/2 and its lines; held: the "
                  "share of it the fitted profile holds")
+    lines += [f"warning: {w}" for w in fit.warnings]
     return "\n".join(parts) + "\n" + "\n".join(lines) + "\n"
 
 
@@ -144,7 +145,8 @@ def profile_json(fit: RecordingFit) -> str:
 def envelope_json(env: Envelope) -> str:
     """``gyrovib profile A B … --format json``: ``recordings`` (one entry each, as one
     recording's ``recording`` with its ``profile_id`` and ``warnings``), ``envelope``
-    (what its fit holds per axis) and the catalogue text ``profile``."""
+    (what its fit holds per axis, and its own ``warnings``) and the catalogue text
+    ``profile``."""
     fit = env.fit
     document = header("profile", "deg/s")
     document["recordings"] = [{**one.recording_info(f), "profile_id": f.profile_id,
@@ -152,6 +154,6 @@ def envelope_json(env: Envelope) -> str:
     document["envelope"] = {"recordings": len(env.recordings), "profile_id": fit.profile_id,
                             "crossover": fit.crossover, "duration": fit.duration,
                             "mission_segments": len(fit.mission_durations),
-                            "axes": _envelope_axes(fit)}
+                            "axes": _envelope_axes(fit), "warnings": list(fit.warnings)}
     document["profile"] = fit.yaml
     return dumps(document)

@@ -199,11 +199,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
                                 float(kurt[j]), float(angular.shape_db[j]),
                                 float(angular.off_3db[j])) for j in range(3))
-    warnings += shape_warnings(angular, "rate") + shape_warnings(linear, "acceleration")
-    if angular.released:
-        warnings.append("lines at " + ", ".join(f"{f:.4g}" for f in angular.released)
-                        + " Hz, orders of a fundamental, are written as independent tones: a "
-                        "phase: worst search over every order would exceed its budget")
+    warnings += fit_warnings(angular, linear)
     base = os.path.basename(recording.file)
     pid = profile_id or _default_id(base)
     fit = RecordingFit(
@@ -328,6 +324,20 @@ def _tones(lines: Sequence[Any], *, grouped: bool,
     tones = tuple(FittedTone(ln.frequency, ln.amplitude, ln.phase)
                   for k, ln in enumerate(lines) if k not in taken)
     return tones, tuple(harmonics), tuple(float(lines[k].frequency) for k in released)
+
+
+def fit_warnings(angular: FittedPart, linear: FittedPart | None) -> list[str]:
+    """What a fitted profile does not hold of its spectrum: each axis whose fitted PSD is
+    off the measured one (:func:`shape_warnings`), and the orders of a fundamental let go
+    of their phase-locked group, written as independent tones so that the profile's
+    ``phase: worst`` search stays within budget
+    (:func:`gyrovib.core.recording.fitted_groups`)."""
+    out = shape_warnings(angular, "rate") + shape_warnings(linear, "acceleration")
+    if angular.released:
+        out.append("lines at " + ", ".join(f"{f:.4g}" for f in angular.released)
+                   + " Hz, orders of a fundamental, are written as independent tones: a "
+                   "phase: worst search over every order would exceed its budget")
+    return out
 
 
 def shape_warnings(part: FittedPart | None, kind: str) -> list[str]:
