@@ -74,23 +74,182 @@ def test_a_column_moved_in_the_declaration_moves_in_csv_and_frame(mission_result
     assert header[0] == names(mission_result.records())[-1] and header[-1] == "sensor"
 
 
-@pytest.mark.parametrize("kwargs", [{}, {"sensors": "adxrs453", "method": "numeric",
-                                         "samples": 1000}])
-def test_analyze_csv_and_frame_come_from_one_declaration(kwargs: dict) -> None:
+# analyze's cases: the bundled catalogues (spec-form sensors and their envelope, saturated
+# rows, locked harmonics), the numeric method (stderr), a catalogue of a sensor with an
+# uncertainty, a lot and a profile with phase: worst (keys that only some rows have),
+# another unit, and a profile fitted from a recording without x1 and x2 (unknown: NaN)
+LOT_AND_WORST = """\
+gyrovib: 1
+sensors:
+  - id: unit-1
+    coefficients: {A1: 1.2e-3, k2: 3.1e-5, k3: -2.0e-7, m31: 2.0e-6}
+    uncertainty:
+      sigma: {A1: 1.0e-4, k2: 2.0e-6, k3: 1.5e-8, m31: 1.0e-6}
+  - id: plain
+    coefficients: {A1: 1.2e-3, k2: 3.1e-5, k3: -2.0e-7, m31: 2.0e-6}
+  - id: lot-1
+    lot:
+      units: 20
+      mean: {A1: 1.2e-3, k2: 3.1e-5, k3: -2.0e-7, m31: 2.0e-6}
+      sigma: {A1: 1.0e-4, k2: 2.0e-6, k3: 1.5e-8, m31: 1.0e-6}
+profiles:
+  - id: worst
+    rate: [0, 0, 0.5]
+    harmonics:
+      fundamental: 20
+      orders:
+        - {order: 1, amplitude: [0.5, 0.0, 2.0], phase: [30, 0, 0]}
+        - {order: 2, amplitude: [0.0, 0.3, 1.0], phase: worst}
+  - id: hover
+    rate: [0, 0, -5]
+    harmonic:
+      - {frequency: 80, amplitude: [2, 0, 25]}
+"""
+
+#: Only x3 and no accelerations recorded (as `gyrovib profile --rate-columns -,-,gz`
+#: writes it): k2 depends on x3 alone, m31 also on x1, a g² term on the accelerations
+UNRECORDED = """\
+gyrovib: 1
+units: {rate: deg/s, acceleration: g}
+profiles:
+  - id: fitted
+    rate: [0, 0, 0.2]
+    not_recorded: [x1, x2, acceleration]
+    random:
+      rms: [0, 0, 1.0]
+sensors:
+  - id: k2-only
+    coefficients: {k2: 1.0e-3}
+    vre: 0
+  - id: cross
+    coefficients: {k2: 1.0e-3, m31: 2.0e-3}
+    vre: 0
+  - id: g2
+    coefficients: {k2: 1.0e-3}
+    vre: 1.0e-3
+"""
+
+ANALYZE_CASES = {
+    "bundled": {},
+    "numeric": {"sensors": "adxrs453", "method": "numeric", "samples": 1000},
+    "lot-and-worst": {"catalog": LOT_AND_WORST},
+    "deg/h": {"unit": "deg/h", "profiles": ("uav-blade-pass-tone", "flat-random-hover")},
+    "unrecorded": {"catalog": UNRECORDED},
+}
+
+
+def _analysis(case: str, tmp_path) -> object:
+    kwargs = dict(ANALYZE_CASES[case])
+    text = kwargs.pop("catalog", None)
+    if text is None:
+        return gyrovib.analyze(**kwargs)
+    path = tmp_path / "catalogue.gyrovib.yaml"
+    path.write_text(text, encoding="utf-8")
+    return gyrovib.analyze(str(path), **kwargs)
+
+
+def _leaves(value: object, keys: set[str], prefix: str = "") -> list[tuple[str, object]]:
+    """The key paths of a JSON entry in order, each with its value: an object or a list is
+    entered unless its path is itself a declared key (a row's warnings, its phases)."""
+    if prefix[:-1] not in keys and isinstance(value, (dict, list)):
+        items = value.items() if isinstance(value, dict) else enumerate(value)
+        return [leaf for k, v in items for leaf in _leaves(v, keys, f"{prefix}{k}.")]
+    return [(prefix[:-1], value)]
+
+
+@pytest.mark.parametrize("case", list(ANALYZE_CASES))
+def test_analyze_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path) -> None:
     # analyze declares its records once (presentation.frames.analysis_columns): the CSV
-    # takes its columns, the frame the same ones plus the frame-only ones, in one order
-    from gyrovib.presentation.frames import analysis_columns
+    # takes the columns that do not skip it, the frame and the JSON every column, in one
+    # order; a JSON entry has exactly the declared key paths of the columns on its row
+    # (``only``), in the declared order, each holding the frame's value (NaN: null)
+    import json
+    import math
+
+    from gyrovib.presentation.frames import analysis_cells, analysis_columns
+    from gyrovib.records import in_csv, written
     from gyrovib.render import analysis as render_analysis
 
-    result = gyrovib.analyze(**kwargs)
+    result = _analysis(case, tmp_path)
+    columns = analysis_columns(result)
+    rows = analysis_cells(result)
     table = _csv(render_analysis.to_csv(result))
     frame = result.to_frame()
-    assert tuple(table[0]) == names(analysis_columns(result, csv=True))
-    assert tuple(frame.columns) == names(analysis_columns(result, csv=False))
-    in_csv = [c for c in frame.columns if c in table[0]]
-    assert in_csv == table[0]  # the CSV's columns are the frame's, in the frame's order
-    assert len(table) - 1 == len(frame) == len(result.sensors) * len(result.profiles)
-    assert ("stderr" in table[0]) == ("method" in kwargs)  # the probe sees the numeric case
+    assert tuple(table[0]) == names(in_csv(columns))
+    assert tuple(frame.columns) == names(written(columns, "frame")) == names(columns)
+    # every record is in the JSON: a column added without a JSON key fails here
+    assert written(columns, "json") == columns
+    assert len(table) - 1 == len(frame) == len(rows) == len(result.sensors) * len(
+        result.profiles)
+    entries = json.loads(render_analysis.to_json(result))["results"]
+    keys = {c.key or c.name: c for c in columns}
+    assert len(keys) == len(columns)  # one key path per column
+    seen_null = seen_only = 0
+    for k, (row, entry) in enumerate(zip(rows, entries, strict=True)):
+        found = _leaves(entry, set(keys))
+        expected = [c.key or c.name for c in columns if c.only is None or c.only(row)]
+        # no key outside the declaration, none of its keys missing, in its order
+        assert [path for path, _ in found] == expected
+        seen_only += len(expected) < len(columns)
+        for path, value in found:
+            want = frame[keys[path].name].iloc[k]
+            want = want.item() if hasattr(want, "item") else want
+            if isinstance(want, float) and math.isnan(want):
+                assert value is None, path
+                seen_null += 1
+            elif isinstance(want, tuple):
+                assert value == list(want), path
+            else:
+                assert value == want, path
+    # the probes: the spec-form, lot, worst-phase and unrecorded cases have keys on some
+    # rows only; the unrecorded case has unknown errors, written null
+    assert bool(seen_only) == (case == "lot-and-worst" or "specs" in result.sources)
+    assert bool(seen_null) == (case == "unrecorded")
+    assert ("stderr" in table[0]) == (case == "numeric")
+
+
+@pytest.mark.parametrize("case", list(ANALYZE_CASES))
+def test_analyze_columns_read_alike_one_row_or_many(case: str, tmp_path) -> None:
+    # a column that reads many rows at once (``many``, the fast writers' path) reads what
+    # it reads one row at a time (``value``): the JSON, the CSV and the frame agree
+    from gyrovib.presentation.frames import analysis_cells, analysis_columns
+
+    result = _analysis(case, tmp_path)
+    rows = analysis_cells(result)
+    fast = 0
+    for column in analysis_columns(result):
+        if column.many is None:
+            continue
+        many = list(column.many(rows))
+        one = [column.value(row) for row in rows]
+        assert np.array_equal(np.asarray(many, dtype=object), np.asarray(one, dtype=object)) \
+            or np.allclose(np.asarray(many, float), np.asarray(one, float), rtol=0, atol=0,
+                           equal_nan=True), column.name
+        fast += 1
+    assert fast > 15  # the probe: the numbers of a row are read at once
+
+
+def test_a_column_added_to_analyze_records_is_in_json_csv_and_frame() -> None:
+    # one edit: a column appended to the declaration appears in every output alike, at
+    # its key path in the JSON (here under an object that does not exist yet)
+    import json
+    from dataclasses import replace
+
+    from gyrovib.presentation.frames import analysis_cells, analysis_columns
+    from gyrovib.render.formats import json_text
+
+    result = gyrovib.analyze(sensors="adxrs453")
+    rows = analysis_cells(result)
+    columns = analysis_columns(result)
+    added = (*columns, Column("probe", None, lambda c: c[0] + 10 * c[1], key="extra.probe"))
+    entries = json.loads(json_text(added, rows))
+    assert [e["extra"]["probe"] for e in entries] == [i + 10 * j for i, j in rows]
+    assert _csv(csv_of(added, rows))[0][-1] == "probe"
+    assert tuple(frame_of(added, rows).columns)[-1] == "probe"
+    # a key written on some rows only, declared so, is left out of the others
+    some = (*columns, replace(added[-1], only=lambda c: c[1] == 0))
+    entries = json.loads(json_text(some, rows))
+    assert ["extra" in e for e in entries] == [j == 0 for _, j in rows]
 
 
 # ---------------------------------------------------------------- every declared result
@@ -413,7 +572,7 @@ def test_analyze_markdown_names_its_records(kwargs: dict) -> None:
     cells = render_analysis.markdown_cells(result)
     assert all(c.of is not None for c in cells)  # every column shows a record
     rows = analysis_cells(result)
-    assert _check_cells(cells, analysis_columns(result, csv=False), rows, result.to_frame(),
+    assert _check_cells(cells, analysis_columns(result), rows, result.to_frame(),
                         render_analysis.to_markdown(result)) > 5 * len(rows)
     assert ("± stderr" in [c.title for c in cells]) == ("method" in kwargs)  # the probe
 

@@ -1,4 +1,6 @@
-"""The JSON renderer writes exactly what json.dumps of the per-row document gives."""
+"""analyze's JSON writer (render/formats.json_text over analyze's declared records) writes
+exactly what json.dumps gives for the document of one dict per row (render/formats.json_of
+over the same records): the fast text and the plain reference agree byte for byte."""
 
 from __future__ import annotations
 
@@ -10,10 +12,19 @@ import pytest
 
 from gyrovib import api
 from gyrovib.catalog.loader import merge, parse_catalog
+from gyrovib.presentation.frames import analysis_cells, analysis_columns
 from gyrovib.render import analysis as render
+from gyrovib.render import formats
+from gyrovib.render.common import dumps
 from tests.conftest import MIXED_FORMS
 
 CATALOG = MIXED_FORMS
+
+
+def reference(result) -> str:
+    """The document built one dict per row (json_of) and written by json.dumps."""
+    rows = formats.json_of(analysis_columns(result), analysis_cells(result))
+    return dumps({**render._head(result), "results": rows})
 
 
 @pytest.fixture
@@ -25,18 +36,18 @@ def result():
 def test_same_text_as_the_row_by_row_document(result):
     assert result.warnings  # a warning with non-ASCII text is part of the check
     text = render.to_json(result)
-    assert text == render._to_json_rows(result)
+    assert text == reference(result)
     assert json.loads(text)["results"][0]["warnings"]
 
 
 def test_same_text_in_blocks(result, monkeypatch):
-    monkeypatch.setattr(render, "_BLOCK", 2)
-    assert render.to_json(result) == render._to_json_rows(result)
+    monkeypatch.setattr(formats, "_BLOCK", 2)
+    assert render.to_json(result) == reference(result)
 
 
 def test_bundled_catalogues_same_text():
     result = api.analyze(api.load())
-    assert render.to_json(result) == render._to_json_rows(result)
+    assert render.to_json(result) == reference(result)
 
 
 def test_stderr_column_with_non_finite_values(result):
@@ -44,7 +55,7 @@ def test_stderr_column_with_non_finite_values(result):
     stderr[0, 0] = np.inf
     numeric = dataclasses.replace(result, method="numeric", stderr=stderr, samples=64, seed=0)
     text = render.to_json(numeric)
-    assert text == render._to_json_rows(numeric)
+    assert text == reference(numeric)
     assert json.loads(text)["results"][0]["stderr"] is None
 
 
@@ -69,5 +80,5 @@ def test_no_sensors():
     empty = dataclasses.replace(result, sensors=(), error=dataclasses.replace(
         result.error, **{f.name: getattr(result.error, f.name)[:0]
                          for f in dataclasses.fields(result.error)}), warnings={})
-    assert render.to_json(empty) == render._to_json_rows(empty)
+    assert render.to_json(empty) == reference(empty)
     assert json.loads(render.to_json(empty))["results"] == []

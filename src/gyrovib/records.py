@@ -2,9 +2,10 @@
 read it from one row; and the pandas DataFrame of them (optional extra ``gyrovib[pandas]``).
 
 A result that declares its columns (:class:`Column`) gets its CSV
-(:func:`gyrovib.render.formats.csv_of`) and its DataFrame (:func:`frame_of`) from the same
-tuple, so a column added, removed or moved changes both alike. pandas is imported only
-when a frame is built.
+(:func:`gyrovib.render.formats.csv_of`), its JSON entries
+(:func:`gyrovib.render.formats.json_of`, :func:`~gyrovib.render.formats.json_text`) and
+its DataFrame (:func:`frame_of`) from the same tuple, so a column added, removed or moved
+changes them alike. pandas is imported only when a frame is built.
 """
 
 from __future__ import annotations
@@ -36,7 +37,14 @@ class Column(Generic[Row]):
     row's warnings). ``cell``: how the CSV
     writes the value, where it differs from the frame (:func:`known`: a non-finite number
     empty). ``key``: where the JSON keeps it, a path of keys joined by dots (a number
-    part: the place in a list, ``rate.0``); None: under its name."""
+    part: the place in a list, ``rate.0``); None: under its name. ``only``: the rows
+    whose JSON has the key (a spec-form row's envelope, a lot's ``lot_mean``); None:
+    every row. The JSON writes NaN (unknown) as null, and an infinity too (an unbounded
+    figure) unless ``finite``: then an infinity is an overflow, which the JSON refuses
+    (ValueError) rather than write as a number it is not. ``many``: every value of a list
+    of rows at once, for the fast writers (:func:`columns_of`,
+    :func:`gyrovib.render.formats.json_text`); it must read what ``value`` reads (made
+    from the same data: a test compares them), and without it each row is read alone."""
 
     name: str
     unit: str | None
@@ -44,6 +52,9 @@ class Column(Generic[Row]):
     skip: tuple[str, ...] = ()
     cell: Callable[[Any], Any] | None = None
     key: str | None = None
+    only: Callable[[Row], bool] | None = None
+    finite: bool = False
+    many: Callable[[Sequence[Row]], Sequence[Any]] | None = None
 
 
 def known(value: float) -> float | None:
@@ -89,9 +100,16 @@ def dataframe(columns: dict[str, Any], attrs: dict[str, Any]) -> Any:
     return frame
 
 
-def columns_of(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> dict[str, list[Any]]:
+def values_of(column: Column[Row], rows: Sequence[Row]) -> Sequence[Any]:
+    """The column's value at every row, in order (at once where it can: ``many``, which
+    may give an array)."""
+    return list(map(column.value, rows)) if column.many is None else column.many(rows)
+
+
+def columns_of(columns: Sequence[Column[Row]],
+               rows: Sequence[Row]) -> dict[str, Sequence[Any]]:
     """Every column's values over the rows, by name, in the columns' order."""
-    return {c.name: [c.value(row) for row in rows] for c in columns}
+    return {c.name: values_of(c, rows) for c in columns}
 
 
 def frame_of(columns: Sequence[Column[Row]], rows: Sequence[Row],

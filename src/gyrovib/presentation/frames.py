@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -106,6 +106,39 @@ def _of_cell(values: list[Any], k: int | None = None) -> Callable[[Cell], Any]:
     return lambda c: values[c[0]][c[1]][k]
 
 
+class _Index:
+    """The sensor and the profile indices of a list of rows, as arrays (the last list's
+    kept: the columns of a block of rows are read one after the other)."""
+
+    def __init__(self) -> None:
+        self._last: tuple[Sequence[Cell], Any] | None = None
+
+    def __call__(self, rows: Sequence[Cell]) -> Any:
+        if self._last is None or self._last[0] is not rows:
+            index = np.array(rows, dtype=np.intp).reshape(-1, 2)
+            self._last = (rows, (index[:, 0], index[:, 1]))
+        return self._last[1]
+
+
+def _cells(array: Any, index: _Index) -> dict[str, Any]:
+    """``value`` and ``many`` of a column read from a (sensors, profiles) array at a row
+    (:class:`~gyrovib.records.Column`): one row's value, or the values of a list of rows
+    as an array (``index``: their indices)."""
+    values = np.asarray(array)
+    listed = functools.cache(values.tolist)
+    return {"value": lambda c: listed()[c[0]][c[1]], "many": lambda rows: values[index(rows)]}
+
+
+def _per_sensor(values: Sequence[Any]) -> dict[str, Any]:
+    """``value`` and ``many`` of a column that is the row's sensor's entry of ``values``."""
+    return {"value": lambda c: values[c[0]], "many": lambda rows: [values[i] for i, _ in rows]}
+
+
+def _per_profile(values: Sequence[Any]) -> dict[str, Any]:
+    """``value`` and ``many`` of a column that is the row's profile's entry of ``values``."""
+    return {"value": lambda c: values[c[1]], "many": lambda rows: [values[j] for _, j in rows]}
+
+
 def _of_profile(values: list[Any], k: int,
                 profile: Callable[[Any], int] = lambda c: c[1]) -> Callable[[Any], Any]:
     """Read a (profiles, k) nested list at a row's profile (``profile``: where the row
@@ -127,63 +160,73 @@ def _always(_: Cell) -> bool:
     return True
 
 
-def analysis_columns(result: AnalysisResult, *, csv: bool) -> tuple[Column[Cell], ...]:
+def analysis_columns(result: AnalysisResult) -> tuple[Column[Cell], ...]:
     """``analyze``'s records, declared once, one row per sensor × profile (profiles
-    outermost, the JSON's order): the columns of ``--format csv`` (``csv``) or of the
-    DataFrame, in order. The frame has every term (``additive_g2`` with or without linear
-    vibration) and, beyond the CSV, ``source``, a datasheet sensor's ``envelope_*`` and
-    the ``worst_phases`` found; a value that is not known is None (CSV: empty)."""
-    return (*_value_columns(result, csv), *_tail_columns(result, csv))
+    outermost): the columns of the DataFrame, of ``--format csv`` (those that do not skip
+    it) and of the JSON's ``results`` entries (each at its key path), in order.
+
+    The CSV has ``additive_g2`` only when some profile has a linear vibration, and not
+    ``source``, a datasheet sensor's ``envelope_*`` nor the ``worst_phases`` found; the
+    JSON has the envelope on a datasheet sensor's rows only, ``uncertainty`` where it is
+    known, ``lot_mean`` on a lot's rows and ``worst_phases`` where phases were searched.
+    A value that is not known is NaN (JSON: null, CSV: empty); an error that overflowed
+    is refused by the JSON, never written as a number."""
+    index = _Index()  # the rows' indices, shared by the columns read from arrays
+    return (*_value_columns(result, index), *_tail_columns(result, index))
 
 
-def _value_columns(result: AnalysisResult, csv: bool) -> list[Column[Cell]]:
+def _value_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
     """The row's names, its carrier rate and its numbers: terms, coefficients, the error."""
     e = result.error
-    terms = [[[*t, *g] for t, g in zip(ts, gs, strict=True)]
-             for ts, gs in zip(e.additive_terms.tolist(), e.extra_terms.tolist(), strict=True)]
-    qs = e.multiplicative_coefficients.tolist()
+    terms = [*np.moveaxis(e.additive_terms, -1, 0), *np.moveaxis(e.extra_terms, -1, 0)]
+    qs = np.moveaxis(e.multiplicative_coefficients, -1, 0)
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
-    parts = {name: np.asarray(getattr(e, name)).tolist()
-             for name in ("additive", "multiplicative", "total", "rms")}
-    shown = [k for k, t in enumerate(JSON_TERMS) if not csv or t != "g2" or result.has_linear]
+    g2 = () if result.has_linear else ("csv",)  # the CSV's g² column: with linear vibration
     columns: list[Column[Cell]] = [
-        Column("sensor", None, lambda c: result.sensors[c[0]]),
-        Column("profile", None, lambda c: result.profiles[c[1]]),
-        *(Column(f"rate_{axis}", "rate", _of_profile(rates, k))
+        Column("sensor", None, **_per_sensor(result.sensors)),
+        Column("profile", None, **_per_profile(result.profiles)),
+        *(Column(f"rate_{axis}", "rate", key=f"rate.{k}", finite=True,
+                 **_per_profile([rate[k] for rate in rates]))
           for k, axis in enumerate(AXES)),
-        *(Column(f"additive_{JSON_TERMS[k]}", "rate", _of_cell(terms, k))
-          for k in shown),
-        *(Column(f"multiplicative_{q}", "rate", _of_cell(qs, k))
-          for k, q in enumerate(MULTIPLICATIVE_TERMS[:e.multiplicative_coefficients.shape[-1]])),
-        *(Column(name, "rate", _of_cell(values))
-          for name, values in parts.items()),
+        *(Column(f"additive_{t}", "rate", skip=g2 if t == "g2" else (),
+                 key=f"additive_terms.{t}", finite=True, **_cells(terms[k], index))
+          for k, t in enumerate(JSON_TERMS)),
+        *(Column(f"multiplicative_{q}", "rate", key=f"multiplicative_coefficients.{q}",
+                 finite=True, **_cells(qs[k], index))
+          for k, q in enumerate(MULTIPLICATIVE_TERMS[:len(qs)])),
+        *(Column(name, "rate", finite=True, **_cells(getattr(e, name), index))
+          for name in ("additive", "multiplicative", "total", "rms")),
     ]
-    if result.stderr is not None:
-        stderr = np.asarray(result.stderr).tolist()
-        columns.append(Column("stderr", "rate", lambda c: stderr[c[0]][c[1]]))
+    if result.stderr is not None:  # numeric: a standard error that is not finite is null
+        columns.append(Column("stderr", "rate", **_cells(result.stderr, index)))
     return columns
 
 
-def _tail_columns(result: AnalysisResult, csv: bool) -> list[Column[Cell]]:
-    """What follows the numbers: the sensor's form and envelope (frame only), its lot's
-    uncertainty, saturation, the phases found (frame only) and the warnings."""
-    columns: list[Column[Cell]] = []
-    if not csv:
-        columns.append(Column("source", None, lambda c: result.source(c[0])))
-        columns += _envelope_columns(result)
+def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
+    """What follows the numbers: the sensor's form and envelope (not in the CSV), its
+    lot's uncertainty, saturation, the phases found (not in the CSV) and the warnings."""
+    sources = [result.source(i) for i in range(len(result.sensors))]
+    columns: list[Column[Cell]] = [Column("source", None, skip=("csv",),
+                                          **_per_sensor(sources))]
+    columns += _envelope_columns(result)
     if result.uncertainty is not None:
         u = np.asarray(result.uncertainty).tolist()
-        columns.append(Column("uncertainty_total", "rate", (lambda c: _known(u[c[0]][c[1]]))
-                              if csv else (lambda c: u[c[0]][c[1]])))  # CSV: unknown empty
-        columns.append(Column("lot_mean", None, lambda c: result.is_lot(c[0])))
-    saturated = result.saturated
-    columns.append(Column("saturated", None,
-                          lambda c: bool(saturated is not None and saturated[c[0], c[1]])))
-    if result.worst_phases and not csv:
-        columns.append(Column("worst_phases", None, lambda c: None if c not in
-                              result.worst_phases else [dict(g) for g in
-                                                        result.worst_phases[c]]))
-    columns.append(Column("warnings", None, lambda c: tuple(result.warnings.get(c, ()))))
+        columns += [Column("uncertainty_total", "rate", lambda c: u[c[0]][c[1]], cell=_known,
+                           key="uncertainty.total",
+                           only=lambda c: math.isfinite(u[c[0]][c[1]])),
+                    Column("lot_mean", None, lambda c: result.is_lot(c[0]),
+                           only=lambda c: result.is_lot(c[0]))]
+    shape = (len(result.sensors), len(result.profiles))
+    saturated = np.zeros(shape, bool) if result.saturated is None else result.saturated
+    columns.append(Column("saturated", None, **_cells(np.asarray(saturated, dtype=bool), index)))
+    if result.worst_phases:
+        phases = result.worst_phases
+        columns.append(Column("worst_phases", None, lambda c: None if c not in phases
+                              else [dict(g) for g in phases[c]], skip=("csv",),
+                              only=lambda c: c in phases))
+    warnings = result.warnings
+    columns.append(Column("warnings", None, lambda c: tuple(warnings.get(c, ())),
+                          many=lambda rows: [tuple(warnings.get(c, ())) for c in rows]))
     return columns
 
 
@@ -203,20 +246,27 @@ def analysis_frame(result: AnalysisResult) -> Any:
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
     if result.samples is not None:
         attrs.update(samples=result.samples, seed=result.seed)
-    return frame_of(analysis_columns(result, csv=False), cells, attrs)
+    return frame_of(analysis_columns(result), cells, attrs)
 
 
 def _envelope_columns(result: AnalysisResult) -> list[Column[Cell]]:
-    """A datasheet sensor's worst polynomial and RMS bound (section 11): NaN where not
-    known."""
+    """A datasheet sensor's worst polynomial and RMS bound (section 11): NaN on a
+    coefficient-form sensor's rows, whose JSON has no ``envelope``; not in the CSV."""
     if result.worst_coefficients is None or result.rms_bound is None:
         return []
     worst = np.asarray(result.worst_coefficients).tolist()
     bound = np.asarray(result.rms_bound).tolist()
-    return [*(Column(f"envelope_worst_coefficients_{name}", None,
-                     _of_cell(worst, k))
+    specs = [result.source(i) == "specs" for i in range(len(result.sensors))]
+
+    def spec_row(c: Cell) -> bool:
+        return specs[c[0]]
+
+    return [*(Column(f"envelope_worst_coefficients_{name}", None, _of_cell(worst, k),
+                     skip=("csv",), key=f"envelope.worst_coefficients.{name}",
+                     only=spec_row, finite=True)
               for k, name in enumerate(WORST_COEFFICIENTS)),
-            Column("envelope_rms_bound", "rate", lambda c: bound[c[0]][c[1]])]
+            Column("envelope_rms_bound", "rate", lambda c: bound[c[0]][c[1]], skip=("csv",),
+                   key="envelope.rms_bound", only=spec_row, finite=True)]
 
 
 def _of_row(values: Any) -> Callable[[int], float]:

@@ -7,11 +7,12 @@ result's Markdown and terminal table come from one declaration of their cells
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
-from gyrovib.records import Column, in_csv, names, records, written
+from gyrovib.records import Column, in_csv, names, records, values_of, written
 from gyrovib.render.common import csv_text, fmt, markdown_table, number
 
 if TYPE_CHECKING:  # at run time rich is imported by table_of
@@ -49,30 +50,184 @@ def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row], *,
                                      for values in records(written, rows)))
 
 
-def _json_value(value: Any) -> Any:
-    """A value as JSON writes it: a float that is not finite (unbounded, unknown) as null."""
-    return number(value) if isinstance(value, float) else value
+def _json_value(value: Any, finite: bool) -> Any:
+    """A value as JSON writes it: a float that is not finite (unknown, unbounded) as null;
+    with ``finite`` an infinity stays, for the JSON encoder to refuse (an overflow)."""
+    if not isinstance(value, float) or (finite and value == value):
+        return value
+    return number(value)
 
 
 def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[str, Any]]:
     """One JSON object per row: each column's value at its key path (:attr:`Column.key`,
-    else its name; a column that skips ``json`` left out), nested objects and lists made
-    in the columns' order."""
+    else its name; a column that skips ``json`` left out, and one with ``only`` on the
+    rows it does not hold for), nested objects and lists made in the columns' order."""
     shown = written(columns, "json")
     paths = [(c.key or c.name).split(".") for c in shown]
     out = []
-    for values in records(shown, rows):
+    for row in rows:
         entry: dict[str, Any] = {}
-        for path, value in zip(paths, values, strict=True):
+        for c, path in zip(shown, paths, strict=True):
+            if c.only is not None and not c.only(row):
+                continue
             node: Any = entry
             for part, after in itertools.pairwise(path):
                 node = node.setdefault(part, [] if after.isdigit() else {})
+            value = _json_value(c.value(row), c.finite)
             if path[-1].isdigit():
-                node.append(_json_value(value))
+                node.append(value)
             else:
-                node[path[-1]] = _json_value(value)
+                node[path[-1]] = value
         out.append(entry)
     return out
+
+
+# ------------------------------------------------------------------ the fast JSON text
+
+#: Rows encoded at a time by :func:`json_text`: bounds the memory of the encoded cells.
+_BLOCK = 4096
+
+#: A key of the entries: its name, its columns (in the order its text writes them) and
+#: the text of its value (``%s`` for each column).
+_Key = tuple[str, list[int], str]
+
+
+def json_text(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> str:
+    """The text ``json.dumps(json_of(columns, rows), allow_nan=False)`` writes, without a
+    dict per row: each column is encoded at once (``float.__repr__`` is what the json
+    encoder writes for a float), the rows filled into one template made from the key
+    paths, a block of rows at a time. A key on some rows only (``only``) fills a slot of
+    its own with its text, or nothing; every column under one key shares it, and the
+    first key is on every row."""
+    shown = written(columns, "json")
+    keys = _keys(shown)
+    template = "{" + "".join(("%s" if shown[found[0]].only is not None
+                              else (", " if k else "") + _key_text(name, text))
+                             for k, (name, found, text) in enumerate(keys)) + "}"
+    blocks = []
+    for start in range(0, len(rows), _BLOCK):
+        block = rows[start:start + _BLOCK]
+        cells: list[list[str]] = []
+        for name, found, text in keys:
+            held = [shown[k] for k in found]
+            if held[0].only is None:
+                cells += [_encoded(values_of(c, block), c.finite) for c in held]
+            else:
+                cells.append(_slot(", " + _key_text(name, text), held, block))
+        blocks.append(", ".join([template % values for values in zip(*cells, strict=True)]))
+    return "[" + ", ".join(blocks) + "]"
+
+
+def _key_text(name: str, text: str) -> str:
+    """``"name": text``, the key as json writes it, a ``%`` in it doubled."""
+    import json  # not at import time: the tables do without it
+
+    return json.dumps(name).replace("%", "%%") + ": " + text
+
+
+def _keys(shown: Sequence[Column[Row]]) -> list[_Key]:
+    """The entries' keys in order, each with its columns and its text (``%s`` for a
+    column); raises ValueError where a key is on some rows only but not all its columns
+    say so alike, or where the first key is."""
+    tree: dict[str, Any] = {}
+    for k, c in enumerate(shown):
+        path = (c.key or c.name).split(".")
+        node = tree
+        for part in path[:-1]:
+            node = node.setdefault(part, {})
+        node[path[-1]] = k
+    keys = []
+    for name, node in tree.items():
+        found: list[int] = []
+        text = _node_text(node, found)
+        if len({id(shown[k].only) for k in found}) != 1 or (
+                not keys and shown[found[0]].only is not None):
+            raise ValueError(f"JSON key {name!r}: its columns disagree on the rows it is on,"
+                             " or the first key is not on every row")
+        keys.append((name, found, text))
+    return keys
+
+
+def _node_text(node: Any, found: list[int]) -> str:
+    """The text of a value of the entries: ``%s`` for a column (its index appended to
+    ``found``), an object, or a list where the keys are numbers."""
+    if isinstance(node, int):
+        found.append(node)
+        return "%s"
+    parts = [_node_text(child, found) for child in node.values()]
+    if all(key.isdigit() for key in node):
+        return "[" + ", ".join(parts) + "]"
+    return "{" + ", ".join(_key_text(key, part) for key, part in
+                           zip(node, parts, strict=True)) + "}"
+
+
+def _slot(text: str, held: Sequence[Column[Row]], block: Sequence[Row]) -> list[str]:
+    """The text of a key on some rows only (``text``: ``, "key": …``), per row: filled
+    where its ``only`` holds, else empty."""
+    only = held[0].only
+    assert only is not None
+    at = [k for k, row in enumerate(block) if only(row)]
+    out = [""] * len(block)
+    if at:
+        chosen = [block[k] for k in at]
+        values = zip(*(_encoded(values_of(c, chosen), c.finite) for c in held),
+                     strict=True)
+        for k, cells in zip(at, values, strict=True):
+            out[k] = text % cells
+    return out
+
+
+def _encoded(values: Any, finite: bool) -> list[str]:
+    """Each value as the json encoder writes it (``allow_nan=False``): a float as its repr
+    (what the encoder writes), NaN as null and an infinity as null, or refused with
+    ``finite``. A column of floats is encoded a distinct value at a time (by its bits: 0.0
+    and -0.0 stay apart), as a column of a catalogue's results repeats many (zeros, a
+    profile's rate)."""
+    import numpy as np  # not at import time: the tables do without it
+
+    if isinstance(values, np.ndarray) and values.dtype == np.float64:
+        array = values
+    elif isinstance(values, np.ndarray):
+        return _encoded(values.tolist(), finite)
+    elif set(map(type, values)) == {float}:
+        array = np.array(values, dtype=float)
+    else:
+        return _encoded_any(values, finite)
+    bits, inverse = np.unique(array.view(np.int64), return_inverse=True)
+    distinct = bits.view(np.float64).tolist()
+    texts = list(map(float.__repr__, distinct))
+    if "nan" in texts or "inf" in texts or "-inf" in texts:
+        texts = [_float_text(v, finite) for v in distinct]
+    return list(np.array(texts, dtype=object)[inverse.ravel()].tolist())
+
+
+def _float_text(value: float, finite: bool) -> str:
+    if value != value:
+        return "null"
+    if math.isinf(value):
+        if finite:
+            raise ValueError("Out of range float values are not JSON compliant")
+        return "null"
+    return float.__repr__(value)
+
+
+#: The kinds of value :func:`_encoded_any` encodes once per distinct value.
+_NAMES = {str, bool, type(None), tuple}
+
+
+def _encoded_any(values: list[Any], finite: bool) -> list[str]:
+    """:func:`_encoded` of a column that is not all floats. A column of texts, flags and
+    tuples of texts (a row's warnings) is encoded a distinct value at a time (none of
+    these equals another kind's value, as 1 would equal True)."""
+    import json  # not at import time: the tables do without it
+
+    if set(map(type, values)) <= _NAMES:
+        distinct = set(values)
+        if all(type(x) is str for v in distinct if type(v) is tuple for x in v):
+            texts = {v: json.dumps(v) for v in distinct}
+            return list(map(texts.__getitem__, values))
+    return [_float_text(v, finite) if type(v) is float else json.dumps(v, allow_nan=False)
+            for v in values]
 
 
 # ------------------------------------------------------------------ the human tables
