@@ -136,7 +136,7 @@ def _keys(shown: Sequence[Column[Row]]) -> list[_Key]:
         for part in path[:-1]:
             node = node.setdefault(part, {})
         node[path[-1]] = k
-    keys = []
+    keys: list[_Key] = []
     for name, node in tree.items():
         found: list[int] = []
         text = _node_text(node, found)

@@ -1,0 +1,94 @@
+"""The fast JSON writer over declared records (render/formats.json_text) against its plain
+reference: ``json.dumps(json_of(...), allow_nan=False)``, one dict per row, which the
+standard library encodes. Each case is built so that a shortcut of the fast writer would
+show: values repeated across rows (encoded once), 0.0 beside -0.0 (equal, but written
+apart), NaN (null), an infinity (null, or refused where the column says it overflowed),
+texts with '%' and non-ASCII characters, keys on some rows only, lists and nested objects,
+and blocks of rows."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from gyrovib.records import Column
+from gyrovib.render import formats
+from gyrovib.render.formats import json_of, json_text
+
+ROWS = list(range(11))
+
+
+def reference(columns, rows) -> str:
+    return json.dumps(json_of(columns, rows), allow_nan=False)
+
+
+def _value(k: int) -> float:
+    # repeats (k % 4), signed zeros, NaN, and numbers that need all 17 digits
+    return [0.0, -0.0, math.nan, 0.1 + 0.2, 1e-300, -2.5e16][k % 6] * (1 + (k % 4 == 3))
+
+
+COLUMNS = (
+    Column("name", None, lambda k: f"s-{k % 3} 50 % Δ"),
+    Column("x", None, _value),
+    Column("rate_x1", None, lambda k: float(k), key="rate.0"),
+    Column("rate_x2", None, lambda k: -float(k), key="rate.1"),
+    Column("a", None, lambda k: k * 0.5, key="terms.a"),
+    Column("b", None, lambda k: math.inf if k == 4 else 1.0, key="terms.b"),
+    Column("flag", None, lambda k: k % 2 == 0),
+    Column("count", None, lambda k: k),
+    Column("maybe", None, lambda k: None if k % 3 else "yes"),
+    Column("lot", None, lambda k: True, only=lambda k: k % 5 == 0),
+    Column("u", None, lambda k: k / 7, key="uncertainty.total", only=lambda k: k > 6),
+    Column("phases", None, lambda k: [{"2": 90.0}], only=lambda k: k == 3),
+    Column("warnings", None, lambda k: ("ω saturates",) * (k % 2)),
+)
+
+
+def test_same_text_as_json_dumps_of_the_entries() -> None:
+    text = json_text(COLUMNS, ROWS)
+    assert text == reference(COLUMNS, ROWS)
+    entries = json.loads(text)
+    # the probes: a key on some rows only, -0.0 kept apart from 0.0, NaN and inf as null
+    assert [("lot" in e) for e in entries] == [k % 5 == 0 for k in ROWS]
+    assert text.count('"x": -0.0') == 2 and text.count('"x": 0.0,') == 2
+    assert entries[2]["x"] is None and entries[4]["terms"]["b"] is None
+
+
+@pytest.mark.parametrize("block", [1, 2, 5, 4096])
+def test_same_text_in_any_block_of_rows(monkeypatch, block: int) -> None:
+    monkeypatch.setattr(formats, "_BLOCK", block)
+    assert json_text(COLUMNS, ROWS) == reference(COLUMNS, ROWS)
+
+
+def test_an_overflow_is_refused_where_the_column_says_so() -> None:
+    finite = (*COLUMNS[:5], Column("b", None, COLUMNS[5].value, key="terms.b", finite=True))
+    with pytest.raises(ValueError, match="JSON compliant"):
+        json_text(finite, ROWS)
+    with pytest.raises(ValueError, match="JSON compliant"):
+        reference(finite, ROWS)
+    # NaN stays unknown (null) in such a column
+    nan = (COLUMNS[0], Column("x", None, _value, finite=True))
+    assert json_text(nan, ROWS) == reference(nan, ROWS)
+    assert json.loads(json_text(nan, ROWS))[2]["x"] is None
+
+
+def test_columns_read_many_rows_at_once() -> None:
+    many = tuple(Column(c.name, c.unit, c.value, key=c.key, only=c.only,
+                        many=lambda rows, read=c.value: [read(k) for k in rows])
+                 for c in COLUMNS)
+    assert json_text(many, ROWS) == reference(COLUMNS, ROWS)
+
+
+def test_a_key_on_some_rows_must_be_declared_so_by_all_its_columns() -> None:
+    split = (COLUMNS[0], Column("u", None, float, key="u.a", only=lambda k: k > 2),
+             Column("v", None, float, key="u.b"))
+    with pytest.raises(ValueError, match="'u'"):
+        json_text(split, ROWS)
+    with pytest.raises(ValueError, match="first key"):
+        json_text((COLUMNS[9], COLUMNS[0]), ROWS)
+
+
+def test_no_rows() -> None:
+    assert json_text(COLUMNS, []) == reference(COLUMNS, []) == "[]"
