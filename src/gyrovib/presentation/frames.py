@@ -33,6 +33,7 @@ is missing the error names the extra to install.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
@@ -115,7 +116,8 @@ class _Index:
 
     def __call__(self, rows: Sequence[Cell]) -> Any:
         if self._last is None or self._last[0] is not rows:
-            index = np.array(rows, dtype=np.intp).reshape(-1, 2)
+            index = np.fromiter(itertools.chain.from_iterable(rows), dtype=np.intp,
+                                count=2 * len(rows)).reshape(-1, 2)
             self._last = (rows, (index[:, 0], index[:, 1]))
         return self._last[1]
 

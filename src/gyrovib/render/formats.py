@@ -105,16 +105,17 @@ def json_text(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> str:
                               else (", " if k else "") + _key_text(name, text))
                              for k, (name, found, text) in enumerate(keys)) + "}"
     blocks = []
+    seen: dict[Any, str] = {}
     for start in range(0, len(rows), _BLOCK):
         block = rows[start:start + _BLOCK]
         cells: list[list[str]] = []
         for name, found, text in keys:
             held = [shown[k] for k in found]
             if held[0].only is None:
-                cells += [_encoded(values_of(c, block), c.finite) for c in held]
+                cells += [_encoded(values_of(c, block), c.finite, seen) for c in held]
             else:
-                cells.append(_slot(", " + _key_text(name, text), held, block))
-        blocks.append(", ".join([template % values for values in zip(*cells, strict=True)]))
+                cells.append(_slot(", " + _key_text(name, text), held, block, seen))
+        blocks.append(", ".join(map(template.__mod__, zip(*cells, strict=True))))
     return "[" + ", ".join(blocks) + "]"
 
 
@@ -161,7 +162,8 @@ def _node_text(node: Any, found: list[int]) -> str:
                            zip(node, parts, strict=True)) + "}"
 
 
-def _slot(text: str, held: Sequence[Column[Row]], block: Sequence[Row]) -> list[str]:
+def _slot(text: str, held: Sequence[Column[Row]], block: Sequence[Row],
+          seen: dict[Any, str]) -> list[str]:
     """The text of a key on some rows only (``text``: ``, "key": …``), per row: filled
     where its ``only`` holds, else empty."""
     only = held[0].only
@@ -170,35 +172,34 @@ def _slot(text: str, held: Sequence[Column[Row]], block: Sequence[Row]) -> list[
     out = [""] * len(block)
     if at:
         chosen = [block[k] for k in at]
-        values = zip(*(_encoded(values_of(c, chosen), c.finite) for c in held),
+        values = zip(*(_encoded(values_of(c, chosen), c.finite, seen) for c in held),
                      strict=True)
         for k, cells in zip(at, values, strict=True):
             out[k] = text % cells
     return out
 
 
-def _encoded(values: Any, finite: bool) -> list[str]:
+def _encoded(values: Any, finite: bool, seen: dict[Any, str]) -> list[str]:
     """Each value as the json encoder writes it (``allow_nan=False``): a float as its repr
     (what the encoder writes), NaN as null and an infinity as null, or refused with
-    ``finite``. A column of floats is encoded a distinct value at a time (by its bits: 0.0
-    and -0.0 stay apart), as a column of a catalogue's results repeats many (zeros, a
-    profile's rate)."""
+    ``finite``. A column of floats is encoded at once (a column of +0.0, a term a
+    catalogue's profiles do not excite, as one text); ``seen``: the texts of the names
+    already encoded (:func:`_encoded_any`)."""
     import numpy as np  # not at import time: the tables do without it
 
     if isinstance(values, np.ndarray) and values.dtype == np.float64:
         array = values
     elif isinstance(values, np.ndarray):
-        return _encoded(values.tolist(), finite)
+        return _encoded(values.tolist(), finite, seen)
     elif set(map(type, values)) == {float}:
         array = np.array(values, dtype=float)
     else:
-        return _encoded_any(values, finite)
-    bits, inverse = np.unique(array.view(np.int64), return_inverse=True)
-    distinct = bits.view(np.float64).tolist()
-    texts = list(map(float.__repr__, distinct))
-    if "nan" in texts or "inf" in texts or "-inf" in texts:
-        texts = [_float_text(v, finite) for v in distinct]
-    return list(np.array(texts, dtype=object)[inverse.ravel()].tolist())
+        return _encoded_any(values, finite, seen)
+    if not array.any() and not np.signbit(array).any():
+        return ["0.0"] * len(array)  # all +0.0 (-0.0 is written apart)
+    if np.isfinite(array).all():
+        return list(map(float.__repr__, array.tolist()))
+    return [_float_text(v, finite) for v in array.tolist()]
 
 
 def _float_text(value: float, finite: bool) -> str:
@@ -215,17 +216,18 @@ def _float_text(value: float, finite: bool) -> str:
 _NAMES = {str, bool, type(None), tuple}
 
 
-def _encoded_any(values: list[Any], finite: bool) -> list[str]:
+def _encoded_any(values: list[Any], finite: bool, seen: dict[Any, str]) -> list[str]:
     """:func:`_encoded` of a column that is not all floats. A column of texts, flags and
-    tuples of texts (a row's warnings) is encoded a distinct value at a time (none of
-    these equals another kind's value, as 1 would equal True)."""
+    tuples of texts (a row's warnings) is encoded a distinct value at a time, kept in
+    ``seen`` for the next block of rows (none of these equals another kind's value, as 1
+    would equal True)."""
     import json  # not at import time: the tables do without it
 
     if set(map(type, values)) <= _NAMES:
         distinct = set(values)
         if all(type(x) is str for v in distinct if type(v) is tuple for x in v):
-            texts = {v: json.dumps(v) for v in distinct}
-            return list(map(texts.__getitem__, values))
+            seen.update((v, json.dumps(v)) for v in distinct if v not in seen)
+            return list(map(seen.__getitem__, values))
     return [_float_text(v, finite) if type(v) is float else json.dumps(v, allow_nan=False)
             for v in values]
 
