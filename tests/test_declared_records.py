@@ -74,6 +74,45 @@ def test_a_column_moved_in_the_declaration_moves_in_csv_and_frame(mission_result
     assert header[0] == names(mission_result.records())[-1] and header[-1] == "sensor"
 
 
+def test_mission_json_entries_hold_the_records_values(mission_result) -> None:
+    # mission's JSON stays a nested document (its segments, its budget object; keys in
+    # another order than the CSV's: docs/architecture.md), so its keys are not the
+    # declaration's; every figure it shares with the declared records is the frame's
+    # value, read where the document keeps it (null: None or NaN in the frame)
+    import json
+    import math
+
+    shared = {"sensor": "sensor", "mission": "mission", "placement": "placement",
+              "mean": "mean", "angle": "angle", "rms": "rms", "saturated": "saturated",
+              "source": "source", "pass": "passed", "status": "status",
+              "worst_segment.profile": "worst_profile", "worst_segment.total": "worst_total",
+              "budget.arw": "theta_arw", "budget.bias_instability": "theta_bias_instability",
+              "budget.rrw": "theta_rrw", "budget.repeatability": "theta_repeatability",
+              "budget.total": "budget_total", "budget.coverage": "coverage"}
+    entries = json.loads(render_mission.to_json(mission_result))["mission"]
+    frame = mission_result.to_frame()
+    assert set(shared.values()) <= set(frame.columns)
+    unknown = 0
+    for k, entry in enumerate(entries):
+        for path, name in shared.items():
+            value: object = entry
+            for part in path.split("."):
+                value = value[part]  # type: ignore[index]
+            want = frame[name].iloc[k]
+            want = want.item() if hasattr(want, "item") else want
+            if value is None:
+                assert want is None or (isinstance(want, float) and math.isnan(want)), name
+                unknown += 1
+            else:
+                assert value == want, name
+        # the two that the document writes its own way: a 0-based index, a list of words
+        assert entry["worst_segment"]["index"] + 1 == frame["worst_segment"].iloc[k]
+        assert " ".join(entry["unknown"]) == frame["unknown"].iloc[k]
+        assert sum(s["duration"] for s in entry["segments"]) == pytest.approx(
+            frame["duration"].iloc[k], rel=1e-12)
+    assert len(entries) == len(frame) and unknown  # the probe meets unknown figures
+
+
 # analyze's cases: the bundled catalogues (spec-form sensors and their envelope, saturated
 # rows, locked harmonics), the numeric method (stderr), a catalogue of a sensor with an
 # uncertainty, a lot and a profile with phase: worst (keys that only some rows have),

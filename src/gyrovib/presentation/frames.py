@@ -115,7 +115,8 @@ class _Index:
         self._last: tuple[Sequence[Cell], Any] | None = None
 
     def __call__(self, rows: Sequence[Cell]) -> Any:
-        if self._last is None or self._last[0] is not rows:
+        if self._last is None or self._last[0] is not rows or len(self._last[1][0]) != len(
+                rows):
             index = np.fromiter(itertools.chain.from_iterable(rows), dtype=np.intp,
                                 count=2 * len(rows)).reshape(-1, 2)
             self._last = (rows, (index[:, 0], index[:, 1]))
