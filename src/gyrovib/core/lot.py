@@ -207,13 +207,6 @@ def monte_carlo_yield(test: Callable[[FloatArray], ArrayLike], mean: ArrayLike,
     return YieldEstimate(value=value, low=lo, high=hi, draws=draws, method="monte-carlo")
 
 
-def exact_estimate(value: ArrayLike) -> YieldEstimate:
-    """An exact yield as a :class:`YieldEstimate` (no interval, no draws)."""
-    v = np.asarray(value, dtype=float)
-    nan = np.full_like(v, np.nan)
-    return YieldEstimate(value=v, low=nan, high=nan.copy(), draws=0, method="exact")
-
-
 def direct_test(g: ArrayLike, budget: ArrayLike) -> Callable[[FloatArray], NDArray[np.bool_]]:
     """The direct test |gᵀc| ≤ Δ* as a function of draws c (k, p); ``g`` (..., p) gives
     verdicts (k, ...)."""
