@@ -33,6 +33,7 @@ from gyrovib.api.study.linear import g2_matrix
 from gyrovib.api.study.prepare import input_response
 from gyrovib.core import runup as kernel
 from gyrovib.core._types import FloatArray
+from gyrovib.core.linear import G2_TERMS
 from gyrovib.core.transmissibility import as_table
 from gyrovib.errors import OptionError
 
@@ -48,7 +49,6 @@ _COLUMN = {"A1": 2, "k2": 3, "k4": 5, "m31": 9, "m32": 10}
 #: The least variance of a step's mean, (deg/s)²: a record without noise (synthetic, or
 #: quantised flat) would otherwise weigh infinitely.
 TINY = 1e-30
-_G_TERMS = ("G11", "G22", "G33", "G12", "G13", "G23")
 _RATE_UNIT = "deg/s"
 
 
@@ -277,7 +277,7 @@ def _catalogue(entry: Any, terms: tuple[str, ...]) -> tuple[list[float], list[bo
     row = coefficient_matrix([entry])[0]
     g = g2_matrix([entry])[0]
     values = {name: float(row[col]) for name, col in _COLUMN.items()}
-    values |= dict(zip(_G_TERMS, map(float, g), strict=True))
+    values |= dict(zip(G2_TERMS, map(float, g), strict=True))
     values["vre"] = float(g[0]) if g[0] == g[1] == g[2] and not np.any(g[3:]) else math.nan
     return [values[t] for t in terms], [False] * n
 
