@@ -35,8 +35,8 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 
@@ -115,6 +115,8 @@ class _Index:
         self._last: tuple[Sequence[Cell], Any] | None = None
 
     def __call__(self, rows: Sequence[Cell]) -> Any:
+        if isinstance(rows, _Cells):
+            return rows.indices()
         if self._last is None or self._last[0] is not rows or len(self._last[1][0]) != len(
                 rows):
             index = np.fromiter(itertools.chain.from_iterable(rows), dtype=np.intp,
@@ -132,14 +134,21 @@ def _cells(array: Any, index: _Index) -> dict[str, Any]:
     return {"value": lambda c: listed()[c[0]][c[1]], "many": lambda rows: values[index(rows)]}
 
 
-def _per_sensor(values: Sequence[Any]) -> dict[str, Any]:
+def _number(value: Any) -> bool:
+    """Whether a column's values are floats (an array of them), else kept as objects."""
+    return isinstance(value, float)
+
+
+def _per_sensor(values: Sequence[Any], index: _Index) -> dict[str, Any]:
     """``value`` and ``many`` of a column that is the row's sensor's entry of ``values``."""
-    return {"value": lambda c: values[c[0]], "many": lambda rows: [values[i] for i, _ in rows]}
+    array = np.array(values, dtype=float if values and _number(values[0]) else object)
+    return {"value": lambda c: values[c[0]], "many": lambda rows: array[index(rows)[0]]}
 
 
-def _per_profile(values: Sequence[Any]) -> dict[str, Any]:
+def _per_profile(values: Sequence[Any], index: _Index) -> dict[str, Any]:
     """``value`` and ``many`` of a column that is the row's profile's entry of ``values``."""
-    return {"value": lambda c: values[c[1]], "many": lambda rows: [values[j] for _, j in rows]}
+    array = np.array(values, dtype=float if values and _number(values[0]) else object)
+    return {"value": lambda c: values[c[1]], "many": lambda rows: array[index(rows)[1]]}
 
 
 def _of_profile(values: list[Any], k: int,
@@ -186,10 +195,10 @@ def _value_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
     g2 = () if result.has_linear else ("csv",)  # the CSV's g² column: with linear vibration
     columns: list[Column[Cell]] = [
-        Column("sensor", None, **_per_sensor(result.sensors)),
-        Column("profile", None, **_per_profile(result.profiles)),
+        Column("sensor", None, **_per_sensor(result.sensors, index)),
+        Column("profile", None, **_per_profile(result.profiles, index)),
         *(Column(f"rate_{axis}", "rate", key=f"rate.{k}", finite=True,
-                 **_per_profile([rate[k] for rate in rates]))
+                 **_per_profile([rate[k] for rate in rates], index))
           for k, axis in enumerate(AXES)),
         *(Column(f"additive_{t}", "rate", skip=g2 if t == "g2" else (),
                  key=f"additive_terms.{t}", finite=True, **_cells(terms[k], index))
@@ -210,7 +219,7 @@ def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
     lot's uncertainty, saturation, the phases found (not in the CSV) and the warnings."""
     sources = [result.source(i) for i in range(len(result.sensors))]
     columns: list[Column[Cell]] = [Column("source", None, skip=("csv",),
-                                          **_per_sensor(sources))]
+                                          **_per_sensor(sources, index))]
     columns += _envelope_columns(result)
     if result.uncertainty is not None:
         u = np.asarray(result.uncertainty).tolist()
@@ -229,7 +238,8 @@ def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
                               only=lambda c: c in phases))
     warnings = result.warnings
     columns.append(Column("warnings", None, lambda c: tuple(warnings.get(c, ())),
-                          many=lambda rows: [tuple(warnings.get(c, ())) for c in rows]))
+                          many=lambda rows: [tuple(warnings.get(c, ())) for c in zip(
+                              *(a.tolist() for a in index(rows)), strict=True)]))
     return columns
 
 
@@ -238,9 +248,48 @@ def _known(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def analysis_cells(result: AnalysisResult) -> list[Cell]:
+class _Cells(Sequence[Cell]):
+    """The (sensor, profile) rows ``start`` to ``stop`` of ``n_sensors`` sensors, profiles
+    outermost: each pair made when it is read (a catalogue's results are many rows), and
+    their indices as arrays at once (:meth:`indices`)."""
+
+    def __init__(self, n_sensors: int, start: int, stop: int) -> None:
+        self._n, self._start, self._stop = n_sensors, start, max(start, stop)
+
+    def __len__(self) -> int:
+        return self._stop - self._start
+
+    @overload
+    def __getitem__(self, k: int) -> Cell: ...
+
+    @overload
+    def __getitem__(self, k: slice) -> _Cells: ...
+
+    def __getitem__(self, k: int | slice) -> Cell | _Cells:
+        if isinstance(k, slice):
+            start, stop, step = k.indices(len(self))
+            if step != 1:
+                raise ValueError("analyze's rows are sliced in order")
+            return _Cells(self._n, self._start + start, self._start + stop)
+        if not -len(self) <= k < len(self):
+            raise IndexError(k)
+        profile, sensor = divmod(self._start + k % len(self), self._n)
+        return sensor, profile
+
+    def __iter__(self) -> Iterator[Cell]:
+        n = self._n
+        return ((k % n, k // n) for k in range(self._start, self._stop))
+
+    def indices(self) -> tuple[Any, Any]:
+        """The rows' sensor and profile indices, as arrays."""
+        k = np.arange(self._start, self._stop)
+        return k % self._n, k // self._n
+
+
+def analysis_cells(result: AnalysisResult) -> Sequence[Cell]:
     """The rows of ``analyze``'s records: (sensor, profile), profiles outermost."""
-    return [(i, j) for j in range(len(result.profiles)) for i in range(len(result.sensors))]
+    n_s = len(result.sensors)
+    return _Cells(n_s, 0, n_s * len(result.profiles))
 
 
 def analysis_frame(result: AnalysisResult) -> Any:
