@@ -58,7 +58,7 @@ out = sosfiltfilt(sos, a, axis=0)
 
 ANALYZE = """
 from gyrovib.api import load
-from gyrovib.api.commands.recording import analyze_recording
+from gyrovib.api.recordings.analysis import analyze_recording
 from gyrovib.api.recordings.reading import read_recording
 rec = read_recording({npy!r}, fs={fs!r}, rate_columns=(0, 1, 2), accel_columns=(3, 4, 5))
 result = analyze_recording(rec, load())

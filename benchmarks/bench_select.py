@@ -90,7 +90,7 @@ def run_fresh(argv: list[str], env: dict[str, str] | None = None) -> tuple[float
 
 
 HEADER = "gyrovib: 1\nunits:\n  rate: deg/s\n"
-#: Sensors per file: a catalogue file may not exceed 16 MiB (INTERFACE.md).
+#: Sensors per file: a catalogue file may not exceed 16 MiB (README, "Catalogue files").
 PER_FILE = 25_000
 
 

@@ -1,5 +1,5 @@
 """``--bundled sensors|profiles|all`` on every command, and ``gyrovib catalog export``
-(INTERFACE.md, "Trust and first use")."""
+(README, "Quick start")."""
 
 from __future__ import annotations
 

@@ -49,7 +49,7 @@ def test_json_keys_and_values(run, catalog):
     row = doc["results"][0]
     assert set(row) == {"sensor", "profile", "rate", "additive_terms",
                         "multiplicative_coefficients", "additive", "multiplicative", "total",
-                        "rms", "source", "saturated", "warnings"}  # INTERFACE.md, second round
+                        "rms", "source", "saturated", "warnings"}  # docs/output.md, analyze
     assert row["source"] == "coefficients"
     # g2 = Δ0(6) of a linear vibration (docs/model.md section 8), then k3·M3 and k5·M5 of
     # locked harmonics (section 10): always present, 0 here (neither in this catalogue)

@@ -53,19 +53,50 @@ def test_no_command_is_declared_outside_the_registry():
                     f"{module.__name__}.{value.name} is not registered in COMMANDS"
 
 
-def test_help_loads_neither_the_library_nor_a_renderer():
+def _modules_after_help(helps: list[list[str]], listed: str) -> str:
+    """What a fresh interpreter prints of ``sorted(m for m in sys.modules if <listed>)``
+    after ``gyrovib ARGS`` for each ARGS of ``helps``."""
     probe = ("import contextlib, io, sys\n"
              "from gyrovib.cli.main import cli\n"
-             "for args in (['--help'], ['analyze', '--help'], ['select', '--help'],\n"
-             "             ['profile', '--help'], ['catalog', 'export', '--help']):\n"
+             f"for args in {helps!r}:\n"
              "    with contextlib.redirect_stdout(io.StringIO()):\n"
              "        cli.main(args, prog_name='gyrovib', standalone_mode=False)\n"
-             "print(sorted(m for m in sys.modules if m.startswith(('gyrovib.api', "
-             "'gyrovib.render.', 'gyrovib.core', 'gyrovib.models', 'gyrovib.catalog'))\n"
-             "             and m != 'gyrovib.render.github'))\n")
+             f"print(sorted(m for m in sys.modules if {listed}))\n")
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                           check=True, timeout=60)
-    assert done.stdout.strip() == "[]"
+    return done.stdout.strip()
+
+
+def test_help_loads_neither_the_library_nor_a_renderer():
+    helps = [["--help"], ["analyze", "--help"], ["select", "--help"], ["profile", "--help"],
+             ["catalog", "export", "--help"]]
+    assert _modules_after_help(helps, "m.startswith(('gyrovib.api', 'gyrovib.render.', "
+                               "'gyrovib.core', 'gyrovib.models', 'gyrovib.catalog')) "
+                               "and m != 'gyrovib.render.github'") == "[]"
+
+
+def test_the_top_level_help_imports_neither_the_error_module_nor_shutil():
+    # The top-level listing's cost is click's own plus cli/main.py (docs/performance.md):
+    # gyrovib.errors (with dataclasses) is imported only once a command runs, and the
+    # help formatter reads the terminal's width without shutil and its compression modules.
+    assert _modules_after_help([["--help"]], "m in ('gyrovib.errors', 'shutil', "
+                               "'dataclasses')") == "[]"
+
+
+@pytest.mark.parametrize("columns", ["40", "100", "", "x"])
+def test_the_help_width_is_the_one_click_would_choose(columns: str) -> None:
+    # click.HelpFormatter's own rule (COLUMNS, at most 80, less 2, at least 50) is the
+    # reference; the listing is the same text with either formatter.
+    import shutil
+
+    from gyrovib.cli.main import _Formatter
+
+    env = {"COLUMNS": columns}
+    with pytest.MonkeyPatch.context() as mp:
+        for key, value in env.items():
+            mp.setenv(key, value)
+        assert _Formatter().width == click.HelpFormatter().width
+        assert _Formatter().width == max(min(shutil.get_terminal_size().columns, 80) - 2, 50)
 
 
 def test_the_floor_program_reads_the_bundled_catalogues():

@@ -1,6 +1,6 @@
 """One criterion, said once: a cell shows the margin of the test that decides it, and
-names the other tests that would decide it otherwise (INTERFACE.md, "Trust and first
-use": ``disagrees``)."""
+names the other tests that would decide it otherwise (docs/output.md, select:
+``disagrees``)."""
 
 from __future__ import annotations
 

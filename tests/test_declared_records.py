@@ -3,7 +3,9 @@ cells (render/formats.py) and its DataFrame columns from that one declaration: t
 drift apart, and a column moved in the declaration moves in both. Every result with a CSV
 is checked here (analyze, mission, bounds, select, sweep, fit, a recording, runup); the
 expected cells are the frame's own values, written as docs/output.md says a CSV writes
-them."""
+them. Likewise its human tables: their Markdown header is the declared cells' titles
+(render/formats.py: Cell), each cell names a declared record and shows its value, and
+JUnit has one case per verdict row."""
 
 from __future__ import annotations
 
@@ -187,7 +189,7 @@ def test_fit_csv_and_frame_come_from_one_declaration() -> None:
 
 def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
     pytest.importorskip("scipy.signal")
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
     from gyrovib.render import recording as render_recording
 
@@ -227,6 +229,10 @@ def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
         assert row["source"] in ("specs", "coefficients") and "unit" not in row
     assert unknown  # the probe meets unknown figures (null) as well as numbers
     assert known  # the probe compares numbers, not only nulls
+    # and its Markdown is its declared cells, each the frame's value of its record
+    assert _check_cells(render_recording.table_cells(result), result.records(),
+                        range(len(result.sensors)), frame,
+                        render_recording.to_markdown(result)) >= 2 * len(result.sensors)
 
 
 def test_runup_csv_sections_are_the_declarations() -> None:
@@ -236,15 +242,28 @@ def test_runup_csv_sections_are_the_declarations() -> None:
 
     from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
     from gyrovib.cli.main import cli
+    from gyrovib.records import in_csv, written
 
     example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "runup-quad.npz"
     done = CliRunner().invoke(cli, ["runup", str(example), "--fs", "200", "--accel-columns",
                                     "ax,ay,az", "--estimate", "k2,vre", "--format", "csv"])
     assert done.exit_code in (0, 1), done.output
     steps, estimates = done.stdout.split("\n\n")
-    assert tuple(_csv(steps)[0]) == names(STEP_RECORDS)
+    assert tuple(_csv(steps)[0]) == names(in_csv(STEP_RECORDS))
     assert tuple(_csv(estimates)[0]) == names(ESTIMATE_RECORDS)
     assert len(_csv(estimates)) == 3  # k2 and vre
+    # the JSON's steps are the same declaration: its keys in order, the CSV's values
+    import json
+
+    done = CliRunner().invoke(cli, ["runup", str(example), "--fs", "200", "--accel-columns",
+                                    "ax,ay,az", "--estimate", "k2,vre", "--format", "json"])
+    entries = json.loads(done.stdout)["steps"]
+    keys = [c.key or c.name for c in written(STEP_RECORDS, "json")]
+    assert [list(e) for e in entries] == [keys] * (len(_csv(steps)) - 1)
+    for entry, row in zip(entries, _csv(steps)[1:], strict=True):
+        line = dict(zip(_csv(steps)[0], row, strict=True))
+        assert str(entry["index"]) == line["step"]
+        assert repr(entry["shift"]) == line["shift"] and entry["predicted"] is None
 
 
 def test_bounds_json_entries_are_the_declaration() -> None:
@@ -282,3 +301,194 @@ def test_bounds_json_entries_are_the_declaration() -> None:
             else:
                 assert value == expected, column.name
     assert unbounded  # the probe meets an unconstrained bound
+
+
+# ------------------------------------------------------------ the human tables and JUnit
+#
+# A human table (Markdown, and the terminal table drawn from the same declaration) is
+# declared once as cells (render/formats.py: Cell), each naming the record it shows.
+# Its Markdown header is the cells' titles, in order; a cell that names a record and has
+# no text of its own writes that record's value, so it is the DataFrame's value; and no
+# cell can name a record the result does not declare.
+
+def _markdown(text: str) -> list[list[str]]:
+    """The rows of the first Markdown table in ``text`` (header first, the rule left
+    out), each cell unescaped."""
+    import re
+
+    lines = [line for line in text.splitlines() if line.startswith("|")]
+    start = text.splitlines().index(lines[0])
+    table = []
+    for line in text.splitlines()[start:]:
+        if not line.startswith("|"):
+            break
+        table.append([c.replace("\\|", "|") for c in re.split(r"(?<!\\) \| ", line[2:-2])])
+    return [table[0], *table[2:]]
+
+
+def _number_in(text: str) -> float | None:
+    """The number a table cell shows ('≤ 0.5 typ' → 0.5), None when it shows none."""
+    import re
+
+    found = re.fullmatch(r"[≤≥]? ?(-?[0-9.]+(?:e[-+][0-9]+)?)(?: typ| ⚠[0-9,]+)?", text)
+    return None if found is None else float(found.group(1))
+
+
+def _check_cells(cells, records, rows, frame, text: str) -> int:
+    """The Markdown in ``text`` has the cells' titles as its header and one line per row;
+    every cell names a declared record (or none). A cell without its own text shows the
+    frame's value of its record as the tables write a value ('?' unknown); a cell with
+    its own text that shows a number shows that value to the digits it writes (2 to 4
+    significant figures, or 0 for a value negligible beside its row's largest). Returns
+    how many cells were compared with the frame."""
+    import math
+
+    from gyrovib.render.formats import known
+
+    table = _markdown(text)
+    assert table[0] == [c.title for c in cells]
+    assert len(table) - 1 == len(rows)
+    declared = names(records)
+    assert all(c.of is None or c.of in declared for c in cells), \
+        [c.of for c in cells if c.of not in declared]
+    compared = 0
+    for k, line in enumerate(table[1:]):
+        assert len(line) == len(cells)
+        for cell, shown in zip(cells, line, strict=True):
+            if cell.of is None:
+                continue
+            value = frame[cell.of].iloc[k]
+            value = value.item() if hasattr(value, "item") else value
+            value = None if isinstance(value, float) and math.isnan(value) else value
+            if cell.text is None:
+                assert shown == known(value), cell.title
+                compared += 1
+            elif (number := _number_in(shown)) is not None and isinstance(value, float):
+                assert math.isclose(number, value, rel_tol=0.05) or (
+                    number == 0 and abs(value) < 1e-9), (cell.title, shown, value)
+                compared += 1
+    return compared
+
+
+def test_mission_markdown_and_terminal_table_are_one_declaration(mission_result) -> None:
+    from gyrovib.api.missions.results import COLUMNS
+    from gyrovib.render.formats import table_of
+
+    cells = render_mission.table_cells(mission_result)
+    text = render_mission.to_markdown(mission_result)
+    assert _check_cells(cells, COLUMNS, mission_result.rows, mission_result.to_frame(),
+                        text) >= 3 * len(mission_result.rows)  # mean, angle, rms, …
+    # the header carries the records' units: the rate and angle units of the result
+    assert f"mean Δ̄_V ({mission_result.unit})" in _markdown(text)[0]
+    assert f"angle θ_V ({mission_result.angle_unit})" in _markdown(text)[0]
+    # the terminal table draws the same columns under the same headings
+    drawn = table_of(cells, mission_result.rows, COLUMNS)
+    assert [c.header for c in drawn.columns] == [c.title for c in cells]
+    # a cell moved in the declaration moves in the Markdown, its values with it
+    from gyrovib.render.formats import markdown_of
+
+    moved = _markdown(markdown_of(tuple(reversed(cells)), mission_result.rows, COLUMNS))
+    original = _markdown(text)
+    assert moved == [list(reversed(line)) for line in original]
+
+
+def test_mission_segments_markdown_is_its_declaration(mission_result) -> None:
+    from gyrovib.api.missions.results import SEGMENT_COLUMNS
+    from gyrovib.render.mission_segments import _cells
+
+    text = render_mission.to_markdown(mission_result, segments=True)
+    segments = text[text.index("Segment by segment"):]
+    rows = mission_result.segment_rows()
+    assert _check_cells(_cells(mission_result), SEGMENT_COLUMNS, rows,
+                        mission_result.segments_frame(), segments) >= len(rows)
+
+
+@pytest.mark.parametrize("kwargs", [{}, {"sensors": "adxrs453", "method": "numeric",
+                                         "samples": 1000}])
+def test_analyze_markdown_names_its_records(kwargs: dict) -> None:
+    from gyrovib.presentation.frames import analysis_cells, analysis_columns
+    from gyrovib.render import analysis as render_analysis
+
+    result = gyrovib.analyze(**kwargs)
+    cells = render_analysis.markdown_cells(result)
+    assert all(c.of is not None for c in cells)  # every column shows a record
+    rows = analysis_cells(result)
+    assert _check_cells(cells, analysis_columns(result, csv=False), rows, result.to_frame(),
+                        render_analysis.to_markdown(result)) > 5 * len(rows)
+    assert ("± stderr" in [c.title for c in cells]) == ("method" in kwargs)  # the probe
+
+
+def test_fit_markdown_is_its_declaration() -> None:
+    from pathlib import Path
+
+    from gyrovib.api.commands.fit import fit
+    from gyrovib.render import fit as render_fit
+
+    table = Path(__file__).resolve().parent.parent / "docs" / "examples" / "rate-table-gx100.csv"
+    result = fit(table)
+    first = [r for r in result.rows() if r[0] == 0]
+    frame = result.to_frame().iloc[:len(first)]
+    assert _check_cells(render_fit._unit_cells(result), result.records(), first, frame,
+                        render_fit.to_markdown(result)) >= 3 * len(first)
+
+
+def test_runup_markdown_tables_are_their_declarations() -> None:
+    from pathlib import Path
+
+    from gyrovib.api.recordings.reading import read_recording
+    from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
+    from gyrovib.api.runup.run import runup
+    from gyrovib.records import frame_of
+    from gyrovib.render import runup as render_runup
+
+    example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "runup-quad.npz"
+    recording = read_recording(str(example), fs=200, accel_columns=("ax", "ay", "az"))
+    result = runup(recording, gyrovib.load(), sensor="adis16460", estimate=("k2", "vre"))
+    text = render_runup.to_markdown(result)
+    steps, estimates = text.split("\n\n")[1:3]
+    step_cells = render_runup._step_table(result)
+    assert "predicted, deg/s" in [c.title for c in step_cells]  # the probe has a sensor
+    assert _check_cells(step_cells, STEP_RECORDS, result.steps,
+                        frame_of(STEP_RECORDS, result.steps), steps) >= 4 * len(result.steps)
+    _check_cells(render_runup._estimate_table(result), ESTIMATE_RECORDS, result.estimates,
+                 frame_of(ESTIMATE_RECORDS, result.estimates), estimates)
+
+
+def test_junit_has_one_case_per_verdict_row(mission_result) -> None:
+    # the generic JUnit writer over verdict rows: a test case per row, a failure exactly
+    # where the row does not pass (an unverified one included), counted in the suite
+    import xml.etree.ElementTree as ET
+
+    from gyrovib.render import select_ci
+
+    root = ET.fromstring(render_mission.to_junit(mission_result))
+    cases = root.findall(".//testcase")
+    assert len(cases) == len(mission_result.rows) == int(root.get("tests"))
+    failed = [r.passed is False for r in mission_result.rows]
+    assert [case.find("failure") is not None for case in cases] == failed
+    assert int(root.get("failures")) == sum(failed) > 0  # the probe has failing rows
+    result = gyrovib.select(budget="10deg/h", criterion="both")
+    root = ET.fromstring(select_ci.to_junit(result))
+    cases = root.findall(".//testcase")
+    assert [(c.get("classname"), c.get("name")) for c in cases] == [
+        (s, p) for s in result.sensors for p in result.profiles]
+    assert [c.find("failure") is not None for c in cases] == [
+        not bool(result.passed[i, j]) for i in range(len(result.sensors))
+        for j in range(len(result.profiles))]
+
+
+def test_select_and_bounds_markdown_headers_are_their_cells() -> None:
+    # tables that are not one row per record (select's matrix: a column per profile;
+    # bounds: a row per coefficient) still take their headers from their cells
+    from gyrovib.render import bounds as render_bounds
+    from gyrovib.render import select as render_select
+
+    result = gyrovib.select(budget="10deg/h")
+    table = _markdown(render_select.to_markdown(result))
+    assert table[0] == [c.title for c in render_select._matrix(result)]
+    assert table[0] == ["sensor", *result.profiles, "verdict"]
+    assert [line[0] for line in table[1:]] == list(result.sensors)
+    bounds = gyrovib.bounds(budget="10deg/h")
+    table = _markdown(render_bounds.to_markdown(bounds))
+    assert table[0] == [c.title for c in render_bounds._cells(bounds, 0)]
+    assert [line[0] for line in table[1:]] == render_bounds._rows(bounds, 0)

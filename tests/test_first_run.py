@@ -1,6 +1,6 @@
 """A first run that answers: ``gyrovib analyze`` on the bundled catalogues prints one
-compact matrix and what to run next (INTERFACE.md, "Trust and first use"; issue: 304
-lines at 160 columns and 45 footnotes before)."""
+compact matrix and what to run next (README, "Quick start"; it once
+printed 304 lines at 160 columns and 45 footnotes)."""
 
 from __future__ import annotations
 

@@ -100,8 +100,8 @@ def test_workers_start_once_and_run_one_blas_thread() -> None:
 
 @pytest.mark.parametrize(("module", "name", "args"), [
     # the commands import the library when they run: patched where they take it from
-    ("gyrovib.api.commands.recording", "fit_recording", ["profile"]),
-    ("gyrovib.api.commands.recording", "analyze_recording",
+    ("gyrovib.api.recordings.fit", "fit_recording", ["profile"]),
+    ("gyrovib.api.recordings.analysis", "analyze_recording",
      ["analyze", "--sensor", "adxrs645", "--recording"]),
 ])
 def test_one_recording_is_fitted_at_one_blas_thread(

@@ -1,5 +1,6 @@
-"""The second-round catalogue fields (INTERFACE.md, "Additions of the second round";
-docs/model.md sections 8-11): parsed values, and every refusal located FILE:LINE:COL.
+"""The catalogue fields of datasheet sensors, responses, harmonic series and
+accelerations (README, "Catalogue files"; docs/model.md sections 8-11): parsed values,
+and every refusal located FILE:LINE:COL.
 
 Every expected place is that of a token of the text (its last occurrence);
 every broken file is refused by the JSON Schema too, except for the rules a
@@ -15,7 +16,7 @@ from gyrovib import models
 from gyrovib.catalog.loader import CatalogError, _parse, parse_catalog
 from gyrovib.models.schema import catalog_schema
 
-INTERFACE_EXAMPLE = """\
+FORMAT_EXAMPLE = """\
 gyrovib: 1
 units:
   rate: deg/s
@@ -53,11 +54,11 @@ profiles:
 """
 
 
-def test_the_interface_example_is_valid_and_exposed():
-    model = parse_catalog(INTERFACE_EXAMPLE, "ex.yaml").model
+def test_the_format_example_is_valid_and_exposed():
+    model = parse_catalog(FORMAT_EXAMPLE, "ex.yaml").model
     assert model.acceleration_unit == "g"
     coeffs, specs = model.sensors
-    # values as written in INTERFACE.md's example
+    # values as written in the example above
     assert coeffs.g2 == (4.0e-4, 4.0e-4, 4.0e-4, 0.0, 0.0, 0.0)
     assert coeffs.response_table == [(10.0, 1.0), (500.0, 0.7)]
     assert coeffs.response_at == "output"
@@ -81,7 +82,7 @@ def test_the_interface_example_is_valid_and_exposed():
     assert acc.random.coherence == (0.0, 0.0, 0.0)
     assert acc.mount == [(20.0, 1.0), (200.0, 0.3)]
     assert jsonschema.Draft7Validator(catalog_schema()).is_valid(
-        _parse(INTERFACE_EXAMPLE, "ex.yaml"))
+        _parse(FORMAT_EXAMPLE, "ex.yaml"))
 
 
 def test_defaults_and_shorthands():
@@ -246,7 +247,7 @@ def test_refusals_are_located(text: str, token: str, words: tuple[str, ...]) -> 
 
 
 def test_a_datasheet_sensor_has_no_coefficients_to_hand_out():
-    model = parse_catalog(INTERFACE_EXAMPLE, "ex.yaml").model
+    model = parse_catalog(FORMAT_EXAMPLE, "ex.yaml").model
     assert model.sensors[0].rate_coefficients.k3 == -1.0e-6
     with pytest.raises(CatalogError, match="'adis16460' is given by its datasheet"):
         model.sensors[1].rate_coefficients  # noqa: B018

@@ -162,7 +162,7 @@ def test_missing_pandas_names_the_extra(monkeypatch):
 
 def test_notebook_units_match_the_library():
     """A budget "36deg/h" is 36/3600 = 0.01 deg/s for :func:`gyrovib.api.select`; without
-    ``unit`` the output follows the budget's unit (INTERFACE.md, ``--unit`` default)."""
+    ``unit`` the output follows the budget's unit (README, "Units": ``--unit``'s default)."""
     from gyrovib import api
 
     a = gyrovib.select(budget="36deg/h", rate=["1deg/s"])
@@ -214,7 +214,7 @@ def test_bounds_range_frame_equals_json():
     ("sweep", "--rate-range", "-10:10:3", "--profile", "engine-harmonics"),
 ])
 def test_csv_columns_are_frame_columns(command: tuple[str, ...]) -> None:
-    # INTERFACE.md ("Trust and first use"): DataFrame and CSV name their columns alike;
+    # docs/output.md ("DataFrames"): DataFrame and CSV name their columns alike;
     # every CSV column is a frame column holding the same values, row for row
     import io
 

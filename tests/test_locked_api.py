@@ -214,7 +214,7 @@ def test_k3_and_k5_at_their_bounds_stay_within_budget(tmp_path: Path) -> None:
 def test_select_worst_maximises_the_error_over_unknown_phases(tmp_path: Path) -> None:
     """``select --criterion worst`` tests the worst |Δ_V| over ``phase: worst`` orders.
 
-    INTERFACE.md (second round): ``worst`` is the direct test |Δ_V| ≤ Δ*;
+    README, "Methods": ``worst`` is the direct test |Δ_V| ≤ Δ*;
     docs/model.md section 10: under unknown phases the analysis maximises |Δ_V|.
     By hand (section 10): k3 = 1e-6, orders 1, 2 on x3 with a1 = 0.5, a2 = 0.3,
     Ω = −20 deg/s: M2 = (0.25 + 0.09)/2 = 0.17, |M3| ≤ ¾·0.25·0.3 = 0.05625, so

@@ -103,7 +103,7 @@ def test_fit_warns_naming_the_lot(tmp_path: Path, offsets: dict[str, float]) -> 
     assert result.exit_code == 0, result.stderr
     assert "gyrovib: warning: lot 'lot-twins': " in result.stderr
     assert "no spread in A1, k2, k3" in result.stderr
-    assert "select --yield calls it unverified" in result.stderr
+    assert "select with --yield calls it unverified" in result.stderr
     assert json.loads(result.stdout)["warnings"] == [
         line.removeprefix("gyrovib: warning: ") for line in result.stderr.splitlines()]
 

@@ -1,4 +1,4 @@
-"""The `missions:` format (MODEL.md section 12, INTERFACE.md third round): models,
+"""The `missions:` format (docs/model.md section 12, docs/missions.md): models,
 located errors (an unknown profile across files, a mirror-image placement, a bad
 duration), unique ids, and the third coherence ρ12."""
 

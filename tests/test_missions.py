@@ -1,4 +1,4 @@
-"""Missions and placements (MODEL.md section 12): the aggregates against per-segment
+"""Missions and placements (docs/model.md section 12): the aggregates against per-segment
 analyze results worked by hand, the spec-form mission worst case against an independent
 LP, placements against profiles permuted by hand, and invariants."""
 
@@ -320,7 +320,7 @@ def test_bundled_mission_prints_angle_and_worst_segment() -> None:
     result = invoke("mission", "--format", "json")
     assert result.exit_code == 0, result.stderr
     doc = json.loads(result.stdout)
-    # the default output unit is every command's (INTERFACE.md: deg/s unless --budget
+    # the default output unit is every command's (README, "Units": deg/s unless --budget
     # carries a unit)
     assert doc["angle_unit"] == "deg" and doc["unit"] == "deg/s"
     rows = doc["mission"]
@@ -554,7 +554,7 @@ def test_locked_orders_psd_and_linear_vibration_are_placed_as_by_hand() -> None:
 
 
 def test_mission_unit_defaults_as_every_command() -> None:
-    """--unit: the unit --budget is written in, else deg/s (INTERFACE.md, `--unit U`), as
+    """--unit: the unit --budget is written in, else deg/s (README, "Units"), as
     analyze and select; the angle stays in deg either way, and the same number."""
     plain = json.loads(invoke("mission", "--sensor", "adxrs453", "--format", "json").stdout)
     hours = json.loads(invoke("mission", "--sensor", "adxrs453", "--budget", "36deg/h",

@@ -1,6 +1,7 @@
 """Every model citation resolves: the code, README and docs cite the model as
-``docs/model.md section N``, and docs/model.md has that section (INTERFACE.md,
-"Trust and first use"; the file the output names must exist in the repository)."""
+``docs/model.md section N``, and docs/model.md has that section (the file the
+output names must exist in the repository), and nothing cites a document that does not
+ship with it."""
 
 from __future__ import annotations
 
@@ -68,3 +69,15 @@ def test_the_model_cites_its_own_sections() -> None:
     for match in re.finditer(r"\bsections? ((?:\d+(?:\.\d+)?(?:\s*(?:,|and|–|-)\s*)?)+)", text):
         for number in numbers(match.group(1)):
             assert number in have, f"docs/model.md cites its section {number}"
+
+
+def test_nothing_cites_a_document_outside_the_repository() -> None:
+    # The format's and the model's references ship as README.md and docs/; a reader of
+    # the code, the tests or the benchmarks can open every document they name.
+    here = Path(__file__).resolve()
+    files = [*sources(), *sorted((ROOT / "tests").rglob("*.py")),
+             *sorted((ROOT / "benchmarks").rglob("*.py"))]
+    stale = [f"{p.relative_to(ROOT)}:{n}" for p in files if p != here
+             for n, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+             if re.search(r"\b(INTERFACE|MODEL)\.md", line)]
+    assert not stale, f"cite README.md or docs/ instead: {stale[:5]}"

@@ -1,4 +1,4 @@
-"""The notebook API as a new user meets it (INTERFACE.md, "Trust and first use"):
+"""The notebook API as a new user meets it (README, "Notebooks and DataFrames"):
 a ``passed`` column that ``DataFrame.query`` can use, a one-line ``Catalog``, and a
 bound that constrains nothing written as unbounded, never as a huge number."""
 

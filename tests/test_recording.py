@@ -83,7 +83,7 @@ def test_recorded_error_matches_the_definition(tmp_path: Path) -> None:
     """Δ_V,rec of docs/model.md section 13, evaluated here sample by sample with scipy's own
     butter/sosfiltfilt, over two segments split by a gap, with accelerations in m/s²."""
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
 
     rng = np.random.default_rng(7)
@@ -218,7 +218,7 @@ def test_json_keys_are_the_contract(tmp_path: Path) -> None:
         assert invoke("analyze", "--recording", tmp_path / "syn.npy", "--fs", fs,
                       _sensor_file(tmp_path), "--format", fmt).exit_code == 0
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
 
     frame = analyze_recording(read_recording(str(tmp_path / "syn.npy"), fs=fs),
@@ -314,7 +314,7 @@ def test_input_response_is_a_zero_phase_gain(tmp_path: Path) -> None:
     """A sensor whose response acts at the input sees ν·x (docs/model.md section 13): checked
     against the gain applied here bin by bin (log-log interpolation written out)."""
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
 
     rng = np.random.default_rng(11)
@@ -344,7 +344,7 @@ def test_spec_form_worst_case_scales_with_the_nonlinearity(tmp_path: Path) -> No
     """The worst Δ_V,rec over a datasheet envelope is proportional to the limit b
     (docs/model.md section 11): doubling NL doubles it; with no VRE nothing else adds."""
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
 
     rate, fs = _synthetic(np.random.default_rng(5), seconds=20.0)
@@ -615,7 +615,7 @@ def test_the_fitted_shape_is_reported_and_warned(tmp_path: Path,
     the figures in the YAML's comments, the plot's titles and the honesty table; with
     only 2 breakpoints
     the straight line misses the resonance and the warning says so."""
-    from gyrovib.api.commands.recording import fit_recording
+    from gyrovib.api.recordings.fit import fit_recording
     from gyrovib.api.recordings.reading import read_recording
 
     np.save(tmp_path / "res.npy", _shaped_noise(np.random.default_rng(30), 1000.0, 30.0))

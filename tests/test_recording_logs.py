@@ -67,7 +67,7 @@ def _check_fit(fit: object, fs: float, fc: float, tone: float, amp: float,
 def _fit_and_check(tmp_path: Path, recording: object, w: np.ndarray, g: np.ndarray | None,
                    t: np.ndarray, fc: float, resolution: float) -> object:
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
 
     result = analyze_recording(recording, load([_sensor(tmp_path)]),  # type: ignore[arg-type]
                                crossover=fc, resolution=resolution)
@@ -298,8 +298,12 @@ def test_betaflight_preset(tmp_path: Path) -> None:
     plain = read_recording(str(path), preset="betaflight")
     assert plain.accel is None
     assert any("accSmooth[0..2] not read" in x for x in plain.warnings)
+    # the library's note names its argument; the command line's, the option
+    assert any("give accel_unit='g' (or m/s^2)" in x for x in plain.warnings)
+    assert not any("--accel-unit" in x for x in plain.warnings)
     r = invoke("profile", path, "--preset", "betaflight", "--format", "json")
     assert r.exit_code == 0, r.stderr
+    assert "give --accel-unit g (or m/s^2)" in r.stderr
     assert invoke("profile", path).exit_code == 2  # no t/time column without the preset
 
 
@@ -315,6 +319,8 @@ def test_a_corrupt_dataflash_log_is_said(tmp_path: Path, junk: bytes, said: str)
     indexer too) come back as warnings on standard error, the JSON on standard output
     intact; --strict refuses the file."""
     pytest.importorskip("pymavlink")
+    from gyrovib.api.recordings.reading import read_recording
+
     fs, n = 400.0, 4000
     w, g = motion(n, fs, 1, 90.0, 3.0, 1.0)
     path = dataflash_imu(tmp_path / "whole.bin", np.round(np.arange(n) * 1e6 / fs) + 1e6,
@@ -325,8 +331,14 @@ def test_a_corrupt_dataflash_log_is_said(tmp_path: Path, junk: bytes, said: str)
     bad.write_bytes(data[:at] + junk + data[at:])
     r = invoke("profile", bad, "--format", "json")
     assert r.exit_code == 0, r.stderr
-    json.loads(r.stdout)
+    document = json.loads(r.stdout)
     assert said in r.stderr and "warning: bad.bin: " in r.stderr, r.stderr
+    # the command line's warning and JSON name the option; the library's, its argument
+    assert "(--strict refuses such a file)\n" in r.stderr
+    assert any(said in w and w.endswith("(--strict refuses such a file)")
+               for w in document["warnings"])
+    assert any(said in w and w.endswith("(strict=True refuses such a file)")
+               for w in read_recording(str(bad)).warnings)
     assert "bad.bin: pymavlink said: bad header" in r.stderr
     strict = invoke("profile", bad, "--strict")
     assert strict.exit_code == 2 and "refused under --strict" in strict.stderr
@@ -349,7 +361,7 @@ def test_log_options_are_refused_where_they_mean_nothing(tmp_path: Path) -> None
 
 
 def test_a_log_is_known_by_its_first_bytes_whatever_its_name(tmp_path: Path) -> None:
-    """INTERFACE.md: readers by content or extension. A ULog and a DataFlash log named
+    """docs/recordings.md: readers by content or extension. A ULog and a DataFlash log named
     .log are read as what they are."""
     pytest.importorskip("pyulog")
     pytest.importorskip("pymavlink")

@@ -24,7 +24,7 @@ def test_ulog_recorded_error_is_float64_from_the_raw_samples(tmp_path: Path) -> 
     2e-6 away, far outside 1e-9."""
     pyulog = pytest.importorskip("pyulog", reason="the ULog path needs gyrovib[ulog]")
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
 
     fc = 2.0
@@ -131,8 +131,8 @@ def test_the_block_wise_filter_is_scipys_sosfiltfilt(n: int, block: int) -> None
 def test_a_npy_read_from_the_file_fits_as_the_same_samples_in_memory(tmp_path: Path) -> None:
     """The .npy store (read from the file a block at a time, samples never held whole) and the
     .npz store (arrays in memory) give the same sums bit for bit, over two segments."""
-    from gyrovib.api.commands.recording import fit_recording
     from gyrovib.api.recordings import readers
+    from gyrovib.api.recordings.fit import fit_recording
     from gyrovib.api.recordings.reading import read_recording
 
     rng = np.random.default_rng(5)
@@ -162,7 +162,7 @@ def test_a_recording_without_scipy_says_what_to_install(tmp_path: Path,
     # gyrovib without it, and `profile` must then say so at the file, exit 2, no traceback
     import importlib.util
 
-    from gyrovib.api.commands import recording
+    from gyrovib.api.recordings import fit as recording
 
     real = importlib.util.find_spec
     monkeypatch.setattr(recording.importlib.util, "find_spec",

@@ -112,7 +112,7 @@ def test_analyze_csv_table_markdown_and_frame_say_unknown(tmp_path: Path) -> Non
         line = next(x for x in out.splitlines() if "cross" in x and "?" in x)
         assert line.count("?") == 3  # Δ_V,rec, the fitted closed form and their ratio
     from gyrovib.api import load
-    from gyrovib.api.commands.recording import analyze_recording
+    from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
 
     pytest.importorskip("pandas")

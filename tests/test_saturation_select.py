@@ -1,4 +1,4 @@
-"""Saturation through `analyze` and `select` (docs/model.md section 9, INTERFACE.md second round).
+"""Saturation through `analyze` and `select` (docs/model.md section 9, docs/output.md).
 
 The reach at the nonlinear element is |Ω_K3| + Σ tone amplitudes + κ·σ3. The
 profile below has Ω_K3 = 10 deg/s, one 100 Hz tone of a3 = 5 deg/s and a

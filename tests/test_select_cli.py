@@ -82,11 +82,11 @@ def test_select_json_verdicts(catalog: str) -> None:
     assert sensors["bad"]["pass"] is False
     assert sensors["awful"]["pass"] is False
     bad_tone, bad_noise = sensors["bad"]["profiles"]
-    # total (|Δ_V|), saturated and reason: INTERFACE.md, second round
+    # total (|Δ_V|), saturated and reason: docs/output.md, select
     assert set(bad_tone) == {"profile", "pass", "status", "unknown", "rms", "margin",
                              "criterion_margin", "disagrees", "checks", "total", "saturated",
                              "reason"}
-    # a coefficient-form part states its coefficients: nothing unknown (INTERFACE.md, trust)
+    # a coefficient-form part states its coefficients: nothing unknown (README)
     assert (bad_tone["status"], bad_noise["status"], bad_tone["unknown"]) == ("fail", "pass", [])
     assert (sensors["bad"]["status"], sensors["good"]["status"]) == ("fail", "pass")
     assert sensors["bad"]["source"] == "coefficients"
@@ -164,7 +164,7 @@ def test_criterion(catalog: str, criterion: str, verdicts: dict[str, bool]) -> N
 
 
 def test_input_response_gets_credit(tmp_path: Path) -> None:
-    # a sensor whose response acts at its input (INTERFACE.md second round, `at: input`)
+    # a sensor whose response acts at its input (README, "Catalogue files", `at: input`)
     # and is 0.1 at the 100 Hz tone sees a3 = 0.2: M2 = 0.02, so its k2 bound is
     # α2·Δ*/0.02 = 100× the profile-alone bound 0.0022237.
     body = PROFILES + """
@@ -304,7 +304,7 @@ def test_budget_with_unit_equals_plain_number(catalog: str) -> None:
 
 @pytest.mark.parametrize("command", ["bounds", "select"])
 def test_output_follows_the_budget_unit(catalog: str, command: str) -> None:
-    # INTERFACE.md: --unit defaults to the unit --budget carries; 36deg/h stays 36 deg/h,
+    # README, "Units": --unit defaults to the unit --budget carries; 36deg/h stays 36 deg/h,
     # and the bounds equal those of an explicit --unit deg/h
     got = strict_json(run(command, catalog, "--budget", "36deg/h", "--format", "json").stdout)
     explicit = strict_json(run(command, catalog, "--budget", "36", "--unit", "deg/h",

@@ -341,7 +341,7 @@ def test_bounds_range_gives_nl_max_with_nl_max_times_w1_the_share(
 
 
 def test_bounds_range_is_in_the_budgets_unit_when_unit_follows_it(tmp_path: Path) -> None:
-    # --unit defaults to the budget's unit (INTERFACE.md, second round), and R is in the
+    # --unit defaults to the budget's unit (README, "Units"), and R is in the
     # output unit: 300 deg/s written as 300·3600 = 1.08e6 deg/h gives the same %FS bound
     # (a fraction of R does not depend on the unit R is written in), and the VRE in
     # (deg/h)/g² is 3600 × that in (deg/s)/g² (cruise-isolated has a linear vibration).
@@ -472,7 +472,7 @@ def test_sweep_plot_draws_the_worst_polynomials_in_a_second_png(tmp_path: Path) 
 
 
 def test_select_worst_in_the_budgets_unit() -> None:
-    # --unit follows the budget's unit (INTERFACE.md, second round) under --criterion worst
+    # --unit follows the budget's unit (README, "Units") under --criterion worst
     # too: the same verdicts and margins (ratios), |Δ_V| 3600× larger in deg/h than deg/s
     in_h = json.loads(run("select", "--budget", "36deg/h", "--criterion", "worst",
                           "--format", "json").stdout)

@@ -1,4 +1,4 @@
-"""The catalogue's ``uncertainty`` and ``lot`` blocks (INTERFACE.md, third round;
+"""The catalogue's ``uncertainty`` and ``lot`` blocks (docs/rate-table.md;
 docs/model.md section 14): what the models accept, the located exit-2 errors, the JSON
 Schema agreeing with validate, and `gyrovib fit -o` writing what validate accepts."""
 

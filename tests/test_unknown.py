@@ -1,6 +1,6 @@
 """Unknown is not zero: a datasheet figure that is not published leaves a verdict open.
 
-INTERFACE.md, "Trust and first use": a spec-form part that passes on its
+README, "Reading the output": a spec-form part that passes on its
 published figures, but whose verdict an unpublished one can change (the VRE
 under linear vibration; m31, m32 under cross-axis vibration correlated with
 x3, docs/model.md sections 8 and 11), is ``unverified``: not passing, not ranked,

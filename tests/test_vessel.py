@@ -48,22 +48,27 @@ def test_groups_are_trimmed_weakest_order_first_to_an_affordable_search() -> Non
         [(f0, list(m), list(o)) for f0, m, o in groups], [])
 
 
-def test_a_profile_fitted_from_many_harmonics_is_one_the_commands_compute(
-        tmp_path: Path) -> None:
-    # SYNTHETIC: two engines (30 Hz and 47.3 Hz) of nine orders each on white noise; all
-    # eighteen lines as two phase: worst groups would be a search of sixteen unknown
-    # phases, refused by analyze as over its budget. profile writes the weakest orders as
-    # independent tones instead, says so, and what it wrote is computed.
-    rng = np.random.default_rng(7)
-    t = np.arange(20000) / 1000.0  # 20 s at 1 kHz
+def _engines(path: Path, seed: int) -> Path:
+    """SYNTHETIC: two engines (30 Hz and 47.3 Hz) of nine orders each on white noise, 20 s
+    at 1 kHz, written as a CSV recording."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(20000) / 1000.0
     gz = rng.normal(0.0, 0.5, t.size) + 2.0
     for f0 in (30.0, 47.3):
         for n in range(1, 10):
             gz += (3.0 / n) * np.sin(2 * np.pi * n * f0 * t + rng.uniform(0, 2 * np.pi))
-    path = tmp_path / "engines.csv"
     np.savetxt(path, np.column_stack([t, 0.2 * rng.normal(size=t.size),
                                       0.2 * rng.normal(size=t.size), gz]),
                delimiter=",", header="t,gx,gy,gz", comments="", fmt="%.6f")
+    return path
+
+
+def test_a_profile_fitted_from_many_harmonics_is_one_the_commands_compute(
+        tmp_path: Path) -> None:
+    # all eighteen lines of two engines as two phase: worst groups would be a search of
+    # sixteen unknown phases, refused by analyze as over its budget. profile writes the
+    # weakest orders as independent tones instead, says so, and what it wrote is computed.
+    path = _engines(tmp_path / "engines.csv", 7)
     fitted = tmp_path / "engines.gyrovib.yaml"
     r = invoke("profile", path, "--rate-columns", "gx,gy,gz", "-o", fitted)
     assert r.exit_code == 0, r.stderr
@@ -76,6 +81,27 @@ def test_a_profile_fitted_from_many_harmonics_is_one_the_commands_compute(
     # (the same cost bound, at a few seconds each: benchmarks/bench_vessel.py times them)
     run = invoke("analyze", cat, fitted, "--format", "json")
     assert run.exit_code == 0, run.stderr
+
+
+def test_an_envelope_says_which_orders_it_writes_as_independent_tones(
+        tmp_path: Path) -> None:
+    # the envelope of two such recordings is trimmed by the same rule as one recording's
+    # fit: its table and its JSON say which orders left their group, as one fit does
+    logs = [_engines(tmp_path / f"engines{k}.csv", seed) for k, seed in enumerate((7, 8))]
+    r = invoke("profile", *logs, "--rate-columns", "gx,gy,gz", "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    said = json.loads(r.stdout)["envelope"]["warnings"]
+    assert len(said) == 1 and "are written as independent tones" in said[0]
+    envelope_part = r.stderr[r.stderr.index("envelope of 2 recordings"):]
+    assert "are written as independent tones" in envelope_part
+    profile = json.loads(r.stdout)["profile"]
+    released = said[0][len("lines at "):said[0].index(" Hz")].split(", ")
+    # every line said is written as a tone (the warning rounds to 4 figures), and no
+    # other line is: the rest stay in the groups of the two fundamentals
+    tones = [float(x.split("frequency: ")[1].split(",")[0])
+             for x in profile.splitlines() if "- {frequency:" in x]
+    assert sorted(f"{f:.4g}" for f in tones) == sorted(released) and len(released) >= 2
+    assert profile.count("fundamental:") == 2
 
 
 def test_a_slam_mode_and_an_engine_order_are_no_harmonic_series() -> None:

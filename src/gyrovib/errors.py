@@ -4,6 +4,10 @@ Every problem a user can cause (a bad catalogue, a bad option, a profile a
 method cannot handle) is raised as a :class:`GyrovibError` carrying one or
 more :class:`Problem` records. The command line catches it once, prints one
 line per problem on standard error and exits with status 2.
+
+A warning that advises a library argument (``strict``, ``breakpoints``) is a
+:class:`Note`: its text names the argument as the library takes it, and the
+command line words it with the option that sets it instead.
 """
 
 from __future__ import annotations
@@ -59,6 +63,49 @@ def fill(template: str, arguments: tuple[str, ...], name: Callable[[str], str]) 
     for argument in arguments:
         template = template.replace("{" + argument + "}", name(argument))
     return template
+
+
+class Note(str):
+    """A warning that names library arguments: as text, each is written as the library
+    takes it (``strict=True``, ``accel_unit='g'``, ``breakpoints``); :meth:`worded` writes
+    them otherwise (the command line: as its options, ``--strict``, ``--accel-unit g``).
+
+    ``template`` writes each argument ``{name}``; ``arguments`` pairs each name with the
+    value the warning gives it, None for the argument alone. Being a ``str``, a note
+    goes wherever a warning's text goes (JSON, tables, a worker process's pickle)."""
+
+    template: str
+    arguments: tuple[tuple[str, object], ...]
+
+    def __new__(cls, template: str, *arguments: tuple[str, object]) -> Note:
+        note = super().__new__(cls, _fill_values(template, arguments, library_words))
+        note.template, note.arguments = template, arguments
+        return note
+
+    def worded(self, name: Callable[[str, object], str]) -> str:
+        """The text with each argument written ``name(argument, value)``."""
+        return _fill_values(self.template, self.arguments, name)
+
+    def __reduce__(self) -> tuple[type[Note], tuple[object, ...]]:
+        return Note, (self.template, *self.arguments)
+
+
+def headed(head: str, text: str) -> str:
+    """``text`` after ``head`` (a file's name, say); a note stays a note."""
+    if isinstance(text, Note):
+        return Note(head + text.template, *text.arguments)
+    return head + text
+
+
+def library_words(argument: str, value: object) -> str:
+    """An argument as the library takes it: ``breakpoints``, ``strict=True``."""
+    return argument if value is None else f"{argument}={value!r}"
+
+
+def _fill_values(template: str, arguments: tuple[tuple[str, object], ...],
+                 name: Callable[[str, object], str]) -> str:
+    values = dict(arguments)
+    return fill(template, tuple(values), lambda argument: name(argument, values[argument]))
 
 
 class GyrovibError(Exception):

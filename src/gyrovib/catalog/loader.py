@@ -348,9 +348,6 @@ class Catalog(Frozen):
         """The merged profiles as :class:`gyrovib.models.Profile` (file units)."""
         return tuple(e.profile for e in self.profiles)
 
-    def sensor_line(self, entry: SensorEntry) -> tuple[int, int] | None:
-        return entry.source.locate((SECTIONS[0][0], entry.index, ID_KEY))
-
     def __repr__(self) -> str:
         """One line: how many sensors, profiles and missions, from which files (not
         their contents)."""

@@ -7,7 +7,7 @@ import sys
 import click
 
 from gyrovib.cli.common import rendered, say
-from gyrovib.cli.options import format_option
+from gyrovib.cli.options import as_options, format_option
 from gyrovib.cli.output import write_binary, write_output
 
 
@@ -57,7 +57,7 @@ def fit(table: str, output: str | None, order: int, rate_unit: str, output_unit:
         data = read_rate_table_bytes(raw, STDIN_NAME, rate_unit, output_unit)
     else:
         data = api.read_rate_table(table, rate_unit, output_unit)
-    result = api.fit(data, order)
+    result = as_options(api.fit(data, order))  # its warnings name the options
     for warning in result.warnings:
         say(f"gyrovib: warning: {warning}")
     if plot is not None:

@@ -42,10 +42,10 @@ import click
 from gyrovib._version import __version__
 from gyrovib.cli.early import early_exit
 from gyrovib.cli.output import WriteFailure, output_in_place, silence_stdout, start_run
-from gyrovib.errors import Crash, GyrovibError
 
 if TYPE_CHECKING:
     from gyrovib.cli.common import Settings
+    from gyrovib.errors import GyrovibError
 
 EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 EXIT_WRITE_FAILED = 74  # EX_IOERR of sysexits.h
@@ -158,6 +158,8 @@ def _unexpected(exc: Exception) -> int:
     one was received (a library may have raised another exception in its place); out of
     memory, 2; else an internal error, 3, in one line (``GYROVIB_DEBUG`` adds the
     traceback). A :class:`~gyrovib.errors.Crash` is placed at the file it met."""
+    from gyrovib.errors import Crash
+
     signalled = _interrupted_status()
     if signalled is not None:
         _echo_interrupted(signalled)
@@ -191,6 +193,37 @@ def _echo_interrupted(code: int) -> None:
         silence_stderr()
 
 
+class _Formatter(click.HelpFormatter):
+    """click's help formatter, its width found as click finds it (``COLUMNS``, else the
+    terminal's, at most 80, less 2, at least 50) without importing :mod:`shutil`, which
+    with its compression modules is the largest part of ``gyrovib --help``'s cost."""
+
+    def __init__(self, indent_increment: int = 2, width: int | None = None,
+                 max_width: int | None = None) -> None:
+        if width is None and click.formatting.FORCED_WIDTH is None:
+            width = max(min(_columns(), 80 if max_width is None else max_width) - 2, 50)
+        super().__init__(indent_increment, width, max_width)
+
+
+def _columns() -> int:
+    """The terminal's width as :func:`shutil.get_terminal_size` reads it: ``COLUMNS`` if
+    a positive number, else standard output's terminal, else 80."""
+    try:
+        columns = int(os.environ.get("COLUMNS", "0"))
+    except ValueError:
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns  # type: ignore[union-attr]
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+    return columns or 80
+
+
+class _Context(click.Context):
+    formatter_class = _Formatter
+
+
 class _Group(click.Group):
     """Catches the one error root and turns it into lines on stderr and exit 2.
 
@@ -200,6 +233,7 @@ class _Group(click.Group):
     """
 
     _argv: list[str] | None = None
+    context_class = _Context
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return list(COMMANDS)  # in the order registered, not sorted
@@ -230,6 +264,7 @@ class _Group(click.Group):
         from gyrovib.cli.common import Settings
         from gyrovib.cli.options import as_option
         from gyrovib.cli.progress import terminal_progress
+        from gyrovib.errors import GyrovibError
 
         start_run()
         try:

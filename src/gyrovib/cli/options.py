@@ -2,17 +2,19 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 import click
 
 from gyrovib import units
-from gyrovib.errors import GyrovibError, OptionError
+from gyrovib.errors import GyrovibError, Note, OptionError
 from gyrovib.limits import DEFAULT_PEAK_FACTOR, MAX_SAMPLES
 
 F = TypeVar("F", bound=Callable[..., Any])
+T = TypeVar("T")
 
 UNIT_CHOICES = tuple(units.RATE_UNITS)
 
@@ -40,6 +42,45 @@ def as_option(exc: GyrovibError) -> GyrovibError:
     if not any(p.template is not None for p in exc.problems):
         return exc
     return GyrovibError(tuple(p.worded(flag) for p in exc.problems))
+
+
+def option_words(argument: str, value: object) -> str:
+    """A library argument as the option that sets it, with the value a note gives it:
+    ``breakpoints`` → ``--breakpoints``, ``strict=True`` → ``--strict``,
+    ``accel_unit='g'`` → ``--accel-unit g``."""
+    if value is None or value is True:
+        return flag(argument)
+    return f"{flag(argument)} {value}"
+
+
+def as_options(result: T) -> T:
+    """``result`` with each note it carries (:class:`~gyrovib.errors.Note`: in its fields,
+    their tuples, lists and dicts, and the results they hold) worded with the options
+    (:func:`option_words`): what the command line prints and writes names its options,
+    as :func:`as_option` does for errors. What holds no note is returned as it is."""
+    return cast(T, _worded(result))
+
+
+def _worded(value: Any) -> Any:
+    if isinstance(value, Note):
+        return value.worded(option_words)
+    if type(value) in (tuple, list):
+        items = [_worded(item) for item in value]
+        same = all(new is old for new, old in zip(items, value, strict=True))
+        return value if same else type(value)(items)
+    if isinstance(value, dict):
+        worded = {key: _worded(item) for key, item in value.items()}
+        return value if all(worded[k] is v for k, v in value.items()) else worded
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return _worded_fields(value)
+    return value
+
+
+def _worded_fields(result: Any) -> Any:
+    """A dataclass with the fields that hold notes replaced (:func:`_worded`)."""
+    changed = {f.name: new for f in dataclasses.fields(result) if f.init
+               and (new := _worded(getattr(result, f.name))) is not getattr(result, f.name)}
+    return dataclasses.replace(result, **changed) if changed else result
 
 
 #: Where ``--bundled`` leaves its choice for :func:`gyrovib.cli.common.load_catalog`.
@@ -90,7 +131,7 @@ def budget_unit_option(f: F) -> F:
 
 
 def resolve_unit(unit: str | None, budget: str) -> str:
-    """``--unit`` as given, else the unit ``--budget`` carries, else deg/s (INTERFACE.md)."""
+    """``--unit`` as given, else the unit ``--budget`` carries, else deg/s (README, "Units")."""
     if unit is not None:
         return parse_unit(unit)
     return units.quantity_unit(budget) or "deg/s"

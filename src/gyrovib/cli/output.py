@@ -18,10 +18,16 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING, BinaryIO, TextIO
 
-from gyrovib.errors import OptionError
-
 if TYPE_CHECKING:
     from pathlib import Path
+
+
+def _bad_output(message: str) -> Exception:
+    """An :class:`~gyrovib.errors.OptionError` (exit 2), its module imported only when
+    an ``--output`` is refused (``gyrovib --help`` does without it)."""
+    from gyrovib.errors import OptionError
+
+    return OptionError(message)
 
 
 class WriteFailure(Exception):
@@ -156,7 +162,7 @@ def _replace(path: str, data: bytes | Iterable[bytes], what: str,
     ``path`` was left as it was, and 0 that it holds the new output.
     """
     if not path:
-        raise OptionError(f"{what}give a file name")
+        raise _bad_output(f"{what}give a file name")
     from pathlib import Path  # not at import time: ~3 ms of every start-up
 
     try:  # a name too long, a loop of links, a directory that cannot be searched: exit 2
@@ -168,14 +174,14 @@ def _replace(path: str, data: bytes | Iterable[bytes], what: str,
         directory = target.parent if str(target.parent) else Path(".")
         directory_exists = directory.is_dir()
     except (OSError, ValueError) as exc:
-        raise OptionError(f"{what}cannot write {path!r}: {_reason(exc)}") from None
+        raise _bad_output(f"{what}cannot write {path!r}: {_reason(exc)}") from None
     if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
         _write_device(target, data, path, what)
         return
     if not directory_exists:
-        raise OptionError(f"{what}directory {str(directory)!r} of {path!r} does not exist")
+        raise _bad_output(f"{what}directory {str(directory)!r} of {path!r} does not exist")
     if mode is not None and stat.S_ISDIR(mode):
-        raise OptionError(f"{what}{path!r} is a directory")
+        raise _bad_output(f"{what}{path!r} is a directory")
     _write_through_temporary(target, directory, data, path, what, final)
 
 
@@ -199,7 +205,7 @@ def _write_through_temporary(target: Path, directory: Path, data: bytes | Iterab
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name[:_PREFIX]}.", suffix=".tmp",
                                    dir=directory)
     except OSError as exc:
-        raise OptionError(f"{what}cannot write in {str(directory)!r} to create {path!r}: "
+        raise _bad_output(f"{what}cannot write in {str(directory)!r} to create {path!r}: "
                           f"{_reason(exc)}") from None
     try:
         with os.fdopen(fd, "wb") as handle:

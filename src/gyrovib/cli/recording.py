@@ -8,6 +8,7 @@ from typing import Any, TypeVar
 import click
 
 from gyrovib.cli.common import rendered
+from gyrovib.cli.options import as_options
 from gyrovib.cli.output import write_output
 from gyrovib.errors import OptionError
 
@@ -52,7 +53,7 @@ def reader_options(f: F) -> F:
 
 
 def recording_options(f: F) -> F:
-    """The recording input and fit options of INTERFACE.md (third round)."""
+    """The recording input and fit options (docs/recordings.md)."""
     options = [
         click.option("--id", "profile_id", metavar="NAME",
                      help="Id of the fitted profile (default: the file's name + -fitted)."),
@@ -124,9 +125,9 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
                       jobs: int = 1) -> None:
     """``gyrovib analyze --recording`` (once or more): one library call, then the renderer."""
     # lazy: the library and the renderers load when it runs, not for --help
-    from gyrovib.api.commands.recording import analyze_recording as run
     from gyrovib.api.fleet.pool import one_thread
     from gyrovib.api.fleet.run import analyze_recordings
+    from gyrovib.api.recordings.analysis import analyze_recording as run
     from gyrovib.render import fleet as render_many
     from gyrovib.render import recording as render
 
@@ -135,14 +136,15 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
         with one_thread():  # one BLAS/OpenMP thread, as with --jobs 1 on several
             result = run(read(paths[0], options), catalog, sensors=sensors, unit=unit,
                          **fit_options(options))
+        result = as_options(result)  # its notes name the options, not the arguments
         if fmt != "table" or output is not None:  # the table on the terminal lists them itself
             for warning in result.fit.warnings:
                 click.echo(f"gyrovib: warning: {warning}", err=True)
         write_output(rendered(render, result, fmt, output), output)
         return
 
-    many = analyze_recordings(paths, catalog, step_options(options),
-                              sensors=sensors, unit=unit, jobs=jobs)
+    many = as_options(analyze_recordings(paths, catalog, step_options(options),
+                                         sensors=sensors, unit=unit, jobs=jobs))
     write_output(rendered(render_many, many, fmt, output), output)
 
 
@@ -166,12 +168,12 @@ def report_recording(path: str, catalog: Any, sensors: tuple[str, ...],
     """``gyrovib report --recording``: the catalogue with the fitted profile added, the
     profiles to study (the fitted one too when some were named), and the HTML section."""
     # lazy: the library and the renderers load when it runs, not for --help
-    from gyrovib.api.commands.recording import analyze_recording as run
+    from gyrovib.api.recordings.analysis import analyze_recording as run
     from gyrovib.api.recordings.yaml import with_fitted_profile
     from gyrovib.render.recording import report_section
 
-    result = run(read(path, options), catalog, sensors=sensors, unit=unit,
-                 **fit_options(options))
+    result = as_options(run(read(path, options), catalog, sensors=sensors, unit=unit,
+                            **fit_options(options)))  # its notes name the options
     combined = with_fitted_profile(catalog, result.fit)
     chosen = (*profiles, result.fit.profile_id) if profiles else profiles
     return combined, chosen, report_section(result)

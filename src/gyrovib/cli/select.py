@@ -16,6 +16,7 @@ from gyrovib.cli.common import (
 )
 from gyrovib.cli.mission import coverage_option
 from gyrovib.cli.options import (
+    as_options,
     budget_arguments,
     budget_options,
     files_argument,
@@ -111,6 +112,7 @@ def select(ctx: click.Context, files: tuple[str, ...], sensors: tuple[str, ...],
                         require=require, spec_weights=parse_spec_weights(spec_weights),
                         peak_factor=peak_factor, assume_unknown=assume_unknown or "none",
                         yield_target=yield_target, seed=seed, draws=draws)
+    result = as_options(result)  # its notes name the options, not the library's arguments
     if is_triad(result):  # table, json, csv or markdown, per axis, and the worst axes
         write_triad(result, lambda one: rendered(render, one, fmt, output), fmt, output)
         if not result.requirement_met:

@@ -1,5 +1,5 @@
 """Equivalent degrees of freedom of the overlapping Allan variance and the χ² confidence
-interval of each σ̂(τ) (docs/model.md section 15, its fifth-round part).
+interval of each σ̂(τ) (docs/model.md section 15).
 
 C. A. Greenhall and W. J. Riley, "Uncertainty of stability variances based on finite
 differences" (2003), as NIST SP 1065 section 5.3 tabulates and allantools'

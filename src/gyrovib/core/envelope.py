@@ -320,6 +320,34 @@ class SpecBounds(Frozen):
     share_vre: FloatArray
 
 
+def _split_inputs(budget: float, weights: tuple[float, float], terms: ArrayLike,
+                  g2: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The split weights, the terms (P, 8, 5) and S (P,) of :func:`spec_bounds`, checked."""
+    if not (np.isfinite(budget) and budget > 0):
+        raise ModelError("the budget must be positive and finite")
+    w = np.asarray(weights, dtype=float)
+    if w.shape != (2,) or not (np.all(np.isfinite(w)) and np.all(w > 0)):
+        raise ModelError("the split weights must be two positive numbers")
+    t = np.asarray(terms, dtype=float)
+    return w, t, np.broadcast_to(np.asarray(g2, dtype=float), t.shape[:1])
+
+
+def _split(budget: float, w: FloatArray, w1: FloatArray, s: FloatArray
+           ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Δ* split between the envelope (W(1) = ``w1``, (P,) or (M, P)) and the g² term
+    (S = ``s``, (P,)) in the ratio ``w`` over the parts the profile excites: the shares,
+    NL_max = w_NL·Δ*/W(1) and VRE_max = w_V·Δ*/S (inf where a part gets no share)."""
+    on_nl = w1 > 0
+    on_v = np.broadcast_to(s > 0, w1.shape)
+    total = w[0] * on_nl + w[1] * on_v
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share_nl = np.where(on_nl, w[0] / total, 0.0)
+        share_v = np.where(on_v, w[1] / total, 0.0)
+        b_max = np.where(on_nl, share_nl * budget / w1, np.inf)
+        vre_max = np.where(on_v, share_v * budget / np.broadcast_to(s, w1.shape), np.inf)
+    return share_nl, share_v, b_max, vre_max
+
+
 def spec_bounds(budget: float, terms: ArrayLike, g2: ArrayLike, range_: float,
                 fit: str = "least-squares", measure: str = "max", of: str = "range",
                 weights: tuple[float, float] = (1.0, 1.0)) -> SpecBounds:
@@ -331,25 +359,12 @@ def spec_bounds(budget: float, terms: ArrayLike, g2: ArrayLike, range_: float,
     with W(1) = 0 or S = 0 gets no share). A sensor within both limits meets
     Δ* whatever its polynomial: b·W(1) + |v|·S ≤ (w_NL + w_V)·Δ* = Δ*.
     """
-    if not (np.isfinite(budget) and budget > 0):
-        raise ModelError("the budget must be positive and finite")
-    w = np.asarray(weights, dtype=float)
-    if w.shape != (2,) or not (np.all(np.isfinite(w)) and np.all(w > 0)):
-        raise ModelError("the split weights must be two positive numbers")
-    t = np.asarray(terms, dtype=float)
-    s = np.broadcast_to(np.asarray(g2, dtype=float), t.shape[:1])
+    w, t, s = _split_inputs(budget, weights, terms, g2)
     if of not in OF:
         raise ModelError(f"nonlinearity is relative to one of {', '.join(OF)}, not {of!r}")
     one = worst_case(t, np.zeros_like(s), [range_], [1.0], fit, measure)
     w1 = one.nonlinearity[0]
-    on_nl = w1 > 0
-    on_v = s > 0
-    total = w[0] * on_nl + w[1] * on_v
-    with np.errstate(invalid="ignore", divide="ignore"):
-        share_nl = np.where(on_nl, w[0] / total, 0.0)
-        share_v = np.where(on_v, w[1] / total, 0.0)
-        b_max = np.where(on_nl, share_nl * budget / w1, np.inf)
-        vre_max = np.where(on_v, share_v * budget / s, np.inf)
+    share_nl, share_v, b_max, vre_max = _split(budget, w, w1, s)
     per = {"range": 100.0 / range_, "span": 100.0 / (2.0 * range_), "rate": 1.0}[of]
     return SpecBounds(nonlinearity=b_max * per, vre=vre_max, w1=w1,
                       share_nl=share_nl, share_vre=share_v)
@@ -366,27 +381,14 @@ def spec_bounds_many(budget: float, terms: ArrayLike, g2: ArrayLike, ranges: Arr
     per definition (3,000 sensors of all-different ranges: 3,000 calls, each
     solved cold). Same splits and units as :func:`spec_bounds`.
     """
-    if not (np.isfinite(budget) and budget > 0):
-        raise ModelError("the budget must be positive and finite")
-    w = np.asarray(weights, dtype=float)
-    if w.shape != (2,) or not (np.all(np.isfinite(w)) and np.all(w > 0)):
-        raise ModelError("the split weights must be two positive numbers")
-    t = np.asarray(terms, dtype=float)
-    s = np.broadcast_to(np.asarray(g2, dtype=float), t.shape[:1])
+    w, t, s = _split_inputs(budget, weights, terms, g2)
     r = np.asarray(ranges, dtype=float).reshape(-1)
     for of in ofs:
         if of not in OF:
             raise ModelError(f"nonlinearity is relative to one of {', '.join(OF)}, not {of!r}")
     one = worst_case(t, np.zeros_like(s), r, np.ones(r.size), list(fits), list(measures))
     w1 = one.nonlinearity                                          # (M, P)
-    on_nl = w1 > 0
-    on_v = np.broadcast_to(s > 0, w1.shape)
-    total = w[0] * on_nl + w[1] * on_v
-    with np.errstate(invalid="ignore", divide="ignore"):
-        share_nl = np.where(on_nl, w[0] / total, 0.0)
-        share_v = np.where(on_v, w[1] / total, 0.0)
-        b_max = np.where(on_nl, share_nl * budget / w1, np.inf)
-        vre_max = np.where(on_v, share_v * budget / s[None, :], np.inf)
+    _, _, b_max, vre_max = _split(budget, w, w1, s)
     per = np.array([{"range": 100.0 / rk, "span": 100.0 / (2.0 * rk), "rate": 1.0}[of]
                     for rk, of in zip(r.tolist(), ofs, strict=True)])
     return b_max * per[:, None], vre_max

@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, Multipliers, vibration_error
 from gyrovib.core.special import erfc
-from gyrovib.errors import ModelError
+from gyrovib.errors import ModelError, Note
 from gyrovib.frozen import Frozen
 
 #: Monte-Carlo draws of the yield unless told otherwise (docs/model.md section 14).
@@ -302,7 +302,7 @@ def term_matrix(multipliers: Multipliers, names: Sequence[str]) -> FloatArray:
 
 def correlation_from_pairs(names: Sequence[str], pairs: Mapping[str, float]) -> FloatArray:
     """The correlation matrix of ``names`` from pairs ``{"A1 k2": 0.3}`` (pairs not named
-    are 0; the catalogue's and the JSON's mapping, INTERFACE.md). Checked by
+    are 0; the catalogue's and the JSON's mapping, docs/rate-table.md). Checked by
     :func:`check_correlation`."""
     index = {n: i for i, n in enumerate(names)}
     out = np.eye(len(names))
@@ -423,10 +423,11 @@ def _singular_correlation(correlation: ArrayLike, index: list[int], label: list[
             "spread along fewer directions than there are coefficients"]
 
 
-def unmeasured_warning(lot: str, problem: str) -> str:
+def unmeasured_warning(lot: str, problem: str) -> Note:
     """The warning of a lot whose yield is not a measurement (:func:`spread_problem`)."""
-    return (f"lot {lot!r}: {problem}; a yield from this lot is not a measurement "
-            "(select --yield calls it unverified): measure more units, or units that differ")
+    return Note(f"lot {lot!r}: {problem}; a yield from this lot is not a measurement "
+                "(select with {yield_target} calls it unverified): measure more units, or "
+                "units that differ", ("yield_target", None))
 
 
 def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int,

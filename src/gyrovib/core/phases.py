@@ -304,29 +304,6 @@ def _searched(coarse: FloatArray, values: FloatArray, rows_objective: RowObjecti
     return _lockstep(rows_objective, best, best_value, 2.0 * math.pi / per_axis)
 
 
-def maximise_on_torus(objective: Callable[[FloatArray], FloatArray], dims: int
-                      ) -> tuple[FloatArray, FloatArray]:
-    """Maximise K objectives over ψ ∈ [0, 2π)^dims, each on its own.
-
-    ``objective``: (C, dims) offsets → (C, K) values. Returns the best
-    offsets (K, dims) and values (K,). The coarse grid's best node of each
-    objective is refined by a compass search down to a step of
-    :data:`NEWTON_FROM`, then by Newton's method (:func:`_newton`); where
-    that fails, by the compass search on down to :data:`FINE_STEP`. The
-    objectives are refined in step (:func:`_lockstep`).
-    """
-    if dims == 0:
-        values = objective(np.zeros((1, 0)))[0]
-        return np.zeros((values.size, 0)), values
-    nodes = _coarse(dims)
-
-    def rows_objective(psi: FloatArray, which: NDArray[np.intp]) -> FloatArray:
-        out: FloatArray = objective(psi)[np.arange(psi.shape[0]), which]
-        return out
-
-    return _searched(nodes, objective(nodes), rows_objective)
-
-
 @dataclass(frozen=True, eq=False, repr=False)
 class WorstPhases(Frozen):
     """The worst case of a profile over its unknown phases, per sensor.
@@ -570,7 +547,7 @@ MAX_SEARCH_COST = 3000.0
 
 
 def search_cost(dims: int, objectives: int, n_max: int) -> float:
-    """Estimated cost of :func:`maximise_on_torus` over ``dims`` offsets, in
+    """Estimated cost of :func:`_searched` over ``dims`` offsets, in
     evaluations of a profile's multipliers at one rate with small orders (~1.3 ms).
 
     The coarse nodes, then per objective a few compass rounds of 2D moves and

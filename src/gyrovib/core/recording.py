@@ -412,22 +412,6 @@ def central_moments(sums: ArrayLike, n: int) -> tuple[FloatArray, FloatArray, Fl
     return var, skew, kurt
 
 
-def carrier_histogram(carrier3: ArrayLike, bins: int = MISSION_BINS,
-                      ) -> tuple[FloatArray, FloatArray]:
-    """The histogram of Ω_K3 in at most ``bins`` bins: (mean rate, sample count) of the
-    bins that hold samples (docs/model.md section 13's fitted mission)."""
-    c = np.asarray(carrier3, dtype=float)
-    lo, hi = float(c.min()), float(c.max())
-    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):  # a constant carrier, up to rounding
-        return np.array([float(c.mean())]), np.array([float(c.size)])
-    edges = np.linspace(lo, hi, bins + 1)
-    idx = np.clip(np.searchsorted(edges, c, side="right") - 1, 0, bins - 1)
-    counts = np.bincount(idx, minlength=bins).astype(float)
-    sums = np.bincount(idx, weights=c, minlength=bins)
-    keep = counts > 0
-    return sums[keep] / counts[keep], counts[keep]
-
-
 def carrier_clusters(carrier: ArrayLike, bins: int = MISSION_BINS, iterations: int = 20,
                      ) -> tuple[FloatArray, FloatArray]:
     """The joint carrier Ω_K = (Ω_K1, Ω_K2, Ω_K3) of a recording in at most ``bins``

@@ -29,7 +29,7 @@ _ACCEL_LABELS = {"arw": "N: velocity random walk", "rrw": "K: acceleration rando
 
 
 def figure_json(fig: Figure) -> dict[str, Any]:
-    """``{value, unit, interval}`` or ``{bound, unit, confidence}`` (INTERFACE.md)."""
+    """``{value, unit, interval}`` or ``{bound, unit, confidence}`` (docs/output.md, allan)."""
     if fig.is_bound:
         return {"bound": number(fig.upper), "unit": fig.unit, "confidence": fig.confidence}
     assert fig.interval is not None

@@ -4,6 +4,8 @@ the terminal tables in :mod:`gyrovib.render.analysis_table`, the cells they shar
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -41,8 +43,8 @@ from gyrovib.render.analysis_table import (  # noqa: F401  (the face of the rend
     to_table,
     worst_case_text,
 )
-from gyrovib.render.common import dumps, fmt, header, markdown_table, number
-from gyrovib.render.formats import csv_of
+from gyrovib.render.common import dumps, fmt, header, number
+from gyrovib.render.formats import Cell, csv_of, markdown_of
 
 
 def _to_json_rows(result: AnalysisResult) -> str:
@@ -225,25 +227,48 @@ def to_csv(result: AnalysisResult) -> str:
     return csv_of(analysis_columns(result, csv=True), analysis_cells(result))
 
 
-def _markdown_row(result: AnalysisResult, i: int, j: int, odd: bool,
-                  number_of: dict[str, int]) -> list[str]:
-    e = result.error
-    extra = getattr(result, "stderr", None)
-    mark = ""
-    if (i, j) in result.warnings:
-        mark = " ⚠" + ",".join(str(number_of[w]) for w in result.warnings[(i, j)])
-    numbers = row_cells([*_terms(result, i, j, odd), float(e.additive[i, j]),
+def markdown_cells(result: AnalysisResult) -> tuple[Cell[tuple[int, int]], ...]:
+    """The Markdown table's columns, one row per sensor × profile, each naming the record
+    it shows (:func:`~gyrovib.presentation.frames.analysis_columns`), each with its own
+    text (the records are not built for the Markdown): a row's numbers
+    at 4 significant figures, those negligible beside its largest as 0 (:func:`row_cells`),
+    an unknown term '?'."""
+    e, odd = result.error, any(result.locked)
+    shown = _shown(result.has_linear, odd)
+    number_of = {message: k for k, (message, _) in enumerate(grouped_warnings(result), 1)}
+
+    @functools.lru_cache(maxsize=1)  # the cells of a row are written one after the other
+    def numbers(c: tuple[int, int]) -> list[str]:
+        i, j = c
+        out = row_cells([*_terms(result, i, j, odd), float(e.additive[i, j]),
                          float(e.multiplicative[i, j]), float(e.total[i, j]),
                          float(e.rms[i, j])])
-    shown = _shown(result.has_linear, odd)
-    if G2_INDEX in shown and unknown_term(result, i, j):
-        numbers[shown.index(G2_INDEX)] = "?"  # not given or not published: unknown
-    return [_lot_name(result, i) + mark, result.profiles[j], fmt(result.rates[j, 2]),
-            *numbers[:-1],
-            *([fmt(extra[i, j], 2)] if extra is not None else []),
-            *([_u_text(result, i, j)] if result.uncertainty is not None else []),
-            numbers[-1],
-            "yes" if _saturated(result, i, j) else "no"]
+        if G2_INDEX in shown and unknown_term(result, i, j):
+            out[shown.index(G2_INDEX)] = "?"  # not given or not published: unknown
+        return out
+
+    def number(k: int) -> Callable[[tuple[int, int]], str]:
+        return lambda c: numbers(c)[k]
+
+    def name(c: tuple[int, int]) -> str:
+        marks = ",".join(str(number_of[w]) for w in result.warnings.get(c, ()))
+        return _lot_name(result, c[0]) + (f" ⚠{marks}" if marks else "")
+
+    n, extra = len(shown), result.stderr
+    return (Cell("sensor", name, of="sensor"),
+            Cell("profile", lambda c: result.profiles[c[1]], of="profile"),
+            Cell(f"Ω_K3 ({result.unit})", lambda c: fmt(result.rates[c[1], 2]), of="rate_x3"),
+            *(Cell(label, number(k), of=f"additive_{JSON_TERMS[t]}")
+              for k, (label, t) in enumerate(zip(_labels(result, odd), shown, strict=True))),
+            *(Cell(label, number(n + k), of=part) for k, (label, part) in enumerate(
+                (("Δ_VA", "additive"), ("Δ_VM", "multiplicative"), ("Δ_V", "total")))),
+            *([Cell("± stderr", lambda c: fmt(float(extra[c]), 2), of="stderr")]
+              if extra is not None else []),
+            *([Cell("u(Δ_V)", lambda c: _u_text(result, *c), of="uncertainty_total")]
+              if result.uncertainty is not None else []),
+            Cell("Δ_V(RMS)", number(n + 3), of="rms"),
+            Cell("saturated", lambda c: "yes" if _saturated(result, *c) else "no",
+                 of="saturated"))
 
 
 def _markdown_notes(result: AnalysisResult, notes: list[str]) -> str:
@@ -262,15 +287,8 @@ def _markdown_notes(result: AnalysisResult, notes: list[str]) -> str:
 
 def to_markdown(result: AnalysisResult) -> str:
     """A Markdown table (4 significant figures) with warnings as footnotes."""
-    extra = getattr(result, "stderr", None)
-    odd = any(result.locked)
-    head = ["sensor", "profile", f"Ω_K3 ({result.unit})", *_labels(result, odd),
-            "Δ_VA", "Δ_VM", "Δ_V", *(["± stderr"] if extra is not None else []),
-            *(["u(Δ_V)"] if result.uncertainty is not None else []), "Δ_V(RMS)",
-            "saturated"]
-    groups = grouped_warnings(result)
-    number_of = {message: k for k, (message, _) in enumerate(groups, 1)}
-    notes = [f"{message} ({cells_text(result, cells)})" for message, cells in groups]
-    rows = [_markdown_row(result, i, j, odd, number_of) for i, j in _rows(result)]
+    notes = [f"{message} ({cells_text(result, cells)})"
+             for message, cells in grouped_warnings(result)]
+    table = markdown_of(markdown_cells(result), analysis_cells(result))
     return (f"Vibration error, method `{result.method}`, rates in {result.unit}\n\n"
-            + markdown_table(head, rows) + _markdown_notes(result, notes))
+            + table + _markdown_notes(result, notes))

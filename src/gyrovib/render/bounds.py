@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
-from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api import BoundsResult
@@ -17,8 +17,8 @@ from gyrovib.core.synthesis import (
 )
 from gyrovib.presentation.frames import bounds_columns
 from gyrovib.presentation.reasons import coefficient_unit as coefficient_unit
-from gyrovib.render.common import dumps, fmt, header, markdown_table, rich_text
-from gyrovib.render.formats import csv_of, json_of
+from gyrovib.render.common import dumps, fmt, header, rich_text
+from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
 
 
 #: Unit of the VRE bound in an output rate unit (rate per g², docs/model.md section 8).
@@ -43,19 +43,28 @@ def to_csv(result: BoundsResult) -> str:
     return csv_of(bounds_columns(result), range(len(result.profiles)))
 
 
-def _spec_rows(result: BoundsResult, j: int) -> list[list[str]]:
+def _spec_cells(result: BoundsResult, j: int) -> tuple[Cell[str], ...]:
+    """The datasheet figures' table under profile ``j``: one row per figure
+    (:data:`_SPEC_ROWS`), its allowable value, unit, share of Δ* and how it is read."""
     sb = result.spec_bounds
     assert sb is not None
     total = sb.weights[0] * (sb.share_nl[j] > 0) + sb.weights[1] * (sb.share_vre[j] > 0)
-    return [["nonlinearity", bound_text("nonlinearity", sb.nonlinearity[j]),
-             f"%FS of {'2R' if sb.of == 'span' else 'R'}",
-             f"{fmt(sb.share_nl[j], 3)}" if total else "0",
-             f"{sb.fit}, {sb.measure}; R = {fmt(sb.range)} {result.unit}"],
-            ["VRE", bound_text("VRE", sb.vre[j]), f"{result.unit}/g²", fmt(sb.share_vre[j], 3),
-             "|G_jj| of the datasheet: the VRE to ask for"]]
+    figures = {"nonlinearity": (bound_text("nonlinearity", sb.nonlinearity[j]),
+                                f"%FS of {'2R' if sb.of == 'span' else 'R'}",
+                                f"{fmt(sb.share_nl[j], 3)}" if total else "0",
+                                f"{sb.fit}, {sb.measure}; R = {fmt(sb.range)} {result.unit}"),
+               "VRE": (bound_text("VRE", sb.vre[j]), f"{result.unit}/g²",
+                       fmt(sb.share_vre[j], 3), "|G_jj| of the datasheet: the VRE to ask for")}
+
+    def part(k: int) -> Callable[[str], str]:
+        return lambda figure: figures[figure][k]
+
+    return (Cell("datasheet figure", str), Cell("allowable", part(0), "right", style="bold"),
+            Cell("unit", part(1)), Cell("share of Δ*", part(2)), Cell("read as", part(3)))
 
 
-_SPEC_HEAD = ["datasheet figure", "allowable", "unit", "share of Δ*", "read as"]
+#: The rows of the datasheet figures' table.
+_SPEC_ROWS = ("nonlinearity", "VRE")
 
 _SPEC_LEGEND = ("Datasheet bounds (docs/model.md section 11): a part of range R whose nonlinearity "
                 "(so read) and VRE are within these meets the budget whatever its polynomial "
@@ -198,25 +207,33 @@ def has_vre(bounds: CoefficientBounds, j: int) -> bool:
     return bounds.vre is not None and bool(np.isfinite(bounds.vre[j]))
 
 
-def _rows(result: BoundsResult, j: int) -> list[list[str]]:
-    linear = has_vre(result.bounds, j)
+def _rows(result: BoundsResult, j: int) -> list[str]:
+    """The coefficients bounded under profile ``j``: with a linear vibration and no
+    ``--range``, the effective VRE too."""
+    if has_vre(result.bounds, j) and result.spec_bounds is None:
+        return [*BOUNDED, "vre"]
+    return list(BOUNDED)
+
+
+def _cells(result: BoundsResult, j: int) -> tuple[Cell[str], ...]:
+    """The coefficients' table under profile ``j``: one row per coefficient (:func:`_rows`),
+    its bound (bold), unit, share of Δ* and the candidates it is the least of."""
     odd = [getattr(result.bounds, name) for name in ("k3_additive", "k5_additive")]
     m3, m5 = (part is not None and bool(np.isfinite(part[j])) for part in odd)
-    share = shares(result.allocation, linear=linear, m3=m3, m5=m5)
-    unit = result.table_unit
-    converted = result.table_bounds
-    rows = [[name, bound_text(name, getattr(converted, name)[j]),
-             coefficient_unit(name, unit), share[name], _which(converted, j, name)]
-            for name in BOUNDED]
-    if linear and result.spec_bounds is None:  # with --range: the datasheet VRE alone
-        assert result.bounds.vre is not None
-        rows.append(["vre", bound_text("vre", result.bounds.vre[j]), vre_unit(result.unit),
-                     share["vre"],
-                     "|Δ0(6)|/Σ⟨a_j²⟩"])
-    return rows
+    share = shares(result.allocation, linear=has_vre(result.bounds, j), m3=m3, m5=m5)
+    unit, converted, vre = result.table_unit, result.table_bounds, result.bounds.vre
 
+    def bound(name: str) -> str:
+        values = vre if name == "vre" else getattr(converted, name)
+        assert values is not None
+        return bound_text(name, values[j])
 
-_HEAD = ["coefficient", "|bound|", "unit", "share of Δ*", "candidates"]
+    return (Cell("coefficient", str), Cell("|bound|", bound, "right", style="bold"),
+            Cell("unit", lambda n: vre_unit(result.unit) if n == "vre"
+                 else coefficient_unit(n, unit)),
+            Cell("share of Δ*", share.__getitem__),
+            Cell("candidates", lambda n: "|Δ0(6)|/Σ⟨a_j²⟩" if n == "vre"
+                 else _which(converted, j, n)))
 
 
 def _title(result: BoundsResult, j: int) -> str:
@@ -257,9 +274,10 @@ def to_markdown(result: BoundsResult) -> str:
     parts = [f"Allowable coefficients, eq. (23) and (25), method `{result.method}`, "
              f"budget Δ* = {fmt(result.budget)} {result.unit}\n"]
     for j in range(len(result.profiles)):
-        parts.append(f"**{_title(result, j)}**\n\n" + markdown_table(_HEAD, _rows(result, j)))
+        parts.append(f"**{_title(result, j)}**\n\n" + markdown_of(_cells(result, j),
+                                                                  _rows(result, j)))
         if result.spec_bounds is not None:
-            parts.append(markdown_table(_SPEC_HEAD, _spec_rows(result, j)))
+            parts.append(markdown_of(_spec_cells(result, j), _SPEC_ROWS))
     parts.append(_legend(result) + unit_note(result) + "\n")
     if result.spec_bounds is not None:
         parts.append(_SPEC_LEGEND + "\n")
@@ -270,22 +288,12 @@ def to_table(result: BoundsResult, width: int | None = None, color: bool = False
              ascii: bool = False) -> str:
     """One table per profile, one row per bounded coefficient."""
 
-    def table(head: list[str], rows: list[list[str]], **title: Any) -> Any:
-        """A table whose second column, the bound, is bold and right-aligned."""
-        out = Table(header_style="bold", **title)
-        for k, label in enumerate(head):
-            out.add_column(label, justify="right" if k == 1 else "left", no_wrap=True,
-                           style="bold" if k == 1 else None)
-        for row in rows:
-            out.add_row(*row)
-        return out
-
     out: list[Any] = []
     for j in range(len(result.profiles)):
-        out.append(table(_HEAD, _rows(result, j), title=_title(result, j),
-                         title_justify="left"))
+        out.append(table_of(_cells(result, j), _rows(result, j), title=_title(result, j),
+                            title_justify="left"))
         if result.spec_bounds is not None:
-            out.append(table(_SPEC_HEAD, _spec_rows(result, j)))
+            out.append(table_of(_spec_cells(result, j), _SPEC_ROWS))
     out.append(Text(_legend(result) + unit_note(result), style="dim"))
     if result.spec_bounds is not None:
         out.append(Text(_SPEC_LEGEND, style="dim"))

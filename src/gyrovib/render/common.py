@@ -114,6 +114,23 @@ def markdown_table(header_row: list[str], rows: Iterable[list[str]]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def html_table(head: Iterable[str], rows: Iterable[Sequence[str]], raw: bool = False,
+               caption: str | None = None) -> str:
+    """An HTML table under its ``caption``; cells are escaped unless ``raw`` (then each
+    row's cells are HTML already)."""
+    from html import escape
+
+    # the caption is element text: quotes need no escaping there
+    out = ["<table>", *([f"<caption>{escape(caption, quote=False)}</caption>"] if caption
+                        else []),
+           "<thead><tr>", *(f"<th>{escape(h)}</th>" for h in head), "</tr></thead><tbody>"]
+    for row in rows:
+        out.append("<tr>" + "".join(c if raw else f"<td>{escape(c)}</td>" for c in row)
+                   + "</tr>")
+    out.append("</tbody></table>")
+    return "".join(out)
+
+
 class _Page(io.StringIO):
     """A text buffer that tells rich which encoding its output is for (``ascii``:
     rich then draws ``box.ASCII`` instead of the heavy box)."""

@@ -6,7 +6,6 @@ from __future__ import annotations
 import io
 from typing import Any
 
-from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api.ratetable.results import (
@@ -17,8 +16,8 @@ from gyrovib.api.ratetable.results import (
 )
 from gyrovib.core.fit import SIGNIFICANT_T
 from gyrovib.core.lot import YieldEstimate
-from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
-from gyrovib.render.formats import csv_of
+from gyrovib.render.common import dumps, fmt, header, number, rich_text
+from gyrovib.render.formats import Cell, csv_of, markdown_of, table_of
 from gyrovib.render.plot import _figure_class
 
 
@@ -27,7 +26,7 @@ def _numbers(names: tuple[str, ...], values: Any) -> dict[str, float | None]:
 
 
 def unit_document(result: FitResult, i: int) -> dict[str, Any]:
-    """One unit as the JSON writes it (INTERFACE.md, "JSON additions": fit)."""
+    """One unit as the JSON writes it (docs/rate-table.md)."""
     f = result.fits[i]
     names = result.names
     return {
@@ -77,27 +76,36 @@ def _nonlinearity(result: FitResult, i: int) -> str:
             f"{fmt(nl.endpoint_max, 3)} %FS (endpoint line)")
 
 
-_HEAD = ["coefficient", "value", "σ", "t", "unit", "note"]
-_LOT_HEAD = ["coefficient", "mean", "σ (unit to unit)", "unit"]
+def _unit_cells(result: FitResult) -> tuple[Cell[tuple[int, int]], ...]:
+    """A unit's table (terminal and Markdown): one row per coefficient, a row being the
+    records' (unit, coefficient) (:meth:`FitResult.records`)."""
+    fits, units = result.fits, result.coefficient_units()
+
+    def note(r: tuple[int, int]) -> str:
+        significant = abs(float(fits[r[0]].t[r[1]])) >= SIGNIFICANT_T
+        return "" if significant else "not significant (|t| < 2)"
+
+    return (Cell("coefficient", of="coefficient"),
+            Cell("value", lambda r: fmt(fits[r[0]].values[r[1]]), "right", of="value"),
+            Cell("σ", lambda r: fmt(fits[r[0]].sigma[r[1]], 2), "right", of="sigma"),
+            Cell("t", lambda r: fmt(float(fits[r[0]].t[r[1]]), 3), "right", of="t"),
+            Cell("unit", lambda r: units[r[1]], of="coefficient_unit"),
+            Cell("note", note, no_wrap=False, of="significant"))
 
 
-def _rows(result: FitResult, i: int) -> list[list[str]]:
-    f = result.fits[i]
-    units = result.coefficient_units()
-    rows = []
-    for k, name in enumerate(result.names):
-        t = float(f.t[k])
-        note = "" if abs(t) >= SIGNIFICANT_T else "not significant (|t| < 2)"
-        rows.append([name, fmt(f.values[k]), fmt(f.sigma[k], 2), fmt(t, 3), units[k], note])
-    return rows
-
-
-def _lot_rows(result: FitResult) -> list[list[str]]:
+def _lot_cells(result: FitResult) -> tuple[Cell[int], ...]:
+    """The lot's table: one row per coefficient (its index)."""
     lot = result.lot
     assert lot is not None
     units = result.coefficient_units()
-    return [[name, fmt(lot.mean[k]), fmt(lot.sigma[k], 3), units[k]]
-            for k, name in enumerate(result.names)]
+    return (Cell("coefficient", result.names.__getitem__),
+            Cell("mean", lambda k: fmt(lot.mean[k]), "right"),
+            Cell("σ (unit to unit)", lambda k: fmt(lot.sigma[k], 3), "right"),
+            Cell("unit", units.__getitem__))
+
+
+def _unit_rows(result: FitResult, i: int) -> list[tuple[int, int]]:
+    return [(i, k) for k in range(len(result.names))]
 
 
 def _lot_title(result: FitResult) -> str:
@@ -117,21 +125,14 @@ def to_table(result: FitResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """One table per unit (coefficients, σ, t), then the lot's mean and spread."""
 
-    def table(head: list[str], rows: list[list[str]], title: str | None) -> Table:
-        out = Table(title=title, header_style="bold")
-        for k, label in enumerate(head):
-            right = 0 < k < 4 if head is _HEAD else 0 < k < 3
-            out.add_column(label, justify="right" if right else "left", no_wrap=k < 5)
-        for row in rows:
-            out.add_row(*row)
-        return out
-
     items: list[Any] = []
     for i in range(len(result.units)):
-        items += [table(_HEAD, _rows(result, i), _title(result, i)),
+        items += [table_of(_unit_cells(result), _unit_rows(result, i), result.records(),
+                           title=_title(result, i)),
                   Text(_nonlinearity(result, i))]
     if result.lot is not None:
-        items.append(table(_LOT_HEAD, _lot_rows(result), _lot_title(result)))
+        items.append(table_of(_lot_cells(result), range(len(result.names)),
+                              title=_lot_title(result)))
     items.append(Text(_legend(result), style="dim"))
     items += [Text(f"warning: {w}", style="yellow") for w in result.warnings]
     return rich_text(items, width=width, color=color, ascii=ascii)
@@ -141,18 +142,19 @@ def to_markdown(result: FitResult) -> str:
     """One Markdown table per unit, then the lot's."""
     parts = [f"Rate-table fit of `{result.file}`, order {result.order}\n"]
     for i in range(len(result.units)):
-        parts.append(f"**{_title(result, i)}**\n\n" + markdown_table(_HEAD, _rows(result, i))
+        parts.append(f"**{_title(result, i)}**\n\n"
+                     + markdown_of(_unit_cells(result), _unit_rows(result, i), result.records())
                      + f"\n{_nonlinearity(result, i)}\n")
     if result.lot is not None:
-        parts.append(f"**{_lot_title(result)}**\n\n" + markdown_table(_LOT_HEAD,
-                                                                      _lot_rows(result)))
+        parts.append(f"**{_lot_title(result)}**\n\n"
+                     + markdown_of(_lot_cells(result), range(len(result.names))))
     parts.append(_legend(result) + "\n")
     parts += [f"Warning: {w}\n" for w in result.warnings]
     return "\n".join(parts)
 
 
 def yield_document(estimate: YieldEstimate, index: tuple[int, ...] = ()) -> dict[str, Any]:
-    """A yield as the JSON writes it (INTERFACE.md, ``select --yield``): ``{"value",
+    """A yield as the JSON writes it (docs/output.md, select): ``{"value",
     "method": "exact"|"monte-carlo", "interval": [lo, hi] | null, "draws"}``; ``index``
     picks one entry of an estimate made for several tests at once."""
     value = float(estimate.value[index])

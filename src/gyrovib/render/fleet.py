@@ -14,11 +14,12 @@ from gyrovib import units
 from gyrovib.records import Column
 from gyrovib.render import recording as one
 from gyrovib.render.common import dumps, header
-from gyrovib.render.formats import csv_of
+from gyrovib.render.formats import Cell, csv_of, markdown_of
 
 if TYPE_CHECKING:
     from gyrovib.api.fleet.envelope import Envelope
     from gyrovib.api.fleet.run import RecordingsAnalysis
+    from gyrovib.api.recordings.analysis import RecordingAnalysis
     from gyrovib.api.recordings.results import RecordingFit
 
 
@@ -66,21 +67,22 @@ def to_csv(result: RecordingsAnalysis) -> str:
                             for i in range(len(a.sensors))])
 
 
-_WORST_HEAD = ["sensor", "worst Δ_V,rec", "recording", "fitted Δ̄_V", "ratio", "saturated on"]
+def _worst_cells(result: RecordingsAnalysis) -> tuple[Cell[int], ...]:
+    """The table of each sensor's worst recording, one row per sensor (its index); a
+    sensor unknown on some recording has no worst: '?'."""
+    def of_worst(text: Callable[[RecordingAnalysis, int], str], unknown: str
+                 ) -> Callable[[int], str]:
+        def cell(k: int) -> str:
+            i = result.worst[k]
+            return unknown if i < 0 else text(result.analyses[i], k)
+        return cell
 
-
-def _worst_rows(result: RecordingsAnalysis) -> list[list[str]]:
-    rows = []
-    for k, sensor in enumerate(result.sensors):
-        i = result.worst[k]
-        sat = ", ".join(_saturated_on(result, k)) or "—"
-        if i < 0:
-            rows.append([sensor, "?", "—", "?", "—", sat])  # unknown on some recording
-            continue
-        a = result.analyses[i]
-        rows.append([sensor, one._known(a.recorded[k]), _name(a), one._known(a.fitted[k]),
-                     one._fmt(a.ratio[k], 3), sat])
-    return rows
+    return (Cell("sensor", result.sensors.__getitem__),
+            Cell("worst Δ_V,rec", of_worst(lambda a, k: one._known(a.recorded[k]), "?")),
+            Cell("recording", of_worst(lambda a, k: _name(a), "—")),
+            Cell("fitted Δ̄_V", of_worst(lambda a, k: one._known(a.fitted[k]), "?")),
+            Cell("ratio", of_worst(lambda a, k: one._fmt(a.ratio[k], 3), "—")),
+            Cell("saturated on", lambda k: ", ".join(_saturated_on(result, k)) or "—"))
 
 
 def to_table(result: RecordingsAnalysis, width: int | None = None, color: bool = False,
@@ -90,14 +92,9 @@ def to_table(result: RecordingsAnalysis, width: int | None = None, color: bool =
     n = len(result.analyses)
     parts = [f"recording {i + 1} of {n}: {_name(a)}\n{one.to_table(a)}"
              for i, a in enumerate(result.analyses)]
-    rows = [_WORST_HEAD, *_worst_rows(result)]
-    widths = [max(len(r[k]) for r in rows) for k in range(len(_WORST_HEAD))]
-    out = [f"worst recording per sensor (largest |Δ_V,rec|), {result.unit}"]
-    for m, r in enumerate(rows):
-        out.append("  ".join(c.ljust(widths[k]) if k in (0, 2, 5) else c.rjust(widths[k])
-                             for k, c in enumerate(r)).rstrip())
-        if m == 0:
-            out.append("  ".join("-" * w for w in widths))
+    out = [f"worst recording per sensor (largest |Δ_V,rec|), {result.unit}",
+           *one.plain_table(_worst_cells(result), range(len(result.sensors)),
+                            left=(0, 2, 5))]
     return "\n".join(parts) + "\n" + "\n".join(out) + "\n"
 
 
@@ -105,8 +102,7 @@ def to_markdown(result: RecordingsAnalysis) -> str:
     """Each recording's markdown, then the worst per sensor."""
     out = [one.to_markdown(a) for a in result.analyses]
     table = [f"Worst recording per sensor (largest |Δ_V,rec|, {result.unit})", "",
-             "| " + " | ".join(_WORST_HEAD) + " |", "|" + "---|" * len(_WORST_HEAD)]
-    table += ["| " + " | ".join(r) + " |" for r in _worst_rows(result)]
+             markdown_of(_worst_cells(result), range(len(result.sensors)))[:-1]]
     return "\n".join(out) + "\n" + "\n".join(table) + "\n"
 
 
@@ -128,6 +124,7 @@ def envelope_table(env: Envelope) -> str:
                  f"[{', '.join(f'{v:.4g}' for v in fit.rate)}] deg/s")
     lines.append("variance: of the envelope spectrum over f_c…fs/2 and its lines; held: the "
                  "share of it the fitted profile holds")
+    lines += [f"warning: {w}" for w in fit.warnings]
     return "\n".join(parts) + "\n" + "\n".join(lines) + "\n"
 
 
@@ -148,7 +145,8 @@ def profile_json(fit: RecordingFit) -> str:
 def envelope_json(env: Envelope) -> str:
     """``gyrovib profile A B … --format json``: ``recordings`` (one entry each, as one
     recording's ``recording`` with its ``profile_id`` and ``warnings``), ``envelope``
-    (what its fit holds per axis) and the catalogue text ``profile``."""
+    (what its fit holds per axis, and its own ``warnings``) and the catalogue text
+    ``profile``."""
     fit = env.fit
     document = header("profile", "deg/s")
     document["recordings"] = [{**one.recording_info(f), "profile_id": f.profile_id,
@@ -156,6 +154,6 @@ def envelope_json(env: Envelope) -> str:
     document["envelope"] = {"recordings": len(env.recordings), "profile_id": fit.profile_id,
                             "crossover": fit.crossover, "duration": fit.duration,
                             "mission_segments": len(fit.mission_durations),
-                            "axes": _envelope_axes(fit)}
+                            "axes": _envelope_axes(fit), "warnings": list(fit.warnings)}
     document["profile"] = fit.yaml
     return dumps(document)

@@ -3,16 +3,17 @@
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from rich.table import Table
 from rich.text import Text
 
+from gyrovib.api.missions.results import COLUMNS
 from gyrovib.presentation.reasons import unverified_text
-from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
-from gyrovib.render.formats import csv_of
-from gyrovib.render.mission_answer import allowance_cells, allowance_head, allowance_json
+from gyrovib.render.common import dumps, fmt, header, number, rich_text
+from gyrovib.render.formats import Case, Cell, csv_of, junit_of, known, markdown_of, table_of
+from gyrovib.render.mission_answer import allowance_cells, allowance_json
 from gyrovib.render.mission_segments import segments_csv, segments_markdown, segments_table
 
 if TYPE_CHECKING:
@@ -63,17 +64,10 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
     return f"Δ̄_RMS = {fmt(row.rms)} {result.unit} > {fmt(result.budget)} {result.unit}"
 
 
-_HEAD = ["sensor", "mission", "axis", "mean Δ̄_V", "angle θ_V", "mean RMS Δ̄_RMS",
-         "θ_ARW (deg)", "θ_B (deg)", "θ_RRW (deg)", "θ_R (deg)", "total (deg)",
-         "worst segment", "verdict"]
-#: The budget's noise terms, in the order of the table's columns.
+#: The budget's noise terms, in the order of the table's columns, with their headings
+#: and records.
 _NOISE = ("arw", "bias_instability", "rrw", "repeatability")
-
-
-def known(value: float) -> str:
-    """:func:`fmt`, but '?' for a value that is unknown (NaN: an axis a fitted profile's
-    recording did not record), never 'nan' or 0."""
-    return "?" if math.isnan(value) else fmt(value)
+_NOISE_HEAD = ("θ_ARW", "θ_B", "θ_RRW", "θ_R")
 
 
 def budget_total(row: MissionRow) -> str:
@@ -85,25 +79,49 @@ def budget_total(row: MissionRow) -> str:
     return ("≥ " if row.budget.lower_bound else "") + fmt(row.budget.total)
 
 
-def _noise_cells(row: MissionRow) -> list[str]:
-    """The noise terms in deg; '?' where the figure is unknown (never 0), '≤ x' where it
-    is only an upper bound (the budget uses the bound)."""
-    if row.budget is None:
-        return ["-"] * len(_NOISE)
-    bounds, typical = row.budget.bounds, row.budget.typical
-    return ["?" if (v := getattr(row.budget, name)) is None
-            else ("≤ " if name in bounds else "") + fmt(v) + (" typ" if name in typical else "")
-            for name in _NOISE]
+def _noise_cell(name: str) -> Callable[[MissionRow], str]:
+    """A noise term in deg; '?' where the figure is unknown (never 0), '≤ x' where it is
+    only an upper bound (the budget uses the bound), ' typ' where it is typical."""
+    def text(row: MissionRow) -> str:
+        if row.budget is None:
+            return "-"
+        if (v := getattr(row.budget, name)) is None:
+            return "?"
+        return (("≤ " if name in row.budget.bounds else "") + fmt(v)
+                + (" typ" if name in row.budget.typical else ""))
+    return text
 
 
-def _cells(result: MissionResult, row: MissionRow) -> list[str]:
+def _axis(row: MissionRow) -> str:
+    if row.axis is None:
+        return "-"
+    return row.axis + (" (worst)" if row.axis == row.worst_axis else "")
+
+
+def _worst(row: MissionRow) -> str:
     w = row.segments[row.worst_index]
-    axis = "-" if row.axis is None else row.axis + (" (worst)" if row.axis == row.worst_axis
-                                                    else "")
     worst = f"({fmt(w.total)})" if math.isfinite(row.worst_total) else "(?)"
-    return [row.sensor, row.mission, axis, known(row.mean), known(row.angle), known(row.rms),
-            *_noise_cells(row), budget_total(row), f"{row.worst_index + 1} {w.profile} {worst}",
-            _verdict(row) + (" (saturated)" if row.saturated else "") + _on_typical(row)]
+    return f"{row.worst_index + 1} {w.profile} {worst}"
+
+
+def _verdict_cell(row: MissionRow) -> str:
+    return _verdict(row) + (" (saturated)" if row.saturated else "") + _on_typical(row)
+
+
+def table_cells(result: MissionResult) -> tuple[Cell[MissionRow], ...]:
+    """The columns of the rows' table, its Markdown and its terminal table alike: one
+    row per sensor × mission × axis (the records they show: :data:`COLUMNS`)."""
+    rate, angle = f" ({result.unit})", f" ({result.angle_unit})"
+    return (Cell("sensor", of="sensor"), Cell("mission", of="mission"),
+            Cell("axis", _axis, of="axis"),
+            Cell(f"mean Δ̄_V{rate}", justify="right", of="mean"),
+            Cell(f"angle θ_V{angle}", justify="right", of="angle"),
+            Cell(f"mean RMS Δ̄_RMS{rate}", justify="right", of="rms"),
+            *(Cell(f"{title} (deg)", _noise_cell(name), "right", of=f"theta_{name}")
+              for title, name in zip(_NOISE_HEAD, _NOISE, strict=True)),
+            Cell("total (deg)", budget_total, "right", of="budget_total"),
+            Cell("worst segment", _worst, of="worst_segment"),
+            Cell("verdict", _verdict_cell, of="status"))
 
 
 def _on_typical(row: MissionRow) -> str:
@@ -200,18 +218,12 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
     with ``segments``, the budget segment by segment under it
     (:func:`gyrovib.render.mission_segments.segments_table`)."""
 
-    table = Table(header_style="bold", title=f"Missions: {', '.join(result.missions)} "
-                  f"({_budget_text(result)})", title_justify="left")
-    head = [*_HEAD]
-    head[3] += f" ({result.unit})"
-    head[4] += f" ({result.angle_unit})"
-    head[5] += f" ({result.unit})"
-    keep = [k for k in range(len(head)) if k != 1 or len(result.missions) > 1]  # in the title
-    for k in keep:
-        table.add_column(head[k], justify="right" if 3 <= k <= 10 else "left", no_wrap=True)
-    for row in result.rows:
-        cells = _cells(result, row)
-        table.add_row(*(cells[k] for k in keep))
+    cells = table_cells(result)
+    if len(result.missions) == 1:  # in the title
+        cells = tuple(c for c in cells if c.of != "mission")
+    table = table_of(cells, result.rows, COLUMNS, title=f"Missions: "
+                     f"{', '.join(result.missions)} ({_budget_text(result)})",
+                     title_justify="left")
     out: list[Any] = [table]
     if any(r.budget is not None and r.budget.allowed is not None for r in result.rows):
         out.append(_allowance_table(result))
@@ -225,15 +237,11 @@ def to_table(result: MissionResult, width: int | None = None, color: bool = Fals
 
 def _allowance_table(result: MissionResult) -> Table:
     """Per row, the largest value of each figure that still meets the angle budget."""
-    table = Table(header_style="bold", title="Largest figure that meets the budget, the "
-                  "others as given (none (X): X alone uses the allowance; *: an upper "
-                  "limit, a figure being unknown)", title_justify="left")
-    for name in ("sensor", "axis", *allowance_head()):
-        table.add_column(name, no_wrap=True, justify="left" if name in ("sensor", "axis")
-                         else "right")
-    for row in result.rows:
-        table.add_row(row.sensor, row.axis or "-", *allowance_cells(row))
-    return table
+    cells = (Cell("sensor", of="sensor"), Cell("axis", lambda r: r.axis or "-", of="axis"),
+             *allowance_cells())
+    return table_of(cells, result.rows, COLUMNS, title="Largest figure that meets the "
+                    "budget, the others as given (none (X): X alone uses the allowance; *: "
+                    "an upper limit, a figure being unknown)", title_justify="left")
 
 
 def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
@@ -251,14 +259,7 @@ def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
         "source": row.source,
     }
     if row.budget is not None:
-        b = row.budget
-        out["budget"] = {
-            "vibration": number(b.vibration),
-            **{name: None if getattr(b, name) is None else number(getattr(b, name))
-               for name in _NOISE},
-            "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
-            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
-            "bounds": list(b.bounds), "typical": list(b.typical)}
+        out["budget"] = {**_budget_json(row.budget), "typical": list(row.budget.typical)}
         allowed = allowance_json(row)
         if allowed is not None:
             out["budget"]["allowed"] = allowed
@@ -323,7 +324,7 @@ def _optional_number(value: float | None) -> float | None:
 
 
 def to_json(result: MissionResult) -> str:
-    """The JSON document of INTERFACE.md (third round): one entry per sensor × mission
+    """The JSON document of docs/output.md (mission): one entry per sensor × mission
     (× axis), then each triad's summary and each sensor's verdict."""
     document = {
         **header("exact", result.unit), "angle_unit": result.angle_unit,
@@ -353,11 +354,7 @@ def to_csv(result: MissionResult, segments: bool = False) -> str:
 def to_markdown(result: MissionResult, segments: bool = False) -> str:
     """The rows as a Markdown table with their notes; with ``segments``, the budget
     segment by segment under them (:func:`~gyrovib.render.mission_segments.segments_markdown`)."""
-    head = [*_HEAD]
-    head[3] += f" ({result.unit})"
-    head[4] += f" ({result.angle_unit})"
-    head[5] += f" ({result.unit})"
-    text = markdown_table(head, (_cells(result, r) for r in result.rows))
+    text = markdown_of(table_cells(result), result.rows, COLUMNS)
     notes = _unknown_notes(result) + _rank_notes(result)
     text += "\n" + "\n\n".join(notes) + "\n" if notes else ""
     return text + ("\n" + segments_markdown(result) if segments else "")
@@ -365,28 +362,21 @@ def to_markdown(result: MissionResult, segments: bool = False) -> str:
 
 def to_junit(result: MissionResult) -> str:
     """JUnit XML: one testcase per sensor × mission × axis (classname = sensor)."""
+    return junit_of("gyrovib mission", f"gyrovib mission: {_budget_text(result)}",
+                    [_case(result, r) for r in result.rows])
 
-    n = len(result.rows)
-    n_fail = sum(1 for r in result.rows if r.passed is False)
-    suites = ET.Element("testsuites", name="gyrovib mission", tests=str(n),
-                        failures=str(n_fail), errors="0")
-    suite = ET.SubElement(suites, "testsuite", name=f"gyrovib mission: {_budget_text(result)}",
-                          tests=str(n), failures=str(n_fail), errors="0", skipped="0")
-    for r in result.rows:
-        name = r.mission if r.axis is None else f"{r.mission} (x3 on {r.axis})"
-        case = ET.SubElement(suite, "testcase", classname=r.sensor, name=name, time="0")
-        out = ET.SubElement(case, "system-out")
-        out.text = (f"θ_V = {known(r.angle)} {result.angle_unit}, budget total "
-                    f"{budget_total(r)} deg, mean RMS = {known(r.rms)} "
-                    f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})"
-                    + (f"; the verdict rests on typical (typ) figures: "
-                       f"{', '.join(r.budget.typical)}"
-                       if r.budget is not None and _on_typical(r) else ""))
-        if r.passed is False:
-            reason = _reason(result, r)
-            failure = ET.Element("failure", message=reason,
-                                 type="Unverified" if r.unverified else "BudgetExceeded")
-            failure.text = reason
-            case.insert(0, failure)
-    ET.indent(suites)
-    return ET.tostring(suites, encoding="unicode", xml_declaration=True) + "\n"
+
+def _case(result: MissionResult, r: MissionRow) -> Case:
+    """A row as a JUnit test case: its figures, and why it fails."""
+    name = r.mission if r.axis is None else f"{r.mission} (x3 on {r.axis})"
+    out = (f"θ_V = {known(r.angle)} {result.angle_unit}, budget total "
+           f"{budget_total(r)} deg, mean RMS = {known(r.rms)} "
+           f"{result.unit}, worst segment {r.worst_index + 1} ({r.worst_profile})"
+           + (f"; the verdict rests on typical (typ) figures: "
+              f"{', '.join(r.budget.typical)}"
+              if r.budget is not None and _on_typical(r) else ""))
+    if r.passed is not False:
+        return r.sensor, name, out, None
+    reason = _reason(result, r)
+    return r.sensor, name, out, ("Unverified" if r.unverified else "BudgetExceeded", reason,
+                                 reason)

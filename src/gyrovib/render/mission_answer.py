@@ -6,10 +6,12 @@ and each row's allowance — the largest figure that still meets the angle budge
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from gyrovib.api.noise.results import ALLOWANCE_UNITS
 from gyrovib.render.common import fmt, number
+from gyrovib.render.formats import Cell
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
@@ -35,29 +37,28 @@ def allowance_json(row: MissionRow) -> dict[str, Any] | None:
             "upper": list(a.upper)}
 
 
-def allowance_cells(row: MissionRow) -> list[str]:
-    """One cell per term: '≤ value' (with '*' where it is only an upper limit),
-    'none (<term>)': no value passes, that term alone uses the allowance, or '?' where
-    the allowance rests on an error that is unknown."""
-    if row.budget is None or row.budget.allowed is None:
-        return ["-"] * len(TERMS)
-    a = row.budget.allowed
-    cells = []
-    for name in TERMS:
+def _allowed(name: str) -> Callable[[MissionRow], str]:
+    """A term's cell: '≤ value' (with '*' where it is only an upper limit), 'none
+    (<term>)': no value passes, that term alone uses the allowance, or '?' where the
+    allowance rests on an error that is unknown."""
+    def text(row: MissionRow) -> str:
+        if row.budget is None or row.budget.allowed is None:
+            return "-"
+        a = row.budget.allowed
         value = getattr(a, name)
         if value is None:
-            limit = a.limit(name) or "vibration"
-            cells.append(f"none ({TERMS[limit][1]})")
-        elif math.isnan(value):  # it rests on an error that is unknown
-            cells.append("?")
-        else:
-            cells.append(f"≤ {fmt(value)}" + ("*" if name in a.upper else ""))
-    return cells
+            return f"none ({TERMS[a.limit(name) or 'vibration'][1]})"
+        if math.isnan(value):  # it rests on an error that is unknown
+            return "?"
+        return f"≤ {fmt(value)}" + ("*" if name in a.upper else "")
+    return text
 
 
-def allowance_head() -> list[str]:
-    """The allowance columns' headings, with their units."""
-    return [f"{symbol} ≤ ({ALLOWANCE_UNITS[name]})" for name, (symbol, _) in TERMS.items()]
+def allowance_cells() -> tuple[Cell[MissionRow], ...]:
+    """The allowance's columns, one per term headed by its symbol and unit (the records
+    ``allowed_<term>``)."""
+    return tuple(Cell(f"{symbol} ≤ ({ALLOWANCE_UNITS[name]})", _allowed(name), "right",
+                      of=f"allowed_{name}") for name, (symbol, _) in TERMS.items())
 
 
 def _worst_row(result: MissionResult, sensor: str) -> MissionRow | None:

@@ -9,41 +9,48 @@ records, one line per segment (:data:`gyrovib.api.missions.results.SEGMENT_COLUM
 
 from __future__ import annotations
 
-import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from rich.table import Table
-
 from gyrovib.api.missions.results import SEGMENT_COLUMNS
-from gyrovib.render.common import fmt, markdown_table
-from gyrovib.render.formats import csv_of
+from gyrovib.render.common import fmt
+from gyrovib.render.formats import Cell, csv_of, known, markdown_of, table_of
 
 if TYPE_CHECKING:
+    from rich.table import Table
+
     from gyrovib.api.missions import MissionResult
     from gyrovib.api.missions.results import Budget, SegmentRecord
 
 _NOISE = ("arw", "bias_instability", "rrw", "repeatability")
 
 
-def _known(value: float | None) -> str:
-    """A number, '?' where unknown (None or NaN: never shown as 0)."""
-    return "?" if value is None or math.isnan(value) else fmt(value)
-
-
 def _total(b: Budget) -> str:
     """The total at a segment's end: '≥ x' when a noise figure is unknown."""
-    return ("≥ " if b.lower_bound else "") + _known(b.total)
+    return ("≥ " if b.lower_bound else "") + known(b.total)
 
 
-def _cells(result: MissionResult, r: SegmentRecord) -> list[str]:
-    s = r.segment
-    head = [r.row.sensor, r.row.axis or "-", str(r.index + 1), s.profile,
-            fmt(r.start + s.duration), _known(s.rate[2]), _known(s.total)
-            + (" (saturated)" if s.saturated else "")]
-    b = r.budget
-    if b is None:
-        return [*head, *["-"] * (len(_NOISE) + 2)]
-    return [*head, _known(b.vibration), *(_known(getattr(b, n)) for n in _NOISE), _total(b)]
+def _budget(text: Callable[[Budget], str]) -> Callable[[SegmentRecord], str]:
+    """A figure of the budget at a segment's end; '-' without a budget."""
+    return lambda r: "-" if r.budget is None else text(r.budget)
+
+
+def _cells(result: MissionResult) -> tuple[Cell[SegmentRecord], ...]:
+    """The columns of the segments' table (terminal and Markdown alike)."""
+    def noise(name: str) -> Callable[[Budget], str]:
+        return lambda b: known(getattr(b, name))
+
+    return (Cell("sensor", of="sensor"), Cell("axis", lambda r: r.row.axis or "-", of="axis"),
+            Cell("segment", lambda r: str(r.index + 1), "right", of="segment"),
+            Cell("profile", of="profile"), Cell("end (s)", justify="right", of="end"),
+            Cell(f"Ω_K3 ({result.unit})", justify="right", of="rate_x3"),
+            Cell(f"Δ_V ({result.unit})", lambda r: known(r.segment.total)
+                 + (" (saturated)" if r.segment.saturated else ""), "right", of="total"),
+            Cell("θ_V (deg)", _budget(lambda b: known(b.vibration)), "right",
+                 of="theta_vibration"),
+            *(Cell(f"{title} (deg)", _budget(noise(name)), "right", of=f"theta_{name}")
+              for title, name in zip(("θ_ARW", "θ_B", "θ_RRW", "θ_R"), _NOISE, strict=True)),
+            Cell("total (deg)", _budget(_total), "right", of="budget_total"))
 
 
 def _title(result: MissionResult) -> str:
@@ -52,27 +59,16 @@ def _title(result: MissionResult) -> str:
             + (f" (k = {fmt(result.coverage)})" if result.coverage != 1.0 else ""))
 
 
-def _head(result: MissionResult) -> list[str]:
-    return ["sensor", "axis", "segment", "profile", "end (s)", f"Ω_K3 ({result.unit})",
-            f"Δ_V ({result.unit})", "θ_V (deg)", "θ_ARW (deg)", "θ_B (deg)", "θ_RRW (deg)",
-            "θ_R (deg)", "total (deg)"]
-
-
 def segments_markdown(result: MissionResult) -> str:
     """:func:`segments_table` as a Markdown table under its title."""
-    return (f"{_title(result)}:\n\n"
-            + markdown_table(_head(result), (_cells(result, r) for r in result.segment_rows())))
+    return f"{_title(result)}:\n\n" + markdown_of(_cells(result), result.segment_rows(),
+                                                   SEGMENT_COLUMNS)
 
 
 def segments_table(result: MissionResult) -> Table:
     """One line per sensor × axis × segment: the segment's Δ_V and the budget at its end."""
-    table = Table(header_style="bold", title=_title(result), title_justify="left")
-    head = _head(result)
-    for k, name in enumerate(head):
-        table.add_column(name, no_wrap=True, justify="left" if k in (0, 1, 3) else "right")
-    for record in result.segment_rows():
-        table.add_row(*_cells(result, record))
-    return table
+    return table_of(_cells(result), result.segment_rows(), SEGMENT_COLUMNS, title=_title(result),
+                    title_justify="left")
 
 
 def segments_csv(result: MissionResult) -> str:

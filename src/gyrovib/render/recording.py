@@ -1,23 +1,25 @@
 """Renderers of recordings (docs/model.md section 13): the honesty table of a fit, and
-``analyze --recording`` as table, JSON, CSV and markdown (keys: INTERFACE.md)."""
+``analyze --recording`` as table, JSON, CSV and markdown (keys: docs/output.md)."""
 
 from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from html import escape
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from gyrovib import units
-from gyrovib.render.common import dumps, header
-from gyrovib.render.formats import csv_of, json_of
+from gyrovib.render.common import dumps, header, html_table
+from gyrovib.render.formats import Cell, cell_texts, csv_of, json_of, markdown_of
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
 if TYPE_CHECKING:
-    from gyrovib.api.commands.recording import RecordingAnalysis
+    from gyrovib.api.recordings.analysis import RecordingAnalysis
     from gyrovib.api.recordings.results import AxisHonesty, RecordingFit
+    from gyrovib.records import Column
 
 AXES = ("X", "Y", "Z")
 
@@ -112,14 +114,30 @@ def to_csv(result: RecordingAnalysis) -> str:
     return csv_of(result.records(), range(len(result.sensors)))
 
 
-def _table_rows(result: RecordingAnalysis) -> list[list[str]]:
-    return [[s, _known(result.recorded[i]), _known(result.fitted[i]),
-             "?" if math.isnan(result.recorded[i]) else _fmt(result.ratio[i], 3),
-             _fmt(result.peak_rate[i]), "yes" if result.saturated[i] else "no"]
-            for i, s in enumerate(result.sensors)]
+def table_cells(result: RecordingAnalysis) -> tuple[Cell[int], ...]:
+    """The columns of the table (plain text, Markdown, HTML alike): one row per sensor
+    (its index), the records (:meth:`RecordingAnalysis.records`) they show."""
+    def ratio(i: int) -> str:
+        return "?" if math.isnan(result.recorded[i]) else _fmt(result.ratio[i], 3)
+
+    return (Cell("sensor", of="sensor"),
+            Cell("Δ_V,rec", lambda i: _known(result.recorded[i]), of="recorded"),
+            Cell("fitted Δ̄_V", lambda i: _known(result.fitted[i]), of="fitted"),
+            Cell("ratio", ratio, of="ratio"),
+            Cell("peak |ω3|", lambda i: _fmt(result.peak_rate[i]), of="peak_rate"),
+            Cell("saturated", lambda i: "yes" if result.saturated[i] else "no",
+                 of="saturated"))
 
 
-_HEAD = ["sensor", "Δ_V,rec", "fitted Δ̄_V", "ratio", "peak |ω3|", "saturated"]
+def plain_table(cells: Sequence[Cell[int]], rows: Sequence[int],
+                records: Sequence[Column[int]] = (), left: Sequence[int] = (0,)) -> list[str]:
+    """A plain-text table of ``cells``: the heading, a rule, one line per row; the
+    columns ``left`` aligned left, the others right."""
+    lines = [[c.title for c in cells], *cell_texts(cells, rows, records)]
+    widths = [max(len(line[k]) for line in lines) for k in range(len(cells))]
+    out = ["  ".join(c.ljust(widths[k]) if k in left else c.rjust(widths[k])
+                     for k, c in enumerate(line)).rstrip() for line in lines]
+    return [out[0], "  ".join("-" * w for w in widths), *out[1:]]
 
 
 def to_table(result: RecordingAnalysis, width: int | None = None, color: bool = False,
@@ -127,14 +145,8 @@ def to_table(result: RecordingAnalysis, width: int | None = None, color: bool = 
     """``analyze --recording`` as a plain-text table, the honesty table after it (plain
     text whatever the terminal: ``width``, ``color`` and ``ascii`` are the other tables'
     keywords, not used)."""
-    rows = [_HEAD, *_table_rows(result)]
-    widths = [max(len(r[k]) for r in rows) for k in range(len(_HEAD))]
-    out = [f"recorded error Δ_V,rec and the fitted mission's closed form, {result.unit}"]
-    for n, r in enumerate(rows):
-        out.append("  ".join(c.ljust(widths[k]) if k == 0 else c.rjust(widths[k])
-                             for k, c in enumerate(r)))
-        if n == 0:
-            out.append("  ".join("-" * w for w in widths))
+    out = [f"recorded error Δ_V,rec and the fitted mission's closed form, {result.unit}",
+           *plain_table(table_cells(result), range(len(result.sensors)), result.records())]
     for i, messages in sorted(result.warnings.items()):
         out += [f"warning: {result.sensors[i]}: {m}" for m in messages]
     return "\n".join(out) + "\n\n" + honesty_table(result.fit)
@@ -144,8 +156,8 @@ def to_markdown(result: RecordingAnalysis) -> str:
     """``analyze --recording --format markdown``."""
     out = [f"Recorded error Δ_V,rec and the fitted mission's closed form ({result.unit}), "
            f"recording `{_named(result.fit)}`", "",
-           "| " + " | ".join(_HEAD) + " |", "|" + "---|" * len(_HEAD)]
-    out += ["| " + " | ".join(r) + " |" for r in _table_rows(result)]
+           markdown_of(table_cells(result), range(len(result.sensors)),
+                       result.records())[:-1]]
     for i, messages in sorted(result.warnings.items()):
         out += ["", *[f"> **warning** `{result.sensors[i]}`: {m}" for m in messages]]
     return "\n".join(out) + "\n"
@@ -235,8 +247,11 @@ def report_section(result: RecordingAnalysis) -> str:
     rows = [[a, _fmt(h.variance), _percent(h.held), _fmt(h.skewness, 3),
              _fmt(h.excess_kurtosis, 3), _decibels(h.shape_db), _percent(h.off_3db)]
             for a, h in zip(AXES, fit.honesty, strict=True)]
-    honesty = _html_table(head, rows)
-    compare = _html_table(_HEAD, _table_rows(result))
+    honesty = html_table(head, rows)
+    cells = table_cells(result)
+    compare = html_table([c.title for c in cells],
+                          list(cell_texts(cells, range(len(result.sensors)),
+                                           result.records())))
     notes = "".join(f"<li>{escape(result.sensors[i])}: {escape(m)}</li>"
                     for i, ms in sorted(result.warnings.items()) for m in ms)
     notes += "".join(f"<li>{escape(w)}</li>" for w in fit.warnings)
@@ -255,11 +270,3 @@ def report_section(result: RecordingAnalysis) -> str:
         f"<h3>Honesty of the fit</h3>{honesty}"
         + (f"<ul class=\"warnings\">{notes}</ul>" if notes else "")
         + f'<div class="charts">{figures}</div></section>')
-
-
-def _html_table(head: list[str], rows: list[list[str]]) -> str:
-
-    cells = "".join(f"<th>{escape(h)}</th>" for h in head)
-    body = "".join("<tr>" + "".join(f"<td>{escape(c)}</td>" for c in r) + "</tr>"
-                   for r in rows)
-    return f"<table><thead><tr>{cells}</tr></thead><tbody>{body}</tbody></table>"

@@ -13,7 +13,7 @@ a new term shows up in the tables and charts without a change here.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from html import escape
 from typing import TYPE_CHECKING
 
@@ -27,6 +27,7 @@ from gyrovib.render.analysis_cells import cells_text, grouped_warnings
 from gyrovib.render.analysis_table import worst_case_text
 from gyrovib.render.bounds import shares_text
 from gyrovib.render.common import fmt
+from gyrovib.render.common import html_table as _table
 from gyrovib.render.report_spectrum import spectrum_charts, spectrum_text
 from gyrovib.render.select import (
     CELL_MARGIN,
@@ -118,15 +119,6 @@ ul.warnings li { background: var(--warn); margin: 2px 0; padding: 2px 6px; list-
 
 def _e(text: object) -> str:
     return escape(str(text), quote=True)
-
-
-def _table(head: Sequence[str], rows: Iterable[Sequence[str]], raw: bool = False) -> str:
-    """A table; cells are escaped unless ``raw`` (then they are HTML already)."""
-    out = ["<table><thead><tr>", *(f"<th>{_e(h)}</th>" for h in head), "</tr></thead><tbody>"]
-    for row in rows:
-        out.append("<tr>" + "".join(c if raw else f"<td>{_e(c)}</td>" for c in row) + "</tr>")
-    out.append("</tbody></table>")
-    return "".join(out)
 
 
 def term_names(linear: bool = False, locked: bool = False) -> list[str]:

@@ -12,9 +12,10 @@ import numpy as np
 
 from gyrovib import units
 from gyrovib.core.mission import ANGLE_UNITS
-from gyrovib.render.common import fmt
-from gyrovib.render.mission import budget_total, known
-from gyrovib.render.mission_answer import allowance_cells, allowance_head, answer_line
+from gyrovib.render.common import fmt, html_table
+from gyrovib.render.formats import cell_texts, known
+from gyrovib.render.mission import budget_total
+from gyrovib.render.mission_answer import allowance_cells, answer_line
 from gyrovib.render.svg import Marker, bar_chart, stacked_bar_chart
 
 if TYPE_CHECKING:
@@ -240,23 +241,17 @@ def verdict_table(result: MissionResult, mission: str) -> str:
     and the largest figure of each kind that would meet the budget."""
     rows = _shown(result, mission)
     with_allowance = any(r.budget is not None and r.budget.allowed is not None for r in rows)
-    head = ["sensor", "axis", "|θ_V| (deg)", "total (deg)", "budget", "verdict"]
-    if with_allowance:
-        head += allowance_head()
-    body = []
-    for r in rows:
-        budget = ("-" if result.angle_budget is None else
-                  f"{fmt(result.angle_budget)} {result.angle_unit}")
-        cells = [r.sensor, r.axis or "-", known(abs(r.angle)), budget_total(r), budget,
-                 _WORDS[r.status]]
-        if with_allowance:
-            cells += allowance_cells(r)
-        body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
-    return ("<table><caption>Each sensor's total and verdict (a triad: its worst axis); "
-            "the largest value of each figure that meets the budget, the others as given "
-            "(*: an upper limit, another figure being unknown)</caption><thead><tr>"
-            + "".join(f"<th>{_e(h)}</th>" for h in head) + "</tr></thead><tbody>"
-            + "".join(body) + "</tbody></table>")
+    allowance = allowance_cells() if with_allowance else ()
+    head = ["sensor", "axis", "|θ_V| (deg)", "total (deg)", "budget", "verdict",
+            *(c.title for c in allowance)]
+    budget = ("-" if result.angle_budget is None else
+              f"{fmt(result.angle_budget)} {result.angle_unit}")
+    body = [[r.sensor, r.axis or "-", known(abs(r.angle)), budget_total(r), budget,
+             _WORDS[r.status], *allowed]
+            for r, allowed in zip(rows, cell_texts(allowance, rows), strict=True)]
+    return html_table(head, body, caption="Each sensor's total and verdict (a triad: its "
+                      "worst axis); the largest value of each figure that meets the budget, "
+                      "the others as given (*: an upper limit, another figure being unknown)")
 
 
 #: The noise figures of a ``noise:`` block, and their heading.
@@ -279,11 +274,10 @@ def noise_table(noise: dict[str, dict[str, Any]]) -> str:
             cells.append("?" if fig is None else
                          f"{fmt(fig.value)} {fig.unit}"
                          + (f" {fig.qualifier}" if getattr(fig, "qualifier", None) else ""))
-        body.append("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in cells) + "</tr>")
-    return ("<table><caption>The noise figures of the budget, as the catalogue gives them "
-            "(typ: typical, max: guaranteed; ?: not given, unknown)</caption><thead><tr>"
-            + "".join(f"<th>{_e(h)}</th>" for h in ("sensor", *(t for _, t in _FIGURES)))
-            + "</tr></thead><tbody>" + "".join(body) + "</tbody></table>")
+        body.append(cells)
+    return html_table(("sensor", *(t for _, t in _FIGURES)), body, caption="The noise "
+                      "figures of the budget, as the catalogue gives them (typ: typical, "
+                      "max: guaranteed; ?: not given, unknown)")
 
 
 def mission_section(result: MissionResult,

@@ -11,12 +11,11 @@ import math
 import os
 from typing import TYPE_CHECKING, Any
 
-from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
-from gyrovib.render.common import dumps, fmt, header, markdown_table, number, rich_text
-from gyrovib.render.formats import csv_of
+from gyrovib.render.common import dumps, fmt, header, number, rich_text
+from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
 
 if TYPE_CHECKING:
     from gyrovib.api.runup import Estimate, RunupResult, Step
@@ -27,18 +26,6 @@ UNIT = "deg/s"
 def _c(value: float, digits: int = 4) -> str:
     """A table cell: '?' for an unknown figure."""
     return fmt(value, digits) if math.isfinite(value) else "?"
-
-
-def _step_json(s: Step) -> dict[str, Any]:
-    return {"index": s.index, "start": s.start, "end": s.end, "duration": s.duration,
-            "baseline": s.baseline, "mean": number(s.mean), "x3_rms": number(s.x3_rms),
-            "accel_rms": number(s.accel_rms), "shift": number(s.shift),
-            "uncertainty": number(s.uncertainty),
-            "regressors": {k: number(v) for k, v in s.regressors},
-            "fitted": number(s.fitted), "predicted": number(s.predicted),
-            "predicted_bound": s.bound, "residual": number(s.residual),
-            "residual_sigma": number(s.residual / s.sigma) if s.sigma > 0 else None,
-            "status": s.status, "outlier": s.outlier, "moved": s.moved}
 
 
 def _estimate_json(e: Estimate) -> dict[str, Any]:
@@ -57,7 +44,7 @@ def to_json(result: RunupResult) -> str:
                       "samples": result.samples, "fs": result.fs,
                       "crossover": result.crossover, "steps_given": result.steps_given},
         "sensor": result.sensor,
-        "steps": [_step_json(s) for s in result.steps],
+        "steps": json_of(STEP_RECORDS, result.steps),
         "estimates": {e.name: _estimate_json(e) for e in result.estimates},
         "drift": {"value": number(result.drift), "uncertainty": number(result.drift_uncertainty),
                   "unit": "deg/s/s", "estimated": math.isfinite(result.drift),
@@ -80,27 +67,56 @@ def to_csv(result: RunupResult) -> str:
             + csv_of(ESTIMATE_RECORDS, result.estimates, title_flags=True))
 
 
-def _step_cells(s: Step) -> list[str]:
-    flags = [w for w, on in (("baseline", s.baseline), ("> 3σ", s.outlier),
-                             ("moved", s.moved)) if on]
-    predicted = "" if s.status is None else (
-        ("≤ " if s.bound else "") + _c(s.predicted, 3))
-    return [str(s.index), f"{s.start:.6g}–{s.end:.6g}", _c(s.duration, 4), _c(s.x3_rms, 3),
-            _c(s.accel_rms, 3), f"{_c(s.shift, 3)} ± {_c(s.uncertainty, 2)}",
-            _c(s.fitted, 3), predicted, _c(s.residual, 2), s.status or "", ", ".join(flags)]
+def _flags(s: Step) -> str:
+    return ", ".join(w for w, on in (("baseline", s.baseline), ("> 3σ", s.outlier),
+                                      ("moved", s.moved)) if on)
 
 
-_STEP_HEAD = ["step", "time, s", "T, s", "x3 rms, deg/s", "a rms, g", "shift ± u, deg/s",
-              "fit, deg/s", "predicted, deg/s", "residual, deg/s", "verdict", "flags"]
-_EST_HEAD = ["term", "in-situ ± u", "unit", "status", "catalogue", "ratio", "what would "
-             "separate it"]
+def _predicted(s: Step) -> str:
+    return "" if s.status is None else ("≤ " if s.bound else "") + _c(s.predicted, 3)
 
 
-def _estimate_cells(e: Estimate, compared: bool) -> list[str]:
-    cat = "" if not compared else "?" if not math.isfinite(e.catalogue) else (
-        ("≤ " if e.catalogue_bound else "") + _c(e.catalogue, 3))
-    return [e.name, f"{_c(e.value, 3)} ± {_c(e.uncertainty, 2)}", e.unit, e.status, cat,
-            _c(e.ratio, 3) if math.isfinite(e.ratio) else "", e.separate or ""]
+def _step_table(result: RunupResult) -> tuple[Cell[Step], ...]:
+    """The steps' table (Markdown and terminal): without a sensor, no prediction and no
+    verdict."""
+    compared = result.sensor is not None
+    return tuple(c for c in (
+        Cell("step", lambda s: str(s.index), "right", of="step"),
+        Cell("time, s", lambda s: f"{s.start:.6g}–{s.end:.6g}"),
+        Cell("T, s", lambda s: _c(s.duration, 4), "right", of="duration"),
+        Cell("x3 rms, deg/s", lambda s: _c(s.x3_rms, 3), "right", of="x3_rms"),
+        Cell("a rms, g", lambda s: _c(s.accel_rms, 3), "right", of="accel_rms"),
+        Cell("shift ± u, deg/s", lambda s: f"{_c(s.shift, 3)} ± {_c(s.uncertainty, 2)}",
+             "right", of="shift"),
+        Cell("fit, deg/s", lambda s: _c(s.fitted, 3), "right", of="fitted"),
+        Cell("predicted, deg/s", _predicted, "right", of="predicted") if compared else None,
+        Cell("residual, deg/s", lambda s: _c(s.residual, 2), "right", of="residual"),
+        Cell("verdict", lambda s: s.status or "", of="status") if compared else None,
+        Cell("flags", _flags)) if c is not None)
+
+
+def _catalogue(e: Estimate) -> str:
+    if not math.isfinite(e.catalogue):
+        return "?"
+    return ("≤ " if e.catalogue_bound else "") + _c(e.catalogue, 3)
+
+
+def _estimate_table(result: RunupResult) -> tuple[Cell[Estimate], ...]:
+    """The estimates' table: the catalogue's figure only with a sensor, what would
+    separate a term only when one is not identifiable."""
+    compared = result.sensor is not None
+    separate = any(e.separate for e in result.estimates)
+    return tuple(c for c in (
+        Cell("term", lambda e: e.name, of="name"),
+        Cell("in-situ ± u", lambda e: f"{_c(e.value, 3)} ± {_c(e.uncertainty, 2)}", "right",
+             of="value"),
+        Cell("unit", lambda e: e.unit, of="unit"),
+        Cell("status", lambda e: e.status, of="status"),
+        Cell("catalogue", _catalogue, "right", of="catalogue") if compared else None,
+        Cell("ratio", lambda e: _c(e.ratio, 3) if math.isfinite(e.ratio) else "", "right",
+             of="ratio") if compared else None,
+        Cell("what would separate it", lambda e: e.separate or "", of="separate")
+        if separate else None) if c is not None)
 
 
 def _summary(result: RunupResult) -> str:
@@ -132,39 +148,13 @@ def _verdict(result: RunupResult) -> str:
     return f"verdict: every step within the prediction of {result.sensor}"
 
 
-def _step_columns(result: RunupResult) -> list[int]:
-    """The step table's columns: without a sensor, no prediction and no verdict."""
-    return [k for k in range(len(_STEP_HEAD)) if result.sensor is not None or k not in (7, 9)]
-
-
-def _estimate_columns(result: RunupResult) -> list[int]:
-    """The estimates table's columns: the catalogue's only with a sensor, what would
-    separate a term only when one is not identifiable."""
-    separate = any(e.separate for e in result.estimates)
-    return [k for k in range(len(_EST_HEAD))
-            if (k not in (4, 5) or result.sensor is not None) and (k != 6 or separate)]
-
-
 def to_table(result: RunupResult, width: int | None = None, color: bool = False,
              ascii: bool = False) -> str:
     """The summary, a table of the steps, a table of the estimates, notes and limits."""
     items: list[Any] = [Text(_summary(result))]
-    steps = Table(title="steps", header_style="bold")
-    shown = _step_columns(result)
-    for k in shown:
-        steps.add_column(_STEP_HEAD[k], justify="left" if k in (1, 9, 10) else "right")
-    for s in result.steps:
-        cells = _step_cells(s)
-        steps.add_row(*(cells[k] for k in shown))
-    items.append(steps)
-    est = Table(title="in-situ estimates (standard uncertainty u)", header_style="bold")
-    shown = _estimate_columns(result)
-    for k in shown:
-        est.add_column(_EST_HEAD[k], justify="right" if k in (1, 4, 5) else "left")
-    for e in result.estimates:
-        cells = _estimate_cells(e, result.sensor is not None)
-        est.add_row(*(cells[k] for k in shown))
-    items.append(est)
+    items.append(table_of(_step_table(result), result.steps, title="steps"))
+    items.append(table_of(_estimate_table(result), result.estimates,
+                          title="in-situ estimates (standard uncertainty u)"))
     verdict = _verdict(result)
     if verdict:
         items.append(Text(verdict, style="bold"))
@@ -175,14 +165,8 @@ def to_table(result: RunupResult, width: int | None = None, color: bool = False,
 
 def to_markdown(result: RunupResult) -> str:
     """The two tables as GitHub Markdown, with the summary, notes and limits."""
-    shown = _step_columns(result)
-    parts = [_summary(result), "",
-             markdown_table([_STEP_HEAD[k] for k in shown],
-                            [[_step_cells(s)[k] for k in shown] for s in result.steps]),
-             "", markdown_table([_EST_HEAD[k] for k in _estimate_columns(result)],
-                                [[_estimate_cells(e, result.sensor is not None)[k]
-                                  for k in _estimate_columns(result)]
-                                 for e in result.estimates])]
+    parts = [_summary(result), "", markdown_of(_step_table(result), result.steps), "",
+             markdown_of(_estimate_table(result), result.estimates)]
     verdict = _verdict(result)
     if verdict:
         parts += ["", verdict]

@@ -28,11 +28,10 @@ from gyrovib.render.common import (
     fmt,
     fmt_budget,
     header,
-    markdown_table,
     number,
     rich_text,
 )
-from gyrovib.render.formats import csv_of, json_of
+from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
 
 _CRITERION = {
     "bounds": "every |coefficient| within its bound (eq. 23, 25; sufficient, not necessary)",
@@ -295,7 +294,7 @@ def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict
 
 
 def _yield_json(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
-    """``{"value", "method", "interval": [lo, hi] | null, "draws"}`` (INTERFACE.md)."""
+    """``{"value", "method", "interval": [lo, hi] | null, "draws"}`` (docs/output.md, select)."""
     y = result.yields
     assert y is not None
     interval = (None if y.method == "exact"
@@ -390,10 +389,16 @@ def _unknown_names(result: SelectionResult, i: int, j: int) -> list[str]:
     return [unknown_label(result, i, n) for n in result.unknown.get((i, j), ())]
 
 
-def _unverified(result: SelectionResult) -> list[list[str]]:
-    """Unverified sensors and the questions for their vendor."""
-    return [[result.sensors[i], " | ".join(result.questions.get(i, ())) or _ask(result, i)]
-            for i in result.ranking if result.sensor_status(i) == "unverified"]
+def _unverified(result: SelectionResult) -> list[int]:
+    """Unverified sensors, in the ranking's order."""
+    return [i for i in result.ranking if result.sensor_status(i) == "unverified"]
+
+
+def _asked(result: SelectionResult) -> tuple[Cell[int], ...]:
+    """The unverified sensors' table: the questions for each one's vendor."""
+    return (Cell("sensor", result.sensors.__getitem__, style="yellow"),
+            Cell("ask for", lambda i: " | ".join(result.questions.get(i, ()))
+                 or _ask(result, i), no_wrap=False))
 
 
 _PARTS = ("x1", "x2", "x3", "acceleration")
@@ -426,43 +431,65 @@ def assumption_note(result: SelectionResult) -> str:
             + "; cells marked * pass only under that assumption.")
 
 
-def _passing(result: SelectionResult) -> list[list[str]]:
-    rows = []
-    for rank, i in enumerate((k for k in result.ranking if result.sensor_pass[k]), 1):
-        j = int(result.margin[i].argmin()) if len(result.profiles) else 0
-        where = result.profiles[j] if len(result.profiles) else ""
-        rows.append([str(rank), result.sensors[i], _margin(result.worst_margin[i]), where])
-    return rows
+def _passing(result: SelectionResult) -> list[int]:
+    """Passing sensors, ranked by worst margin."""
+    return [i for i in result.ranking if result.sensor_pass[i]]
 
 
-def _failing(result: SelectionResult) -> list[list[str]]:
-    """Failing sensors and what limits each; with datasheet sensors, ranked by worst margin."""
+def _ranked(result: SelectionResult) -> tuple[Cell[int], ...]:
+    """The passing sensors' table: rank, worst margin and the profile of it."""
+    rank = {i: str(k) for k, i in enumerate(_passing(result), 1)}
+
+    def under(i: int) -> str:
+        return result.profiles[int(result.margin[i].argmin())] if result.profiles else ""
+
+    return (Cell("rank", rank.__getitem__, "right"),
+            Cell("sensor", result.sensors.__getitem__),
+            Cell("worst margin", lambda i: _margin(result.worst_margin[i]), "right"),
+            Cell("under", under))
+
+
+def _failing(result: SelectionResult) -> list[int]:
+    """Failing sensors; with datasheet sensors, ranked by worst margin."""
     order = result.ranking if "specs" in result.sources else range(len(result.sensors))
-    return [[result.sensors[i], limit_text(result, i)]
-            for i in order if result.sensor_status(i) == "fail"]
+    return [i for i in order if result.sensor_status(i) == "fail"]
+
+
+def _limited(result: SelectionResult) -> tuple[Cell[int], ...]:
+    """The failing sensors' table: what limits each."""
+    return (Cell("sensor", result.sensors.__getitem__, style="red"),
+            Cell("limited by", lambda i: limit_text(result, i), no_wrap=False))
+
+
+def _matrix(result: SelectionResult) -> tuple[Cell[int], ...]:
+    """The pass/fail matrix in Markdown: a row per sensor, a column per profile."""
+    def profile(j: int) -> Cell[int]:
+        return Cell(result.profiles[j], lambda i: _cell(result, i, j))
+
+    return (Cell("sensor", result.sensors.__getitem__),
+            *(profile(j) for j in range(len(result.profiles))),
+            Cell("verdict", lambda i: f"**{VERDICT[result.sensor_status(i)]}**"))
+
+
+def _under_matrix(result: SelectionResult) -> list[tuple[str, str, tuple[Cell[int], ...],
+                                                          list[int]]]:
+    """The tables under the matrix that have rows: their titles (terminal, Markdown),
+    cells and rows (sensors)."""
+    ranked = f"Passing sensors, ranked by worst margin {ranking_margin(result)}"
+    asked = ("Unverified sensors: questions for the vendor (the figures that would decide "
+             "each)")
+    tables = [(ranked, ranked, _ranked(result), _passing(result)),
+              ("Failing sensors: what limits each", "Failing sensors, and what limits each",
+               _limited(result), _failing(result)),
+              (asked, asked, _asked(result), _unverified(result))]
+    return [table for table in tables if table[3]]
 
 
 def to_markdown(result: SelectionResult) -> str:
     """The pass/fail matrix, the ranking and the limiting coefficients, in Markdown."""
-    text = [_heading(result) + "\n"]
-    head = ["sensor", *result.profiles, "verdict"]
-    rows = [[result.sensors[i], *(_cell(result, i, j) for j in range(len(result.profiles))),
-             f"**{VERDICT[result.sensor_status(i)]}**"]
-            for i in range(len(result.sensors))]
-    text.append(markdown_table(head, rows))
-    passing = _passing(result)
-    if passing:
-        text.append(f"Passing sensors, ranked by worst margin {ranking_margin(result)}:\n\n"
-                    + markdown_table(["rank", "sensor", "worst margin", "under"], passing))
-    failing = _failing(result)
-    if failing:
-        text.append("Failing sensors, and what limits each:\n\n"
-                    + markdown_table(["sensor", "limited by"], failing))
-    unverified = _unverified(result)
-    if unverified:
-        text.append("Unverified sensors: questions for the vendor (the figures that would "
-                    "decide each):\n\n"
-                    + markdown_table(["sensor", "ask for"], unverified))
+    text = [_heading(result) + "\n", markdown_of(_matrix(result), range(len(result.sensors)))]
+    text += [f"{title}:\n\n" + markdown_of(cells, rows)
+             for _, title, cells, rows in _under_matrix(result)]
     text.append(_summary(result) + "\n\n" + _legend(result) + "\n")
     return "\n".join(text)
 
@@ -485,34 +512,8 @@ def to_table(result: SelectionResult, width: int | None = None, color: bool = Fa
         verdict = Text(VERDICT[status], style="bold " + STYLE[status].split()[-1])
         matrix.add_row(sensor, *cells, verdict)
     out.append(matrix)
-    passing = _passing(result)
-    if passing:
-        ranked = Table(title=f"Passing sensors, ranked by worst margin {ranking_margin(result)}",
-                       title_justify="left", header_style="bold")
-        for label, justify in (("rank", "right"), ("sensor", "left"),
-                               ("worst margin", "right"), ("under", "left")):
-            ranked.add_column(label, justify=justify, no_wrap=True)  # type: ignore[arg-type]
-        for row in passing:
-            ranked.add_row(*row)
-        out.append(ranked)
-    failing = _failing(result)
-    if failing:
-        limited = Table(title="Failing sensors: what limits each", title_justify="left",
-                        header_style="bold")
-        limited.add_column("sensor", no_wrap=True, style="red")
-        limited.add_column("limited by")
-        for row in failing:
-            limited.add_row(*row)
-        out.append(limited)
-    unverified = _unverified(result)
-    if unverified:
-        asked = Table(title="Unverified sensors: questions for the vendor (the figures that "
-                            "would decide each)", title_justify="left", header_style="bold")
-        asked.add_column("sensor", no_wrap=True, style="yellow")
-        asked.add_column("ask for")
-        for row in unverified:
-            asked.add_row(*row)
-        out.append(asked)
+    out += [table_of(cells, rows, title=title, title_justify="left")
+            for title, _, cells, rows in _under_matrix(result)]
     out.append(Text(_summary(result), style="bold green" if result.requirement_met
                     else "bold red"))
     out.append(Text(_legend(result), style="dim"))

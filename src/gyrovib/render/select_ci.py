@@ -4,13 +4,13 @@ profile) and GitHub workflow annotations (one per sensor, at its catalogue line)
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 
 import numpy as np
 
 from gyrovib.api import SelectionResult
 from gyrovib.render.common import fmt
+from gyrovib.render.formats import Case, junit_of
 from gyrovib.render.github import annotations as github_annotations
 from gyrovib.render.select import (
     _CRITERION,
@@ -24,44 +24,32 @@ from gyrovib.render.select import (
 __all__ = ["to_github", "to_junit"]
 
 
-# ------------------------------------------------------------------ JUnit
-
-
 def to_junit(result: SelectionResult) -> str:
     """JUnit XML: one testcase per sensor × profile (classname = sensor, name = profile)."""
-    n_cases = len(result.sensors) * len(result.profiles)
-    n_fail = int((~result.passed.astype(bool)).sum())  # an unverified case fails too
-    suites = ET.Element("testsuites", name="gyrovib select", tests=str(n_cases),
-                        failures=str(n_fail), errors="0")
-    suite = ET.SubElement(
-        suites, "testsuite",
-        name=f"gyrovib select: budget {fmt(result.budget)} {result.unit}, method "
-             f"{result.method}, criterion {result.criterion}",
-        tests=str(n_cases), failures=str(n_fail), errors="0", skipped="0",
-    )
-    for i, sensor in enumerate(result.sensors):
-        for j, profile in enumerate(result.profiles):
-            case = ET.SubElement(suite, "testcase", classname=sensor, name=profile, time="0")
-            out = ET.SubElement(case, "system-out")
-            names = ", ".join(_unknown_names(result, i, j))
-            if result.is_unverified(i, j) and math.isnan(result.rms[i, j]):
-                out.text = f"unverified ({names} unknown); Δ_V(RMS) unknown"
-            elif result.is_unverified(i, j):
-                out.text = (f"unverified ({names} unknown); on the published figures "
-                            f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}")
-            else:
-                out.text = (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}, "
-                            f"margin {_margin(result.margin[i, j])}"
-                            + (f" (assumed {names} = 0: --assume-unknown zero)" if names
-                               else ""))
-            if not result.passed[i, j]:
-                reasons = failures(result, i, j)
-                kind = "Unverified" if result.is_unverified(i, j) else "BudgetExceeded"
-                failure = ET.Element("failure", message="; ".join(reasons), type=kind)
-                failure.text = "\n".join(reasons)
-                case.insert(0, failure)
-    ET.indent(suites)
-    return ET.tostring(suites, encoding="unicode", xml_declaration=True) + "\n"
+    return junit_of("gyrovib select", f"gyrovib select: budget {fmt(result.budget)} "
+                    f"{result.unit}, method {result.method}, criterion {result.criterion}",
+                    [_case(result, i, j) for i in range(len(result.sensors))
+                     for j in range(len(result.profiles))])
+
+
+def _case(result: SelectionResult, i: int, j: int) -> Case:
+    """Sensor ``i`` under profile ``j`` as a JUnit test case; an unverified one fails."""
+    names = ", ".join(_unknown_names(result, i, j))
+    if result.is_unverified(i, j) and math.isnan(result.rms[i, j]):
+        out = f"unverified ({names} unknown); Δ_V(RMS) unknown"
+    elif result.is_unverified(i, j):
+        out = (f"unverified ({names} unknown); on the published figures "
+               f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}")
+    else:
+        out = (f"Δ_V(RMS) = {fmt(result.rms[i, j])} {result.unit}, "
+               f"margin {_margin(result.margin[i, j])}"
+               + (f" (assumed {names} = 0: --assume-unknown zero)" if names else ""))
+    if result.passed[i, j]:
+        return result.sensors[i], result.profiles[j], out, None
+    reasons = failures(result, i, j)
+    kind = "Unverified" if result.is_unverified(i, j) else "BudgetExceeded"
+    return result.sensors[i], result.profiles[j], out, (kind, "; ".join(reasons),
+                                                        "\n".join(reasons))
 
 
 def to_github(

@@ -461,11 +461,6 @@ class SelectionResult(SensorsByProfiles):
         """:attr:`bounds` in :attr:`table_unit` powers, as tables show them."""
         return self._in_table_unit(self.bounds)
 
-    @property
-    def table_profile_bounds(self) -> CoefficientBounds:
-        """:attr:`profile_bounds` in :attr:`table_unit` powers."""
-        return _in_table_unit(self.profile_bounds, self.unit, self.table_unit)
-
     def _in_table_unit(self, array: FloatArray) -> FloatArray:
         if self.table_unit == self.unit:
             return array

@@ -32,9 +32,9 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.commands.recording import _LINE_FLOOR, random_tables
 from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.run import DEFAULTS, RecordingOptions, profile_one, run_recordings
+from gyrovib.api.recordings.fit import LINE_FLOOR, fit_warnings, random_tables
 from gyrovib.api.recordings.results import (
     AxisHonesty,
     FittedHarmonics,
@@ -142,7 +142,7 @@ def _spectrum(part: FittedPart, crossover: float, tone_threshold: float, *,
     diagonal = np.zeros((3, 3, f.size), dtype=complex)
     for j in range(3):
         diagonal[j, j] = measured[j]
-    found, median = find_lines(f, diagonal, tone_threshold, fmin=_LINE_FLOOR * crossover)
+    found, median = find_lines(f, diagonal, tone_threshold, fmin=LINE_FLOOR * crossover)
     random = measured.copy()
     for line in found:
         random[:, line.lo:line.hi] = median[:, line.lo:line.hi]
@@ -266,8 +266,9 @@ def _fitted(s: SpectrumEnvelope, crossover: float, breakpoints: int, independent
     tones: list[FittedTone] = []
     harmonics: list[FittedHarmonics] = []
     grouped: set[int] = set()
+    released: list[int] = []
     if rate and not independent:
-        groups, _ = core.fitted_groups([ln[0] for ln in lines],
+        groups, released = core.fitted_groups([ln[0] for ln in lines],
                                        [float(np.linalg.norm(ln[1])) for ln in lines])
         for f0, members, orders in groups:
             ranked = sorted(range(len(members)), key=lambda m: orders[m])
@@ -284,7 +285,8 @@ def _fitted(s: SpectrumEnvelope, crossover: float, breakpoints: int, independent
     return FittedPart(tones=tuple(tones), harmonics=tuple(harmonics),
                       psd=(tables[0], tables[1], tables[2]), coherence=s.coherence,
                       frequencies=f, measured=s.measured, median=s.median,
-                      variance=variance, held=held, shape_db=shape[0], off_3db=shape[1])
+                      variance=variance, held=held, shape_db=shape[0], off_3db=shape[1],
+                      released=tuple(lines[k][0] for k in released))
 
 
 def fleet_mission(rates: FloatArray, durations: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -362,7 +364,7 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
         angular=angular, linear=linear,
         honesty=tuple(_honesty(angular, j)
                       for j in range(3)),  # type: ignore[arg-type]
-        rate_axes=part.rate_axes, warnings=(), yaml="")
+        rate_axes=part.rate_axes, warnings=tuple(fit_warnings(angular, linear)), yaml="")
     body = profile_yaml(fit, independent_tones=independent_tones)
     text = (_envelope_header(part) + "".join(f"{c}\n" for c in missing_comments(
         missing_parts(fit))) + body[body.index("\ngyrovib: 1\n"):])

@@ -3,7 +3,7 @@ many recordings in worker processes.
 
 The one-recording step is :func:`profile_one`, a pure function of a path and a
 :class:`RecordingOptions`: it reads the recording, fits it
-(:func:`gyrovib.api.commands.recording.fit_recording`) and returns the
+(:func:`gyrovib.api.recordings.fit.fit_recording`) and returns the
 :class:`~gyrovib.api.recordings.results.RecordingFit` — spectra on the Welch grid,
 lines, carrier histogram, moments and honesty figures: tens of kB at 250 Hz, growing
 with fs/Δf and never with the recording's length; never its samples. It pickles, so
@@ -23,9 +23,16 @@ from typing import Any
 import numpy as np
 
 from gyrovib import units
-from gyrovib.api.commands.recording import analysis_of_fit, fit_recording, recording_responses
 from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.pool import located, one_thread, raise_failure, run_in_processes
+from gyrovib.api.recordings.analysis import analysis_of_fit, recording_responses
+from gyrovib.api.recordings.fit import (
+    DEFAULT_BREAKPOINTS,
+    DEFAULT_CROSSOVER,
+    DEFAULT_RESOLUTION,
+    DEFAULT_THRESHOLD,
+    fit_recording,
+)
 from gyrovib.api.recordings.reading import read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core._types import FloatArray, Table
@@ -39,7 +46,7 @@ class RecordingOptions(Frozen):
     """How to read and fit each recording (the options of ``gyrovib profile``).
 
     ``responses``: input-side sensor responses whose Δ_V,rec moments the fit should
-    also gather (:func:`gyrovib.api.commands.recording.recording_responses`).
+    also gather (:func:`gyrovib.api.recordings.analysis.recording_responses`).
     """
 
     fs: float | None = None
@@ -48,10 +55,10 @@ class RecordingOptions(Frozen):
     rate_unit: str | None = None
     accel_unit: str | None = None
     topic: str | None = None
-    crossover: float = 5.0
-    resolution: float = 0.5
-    tone_threshold: float = 10.0
-    breakpoints: int = 12
+    crossover: float = DEFAULT_CROSSOVER
+    resolution: float = DEFAULT_RESOLUTION
+    tone_threshold: float = DEFAULT_THRESHOLD
+    breakpoints: int = DEFAULT_BREAKPOINTS
     independent_tones: bool = False
     profile_id: str | None = None
     responses: tuple[Table, ...] = ()

@@ -53,7 +53,7 @@ from gyrovib.core.lot import (
     term_matrix,
 )
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.errors import ModelError, OptionError
+from gyrovib.errors import ModelError, Note, OptionError
 
 #: Seed of the Monte-Carlo yields unless told otherwise.
 DEFAULT_SEED = 0
@@ -308,9 +308,9 @@ def yield_limits(yields: LotYields, limits: Mapping[int, Limit],
     return out
 
 
-#: The note of ``--yield`` without a lot among the chosen sensors.
-NO_LOTS = ("--yield: no production lot ('lot:') among the chosen sensors; every sensor is "
-           "judged as without it")
+#: The note of a yield target without a lot among the chosen sensors.
+NO_LOTS = Note("{yield_target}: no production lot ('lot:') among the chosen sensors; every "
+               "sensor is judged as without it", ("yield_target", None))
 
 
 def notes(prepared: Prepared, target: float | None = None,

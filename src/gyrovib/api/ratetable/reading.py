@@ -1,4 +1,4 @@
-"""Reading a rate-table CSV (INTERFACE.md, "Rate-table input").
+"""Reading a rate-table CSV (docs/rate-table.md).
 
 A header row names the columns: ``unit`` (optional: one unit if absent),
 ``rate`` (the applied Ω, in the rate unit), ``output`` (the mean output, in

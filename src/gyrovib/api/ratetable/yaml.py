@@ -30,7 +30,7 @@ def _block(mapping: dict[str, float], indent: str) -> list[str]:
 
 
 def fit_catalog(result: FitResult) -> str:
-    """The catalogue ``-o`` writes (INTERFACE.md, third round): one coefficient-form
+    """The catalogue ``-o`` writes (docs/rate-table.md): one coefficient-form
     sensor per unit with its ``uncertainty`` (σ and every correlation pair), and with
     two or more units a ``lot`` entry (mean, σ, correlation pairs unless the lot is
     too small for them). Values in the table's rate unit, each to the decimal place its

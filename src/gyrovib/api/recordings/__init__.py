@@ -1,4 +1,4 @@
-"""Recordings (docs/model.md section 13): a vehicle's own angular rate, read and split.
+"""Recordings (docs/model.md section 13): a vehicle's own angular rate, read, fitted, analysed.
 
 =====================  =========================================================
 module                 what it holds
@@ -14,11 +14,18 @@ module                 what it holds
 ``passes``             the pass over the segments (the split into carrier and
                        vibration a column at a time, the sums of Δ_V,rec)
 ``results``            what a fit gives: ``RecordingFit`` and its parts
+``fit``                ``fit_recording``: a ``Recording`` -> a ``RecordingFit``,
+                       the profile and mission it writes (``gyrovib profile``)
 ``yaml``               a fit written as catalogue text
+``analysis``           ``analyze_recording``: every sensor's Δ_V,rec beside the
+                       fitted profile's closed form (``analyze --recording``)
+``honesty``            the analysis's warnings, where the two disagree
+``records``            the analysis's columns, declared once
 =====================  =========================================================
 
-The fit and ``analyze --recording`` are the command view
-:mod:`gyrovib.api.commands.recording`; many recordings at once are
+The feature reads in one direction, reader -> fit -> analysis; the analysis
+evaluates the fitted profile with the command views (:mod:`gyrovib.api.commands`),
+so this package stands above them. Many recordings at once are
 :mod:`gyrovib.api.fleet`.
 """
 

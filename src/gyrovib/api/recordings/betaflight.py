@@ -18,6 +18,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from gyrovib.api.recordings.readers import Columns, CsvColumns, open_csv, problem
+from gyrovib.errors import Note
 
 PRESETS = ("betaflight",)
 #: The columns blackbox_decode writes.
@@ -53,10 +54,10 @@ class BetaflightColumns(CsvColumns):
             if found is not None and self.accel_unit_given:
                 accel = found
             elif found is not None:
-                self.notes = (f"{found[0][:-3]}[0..2] not read: blackbox_decode writes the "
-                              "accelerometer in the sensor's counts unless told "
-                              "--unit-acceleration g; give --accel-unit g (or m/s^2) for a "
-                              "file decoded so",)
+                self.notes = (Note(f"{found[0][:-3]}[0..2] not read: blackbox_decode writes "
+                                   "the accelerometer in the sensor's counts unless told "
+                                   "--unit-acceleration g; give {accel_unit} (or m/s^2) for "
+                                   "a file decoded so", ("accel_unit", "g")),)
         return rate, accel
 
 

@@ -34,7 +34,7 @@ BLOCK = 1 << 20
 
 class RatePass:
     """What the angular pass measures, summed over every kept sample (an accumulator
-    private to :func:`gyrovib.api.commands.recording.fit_recording`, not a result)."""
+    private to :func:`gyrovib.api.recordings.fit.fit_recording`, not a result)."""
 
     __slots__ = ("carrier_sum", "moments", "peak", "raw", "signal", "x")
 

@@ -36,7 +36,7 @@ from gyrovib.api.recordings.registry import LOGS, Opener, reader_for
 from gyrovib.api.recordings.results import source_words
 from gyrovib.core._types import FloatArray
 from gyrovib.core.recording import gap_segments
-from gyrovib.errors import OptionError
+from gyrovib.errors import Note, OptionError, headed
 from gyrovib.frozen import Frozen
 
 #: A gap is an interval longer than this many median intervals (docs/model.md section 13).
@@ -160,8 +160,9 @@ def read_recording(path: str, *, fs: float | None = None,
         file=path, sha256=file_sha256(path), fs=rate_fs,
         rate_axes=_recorded(axes["rate"]), accel_axes=_recorded(axes["accel"]),
         segments=segments, time_given=time is not None, store=store,
-        warnings=tuple(f"{base}: {w} (--strict refuses such a file)" for w in reader.warnings)
-        + tuple(f"{base}: {note}" for note in reader.notes),
+        warnings=tuple(Note(f"{base}: {w} ({{strict}} refuses such a file)", ("strict", True))
+                       for w in reader.warnings)
+        + tuple(headed(f"{base}: ", note) for note in reader.notes),
         topic=reader.topic, instance=reader.instance)
 
 

@@ -1,7 +1,7 @@
 """What fitting a recording gives (docs/model.md section 13): the fitted profile's parts,
 the honesty of the fit per axis, the fitted mission.
 
-Result types of the recording view, apart from :mod:`gyrovib.api.commands.recording`
+Result types of the recording view, apart from :mod:`gyrovib.api.recordings.analysis`
 (which computes them, and still gives their names) so that
 :mod:`gyrovib.api.recordings.yaml`, which writes a fit as catalogue text, imports
 them without importing the command.

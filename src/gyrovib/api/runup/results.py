@@ -154,17 +154,29 @@ def _number(name: str, unit: str | None) -> Column[Any]:
     return Column(name, unit, lambda row: getattr(row, name), cell=known)
 
 
-#: The CSV's records of the steps, declared once: one row per step.
+#: What only the JSON's steps have.
+_JSON_ONLY = ("csv", "frame")
+
+#: The records of the steps, declared once: one row per step, the CSV's columns and the
+#: JSON's ``steps`` (its keys in order; there the step is its ``index``, the shift's
+#: mean and regressors, whether the prediction is a bound and the residual in σ).
 STEP_RECORDS: tuple[Column[Step], ...] = (
-    Column("kind", None, lambda s: "step"),
-    Column("step", None, lambda s: s.index),
+    Column("kind", None, lambda s: "step", skip=("json",)),
+    Column("step", None, lambda s: s.index, key="index"),
     Column("start", "s", lambda s: s.start),
     Column("end", "s", lambda s: s.end),
     Column("duration", "s", lambda s: s.duration),
     Column("baseline", None, lambda s: s.baseline),
+    Column("mean", "deg/s", lambda s: s.mean, skip=_JSON_ONLY),
     _number("x3_rms", "deg/s"), _number("accel_rms", "g"), _number("shift", "deg/s"),
-    _number("uncertainty", "deg/s"), _number("fitted", "deg/s"),
-    _number("predicted", "deg/s"), _number("residual", "deg/s"),
+    _number("uncertainty", "deg/s"),
+    Column("regressors", None, lambda s: {k: known(v) for k, v in s.regressors},
+           skip=_JSON_ONLY),
+    _number("fitted", "deg/s"), _number("predicted", "deg/s"),
+    Column("predicted_bound", None, lambda s: s.bound, skip=_JSON_ONLY),
+    _number("residual", "deg/s"),
+    Column("residual_sigma", None, lambda s: s.residual / s.sigma if s.sigma > 0 else None,
+           skip=_JSON_ONLY),
     Column("status", None, lambda s: s.status),
     Column("outlier", None, lambda s: s.outlier),
     Column("moved", None, lambda s: s.moved),

@@ -14,9 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.commands.recording import recorded_totals
 from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.ratetable.results import coefficient_unit
+from gyrovib.api.recordings.analysis import recorded_totals
 from gyrovib.api.recordings.reading import Recording
 from gyrovib.api.runup.measure import Measured, baseline, measure, need_scipy
 from gyrovib.api.runup.results import (

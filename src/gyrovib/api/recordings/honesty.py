@@ -13,6 +13,7 @@ from gyrovib.api.evaluation.unknown import words
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.api.recordings.yaml import mission_id
 from gyrovib.core._types import FloatArray
+from gyrovib.errors import Note
 
 #: The fitted mission's closed form and Δ_V,rec should agree within this range.
 RATIO_RANGE = (0.8, 1.25)
@@ -39,11 +40,12 @@ def ratio_warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.b
         if np.isfinite(ratio[i]) and not lo <= ratio[i] <= hi:
             worst = (" (the fitted harmonics take their worst relative phases, so the closed "
                      "form is a bound over phases the recording does not show: "
-                     "--independent-tones compares like with like)"
+                     "{independent_tones} compares like with like)"
                      if fit.angular.harmonics else "")
-            w.append(f"the fitted profile's closed form is {ratio[i]:.3g} × Δ_V,rec, outside "
-                     f"[{lo}, {hi}]: the recording is not Gaussian-plus-tones or not "
-                     f"stationary, and Δ_V,rec is the number to trust{worst}")
+            w.append(Note(f"the fitted profile's closed form is {ratio[i]:.3g} × Δ_V,rec, "
+                          f"outside [{lo}, {hi}]: the recording is not Gaussian-plus-tones or "
+                          f"not stationary, and Δ_V,rec is the number to trust{worst}",
+                          ("independent_tones", True)))
         if saturated[i]:
             w.append(f"max |ω3| = {peak[i]:.6g} {unit} on the recording exceeds the "
                      f"sensor's range {ranges[i]:.6g} {unit}: the static model does not "

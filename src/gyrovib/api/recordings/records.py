@@ -13,7 +13,7 @@ from gyrovib.records import Column, known
 
 
 def recording_columns(a: Any) -> tuple[Column[int], ...]:
-    """The records of ``a``, a :class:`~gyrovib.api.commands.recording.RecordingAnalysis`
+    """The records of ``a``, a :class:`~gyrovib.api.recordings.analysis.RecordingAnalysis`
     (typed loosely: this module is below the one that defines it). One row per sensor
     (its index): Δ_V,rec and its parts, the fitted profile's closed
     form and their ratio, the profile at its mean rate, saturation and the peak rate; a
