@@ -63,7 +63,7 @@ hold in only 6 of 11 records).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -496,28 +496,14 @@ def roll_off(tau: FloatArray, adev: FloatArray) -> int:
     return j
 
 
-def world(fitted: Fit, tau: FloatArray) -> Fit:
-    """The model the replicates are drawn from: the fit, less the terms that reach half of
-    the model at no τ (a term the curve does not show, which a non-negative fit puts a
-    little of where the truth has none: simulated, it would add its scatter to the
-    other terms'). The replicates' fit is still free to find them, as the record's was."""
-    parts = np.maximum(fitted.design(tau) * fitted.coef, 0.0)
-    share = parts / np.maximum(parts.sum(axis=1, keepdims=True), np.finfo(float).tiny)
-    coef = fitted.coef.copy()
-    shown = share.max(axis=0) >= RESOLVED_SHARE
-    shown[0] |= fitted.filtered   # a filter's tail is the curve's shape, not a noise term
-    coef[:5] = np.where(shown[:5], coef[:5], 0.0)
-    return replace(fitted, coef=coef)
-
-
 def bootstrap(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
               replicates: int = REPLICATES, seed: int = 0,
               sim_cap: int = SIM_CAP) -> FloatArray:
-    """The replicates' coefficients (rows): records of the fitted model (:func:`world`,
-    :func:`_replicate_curves`), each refitted by the record's own estimator (its weights
+    """The replicates' coefficients (rows): records of the fitted model
+    (:func:`_replicate_curves`), each refitted by the record's own estimator (its weights
     refined from the replicate, the record's τ_c and filter), so that their spread is the
     estimator's."""
-    curves = _replicate_curves(world(fitted, tau), tau, m, n, tau0, replicates,
+    curves = _replicate_curves(fitted, tau, m, n, tau0, replicates,
                                np.random.default_rng(seed), sim_cap)
     return np.array([_refine(tau, curve, m, n + 1, fitted.tau_c, fitted.filtered).coef
                      for curve in curves])
@@ -529,13 +515,13 @@ def double_bootstrap(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: fl
     """:func:`bootstrap`'s replicates (the same for the same seed) and, row for row, the
     coefficients of one record of each replicate's own fit, refitted the same way: the
     fast double bootstrap's second level (:mod:`gyrovib.core.allan_fdb`)."""
-    curves = _replicate_curves(world(fitted, tau), tau, m, n, tau0, replicates,
+    curves = _replicate_curves(fitted, tau, m, n, tau0, replicates,
                                np.random.default_rng(seed), sim_cap)
     rng = np.random.default_rng([seed, 1])
     outer, inner = [], []
     for curve in curves:
         once = _refine(tau, curve, m, n + 1, fitted.tau_c, fitted.filtered)
-        again = _replicate_curves(world(once, tau), tau, m, n, tau0, 1, rng, sim_cap)[0]
+        again = _replicate_curves(once, tau, m, n, tau0, 1, rng, sim_cap)[0]
         outer.append(once.coef)
         inner.append(_refine(tau, again, m, n + 1, fitted.tau_c, fitted.filtered).coef)
     return np.array(outer), np.array(inner)
