@@ -17,7 +17,7 @@ from gyrovib.core.harmonics import locked_group
 from gyrovib.core.phases import (
     apply_offsets,
     free_offsets,
-    worst_phase_error,
+    worst_phase_errors,
     worst_phase_multipliers,
 )
 from gyrovib.core.statistics import vibration_at_sensor
@@ -46,7 +46,7 @@ def test_worst_k3_term_is_three_quarters_a1_squared_a2() -> None:
     g = locked_group([1, 2], [[0, 0, A1], [0, 0, A2]], [[0, 0, 10.0], [0, 0, 0.0]],
                      worst=[True, True])
     c = rows({"k3": 2e-3}, {"k3": -1e-3})
-    got = worst_phase_error(c, NONE, [g], 0.0)
+    got = worst_phase_errors(c, NONE, [g], [0.0])[0]
     assert got.free == ((0, 1),)
     expected = 0.75 * A1**2 * A2
     assert np.abs(got.error.total) == pytest.approx([2e-3 * expected, 1e-3 * expected],
@@ -65,7 +65,7 @@ def test_worst_is_never_below_any_phase() -> None:
     c = rows({"A1": 0.02, "k2": 1e-3, "k3": -2e-3, "k4": 1e-3, "k5": 5e-4},
              {"k3": 1e-3, "k4": -2e-3})
     omega = 0.5
-    got = worst_phase_error(c, vib, [g], omega)
+    got = worst_phase_errors(c, vib, [g], [omega])[0]
     free = free_offsets([g])
     rng = np.random.default_rng(7)
     for psi in rng.uniform(0, 2 * math.pi, size=(12, len(free))):

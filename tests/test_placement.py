@@ -47,7 +47,7 @@ def test_cyclic_permutation_by_hand() -> None:
 
 def test_flipped_axis_by_hand() -> None:
     # x1 = -Y, x2 = +X, x3 = +Z: a quarter turn about Z; x1 is the flipped Y.
-    p = pl.from_axes("-Y", "+X", "+Z")
+    p = pl.parse("x1=-Y,x2=+X,x3=+Z")
     np.testing.assert_array_equal(p.signed([1.0, 2.0, 3.0]), [-2.0, 1.0, 3.0])
     np.testing.assert_array_equal(p.magnitudes([1.0, 2.0, 3.0]), [2.0, 1.0, 3.0])
     # The flipped axis's phase moves by 180 degrees.

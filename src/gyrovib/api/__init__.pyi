@@ -48,10 +48,7 @@ from gyrovib.api.study.prepare import check_finite as check_finite
 from gyrovib.api.study.prepare import float_guard as float_guard
 from gyrovib.api.study.prepare import profile_locked as profile_locked
 from gyrovib.api.study.prepare import profile_vibration as profile_vibration
-from gyrovib.api.study.prepare import quiet_float as quiet_float
-from gyrovib.api.study.prepare import response_groups as response_groups
 from gyrovib.api.study.prepare import response_table as response_table
-from gyrovib.api.study.prepare import vibration_peak as vibration_peak
 from gyrovib.api.study.prepare import vibration_swing as vibration_swing
 from gyrovib.api.study.study import Study as Study
 from gyrovib.api.study.study import prepare as prepare

@@ -10,7 +10,7 @@ import click
 from gyrovib.cli.common import page_width, plain_ascii, say, use_color
 from gyrovib.cli.options import as_options, format_option
 from gyrovib.cli.output import write_binary, write_output
-from gyrovib.cli.recording import read, reader_options
+from gyrovib.cli.recording import reader_options, recording_of
 from gyrovib.errors import OptionError
 
 
@@ -58,7 +58,7 @@ def allan(recording: str, unit: str, per_decade: int | None, plot: str | None, o
     from gyrovib.render import allan as render
     from gyrovib.render.kalibr import to_kalibr
 
-    result = as_options(run(read(recording, options), unit=unit, per_decade=per_decade,
+    result = as_options(run(recording_of(options).read(recording), unit=unit, per_decade=per_decade,
                             confidence=parse_confidence(confidence)))  # notes name options
     for warning in result.warnings:  # a log's damage, said as profile says it; the fit's
         say(f"gyrovib: warning: {warning}")

@@ -31,6 +31,7 @@ from gyrovib.cli.progress import progress_bar
 from gyrovib.cli.recording import (
     analyze_recording,
     jobs_option,
+    recording_of,
     recording_options,
     refuse_with_recording,
 )
@@ -98,7 +99,8 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
         if placement is not None:
             raise OptionError("--placement maps catalogue profiles; with --recording give "
                               "the recording's columns in sensor axes (--rate-columns)")
-        analyze_recording(recordings, catalog, sensors, unit, fmt, output, rec, jobs)
+        analyze_recording(recordings, catalog, sensors, unit, fmt, output, recording_of(rec),
+                          jobs)
         return
 
     with progress_bar("brute force", enabled=method == "numeric") as advance:

@@ -9,7 +9,7 @@ import click
 
 from gyrovib.cli.options import as_options, format_option, output_option
 from gyrovib.cli.output import write_output
-from gyrovib.cli.recording import fit_options, jobs_option, recording_options
+from gyrovib.cli.recording import jobs_option, recording_of, recording_options
 
 
 @click.command()
@@ -49,20 +49,20 @@ def profile(recordings: tuple[str, ...], jobs: int, plot: str | None, fmt: str,
     from gyrovib.api.fleet.envelope import profile_recordings
     from gyrovib.api.fleet.pool import one_thread
     from gyrovib.api.recordings.fit import fit_recording
-    from gyrovib.cli.recording import read, step_options
     from gyrovib.render import fleet as render
     from gyrovib.render.recording import honesty_table, plot_fit
 
+    given = recording_of(options)
     if len(recordings) == 1:
 
         with one_thread():  # one BLAS/OpenMP thread, as with --jobs 1 on several
-            fit = as_options(fit_recording(read(recordings[0], options),
-                                           **fit_options(options)))  # notes name options
+            fit = as_options(fit_recording(given.read(recordings[0]),
+                                           **given.fit_arguments()))  # notes name options
         table = honesty_table(fit)
         document = render.profile_json(fit) if fmt == "json" else fit.yaml
     else:
 
-        env = as_options(profile_recordings(recordings, step_options(options), jobs=jobs))
+        env = as_options(profile_recordings(recordings, given, jobs=jobs))
         fit, table = env.fit, render.envelope_table(env)
         document = render.envelope_json(env) if fmt == "json" else fit.yaml
     write_output(document, output)

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
@@ -11,6 +12,9 @@ from gyrovib.cli.common import rendered
 from gyrovib.cli.options import as_options
 from gyrovib.cli.output import write_output
 from gyrovib.errors import OptionError
+
+if TYPE_CHECKING:
+    from gyrovib.api.fleet.run import RecordingOptions
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -84,44 +88,22 @@ def jobs_option(f: F) -> F:
              "memory grows with N, one recording per worker).")(f)
 
 
-def fit_options(options: dict[str, Any]) -> dict[str, Any]:
-    """The fit's keyword arguments from the parsed options."""
-    return {k: options[k] for k in ("crossover", "resolution", "tone_threshold", "breakpoints",
-                                    "independent_tones", "profile_id")}
-
-
-def step_options(options: dict[str, Any]) -> Any:
-    """The parsed options as the one-recording step's :class:`RecordingOptions`."""
+def recording_of(given: dict[str, Any]) -> RecordingOptions:
+    """The parsed reader and fit options, once, as one :class:`RecordingOptions` (a
+    command with only :func:`reader_options` leaves the fit's at their defaults)."""
     # lazy: the library and the renderers load when it runs, not for --help
     from gyrovib.api.fleet.run import RecordingOptions
     from gyrovib.api.recordings.reading import parse_columns
 
-    return RecordingOptions(
-        fs=options["fs"],
-        rate_columns=parse_columns(options["rate_columns"], "rate_columns"),
-        accel_columns=parse_columns(options["accel_columns"], "accel_columns"),
-        rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
-        topic=options["topic"], strict=options.get("strict", False),
-        instance=options.get("instance"), preset=options.get("preset"),
-        **fit_options(options))
-
-
-def read(path: str, options: dict[str, Any]) -> Any:
-    """The recording named on the command line, read with the options given."""
-    # lazy: the library and the renderers load when it runs, not for --help
-    from gyrovib.api.recordings.reading import parse_columns, read_recording
-
-    return read_recording(
-        path, fs=options["fs"],
-        rate_columns=parse_columns(options["rate_columns"], "rate_columns"),
-        accel_columns=parse_columns(options["accel_columns"], "accel_columns"),
-        rate_unit=options["rate_unit"], accel_unit=options["accel_unit"],
-        topic=options["topic"], strict=options.get("strict", False),
-        instance=options.get("instance"), preset=options.get("preset"))
+    named = {f.name for f in dataclasses.fields(RecordingOptions)} - {"responses"}
+    return RecordingOptions(**{
+        **{k: v for k, v in given.items() if k in named},
+        "rate_columns": parse_columns(given["rate_columns"], "rate_columns"),
+        "accel_columns": parse_columns(given["accel_columns"], "accel_columns")})
 
 
 def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, ...], unit: str,
-                      fmt: str, output: str | None, options: dict[str, Any],
+                      fmt: str, output: str | None, options: RecordingOptions,
                       jobs: int = 1) -> None:
     """``gyrovib analyze --recording`` (once or more): one library call, then the renderer."""
     # lazy: the library and the renderers load when it runs, not for --help
@@ -134,8 +116,8 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
     if len(paths) == 1:
 
         with one_thread():  # one BLAS/OpenMP thread, as with --jobs 1 on several
-            result = run(read(paths[0], options), catalog, sensors=sensors, unit=unit,
-                         **fit_options(options))
+            result = run(options.read(paths[0]), catalog, sensors=sensors, unit=unit,
+                         **options.fit_arguments())
         result = as_options(result)  # its notes name the options, not the arguments
         if fmt != "table" or output is not None:  # the table on the terminal lists them itself
             for warning in result.fit.warnings:
@@ -143,7 +125,7 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
         write_output(rendered(render, result, fmt, output), output)
         return
 
-    many = as_options(analyze_recordings(paths, catalog, step_options(options),
+    many = as_options(analyze_recordings(paths, catalog, options,
                                          sensors=sensors, unit=unit, jobs=jobs))
     write_output(rendered(render_many, many, fmt, output), output)
 
@@ -163,7 +145,7 @@ def refuse_with_recording(**given: Any) -> None:
 
 
 def report_recording(path: str, catalog: Any, sensors: tuple[str, ...],
-                     profiles: tuple[str, ...], unit: str, options: dict[str, Any],
+                     profiles: tuple[str, ...], unit: str, options: RecordingOptions,
                      ) -> tuple[Any, tuple[str, ...], str]:
     """``gyrovib report --recording``: the catalogue with the fitted profile added, the
     profiles to study (the fitted one too when some were named), and the HTML section."""
@@ -172,8 +154,8 @@ def report_recording(path: str, catalog: Any, sensors: tuple[str, ...],
     from gyrovib.api.recordings.yaml import with_fitted_profile
     from gyrovib.render.recording import report_section
 
-    result = as_options(run(read(path, options), catalog, sensors=sensors, unit=unit,
-                            **fit_options(options)))  # its notes name the options
+    result = as_options(run(options.read(path), catalog, sensors=sensors, unit=unit,
+                            **options.fit_arguments()))  # its notes name the options
     combined = with_fitted_profile(catalog, result.fit)
     chosen = (*profiles, result.fit.profile_id) if profiles else profiles
     return combined, chosen, report_section(result)

@@ -79,7 +79,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     from gyrovib import api
     from gyrovib.api.report import views as studies
     from gyrovib.cli.mission import mission_section
-    from gyrovib.cli.recording import report_recording
+    from gyrovib.cli.recording import recording_of, report_recording
     from gyrovib.render.report import to_html
 
     split = budget_arguments(budget, unit, rate, allocation)
@@ -90,7 +90,7 @@ def report(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str
     section = ""
     if recording is not None:
         catalog, profiles, section = report_recording(recording, catalog, sensors, profiles,
-                                                      split["unit"], rec)
+                                                      split["unit"], recording_of(rec))
     if missions:  # after the recording's section, before the profiles
         section += mission_section(catalog, missions, sensors, angle_budget, split["unit"],
                                    peak_factor, assume_unknown=assume_unknown or "none",

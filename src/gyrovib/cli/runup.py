@@ -10,7 +10,7 @@ import click
 from gyrovib.cli.common import load_catalog, rendered, say
 from gyrovib.cli.options import as_options, files_argument, format_option
 from gyrovib.cli.output import write_binary, write_output
-from gyrovib.cli.recording import read, reader_options
+from gyrovib.cli.recording import reader_options, recording_of
 from gyrovib.errors import OptionError
 
 
@@ -71,8 +71,9 @@ def runup(ctx: click.Context, /, recording: str, files: tuple[str, ...], sensor:
     given = parse_steps(steps)
     terms = parse_terms(estimate)
     catalog = load_catalog(files) if sensor is not None or files else None
-    result = as_options(run(read(recording, options), catalog, sensor=sensor, steps=given,
-                            estimate=terms, crossover=crossover))  # notes name options
+    result = as_options(run(recording_of(options).read(recording), catalog, sensor=sensor,
+                            steps=given, estimate=terms,
+                            crossover=crossover))  # notes name options
     for warning in result.warnings:  # a log's damage, said as profile says it
         say(f"gyrovib: warning: {warning}")
     if fmt != "table":

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from functools import partial
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,6 +22,7 @@ from gyrovib.core.harmonics import (
     locked_peak,
     monotone_roots,
     stationary_points,
+    waveform_mean,
 )
 from gyrovib.core.statistics import rectified_excess, stretched_rule
 from gyrovib.errors import ModelError
@@ -246,7 +248,7 @@ def _folded_table(amplitudes: FloatArray, sigma: float,
     reach = math.fsum(amplitudes.tolist()) + 40.0 * sigma + math.fsum(peaks)
     h = sigma / _TABLE_PER_SIGMA
     half = math.ceil(reach / h) + _STENCIL
-    c = h * np.arange(-half, half + 1)
+    c = np.arange(-half, half + 1, dtype=np.float64) * h
     key = (amplitudes.tobytes(), float(sigma), half)
     coef = _BASES.get(key)
     if coef is None:
@@ -258,14 +260,8 @@ def _folded_table(amplitudes: FloatArray, sigma: float,
     for (n, p, m), peak in zip(folded, peaks, strict=True):
         theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
         x3 = _x3_at(n.astype(float), p, theta)[0]
-        new = np.empty(c.size)
-        step = max(1, (1 << 20) // m)
-        for lo in range(0, c.size, step):
-            part = c[lo:lo + step]
-            s = part[:, None] + x3[None, :]
-            e_s = _interpolate_signed(s, h, reach, coef)
-            inside = np.mean(e_s + np.abs(s), axis=1) - np.abs(part)
-            new[lo:lo + step] = np.where(np.abs(part) < peak, inside, np.mean(e_s, axis=1))
+        new = waveform_mean(c, x3, peak, partial(_interpolate_signed, h=h, reach=reach,
+                                                 coef=coef), label=None)
         coef = _signed_polynomials(np.log(np.maximum(new, 1e-300)))
     return h, reach, coef
 
@@ -479,19 +475,7 @@ def locked_mixture_excess(omega: ArrayLike, groups: Sequence[LockedGroup],
     else:
         h, reach, table = _cached_table(a, sigma)
         interpolate = _interpolate
-    shift = _phase_shifts(live, nodes)
-    todo = flat[near]
-    done = np.empty(todo.size)
-    step = max(1, (1 << 20) // shift.size)
-    for lo in range(0, todo.size, step):
-        advance("E(Ω) of locked harmonics", lo, todo.size)
-        part = todo[lo:lo + step]
-        s = part[:, None] + shift[None, :]
-        e = interpolate(s, h, reach, table)
-        crossing = np.abs(part) < peak
-        inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
-        done[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
-    advance("E(Ω) of locked harmonics", todo.size, todo.size)
-    out[near] = done
+    out[near] = waveform_mean(flat[near], _phase_shifts(live, nodes), peak,
+                              lambda s: interpolate(s, h, reach, table))
     result: FloatArray = out.reshape(w.shape)
     return result

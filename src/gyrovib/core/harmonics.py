@@ -22,7 +22,7 @@ at Ω + x3(θ) (:func:`locked_rectified_excess`).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -440,16 +440,29 @@ def locked_rectified_excess(
     m = _others_nodes(peak, int(n.max()), a, sigma)
     theta = 2.0 * math.pi * (np.arange(m) + 0.5) / m
     x3 = np.sum((p[None, :] * np.exp(1j * n[None, :] * theta[:, None])).imag, axis=1)
-    flat = w.ravel()
-    out: FloatArray = np.empty(flat.size)
-    step = max(1, (1 << 20) // m)  # rates a block: memory bounded whatever the sweep
-    for lo in range(0, flat.size, step):
-        advance("E(Ω) of locked harmonics", lo, flat.size)
-        part = flat[lo:lo + step]
-        s = part[:, None] + x3[None, :]
-        e = rectified_excess(s.ravel(), a, sigma).reshape(s.shape)
-        crossing = np.abs(part) < peak
-        inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
-        out[lo:lo + step] = np.where(crossing, inside, np.mean(e, axis=1))
-    advance("E(Ω) of locked harmonics", flat.size, flat.size)
+    out = waveform_mean(w.ravel(), x3, peak,
+                        lambda s: rectified_excess(s.ravel(), a, sigma).reshape(s.shape))
     return out.reshape(w.shape)
+
+
+def waveform_mean(rates: FloatArray, x3: FloatArray, peak: float,
+                  excess: Callable[[FloatArray], FloatArray],
+                  label: str | None = "E(Ω) of locked harmonics") -> FloatArray:
+    """Per rate Ω (R,), the mean over a locked waveform's nodes ``x3`` (M,) of the smooth
+    F(Ω + x3) = E_Y(Ω + x3) + |Ω + x3|, less |Ω|: computed so where Ω + x3 can cross 0
+    (|Ω| < ``peak``), as the mean of E_Y (no cancellation) where it cannot. ``excess``
+    gives E_Y on an (R, M) array; rates a block at a time (memory bounded whatever the
+    sweep), each block's progress reported under ``label`` (None: not reported)."""
+    out: FloatArray = np.empty(rates.size)
+    step = max(1, (1 << 20) // x3.size)
+    for lo in range(0, rates.size, step):
+        if label is not None:
+            advance(label, lo, rates.size)
+        part = rates[lo:lo + step]
+        s = part[:, None] + x3[None, :]
+        e = excess(s)
+        inside = np.mean(e + np.abs(s), axis=1) - np.abs(part)
+        out[lo:lo + step] = np.where(np.abs(part) < peak, inside, np.mean(e, axis=1))
+    if label is not None:
+        advance(label, rates.size, rates.size)
+    return out

@@ -207,26 +207,6 @@ def monte_carlo_yield(test: Callable[[FloatArray], ArrayLike], mean: ArrayLike,
     return YieldEstimate(value=value, low=lo, high=hi, draws=draws, method="monte-carlo")
 
 
-def exact_estimate(value: ArrayLike) -> YieldEstimate:
-    """An exact yield as a :class:`YieldEstimate` (no interval, no draws)."""
-    v = np.asarray(value, dtype=float)
-    nan = np.full_like(v, np.nan)
-    return YieldEstimate(value=v, low=nan, high=nan.copy(), draws=0, method="exact")
-
-
-def direct_test(g: ArrayLike, budget: ArrayLike) -> Callable[[FloatArray], NDArray[np.bool_]]:
-    """The direct test |gᵀc| ≤ Δ* as a function of draws c (k, p); ``g`` (..., p) gives
-    verdicts (k, ...)."""
-    gv = np.asarray(g, dtype=float)
-    limit = np.asarray(budget, dtype=float)
-
-    def test(c: FloatArray) -> NDArray[np.bool_]:
-        out: NDArray[np.bool_] = np.abs(np.einsum("kp,...p->k...", c, gv)) <= limit
-        return out
-
-    return test
-
-
 def rms_test(terms: ArrayLike, budget: ArrayLike) -> Callable[[FloatArray], NDArray[np.bool_]]:
     """The RMS test (eq. 16, 17) √(Σ_t (G_t·c)²) ≤ Δ* as a function of draws c (k, p);
     ``terms`` G (..., T, p) holds one row per term of eq. (16) (:func:`term_matrix`)."""

@@ -14,7 +14,7 @@ method does not apply (an indefinite Hessian), the compass search goes on to
 1e-6 rad. Four orders of unknown phase took 6,000 evaluations of the
 objective with the compass search alone, 700 so.
 
-* analysis (:func:`worst_phase_error`): maximise |Δ_V| per sensor;
+* analysis (:func:`worst_phase_errors`): maximise |Δ_V| per sensor;
 * synthesis (:func:`worst_phase_multipliers`): per term, the largest |moment|
   over the phases — g_A = ½E(Ω), M4, |M3|, |M5| each on its own (M2 and C3i
   do not depend on the relative phases).
@@ -320,25 +320,6 @@ class WorstPhases(Frozen):
     multipliers: Multipliers
 
 
-def worst_phase_error(
-    coefficients: ArrayLike,
-    vibration: Vibration,
-    groups: Sequence[LockedGroup],
-    omega: float,
-    *,
-    acceleration: ArrayLike | None = None,
-    g2_sensitivity: ArrayLike | None = None,
-) -> WorstPhases:
-    """Maximise |Δ_V(Ω)| over the unknown phases, per sensor (exact method).
-
-    ``coefficients``: (sensors, 11); ``omega``: Ω_K3 (rate); the rest as in
-    :func:`gyrovib.core.analysis.profile_multipliers` and
-    :func:`~gyrovib.core.analysis.vibration_error`.
-    """
-    return worst_phase_errors(coefficients, vibration, groups, [omega],
-                              acceleration=acceleration, g2_sensitivity=g2_sensitivity)[0]
-
-
 def _search_key(*parts: object) -> bytes:
     """Bytes that identify a search's inputs (arrays by shape, dtype and content)."""
     out = []
@@ -383,7 +364,10 @@ def worst_phase_errors(
     acceleration: ArrayLike | None = None,
     g2_sensitivity: ArrayLike | None = None,
 ) -> list[WorstPhases]:
-    """:func:`worst_phase_error` at each rate of ``omegas`` (R,), one search for all.
+    """Maximise |Δ_V(Ω)| over the unknown phases, per sensor (exact method), at each rate
+    of ``omegas`` (Ω_K3, R,), one search for all. ``coefficients``: (sensors, 11); the rest
+    as in :func:`gyrovib.core.analysis.profile_multipliers` and
+    :func:`~gyrovib.core.analysis.vibration_error`.
 
     The objectives are |Δ_V| of every (rate, sensor): the coarse nodes are
     evaluated once for all of them and their refinements run in step

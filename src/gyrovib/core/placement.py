@@ -177,10 +177,3 @@ def parse(text: str) -> Placement | tuple[Placement, ...]:
         missing = ", ".join(f"x{i + 1}" for i in range(3) if i not in source)
         raise ValueError(f"a placement names all three sensor axes; missing {missing}")
     return Placement((source[0], source[1], source[2]), (sign[0], sign[1], sign[2]))
-
-
-def from_axes(x1: str, x2: str, x3: str) -> Placement:
-    """A placement from three signed axis names, e.g. ``("+Y", "+Z", "+X")``."""
-    out = parse(f"x1={x1},x2={x2},x3={x3}")
-    assert isinstance(out, Placement)
-    return out

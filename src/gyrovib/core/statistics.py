@@ -131,12 +131,6 @@ def vibration_at_sensor(
 
 # --------------------------------------------------------------------------- E(Ω)
 
-def _erfc(x: FloatArray) -> FloatArray:
-    """erfc elementwise, vectorised (:func:`gyrovib.core.special.erfc`, Cody's rational
-    approximations: numpy has no erf, and scipy would slow start-up)."""
-    return erfc(x)
-
-
 def folded_normal_excess(omega: ArrayLike, sigma: float) -> FloatArray:
     """``E(Ω) = <|Ω + σZ|> − |Ω|`` for Gaussian Z (folded normal mean).
 
@@ -147,7 +141,7 @@ def folded_normal_excess(omega: ArrayLike, sigma: float) -> FloatArray:
     if sigma <= 0:
         return np.zeros_like(w)
     u = w / (sigma * math.sqrt(2.0))
-    out: FloatArray = sigma * SQRT_2_OVER_PI * np.exp(-(u**2)) - w * _erfc(u)
+    out: FloatArray = sigma * SQRT_2_OVER_PI * np.exp(-(u**2)) - w * erfc(u)
     return out
 
 
@@ -194,7 +188,7 @@ def _gauss_kernel(m: FloatArray, sigma: float) -> FloatArray:
     """
     with np.errstate(over="ignore"):  # |u| → inf for a subnormal σ: exp(−inf) = 0
         u = m / (sigma * math.sqrt(2.0))
-        out: FloatArray = sigma * SQRT_2_OVER_PI * np.exp(-(u**2)) - m * _erfc(u)
+        out: FloatArray = sigma * SQRT_2_OVER_PI * np.exp(-(u**2)) - m * erfc(u)
     return out
 
 

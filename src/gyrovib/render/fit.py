@@ -15,7 +15,6 @@ from gyrovib.api.ratetable.results import (
     pairs,
 )
 from gyrovib.core.fit import SIGNIFICANT_T
-from gyrovib.core.lot import YieldEstimate
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
 from gyrovib.render.formats import Cell, csv_of, markdown_of, table_of
 from gyrovib.render.plot import _figure_class
@@ -151,18 +150,6 @@ def to_markdown(result: FitResult) -> str:
     parts.append(_legend(result) + "\n")
     parts += [f"Warning: {w}\n" for w in result.warnings]
     return "\n".join(parts)
-
-
-def yield_document(estimate: YieldEstimate, index: tuple[int, ...] = ()) -> dict[str, Any]:
-    """A yield as the JSON writes it (docs/output.md, select): ``{"value",
-    "method": "exact"|"monte-carlo", "interval": [lo, hi] | null, "draws"}``; ``index``
-    picks one entry of an estimate made for several tests at once."""
-    value = float(estimate.value[index])
-    interval = None
-    if estimate.method != "exact":
-        interval = [number(estimate.low[index]), number(estimate.high[index])]
-    return {"value": number(value), "method": estimate.method, "interval": interval,
-            "draws": estimate.draws}
 
 
 # --------------------------------------------------------------------------- catalogue YAML

@@ -23,7 +23,7 @@ from gyrovib.api.evaluation.evaluate import (
 from gyrovib.api.evaluation.results import AnalysisResult
 from gyrovib.api.evaluation.unknown import unknown_cells
 from gyrovib.api.lots.uncertainty import distributions, with_uncertainty
-from gyrovib.api.study.convert import error_arrays, to_unit
+from gyrovib.api.study.convert import catalog_unit, error_arrays, to_unit
 from gyrovib.api.study.prepare import (
     Group,
     Prepared,
@@ -177,7 +177,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         peak_factor=peak_factor,
         locked=locked,
         worst_phases=worst,
-        rate_unit=_shared_unit([p.unit for p in prepared.profiles]),
+        rate_unit=catalog_unit([p.unit for p in prepared.profiles]),
         **spread,
     )
 
@@ -196,12 +196,6 @@ def _spread(study: Study, prepared: Prepared, method: str, unit: str,
 def _shaken(prepared: Prepared) -> list[bool]:
     """Per profile, whether it has a linear vibration (docs/model.md section 8)."""
     return [v is not None for v in prepared.linear]
-
-
-def _shared_unit(file_units: Sequence[str]) -> str | None:
-    """The rate unit the profiles' files share (canonical), or None when they differ."""
-    found = {units.canonical_unit(u) for u in file_units}
-    return found.pop() if len(found) == 1 else None
 
 
 def _closed_form(study: Study, prepared: Prepared, datasheet: Prepared, method: str,

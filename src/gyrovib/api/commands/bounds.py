@@ -12,7 +12,7 @@ from gyrovib import units
 from gyrovib.api.datasheet.spec_bounds import datasheet_bounds
 from gyrovib.api.evaluation.results import BoundsResult
 from gyrovib.api.evaluation.unknown import unknown_bounds
-from gyrovib.api.study.convert import bound_factors
+from gyrovib.api.study.convert import bound_factors, catalog_unit
 from gyrovib.api.study.prepare import (
     TINY,
     Prepared,
@@ -226,9 +226,3 @@ def profile_bounds(study: Study, method: str, budget: float, constants: Allocati
     check_vre_bound(raw.vre, prepared)
     check_vre_bound(scaled.vre, prepared)
     return prepared, raw, scaled
-
-
-def catalog_unit(file_units: Sequence[str]) -> str | None:
-    """The rate unit the entries' files share (canonical), or None when they differ."""
-    found = {units.canonical_unit(u) for u in file_units}
-    return found.pop() if len(found) == 1 else None

@@ -79,10 +79,9 @@ def chosen_missions(catalog: Catalog, missions: Sequence[str] = ()) -> tuple[Mis
 
 def _placements(entry: MissionEntry, override: Placement | tuple[Placement, ...] | None
                 ) -> tuple[tuple[Placement, ...], bool]:
-    if override is not None:
-        return (override, True) if isinstance(override, tuple) else ((override,), False)
-    parsed = placements.parse(entry.mission.placement_text)
-    return (parsed, True) if isinstance(parsed, tuple) else ((parsed,), False)
+    """The mission's placements (``override``, else its own), and whether they are a triad."""
+    chosen = placements.parse(entry.mission.placement_text) if override is None else override
+    return (chosen, True) if isinstance(chosen, tuple) else ((chosen,), False)
 
 
 def _segment_entries(catalog: Catalog, chosen: Sequence[MissionEntry],
@@ -305,9 +304,7 @@ def _requirement(rows: Sequence[MissionRow], sensors: Sequence[str], no_budget: 
     if no_budget:
         return tuple(None for _ in sensors), True
     sensor_pass = tuple(all(bool(r.passed) for r in rows if r.sensor == s) for s in sensors)
-    if require == "all":
-        return sensor_pass, all(sensor_pass)
-    return sensor_pass, any(sensor_pass)
+    return sensor_pass, (all if require == "all" else any)(sensor_pass)
 
 
 def _duration_place(entry: MissionEntry, segment: int) -> tuple[object, ...]:

@@ -10,7 +10,6 @@ from numpy.typing import NDArray
 
 from gyrovib import units
 from gyrovib.api.commands.bounds import (
-    catalog_unit,
     check_method_budget,
     profile_bounds,
     resolve_allocation,
@@ -47,7 +46,7 @@ from gyrovib.api.lots.yields import (
     open_lots,
     yield_limits,
 )
-from gyrovib.api.study.convert import bound_factors
+from gyrovib.api.study.convert import bound_factors, catalog_unit
 from gyrovib.api.study.prepare import (
     Group,
     Prepared,

@@ -33,7 +33,7 @@ from gyrovib.api.recordings.fit import (
     DEFAULT_THRESHOLD,
     fit_recording,
 )
-from gyrovib.api.recordings.reading import read_recording
+from gyrovib.api.recordings.reading import Recording, read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core._types import FloatArray, Table
 from gyrovib.errors import Crash, GyrovibError, OptionError
@@ -66,6 +66,20 @@ class RecordingOptions(Frozen):
     instance: int | None = None
     preset: str | None = None
 
+    def read(self, path: str) -> Recording:
+        """The recording at ``path``, read with these options."""
+        return read_recording(
+            path, fs=self.fs, rate_columns=self.rate_columns, accel_columns=self.accel_columns,
+            rate_unit=self.rate_unit, accel_unit=self.accel_unit, topic=self.topic,
+            strict=self.strict, instance=self.instance, preset=self.preset)
+
+    def fit_arguments(self) -> dict[str, Any]:
+        """The keyword arguments these options give the fit (:func:`fit_recording`,
+        :func:`~gyrovib.api.recordings.analysis.analyze_recording`)."""
+        return {"crossover": self.crossover, "resolution": self.resolution,
+                "tone_threshold": self.tone_threshold, "breakpoints": self.breakpoints,
+                "independent_tones": self.independent_tones, "profile_id": self.profile_id}
+
 
 #: The options' defaults (those of ``gyrovib profile``).
 DEFAULTS = RecordingOptions()
@@ -74,17 +88,8 @@ DEFAULTS = RecordingOptions()
 def profile_one(path: str, options: RecordingOptions = DEFAULTS) -> RecordingFit:
     """Read and fit one recording: the one-recording step, a pure function of its
     arguments (the same file and options give the same fit, in any process)."""
-
-    recording = read_recording(
-        path, fs=options.fs, rate_columns=options.rate_columns,
-        accel_columns=options.accel_columns, rate_unit=options.rate_unit,
-        accel_unit=options.accel_unit, topic=options.topic, strict=options.strict,
-        instance=options.instance, preset=options.preset)
-    return fit_recording(
-        recording, crossover=options.crossover, resolution=options.resolution,
-        tone_threshold=options.tone_threshold, breakpoints=options.breakpoints,
-        independent_tones=options.independent_tones, profile_id=options.profile_id,
-        responses=options.responses)
+    return fit_recording(options.read(path), **options.fit_arguments(),
+                         responses=options.responses)
 
 
 # ----------------------------------------------------------------- many recordings

@@ -15,9 +15,7 @@ header) that the CSV does not carry, so the accelerations are read only when
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
-from gyrovib.api.recordings.readers import Columns, CsvColumns, open_csv, problem
+from gyrovib.api.recordings.readers import ColumnNames, Columns, CsvColumns, open_csv, problem
 from gyrovib.errors import Note
 
 PRESETS = ("betaflight",)
@@ -38,9 +36,8 @@ class BetaflightColumns(CsvColumns):
     def time_index(self) -> int | None:
         return self.names.index(BF_TIME) if BF_TIME in self.names else None
 
-    def default_columns(self, rate: Sequence[str | int | None] | None,
-                        accel: Sequence[str | int | None] | None,
-                        ) -> tuple[Sequence[str | int | None], Sequence[str | int | None] | None]:
+    def default_columns(self, rate: ColumnNames | None, accel: ColumnNames | None,
+                        ) -> tuple[ColumnNames, ColumnNames | None]:
         if rate is None:
             missing = [c for c in BF_RATE if c not in self.names]
             if missing:

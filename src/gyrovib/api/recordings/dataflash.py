@@ -35,7 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib.api.recordings.quiet import as_notes, captured
-from gyrovib.api.recordings.readers import ArrayColumns, Columns, problem
+from gyrovib.api.recordings.readers import ArrayColumns, ColumnNames, Columns, problem
 from gyrovib.frozen import Frozen
 
 #: The DataFlash sources and the columns they give.
@@ -367,9 +367,8 @@ class DataflashColumns(ArrayColumns):
     def time_index(self) -> int | None:
         return self.names.index("TimeUS")
 
-    def default_columns(self, rate: Sequence[str | int | None] | None,
-                        accel: Sequence[str | int | None] | None,
-                        ) -> tuple[Sequence[str | int | None], Sequence[str | int | None] | None]:
+    def default_columns(self, rate: ColumnNames | None, accel: ColumnNames | None,
+                        ) -> tuple[ColumnNames, ColumnNames | None]:
         if rate is None:
             rate = DF_RATE
         if accel is None and all(c in self.names for c in DF_ACCEL):

@@ -219,11 +219,6 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
         raise OptionError(argument="profile_id", value=repr(pid),
                           reason="the fitted profile does not validate: "
                                  f"{exc.problems[0].message}") from None
-    return _replace_yaml(fit, text)
-
-
-def _replace_yaml(fit: RecordingFit, text: str) -> RecordingFit:
-
     return dataclasses.replace(fit, yaml=text)
 
 

@@ -33,7 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib.api.recordings.quiet import as_notes, captured
-from gyrovib.api.recordings.readers import ArrayColumns, Columns, problem
+from gyrovib.api.recordings.readers import ArrayColumns, ColumnNames, Columns, problem
 from gyrovib.core._types import FloatArray
 
 #: ULog's default topic and its fields (rad/s, m/s², timestamps in µs).
@@ -316,9 +316,8 @@ class UlogColumns(ArrayColumns):
     """A ULog topic: its default columns are sensor_combined's, the FIFO's x, y, z
     (and its accelerometer's), or x, y, z of a sensor_gyro."""
 
-    def default_columns(self, rate: Sequence[str | int | None] | None,
-                        accel: Sequence[str | int | None] | None,
-                        ) -> tuple[Sequence[str | int | None], Sequence[str | int | None] | None]:
+    def default_columns(self, rate: ColumnNames | None, accel: ColumnNames | None,
+                        ) -> tuple[ColumnNames, ColumnNames | None]:
         if rate is None:
             rate = (FIFO_RATE if all(c in self.names for c in FIFO_RATE)
                     and ULOG_RATE[0] not in self.names else ULOG_RATE)

@@ -37,6 +37,9 @@ from numpy.typing import NDArray
 from gyrovib.api.recordings.located import RecordingError, check_magic, csv_where, problem, unplaced
 from gyrovib.core._types import FloatArray
 
+#: Columns as a user names them, per axis X, Y, Z: a name, a 0-based index, or None (an
+#: axis not recorded).
+ColumnNames = Sequence[str | int | None]
 #: The time column's names in a CSV or an .npz (seconds).
 TIME_NAMES = ("t", "time")
 #: Lines of a CSV parsed at once.
@@ -193,9 +196,8 @@ class Columns:
                 return i
         return None
 
-    def default_columns(self, rate: Sequence[str | int | None] | None,
-                        accel: Sequence[str | int | None] | None,
-                        ) -> tuple[Sequence[str | int | None], Sequence[str | int | None] | None]:
+    def default_columns(self, rate: ColumnNames | None, accel: ColumnNames | None,
+                        ) -> tuple[ColumnNames, ColumnNames | None]:
         """The rate and acceleration columns when not named: the first three other than time.
 
         Fewer than three are not placed by a rule (a lone ``gz`` is not X): the user

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import hashlib
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,6 +27,7 @@ from gyrovib.api.recordings.px4 import ULOG_ACCEL, ULOG_RATE, ULOG_TOPIC
 from gyrovib.api.recordings.readers import (
     TIME_NAMES,
     Axes,
+    ColumnNames,
     Columns,
     RecordingError,
     Store,
@@ -128,8 +129,8 @@ def parse_columns(text: str | None, argument: str) -> tuple[str | int | None, ..
 
 
 def read_recording(path: str, *, fs: float | None = None,
-                   rate_columns: Sequence[str | int | None] | None = None,
-                   accel_columns: Sequence[str | int | None] | None = None,
+                   rate_columns: ColumnNames | None = None,
+                   accel_columns: ColumnNames | None = None,
                    rate_unit: str | None = None, accel_unit: str | None = None,
                    topic: str | None = None, strict: bool = False,
                    instance: int | None = None, preset: str | None = None) -> Recording:
@@ -192,8 +193,8 @@ def _format(path: str, fs: float | None, topic: str | None, instance: int | None
     return kind, opener
 
 
-def _axes(reader: Columns, rate_columns: Sequence[str | int | None] | None,
-          accel_columns: Sequence[str | int | None] | None) -> dict[str, Axes | None]:
+def _axes(reader: Columns, rate_columns: ColumnNames | None,
+          accel_columns: ColumnNames | None) -> dict[str, Axes | None]:
     """The column of each axis, rate and acceleration (None: not recorded)."""
     rate_columns, accel_columns = reader.default_columns(rate_columns, accel_columns)
     r_idx = tuple(reader.index(c, "rate_columns") for c in rate_columns)

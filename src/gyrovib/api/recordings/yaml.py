@@ -45,10 +45,9 @@ def _coherence(values: object) -> str:
 
     r31, r32, r12 = (float(v) for v in np.asarray(values, dtype=float))
     text = _triple((r31, r32, r12))
-    a, b, c = _read(text)
-    if correlation_problem(c, a, b) is None:
+    r31, r32, written = _read(text)
+    if correlation_problem(written, r31, r32) is None:
         return text
-    r31, r32 = _read(text)[:2]
     centre = r31 * r32
     half = float(np.sqrt(max((1.0 - r31 * r31) * (1.0 - r32 * r32), 0.0)))
     r12 = float(np.clip(r12, centre - half * (1 - 1e-9), centre + half * (1 - 1e-9)))

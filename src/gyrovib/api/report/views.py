@@ -26,6 +26,7 @@ from gyrovib._version import __version__
 from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.commands.select import selection_of
 from gyrovib.api.commands.sweep import sweep_of
+from gyrovib.api.lots.yields import DEFAULT_DRAWS, DEFAULT_SEED
 from gyrovib.api.study.linear import profile_linear
 from gyrovib.api.study.prepare import cost_problems, float_guard
 from gyrovib.api.study.study import Study
@@ -248,8 +249,8 @@ def trade_study(
     peak_factor: float = DEFAULT_PEAK_FACTOR,
     assume_unknown: str = "none",
     yield_target: float | None = None,
-    seed: int = 0,
-    draws: int = 100_000,
+    seed: int = DEFAULT_SEED,
+    draws: int = DEFAULT_DRAWS,
 ) -> TradeStudy:
     """Select, analyse and sweep one selection; ``budget``, ``rate``, ``sweep_rates`` in deg/s.
 

@@ -17,6 +17,7 @@ import numpy as np
 from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.ratetable.results import coefficient_unit
 from gyrovib.api.recordings.analysis import recorded_totals
+from gyrovib.api.recordings.fit import DEFAULT_CROSSOVER as DEFAULT_CROSSOVER
 from gyrovib.api.recordings.reading import Recording
 from gyrovib.api.runup.measure import Measured, baseline, measure, need_scipy
 from gyrovib.api.runup.results import (
@@ -33,11 +34,10 @@ from gyrovib.api.study.linear import g2_matrix
 from gyrovib.api.study.prepare import input_response
 from gyrovib.core import runup as kernel
 from gyrovib.core._types import FloatArray
+from gyrovib.core.linear import G2_TERMS
 from gyrovib.core.transmissibility import as_table
 from gyrovib.errors import OptionError
 
-#: Crossover f_c, Hz (docs/model.md section 13's default).
-DEFAULT_CROSSOVER = 5.0
 #: A measured shift is within its prediction's interval when it lies within this many
 #: standard uncertainties of it (about 95 %).
 COVERAGE = 2.0
@@ -48,7 +48,6 @@ _COLUMN = {"A1": 2, "k2": 3, "k4": 5, "m31": 9, "m32": 10}
 #: The least variance of a step's mean, (deg/s)²: a record without noise (synthetic, or
 #: quantised flat) would otherwise weigh infinitely.
 TINY = 1e-30
-_G_TERMS = ("G11", "G22", "G33", "G12", "G13", "G23")
 _RATE_UNIT = "deg/s"
 
 
@@ -277,7 +276,7 @@ def _catalogue(entry: Any, terms: tuple[str, ...]) -> tuple[list[float], list[bo
     row = coefficient_matrix([entry])[0]
     g = g2_matrix([entry])[0]
     values = {name: float(row[col]) for name, col in _COLUMN.items()}
-    values |= dict(zip(_G_TERMS, map(float, g), strict=True))
+    values |= dict(zip(G2_TERMS, map(float, g), strict=True))
     values["vre"] = float(g[0]) if g[0] == g[1] == g[2] and not np.any(g[3:]) else math.nan
     return [values[t] for t in terms], [False] * n
 

@@ -25,14 +25,13 @@ from gyrovib.api.study.convert import coefficient_matrix
 from gyrovib.api.study.entries import select_entries
 from gyrovib.api.study.linear import g2_matrix
 from gyrovib.catalog.loader import parse_catalog
+from gyrovib.catalog.writer import SIGMA_DIGITS
 from gyrovib.core.analysis import COEFFICIENTS
+from gyrovib.core.linear import G2_TERMS
 from gyrovib.errors import GyrovibError
 
 #: The eq. (2) terms that the ``coefficients`` block holds (and ``uncertainty``).
 _RATE_TERMS = ("A1", "k2", "k4", "m31", "m32")
-_G_TERMS = ("G11", "G22", "G33", "G12", "G13", "G23")
-#: Significant digits of a written uncertainty (the value is written to its decimal place).
-SIGMA_DIGITS = 3
 
 
 def _num(value: float, sigma: float | None = None) -> str:
@@ -70,7 +69,7 @@ def _carried(result: RunupResult, catalog: Any) -> tuple[dict[str, float], dict[
             if v != 0 and n not in ("k1",)}
     if any(e.name not in _RATE_TERMS for e in result.estimates):
         return rate, {}
-    g2 = {n: float(v) for n, v in zip(_G_TERMS, g2_matrix([entry])[0], strict=True) if v != 0}
+    g2 = {n: float(v) for n, v in zip(G2_TERMS, g2_matrix([entry])[0], strict=True) if v != 0}
     return rate, g2
 
 

@@ -140,3 +140,9 @@ def bound_factors(unit: str) -> dict[str, float]:
     """deg/s → ``unit`` factors of each bounded coefficient: ``s**(-p)`` for rate power p."""
     s = units.scale(unit)
     return {name: s ** (-units.COEFFICIENT_RATE_POWER[name]) for name in BOUNDED}
+
+
+def catalog_unit(file_units: Sequence[str]) -> str | None:
+    """The rate unit the entries' files share (canonical), or None when they differ."""
+    found = {units.canonical_unit(u) for u in file_units}
+    return found.pop() if len(found) == 1 else None

@@ -17,11 +17,10 @@ The commands then evaluate the model (eq. 13-16, 23, 25) on a
 
 from __future__ import annotations
 
-import functools
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, ParamSpec, TypeVar
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,9 +39,6 @@ from gyrovib.core.transmissibility import as_table, loglog_interp
 from gyrovib.errors import Problem, RangeError
 from gyrovib.frozen import Frozen
 
-P = ParamSpec("P")
-R = TypeVar("R")
-
 #: Python's and numpy's ways of saying a number left floating-point range.
 FLOAT_FAILURES = (OverflowError, FloatingPointError, ZeroDivisionError)
 #: The smallest positive normal float: below it a share or a bound has lost its digits.
@@ -59,17 +55,6 @@ def float_guard() -> Iterator[None]:
     """
     with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
         yield
-
-
-def quiet_float(function: Callable[P, R]) -> Callable[P, R]:
-    """Run ``function`` under :func:`float_guard`."""
-
-    @functools.wraps(function)
-    def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
-        with float_guard():
-            return function(*args, **kwargs)
-
-    return wrapper
 
 
 # ----------------------------------------------------------------- vibrations
@@ -97,20 +82,13 @@ def response_table(entry: SensorEntry) -> Table | None:
     return None if table is None else as_table(table)
 
 
-def response_groups(entries: Sequence[SensorEntry]) -> list[tuple[Table | None, NDArray[np.intp]]]:
-    """Sensors grouped by identical input-side responses: ``(table, indices)`` pairs.
-
-    Profile statistics depend on the sensor only through the ν_sensor(f) that
-    acts before its nonlinearity (:func:`input_response`), so they are
-    computed once per group, not once per sensor.
-    """
-    return [(table, index) for table, _, index in response_layout(entries)]
-
-
 def response_layout(entries: Sequence[SensorEntry],
                     ) -> list[tuple[Table | None, tuple[tuple[float, float], ...] | None,
                                     NDArray[np.intp]]]:
-    """As :func:`response_groups`, with each group's key (its response as written)."""
+    """Sensors grouped by identical input-side responses: ``(table, key, indices)``, the
+    key being the response as written. Profile statistics depend on the sensor only
+    through the ν_sensor(f) that acts before its nonlinearity (:func:`input_response`),
+    so they are computed once per group, not once per sensor."""
     groups: dict[tuple[tuple[float, float], ...] | None, list[int]] = {}
     for i, e in enumerate(entries):
         key = input_response(e)
@@ -192,11 +170,6 @@ def vibration_swing(vibration: Vibration, locked: Sequence[LockedGroup] = (),
     return float(saturation_reach(0.0, vibration.tone_amplitudes, vibration.sigma[2],
                                   locked_peaks=np.asarray(peaks, dtype=float),
                                   kappa=peak_factor))
-
-
-def vibration_peak(vibration: Vibration) -> float:
-    """Peak of x3 for the saturation check: Σ tone amplitudes + 3σ (κ = 3, no locked groups)."""
-    return vibration_swing(vibration)
 
 
 def nan_multipliers(omega: FloatArray) -> Multipliers:
