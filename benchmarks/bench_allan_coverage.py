@@ -11,7 +11,9 @@ Run on demand (it is not part of the test suite)::
 Records of known terms are simulated (white rate noise, flicker, a rate random walk, a
 rate ramp, angle quantization, in combinations cycled over the records; the numbers are
 synthetic, drawn by ``gyrovib.core.allan_sim``), each analysed as ``gyrovib allan`` does
-(its own seed for the bootstrap, not the simulation's), and for each term present in
+(the bootstrap's seed BOOT_SEED + the record's seed: a range of seeds not run before is
+new in its bootstrap too — the study once drew every range's bootstrap from the same
+seeds 10 000 + r), and for each term present in
 the truth the fraction of records whose 68 % and 95 % intervals hold it is printed,
 with the number of records where the term was resolved (a value) and where it was
 given as a bound (then whether the bound holds). Terms absent from the truth must come
@@ -43,6 +45,7 @@ from gyrovib.core.allan_fit import (
     Curve,
     Fit,
     bootstrap,
+    double_bootstrap,
     fit,
     intervals,
     roll_off,
@@ -51,6 +54,8 @@ from gyrovib.core.allan_fit import (
 from gyrovib.core.allan_sim import Truth, simulate
 
 TAU0 = 1.0
+#: The bootstrap of the record of seed s runs on seed BOOT_SEED + s.
+BOOT_SEED = 1_000_000_000
 #: Truths in the kernel's units (deg, deg/√s, deg/s, deg/s/√s, deg/s²): N = 0.1 deg/√h,
 #: B = 1 deg/h, K = 3 deg/h/√h, R = 10 deg/h², Q = 3e-3 deg: over 2¹⁵ s (9.1 h) each
 #: term present rules a stretch of the curve (N below 80 s, B to 530 s, K above).
@@ -83,14 +88,20 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
     for r in range(records):
         name, truth = CASES[cases[r % len(cases)]]
         y = simulate(truth, samples, TAU0, np.random.default_rng(first_seed + r))
+        boot = BOOT_SEED + first_seed + r
         tau, adev = oadev(y, TAU0, m_all)
         start = roll_off(tau, adev)
         tau, var, m = tau[start:], adev[start:] ** 2, m_all[start:]
         fitted = fit(tau, var, m, samples + 1, filtered=start > 0)
-        coefs = bootstrap(fitted, tau, m, samples, TAU0, seed=10_000 + r, sim_cap=sim_cap)
+        inner = None
+        if "calibrated" in methods:   # the same outer replicates as bootstrap's, and more
+            coefs, inner = double_bootstrap(fitted, tau, m, samples, TAU0, seed=boot,
+                                            sim_cap=sim_cap)
+        else:
+            coefs = bootstrap(fitted, tau, m, samples, TAU0, seed=boot, sim_cap=sim_cap)
         curve = Curve(tau, var, m, samples + 1, fitted)
         for meth in methods:
-            found = terms(fitted, tau, var, coefs, (0.68, 0.95), meth, curve)
+            found = terms(fitted, tau, var, coefs, (0.68, 0.95), meth, curve, inner)
             for term, got, true in zip(TERMS, found, truth_values(truth), strict=False):
                 if got.resolved:
                     (lo68, hi68), (lo95, hi95) = got.intervals
@@ -102,21 +113,22 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
             every = out[meth + " (every record)"]
             for j, (term, true) in enumerate(zip(TERMS, truth_values(truth), strict=False)):
                 if true > 0:
-                    every[term].append((name, *_held(fitted, coefs, curve, j, true, meth)))
+                    every[term].append((name, *_held(fitted, coefs, curve, j, true, meth,
+                                                     inner)))
         if (r + 1) % 20 == 0:
             print(f"  {r + 1} records", file=sys.stderr, flush=True)
     return out
 
 
 def _held(fitted: Fit, coefs: np.ndarray, curve: Curve, j: int, true: float,
-          method: str) -> tuple[bool, bool]:
+          method: str, inner: np.ndarray | None = None) -> tuple[bool, bool]:
     """Whether term j's 68 % and 95 % intervals hold ``true``, resolved or not."""
     if fitted.coef[j] <= 0:
         return False, False          # no interval around a value (a term fitted at 0)
     value = float(np.sqrt(fitted.coef[j]))
     everything = np.ones(fitted.coef.size, dtype=bool) & (fitted.coef > 0)
     (lo68, hi68), (lo95, hi95) = intervals(value, j, coefs, (0.68, 0.95), method, curve,
-                                           everything)
+                                           everything, inner)
     return bool(lo68 <= true <= hi68), bool(lo95 <= true <= hi95)
 
 
@@ -142,7 +154,8 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--interval", default=f"{METHOD},pivot",
                         help="the bootstrap intervals to compare, comma-separated "
-                             f"(studentized, pivot, percentile; gyrovib's: {METHOD})")
+                             "(calibrated, studentized, pivot, percentile; gyrovib's: "
+                             f"{METHOD})")
     parser.add_argument("--cases", default=",".join(str(k) for k in range(len(CASES))),
                         help="which cases, by number (0–4: " + ", ".join(
                             name for name, _ in CASES) + ")")

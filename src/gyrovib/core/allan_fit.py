@@ -37,6 +37,11 @@ poorly (bias instability with a random walk beside it), holding the term lower l
 the other grow, and the interval follows. The pivot ("pivot") and the percentile
 interval ("percentile") remain for the coverage study's comparison.
 
+**Calibrated level** ("calibrated", for the coverage study's comparison): the same root
+read at the level the fast double bootstrap sets (:func:`double_bootstrap`,
+:mod:`.allan_fdb`), at twice the cost; measured, it did not cover better (docs/error-budget.md
+section 5), so the studentized interval is gyrovib's.
+
 **Roll-off.** A sensor's low-pass filter flattens the curve below a few times its time
 constant: read there, N would come out too small. A leading stretch flatter than white
 noise and below the −½ line of the first white point (:func:`roll_off`) is left out of
@@ -58,7 +63,6 @@ hold in only 6 of 11 records).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -67,6 +71,7 @@ from numpy.typing import NDArray
 from gyrovib.core import allan_edf as edfs
 from gyrovib.core._types import FloatArray
 from gyrovib.core.allan import oadev
+from gyrovib.core.allan_fdb import calibrated, inverted
 from gyrovib.core.allan_sim import Truth, simulate
 
 IntArray = NDArray[np.int64]
@@ -248,6 +253,7 @@ def _replicate_curves(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: f
     tiny = np.finfo(float).tiny
     plain = np.maximum(design(tau, fitted.tau_c) @ sim_coef, tiny)
     model = fitted.model(tau)
+    model = np.where(model > 0, model, plain)  # a replicate's fit may overshoot its tail
     k = max(1, math.ceil(n / sim_cap))
     coarse = m >= 2 * k if k > 1 else np.ones(m.shape, dtype=bool)
     mk = np.maximum(np.round(m[coarse] / k), 1).astype(np.int64)
@@ -360,24 +366,15 @@ def profile(curve: Curve, j: int, cj: float, free: NDArray[np.bool_]) -> FloatAr
     return coef
 
 
-def _root(f: Callable[[float], float], lo: float, hi: float, target: float) -> float:
-    """x in [lo, hi] where the decreasing f crosses ``target`` (bisection)."""
-    for _ in range(48):
-        mid = 0.5 * (lo + hi)
-        if f(mid) > target:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
-
-
 def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[np.bool_],
-                confidence: float) -> tuple[float, float] | None:
-    """The interval of θ_j = √c_j by inverting the studentized root: the c with
-    q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) = :func:`scale` at the fit with c_j = c and the other
-    resolved terms refitted (:func:`profile`), q the quantiles of the replicates'
-    (c* − ĉ)/s(ĉ). None where it has no upper end or the fit no standard error (the
-    pivot's interval is then used)."""
+                confidences: tuple[float, ...], inner: FloatArray | None = None
+                ) -> list[tuple[float, float] | None]:
+    """The interval of θ_j = √c_j at each confidence by inverting the studentized root:
+    the c with q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) = :func:`scale` at the fit with c_j = c
+    and the other resolved terms refitted (:func:`profile`), q the quantiles of the
+    replicates' (c* − ĉ)/s(ĉ) — with ``inner`` (:func:`double_bootstrap`) read at the
+    levels the inner roots (c** − c*)/s(c*) calibrate. None where it has no upper end or
+    the fit no standard error (the pivot's interval is then used)."""
     fitted = curve.fitted
     free = resolved.copy()
     free[j] = False
@@ -390,41 +387,36 @@ def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[
     c_hat = float(fitted.coef[j])
     s_hat = scale(curve, fitted.coef, j, active)
     if not math.isfinite(s_hat):  # no information at the fit itself: the pivot's
-        return None
+        return [None] * len(confidences)
     t_star = (replicates[:, j] - c_hat) / s_hat
-    q_lo, q_hi = (float(q) for q in np.quantile(t_star, [(1.0 - confidence) / 2.0,
-                                                          (1.0 + confidence) / 2.0]))
+    t_inner = np.array([] if inner is None else [
+        (c2[j] - c1[j]) / scale(curve, c1, j, active)
+        for c1, c2 in zip(replicates, inner, strict=True)])
 
     def root(c: float) -> float:
         return (c_hat - c) / scale(curve, profile(curve, j, c, free), j, active)
 
-    # the least c tried is a little above 0: at 0 a term alone in its model has none
-    floor = c_hat * 1e-12
-    lo = c_hat if q_hi <= 0 else (0.0 if root(floor) <= q_hi else _root(root, floor, c_hat,
-                                                                          q_hi))
-    if q_lo >= 0:
-        return math.sqrt(lo), math.sqrt(c_hat)
-    top = 2.0 * c_hat
-    while root(top) > q_lo:
-        top *= 2.0
-        if top > c_hat * 2.0 ** 40:
-            return None
-    return math.sqrt(lo), math.sqrt(_root(root, c_hat, top, q_lo))
+    out: list[tuple[float, float] | None] = []
+    for confidence in confidences:
+        q_lo, q_hi = calibrated(t_star, t_inner, [(1.0 - confidence) / 2.0,
+                                                  (1.0 + confidence) / 2.0])
+        out.append(inverted(root, c_hat, q_lo, q_hi))
+    return out
 
 
 def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
           confidences: tuple[float, ...], method: str = "pivot",
-          curve: Curve | None = None) -> tuple[Term, ...]:
+          curve: Curve | None = None, inner: FloatArray | None = None) -> tuple[Term, ...]:
     """Each of the five terms (and the Gauss–Markov σ, sixth, when fitted) from the fit
     and the replicates' coefficients (rows), see the module docstring; ``method``
-    "studentized" needs the ``curve``."""
+    "studentized" needs the ``curve``, "calibrated" also the ``inner`` replicates."""
     resolved = resolution(fitted, tau, replicates)
     basis = design(tau, fitted.tau_c)  # quantization's own column for its bound
     out = []
     for j in range(fitted.coef.size):
         value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(max(fitted.coef[j], 0.0))
         found = intervals(value, j, replicates, confidences, method, curve,
-                          resolved) if resolved[j] else None
+                          resolved, inner) if resolved[j] else None
         if found is None or found[-1][0] <= 0.0:  # its 95 % interval reaches 0
             bound = max(envelope_bound(basis[:, j], var, fitted.nu), value)
             out.append(Term(None, (), bound))
@@ -434,16 +426,24 @@ def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
 
 
 def intervals(value: float, j: int, replicates: FloatArray, confidences: tuple[float, ...],
-               method: str, curve: Curve | None, resolved: NDArray[np.bool_]
-               ) -> tuple[tuple[float, float], ...]:
-    """Term j's interval at each confidence (see :func:`terms`)."""
-    ratio = np.sqrt(np.maximum(replicates[:, j], 0.0)) / value
+              method: str, curve: Curve | None, resolved: NDArray[np.bool_],
+              inner: FloatArray | None = None) -> tuple[tuple[float, float], ...]:
+    """Term j's interval at each confidence (see :func:`terms`); "calibrated" without
+    ``inner`` is "studentized", and its pivot (where the studentized root has none) is
+    read at the calibrated levels too, the inner ratios θ**/θ* beside the θ*/θ̂."""
+    root = np.sqrt(np.maximum(replicates[:, j], 0.0))
+    ratio = root / value
+    inner = inner if method == "calibrated" else None
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio2 = np.array([]) if inner is None else np.sqrt(np.maximum(inner[:, j], 0.0)) / root
+    found = (studentized(curve, j, replicates, resolved, confidences, inner)
+             if method in ("studentized", "calibrated") and curve is not None else None)
     out = []
-    for c in confidences:
-        lo_q, hi_q = (float(q) for q in np.quantile(ratio, [(1.0 - c) / 2.0, (1.0 + c) / 2.0]))
+    for k, c in enumerate(confidences):
+        lo_q, hi_q = calibrated(ratio, ratio2, [(1.0 - c) / 2.0, (1.0 + c) / 2.0])
         pivot = (value / hi_q, value / lo_q if lo_q > 0 else math.inf)
-        if method == "studentized" and curve is not None:
-            out.append(studentized(curve, j, replicates, resolved, c) or pivot)
+        if found is not None:
+            out.append(found[k] or pivot)
         elif method == "percentile":  # for the coverage study's comparison
             out.append((value * lo_q, value * hi_q))
         else:
@@ -509,6 +509,24 @@ def bootstrap(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
                      for curve in curves])
 
 
+def double_bootstrap(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
+                     replicates: int = REPLICATES, seed: int = 0,
+                     sim_cap: int = SIM_CAP) -> tuple[FloatArray, FloatArray]:
+    """:func:`bootstrap`'s replicates (the same for the same seed) and, row for row, the
+    coefficients of one record of each replicate's own fit, refitted the same way: the
+    fast double bootstrap's second level (:mod:`gyrovib.core.allan_fdb`)."""
+    curves = _replicate_curves(fitted, tau, m, n, tau0, replicates,
+                               np.random.default_rng(seed), sim_cap)
+    rng = np.random.default_rng([seed, 1])
+    outer, inner = [], []
+    for curve in curves:
+        once = _refine(tau, curve, m, n + 1, fitted.tau_c, fitted.filtered)
+        again = _replicate_curves(once, tau, m, n, tau0, 1, rng, sim_cap)[0]
+        outer.append(once.coef)
+        inner.append(_refine(tau, again, m, n + 1, fitted.tau_c, fitted.filtered).coef)
+    return np.array(outer), np.array(inner)
+
+
 def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: float,
                 confidences: tuple[float, ...] = (0.68, 0.95), seed: int = 0,
                 replicates: int = REPLICATES, gauss_markov: bool = True,
@@ -516,16 +534,20 @@ def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: fl
     """The fit, bootstrap and bounds of the module docstring for the Allan deviation
     ``adev`` (deg/s, all > 0) at τ = m·τ0 of a record of ``n`` samples; a leading
     stretch on a filter's roll-off (:func:`roll_off`) is left out of the fit. ``method``:
-    the interval ("studentized", "pivot" or "percentile"); ``sim_cap``: the longest record
-    the bootstrap simulates whole (:func:`_replicate_curves`)."""
+    the interval ("calibrated", "studentized", "pivot" or "percentile"); ``sim_cap``: the
+    longest record the bootstrap simulates whole (:func:`_replicate_curves`)."""
     m_all = np.asarray(m, dtype=np.int64)
     start = roll_off(tau, np.asarray(adev, dtype=float))
     var_all = np.asarray(adev, dtype=float) ** 2
     tau, var, m = tau[start:], var_all[start:], m[start:]
     fitted = fit(tau, var, m, n + 1, gauss_markov, filtered=start > 0)
-    coefs = bootstrap(fitted, tau, m, n, tau0, replicates, seed, sim_cap)
+    inner = None
+    if method == "calibrated":
+        coefs, inner = double_bootstrap(fitted, tau, m, n, tau0, replicates, seed, sim_cap)
+    else:
+        coefs = bootstrap(fitted, tau, m, n, tau0, replicates, seed, sim_cap)
     found = terms(fitted, tau, var, coefs, confidences, method,
-                  Curve(tau, var, m, n + 1, fitted))
+                  Curve(tau, var, m, n + 1, fitted), inner)
     # the points left out (a roll-off) get the EDF of white noise, the type they follow
     nu = np.concatenate([edfs.edf(np.full(start, edfs.WHITE), m_all[:start], n + 1),
                          fitted.nu])
@@ -548,6 +570,7 @@ __all__ = [
     "Term",
     "bootstrap",
     "design",
+    "double_bootstrap",
     "envelope_bound",
     "fit",
     "gm_basis",
