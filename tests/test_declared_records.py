@@ -19,6 +19,7 @@ import gyrovib
 from gyrovib.records import Column, frame_of, names
 from gyrovib.render import mission as render_mission
 from gyrovib.render.formats import csv_of
+from tests.test_recording_unknown import SENSORS as UNKNOWN_SENSORS
 
 pd = pytest.importorskip("pandas")
 
@@ -147,6 +148,8 @@ profiles:
 
 #: Only x3 and no accelerations recorded (as `gyrovib profile --rate-columns -,-,gz`
 #: writes it): k2 depends on x3 alone, m31 also on x1, a g² term on the accelerations
+#: A fitted profile without x1, x2 and the accelerations, and the sensors of
+#: tests/test_recording_unknown.py: where a sensor needs what was not recorded, null.
 UNRECORDED = """\
 gyrovib: 1
 units: {rate: deg/s, acceleration: g}
@@ -156,17 +159,7 @@ profiles:
     not_recorded: [x1, x2, acceleration]
     random:
       rms: [0, 0, 1.0]
-sensors:
-  - id: k2-only
-    coefficients: {k2: 1.0e-3}
-    vre: 0
-  - id: cross
-    coefficients: {k2: 1.0e-3, m31: 2.0e-3}
-    vre: 0
-  - id: g2
-    coefficients: {k2: 1.0e-3}
-    vre: 1.0e-3
-"""
+""" + UNKNOWN_SENSORS[UNKNOWN_SENSORS.index("sensors:"):]
 
 ANALYZE_CASES = {
     "bundled": {},
