@@ -158,6 +158,18 @@ def test_a_catalogue_lot_without_spread_is_unverified(tmp_path: Path) -> None:
     assert "| lot-flat | the lot's spread, not measured" in table.stdout  # what settles it
 
 
+def test_analyze_words_the_lot_s_note_as_select_s_option(tmp_path: Path) -> None:
+    # the note of a lot without spread advises select's yield; the library words it
+    # yield_target (its argument), the command line --yield, on analyze as on select
+    path = tmp_path / "lot.yaml"
+    path.write_text(LOT.format(units=10, s1=0.0, s2=0.0), encoding="utf-8")
+    for fmt in ("table", "json"):
+        result = invoke("analyze", path, "--format", fmt)
+        assert result.exit_code == 0, result.stderr
+        assert "lot 'lot-flat'" in result.stderr and "select with --yield" in result.stderr
+        assert "yield_target" not in result.stderr + result.stdout
+
+
 def test_a_catalogue_lot_of_too_few_units_is_unverified(tmp_path: Path) -> None:
     """Two units for two coefficients with a spread (n ≤ p): the diagonal is used, with a
     warning, and the yield (P(|2·k2| ≤ 6e-3) ≈ 1 for σ(k2) = 1e-4) is unverified."""

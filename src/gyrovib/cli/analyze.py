@@ -14,6 +14,7 @@ from gyrovib.cli.common import (
 )
 from gyrovib.cli.options import (
     SAMPLES_MAX,
+    as_options,
     files_argument,
     format_option,
     output_option,
@@ -108,6 +109,7 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
                             profiles=profiles, method=method,
                             rate=parse_rate_option(rate, unit), unit=unit, samples=samples,
                             seed=seed, progress=advance, peak_factor=peak_factor)
+    result = as_options(result)  # a lot's note names select's option, not its argument
     if is_triad(result):
         write_triad(result, lambda r: rendered(render, r, fmt, output), fmt, output)
         return

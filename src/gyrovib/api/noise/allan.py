@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import os
 import tempfile
 from collections.abc import Callable
 
@@ -308,8 +309,10 @@ def allan(recording: Recording, unit: str = "deg/h",
     accel, notes = (_streamed_accel(recording, lo, hi, per_decade, confidence)
                     if hi - lo > stream_samples else
                     accel_axes(recording, lo, hi, per_decade or kernel.PER_DECADE, confidence))
-    warnings = tuple(w for ax in axes for w in (roll_off_warning(ax), misfit_warning(ax))
-                     if w is not None) + notes
+    base = os.path.basename(recording.file)  # every warning names its file
+    warnings = tuple(f"{base}: {w}" for ax in axes
+                     for w in (roll_off_warning(ax), misfit_warning(ax)) if w is not None)
+    warnings += tuple(f"{base}: {w}" for w in notes)
     return AllanResult(file=recording.file, sha256=recording.sha256, fs=recording.fs,
                        samples=hi - lo, segments=int(recording.segments.shape[0]), axes=axes,
                        topic=recording.topic, instance=recording.instance,
