@@ -364,7 +364,9 @@ def fit_envelope(part: EnvelopePart, options: RecordingOptions = DEFAULTS
         angular=angular, linear=linear,
         honesty=tuple(_honesty(angular, j)
                       for j in range(3)),  # type: ignore[arg-type]
-        rate_axes=part.rate_axes, warnings=tuple(fit_warnings(angular, linear)), yaml="")
+        rate_axes=part.rate_axes, warnings=tuple(fit_warnings(
+            angular, linear, f"envelope of {n} recordings", "the envelope spectrum's")),
+        yaml="")
     body = profile_yaml(fit, independent_tones=independent_tones)
     text = (_envelope_header(part) + "".join(f"{c}\n" for c in missing_comments(
         missing_parts(fit))) + body[body.index("\ngyrovib: 1\n"):])

@@ -34,7 +34,7 @@ from gyrovib.core import recording as core
 from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
 from gyrovib.core.transmissibility import psd_variance
-from gyrovib.errors import GyrovibError, Note, OptionError, Problem
+from gyrovib.errors import GyrovibError, Note, OptionError, Problem, headed
 from gyrovib.progress import advance
 
 #: Defaults of the options (docs/recordings.md).
@@ -199,7 +199,7 @@ def fit_recording(recording: Recording, *, crossover: float = DEFAULT_CROSSOVER,
     honesty = tuple(AxisHonesty(float(var[j]), float(angular.held[j]), float(skew[j]),
                                 float(kurt[j]), float(angular.shape_db[j]),
                                 float(angular.off_3db[j])) for j in range(3))
-    warnings += fit_warnings(angular, linear)
+    warnings += fit_warnings(angular, linear, os.path.basename(recording.file))
     base = os.path.basename(recording.file)
     pid = profile_id or _default_id(base)
     fit = RecordingFit(
@@ -321,27 +321,39 @@ def _tones(lines: Sequence[Any], *, grouped: bool,
     return tones, tuple(harmonics), tuple(float(lines[k].frequency) for k in released)
 
 
-def fit_warnings(angular: FittedPart, linear: FittedPart | None) -> list[str]:
-    """What a fitted profile does not hold of its spectrum: each axis whose fitted PSD is
-    off the measured one (:func:`shape_warnings`), and the orders of a fundamental let go
-    of their phase-locked group, written as independent tones so that the profile's
-    ``phase: worst`` search stays within budget
+def fit_warnings(angular: FittedPart, linear: FittedPart | None, head: str,
+                 spectrum: str = "the recording's") -> list[str]:
+    """What a fitted profile does not hold of its spectrum, each warning after ``head``
+    (the file's name, or the envelope's): each axis whose fitted PSD is off the measured
+    one (:func:`shape_warnings`; ``spectrum`` names what was measured), and the orders of a
+    fundamental let go of their phase-locked group, written as independent tones so that
+    the profile's ``phase: worst`` search stays within budget
     (:func:`gyrovib.core.recording.fitted_groups`)."""
-    out = shape_warnings(angular, "rate") + shape_warnings(linear, "acceleration")
+    out = (shape_warnings(angular, "rate", spectrum)
+           + shape_warnings(linear, "acceleration", spectrum))
     if angular.released:
         out.append("lines at " + ", ".join(f"{f:.4g}" for f in angular.released)
                    + " Hz, orders of a fundamental, are written as independent tones: a "
                    "phase: worst search over every order would exceed its budget")
-    return out
+    return [headed(f"{head}: ", w) for w in out]
 
 
-def shape_warnings(part: FittedPart | None, kind: str) -> list[str]:
-    """A warning per axis whose fitted PSD is off the measured one by more than
-    :data:`SHAPE_DB_LIMIT` dB power-weighted, or with more than :data:`OFF_3DB_LIMIT` of
-    the power in bins off by 3 dB (docs/model.md section 13); none for no part."""
+def shape_warnings(part: FittedPart | None, kind: str,
+                   spectrum: str = "the recording's") -> list[str]:
+    """A warning per axis whose fitted PSD is off the measured one (``spectrum``'s) by
+    more than :data:`SHAPE_DB_LIMIT` dB power-weighted, or with more than
+    :data:`OFF_3DB_LIMIT` of the power in bins off by 3 dB (docs/model.md section 13);
+    none for no part."""
     out: list[str] = []
     if part is None:
         return out
+    for axis, db, off in zip("XYZ", part.shape_db, part.off_3db, strict=True):
+        if db > SHAPE_DB_LIMIT or off > OFF_3DB_LIMIT:
+            out.append(Note(f"the fitted {kind} PSD of axis {axis} is off the measured one "
+                            f"by {db:.2g} dB (power-weighted), {100 * off:.0f} % of the power "
+                            f"by more than 3 dB: its shape is not {spectrum} (raise "
+                            "{breakpoints}, or read the plot)", ("breakpoints", None)))
+    return out
     for axis, db, off in zip("XYZ", part.shape_db, part.off_3db, strict=True):
         if db > SHAPE_DB_LIMIT or off > OFF_3DB_LIMIT:
             out.append(Note(f"the fitted {kind} PSD of axis {axis} is off the measured one "
