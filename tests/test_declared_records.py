@@ -530,7 +530,8 @@ def _check_cells(cells, records, rows, frame, text: str) -> int:
     every cell names a declared record (or none). A cell without its own text shows the
     frame's value of its record as the tables write a value ('?' unknown); a cell with
     its own text that shows a number shows that value to the digits it writes (2 to 4
-    significant figures, or 0 for a value negligible beside its row's largest). Returns
+    significant figures, or 0 for a value negligible beside its row's largest), and no
+    number where the frame's value is unknown. Returns
     how many cells were compared with the frame."""
     import math
 
@@ -553,6 +554,10 @@ def _check_cells(cells, records, rows, frame, text: str) -> int:
             value = None if isinstance(value, float) and math.isnan(value) else value
             if cell.text is None:
                 assert shown == known(value), cell.title
+                compared += 1
+            elif value is None:
+                # unknown in the frame: the cell shows no number for it (never a 0)
+                assert _number_in(shown) is None, (cell.title, shown)
                 compared += 1
             elif (number := _number_in(shown)) is not None and isinstance(value, float):
                 assert math.isclose(number, value, rel_tol=0.05) or (
@@ -594,19 +599,22 @@ def test_mission_segments_markdown_is_its_declaration(mission_result) -> None:
                         mission_result.segments_frame(), segments) >= len(rows)
 
 
-@pytest.mark.parametrize("kwargs", [{}, {"sensors": "adxrs453", "method": "numeric",
-                                         "samples": 1000}])
-def test_analyze_markdown_names_its_records(kwargs: dict) -> None:
+@pytest.mark.parametrize("case", ["bundled", "numeric", "unrecorded"])
+def test_analyze_markdown_names_its_records(case: str, tmp_path) -> None:
+    # "unrecorded": the sensors that need x1 or the accelerations have unknown errors,
+    # which the Markdown must show as '?', never as a number
     from gyrovib.presentation.frames import analysis_cells, analysis_columns
     from gyrovib.render import analysis as render_analysis
 
-    result = gyrovib.analyze(**kwargs)
+    result = _analysis(case, tmp_path)
     cells = render_analysis.markdown_cells(result)
     assert all(c.of is not None for c in cells)  # every column shows a record
     rows = analysis_cells(result)
+    text = render_analysis.to_markdown(result)
     assert _check_cells(cells, analysis_columns(result), rows, result.to_frame(),
-                        render_analysis.to_markdown(result)) > 5 * len(rows)
-    assert ("± stderr" in [c.title for c in cells]) == ("method" in kwargs)  # the probe
+                        text) > 5 * len(rows)
+    assert ("± stderr" in [c.title for c in cells]) == (case == "numeric")  # the probe
+    assert case != "unrecorded" or "| ? |" in text
 
 
 def test_fit_markdown_is_its_declaration() -> None:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
 import pytest
 
 from gyrovib.records import Column
@@ -43,6 +44,11 @@ COLUMNS = (
     Column("u", None, lambda k: k / 7, key="uncertainty.total", only=lambda k: k > 6),
     Column("phases", None, lambda k: [{"2": 90.0}], only=lambda k: k == 3),
     Column("warnings", None, lambda k: ("ω saturates",) * (k % 2)),
+    # read one row at a time as numpy scalars (NaN and inf among them), and tuples that
+    # hold a dict: json_of's text, not a refusal or an unhashable value
+    Column("scalar", None, lambda k: np.float64(math.nan if k == 1 else math.inf if k == 2
+                                                 else k / 3)),
+    Column("parts", None, lambda k: ({"order": k},)),
 )
 
 

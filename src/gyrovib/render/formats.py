@@ -241,13 +241,21 @@ def _encoded_any(values: list[Any], finite: bool, seen: dict[Any, str]) -> list[
     would equal True)."""
     import json  # not at import time: the tables do without it
 
+    import numpy as np
+
     if set(map(type, values)) <= _NAMES:
-        distinct = set(values)
-        if all(type(x) is str for v in distinct if type(v) is tuple for x in v):
+        try:
+            distinct = set(values)
+        except TypeError:  # a tuple that holds a list or a dict: encoded one by one
+            distinct = set()
+        if distinct and all(type(x) is str for v in distinct if type(v) is tuple
+                            for x in v):
             seen.update((v, json.dumps(v)) for v in distinct if v not in seen)
             return list(map(seen.__getitem__, values))
-    return [_float_text(v, finite) if type(v) is float else json.dumps(v, allow_nan=False)
-            for v in values]
+    # a float of any kind (numpy's scalars too) as the column of floats writes it: NaN
+    # null, an infinity null or refused, never json.dumps' refusal of NaN
+    return [_float_text(float(v), finite) if isinstance(v, (float, np.floating))
+            else json.dumps(v, allow_nan=False) for v in values]
 
 
 # ------------------------------------------------------------------ the human tables
