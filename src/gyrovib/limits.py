@@ -20,3 +20,11 @@ MIN_SAMPLES = 32
 #: κ of docs/model.md section 9, the peak factor of a random vibration's saturation
 #: check (``--peak-factor``, ``peak_factor=``).
 DEFAULT_PEAK_FACTOR = 3.0
+
+#: The fit of a recording's profile (docs/recordings.md): f_c (Hz) between the carrier's
+#: manoeuvres and the vibration, the Welch PSD's resolution (Hz), how far (dB) a line
+#: stands above the running median, and the most breakpoints of the random part's PSD.
+DEFAULT_CROSSOVER = 5.0
+DEFAULT_RESOLUTION = 0.5
+DEFAULT_THRESHOLD = 10.0
+DEFAULT_BREAKPOINTS = 12

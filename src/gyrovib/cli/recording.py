@@ -12,6 +12,12 @@ from gyrovib.cli.common import rendered
 from gyrovib.cli.options import as_options
 from gyrovib.cli.output import write_output
 from gyrovib.errors import OptionError
+from gyrovib.limits import (
+    DEFAULT_BREAKPOINTS,
+    DEFAULT_CROSSOVER,
+    DEFAULT_RESOLUTION,
+    DEFAULT_THRESHOLD,
+)
 
 if TYPE_CHECKING:
     from gyrovib.api.fleet.run import RecordingOptions
@@ -64,15 +70,16 @@ def recording_options(f: F) -> F:
         click.option("--independent-tones", is_flag=True,
                      help="Write integer-multiple lines as independent tones, not as one "
                           "phase-locked harmonics group (phase: worst)."),
-        click.option("--breakpoints", type=click.IntRange(min=2), default=12,
+        click.option("--breakpoints", type=click.IntRange(min=2), default=DEFAULT_BREAKPOINTS,
                      show_default=True, metavar="B",
                      help="At most B log-log breakpoints for the random part's PSD: the "
                           "best set for the power-weighted log error, the variance held."),
-        click.option("--tone-threshold", type=float, default=10.0, show_default=True,
+        click.option("--tone-threshold", type=float, default=DEFAULT_THRESHOLD, show_default=True,
                      metavar="DB", help="A line stands this many dB above the running median."),
-        click.option("--resolution", type=float, default=0.5, show_default=True,
+        click.option("--resolution", type=float, default=DEFAULT_RESOLUTION, show_default=True,
                      metavar="DF", help="Frequency resolution of the Welch PSD, Hz."),
-        click.option("--crossover", type=float, default=5.0, show_default=True, metavar="F",
+        click.option("--crossover", type=float, default=DEFAULT_CROSSOVER, show_default=True,
+                     metavar="F",
                      help="f_c, Hz: below it the carrier's manoeuvres, above it vibration."),
     ]
     for option in options:

@@ -26,18 +26,18 @@ from gyrovib import units
 from gyrovib.api.fleet.duplicates import refuse_same_contents, refuse_same_paths
 from gyrovib.api.fleet.pool import located, one_thread, raise_failure, run_in_processes
 from gyrovib.api.recordings.analysis import analysis_of_fit, recording_responses
-from gyrovib.api.recordings.fit import (
-    DEFAULT_BREAKPOINTS,
-    DEFAULT_CROSSOVER,
-    DEFAULT_RESOLUTION,
-    DEFAULT_THRESHOLD,
-    fit_recording,
-)
+from gyrovib.api.recordings.fit import fit_recording
 from gyrovib.api.recordings.reading import Recording, read_recording
 from gyrovib.api.recordings.results import RecordingFit
 from gyrovib.core._types import FloatArray, Table
 from gyrovib.errors import Crash, GyrovibError, OptionError
 from gyrovib.frozen import Frozen
+from gyrovib.limits import (
+    DEFAULT_BREAKPOINTS,
+    DEFAULT_CROSSOVER,
+    DEFAULT_RESOLUTION,
+    DEFAULT_THRESHOLD,
+)
 from gyrovib.progress import advance
 
 

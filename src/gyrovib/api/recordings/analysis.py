@@ -22,13 +22,7 @@ from gyrovib.api.commands.analyze import analyze
 from gyrovib.api.commands.mission import mission
 from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.evaluation.unknown import depends_on, not_recorded
-from gyrovib.api.recordings.fit import (
-    DEFAULT_BREAKPOINTS,
-    DEFAULT_CROSSOVER,
-    DEFAULT_RESOLUTION,
-    DEFAULT_THRESHOLD,
-    fit_recording,
-)
+from gyrovib.api.recordings.fit import fit_recording
 from gyrovib.api.recordings.honesty import (
     RATIO_RANGE,
     at_mean_warnings,
@@ -48,6 +42,12 @@ from gyrovib.core.envelope import worst_case
 from gyrovib.core.recording import recorded_error
 from gyrovib.core.transmissibility import as_table
 from gyrovib.frozen import Frozen
+from gyrovib.limits import (
+    DEFAULT_BREAKPOINTS,
+    DEFAULT_CROSSOVER,
+    DEFAULT_RESOLUTION,
+    DEFAULT_THRESHOLD,
+)
 from gyrovib.records import Column, frame_of
 
 

@@ -35,13 +35,14 @@ from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.breakpoints import fit_breakpoints, shape_figures
 from gyrovib.core.transmissibility import psd_variance
 from gyrovib.errors import GyrovibError, Note, OptionError, Problem, headed
+from gyrovib.limits import (  # the options' defaults, shared with the command line
+    DEFAULT_BREAKPOINTS,
+    DEFAULT_CROSSOVER,
+    DEFAULT_RESOLUTION,
+    DEFAULT_THRESHOLD,
+)
 from gyrovib.progress import advance
 
-#: Defaults of the options (docs/recordings.md).
-DEFAULT_CROSSOVER = 5.0
-DEFAULT_RESOLUTION = 0.5
-DEFAULT_THRESHOLD = 10.0
-DEFAULT_BREAKPOINTS = 12
 #: A vibration whose rms is below this fraction of the signal's is rounding: none.
 NEGLIGIBLE = 1e-10
 #: Lines below this frequency (× f_c) are the crossover's skirt, not vibration.

@@ -17,7 +17,6 @@ import numpy as np
 from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.ratetable.results import coefficient_unit
 from gyrovib.api.recordings.analysis import recorded_totals
-from gyrovib.api.recordings.fit import DEFAULT_CROSSOVER as DEFAULT_CROSSOVER
 from gyrovib.api.recordings.reading import Recording
 from gyrovib.api.runup.measure import Measured, baseline, measure, need_scipy
 from gyrovib.api.runup.results import (
@@ -37,6 +36,7 @@ from gyrovib.core._types import FloatArray
 from gyrovib.core.linear import G2_TERMS
 from gyrovib.core.transmissibility import as_table
 from gyrovib.errors import OptionError
+from gyrovib.limits import DEFAULT_CROSSOVER as DEFAULT_CROSSOVER
 
 #: A measured shift is within its prediction's interval when it lies within this many
 #: standard uncertainties of it (about 95 %).
