@@ -174,6 +174,8 @@ def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:
         assert len(row["warnings"]) == int(outside)
     # nothing rectifies, so there is no ratio: unknown (null), not 0
     assert linear["sensor"] == "linear-only" and linear["ratio"] is None
+    # nor at the mean rate: no verdict on a ratio that is not there (null, not false)
+    assert linear["at_mean_rate"]["ratio"] is None and linear["at_mean_rate"]["outside"] is None
     assert linear["recorded"]["total"] == 0.0 and linear["fitted"]["total"] == 0.0
 
 

@@ -30,14 +30,17 @@ def recording_columns(a: Any) -> tuple[Column[int], ...]:
                ("fitted_rms", "fitted.rms", a.fitted_rms), ("ratio", None, a.ratio)]
     json: tuple[str, ...] = ("csv", "frame")  # what only the JSON has
     at_mean, at_ratio = of(a.at_mean), of(a.at_mean_ratio)
-    outside = a.at_mean_outside.tolist()
+    # unknown (null) where the ratio is: no verdict on a figure that is not there
+    outside = [bool(o) if np.isfinite(r) else None
+               for o, r in zip(a.at_mean_outside.tolist(), a.at_mean_ratio.tolist(),
+                               strict=True)]
     return (Column("sensor", None, lambda i: a.sensors[i]),
             *(Column(name, None if name == "ratio" else "rate", of(values), cell=known,
                      key=key) for name, key, values in numbers),
             # the profile at its mean rate: nested after the ratio in JSON, last in CSV
             Column("at_mean_rate.total", "rate", at_mean, skip=json),
             Column("at_mean_rate.ratio", None, at_ratio, skip=json),
-            Column("at_mean_rate.outside", None, lambda i: bool(outside[i]), skip=json),
+            Column("at_mean_rate.outside", None, lambda i: outside[i], skip=json),
             Column("saturated", None, lambda i: bool(a.saturated[i])),
             Column("peak_rate", "rate", of(a.peak_rate)),
             Column("unit", None, lambda i: a.unit, skip=("json",)),
