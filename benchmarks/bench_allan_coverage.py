@@ -40,6 +40,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 from gyrovib.core.allan import oadev, tau_grid
 from gyrovib.core.allan_fit import (
     METHOD,
+    METHODS,
     SIM_CAP,
     TERMS,
     Curve,
@@ -164,6 +165,9 @@ def main() -> None:
                              "--samples it exercises the shortened bootstrap of long records")
     args = parser.parse_args()
     methods = tuple(args.interval.split(","))
+    unknown = [m for m in methods if m not in METHODS]
+    if unknown:
+        parser.error(f"--interval: unknown {', '.join(unknown)} (one of {', '.join(METHODS)})")
     start = time.perf_counter()
     cases = tuple(int(k) for k in args.cases.split(","))
     result = run(args.records, args.samples, args.seed, methods, args.sim_cap, cases)

@@ -89,3 +89,14 @@ def test_double_bootstrap_outer_level_is_the_bootstrap() -> None:
     assert 0.6 < spread_inner / spread_outer < 1.6
     assert spread_outer > 0.0
     assert math.isfinite(spread_inner)
+
+
+def test_an_unknown_interval_method_is_refused() -> None:
+    # a misspelt method used to fall through to the pivot and be reported under its name
+    import numpy as np
+
+    from gyrovib.core.allan_fit import intervals
+
+    with pytest.raises(ValueError, match="unknown interval method 'studentised'"):
+        intervals(1.0, 0, np.ones((10, 5)), (0.68,), "studentised", None,
+                  np.ones(5, dtype=bool))

@@ -22,6 +22,12 @@ bootstrap costs some 25 times.
 
 The interval is then the set of c where the calibrated quantiles hold the root
 (:func:`inverted`; the studentized root of :func:`gyrovib.core.allan_fit.studentized`).
+
+What ``allan`` uses: :func:`inverted` and :func:`bisect` build every studentized interval,
+and :func:`calibrated` without inner roots is the plain quantiles. The calibration itself
+(the ``calibrated`` method) is run only by the coverage study
+(benchmarks/bench_allan_coverage.py ``--interval calibrated``), for comparison: measured
+there it does not improve the coverage (docs/error-budget.md section 5).
 """
 
 from __future__ import annotations
@@ -67,7 +73,9 @@ def bisect(f: Callable[[float], float], lo: float, hi: float, target: float) -> 
 def inverted(root: Callable[[float], float], c_hat: float, q_lo: float, q_hi: float
              ) -> tuple[float, float] | None:
     """√ of the c where q_lo ≤ root(c) ≤ q_hi (root decreasing, 0 at ĉ); None where it
-    has no upper end."""
+    has no upper end. Where both quantiles lie on one side of 0 (q_hi ≤ 0 or q_lo ≥ 0)
+    that set lies wholly on one side of ĉ; the interval is then taken from ĉ itself to
+    its far end, so that it always holds the estimate."""
     # the least c tried is a little above 0: at 0 a term alone in its model has none
     floor = c_hat * 1e-12
     lo = c_hat if q_hi <= 0 else (0.0 if root(floor) <= q_hi

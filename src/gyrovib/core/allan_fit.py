@@ -89,8 +89,10 @@ SIM_CAP = 1 << 15
 #: Weighted misfit per point above which the five terms are said not to fit (and a
 #: Gauss–Markov term is tried): twice what a fitting model leaves on average.
 MISFIT = 2.0
-#: The interval of a resolved term (:func:`terms`).
+#: The interval of a resolved term (:func:`terms`), and every method :func:`intervals`
+#: knows (the others for the coverage study's comparison).
 METHOD = "studentized"
+METHODS = ("studentized", "calibrated", "pivot", "percentile")
 #: Confidence of a bound; share of the model a term must reach somewhere to be resolved.
 BOUND_CONFIDENCE, RESOLVED_SHARE = 0.95, 0.5
 
@@ -431,19 +433,25 @@ def intervals(value: float, j: int, replicates: FloatArray, confidences: tuple[f
     """Term j's interval at each confidence (see :func:`terms`); "calibrated" without
     ``inner`` is "studentized", and its pivot (where the studentized root has none) is
     read at the calibrated levels too, the inner ratios θ**/θ* beside the θ*/θ̂."""
+    if method not in METHODS:
+        raise ValueError(f"unknown interval method {method!r}: one of {', '.join(METHODS)}")
     root = np.sqrt(np.maximum(replicates[:, j], 0.0))
     ratio = root / value
     inner = inner if method == "calibrated" else None
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio2 = np.array([]) if inner is None else np.sqrt(np.maximum(inner[:, j], 0.0)) / root
-    found = (studentized(curve, j, replicates, resolved, confidences, inner)
+    tried = (studentized(curve, j, replicates, resolved, confidences, inner)
              if method in ("studentized", "calibrated") and curve is not None else None)
+    # one construction for every confidence, so that the intervals nest: the pivot for
+    # all of them where the studentized root has no interval at one
+    found = (None if tried is None or any(f is None for f in tried)
+             else [f for f in tried if f is not None])
     out = []
     for k, c in enumerate(confidences):
         lo_q, hi_q = calibrated(ratio, ratio2, [(1.0 - c) / 2.0, (1.0 + c) / 2.0])
         pivot = (value / hi_q, value / lo_q if lo_q > 0 else math.inf)
         if found is not None:
-            out.append(found[k] or pivot)
+            out.append(found[k])
         elif method == "percentile":  # for the coverage study's comparison
             out.append((value * lo_q, value * hi_q))
         else:
