@@ -266,3 +266,14 @@ def test_a_signal_stops_the_run_and_its_workers(tmp_path: Path, sig: int, to_gro
     while not all(_gone(pid) for pid in workers) and time.monotonic() < deadline:
         time.sleep(0.1)
     assert all(_gone(pid) for pid in workers)
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_bad_option_among_several_recordings_names_the_option_and_the_file(
+        logs: list[Path], jobs: int) -> None:
+    # the library words it crossover=0 (its argument); through the workers the command
+    # line still words it as its option, placed at the recording whose step refused it
+    r = invoke("profile", *logs[:2], "--fs", FS, "--crossover", 0, "--jobs", jobs)
+    assert r.exit_code == 2, r.stderr
+    assert f"{logs[0]}: --crossover 0: give a positive frequency" in r.stderr
+    assert "crossover=0" not in r.stderr

@@ -10,7 +10,7 @@ from typing import Any, TypeVar, cast
 import click
 
 from gyrovib import units
-from gyrovib.errors import GyrovibError, Note, OptionError
+from gyrovib.errors import GyrovibError, Note, OptionError, Problem
 from gyrovib.limits import DEFAULT_PEAK_FACTOR, MAX_SAMPLES
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -38,7 +38,10 @@ def as_option(exc: GyrovibError) -> GyrovibError:
     (``samples=10: …`` → ``--samples 10: …``, a located problem's ``{fs}`` → ``--fs``);
     any other error as it is. The one place arguments become options."""
     if isinstance(exc, OptionError) and exc.template is not None:
-        return OptionError(exc.worded(flag, head=True))
+        # placed at a file (one recording among several), it stays placed there
+        file = exc.problems[0].file if exc.problems else None
+        worded = exc.worded(flag, head=True)
+        return OptionError(worded if file is None else Problem(worded, file))
     if not any(p.template is not None for p in exc.problems):
         return exc
     return GyrovibError(tuple(p.worded(flag) for p in exc.problems))

@@ -38,7 +38,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from gyrovib.errors import Crash, GyrovibError, Problem
+from gyrovib.errors import Crash, GyrovibError, OptionError, Problem
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance, receiving
 
@@ -88,8 +88,15 @@ class Failed(Frozen):
 
     kind: type[GyrovibError]
     problems: tuple[Problem, ...]
+    #: An :class:`~gyrovib.errors.OptionError`'s argument, value, reason and others, so
+    #: that the command line can still word it with its options.
+    option: tuple[str | None, str | None, str | None, tuple[str, ...]] | None = None
 
     def error(self, path: str) -> GyrovibError:
+        if self.option is not None:
+            argument, value, reason, others = self.option
+            return OptionError(self.problems, argument=argument, value=value,
+                               reason=reason, others=others)
         try:
             return self.kind(self.problems)
         except TypeError:  # a subclass with another signature: the root keeps the words
@@ -125,7 +132,14 @@ def located(exc: GyrovibError, path: str) -> GyrovibError:
     step raised it): among many recordings, the message says which."""
     if all(p.file is not None for p in exc.problems):
         return exc
-    return Failed(type(exc), _placed(exc.problems, path)).error(path)
+    return _failed(exc, path).error(path)
+
+
+def _failed(exc: GyrovibError, path: str) -> Failed:
+    """``exc`` as a :class:`Failed`, its problems placed at ``path``."""
+    option = ((exc.argument, exc.value, exc.template, exc.others)
+              if isinstance(exc, OptionError) and exc.template is not None else None)
+    return Failed(type(exc), _placed(exc.problems, path), option)
 
 
 def _placed(problems: tuple[Problem, ...], path: str) -> tuple[Problem, ...]:
@@ -140,7 +154,7 @@ def outcome(step: Callable[[str, Any], Any], path: str, options: Any) -> Any:
     try:
         return step(path, options)
     except GyrovibError as exc:
-        return Failed(type(exc), _placed(exc.problems, path))
+        return _failed(exc, path)
     except Exception as exc:
         return Crashed(type(exc).__name__, str(exc), traceback.format_exc())
 
