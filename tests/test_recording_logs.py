@@ -196,14 +196,16 @@ def test_px4_fifo_two_instances(tmp_path: Path) -> None:
     _check_fit(fit, 4000.0, 5.0, 345.0, 8.0, 2.5)
     assert any("vehicle_imu_status instance 1 counted clipped gyro samples" in x
                and "X 4," in x for x in rec.warnings)
+    # one run for the JSON on standard output and the noise block written with -o
+    block = tmp_path / "noise.yaml"
     r = invoke("allan", path, "--topic", "sensor_gyro_fifo", "--instance", "0",
-               "--format", "json")
+               "--format", "json", "-o", block)
     assert r.exit_code == 0, r.stderr
     doc = json.loads(r.stdout)
     assert doc["recording"]["topic"] == "sensor_gyro_fifo"
     assert doc["recording"]["instance"] == 0
-    block = invoke("allan", path, "--topic", "sensor_gyro_fifo", "--instance", "0", "-o", "-")
-    assert block.stdout.startswith("# from gyrovib allan fifo.ulg, sensor_gyro_fifo instance 0 ")
+    assert block.read_text(encoding="utf-8").startswith(
+        "# from gyrovib allan fifo.ulg, sensor_gyro_fifo instance 0 ")
     table = invoke("allan", path, "--topic", "sensor_gyro_fifo", "--instance", "0")
     assert "recording fifo.ulg (sensor_gyro_fifo instance 0): " in table.stdout
     r = invoke("allan", path, "--topic", "sensor_gyro_fifo", "--instance", "1", "--strict")
