@@ -9,7 +9,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from gyrovib.records import Column, in_csv, names, records, values_of, written
@@ -46,8 +46,16 @@ def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row], *,
     written = in_csv(columns)
     default = _joined if title_flags else _cell
     cells = [default if c.cell is None else c.cell for c in written]
+    shown = [c if c.blank is None else _blanked(c) for c in written]
     return csv_text(names(written), ([cell(v) for cell, v in zip(cells, values, strict=True)]
-                                     for values in records(written, rows)))
+                                     for values in records(shown, rows)))
+
+
+def _blanked(column: Column[Row]) -> Column[Row]:
+    """The column as the CSV reads it: None (an empty cell) on its ``blank`` rows."""
+    blank, read = column.blank, column.value
+    assert blank is not None
+    return replace(column, value=lambda row: None if blank(row) else read(row))
 
 
 def _json_value(value: Any, finite: bool) -> Any:

@@ -10,7 +10,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api import SweepResult
-from gyrovib.presentation.frames import sweep_columns
+from gyrovib.api.evaluation.records import sweep_columns
 from gyrovib.records import in_csv, names
 from gyrovib.render.common import (
     csv_cell,
@@ -76,7 +76,7 @@ def to_csv_chunks(result: SweepResult, budget: float | None = None) -> Iterator[
     """:func:`to_csv` in pieces: the header, then one piece per sensor × profile series.
 
     The records are those the DataFrame declares
-    (:func:`gyrovib.presentation.frames.sweep_columns`; a test holds this writer to them),
+    (:func:`gyrovib.api.evaluation.records.sweep_columns`; a test holds this writer to them),
     written column by column (each number ``repr`` of its float, as
     :func:`~gyrovib.render.common.csv_text` writes it): the rate column is
     written once for every series, a series' sensor and profile cells once as
