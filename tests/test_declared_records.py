@@ -201,7 +201,7 @@ def test_analyze_json_csv_and_frame_come_from_one_declaration(case: str, tmp_pat
     import math
 
     from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
     from gyrovib.render import analysis as render_analysis
 
     result = _analysis(case, tmp_path)
@@ -209,7 +209,7 @@ def test_analyze_json_csv_and_frame_come_from_one_declaration(case: str, tmp_pat
     rows = analysis_cells(result)
     table = _csv(render_analysis.to_csv(result))
     frame = result.to_frame()
-    assert tuple(table[0]) == names(in_csv(columns))
+    assert tuple(table[0]) == names(written(columns, "csv"))
     assert tuple(frame.columns) == names(written(columns, "frame")) == names(columns)
     # every record is in the JSON: a column added without a JSON key fails here
     assert written(columns, "json") == columns
@@ -293,15 +293,15 @@ def _frame_and_csv_agree(columns, rows, frame, text: str) -> int:
     columns the whole declaration, in order; each CSV cell is its frame value as the
     column writes it (a number as its repr, unknown empty, a flag true/false or
     True/False). Returns how many cells were compared."""
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
 
     table = _csv(text)
-    assert tuple(table[0]) == names(in_csv(columns))
+    assert tuple(table[0]) == names(written(columns, "csv"))
     assert tuple(frame.columns) == names(written(columns, "frame"))
     assert len(table) - 1 == len(rows) == len(frame)
     compared = 0
     for k, cells in enumerate(table[1:]):
-        for column, cell in zip(in_csv(columns), cells, strict=True):
+        for column, cell in zip(written(columns, "csv"), cells, strict=True):
             value = frame[column.name].iloc[k]
             if column.blank is not None and column.blank(rows[k]):
                 value = None  # a check the CSV does not make on this row: empty
@@ -351,20 +351,11 @@ SELECT_CASES = {
     "unrecorded": {"catalog": UNRECORDED, "budget": 1.0},
 }
 
-#: The columns select's JSON keeps outside a sensor × profile entry: in the sensor's entry
-#: (at these keys) and in the document's ``profiles`` (:func:`_profile_key`).
+#: The columns select's JSON keeps in a sensor's entry (at these keys), outside its
+#: sensor × profile entries; the others outside them are in the document's ``profiles``,
+#: at their declared keys.
 SENSOR_KEYS = {"sensor": "sensor", "source": "source", "sensor_pass": "pass",
                "sensor_status": "status"}
-
-
-def _profile_key(name: str) -> str | None:
-    """Where a profile's column of select's frame is in the JSON's ``profiles`` entry."""
-    if name.startswith("rate_"):
-        return f"rate.{('x1', 'x2', 'x3').index(name[5:])}"
-    for part in ("bounds", "parts"):
-        if name.startswith(f"profile_{part}_"):
-            return f"{part}.{name[len(part) + 9:]}"
-    return None
 
 
 def _selection(case: str, tmp_path) -> object:
@@ -399,7 +390,7 @@ def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path
     import json
 
     from gyrovib.api.evaluation.records import selection_cells, selection_columns
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
     from gyrovib.render import select as render_select
 
     result = _selection(case, tmp_path)
@@ -407,7 +398,7 @@ def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path
     frame = result.to_frame()
     assert _frame_and_csv_agree(columns, rows, frame,
                                 render_select.to_csv(result)) > 10 * len(rows)
-    blank = sum(1 for c in in_csv(columns) if c.blank is not None for row in rows
+    blank = sum(1 for c in written(columns, "csv") if c.blank is not None for row in rows
                 if c.blank(row))
     # the probes: a coefficient row's VRE check the CSV makes only with linear vibration
     assert blank if case == "no-linear" else case != "both" or not blank
@@ -416,8 +407,9 @@ def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path
     in_entry = written(columns, "json")
     keys = {c.key or c.name: c for c in in_entry}
     assert len(keys) == len(in_entry)  # one key path per column
-    outside = {c.name for c in columns} - {c.name for c in in_entry}
-    assert outside == set(SENSOR_KEYS) | {n for n in frame.columns if _profile_key(n)}
+    per_profile = [c for c in columns if "json" in c.skip and c.name not in SENSOR_KEYS]
+    assert all(c.key for c in per_profile)  # each at its key in the profile's entry
+    assert len(in_entry) + len(per_profile) + len(SENSOR_KEYS) == len(columns)
     partial = nulls = 0
     for k, (row, entry) in enumerate(zip(rows, entries, strict=True)):
         found = dict(_leaves(entry, set(keys)))
@@ -433,13 +425,11 @@ def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path
         sensor = document["sensors"][row[0]]
         for name, key in SENSOR_KEYS.items():
             assert _json_equal(sensor[key], frame[name].iloc[k]), name
-        profile = document["profiles"][row[1]]
-        for name in frame.columns:
-            if (key := _profile_key(name)) is not None:
-                value = profile
-                for part in key.split("."):
-                    value = value[int(part)] if part.isdigit() else value[part]
-                assert _json_equal(value, frame[name].iloc[k]), name
+        for column in per_profile:
+            value = document["profiles"][row[1]]
+            for part in column.key.split("."):
+                value = value[int(part)] if part.isdigit() else value[part]
+            assert _json_equal(value, frame[column.name].iloc[k]), column.name
     # the probes: datasheet rows and lots have keys of their own; nulls are met
     assert nulls and (partial or case == "unrecorded")
     assert tuple(frame.columns) == names(columns)
@@ -527,14 +517,14 @@ def test_runup_csv_sections_are_the_declarations() -> None:
 
     from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
     from gyrovib.cli.main import cli
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
 
     example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "runup-quad.npz"
     done = CliRunner().invoke(cli, ["runup", str(example), "--fs", "200", "--accel-columns",
                                     "ax,ay,az", "--estimate", "k2,vre", "--format", "csv"])
     assert done.exit_code in (0, 1), done.output
     steps, estimates = done.stdout.split("\n\n")
-    assert tuple(_csv(steps)[0]) == names(in_csv(STEP_RECORDS))
+    assert tuple(_csv(steps)[0]) == names(written(STEP_RECORDS, "csv"))
     assert tuple(_csv(estimates)[0]) == names(ESTIMATE_RECORDS)
     assert len(_csv(estimates)) == 3  # k2 and vre
     # the JSON's steps are the same declaration: its keys in order, the CSV's values

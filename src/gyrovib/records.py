@@ -70,11 +70,6 @@ def written(columns: Sequence[Column[Row]], output: str) -> tuple[Column[Row], .
     return tuple(c for c in columns if output not in c.skip)
 
 
-def in_csv(columns: Sequence[Column[Row]]) -> tuple[Column[Row], ...]:
-    """The columns the CSV writes, in order."""
-    return written(columns, "csv")
-
-
 def names(columns: Sequence[Column[Any]]) -> tuple[str, ...]:
     """The columns' names, in order."""
     return tuple(c.name for c in columns)

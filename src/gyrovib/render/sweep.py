@@ -11,7 +11,7 @@ from rich.text import Text
 
 from gyrovib.api import SweepResult
 from gyrovib.api.evaluation.records import sweep_columns
-from gyrovib.records import in_csv, names
+from gyrovib.records import names, written
 from gyrovib.render.common import (
     csv_cell,
     csv_head,
@@ -82,7 +82,7 @@ def to_csv_chunks(result: SweepResult, budget: float | None = None) -> Iterator[
     written once for every series, a series' sensor and profile cells once as
     its rows' common prefix, and only one series' text is held at a time.
     """
-    yield csv_head(names(in_csv(sweep_columns(result))))
+    yield csv_head(names(written(sweep_columns(result), "csv")))
     rates = float_cells(result.rates)
     n = len(rates)
     if not n:

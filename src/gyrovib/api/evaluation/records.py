@@ -81,28 +81,12 @@ def _cells(array: Any, index: _Index) -> dict[str, Any]:
     return {"value": lambda c: listed()[c[0]][c[1]], "many": lambda rows: values[index(rows)]}
 
 
-def _number(value: Any) -> bool:
-    """Whether a column's values are floats (an array of them), else kept as objects."""
-    return isinstance(value, float)
-
-
-def _per_sensor(values: Sequence[Any], index: _Index) -> dict[str, Any]:
-    """``value`` and ``many`` of a column that is the row's sensor's entry of ``values``."""
-    array = np.array(values, dtype=float if values and _number(values[0]) else object)
-    return {"value": lambda c: values[c[0]], "many": lambda rows: array[index(rows)[0]]}
-
-
-def _per_profile(values: Sequence[Any], index: _Index) -> dict[str, Any]:
-    """``value`` and ``many`` of a column that is the row's profile's entry of ``values``."""
-    array = np.array(values, dtype=float if values and _number(values[0]) else object)
-    return {"value": lambda c: values[c[1]], "many": lambda rows: array[index(rows)[1]]}
-
-
-def _of_profile(values: list[Any], k: int,
-                profile: Callable[[Any], int] = lambda c: c[1]) -> Callable[[Any], Any]:
-    """Read a (profiles, k) nested list at a row's profile (``profile``: where the row
-    keeps it)."""
-    return lambda c: values[profile(c)][k]
+def _per(values: Sequence[Any], index: _Index, axis: int) -> dict[str, Any]:
+    """``value`` and ``many`` of a column that is the entry of ``values`` of the row's
+    sensor (``axis`` 0) or profile (1); floats kept as an array of them, else objects."""
+    floats = bool(values) and isinstance(values[0], float)
+    array = np.array(values, dtype=float if floats else object)
+    return {"value": lambda c: values[c[axis]], "many": lambda rows: array[index(rows)[axis]]}
 
 
 def _of_profile_row(read: Callable[[int], Any]) -> Callable[[Cell], Any]:
@@ -138,10 +122,10 @@ def _value_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
     g2 = () if result.has_linear else ("csv",)  # the CSV's g² column: with linear vibration
     columns: list[Column[Cell]] = [
-        Column("sensor", None, **_per_sensor(result.sensors, index)),
-        Column("profile", None, **_per_profile(result.profiles, index)),
+        Column("sensor", None, **_per(result.sensors, index, 0)),
+        Column("profile", None, **_per(result.profiles, index, 1)),
         *(Column(f"rate_{axis}", "rate", key=f"rate.{k}", finite=True,
-                 **_per_profile([rate[k] for rate in rates], index))
+                 **_per([rate[k] for rate in rates], index, 1))
           for k, axis in enumerate(AXES)),
         *(Column(f"additive_{t}", "rate", skip=g2 if t == "g2" else (),
                  key=f"additive_terms.{t}", finite=True, **_cells(terms[k], index))
@@ -162,7 +146,7 @@ def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
     lot's uncertainty, saturation, the phases found (not in the CSV) and the warnings."""
     sources = [result.source(i) for i in range(len(result.sensors))]
     columns: list[Column[Cell]] = [Column("source", None, skip=("csv",),
-                                          **_per_sensor(sources, index))]
+                                          **_per(sources, index, 0))]
     columns += _envelope_columns(result)
     if result.uncertainty is not None:
         u = np.asarray(result.uncertainty).tolist()
@@ -280,16 +264,16 @@ def _limit_columns(b: Any, unit: str, bounds: str = "",
             if b.vre is None else Column(bounds + "vre", vre, _of_row(b.vre), key="bounds.vre")]
 
 
-def profile_columns(profiles: tuple[str, ...], rates: Any, b: Any,
-                    unit: str) -> list[Column[int]]:
+def profile_columns(profiles: tuple[str, ...], rates: Any, b: Any, unit: str,
+                    prefix: str = "") -> list[Column[int]]:
     """One row per profile (its index): its id, its carrier rate Ω_K (JSON: the ``rate``
-    list) and its bounds (:func:`_limit_columns`): the ``profiles`` entries of ``bounds``
-    and ``select``."""
-    listed = np.asarray(rates, dtype=float).reshape(-1, 3).tolist()
+    list) and its bounds (:func:`_limit_columns`, their names after ``prefix``): the
+    ``profiles`` entries of ``bounds`` and ``select``."""
+    table = np.asarray(rates, dtype=float).reshape(-1, 3)
     return [Column("profile", None, lambda j: profiles[j]),
-            *(Column(f"rate_{axis}", "rate", _of_profile(listed, k, lambda j: j),
-                     key=f"rate.{k}") for k, axis in enumerate(AXES)),
-            *_limit_columns(b, unit)]
+            *(Column(f"rate_{axis}", "rate", _of_row(table[:, k]), key=f"rate.{k}")
+              for k, axis in enumerate(AXES)),
+            *_limit_columns(b, unit, prefix and prefix + "bounds_", prefix and prefix + "parts_")]
 
 
 def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
@@ -344,7 +328,7 @@ def selection_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
     specs = [result.source(i) == "specs" for i in range(len(result.sensors))]
     margin = result.margin if result.criterion_margin is None else result.criterion_margin
     sensor_pass = np.asarray(result.sensor_pass, dtype=bool).tolist()
-    columns: list[Column[Cell]] = [
+    columns: tuple[Column[Cell], ...] = (
         Column("sensor", None, lambda c: result.sensors[c[0]], skip=_ENTRY),
         Column("profile", None, lambda c: result.profiles[c[1]]),
         Column("passed", None, lambda c: bool(result.passed[c[0], c[1]]), key="pass"),
@@ -364,14 +348,11 @@ def selection_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
         Column("disagrees", None, lambda c: list(result.disagrees.get(c, ())), cell=" ".join),
         Column("reason", None, lambda c: None if result.passed[c[0], c[1]]
                else reason(result.failures(*c))),
-    ]
-    rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
-    columns += [Column(f"rate_{axis}", "rate", _of_profile(rates, k), skip=("csv", *_ENTRY))
-                for k, axis in enumerate(AXES)]
-    columns += [Column(c.name, c.unit, _of_profile_row(c.value), skip=("csv", *_ENTRY))
-                for c in _limit_columns(result.profile_bounds, result.unit, "profile_bounds_",
-                                        "profile_parts_")]
-    return tuple(columns)
+    )
+    profiles = profile_columns(result.profiles, result.rates, result.profile_bounds,
+                               result.unit, "profile_")
+    return (*columns, *(Column(c.name, c.unit, _of_profile_row(c.value), key=c.key,
+                               skip=("csv", *_ENTRY)) for c in profiles[1:]))
 
 
 def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:

@@ -78,7 +78,7 @@ class Result(Frozen):
         """Tidy pandas DataFrame of the result's records, declared once
         (:mod:`gyrovib.api.evaluation.records`): one row per record, the CSV's columns and
         what only the JSON has; the document-level fields in ``frame.attrs``."""
-        # lazy: the records are declared over these results, read only for a frame
+        # lazy: the start-up budget; the records (datasheet envelope names) for a frame only
         from gyrovib.api.evaluation.records import declared
 
         return frame_of(*declared(self))
