@@ -351,13 +351,6 @@ SELECT_CASES = {
     "unrecorded": {"catalog": UNRECORDED, "budget": 1.0},
 }
 
-#: The columns select's JSON keeps in a sensor's entry (at these keys), outside its
-#: sensor × profile entries; the others outside them are in the document's ``profiles``,
-#: at their declared keys.
-SENSOR_KEYS = {"sensor": "sensor", "source": "source", "sensor_pass": "pass",
-               "sensor_status": "status"}
-
-
 def _selection(case: str, tmp_path) -> object:
     kwargs = dict(SELECT_CASES[case])
     text = kwargs.get("catalog")
@@ -381,20 +374,28 @@ def _json_equal(value: object, want: object) -> bool:
 
 @pytest.mark.parametrize("case", list(SELECT_CASES))
 def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path) -> None:
-    # select declares its records once (api.evaluation.records.selection_columns), without
-    # a variant per output: the CSV takes the columns that do not skip it, each cell the
-    # frame's value as the column writes it (names joined, empty on its ``blank`` rows);
-    # a JSON sensor × profile entry has exactly the key paths of the columns that do not
-    # skip json, on the rows they are on (``only``), each holding the frame's value; the
-    # others are in the sensor's entry and in ``profiles``, and nothing else is in the frame
+    # select declares its records once (api.evaluation.records.selection_records): a row
+    # per sensor, its sensor × profile records listed in ``profiles`` (``each``). The JSON's
+    # sensor entries are written from it (the text json.dumps writes of json_of's dicts:
+    # key order included); the CSV and the frame are its flattened table, a line per
+    # sensor × profile, the CSV without the frame-only columns, each cell the frame's
+    # value as the column writes it (names joined, empty on its ``blank`` rows); every
+    # JSON leaf holds the frame's value, or the JSON's own reading of the row
     import json
 
-    from gyrovib.api.evaluation.records import selection_cells, selection_columns
-    from gyrovib.records import written
+    from gyrovib.api.evaluation.records import (
+        selection_cells,
+        selection_columns,
+        selection_records,
+    )
+    from gyrovib.records import flattened, written
     from gyrovib.render import select as render_select
+    from gyrovib.render.formats import json_of
 
     result = _selection(case, tmp_path)
+    records = selection_records(result)
     columns, rows = selection_columns(result), selection_cells(result)
+    assert names(columns) == names(flattened(records))
     frame = result.to_frame()
     assert _frame_and_csv_agree(columns, rows, frame,
                                 render_select.to_csv(result)) > 10 * len(rows)
@@ -403,36 +404,70 @@ def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path
     # the probes: a coefficient row's VRE check the CSV makes only with linear vibration
     assert blank if case == "no-linear" else case != "both" or not blank
     document = json.loads(render_select.to_json(result))
-    entries = [cell for sensor in document["sensors"] for cell in sensor["profiles"]]
-    in_entry = written(columns, "json")
-    keys = {c.key or c.name: c for c in in_entry}
-    assert len(keys) == len(in_entry)  # one key path per column
-    per_profile = [c for c in columns if "json" in c.skip and c.name not in SENSOR_KEYS]
-    assert all(c.key for c in per_profile)  # each at its key in the profile's entry
-    assert len(in_entry) + len(per_profile) + len(SENSOR_KEYS) == len(columns)
-    partial = nulls = 0
-    for k, (row, entry) in enumerate(zip(rows, entries, strict=True)):
-        found = dict(_leaves(entry, set(keys)))
-        if "yield.interval" in found:  # an exact yield has no interval: null for its ends
-            assert found.pop("yield.interval") is None
-            found["yield.interval.0"] = found["yield.interval.1"] = None
-        expected = {p for p, c in keys.items() if c.only is None or c.only(row)}
-        assert set(found) == expected  # no key outside the declaration, none missing
-        partial += len(expected) < len(keys)
-        for path, value in found.items():
-            assert _json_equal(value, frame[keys[path].name].iloc[k]), path
-            nulls += value is None
-        sensor = document["sensors"][row[0]]
-        for name, key in SENSOR_KEYS.items():
-            assert _json_equal(sensor[key], frame[name].iloc[k]), name
-        for column in per_profile:
-            value = document["profiles"][row[1]]
-            for part in column.key.split("."):
-                value = value[int(part)] if part.isdigit() else value[part]
-            assert _json_equal(value, frame[column.name].iloc[k]), column.name
+    n = len(result.sensors)
+    assert document["sensors"] == json.loads(json.dumps(json_of(records, range(n))))
+    (listing,) = [c for c in records if c.each is not None]
+    at = {row: k for k, row in enumerate(rows)}  # a sensor × profile's line in the frame
+    compared = nulls = 0
+    for i, entry in enumerate(document["sensors"]):
+        lines = [at[row] for row in listing.value(i)]
+        assert list(entry) == [c.key or c.name for c in written(records, "json")]
+        for c in records:
+            if c.each is None and "frame" not in c.skip:
+                assert all(_json_equal(entry[c.key or c.name], frame[c.name].iloc[k])
+                           for k in lines), c.name
+        for row, k, cell in zip(listing.value(i), lines, entry["profiles"], strict=True):
+            for c in written(listing.each, "json"):
+                if c.only is not None and not c.only(row):
+                    continue
+                value = _at(cell, c.key or c.name)
+                want = frame[c.name].iloc[k] if c.json_value is None else c.json_value(row)
+                assert _json_equal(value, want), c.name
+                compared += 1
+                nulls += value is None
+            for c in listing.each:  # the profile's figures: the document's profiles
+                if "json" in c.skip and c.name.startswith("profile_"):
+                    value = _at(document["profiles"][row[1]], c.key)
+                    assert _json_equal(value, frame[c.name].iloc[k]), c.name
     # the probes: datasheet rows and lots have keys of their own; nulls are met
-    assert nulls and (partial or case == "unrecorded")
-    assert tuple(frame.columns) == names(columns)
+    assert compared > 10 * len(rows) and nulls
+    assert tuple(frame.columns) == names(written(columns, "frame"))
+
+
+def _at(entry: object, key: str) -> object:
+    """The value at a key path of a JSON entry."""
+    for part in key.split("."):
+        entry = entry[int(part)] if part.isdigit() else entry[part]  # type: ignore[index]
+    return entry
+
+
+def test_select_key_orders_are_declared_once() -> None:
+    # the JSON's order is the declaration's; the CSV's and the frame's put a column after
+    # the one it names (csv_after): moving a column in the declaration moves it in every
+    # output, and a column placed after one it does not have is refused
+    from dataclasses import replace
+
+    from gyrovib.api.evaluation.records import selection_columns, selection_records
+    from gyrovib.records import flattened, written
+
+    result = gyrovib.select(budget="10deg/h", criterion="both")
+    records = selection_records(result)
+    head = names(written(selection_columns(result), "csv"))
+    assert head[:4] == ("sensor", "profile", "passed", "sensor_pass")
+    assert head[-6:] == ("saturated", "status", "unknown", "criterion_margin", "disagrees",
+                         "reason")
+    (listing,) = [c for c in records if c.each is not None]
+    cells = listing.each
+    assert names(written(cells, "json"))[:4] == ("profile", "passed", "status", "unknown")
+    moved = replace(listing, each=tuple(replace(c, csv_after="profile")
+                                        if c.name == "reason" else c for c in cells))
+    again = tuple(moved if c is listing else c for c in records)
+    assert names(written(flattened(again), "csv"))[:4] == ("sensor", "profile", "reason",
+                                                           "passed")
+    lost = replace(listing, each=tuple(replace(c, csv_after="nowhere") if c.name == "reason"
+                                       else c for c in cells))
+    with pytest.raises(ValueError):
+        written(flattened(tuple(lost if c is listing else c for c in records)), "csv")
 
 
 def test_sweep_csv_writer_and_frame_are_the_declaration() -> None:

@@ -87,13 +87,42 @@ def test_columns_read_many_rows_at_once() -> None:
     assert json_text(many, ROWS) == reference(COLUMNS, ROWS)
 
 
-def test_a_key_on_some_rows_must_be_declared_so_by_all_its_columns() -> None:
-    split = (COLUMNS[0], Column("u", None, float, key="u.a", only=lambda k: k > 2),
-             Column("v", None, float, key="u.b"))
-    with pytest.raises(ValueError, match="'u'"):
-        json_text(split, ROWS)
-    with pytest.raises(ValueError, match="first key"):
-        json_text((COLUMNS[9], COLUMNS[0]), ROWS)
+def test_keys_on_some_rows_at_any_depth_and_in_any_place() -> None:
+    # an object whose keys are on different rows (a coefficient row's checks beside a
+    # datasheet row's), a first key on some rows only, an entry with no key at all:
+    # each row has its own set of keys, its commas where json writes them
+    split = (Column("u", None, float, key="u.a", only=lambda k: k > 2),
+             Column("v", None, float, key="u.b"),
+             Column("w", None, float, key="u.c", only=lambda k: k % 2 == 0),
+             COLUMNS[0], COLUMNS[9])
+    text = json_text(split, ROWS)
+    assert text == reference(split, ROWS)
+    entries = json.loads(text)
+    assert list(entries[0]["u"]) == ["b", "c"] and list(entries[3]["u"]) == ["a", "b"]
+    only = (Column("a", None, float, only=lambda k: k == 1),)
+    assert json_text(only, ROWS) == reference(only, ROWS)
+    assert json.loads(json_text(only, ROWS))[:2] == [{}, {"a": 1.0}]
+
+
+def test_sub_records_and_the_json_reading_of_a_row() -> None:
+    # a row lists its sub-records (each), some of them with keys on some of them only,
+    # none for some rows; a column the JSON reads its own way (json_value: None or a list)
+    sub = (Column("sensor", None, lambda r: r[0], skip=("json",)),
+           Column("j", None, lambda r: r[1]),
+           Column("x", None, lambda r: _value(r[1]), key="x.value"),
+           Column("odd", None, lambda r: "%s", key="x.odd", only=lambda r: r[1] % 2 == 1))
+    columns = (Column("name", None, lambda k: f"s{k}"),
+               Column("low", None, lambda k: k / 3, key="interval",
+                      json_value=lambda k: None if k % 3 else [k / 3, None]),
+               Column("high", None, lambda k: k / 2, skip=("json",)),
+               Column("cells", None, lambda k: [(k, j) for j in range(k % 4)], each=sub))
+    for block in (1, 3, 4096):
+        text = "[" + "".join(formats.json_blocks(columns, ROWS, block)) + "]"
+        assert text == reference(columns, ROWS)
+    entries = json.loads(text)
+    assert entries[3]["interval"] == [1.0, None] and entries[1]["interval"] is None
+    assert [len(e["cells"]) for e in entries] == [k % 4 for k in ROWS]
+    assert entries[3]["cells"][1] == {"j": 1, "x": {"value": -0.0, "odd": "%s"}}
 
 
 def test_no_rows() -> None:

@@ -30,10 +30,13 @@ from tests.conftest import invoke
 
 
 def select_document(result: api.SelectionResult) -> str:
-    """``select --format json`` built in one piece: every sensor's entry made in one
-    block (the renderer's own entry function) and json.dumps of the whole dict, the
-    form the renderer wrote before it streamed."""
-    sensors = render_select._sensor_entries(result, 0, len(result.sensors))
+    """``select --format json`` built in one piece: every sensor's entry a dict made from
+    the declared records (json_of, one dict per sensor and per sensor × profile) and
+    json.dumps of the whole document."""
+    from gyrovib.api.evaluation.records import selection_records
+    from gyrovib.render.formats import json_of
+
+    sensors = json_of(selection_records(result), range(len(result.sensors)))
     document = json.loads(render_select.to_json(result))  # the other fields, as written
     document["sensors"] = sensors
     return json.dumps(document, allow_nan=False) + "\n"

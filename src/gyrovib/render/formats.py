@@ -66,10 +66,12 @@ def _json_value(value: Any, finite: bool) -> Any:
     return number(value)
 
 
-def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[str, Any]]:
+def json_of(columns: Sequence[Column[Any]], rows: Iterable[Any]) -> list[dict[str, Any]]:
     """One JSON object per row: each column's value at its key path (:attr:`Column.key`,
     else its name; a column that skips ``json`` left out, and one with ``only`` on the
-    rows it does not hold for), nested objects and lists made in the columns' order."""
+    rows it does not hold for), nested objects and lists made in the columns' order; the
+    value read by ``json_value`` where the column has one, a list of sub-records
+    (``each``) written as their objects."""
     shown = written(columns, "json")
     paths = [(c.key or c.name).split(".") for c in shown]
     out = []
@@ -81,7 +83,8 @@ def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[st
             node: Any = entry
             for part, after in itertools.pairwise(path):
                 node = node.setdefault(part, [] if after.isdigit() else {})
-            value = _json_value(c.value(row), c.finite)
+            value = (c.value if c.json_value is None else c.json_value)(row)
+            value = _json_value(value, c.finite) if c.each is None else json_of(c.each, value)
             if path[-1].isdigit():
                 node.append(value)
             else:
@@ -95,36 +98,27 @@ def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[st
 #: Rows encoded at a time by :func:`json_text`: bounds the memory of the encoded cells.
 _BLOCK = 4096
 
-#: A key of the entries: its name, its columns (in the order its text writes them) and
-#: the text of its value (``%s`` for each column).
-_Key = tuple[str, list[int], str]
-
 
 def json_text(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> str:
     """The text ``json.dumps(json_of(columns, rows), allow_nan=False)`` writes, without a
-    dict per row: each column is encoded at once (``float.__repr__`` is what the json
-    encoder writes for a float), the rows filled into one template made from the key
-    paths, a block of rows at a time. A key on some rows only (``only``) fills a slot of
-    its own with its text, or nothing; every column under one key shares it, and the
-    first key is on every row."""
-    shown = written(columns, "json")
-    keys = _keys(shown)
-    template = "{" + "".join(("%s" if shown[found[0]].only is not None
-                              else (", " if k else "") + _key_text(name, text))
-                             for k, (name, found, text) in enumerate(keys)) + "}"
-    blocks = []
+    dict per row (:func:`json_blocks`)."""
+    return "[" + "".join(json_blocks(columns, rows)) + "]"
+
+
+def json_blocks(columns: Sequence[Column[Row]], rows: Sequence[Row],
+                block: int | None = None) -> Iterator[str]:
+    """The entries of :func:`json_text` a block of rows at a time (``block``, else
+    :data:`_BLOCK`), each block's text after ``, `` but the first: each column is encoded
+    at once (``float.__repr__`` is what the json encoder writes for a float) and the rows
+    filled into a template made from the key paths, one template per set of the keys a
+    row has (``only``); sub-records (``each``) are written the same way, a block of
+    them at a time."""
+    entries = _Entries(written(columns, "json"))
     seen: dict[Any, str] = {}
-    for start in range(0, len(rows), _BLOCK):
-        block = rows[start:start + _BLOCK]
-        cells: list[list[str]] = []
-        for name, found, text in keys:
-            held = [shown[k] for k in found]
-            if held[0].only is None:
-                cells += [_encoded(values_of(c, block), c.finite, seen) for c in held]
-            else:
-                cells.append(_slot(", " + _key_text(name, text), held, block, seen))
-        blocks.append(", ".join(map(template.__mod__, zip(*cells, strict=True))))
-    return "[" + ", ".join(blocks) + "]"
+    size = block or _BLOCK
+    for start in range(0, len(rows), size):
+        text = ", ".join(entries.texts(rows[start:start + size], seen))
+        yield ", " + text if start else text
 
 
 def _key_text(name: str, text: str) -> str:
@@ -134,57 +128,106 @@ def _key_text(name: str, text: str) -> str:
     return json.dumps(name).replace("%", "%%") + ": " + text
 
 
-def _keys(shown: Sequence[Column[Row]]) -> list[_Key]:
-    """The entries' keys in order, each with its columns and its text (``%s`` for a
-    column); raises ValueError where a key is on some rows only but not all its columns
-    say so alike, or where the first key is."""
-    tree: dict[str, Any] = {}
-    for k, c in enumerate(shown):
-        path = (c.key or c.name).split(".")
-        node = tree
-        for part in path[:-1]:
-            node = node.setdefault(part, {})
-        node[path[-1]] = k
-    keys: list[_Key] = []
-    for name, node in tree.items():
-        found: list[int] = []
-        text = _node_text(node, found)
-        if len({id(shown[k].only) for k in found}) != 1 or (
-                not keys and shown[found[0]].only is not None):
-            raise ValueError(f"JSON key {name!r}: its columns disagree on the rows it is on,"
-                             " or the first key is not on every row")
-        keys.append((name, found, text))
-    return keys
+def _filled(template: str, cells: list[list[str]], n: int) -> list[str]:
+    """``template`` filled with each of ``n`` rows' cells (one list per column)."""
+    if not cells:
+        return [template] * n
+    return list(map(template.__mod__, zip(*cells, strict=True)))
 
 
-def _node_text(node: Any, found: list[int]) -> str:
-    """The text of a value of the entries: ``%s`` for a column (its index appended to
-    ``found``), an object, or a list where the keys are numbers."""
-    if isinstance(node, int):
-        found.append(node)
-        return "%s"
-    parts = [_node_text(child, found) for child in node.values()]
-    if all(key.isdigit() for key in node):
-        return "[" + ", ".join(parts) + "]"
-    return "{" + ", ".join(_key_text(key, part) for key, part in
-                           zip(node, parts, strict=True)) + "}"
+class _Entries:
+    """The JSON entries of declared columns: their key tree, the rows' conditions (the
+    distinct ``only`` of the columns) and a template per set of conditions that hold."""
 
+    def __init__(self, shown: Sequence[Column[Any]]) -> None:
+        self.shown = shown
+        self.tree: dict[str, Any] = {}
+        for k, c in enumerate(shown):
+            path = (c.key or c.name).split(".")
+            node = self.tree
+            for part in path[:-1]:
+                node = node.setdefault(part, {})
+            node[path[-1]] = k
+        onlys = list({id(c.only): c.only for c in shown if c.only is not None}.values())
+        self.conditions = onlys
+        self.condition = [None if c.only is None else onlys.index(c.only) for c in shown]
+        self.subs = {k: _Entries(written(c.each, "json")) for k, c in enumerate(shown)
+                     if c.each is not None}
+        self.templates: dict[tuple[bool, ...], tuple[str, list[int]]] = {}
 
-def _slot(text: str, held: Sequence[Column[Row]], block: Sequence[Row],
-          seen: dict[Any, str]) -> list[str]:
-    """The text of a key on some rows only (``text``: ``, "key": …``), per row: filled
-    where its ``only`` holds, else empty."""
-    only = held[0].only
-    assert only is not None
-    at = [k for k, row in enumerate(block) if only(row)]
-    out = [""] * len(block)
-    if at:
-        chosen = [block[k] for k in at]
-        values = zip(*(_encoded(values_of(c, chosen), c.finite, seen) for c in held),
-                     strict=True)
-        for k, cells in zip(at, values, strict=True):
-            out[k] = text % cells
-    return out
+    def template(self, mask: tuple[bool, ...]) -> tuple[str, list[int]]:
+        """The text of an entry whose conditions are ``mask`` (``%s`` for each column it
+        has) and those columns, in the text's order."""
+        if mask not in self.templates:
+            order: list[int] = []
+            text = self._node(self.tree, mask, order)
+            self.templates[mask] = (text or "{}", order)
+        return self.templates[mask]
+
+    def _node(self, node: Any, mask: tuple[bool, ...], order: list[int]) -> str | None:
+        """The text of a value of the entries (None where a row whose conditions are
+        ``mask`` has none of its columns): ``%s`` for a column, an object, or a list
+        where the keys are numbers."""
+        if isinstance(node, int):
+            k = self.condition[node]
+            if k is not None and not mask[k]:
+                return None
+            order.append(node)
+            return "%s"
+        parts = [(key, self._node(child, mask, order)) for key, child in node.items()]
+        found = [(key, part) for key, part in parts if part is not None]
+        if not found:
+            return None
+        if all(key.isdigit() for key in node):
+            return "[" + ", ".join(part for _, part in found) + "]"
+        return "{" + ", ".join(_key_text(key, part) for key, part in found) + "}"
+
+    def texts(self, rows: Sequence[Any], seen: dict[Any, str]) -> list[str]:
+        """Each row's entry as JSON text."""
+        if not self.conditions:
+            groups = {(): list(range(len(rows)))}
+        else:
+            groups = {}
+            for k, mask in enumerate(zip(*(list(map(only, rows))
+                                           for only in self.conditions), strict=True)):
+                groups.setdefault(mask, []).append(k)
+        if len(groups) == 1:  # every row has the same keys
+            template, order = self.template(next(iter(groups)))
+            return _filled(template, [self._encoded(k, rows, seen) for k in order], len(rows))
+        out = [""] * len(rows)
+        cells_at: dict[int, list[str]] = {}
+        for mask, at in groups.items():
+            template, order = self.template(mask)
+            for k in order:
+                if k not in cells_at:
+                    cells_at[k] = self._scattered(k, rows, seen)
+            texts = _filled(template, [[cells_at[k][r] for r in at] for k in order], len(at))
+            for row, text in zip(at, texts, strict=True):
+                out[row] = text
+        return out
+
+    def _scattered(self, k: int, rows: Sequence[Any], seen: dict[Any, str]) -> list[str]:
+        """Column ``k``'s texts at every row, "" on the rows whose entry lacks it."""
+        only = self.shown[k].only
+        if only is None:
+            return self._encoded(k, rows, seen)
+        at = [r for r, row in enumerate(rows) if only(row)]
+        out = [""] * len(rows)
+        for r, text in zip(at, self._encoded(k, [rows[r] for r in at], seen), strict=True):
+            out[r] = text
+        return out
+
+    def _encoded(self, k: int, rows: Sequence[Any], seen: dict[Any, str]) -> list[str]:
+        """Column ``k``'s value at each row as JSON text: its JSON reading (``json_value``)
+        where it has one, its sub-records' entries (``each``) as a list."""
+        c = self.shown[k]
+        if c.each is not None:
+            lists = [c.value(row) for row in rows]
+            texts = iter(self.subs[k].texts(list(itertools.chain.from_iterable(lists)), seen))
+            return ["[" + ", ".join(itertools.islice(texts, len(sub))) + "]" for sub in lists]
+        if c.json_value is not None:
+            return _encoded(list(map(c.json_value, rows)), c.finite, seen)
+        return _encoded(values_of(c, rows), c.finite, seen)
 
 
 def _encoded(values: Any, finite: bool, seen: dict[Any, str]) -> list[str]:

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import gc
 import json
-import math
 from collections.abc import Iterator
 from typing import Any
 
@@ -12,7 +10,12 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api import SelectionResult
-from gyrovib.api.evaluation.records import profile_columns, selection_cells, selection_columns
+from gyrovib.api.evaluation.records import (
+    profile_columns,
+    selection_cells,
+    selection_columns,
+    selection_records,
+)
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.reasons import reason as reason_text
 from gyrovib.reasons import saturation_reason, worded, yield_text
@@ -27,10 +30,9 @@ from gyrovib.render.common import (
     fmt,
     fmt_budget,
     header,
-    number,
     rich_text,
 )
-from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
+from gyrovib.render.formats import Cell, csv_of, json_blocks, json_of, markdown_of, table_of
 from gyrovib.units import coefficient_unit
 
 _CRITERION = {
@@ -221,7 +223,7 @@ def _sat(result: SelectionResult, i: int, j: int) -> bool:
     return bool(result.saturated is not None and result.saturated[i, j])
 
 
-#: Sensors per block of the streamed JSON: bounds the Python objects alive at once.
+#: Sensors per block of the streamed JSON: bounds the texts alive at once.
 _BLOCK = 1024
 #: Where the sensors go in the document's text (a string json writes as one token).
 _SLOT = "\0sensors\0"
@@ -234,11 +236,9 @@ def to_json(result: SelectionResult) -> str:
 
 def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     """``select --format json`` as consecutive pieces of text: the document's other
-    fields, then the sensors a block at a time, then its end.
-
-    ``"".join(to_json_chunks(result))`` is the whole document; only one block of
-    sensor entries (:func:`_sensor_entries`) exists as Python objects at a time.
-    """
+    fields, then the sensors' entries a block at a time, written from the result's
+    records (:func:`~gyrovib.api.evaluation.records.selection_records`), then its end.
+    ``"".join(to_json_chunks(result))`` is the whole document."""
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = json_of(profile_columns(result.profiles, result.rates,
@@ -252,86 +252,8 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     document["sensors"] = _SLOT
     before, after = dumps(document).split(json.dumps(_SLOT), 1)
     yield before + "["
-    n = len(result.sensors)
-    for start in range(0, n, _BLOCK):
-        # a block is ~10^4 acyclic dicts: the cyclic collector would walk them
-        # again and again as they are made; paused while one block is built
-        collecting = gc.isenabled()
-        gc.disable()
-        try:
-            text = json.dumps(_sensor_entries(result, start, min(start + _BLOCK, n)),
-                              allow_nan=False)[1:-1]
-        finally:
-            if collecting:
-                gc.enable()
-        yield text if start == 0 else ", " + text
+    yield from json_blocks(selection_records(result), range(len(result.sensors)), _BLOCK)
     yield "]" + after
-
-
-def _sensor_entries(result: SelectionResult, start: int, stop: int) -> list[dict[str, Any]]:
-    """The JSON entries of sensors ``start``..``stop`` (docs/output.md), one dict each:
-    the one definition of a sensor's entry, whole document or streamed."""
-    sensors = []
-    for i, sensor in enumerate(result.sensors[start:stop], start):
-        cells = []
-        for j, profile in enumerate(result.profiles):
-            spec = result.source(i) == "specs"
-            checks = _spec_checks(result, i, j) if spec else {
-                name: {"value": number(result.values[i, j, b]),
-                       "bound": number(result.bounds[i, j, b]),
-                       "pass": result.check(i, j, b)}
-                for b, name in enumerate(BOUNDED)
-            }
-            if result.vre_pass is not None and not spec:
-                value, bound = _vre(result, i, j)
-                checks["vre"] = {"value": number(value), "bound": number(bound),
-                                 "pass": result.vre_check(i, j)}
-            cell = {"profile": profile, "pass": bool(result.passed[i, j]),
-                    "status": result.status(i, j),
-                    "unknown": list(result.unknown.get((i, j), ())),
-                    "rms": number(result.rms[i, j]), "margin": number(result.margin[i, j]),
-                    "criterion_margin": number(cell_margin(result, i, j)),
-                    "disagrees": list(result.disagrees.get((i, j), ())),
-                    "checks": checks}
-            if result.total is not None:
-                cell["total"] = number(result.total[i, j])
-            if result.yields is not None and result.yields.is_lot(i):
-                cell["yield"] = _yield_json(result, i, j)
-            cell["saturated"] = _sat(result, i, j)
-            cell["reason"] = reason(result, i, j)
-            cells.append(cell)
-        sensors.append({"sensor": sensor, "source": result.source(i),
-                        "pass": bool(result.sensor_pass[i]),
-                        "status": result.sensor_status(i),
-                        "unknown": list(result.sensor_unknown(i)),
-                        "questions": list(result.questions.get(i, ())),
-                        "profiles": cells})
-    return sensors
-
-
-def _yield_json(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
-    """``{"value", "method", "interval": [lo, hi] | null, "draws"}`` (docs/output.md, select)."""
-    y = result.yields
-    assert y is not None
-    interval = (None if y.method == "exact"
-                else [number(y.low[i, j]), number(y.high[i, j])])
-    return {"value": number(y.value[i, j]), "method": y.method, "interval": interval,
-            "draws": y.draws}
-
-
-def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
-    """A datasheet sensor's checks: nonlinearity (%FS) and VRE against their spec bounds."""
-    assert result.nl_value is not None and result.nl_bound is not None
-    assert result.nl_pass is not None and result.vre_value is not None
-    assert result.vre_bound is not None and result.vre_pass is not None
-    vre = float(result.vre_value[i, j])
-    return {
-        "nonlinearity": {"value": number(result.nl_value[i, j]), "unit": "%FS",
-                         "bound": number(result.nl_bound[i, j]),
-                         "pass": result.nl_check(i, j)},
-        "vre": {"value": None if math.isnan(vre) else vre,
-                "bound": number(result.vre_bound[i, j]), "pass": result.vre_check(i, j)},
-    }
 
 
 def to_csv(result: SelectionResult) -> str:

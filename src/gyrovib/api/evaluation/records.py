@@ -35,7 +35,7 @@ from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
 from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
 from gyrovib.reasons import reason
-from gyrovib.records import Column, known
+from gyrovib.records import Column, flattened, known
 from gyrovib.units import coefficient_unit
 
 if TYPE_CHECKING:
@@ -299,60 +299,88 @@ def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
 
 
 def selection_cells(result: SelectionResult) -> list[Cell]:
-    """The rows of ``select``'s records: (sensor, profile), sensors outermost."""
+    """The rows of ``select``'s CSV and frame: (sensor, profile), sensors outermost."""
     return [(i, j) for i in range(len(result.sensors)) for j in range(len(result.profiles))]
 
 
-def _float_cell(values: Any) -> Callable[[Cell], float]:
-    listed = np.asarray(values, dtype=float).tolist()
-    return lambda c: listed[c[0]][c[1]]
-
-
-#: Outside a sensor × profile entry of ``select``'s JSON: the sensor's (its ``sensor``,
-#: ``pass``, ``status``, ``source``) and the profile's (``rate``, its bounds and parts).
-_ENTRY = ("json",)
-
-
 def selection_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
-    """``select``'s records, declared once, one row per sensor × profile (sensors
-    outermost): the columns of the DataFrame and of ``--format csv`` (those that do not
-    skip it), and the keys of the JSON's sensor × profile entries (those that do not skip
-    ``json``; the JSON keeps the others in the sensor's entry and in ``profiles``).
+    """``select``'s records as one table, a row per sensor × profile (sensors outermost):
+    the columns of the DataFrame and of ``--format csv`` (those that do not skip it),
+    from the one declaration (:func:`selection_records`)."""
+    return flattened(selection_records(result))
 
-    ``passed`` is the JSON's ``pass`` (a Python keyword breaks ``df.query("not pass")``);
-    ``value_<coefficient>``, ``bound_…``, ``pass_…`` its ``checks.<coefficient>``, empty
-    (NaN, None) on a datasheet sensor's rows; the frame adds the sensor's ``status``, the
-    profile's ``rate_*`` and ``profile_bounds_*``/``profile_parts_*`` (the JSON's
-    ``profiles`` entry), and keeps ``unknown`` and ``disagrees`` as lists (the CSV: their
-    names joined by spaces)."""
-    specs = [result.source(i) == "specs" for i in range(len(result.sensors))]
-    margin = result.margin if result.criterion_margin is None else result.criterion_margin
+
+def selection_records(result: SelectionResult) -> tuple[Column[int], ...]:
+    """``select``'s records, declared once, one row per sensor (its index), in the order
+    of the JSON's sensor entries (docs/output.md): the sensor's columns, then
+    ``profiles``, the sensor × profile records (:func:`_cell_columns`). The CSV and the
+    frame are a line per sensor × profile (:func:`selection_columns`), the sensor's
+    columns on each, in their own order (``csv_after``).
+
+    ``passed`` is the JSON's ``pass`` (a Python keyword breaks ``df.query("not pass")``),
+    the sensor's ``sensor_pass`` and ``sensor_status`` its entry's ``pass`` and
+    ``status``; a sensor's ``unknown`` figures and ``questions`` are the JSON's only."""
+    with_specs = "specs" in result.sources
     sensor_pass = np.asarray(result.sensor_pass, dtype=bool).tolist()
+    n_profiles = len(result.profiles)
+    return (
+        Column("sensor", None, lambda i: result.sensors[i]),
+        Column("source", None, result.source, skip=() if with_specs else ("csv",),
+               csv_after=f"pass_{BOUNDED[-1]}"),
+        Column("sensor_pass", None, lambda i: sensor_pass[i], key="pass", csv_after="passed"),
+        Column("sensor_status", None, result.sensor_status, skip=("csv",), key="status",
+               csv_after="sensor_pass"),
+        Column("sensor_unknown", None, lambda i: list(result.sensor_unknown(i)),
+               skip=_JSON_ONLY, key="unknown"),
+        Column("questions", None, lambda i: list(result.questions.get(i, ())),
+               skip=_JSON_ONLY),
+        Column("profiles", None, lambda i: [(i, j) for j in range(n_profiles)],
+               each=_cell_columns(result)))
+
+
+#: The columns only the JSON has.
+_JSON_ONLY = ("csv", "frame")
+
+
+def _cell_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
+    """``select``'s sensor × profile records, in the order of the JSON's entries; the CSV
+    and the frame put the verdict's words after ``saturated``. ``value_<coefficient>``,
+    ``bound_…``, ``pass_…`` are the JSON's ``checks.<coefficient>``, empty (NaN, None) on
+    a datasheet sensor's rows; the frame adds the profile's ``rate_*`` and
+    ``profile_bounds_*``/``profile_parts_*`` (the JSON's ``profiles`` entry), and keeps
+    ``unknown`` and ``disagrees`` as lists (the CSV: their names joined by spaces)."""
+    specs = [result.source(i) == "specs" for i in range(len(result.sensors))]
+    index = _Index()
+    margin = result.margin if result.criterion_margin is None else result.criterion_margin
     columns: tuple[Column[Cell], ...] = (
-        Column("sensor", None, lambda c: result.sensors[c[0]], skip=_ENTRY),
         Column("profile", None, lambda c: result.profiles[c[1]]),
-        Column("passed", None, lambda c: bool(result.passed[c[0], c[1]]), key="pass"),
-        Column("sensor_pass", None, lambda c: sensor_pass[c[0]], skip=_ENTRY),
-        Column("sensor_status", None, lambda c: result.sensor_status(c[0]),
-               skip=("csv", *_ENTRY)),
-        Column("rms", "rate", _float_cell(result.rms)),
-        Column("margin", None, _float_cell(result.margin)),
+        Column("passed", None, key="pass", **_cells(np.asarray(result.passed, bool), index)),
+        Column("status", None, lambda c: result.status(*c), csv_after="saturated"),
+        Column("unknown", None, lambda c: list(result.unknown.get(c, ())), cell=" ".join,
+               csv_after="status"),
+        Column("rms", "rate", **_cells(np.asarray(result.rms, float), index)),
+        Column("margin", None, **_cells(np.asarray(result.margin, float), index)),
+        Column("criterion_margin", None, csv_after="unknown",
+               **_cells(np.asarray(margin, float), index)),
+        Column("disagrees", None, lambda c: list(result.disagrees.get(c, ())), cell=" ".join,
+               csv_after="criterion_margin"),
         *_coefficient_checks(result, specs),
         *_datasheet_checks(result, specs),
         *_yield_cells(result),
         Column("saturated", None, lambda c: bool(result.saturated is not None
                                                  and result.saturated[c[0], c[1]])),
-        Column("status", None, lambda c: result.status(*c)),
-        Column("unknown", None, lambda c: list(result.unknown.get(c, ())), cell=" ".join),
-        Column("criterion_margin", None, _float_cell(margin)),
-        Column("disagrees", None, lambda c: list(result.disagrees.get(c, ())), cell=" ".join),
         Column("reason", None, lambda c: None if result.passed[c[0], c[1]]
                else reason(result.failures(*c))),
     )
     profiles = profile_columns(result.profiles, result.rates, result.profile_bounds,
                                result.unit, "profile_")
     return (*columns, *(Column(c.name, c.unit, _of_profile_row(c.value), key=c.key,
-                               skip=("csv", *_ENTRY)) for c in profiles[1:]))
+                               skip=("csv", "json")) for c in profiles[1:]))
+
+
+def _float_cell(values: Any) -> Callable[[Cell], float]:
+    listed = np.asarray(values, dtype=float).tolist()
+    return lambda c: listed[c[0]][c[1]]
 
 
 def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
@@ -391,41 +419,43 @@ def _check(checks: list[Any], unknown: list[Any], specs: list[bool],
 
 
 def _datasheet_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
-    """A datasheet sensor's ``source``, ``total`` and nonlinearity check (%FS; NaN, None
-    on coefficient rows), then the VRE check (docs/model.md section 8). The CSV has them
-    with datasheet sensors (the VRE check also where it can bind: linear vibration); its
-    cells are empty where a row has no such check."""
+    """A datasheet sensor's nonlinearity check (%FS; NaN, None on coefficient rows), the
+    VRE check (docs/model.md section 8), then the worst ``total``, which the CSV puts
+    after the sensor's ``source``. The CSV has them with datasheet sensors (the VRE check
+    also where it can bind: linear vibration); its cells are empty where a row has no
+    such check."""
     with_specs = "specs" in result.sources
     vre = result.has_linear and result.vre_pass is not None
     csv = () if with_specs else ("csv",)
-    columns: list[Column[Cell]] = [Column("source", None, lambda c: result.source(c[0]),
-                                          skip=(*csv, *_ENTRY))]
-    if result.total is not None:
-        columns.append(Column("total", "rate", _float_cell(result.total), skip=csv))
+    columns: list[Column[Cell]] = []
     if result.nl_value is not None:
         columns += _nonlinearity_checks(result, specs, csv)
     if result.vre_pass is not None:
         columns += _vre_checks(result, specs, () if with_specs or vre else ("csv",), vre)
+    if result.total is not None:
+        columns.append(Column("total", "rate", _float_cell(result.total), skip=csv,
+                              csv_after="source"))
     return columns
 
 
 def _nonlinearity_checks(result: SelectionResult, specs: list[bool],
                          csv: tuple[str, ...]) -> list[Column[Cell]]:
     """A datasheet sensor's nonlinearity check (%FS; NaN, None on coefficient rows), with
-    its unit on datasheet rows (not in the CSV)."""
+    its unit on datasheet rows (not in the CSV; the frame's after the check)."""
     def spec_row(c: Cell) -> bool:
         return specs[c[0]]
 
     key = "checks.nonlinearity."
     return [Column("value_nonlinearity", "%FS", _float_cell(result.nl_value), skip=csv,
                    key=key + "value", only=spec_row),
+            Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
+                   skip=("csv",), key=key + "unit", only=spec_row,
+                   csv_after="pass_nonlinearity"),
             Column("bound_nonlinearity", "%FS", _float_cell(result.nl_bound), skip=csv,
                    key=key + "bound", only=spec_row),
             Column("pass_nonlinearity", None,
                    lambda c: result.nl_check(*c) if specs[c[0]] else None, skip=csv,
-                   key=key + "pass", only=spec_row),
-            Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
-                   skip=("csv",), key=key + "unit", only=spec_row)]
+                   key=key + "pass", only=spec_row)]
 
 
 def _vre_checks(result: SelectionResult, specs: list[bool], csv: tuple[str, ...],
@@ -443,7 +473,7 @@ def _vre_checks(result: SelectionResult, specs: list[bool], csv: tuple[str, ...]
 
 def _yield_cells(result: SelectionResult) -> list[Column[Cell]]:
     """``--yield`` (docs/model.md section 14): NaN, None off the lots; an exact yield's
-    interval NaN."""
+    interval NaN (the JSON's ``interval``: null, else its two ends)."""
     y = result.yields
     if y is None:
         return []
@@ -452,12 +482,16 @@ def _yield_cells(result: SelectionResult) -> list[Column[Cell]]:
     def lot(c: Cell) -> bool:
         return y.is_lot(c[0])
 
+    def interval(c: Cell) -> list[float | None] | None:
+        return None if y.method == "exact" else [known(low(c)), known(high(c))]
+
     return [
         Column("yield_value", None, value, key="yield.value", only=lot),
         Column("yield_method", None, lambda c: y.method if lot(c) else None,
                key="yield.method", only=lot),
-        Column("yield_interval_low", None, low, key="yield.interval.0", only=lot),
-        Column("yield_interval_high", None, high, key="yield.interval.1", only=lot),
+        Column("yield_interval_low", None, low, key="yield.interval", only=lot,
+               json_value=interval),
+        Column("yield_interval_high", None, high, skip=("json",)),
         Column("yield_draws", None, lambda c: y.draws if lot(c) else None, key="yield.draws",
                only=lot)]
 
