@@ -434,6 +434,29 @@ def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path
     assert tuple(frame.columns) == names(written(columns, "frame"))
 
 
+@pytest.mark.parametrize("case", list(SELECT_CASES))
+def test_select_columns_read_alike_one_row_or_many(case: str, tmp_path) -> None:
+    # select's columns that read many rows at once (the JSON's and the frame's path) read
+    # what they read one row at a time (the CSV's): empty on a datasheet row's coefficient
+    # checks, None where a check decides nothing
+    from gyrovib.api.evaluation.records import selection_cells, selection_columns
+
+    result = _selection(case, tmp_path)
+    rows = selection_cells(result)
+    fast = 0
+    for column in selection_columns(result):
+        if column.many is None:
+            continue
+        many = list(column.many(rows))
+        one = [column.value(row) for row in rows]
+        assert list(map(type, np.asarray(many).tolist())) == list(map(type, one)), column.name
+        assert np.array_equal(np.asarray(many, dtype=object), np.asarray(one, dtype=object)) \
+            or np.allclose(np.asarray(many, float), np.asarray(one, float), rtol=0, atol=0,
+                           equal_nan=True), column.name
+        fast += 1
+    assert fast > 15  # the probe: the numbers and checks of a row are read at once
+
+
 def _at(entry: object, key: str) -> object:
     """The value at a key path of a JSON entry."""
     for part in key.split("."):

@@ -81,6 +81,36 @@ def _cells(array: Any, index: _Index) -> dict[str, Any]:
     return {"value": lambda c: listed()[c[0]][c[1]], "many": lambda rows: values[index(rows)]}
 
 
+def _blanked(array: Any, index: _Index, blank: Any, empty: Any,
+             unknown: Any = None) -> dict[str, Any]:
+    """:func:`_cells` of a (sensors, profiles) array, ``empty`` on the rows of a sensor
+    whose ``blank`` (an array per sensor) holds, and where ``unknown`` (a (sensors,
+    profiles) array, read at the rows asked for) holds: nothing copied but the rows read."""
+    values = np.asarray(array)
+    listed = functools.cache(values.tolist)
+
+    blank_list = np.asarray(blank, dtype=bool).tolist()
+
+    def many(rows: Sequence[Cell]) -> Any:
+        i, j = index(rows)
+        out = values[i, j].astype(float if empty is math.nan else object)
+        out[blank[i] if unknown is None else blank[i] | unknown[i, j]] = empty
+        return out
+
+    def value(c: Cell) -> Any:
+        if blank_list[c[0]] or (unknown is not None and unknown[c]):
+            return empty
+        return listed()[c[0]][c[1]]
+
+    return {"value": value, "many": many}
+
+
+def _flags(array: Any, result: Any) -> Any:
+    """A (sensors, profiles) array of flags, all False where it is None."""
+    shape = (len(result.sensors), len(result.profiles))
+    return np.zeros(shape, bool) if array is None else np.asarray(array, dtype=bool)
+
+
 def _per(values: Sequence[Any], index: _Index, axis: int) -> dict[str, Any]:
     """``value`` and ``many`` of a column that is the entry of ``values`` of the row's
     sensor (``axis`` 0) or profile (1); floats kept as an array of them, else objects."""
@@ -155,9 +185,7 @@ def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
                            only=lambda c: math.isfinite(u[c[0]][c[1]])),
                     Column("lot_mean", None, lambda c: result.is_lot(c[0]),
                            only=lambda c: result.is_lot(c[0]))]
-    shape = (len(result.sensors), len(result.profiles))
-    saturated = np.zeros(shape, bool) if result.saturated is None else result.saturated
-    columns.append(Column("saturated", None, **_cells(np.asarray(saturated, dtype=bool), index)))
+    columns.append(Column("saturated", None, **_cells(_flags(result.saturated, result), index)))
     if result.worst_phases:
         phases = result.worst_phases
         columns.append(Column("worst_phases", None, lambda c: None if c not in phases
@@ -349,7 +377,7 @@ def _cell_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
     a datasheet sensor's rows; the frame adds the profile's ``rate_*`` and
     ``profile_bounds_*``/``profile_parts_*`` (the JSON's ``profiles`` entry), and keeps
     ``unknown`` and ``disagrees`` as lists (the CSV: their names joined by spaces)."""
-    specs = [result.source(i) == "specs" for i in range(len(result.sensors))]
+    specs = np.array([result.source(i) == "specs" for i in range(len(result.sensors))], bool)
     index = _Index()
     margin = result.margin if result.criterion_margin is None else result.criterion_margin
     columns: tuple[Column[Cell], ...] = (
@@ -364,11 +392,10 @@ def _cell_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
                **_cells(np.asarray(margin, float), index)),
         Column("disagrees", None, lambda c: list(result.disagrees.get(c, ())), cell=" ".join,
                csv_after="criterion_margin"),
-        *_coefficient_checks(result, specs),
-        *_datasheet_checks(result, specs),
-        *_yield_cells(result),
-        Column("saturated", None, lambda c: bool(result.saturated is not None
-                                                 and result.saturated[c[0], c[1]])),
+        *_coefficient_checks(result, specs, index),
+        *_datasheet_checks(result, specs.tolist(), index),
+        *_yield_cells(result, index),
+        Column("saturated", None, **_cells(_flags(result.saturated, result), index)),
         Column("reason", None, lambda c: None if result.passed[c[0], c[1]]
                else reason(result.failures(*c))),
     )
@@ -378,47 +405,48 @@ def _cell_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
                                skip=("csv", "json")) for c in profiles[1:]))
 
 
-def _float_cell(values: Any) -> Callable[[Cell], float]:
-    listed = np.asarray(values, dtype=float).tolist()
-    return lambda c: listed[c[0]][c[1]]
-
-
-def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
+def _coefficient_checks(result: SelectionResult, specs: Any,
+                        index: _Index) -> list[Column[Cell]]:
     """``checks.<coefficient>.value|bound|pass`` (eq. 23, 25): NaN, None on a datasheet
     (spec-form) sensor's rows, which have no coefficient checks; a check against a bound
     a fitted profile's recording leaves unknown decides nothing (None,
     :meth:`~gyrovib.api.SelectionResult.check`)."""
-    array = np.asarray(result.values, dtype=float)
-    unknown = (np.isnan(result.bounds) & (array != 0)).tolist()
-    values, bounds = array.tolist(), np.asarray(result.bounds, dtype=float).tolist()
-    checks = np.asarray(result.check_pass, dtype=bool).tolist()
+    values = np.asarray(result.values, dtype=float)
+    bounds = np.asarray(result.bounds, dtype=float)
+    checks = np.asarray(result.check_pass, dtype=bool)
 
-    def read(table: list[Any], b: int, empty: Any) -> Callable[[Cell], Any]:
-        return lambda c: empty if specs[c[0]] else table[c[0]][c[1]][b]
+    coefficient = (~specs).tolist()
 
     def coefficient_row(c: Cell) -> bool:
-        return not specs[c[0]]
+        return coefficient[c[0]]
 
     columns: list[Column[Cell]] = []
     for b, name in enumerate(BOUNDED):
         key = f"checks.{name}."
-        columns += [Column(f"value_{name}", None, read(values, b, math.nan),
-                           key=key + "value", only=coefficient_row),
-                    Column(f"bound_{name}", None, read(bounds, b, math.nan),
-                           key=key + "bound", only=coefficient_row),
-                    Column(f"pass_{name}", None, _check(checks, unknown, specs, b),
-                           key=key + "pass", only=coefficient_row)]
+        unknown = _Unknown(values[:, :, b], bounds[:, :, b])
+        columns += [Column(f"value_{name}", None, key=key + "value", only=coefficient_row,
+                           **_blanked(values[:, :, b], index, specs, math.nan)),
+                    Column(f"bound_{name}", None, key=key + "bound", only=coefficient_row,
+                           **_blanked(bounds[:, :, b], index, specs, math.nan)),
+                    Column(f"pass_{name}", None, key=key + "pass", only=coefficient_row,
+                           **_blanked(checks[:, :, b], index, specs, None, unknown))]
     return columns
 
 
-def _check(checks: list[Any], unknown: list[Any], specs: list[bool],
-           b: int) -> Callable[[Cell], bool | None]:
-    """Coefficient ``b``'s check at a row: None on a datasheet row or where it is unknown."""
-    return lambda c: (None if specs[c[0]] or unknown[c[0]][c[1]][b]
-                      else checks[c[0]][c[1]][b])
+class _Unknown:
+    """Where a coefficient's bound is unknown (NaN: a fitted profile's recording leaves it
+    so) and the coefficient is not 0: its check decides nothing. Read at the rows asked
+    for (``[i, j]``, arrays or numbers)."""
+
+    def __init__(self, values: Any, bounds: Any) -> None:
+        self._values, self._bounds = values, bounds
+
+    def __getitem__(self, at: tuple[Any, Any]) -> Any:
+        return np.isnan(self._bounds[at]) & (self._values[at] != 0)
 
 
-def _datasheet_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
+def _datasheet_checks(result: SelectionResult, specs: list[bool],
+                      index: _Index) -> list[Column[Cell]]:
     """A datasheet sensor's nonlinearity check (%FS; NaN, None on coefficient rows), the
     VRE check (docs/model.md section 8), then the worst ``total``, which the CSV puts
     after the sensor's ``source``. The CSV has them with datasheet sensors (the VRE check
@@ -429,69 +457,71 @@ def _datasheet_checks(result: SelectionResult, specs: list[bool]) -> list[Column
     csv = () if with_specs else ("csv",)
     columns: list[Column[Cell]] = []
     if result.nl_value is not None:
-        columns += _nonlinearity_checks(result, specs, csv)
+        columns += _nonlinearity_checks(result, specs, csv, index)
     if result.vre_pass is not None:
-        columns += _vre_checks(result, specs, () if with_specs or vre else ("csv",), vre)
+        columns += _vre_checks(result, specs, () if with_specs or vre else ("csv",), vre,
+                               index)
     if result.total is not None:
-        columns.append(Column("total", "rate", _float_cell(result.total), skip=csv,
-                              csv_after="source"))
+        columns.append(Column("total", "rate", skip=csv, csv_after="source",
+                              **_cells(np.asarray(result.total, float), index)))
     return columns
 
 
-def _nonlinearity_checks(result: SelectionResult, specs: list[bool],
-                         csv: tuple[str, ...]) -> list[Column[Cell]]:
+def _nonlinearity_checks(result: SelectionResult, specs: list[bool], csv: tuple[str, ...],
+                         index: _Index) -> list[Column[Cell]]:
     """A datasheet sensor's nonlinearity check (%FS; NaN, None on coefficient rows), with
     its unit on datasheet rows (not in the CSV; the frame's after the check)."""
     def spec_row(c: Cell) -> bool:
         return specs[c[0]]
 
     key = "checks.nonlinearity."
-    return [Column("value_nonlinearity", "%FS", _float_cell(result.nl_value), skip=csv,
-                   key=key + "value", only=spec_row),
+    return [Column("value_nonlinearity", "%FS", skip=csv, key=key + "value", only=spec_row,
+                   **_cells(np.asarray(result.nl_value, float), index)),
             Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
                    skip=("csv",), key=key + "unit", only=spec_row,
                    csv_after="pass_nonlinearity"),
-            Column("bound_nonlinearity", "%FS", _float_cell(result.nl_bound), skip=csv,
-                   key=key + "bound", only=spec_row),
+            Column("bound_nonlinearity", "%FS", skip=csv, key=key + "bound", only=spec_row,
+                   **_cells(np.asarray(result.nl_bound, float), index)),
             Column("pass_nonlinearity", None,
                    lambda c: result.nl_check(*c) if specs[c[0]] else None, skip=csv,
                    key=key + "pass", only=spec_row)]
 
 
 def _vre_checks(result: SelectionResult, specs: list[bool], csv: tuple[str, ...],
-                vre: bool) -> list[Column[Cell]]:
+                vre: bool, index: _Index) -> list[Column[Cell]]:
     """The VRE check (docs/model.md section 8): the CSV's cells empty on a coefficient row
     where it cannot bind (no linear vibration)."""
     blank = None if vre else (lambda c: not specs[c[0]])
-    return [Column("value_vre", None, _float_cell(result.vre_value), skip=csv,
-                   key="checks.vre.value", blank=blank),
-            Column("bound_vre", None, _float_cell(result.vre_bound), skip=csv,
-                   key="checks.vre.bound", blank=blank),
+    return [Column("value_vre", None, skip=csv, key="checks.vre.value", blank=blank,
+                   **_cells(np.asarray(result.vre_value, float), index)),
+            Column("bound_vre", None, skip=csv, key="checks.vre.bound", blank=blank,
+                   **_cells(np.asarray(result.vre_bound, float), index)),
             Column("pass_vre", None, lambda c: result.vre_check(*c), skip=csv,
                    key="checks.vre.pass", blank=blank)]
 
 
-def _yield_cells(result: SelectionResult) -> list[Column[Cell]]:
+def _yield_cells(result: SelectionResult, index: _Index) -> list[Column[Cell]]:
     """``--yield`` (docs/model.md section 14): NaN, None off the lots; an exact yield's
     interval NaN (the JSON's ``interval``: null, else its two ends)."""
     y = result.yields
     if y is None:
         return []
-    value, low, high = (_float_cell(a) for a in (y.value, y.low, y.high))
+    value, low, high = (_cells(np.asarray(a, float), index) for a in (y.value, y.low, y.high))
 
     def lot(c: Cell) -> bool:
         return y.is_lot(c[0])
 
     def interval(c: Cell) -> list[float | None] | None:
-        return None if y.method == "exact" else [known(low(c)), known(high(c))]
+        return (None if y.method == "exact"
+                else [known(low["value"](c)), known(high["value"](c))])
 
     return [
-        Column("yield_value", None, value, key="yield.value", only=lot),
+        Column("yield_value", None, key="yield.value", only=lot, **value),
         Column("yield_method", None, lambda c: y.method if lot(c) else None,
                key="yield.method", only=lot),
-        Column("yield_interval_low", None, low, key="yield.interval", only=lot,
-               json_value=interval),
-        Column("yield_interval_high", None, high, skip=("json",)),
+        Column("yield_interval_low", None, key="yield.interval", only=lot,
+               json_value=interval, **low),
+        Column("yield_interval_high", None, skip=("json",), **high),
         Column("yield_draws", None, lambda c: y.draws if lot(c) else None, key="yield.draws",
                only=lot)]
 
