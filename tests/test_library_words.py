@@ -77,14 +77,26 @@ def _options(command: click.Command, ctx: click.Context) -> set[str]:
     return found
 
 
+#: The modules of words the library shares with the renderers: select's reasons are
+#: worded there (its frame's ``reason``), at the bottom layer.
+SHARED_WORDS = ("reasons.py",)
+
+#: mission's renderer words an unverified row's reason for the command line with the
+#: shared words, without a result's note: the one flag they hold, for it alone.
+MISSION_ADVICE = ("reasons.py", "--assume-unknown")
+
+
 def test_api_and_core_hold_no_flag() -> None:
-    """No string of gyrovib.api or gyrovib.core names a command-line flag: a library
-    message names the argument (a Note, worded with the option by the command line).
-    The few flags of other programs a message may name are none of gyrovib's options."""
-    found = [f"{path.relative_to(SRC)}:{line}: {flag}"
-             for package in ("api", "core") for path in sorted((SRC / package).rglob("*.py"))
+    """No string of gyrovib.api, gyrovib.core or the shared words (select's reasons)
+    names a command-line flag: a library message names the argument (a Note, worded with
+    the option by the command line). The few flags of other programs a message may name
+    are none of gyrovib's options."""
+    paths = [*(path for package in ("api", "core") for path in sorted((SRC / package).rglob(
+        "*.py"))), *(SRC / name for name in SHARED_WORDS)]
+    found = [(str(path.relative_to(SRC)), line, flag) for path in paths
              for line, flag in flags_in(path) if flag not in FOREIGN]
-    assert found == []
+    assert [f for f in found if (f[0], f[2]) != MISSION_ADVICE] == []
+    assert len(found) == 1  # the probe: the shared words are scanned, mission's advice found
     assert FOREIGN.isdisjoint(_options(cli, click.Context(cli, info_name="gyrovib")))
 
 
@@ -154,3 +166,29 @@ def test_a_column_named_like_an_option_keeps_its_name(tmp_path: Path) -> None:
     assert "1 rate column(s) ('{rate_columns}') besides the time" in r.stderr
     assert "place them with --rate-columns X,Y,Z, e.g. --rate-columns -,-,{rate_columns}" \
         in r.stderr, r.stderr
+
+
+def test_select_reasons_name_the_argument_in_the_library_and_the_option_in_the_cli(
+        tmp_path: Path) -> None:
+    """An unverified cell's reason advises taking the unknown figures as 0: the library's
+    frame names the argument (``assume_unknown='zero'``), the command line's JSON and CSV
+    its option (``--assume-unknown zero``), as it always has."""
+    import json
+
+    import gyrovib
+
+    frame = gyrovib.select(budget="10deg/h", criterion="both").to_frame()
+    reasons = [r for r in frame["reason"] if isinstance(r, str) and "unverified" in r]
+    assert reasons  # the probe: the bundled catalogue has unverified cells
+    assert all("or assume_unknown='zero' to take it as 0" in r and "--" not in r.replace(
+        " -- ", "") for r in reasons)
+    result = CliRunner().invoke(cli, ["select", "--budget", "10deg/h", "--criterion", "both",
+                                      "--format", "json"])
+    cells = [cell for sensor in json.loads(result.stdout)["sensors"]
+             for cell in sensor["profiles"] if cell["status"] == "unverified"]
+    assert len(cells) == len(reasons)
+    assert all("or --assume-unknown zero to take it as 0" in c["reason"] for c in cells)
+    csv = CliRunner().invoke(cli, ["select", "--budget", "10deg/h", "--criterion", "both",
+                                   "--format", "csv"]).stdout
+    assert csv.count("or --assume-unknown zero to take it as 0") == len(reasons)
+    assert "assume_unknown=" not in result.stdout + csv

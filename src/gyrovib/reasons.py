@@ -12,8 +12,19 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
+from gyrovib.errors import Note
 from gyrovib.formatting import fmt
 from gyrovib.units import coefficient_unit
+
+#: How a reason names taking an unpublished figure as 0: the library's argument, as a
+#: note (``assume_unknown='zero'``), which the command line words as its option. A
+#: result hands its copy to its failures (:attr:`Failure.advice`), so that the command
+#: line's copy of the result words its reasons with the option.
+ASSUME_ZERO = Note("{assume_unknown}", ("assume_unknown", "zero"))
+
+#: The same advice in mission's rows, whose renderer words it for the command line
+#: without a result's note.
+_MISSION_ADVICE = "--assume-unknown zero"
 
 
 class Yield(NamedTuple):
@@ -33,7 +44,9 @@ class Failure(NamedTuple):
     bound or budget; a saturation's reach, range and κ; a yield's target); ``names``: a
     coefficient's name, or the unknown figures of an unverified cell; ``unit``: the rate
     unit; ``spec``: a datasheet part's; ``lot`` and ``note``: a lot's yield and why it is
-    no measurement (an unverified lot) or its target is missed."""
+    no measurement (an unverified lot) or its target is missed; ``advice``: how an
+    unverified cell's reason names taking the unknown as 0 (:data:`ASSUME_ZERO`, as the
+    result holds it)."""
 
     code: str
     numbers: tuple[float, ...] = ()
@@ -42,6 +55,7 @@ class Failure(NamedTuple):
     spec: bool = False
     lot: Yield | None = None
     note: str = ""
+    advice: str = ASSUME_ZERO
 
 
 def saturation_reason(reach: float, range_: float, peak_factor: float, unit: str) -> str:
@@ -91,11 +105,13 @@ G2_WORDS = ("g² sensitivity not given (no g2_sensitivity or vre in the catalogu
             "section 8)")
 
 
-def unverified_text(names: Sequence[str], spec: bool = True) -> str:
+def unverified_text(names: Sequence[str], spec: bool = True,
+                    advice: str = _MISSION_ADVICE) -> str:
     """The reason of an unverified verdict whose unpublished figures are ``names``
     (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
     sensor, whose missing g² figure is "not given" rather than "not published"). Names of
-    :data:`NOT_RECORDED_WORDS` are parts a fitted profile's recording did not record."""
+    :data:`NOT_RECORDED_WORDS` are parts a fitted profile's recording did not record.
+    ``advice``: how to take the figures as 0 (select's: :attr:`Failure.advice`)."""
     parts = [n for n in names if n in NOT_RECORDED_WORDS]
     figures = [n for n in names if n not in NOT_RECORDED_WORDS]
     out = []
@@ -108,18 +124,18 @@ def unverified_text(names: Sequence[str], spec: bool = True) -> str:
         out.append("unverified: passes on its published figures, but "
                    + "; ".join(UNKNOWN_WORDS[n] if spec or n != "vre" else G2_WORDS
                                for n in figures)
-                   + " -- ask the vendor, or --assume-unknown zero to take it as 0")
+                   + f" -- ask the vendor, or {advice} to take it as 0")
     return "; ".join(out)
 
 
 def _unverified(f: Failure) -> str:
     """The unpublished figures that can decide the cell, then (a lot whose spread is not
     measured) why its yield is no measurement (docs/model.md sections 11, 14)."""
-    out = [unverified_text(f.names, spec=f.spec)] if f.names else []
+    out = [unverified_text(f.names, spec=f.spec, advice=f.advice)] if f.names else []
     if f.lot is not None:
         out.append(f"unverified: the yield {yield_text(f.lot)} is not a measurement, the "
                    f"lot's spread is not measured: {f.note} -- measure more units, "
-                   "or --assume-unknown zero to take the lot as given")
+                   f"or {f.advice} to take the lot as given")
     return "; ".join(out)
 
 

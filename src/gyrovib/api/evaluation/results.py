@@ -30,7 +30,7 @@ from gyrovib.core.synthesis import BOUNDED
 from gyrovib.formatting import NEGLIGIBLE
 from gyrovib.frozen import Frozen
 from gyrovib.limits import DEFAULT_PEAK_FACTOR
-from gyrovib.reasons import Failure
+from gyrovib.reasons import ASSUME_ZERO, Failure
 from gyrovib.records import frame_of
 
 if TYPE_CHECKING:
@@ -394,6 +394,9 @@ class SelectionResult(SensorsByProfiles):
     yields: LotYields | None = None
     #: Warnings about the run, not one cell (a lot too small for its correlations).
     notes: tuple[str, ...] = ()
+    #: How a reason names taking an unpublished figure as 0 (:data:`~gyrovib.reasons.
+    #: ASSUME_ZERO`, a note naming the argument; the command line's copy names the option).
+    assume_zero: str = ASSUME_ZERO
 
     @property
     def has_linear(self) -> bool:
@@ -485,7 +488,8 @@ class SelectionResult(SensorsByProfiles):
         y = self.yields if "spread" in names else None
         return [Failure("unverified", names=tuple(n for n in names if n != "spread"),
                         spec=self.source(i) == "specs", lot=None if y is None else y.at(i, j),
-                        note="" if y is None else f"{y.unmeasured[i]}")]
+                        note="" if y is None else f"{y.unmeasured[i]}",
+                        advice=self.assume_zero)]
 
     def _coefficient_failures(self, i: int, j: int, table: bool) -> list[Failure]:
         """The coefficient checks a coefficient sensor fails, then its effective VRE above
