@@ -23,6 +23,7 @@ from click.testing import CliRunner
 import gyrovib
 from gyrovib.api.evaluation.records import declared
 from gyrovib.cli.main import cli
+from gyrovib.cli.options import as_options
 
 pd = pytest.importorskip("pandas", reason="to_frame needs the pandas extra")
 
@@ -120,7 +121,8 @@ def test_bounds_frame_equals_json():
 
 def test_select_frame_equals_json():
     document = cli_json("select", "--budget", "10deg/h", "--criterion", "both")
-    result = gyrovib.select(budget="10deg/h", criterion="both")
+    # the command line's copy of the result: its reasons name the options, as the JSON's
+    result = as_options(gyrovib.select(budget="10deg/h", criterion="both"))
     frame, name = result.to_frame(), namer(result)
     profiles = {p["profile"]: p for p in document["profiles"]}
     k = 0
@@ -239,7 +241,8 @@ def test_csv_columns_are_frame_columns(command: tuple[str, ...]) -> None:
     if kind == "analyze":
         frame = gyrovib.analyze(profiles=["cruise-hard-mounted", "engine-harmonics"]).to_frame()
     elif kind == "select":
-        frame = gyrovib.select(budget="10deg/h", profiles="cruise-hard-mounted").to_frame()
+        frame = as_options(gyrovib.select(budget="10deg/h",
+                                          profiles="cruise-hard-mounted")).to_frame()
     elif kind == "bounds":
         frame = gyrovib.bounds(budget="10deg/h", range_=100).to_frame()
     else:

@@ -9,6 +9,7 @@ import json
 import pytest
 
 import gyrovib
+from gyrovib.cli.options import as_options
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.reasons import Failure, Yield, reason, worded
 from tests.conftest import invoke
@@ -47,11 +48,12 @@ def test_failures_are_the_results_numbers(both) -> None:
 def test_the_json_and_the_frame_read_the_worded_failures(both) -> None:
     document = json.loads(invoke("select", "--budget", "10deg/h", "--criterion", "both",
                                  "--format", "json").stdout)
-    frame = both.to_frame()
+    frame = as_options(both).to_frame()  # the command line's copy: options named, as in JSON
     k = failing = 0
     for i, sensor in enumerate(document["sensors"]):
         for j, cell in enumerate(sensor["profiles"]):
-            expected = None if both.passed[i, j] else "; ".join(worded(both.failures(i, j)))
+            expected = (None if both.passed[i, j]
+                        else "; ".join(worded(as_options(both).failures(i, j))))
             shown = frame["reason"].iloc[k]  # a passing row's None: pandas' missing value
             assert cell["reason"] == (shown if isinstance(shown, str) else None) == expected
             failing += expected is not None

@@ -16,14 +16,10 @@ from gyrovib.errors import Note
 from gyrovib.formatting import fmt
 from gyrovib.units import coefficient_unit
 
-#: How a reason names taking an unpublished figure as 0: the library's argument, as a
-#: note (``assume_unknown='zero'``), which the command line words as its option. A
-#: result hands its copy to its failures (:attr:`Failure.advice`), so that the command
-#: line's copy of the result words its reasons with the option.
+#: How a reason names taking an unpublished figure as 0: a note naming the argument, which
+#: a result hands to its failures (the command line's copy of it names the option).
 ASSUME_ZERO = Note("{assume_unknown}", ("assume_unknown", "zero"))
-
-#: The same advice in mission's rows, whose renderer words it for the command line
-#: without a result's note.
+#: The same for mission's renderer, which words its rows for the command line.
 _MISSION_ADVICE = "--assume-unknown zero"
 
 
@@ -44,9 +40,8 @@ class Failure(NamedTuple):
     bound or budget; a saturation's reach, range and κ; a yield's target); ``names``: a
     coefficient's name, or the unknown figures of an unverified cell; ``unit``: the rate
     unit; ``spec``: a datasheet part's; ``lot`` and ``note``: a lot's yield and why it is
-    no measurement (an unverified lot) or its target is missed; ``advice``: how an
-    unverified cell's reason names taking the unknown as 0 (:data:`ASSUME_ZERO`, as the
-    result holds it)."""
+    no measurement (an unverified lot) or its target is missed; ``advice``: how it names
+    taking the unknown as 0 (the result's :data:`ASSUME_ZERO`)."""
 
     code: str
     numbers: tuple[float, ...] = ()

@@ -89,14 +89,12 @@ def flattened(columns: Sequence[Column[Any]]) -> tuple[Column[Any], ...]:
     """The records of rows that list sub-records (a column with ``each``) as one table,
     a line per sub-record, whose row's first item is its parent's row: the parent's
     columns read there, the sub-records' in place of the listing column."""
-    out: list[Column[Any]] = []
-    for c in columns:
-        if c.each is not None:
-            out += c.each
-        else:
-            read = c.value
-            out.append(replace(c, value=lambda row, read=read: read(row[0]), many=None))
-    return tuple(out)
+    return tuple(sub for c in columns for sub in c.each or (_at_parent(c),))
+
+
+def _at_parent(column: Column[Any]) -> Column[Any]:
+    """The column read at a sub-record's row: at its first item, its parent's row."""
+    return replace(column, value=lambda row: column.value(row[0]), many=None)
 
 
 def names(columns: Sequence[Column[Any]]) -> tuple[str, ...]:

@@ -128,13 +128,6 @@ def _key_text(name: str, text: str) -> str:
     return json.dumps(name).replace("%", "%%") + ": " + text
 
 
-def _filled(template: str, cells: list[list[str]], n: int) -> list[str]:
-    """``template`` filled with each of ``n`` rows' cells (one list per column)."""
-    if not cells:
-        return [template] * n
-    return list(map(template.__mod__, zip(*cells, strict=True)))
-
-
 class _Entries:
     """The JSON entries of declared columns: their key tree, the rows' conditions (the
     distinct ``only`` of the columns) and a template per set of conditions that hold."""
@@ -148,9 +141,8 @@ class _Entries:
             for part in path[:-1]:
                 node = node.setdefault(part, {})
             node[path[-1]] = k
-        onlys = list({id(c.only): c.only for c in shown if c.only is not None}.values())
-        self.conditions = onlys
-        self.condition = [None if c.only is None else onlys.index(c.only) for c in shown]
+        self.conditions = list({id(c.only): c.only for c in shown if c.only}.values())
+        self.condition = [c.only and self.conditions.index(c.only) for c in shown]
         self.subs = {k: _Entries(written(c.each, "json")) for k, c in enumerate(shown)
                      if c.each is not None}
         self.templates: dict[tuple[bool, ...], tuple[str, list[int]]] = {}
@@ -174,8 +166,8 @@ class _Entries:
                 return None
             order.append(node)
             return "%s"
-        parts = [(key, self._node(child, mask, order)) for key, child in node.items()]
-        found = [(key, part) for key, part in parts if part is not None]
+        found = [(key, part) for key, child in node.items()
+                 if (part := self._node(child, mask, order)) is not None]
         if not found:
             return None
         if all(key.isdigit() for key in node):
@@ -183,38 +175,25 @@ class _Entries:
         return "{" + ", ".join(_key_text(key, part) for key, part in found) + "}"
 
     def texts(self, rows: Sequence[Any], seen: dict[Any, str]) -> list[str]:
-        """Each row's entry as JSON text."""
-        if not self.conditions:
-            groups = {(): list(range(len(rows)))}
-        else:
+        """Each row's entry as JSON text: the rows that have the same keys filled into
+        their template together."""
+        groups: dict[tuple[bool, ...], list[int]] = {(): list(range(len(rows)))}
+        if self.conditions:
             groups = {}
-            for k, mask in enumerate(zip(*(list(map(only, rows))
-                                           for only in self.conditions), strict=True)):
+            for k, mask in enumerate(zip(*(map(only, rows) for only in self.conditions),
+                                         strict=True)):
                 groups.setdefault(mask, []).append(k)
-        if len(groups) == 1:  # every row has the same keys
-            template, order = self.template(next(iter(groups)))
-            return _filled(template, [self._encoded(k, rows, seen) for k in order], len(rows))
         out = [""] * len(rows)
-        cells_at: dict[int, list[str]] = {}
         for mask, at in groups.items():
+            chosen = rows if len(at) == len(rows) else [rows[r] for r in at]
             template, order = self.template(mask)
-            for k in order:
-                if k not in cells_at:
-                    cells_at[k] = self._scattered(k, rows, seen)
-            texts = _filled(template, [[cells_at[k][r] for r in at] for k in order], len(at))
-            for row, text in zip(at, texts, strict=True):
-                out[row] = text
-        return out
-
-    def _scattered(self, k: int, rows: Sequence[Any], seen: dict[Any, str]) -> list[str]:
-        """Column ``k``'s texts at every row, "" on the rows whose entry lacks it."""
-        only = self.shown[k].only
-        if only is None:
-            return self._encoded(k, rows, seen)
-        at = [r for r, row in enumerate(rows) if only(row)]
-        out = [""] * len(rows)
-        for r, text in zip(at, self._encoded(k, [rows[r] for r in at], seen), strict=True):
-            out[r] = text
+            cells = [self._encoded(k, chosen, seen) for k in order]
+            texts = list(map(template.__mod__, zip(*cells, strict=True))) if cells else [
+                template] * len(at)
+            if len(at) == len(rows):
+                return texts
+            for r, text in zip(at, texts, strict=True):
+                out[r] = text
         return out
 
     def _encoded(self, k: int, rows: Sequence[Any], seen: dict[Any, str]) -> list[str]:

@@ -17,7 +17,6 @@ from gyrovib.api.evaluation.records import (
     selection_records,
 )
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.reasons import reason as reason_text
 from gyrovib.reasons import saturation_reason, worded, yield_text
 from gyrovib.render.analysis_cells import SATURATED_MARK
 from gyrovib.render.bounds import (
@@ -52,12 +51,6 @@ def failures(result: SelectionResult, i: int, j: int) -> list[str]:
     return worded(result.failures(i, j, table=True))
 
 
-def reason(result: SelectionResult, i: int, j: int) -> str | None:
-    """Why sensor ``i`` fails under profile ``j``, one line in :attr:`~SelectionResult.unit`
-    (the JSON's ``reason``, as the frame's); None where it passes."""
-    return None if result.passed[i, j] else reason_text(result.failures(i, j))
-
-
 def unknown_label(result: SelectionResult, i: int, name: str) -> str:
     """An unknown figure of sensor ``i`` as tables name it: ``VRE`` (a datasheet part's),
     ``g²`` (a coefficient-form sensor's g² sensitivity), ``m31``, ``m32``."""
@@ -65,7 +58,7 @@ def unknown_label(result: SelectionResult, i: int, name: str) -> str:
         return name
     return "VRE" if result.source(i) == "specs" else "g²"
 
-__all__ = ["failures", "limit_text", "reason", "to_csv", "to_json", "to_markdown", "to_table"]
+__all__ = ["failures", "limit_text", "to_csv", "to_json", "to_markdown", "to_table"]
 
 
 def _vre(result: SelectionResult, i: int, j: int) -> tuple[float, float]:
@@ -219,10 +212,6 @@ def _yield_legend(result: SelectionResult) -> str:
 # ------------------------------------------------------------------ JSON, CSV
 
 
-def _sat(result: SelectionResult, i: int, j: int) -> bool:
-    return bool(result.saturated is not None and result.saturated[i, j])
-
-
 #: Sensors per block of the streamed JSON: bounds the texts alive at once.
 _BLOCK = 1024
 #: Where the sensors go in the document's text (a string json writes as one token).
@@ -284,7 +273,7 @@ def _cell(result: SelectionResult, i: int, j: int) -> str:
     if result.is_unverified(i, j):  # no margin: it hangs on the unknown figures
         return f"{UNVERIFIED_MARK} {' '.join(_unknown_names(result, i, j))} unknown"
     mark = "✓" if result.passed[i, j] else "✗"
-    sat = f" {SATURATED_MARK}" if _sat(result, i, j) else ""
+    sat = f" {SATURATED_MARK}" if result.saturated is not None and result.saturated[i, j] else ""
     if result.yields is not None and result.yields.is_lot(i):
         return f"{mark}{sat} yield {fmt(float(result.yields.value[i, j]), 4)}"
     assumed = "*" if result.unknown.get((i, j)) and result.passed[i, j] else ""

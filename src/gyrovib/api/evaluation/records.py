@@ -72,43 +72,26 @@ class _Index:
         return self._last[1]
 
 
-def _cells(array: Any, index: _Index) -> dict[str, Any]:
+def _cells(array: Any, index: _Index, blank: Any = None, empty: Any = None) -> dict[str, Any]:
     """``value`` and ``many`` of a column read from a (sensors, profiles) array at a row
     (:class:`~gyrovib.records.Column`): one row's value, or the values of a list of rows
-    as an array (``index``: their indices)."""
+    as an array (``index``: their indices); ``empty`` where ``blank`` (an array like
+    ``array``) holds. Nothing is copied but the rows read."""
     values = np.asarray(array)
     listed = functools.cache(values.tolist)
-    return {"value": lambda c: listed()[c[0]][c[1]], "many": lambda rows: values[index(rows)]}
-
-
-def _blanked(array: Any, index: _Index, blank: Any, empty: Any,
-             unknown: Any = None) -> dict[str, Any]:
-    """:func:`_cells` of a (sensors, profiles) array, ``empty`` on the rows of a sensor
-    whose ``blank`` (an array per sensor) holds, and where ``unknown`` (a (sensors,
-    profiles) array, read at the rows asked for) holds: nothing copied but the rows read."""
-    values = np.asarray(array)
-    listed = functools.cache(values.tolist)
-
-    blank_list = np.asarray(blank, dtype=bool).tolist()
+    if blank is None:
+        return {"value": lambda c: listed()[c[0]][c[1]],
+                "many": lambda rows: values[index(rows)]}
 
     def many(rows: Sequence[Cell]) -> Any:
-        i, j = index(rows)
-        out = values[i, j].astype(float if empty is math.nan else object)
-        out[blank[i] if unknown is None else blank[i] | unknown[i, j]] = empty
+        at = index(rows)
+        out = values[at].astype(float if empty is math.nan else object)
+        out[blank[at]] = empty
         return out
 
-    def value(c: Cell) -> Any:
-        if blank_list[c[0]] or (unknown is not None and unknown[c]):
-            return empty
-        return listed()[c[0]][c[1]]
-
-    return {"value": value, "many": many}
-
-
-def _flags(array: Any, result: Any) -> Any:
-    """A (sensors, profiles) array of flags, all False where it is None."""
-    shape = (len(result.sensors), len(result.profiles))
-    return np.zeros(shape, bool) if array is None else np.asarray(array, dtype=bool)
+    blanks = functools.cache(np.asarray(blank).tolist)
+    return {"value": lambda c: empty if blanks()[c[0]][c[1]] else listed()[c[0]][c[1]],
+            "many": many}
 
 
 def _per(values: Sequence[Any], index: _Index, axis: int) -> dict[str, Any]:
@@ -185,7 +168,9 @@ def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
                            only=lambda c: math.isfinite(u[c[0]][c[1]])),
                     Column("lot_mean", None, lambda c: result.is_lot(c[0]),
                            only=lambda c: result.is_lot(c[0]))]
-    columns.append(Column("saturated", None, **_cells(_flags(result.saturated, result), index)))
+    shape = (len(result.sensors), len(result.profiles))
+    saturated = np.zeros(shape, bool) if result.saturated is None else result.saturated
+    columns.append(Column("saturated", None, **_cells(np.asarray(saturated, dtype=bool), index)))
     if result.worst_phases:
         phases = result.worst_phases
         columns.append(Column("worst_phases", None, lambda c: None if c not in phases
@@ -332,22 +317,17 @@ def selection_cells(result: SelectionResult) -> list[Cell]:
 
 
 def selection_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
-    """``select``'s records as one table, a row per sensor × profile (sensors outermost):
-    the columns of the DataFrame and of ``--format csv`` (those that do not skip it),
-    from the one declaration (:func:`selection_records`)."""
+    """``select``'s records (:func:`selection_records`) as the DataFrame's and the CSV's
+    table, a row per sensor × profile (sensors outermost)."""
     return flattened(selection_records(result))
 
 
 def selection_records(result: SelectionResult) -> tuple[Column[int], ...]:
     """``select``'s records, declared once, one row per sensor (its index), in the order
-    of the JSON's sensor entries (docs/output.md): the sensor's columns, then
-    ``profiles``, the sensor × profile records (:func:`_cell_columns`). The CSV and the
-    frame are a line per sensor × profile (:func:`selection_columns`), the sensor's
-    columns on each, in their own order (``csv_after``).
-
-    ``passed`` is the JSON's ``pass`` (a Python keyword breaks ``df.query("not pass")``),
-    the sensor's ``sensor_pass`` and ``sensor_status`` its entry's ``pass`` and
-    ``status``; a sensor's ``unknown`` figures and ``questions`` are the JSON's only."""
+    of the JSON's sensor entries (docs/output.md), ``profiles`` its sensor × profile
+    records (:func:`_cell_columns`); the CSV and the frame are a line per sensor ×
+    profile (:func:`selection_columns`), in their own order (``csv_after``). A sensor's
+    ``unknown`` figures and ``questions`` are the JSON's only."""
     with_specs = "specs" in result.sources
     sensor_pass = np.asarray(result.sensor_pass, dtype=bool).tolist()
     n_profiles = len(result.profiles)
@@ -359,22 +339,18 @@ def selection_records(result: SelectionResult) -> tuple[Column[int], ...]:
         Column("sensor_status", None, result.sensor_status, skip=("csv",), key="status",
                csv_after="sensor_pass"),
         Column("sensor_unknown", None, lambda i: list(result.sensor_unknown(i)),
-               skip=_JSON_ONLY, key="unknown"),
+               skip=("csv", "frame"), key="unknown"),
         Column("questions", None, lambda i: list(result.questions.get(i, ())),
-               skip=_JSON_ONLY),
+               skip=("csv", "frame")),
         Column("profiles", None, lambda i: [(i, j) for j in range(n_profiles)],
                each=_cell_columns(result)))
 
 
-#: The columns only the JSON has.
-_JSON_ONLY = ("csv", "frame")
-
-
 def _cell_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
-    """``select``'s sensor × profile records, in the order of the JSON's entries; the CSV
-    and the frame put the verdict's words after ``saturated``. ``value_<coefficient>``,
-    ``bound_…``, ``pass_…`` are the JSON's ``checks.<coefficient>``, empty (NaN, None) on
-    a datasheet sensor's rows; the frame adds the profile's ``rate_*`` and
+    """``select``'s sensor × profile records, in the order of the JSON's entries.
+    ``passed`` is the JSON's ``pass`` (a Python keyword breaks ``df.query("not pass")``);
+    ``value_<coefficient>``, ``bound_…``, ``pass_…`` its ``checks.<coefficient>``, empty
+    (NaN, None) on a datasheet sensor's rows; the frame adds the profile's ``rate_*``,
     ``profile_bounds_*``/``profile_parts_*`` (the JSON's ``profiles`` entry), and keeps
     ``unknown`` and ``disagrees`` as lists (the CSV: their names joined by spaces)."""
     specs = np.array([result.source(i) == "specs" for i in range(len(result.sensors))], bool)
@@ -395,7 +371,7 @@ def _cell_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
         *_coefficient_checks(result, specs, index),
         *_datasheet_checks(result, specs.tolist(), index),
         *_yield_cells(result, index),
-        Column("saturated", None, **_cells(_flags(result.saturated, result), index)),
+        Column("saturated", None, **_cells(np.asarray(result.saturated, bool), index)),
         Column("reason", None, lambda c: None if result.passed[c[0], c[1]]
                else reason(result.failures(*c))),
     )
@@ -414,8 +390,9 @@ def _coefficient_checks(result: SelectionResult, specs: Any,
     values = np.asarray(result.values, dtype=float)
     bounds = np.asarray(result.bounds, dtype=float)
     checks = np.asarray(result.check_pass, dtype=bool)
-
-    coefficient = (~specs).tolist()
+    spec = np.broadcast_to(specs[:, None], values.shape[:2])  # a datasheet sensor's row
+    unknown = np.isnan(bounds) & (values != 0)  # a bound left unknown: the check says nothing
+    coefficient: list[bool] = (~specs).tolist()
 
     def coefficient_row(c: Cell) -> bool:
         return coefficient[c[0]]
@@ -423,26 +400,13 @@ def _coefficient_checks(result: SelectionResult, specs: Any,
     columns: list[Column[Cell]] = []
     for b, name in enumerate(BOUNDED):
         key = f"checks.{name}."
-        unknown = _Unknown(values[:, :, b], bounds[:, :, b])
         columns += [Column(f"value_{name}", None, key=key + "value", only=coefficient_row,
-                           **_blanked(values[:, :, b], index, specs, math.nan)),
+                           **_cells(values[:, :, b], index, spec, math.nan)),
                     Column(f"bound_{name}", None, key=key + "bound", only=coefficient_row,
-                           **_blanked(bounds[:, :, b], index, specs, math.nan)),
+                           **_cells(bounds[:, :, b], index, spec, math.nan)),
                     Column(f"pass_{name}", None, key=key + "pass", only=coefficient_row,
-                           **_blanked(checks[:, :, b], index, specs, None, unknown))]
+                           **_cells(checks[:, :, b], index, spec | unknown[:, :, b]))]
     return columns
-
-
-class _Unknown:
-    """Where a coefficient's bound is unknown (NaN: a fitted profile's recording leaves it
-    so) and the coefficient is not 0: its check decides nothing. Read at the rows asked
-    for (``[i, j]``, arrays or numbers)."""
-
-    def __init__(self, values: Any, bounds: Any) -> None:
-        self._values, self._bounds = values, bounds
-
-    def __getitem__(self, at: tuple[Any, Any]) -> Any:
-        return np.isnan(self._bounds[at]) & (self._values[at] != 0)
 
 
 def _datasheet_checks(result: SelectionResult, specs: list[bool],

@@ -394,8 +394,7 @@ class SelectionResult(SensorsByProfiles):
     yields: LotYields | None = None
     #: Warnings about the run, not one cell (a lot too small for its correlations).
     notes: tuple[str, ...] = ()
-    #: How a reason names taking an unpublished figure as 0 (:data:`~gyrovib.reasons.
-    #: ASSUME_ZERO`, a note naming the argument; the command line's copy names the option).
+    #: How a reason names taking an unpublished figure as 0 (a note naming the argument).
     assume_zero: str = ASSUME_ZERO
 
     @property
