@@ -7,6 +7,7 @@ Run on demand (it is not part of the test suite)::
     python benchmarks/bench_allan_coverage.py --seed 1001     # records not seen before
     python benchmarks/bench_allan_coverage.py --sim-cap 4096  # the long records' bootstrap
     python benchmarks/bench_allan_coverage.py --cases 2,3     # only the cases with K
+    python benchmarks/bench_allan_coverage.py --save r.pkl    # and keep the roots (below)
 
 Records of known terms are simulated (white rate noise, flicker, a rate random walk, a
 rate ramp, angle quantization, in combinations cycled over the records; the numbers are
@@ -21,7 +22,10 @@ out as bounds (or values whose interval is counted as a miss). Every interval me
 named (--interval) is computed from the same replicates, and each is also counted over
 every record whose truth has the term, resolved or not ("every record"): the coverage
 before the choice between a value and a bound, which otherwise leaves out the records
-where the term came out lowest.
+where the term came out lowest. gyrovib's intervals are read at the levels
+``gyrovib.core.allan_levels`` sets per term; ``--save`` keeps, per record and term, what
+decides whether the interval holds at any level, which benchmarks/allan_coverage_levels.py
+reads (the coverage at other levels, and the levels that give 68 % and 95 %).
 """
 
 from __future__ import annotations
@@ -57,6 +61,7 @@ from gyrovib.core.allan_fit import (
     studentized_root,
     terms,
 )
+from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
 
 TAU0 = 1.0
@@ -169,8 +174,9 @@ def _held(fitted: Fit, coefs: np.ndarray, curve: Curve, j: int, true: float,
         return False, False          # no interval around a value (a term fitted at 0)
     value = float(np.sqrt(fitted.coef[j]))
     everything = np.ones(fitted.coef.size, dtype=bool) & (fitted.coef > 0)
-    (lo68, hi68), (lo95, hi95) = intervals(value, j, coefs, (0.68, 0.95), method, curve,
-                                           everything, inner)
+    levels = (read_level(j, 0.68), read_level(j, 0.95)) if method == METHOD else (0.68, 0.95)
+    (lo68, hi68), (lo95, hi95) = intervals(value, j, coefs, levels, method, curve, everything,
+                                           inner)
     return bool(lo68 <= true <= hi68), bool(lo95 <= true <= hi95)
 
 

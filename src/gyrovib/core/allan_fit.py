@@ -34,10 +34,9 @@ replicates' ratios θ*/θ̂; where s hardly moves with c (a rate random walk see
 white noise and flicker, whose scatter is the other terms') it is the difference
 interval; and where a term's scatter grows with another term that the record knows
 poorly (bias instability with a random walk beside it), holding the term lower lets
-the other grow, and the interval follows. Each term's root is read at the level the
-coverage study set for it (:mod:`.allan_levels`: a calibration by simulation). For
-comparison in that study: the pivot ("pivot"), the percentile interval ("percentile"),
-and the level the fast double bootstrap sets (:mod:`.allan_fdb`, "calibrated").
+the other grow, and the interval follows, read at the level the coverage study set per
+term (:func:`terms`, :mod:`.allan_levels`). For the study's comparison: the pivot ("pivot"),
+the percentile interval, and the fast double bootstrap's level (:mod:`.allan_fdb`).
 
 **Roll-off.** A sensor's low-pass filter flattens the curve below a few times its time
 constant: read there, N would come out too small. A leading stretch flatter than white
@@ -419,13 +418,15 @@ def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
           curve: Curve | None = None, inner: FloatArray | None = None) -> tuple[Term, ...]:
     """Each of the five terms (and the Gauss–Markov σ, sixth, when fitted) from the fit
     and the replicates' coefficients (rows), see the module docstring; ``method``
-    "studentized" needs the ``curve``, "calibrated" also the ``inner`` replicates."""
+    "studentized" needs the ``curve`` (and is read at :func:`.allan_levels.read_level`'s
+    levels), "calibrated" also the ``inner`` replicates."""
     resolved = resolution(fitted, tau, replicates)
     basis = design(tau, fitted.tau_c)  # quantization's own column for its bound
     out = []
     for j in range(fitted.coef.size):
         value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(max(fitted.coef[j], 0.0))
-        found = intervals(value, j, replicates, confidences, method, curve,
+        levels = tuple(read_level(j, c) for c in confidences) if method == METHOD else confidences
+        found = intervals(value, j, replicates, levels, method, curve,
                           resolved, inner) if resolved[j] else None
         if found is None or found[-1][0] <= 0.0:  # its 95 % interval reaches 0
             bound = max(envelope_bound(basis[:, j], var, fitted.nu), value)
@@ -443,8 +444,6 @@ def intervals(value: float, j: int, replicates: FloatArray, confidences: tuple[f
     read at the calibrated levels too, the inner ratios θ**/θ* beside the θ*/θ̂."""
     if method not in METHODS:
         raise ValueError(f"unknown interval method {method!r}: one of {', '.join(METHODS)}")
-    if method == METHOD:  # read at the level the coverage study sets (allan_levels)
-        confidences = tuple(read_level(j, c) for c in confidences)
     root = np.sqrt(np.maximum(replicates[:, j], 0.0))
     ratio = root / value
     inner = inner if method == "calibrated" else None
