@@ -10,7 +10,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api.missions.results import COLUMNS
-from gyrovib.presentation.reasons import unverified_text
+from gyrovib.reasons import unverified_text
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
 from gyrovib.render.formats import Case, Cell, csv_of, junit_of, known, markdown_of, table_of
 from gyrovib.render.mission_answer import allowance_cells, allowance_json

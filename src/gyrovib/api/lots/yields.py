@@ -53,7 +53,8 @@ from gyrovib.core.lot import (
     term_matrix,
 )
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.errors import ModelError, Note, OptionError
+from gyrovib.errors import ModelError, Note, OptionError, literal
+from gyrovib.reasons import Yield
 
 #: Seed of the Monte-Carlo yields unless told otherwise.
 DEFAULT_SEED = 0
@@ -90,6 +91,11 @@ class LotYields(Result):
     def is_lot(self, i: int) -> bool:
         """Whether sensor ``i`` is a lot (judged by its yield)."""
         return self.lots[i]
+
+    def at(self, i: int, j: int) -> Yield:
+        """Sensor ``i``'s yield under profile ``j``, as :mod:`gyrovib.reasons` words it."""
+        return Yield(float(self.value[i, j]), float(self.low[i, j]), float(self.high[i, j]),
+                     self.method, self.draws)
 
     def shortfall(self, i: int, j: int) -> float:
         """(1 − yield)/(1 − Y): the fraction failing over the fraction allowed (> 1 fails)."""
@@ -188,10 +194,11 @@ def _refuse_searched_phases(prepared: Prepared, lots: Sequence[bool]) -> None:
     if searched:
         raise ModelError([profile_problem(
             prepared.profiles[j],
-            f"profile {prepared.profiles[j].profile.id!r}: {{yield_target}} cannot judge a "
-            "lot under 'phase: worst' orders (the error is maximised over the phases part by "
-            "part, which no distribution of Δ_V gives here); write the phases, or choose "
-            "other profiles with {profiles}", ("yield_target", "profiles")) for j in searched],
+            f"profile {literal(repr(prepared.profiles[j].profile.id))}: {{yield_target}} "
+            "cannot judge a lot under 'phase: worst' orders (the error is maximised over "
+            "the phases part by part, which no distribution of Δ_V gives here); write the "
+            "phases, or choose other profiles with {profiles}", ("yield_target", "profiles"))
+            for j in searched],
             reason="a yield with phase: worst")
 
 
