@@ -10,12 +10,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api import SelectionResult
-from gyrovib.api.evaluation.records import (
-    profile_columns,
-    selection_cells,
-    selection_columns,
-    selection_records,
-)
+from gyrovib.api.evaluation import records
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.reasons import saturation_reason, worded, yield_text
 from gyrovib.render.analysis_cells import SATURATED_MARK
@@ -230,9 +225,9 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     ``"".join(to_json_chunks(result))`` is the whole document."""
     document = header(result.method, result.unit)
     document["budget"] = result.budget
-    document["profiles"] = json_of(profile_columns(result.profiles, result.rates,
-                                                   result.profile_bounds, result.unit),
-                                   range(len(result.profiles)))
+    document["profiles"] = json_of(records.profile_columns(
+        result.profiles, result.rates, result.profile_bounds, result.unit),
+        range(len(result.profiles)))
     document["criterion"] = result.criterion
     document["require"] = result.require
     document["assume_unknown"] = result.assume_unknown
@@ -241,7 +236,8 @@ def to_json_chunks(result: SelectionResult) -> Iterator[str]:
     document["sensors"] = _SLOT
     before, after = dumps(document).split(json.dumps(_SLOT), 1)
     yield before + "["
-    yield from json_blocks(selection_records(result), range(len(result.sensors)), _BLOCK)
+    yield from json_blocks(records.selection_records(result), range(len(result.sensors)),
+                           _BLOCK)
     yield "]" + after
 
 
@@ -254,7 +250,7 @@ def to_csv(result: SelectionResult) -> str:
     their checks (``value_nonlinearity``… in %FS, ``value_vre``… per g²; empty on
     coefficient rows, whose coefficient columns are empty on spec rows).
     """
-    return csv_of(selection_columns(result), selection_cells(result),
+    return csv_of(records.selection_columns(result), records.selection_cells(result),
                   title_flags=True)
 
 
