@@ -460,6 +460,8 @@ def test_select_columns_read_alike_one_row_or_many(case: str, tmp_path) -> None:
         many = list(column.many(rows))
         one = [column.value(row) for row in rows]
         assert list(map(type, np.asarray(many).tolist())) == list(map(type, one)), column.name
+        if all(type(v) is bool for v in one):  # flags: the frame's column is of flags
+            assert np.asarray(column.many(rows)).dtype == bool, column.name
         assert np.array_equal(np.asarray(many, dtype=object), np.asarray(one, dtype=object)) \
             or np.allclose(np.asarray(many, float), np.asarray(one, float), rtol=0, atol=0,
                            equal_nan=True), column.name

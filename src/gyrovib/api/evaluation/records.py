@@ -85,8 +85,10 @@ def _cells(array: Any, index: _Index, blank: Any = None, empty: Any = None) -> d
 
     def many(rows: Sequence[Cell]) -> Any:
         at = index(rows)
-        out = values[at].astype(float if empty is math.nan else object)
-        out[blank[at]] = empty
+        out, empty_at = values[at], blank[at]
+        if empty_at.any():  # flags stay flags where none is empty (the frame's dtype)
+            out = out.astype(float if empty is math.nan else object)
+            out[empty_at] = empty
         return out
 
     blanks = functools.cache(np.asarray(blank).tolist)
