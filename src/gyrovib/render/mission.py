@@ -9,16 +9,25 @@ from typing import TYPE_CHECKING, Any
 from rich.table import Table
 from rich.text import Text
 
-from gyrovib.api.missions.results import COLUMNS
+from gyrovib.api.missions.results import BUDGET_TERMS, COLUMNS
 from gyrovib.presentation.reasons import unverified_text
+from gyrovib.records import Column, names
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
-from gyrovib.render.formats import Case, Cell, csv_of, junit_of, known, markdown_of, table_of
-from gyrovib.render.mission_answer import allowance_cells, allowance_json
+from gyrovib.render.formats import (
+    Case,
+    Cell,
+    csv_of,
+    json_of,
+    junit_of,
+    known,
+    markdown_of,
+    table_of,
+)
+from gyrovib.render.mission_answer import allowance_cells
 from gyrovib.render.mission_segments import segments_csv, segments_markdown, segments_table
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
-    from gyrovib.api.noise.results import Budget
 
 
 #: The verdict cell of each row status (None: no budget).
@@ -64,9 +73,7 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
     return f"Δ̄_RMS = {fmt(row.rms)} {result.unit} > {fmt(result.budget)} {result.unit}"
 
 
-#: The budget's noise terms, in the order of the table's columns, with their headings
-#: and records.
-_NOISE = ("arw", "bias_instability", "rrw", "repeatability")
+#: The headings of the budget's noise terms (:data:`BUDGET_TERMS`) in the table.
 _NOISE_HEAD = ("θ_ARW", "θ_B", "θ_RRW", "θ_R")
 
 
@@ -118,7 +125,7 @@ def table_cells(result: MissionResult) -> tuple[Cell[MissionRow], ...]:
             Cell(f"angle θ_V{angle}", justify="right", of="angle"),
             Cell(f"mean RMS Δ̄_RMS{rate}", justify="right", of="rms"),
             *(Cell(f"{title} (deg)", _noise_cell(name), "right", of=f"theta_{name}")
-              for title, name in zip(_NOISE_HEAD, _NOISE, strict=True)),
+              for title, name in zip(_NOISE_HEAD, BUDGET_TERMS, strict=True)),
             Cell("total (deg)", budget_total, "right", of="budget_total"),
             Cell("worst segment", _worst, of="worst_segment"),
             Cell("verdict", _verdict_cell, of="status"))
@@ -244,47 +251,13 @@ def _allowance_table(result: MissionResult) -> Table:
                     "an upper limit, a figure being unknown)", title_justify="left")
 
 
-def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
-    out: dict[str, Any] = {
-        "sensor": row.sensor, "mission": row.mission, "placement": row.placement,
-        "mean": number(row.mean), "angle": number(row.angle), "rms": number(row.rms),
-        "worst_segment": {"index": row.worst_index, "profile": row.worst_profile,
-                          "total": number(row.worst_total)},
-        "segments": [{"profile": s.profile, "duration": s.duration,
-                      "rate": [number(v) for v in s.rate], "total": number(s.total),
-                      "rms": number(s.rms), "saturated": s.saturated,
-                      **_timeline_json(row, k)} for k, s in enumerate(row.segments)],
-        "saturated": row.saturated, "pass": row.passed, "status": row.status,
-        "unknown": list(row.unknown), "reason": _reason(result, row) or None,
-        "source": row.source,
-    }
-    if row.budget is not None:
-        out["budget"] = {**_budget_json(row.budget), "typical": list(row.budget.typical)}
-        allowed = allowance_json(row)
-        if allowed is not None:
-            out["budget"]["allowed"] = allowed
-    if row.axis is not None:
-        out["axis"] = row.axis
-        out["worst_axis"] = row.worst_axis
-    return out
-
-
-def _budget_json(b: Budget) -> dict[str, Any]:
-    return {"vibration": number(b.vibration),
-            **{name: None if getattr(b, name) is None else number(getattr(b, name))
-               for name in _NOISE},
-            "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
-            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
-            "bounds": list(b.bounds)}
-
-
-def _timeline_json(row: MissionRow, k: int) -> dict[str, Any]:
-    """Segment ``k``'s ``end`` (s from the start) and the ``budget`` there: θ_V(t)
-    summed so far and the noise over t (deg; the cone is ±coverage·RSS of the terms)."""
-    if not row.timeline:
-        return {}
-    return {"end": sum(s.duration for s in row.segments[:k + 1]),
-            "budget": _budget_json(row.timeline[k])}
+def json_columns(result: MissionResult) -> tuple[Column[MissionRow], ...]:
+    """The columns of the JSON's rows: the result's records (:data:`COLUMNS`) with,
+    after ``unknown``, the words the library leaves to the renderer: why the row fails."""
+    at = names(COLUMNS).index("unknown") + 1
+    reason: Column[MissionRow] = Column("reason", None, lambda r: _reason(result, r) or None,
+                                        skip=("csv", "frame"))
+    return (*COLUMNS[:at], reason, *COLUMNS[at:])
 
 
 def _group_status(group: list[MissionRow], passed: bool | None) -> str | None:
@@ -331,7 +304,7 @@ def to_json(result: MissionResult) -> str:
         "budget": _optional_number(result.budget),
         "angle_budget": _optional_number(result.angle_budget),
         "require": result.require, "assume_unknown": result.assume_unknown,
-        "mission": [_row_json(result, r) for r in result.rows],
+        "mission": json_of(json_columns(result), result.rows),
         "triads": _triads_json(result),
         "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k),
                      **({} if result.ranks is None else {"rank": result.ranks[k]})}
