@@ -468,6 +468,13 @@ def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
         assert row["source"] in ("specs", "coefficients") and "unit" not in row
     assert unknown  # the probe meets unknown figures (null) as well as numbers
     assert known  # the probe compares numbers, not only nulls
+    # every key of an entry is declared, in the declaration's order: the profile at its
+    # mean rate, one declaration, nested after the ratio in the JSON and last in the CSV
+    compared, _ = _check_entries(rows, result.records(), range(len(result.sensors)), frame)
+    assert compared >= 15 * len(rows)
+    assert list(rows[0])[list(rows[0]).index("ratio") + 1] == "at_mean_rate"
+    assert _csv(render_recording.to_csv(result))[0][-3:] == ["unit", "at_mean_rate",
+                                                             "at_mean_ratio"]
     # and its Markdown is its declared cells, each the frame's value of its record
     assert _check_cells(render_recording.table_cells(result), result.records(),
                         range(len(result.sensors)), frame,

@@ -260,35 +260,22 @@ def json_columns(result: MissionResult) -> tuple[Column[MissionRow], ...]:
     return (*COLUMNS[:at], reason, *COLUMNS[at:])
 
 
-def _group_status(group: list[MissionRow], passed: bool | None) -> str | None:
-    """A triad's status: None without a budget, else its axes' worst (fail, then
-    unverified, then pass)."""
-    if passed is None:
-        return None
-    statuses = {r.status for r in group}
-    for status in ("fail", "unverified"):
-        if status in statuses:
-            return status
-    return "pass"
-
-
-def _triad_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
-    """The summary of the triad (a sensor × mission on several axes) ``row`` opens."""
-    key = (row.sensor, row.mission)
-    group = [r for r in result.rows if (r.sensor, r.mission) == key]
-    passed = None if row.passed is None else all(bool(r.passed) for r in group)
-    return {"sensor": row.sensor, "mission": row.mission, "worst_axis": row.worst_axis,
-            "pass": passed, "status": _group_status(group, passed)}
-
-
 def _triads_json(result: MissionResult) -> list[dict[str, Any]]:
-    """One summary per triad, in the order of its first row."""
-    triads = []
-    seen: set[tuple[str, str]] = set()
+    """One summary per triad (a sensor × mission on several axes), in the order of its
+    first row: its worst axis, whether every axis passes, and its status, its axes' worst
+    (fail, then unverified, then pass; None without a budget)."""
+    groups: dict[tuple[str, str], list[MissionRow]] = {}
     for row in result.rows:
-        if row.axis is not None and (row.sensor, row.mission) not in seen:
-            seen.add((row.sensor, row.mission))
-            triads.append(_triad_json(result, row))
+        groups.setdefault((row.sensor, row.mission), []).append(row)
+    triads = []
+    for (sensor, mission), group in groups.items():
+        if all(r.axis is None for r in group):
+            continue
+        passed = None if group[0].passed is None else all(bool(r.passed) for r in group)
+        statuses = {r.status for r in group}
+        status = next((s for s in ("fail", "unverified") if s in statuses), "pass")
+        triads.append({"sensor": sensor, "mission": mission, "worst_axis": group[0].worst_axis,
+                       "pass": passed, "status": None if passed is None else status})
     return triads
 
 

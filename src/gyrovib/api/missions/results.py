@@ -236,11 +236,6 @@ def _has_allowance(row: MissionRow) -> bool:
     return row.budget is not None and row.budget.allowed is not None
 
 
-def _allowance(row: MissionRow) -> Allowance:
-    assert row.budget is not None and row.budget.allowed is not None
-    return row.budget.allowed
-
-
 @dataclass(frozen=True, eq=False, repr=False)
 class SegmentRecord(Frozen):
     """Segment ``index`` (0-based) of one row: what one line of the per-segment records
@@ -287,16 +282,16 @@ def _budget_flags(of: Callable[[Any], Budget | None],
                   only: Callable[[Any], bool]) -> tuple[Column[Any], ...]:
     """The JSON's ``budget`` keys after its figures: its unit, whether the total is a
     lower bound (a figure unknown) or rests on a figure given as a bound, and which."""
-    def read(text: Callable[[Budget], Any]) -> Callable[[Any], Any]:
-        return lambda r: text(cast("Budget", of(r)))
+    flags: dict[str, Callable[[Budget], Any]] = {
+        "unit": lambda b: b.unit, "lower_bound": lambda b: b.lower_bound,
+        "rests_on_bound": lambda b: bool(b.bounds), "bounds": lambda b: list(b.bounds)}
+    return tuple(Column(f"budget.{key}", None, _read(of, flag), skip=_JSON, only=only)
+                 for key, flag in flags.items())
 
-    return (Column("budget.unit", None, read(lambda b: b.unit), skip=_JSON, only=only),
-            Column("budget.lower_bound", None, read(lambda b: b.lower_bound), skip=_JSON,
-                   only=only),
-            Column("budget.rests_on_bound", None, read(lambda b: bool(b.bounds)), skip=_JSON,
-                   only=only),
-            Column("budget.bounds", None, read(lambda b: list(b.bounds)), skip=_JSON,
-                   only=only))
+
+def _read(of: Callable[[Any], Budget | None], flag: Callable[[Budget], Any]
+          ) -> Callable[[Any], Any]:
+    return lambda r: flag(cast("Budget", of(r)))
 
 
 #: The per-segment records (``mission --segments``), declared once: one line per sensor ×
@@ -368,10 +363,10 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
              key=f"budget.allowed.{name}", only=_has_allowance) for name in ALLOWANCE_UNITS),
     Column("budget.allowed.unit", None, lambda r: dict(ALLOWANCE_UNITS), skip=_JSON,
            only=_has_allowance),
-    Column("budget.allowed.limited_by", None, lambda r: dict(_allowance(r).limited_by),
-           skip=_JSON, only=_has_allowance),
-    Column("budget.allowed.upper", None, lambda r: list(_allowance(r).upper), skip=_JSON,
-           only=_has_allowance),
+    *(Column(f"budget.allowed.{key}", None, _read(lambda r: r.budget, flag), skip=_JSON,
+             only=_has_allowance) for key, flag in (
+        ("limited_by", lambda b: dict(cast("Allowance", b.allowed).limited_by)),
+        ("upper", lambda b: list(cast("Allowance", b.allowed).upper)))),
     Column("axis", None, lambda r: r.axis, only=lambda r: r.axis is not None,
            csv_after="placement"),
     Column("worst_axis", None, lambda r: r.worst_axis, skip=_JSON,
