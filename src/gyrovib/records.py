@@ -45,13 +45,10 @@ class Column(Generic[Row]):
     of rows at once, for the fast writers (:func:`columns_of`,
     :func:`gyrovib.render.formats.json_text`); it must read what ``value`` reads (made
     from the same data: a test compares them), and without it each row is read alone.
-
-    A nested document whose keys are ordered otherwise than the table's columns (a
-    mission row) is declared in its JSON order, with: ``csv_after``, the column the CSV
-    and the frame put it right after (its place there); ``json_value``, how the JSON
-    reads it from the row where that differs from ``value`` (a 0-based index the CSV
-    counts from 1, a list the CSV joins); ``each``, for a value that is a list of
-    sub-records, the columns the JSON writes each of them with (a row's segments)."""
+    A nested JSON (a mission row) is declared in its order: ``csv_after``, the column the
+    CSV and the frame put this one after; ``json_value``, the JSON's own reading of the
+    row (a 0-based index, a list the CSV joins); ``each``, the columns of the sub-records
+    a value lists (a row's segments)."""
 
     name: str
     unit: str | None
@@ -75,16 +72,13 @@ def known(value: float) -> float | None:
 def written(columns: Sequence[Column[Row]], output: str) -> tuple[Column[Row], ...]:
     """The columns ``output`` (``csv``, ``frame``, ``json``) has, in its order: the
     declaration's, but in the CSV and the frame a column with ``csv_after`` right after
-    that column (ValueError where it has none; it may be one moved before)."""
+    that column (ValueError where it has none; it may be one moved before it)."""
     shown = [c for c in columns if output not in c.skip]
     if output == "json" or all(c.csv_after is None for c in shown):
         return tuple(shown)
     placed = [c for c in shown if c.csv_after is None]
     for c in (c for c in shown if c.csv_after is not None):
-        at = [k for k, p in enumerate(placed) if p.name == c.csv_after]
-        if not at:
-            raise ValueError(f"{c.name}: no column {c.csv_after!r} before it in the {output}")
-        placed.insert(at[0] + 1, c)
+        placed.insert(names(placed).index(str(c.csv_after)) + 1, c)
     return tuple(placed)
 
 

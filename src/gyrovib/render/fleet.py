@@ -14,7 +14,7 @@ from gyrovib import units
 from gyrovib.records import Column
 from gyrovib.render import recording as one
 from gyrovib.render.common import dumps, header
-from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of
+from gyrovib.render.formats import Cell, csv_of, markdown_of
 
 if TYPE_CHECKING:
     from gyrovib.api.fleet.envelope import Envelope
@@ -40,32 +40,15 @@ def to_json(result: RecordingsAnalysis) -> str:
     document["recordings"] = [
         {"results": one.rows_json(a), "recording": one.recording_info(a.fit, scale),
          "warnings": list(a.fit.warnings)} for a in result.analyses]
-    document["worst"] = json_of(_worst(result), [(i, k) for k, i in enumerate(result.worst)])
+    worst = []
+    for k, sensor in enumerate(result.sensors):
+        i = result.worst[k]
+        row = one.rows_json(result.analyses[i])[k] if i >= 0 else {"sensor": sensor}
+        worst.append({**row, "recording": _name(result.analyses[i]) if i >= 0 else None,
+                      "index": i if i >= 0 else None,
+                      "saturated_on": _saturated_on(result, k)})
+    document["worst"] = worst
     return dumps(document)
-
-
-def _records(result: RecordingsAnalysis) -> tuple[Column[tuple[int, int]], ...]:
-    """The one-recording records of a (recording, sensor) row, each read from that
-    recording's records (their declaration: :meth:`RecordingAnalysis.records`)."""
-    by_name = [{c.name: c.value for c in a.records()} for a in result.analyses]
-    return tuple(replace(c, value=_in_recording(by_name, c.name))
-                 for c in result.analyses[0].records())
-
-
-def _worst(result: RecordingsAnalysis) -> tuple[Column[tuple[int, int]], ...]:
-    """``worst``: per sensor its row of the recording where |Δ_V,rec| is largest (only
-    its name where a recording leaves it unknown: no worst), that recording, its index
-    and the recordings the sensor saturates on."""
-    def found(r: tuple[int, int]) -> bool:
-        return r[0] >= 0
-
-    json = ("csv", "frame")
-    return (Column("sensor", None, lambda r: result.sensors[r[1]]),
-            *(replace(c, only=found) for c in _records(result)[1:]),
-            Column("recording", None, lambda r: _name(result.analyses[r[0]]) if found(r)
-                   else None, skip=json),
-            Column("index", None, lambda r: r[0] if found(r) else None, skip=json),
-            Column("saturated_on", None, lambda r: _saturated_on(result, r[1]), skip=json))
 
 
 def _in_recording(by_name: list[dict[str, Callable[[int], Any]]],
@@ -76,8 +59,10 @@ def _in_recording(by_name: list[dict[str, Callable[[int], Any]]],
 
 def to_csv(result: RecordingsAnalysis) -> str:
     """One row per recording × sensor: the one-recording records after ``recording``."""
+    first = result.analyses[0].records()
+    by_name = [{c.name: c.value for c in a.records()} for a in result.analyses]
     columns = (Column("recording", None, lambda r: _name(result.analyses[r[0]])),
-               *_records(result))
+               *(replace(c, value=_in_recording(by_name, c.name)) for c in first))
     return csv_of(columns, [(n, i) for n, a in enumerate(result.analyses)
                             for i in range(len(a.sensors))])
 

@@ -19,9 +19,6 @@ if TYPE_CHECKING:
 #: The allowance's terms, their symbol and the word for the term that limits them.
 TERMS = {"vibration": ("|θ_V|", "θ_V"), "arw": ("N", "ARW"),
          "bias_instability": ("B", "B"), "rrw": ("K", "RRW"), "repeatability": ("R", "R")}
-#: Each term's figure in the budget (the noise block's name, or the angle itself).
-FIGURE = {"vibration": "vibration", "arw": "arw", "bias_instability": "bias_instability",
-          "rrw": "rrw", "repeatability": "repeatability"}
 
 
 def _allowed(name: str) -> Callable[[MissionRow], str]:

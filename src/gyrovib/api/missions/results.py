@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 from gyrovib.frozen import Frozen
 from gyrovib.records import Column, frame_of
@@ -46,6 +46,11 @@ class Budget(Frozen):
     def lower_bound(self) -> bool:
         """Whether ``total`` is only a lower bound (a noise figure is unknown)."""
         return bool(self.unknown)
+
+    @property
+    def rests_on_bound(self) -> bool:
+        """Whether ``total`` rests on a figure given only as an upper bound."""
+        return bool(self.bounds)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -216,12 +221,7 @@ class MissionResult(Frozen):
         return frame_of(SEGMENT_COLUMNS, self.segment_rows())
 
 
-def _budget(name: str) -> Callable[[MissionRow], float | None]:
-    """A figure of a row's budget (None: unknown, or no budget computed)."""
-    return lambda r: None if r.budget is None else getattr(r.budget, name)
-
-
-def _allowed(name: str) -> Callable[[MissionRow], float | None]:
+def _allowed(name: str) -> Callable[[MissionRow], Any]:
     """The largest value of a budget figure that meets the angle budget (None: none passes,
     or no angle budget)."""
     return lambda r: (None if r.budget is None or r.budget.allowed is None
@@ -260,11 +260,6 @@ class SegmentRecord(Frozen):
         return self.row.timeline[self.index] if self.row.timeline else None
 
 
-def _at_end(name: str) -> Callable[[SegmentRecord], float | None]:
-    """A figure of the budget at a segment's end (None: unknown, or no budget)."""
-    return lambda r: None if r.budget is None else getattr(r.budget, name)
-
-
 def _rate(k: int) -> Callable[[SegmentRecord], float]:
     """The segment's carrier rate about x(k+1)."""
     return lambda r: r.segment.rate[k]
@@ -278,20 +273,25 @@ def _timed(record: SegmentRecord) -> bool:
 _JSON = ("csv", "frame")
 
 
-def _budget_flags(of: Callable[[Any], Budget | None],
-                  only: Callable[[Any], bool]) -> tuple[Column[Any], ...]:
-    """The JSON's ``budget`` keys after its figures: its unit, whether the total is a
-    lower bound (a figure unknown) or rests on a figure given as a bound, and which."""
-    flags: dict[str, Callable[[Budget], Any]] = {
-        "unit": lambda b: b.unit, "lower_bound": lambda b: b.lower_bound,
-        "rests_on_bound": lambda b: bool(b.bounds), "bounds": lambda b: list(b.bounds)}
-    return tuple(Column(f"budget.{key}", None, _read(of, flag), skip=_JSON, only=only)
-                 for key, flag in flags.items())
+def _budget_columns(of: Callable[[Any], Budget | None], only: Callable[[Any], bool],
+                    vibration: tuple[str, ...]) -> tuple[Column[Any], ...]:
+    """The columns of a budget (deg; None without one): θ_V (``vibration``: the outputs
+    that leave it out), each noise term, the total and the coverage factor; and what only
+    the JSON has: the unit, whether the total is a lower bound (a figure unknown) or rests
+    on a figure given as a bound, and which."""
+    named = {"vibration": "theta_vibration", "total": "budget_total", "coverage": "coverage"}
+    return (*(Column(named.get(n, f"theta_{n}"), None if n == "coverage" else "deg",
+                     _figure(of, n), key=f"budget.{n}", only=only,
+                     skip=vibration if n == "vibration" else ())
+              for n in ("vibration", *BUDGET_TERMS, "total", "coverage")),
+            *(Column(f"budget.{n}", None, _figure(of, n), skip=_JSON, only=only)
+              for n in ("unit", "lower_bound", "rests_on_bound", "bounds")))
 
 
-def _read(of: Callable[[Any], Budget | None], flag: Callable[[Budget], Any]
-          ) -> Callable[[Any], Any]:
-    return lambda r: flag(cast("Budget", of(r)))
+def _figure(of: Callable[[Any], Budget | None], name: str) -> Callable[[Any], Any]:
+    """A figure of a row's budget (``of``): None where it has none, or the figure is
+    unknown."""
+    return lambda r: None if (b := of(r)) is None else getattr(b, name)
 
 
 #: The per-segment records (``mission --segments``), declared once: one line per sensor ×
@@ -315,13 +315,7 @@ SEGMENT_COLUMNS: tuple[Column[SegmentRecord], ...] = (
     Column("saturated", None, lambda r: r.segment.saturated),
     Column("end", "s", lambda r: r.start + r.segment.duration, only=_timed,
            csv_after="duration"),
-    Column("theta_vibration", "deg", _at_end("vibration"), key="budget.vibration",
-           only=_timed),
-    *(Column(f"theta_{name}", "deg", _at_end(name), key=f"budget.{name}", only=_timed)
-      for name in BUDGET_TERMS),
-    Column("budget_total", "deg", _at_end("total"), key="budget.total", only=_timed),
-    Column("coverage", None, _at_end("coverage"), key="budget.coverage", only=_timed),
-    *_budget_flags(lambda r: r.budget, _timed),
+    *_budget_columns(lambda r: r.budget, _timed, vibration=()),
 )
 
 
@@ -350,12 +344,7 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
     Column("status", None, lambda r: r.status),
     Column("unknown", None, lambda r: " ".join(r.unknown), json_value=lambda r: list(r.unknown)),
     Column("source", None, lambda r: r.source, csv_after="saturated"),
-    Column("budget.vibration", "deg", _budget("vibration"), skip=_JSON, only=_has_budget),
-    *(Column(f"theta_{name}", "deg", _budget(name), key=f"budget.{name}", only=_has_budget)
-      for name in BUDGET_TERMS),
-    Column("budget_total", "deg", _budget("total"), key="budget.total", only=_has_budget),
-    Column("coverage", None, _budget("coverage"), key="budget.coverage", only=_has_budget),
-    *_budget_flags(lambda r: r.budget, _has_budget),
+    *_budget_columns(lambda r: r.budget, _has_budget, vibration=_JSON),
     Column("typical", None, lambda r: "" if r.budget is None else " ".join(r.budget.typical),
            key="budget.typical", only=_has_budget, csv_after="allowed_repeatability",
            json_value=lambda r: [] if r.budget is None else list(r.budget.typical)),
@@ -363,10 +352,9 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
              key=f"budget.allowed.{name}", only=_has_allowance) for name in ALLOWANCE_UNITS),
     Column("budget.allowed.unit", None, lambda r: dict(ALLOWANCE_UNITS), skip=_JSON,
            only=_has_allowance),
-    *(Column(f"budget.allowed.{key}", None, _read(lambda r: r.budget, flag), skip=_JSON,
-             only=_has_allowance) for key, flag in (
-        ("limited_by", lambda b: dict(cast("Allowance", b.allowed).limited_by)),
-        ("upper", lambda b: list(cast("Allowance", b.allowed).upper)))),
+    Column("budget.allowed.limited_by", None, lambda r: dict(_allowed("limited_by")(r)),
+           skip=_JSON, only=_has_allowance),
+    Column("budget.allowed.upper", None, _allowed("upper"), skip=_JSON, only=_has_allowance),
     Column("axis", None, lambda r: r.axis, only=lambda r: r.axis is not None,
            csv_after="placement"),
     Column("worst_axis", None, lambda r: r.worst_axis, skip=_JSON,
