@@ -1,7 +1,9 @@
 """A result that declares its records (gyrovib/records.py: Column) gets its CSV header and
 cells (render/formats.py) and its DataFrame columns from that one declaration: they cannot
-drift apart, and a column moved in the declaration moves in both. Every result with a CSV
-is checked here (analyze, mission, bounds, select, sweep, fit, a recording, runup); the
+drift apart, and a column moved in the declaration moves in both; where the JSON rows are
+written from it too (analyze, mission with its segments, a recording, several recordings,
+bounds, runup), their key paths are the declaration's, in its order. Every result with a
+CSV is checked here (analyze, mission, bounds, select, sweep, fit, a recording, runup); the
 expected cells are the frame's own values, written as docs/output.md says a CSV writes
 them. Likewise its human tables: their Markdown header is the declared cells' titles
 (render/formats.py: Cell), each cell names a declared record and shows its value, and
@@ -479,6 +481,50 @@ def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
     assert _check_cells(render_recording.table_cells(result), result.records(),
                         range(len(result.sensors)), frame,
                         render_recording.to_markdown(result)) >= 2 * len(result.sensors)
+
+
+def test_several_recordings_csv_and_json_are_the_recording_declaration(tmp_path) -> None:
+    # analyze over several recordings writes each recording's rows from the one-recording
+    # declaration: the CSV its header after ``recording``, the JSON each recording's
+    # results and each sensor's worst row (then the recording, its index, saturations)
+    pytest.importorskip("scipy.signal")
+    import json
+
+    from click.testing import CliRunner
+
+    from gyrovib.api.recordings.analysis import analyze_recording
+    from gyrovib.api.recordings.reading import read_recording
+    from gyrovib.cli.main import cli
+    from gyrovib.records import in_csv, written
+
+    fs, n = 250.0, 5000
+    t = np.arange(n) / fs
+    paths = []
+    for k, carrier in enumerate((2.0, 6.0)):
+        rate = np.random.default_rng(k).normal(0.0, 0.2, (n, 3))
+        rate[:, 2] += carrier + np.sin(2 * np.pi * 31.3 * t)
+        paths.append(str(tmp_path / f"log{k}.npy"))
+        np.save(paths[-1], rate)
+    args = ["analyze", "--recording", paths[0], "--recording", paths[1], "--fs", "250"]
+    analyses = [analyze_recording(read_recording(p, fs=fs), gyrovib.load()) for p in paths]
+    columns = analyses[0].records()
+    table = _csv(CliRunner().invoke(cli, [*args, "--format", "csv"]).stdout)
+    assert tuple(table[0]) == ("recording", *names(in_csv(columns)))
+    assert len(table) - 1 == sum(len(a.sensors) for a in analyses)
+    document = json.loads(CliRunner().invoke(cli, [*args, "--format", "json"]).stdout)
+    for analysis, entry in zip(analyses, document["recordings"], strict=True):
+        rows = range(len(analysis.sensors))
+        compared, _ = _check_entries(entry["results"], analysis.records(), rows,
+                                     analysis.to_frame())
+        assert compared >= 15 * len(rows)
+    keys = [(c.key or c.name).split(".")[0] for c in written(columns, "json")]
+    found = 0
+    for worst in document["worst"]:
+        # a sensor unknown on some recording has no worst row: its name only
+        row = dict.fromkeys(keys) if worst["recording"] is not None else ["sensor"]
+        assert list(worst) == [*row, "recording", "index", "saturated_on"]
+        found += worst["recording"] is not None
+    assert found  # the probe meets worst rows
 
 
 def test_runup_csv_sections_are_the_declarations() -> None:

@@ -13,21 +13,13 @@ from gyrovib.api.missions.results import BUDGET_TERMS, COLUMNS
 from gyrovib.presentation.reasons import unverified_text
 from gyrovib.records import Column, names
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
-from gyrovib.render.formats import (
-    Case,
-    Cell,
-    csv_of,
-    json_of,
-    junit_of,
-    known,
-    markdown_of,
-    table_of,
-)
+from gyrovib.render.formats import Cell, csv_of, json_of, junit_of, known, markdown_of, table_of
 from gyrovib.render.mission_answer import allowance_cells
 from gyrovib.render.mission_segments import segments_csv, segments_markdown, segments_table
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
+    from gyrovib.render.formats import Case
 
 
 #: The verdict cell of each row status (None: no budget).

@@ -202,7 +202,7 @@ class MissionResult(Frozen):
         return "pass"
 
     def records(self) -> tuple[Column[MissionRow], ...]:
-        """The columns of the CSV and the DataFrame, in order, with their units: one
+        """The columns of the JSON rows, the CSV and the DataFrame, with their units: one
         row per sensor × mission × axis (:data:`COLUMNS`)."""
         return COLUMNS
 
@@ -221,19 +221,18 @@ class MissionResult(Frozen):
         return frame_of(SEGMENT_COLUMNS, self.segment_rows())
 
 
-def _allowed(name: str) -> Callable[[MissionRow], Any]:
-    """The largest value of a budget figure that meets the angle budget (None: none passes,
-    or no angle budget)."""
-    return lambda r: (None if r.budget is None or r.budget.allowed is None
-                      else getattr(r.budget.allowed, name))
-
-
 def _has_budget(row: MissionRow) -> bool:
     return row.budget is not None
 
 
+def _allowance(row: MissionRow) -> Allowance | None:
+    """The largest values of the budget's figures that meet the angle budget (None: no
+    angle budget)."""
+    return None if row.budget is None else row.budget.allowed
+
+
 def _has_allowance(row: MissionRow) -> bool:
-    return row.budget is not None and row.budget.allowed is not None
+    return _allowance(row) is not None
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -288,9 +287,9 @@ def _budget_columns(of: Callable[[Any], Budget | None], only: Callable[[Any], bo
               for n in ("unit", "lower_bound", "rests_on_bound", "bounds")))
 
 
-def _figure(of: Callable[[Any], Budget | None], name: str) -> Callable[[Any], Any]:
-    """A figure of a row's budget (``of``): None where it has none, or the figure is
-    unknown."""
+def _figure(of: Callable[[Any], Any], name: str) -> Callable[[Any], Any]:
+    """A figure of a row's budget or allowance (``of``): None where it has none, or the
+    figure is unknown (an allowance: no value passes)."""
     return lambda r: None if (b := of(r)) is None else getattr(b, name)
 
 
@@ -348,13 +347,14 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
     Column("typical", None, lambda r: "" if r.budget is None else " ".join(r.budget.typical),
            key="budget.typical", only=_has_budget, csv_after="allowed_repeatability",
            json_value=lambda r: [] if r.budget is None else list(r.budget.typical)),
-    *(Column(f"allowed_{name}", ALLOWANCE_UNITS[name], _allowed(name),
+    *(Column(f"allowed_{name}", ALLOWANCE_UNITS[name], _figure(_allowance, name),
              key=f"budget.allowed.{name}", only=_has_allowance) for name in ALLOWANCE_UNITS),
     Column("budget.allowed.unit", None, lambda r: dict(ALLOWANCE_UNITS), skip=_JSON,
            only=_has_allowance),
-    Column("budget.allowed.limited_by", None, lambda r: dict(_allowed("limited_by")(r)),
-           skip=_JSON, only=_has_allowance),
-    Column("budget.allowed.upper", None, _allowed("upper"), skip=_JSON, only=_has_allowance),
+    Column("budget.allowed.limited_by", None,
+           lambda r: dict(_figure(_allowance, "limited_by")(r)), skip=_JSON, only=_has_allowance),
+    Column("budget.allowed.upper", None, _figure(_allowance, "upper"), skip=_JSON,
+           only=_has_allowance),
     Column("axis", None, lambda r: r.axis, only=lambda r: r.axis is not None,
            csv_after="placement"),
     Column("worst_axis", None, lambda r: r.worst_axis, skip=_JSON,
