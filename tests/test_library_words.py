@@ -16,10 +16,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import click
+from click.testing import CliRunner
 
 from gyrovib.cli.main import cli
 from gyrovib.cli.options import as_options, option_words
-from gyrovib.errors import Note, headed
+from gyrovib.errors import Note, fill, headed, literal
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "gyrovib"
 
@@ -128,3 +129,28 @@ def test_as_options_words_every_note_a_result_holds_and_keeps_the_rest() -> None
     assert result.inner.warnings[1] == "raise breakpoints"  # the library's result unchanged
     plain = _Outer(_Inner(("plain",)), {}, [], 1)
     assert as_options(plain) is plain
+
+
+def test_the_users_text_in_a_note_is_never_read_as_an_argument() -> None:
+    """A file named ``{strict}.bin`` heading a note that names ``strict``: only the note's
+    own ``{strict}`` is worded; the name keeps its braces, in the library and on the
+    command line alike; a doubled brace in a template is one brace."""
+    note = headed("{strict}.bin: ", Note("cut short ({strict} refuses such a file)",
+                                         ("strict", True)))
+    assert note == "{strict}.bin: cut short (strict=True refuses such a file)"
+    assert note.worded(option_words) == "{strict}.bin: cut short (--strict refuses such a file)"
+    assert Note(f"{literal('a {b}} {{c')}: {{b}}", ("b", None)) == "a {b}} {{c: b"
+    assert fill("{x} {y} {{x}} {", ("x",), str.upper) == "X {y} {x} {"
+    assert fill("{x} {{x}}", (), str.upper) == "{x} {{x}}"  # no arguments: the text as is
+
+
+def test_a_column_named_like_an_option_keeps_its_name(tmp_path: Path) -> None:
+    """A CSV whose lone rate column is named ``{rate_columns}``: the message words the
+    option it advises and shows the column's name as the file has it."""
+    path = tmp_path / "one.csv"
+    path.write_text("t,{rate_columns}\n" + "".join(f"{k / 100},0.5\n" for k in range(64)))
+    r = CliRunner().invoke(cli, ["profile", str(path)])
+    assert r.exit_code == 2
+    assert "1 rate column(s) ('{rate_columns}') besides the time" in r.stderr
+    assert "place them with --rate-columns X,Y,Z, e.g. --rate-columns -,-,{rate_columns}" \
+        in r.stderr, r.stderr

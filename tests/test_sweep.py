@@ -175,3 +175,13 @@ def test_missing_matplotlib_is_a_clear_error(catalog_path: str, tmp_path: pytest
     assert "pip install 'gyrovib[plot]'" in result.stderr
     assert "Traceback" not in result.stderr
     assert not target.exists()
+
+
+def test_the_paper_note_says_each_reason_once_with_its_profiles() -> None:
+    """The bundled profiles with linear vibration share one reason the paper's columns
+    are empty: the note names them together, the reason once."""
+    result = invoke("sweep", "--sensor", "adxrs453", "--rate-range", "-5:5:3",
+                    "--format", "csv")
+    assert result.exit_code == 0, result.stderr
+    assert result.stderr.count("not linear vibration") == 1, result.stderr
+    assert "adis16460-vre-test, adxrs645-vre-test, " in result.stderr

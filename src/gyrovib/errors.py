@@ -12,6 +12,7 @@ command line words it with the option that sets it instead.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
@@ -57,12 +58,32 @@ class Problem(Frozen):
         return f"{self.file}:{self.line}:{self.column or 1}: {self.message}"
 
 
+_PLACES = re.compile(r"\{\{|\}\}|\{([A-Za-z_]\w*)\}")
+
+
 def fill(template: str, arguments: tuple[str, ...], name: Callable[[str], str]) -> str:
     """``template`` with each of ``arguments`` written ``{argument}`` replaced by
-    ``name(argument)``; any other brace is the user's text, kept."""
-    for argument in arguments:
-        template = template.replace("{" + argument + "}", name(argument))
-    return template
+    ``name(argument)``, in one pass. A template that names arguments writes any text of
+    the user's inside it through :func:`literal` (its braces doubled), so that a file
+    named ``{strict}.csv`` is never taken for the argument; a brace that is neither
+    doubled nor around an argument is kept. Without arguments the template is the text."""
+    if not arguments:
+        return template
+    named = set(arguments)
+
+    def place(match: re.Match[str]) -> str:
+        word = match.group(1)
+        if word is None:
+            return match.group(0)[0]
+        return name(word) if word in named else match.group(0)
+
+    return _PLACES.sub(place, template)
+
+
+def literal(text: object) -> str:
+    """``text`` as it is, inside a template that names arguments (:func:`fill`): its
+    braces doubled, so that none is read as an argument."""
+    return str(text).replace("{", "{{").replace("}", "}}")
 
 
 class Note(str):
@@ -93,7 +114,8 @@ class Note(str):
 def headed(head: str, text: str) -> str:
     """``text`` after ``head`` (a file's name, say); a note stays a note."""
     if isinstance(text, Note):
-        return Note(head + text.template, *text.arguments)
+        return Note((literal(head) if text.arguments else head) + text.template,
+                    *text.arguments)
     return head + text
 
 

@@ -105,7 +105,10 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
                     output)
         return
     if result.paper_refused:
-        listed = "; ".join(f"{p} ({why})" for p, why in result.paper_refused.items())
+        by_reason: dict[str, list[str]] = {}  # one reason once, with every profile it has
+        for p, why in result.paper_refused.items():
+            by_reason.setdefault(why, []).append(p)
+        listed = "; ".join(f"{', '.join(ps)} ({why})" for why, ps in by_reason.items())
         say(f"gyrovib: note: the paper's columns are empty for {listed}")
     if plot is not None:
         if plot == "-":

@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import BOUNDED, COEFFICIENTS, Multipliers, vibration_error
 from gyrovib.core.special import erfc
-from gyrovib.errors import ModelError, Note
+from gyrovib.errors import ModelError, Note, literal
 from gyrovib.frozen import Frozen
 
 #: Monte-Carlo draws of the yield unless told otherwise (docs/model.md section 14).
@@ -405,9 +405,9 @@ def _singular_correlation(correlation: ArrayLike, index: list[int], label: list[
 
 def unmeasured_warning(lot: str, problem: str) -> Note:
     """The warning of a lot whose yield is not a measurement (:func:`spread_problem`)."""
-    return Note(f"lot {lot!r}: {problem}; a yield from this lot is not a measurement "
-                "(select with {yield_target} calls it unverified): measure more units, or "
-                "units that differ", ("yield_target", None))
+    return Note(f"lot {literal(repr(lot))}: {literal(problem)}; a yield from this lot is not a "
+                "measurement (select with {yield_target} calls it unverified): measure more "
+                "units, or units that differ", ("yield_target", None))
 
 
 def lot_covariance(sigma: ArrayLike, correlation: ArrayLike, units: int,

@@ -39,7 +39,7 @@ from gyrovib.core.harmonics import LockedGroup
 from gyrovib.core.linear import LinearVibration
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR
 from gyrovib.core.statistics import Vibration
-from gyrovib.errors import ModelError, OptionError
+from gyrovib.errors import ModelError, OptionError, literal
 from gyrovib.limits import MAX_SAMPLES, MIN_SAMPLES
 
 #: Every method of :func:`analyze`: the closed forms, and brute force.
@@ -240,8 +240,8 @@ def _numeric(prepared: Prepared, spec: specs.SpecResults | None, samples: int, s
 def _refuse_unknown_phases(prepared: Prepared) -> None:
     """Brute force averages one waveform: it needs every phase of a locked group."""
     problems = [
-        profile_problem(p, f"profile {p.profile.id!r}: the numeric method averages one "
-                           "waveform and needs the phases of every order; 'phase: worst' "
+        profile_problem(p, f"profile {literal(repr(p.profile.id))}: the numeric method averages "
+                           "one waveform and needs the phases of every order; 'phase: worst' "
                            "is searched by {method} exact (its worst_phases give phases "
                            "to write in)", ("method",))
         for j, p in enumerate(prepared.profiles)

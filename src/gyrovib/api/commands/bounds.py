@@ -34,7 +34,7 @@ from gyrovib.core.synthesis import (
     allocation_constants,
     coefficient_bounds,
 )
-from gyrovib.errors import GyrovibError, OptionError, RangeError
+from gyrovib.errors import GyrovibError, OptionError, RangeError, literal
 from gyrovib.models import Allocation
 
 
@@ -62,7 +62,7 @@ def resolve_allocation(
         if not _is_default(chosen):
             raise OptionError(reason=(
                 "{method} paper uses the paper's printed shares (0.44, 0.22, 0.49, 0.24, "
-                f"0.35) and cannot honour the custom allocation given by {where}; "
+                f"0.35) and cannot honour the custom allocation given by {literal(where)}; "
                 "use {method} exact, or drop the allocation"), others=("method", "allocation"))
         return PAPER_CONSTANTS
     try:

@@ -53,7 +53,7 @@ from gyrovib.core.lot import (
     term_matrix,
 )
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.errors import ModelError, Note, OptionError
+from gyrovib.errors import ModelError, Note, OptionError, literal
 
 #: Seed of the Monte-Carlo yields unless told otherwise.
 DEFAULT_SEED = 0
@@ -188,10 +188,11 @@ def _refuse_searched_phases(prepared: Prepared, lots: Sequence[bool]) -> None:
     if searched:
         raise ModelError([profile_problem(
             prepared.profiles[j],
-            f"profile {prepared.profiles[j].profile.id!r}: {{yield_target}} cannot judge a "
-            "lot under 'phase: worst' orders (the error is maximised over the phases part by "
-            "part, which no distribution of Δ_V gives here); write the phases, or choose "
-            "other profiles with {profiles}", ("yield_target", "profiles")) for j in searched],
+            f"profile {literal(repr(prepared.profiles[j].profile.id))}: {{yield_target}} "
+            "cannot judge a lot under 'phase: worst' orders (the error is maximised over "
+            "the phases part by part, which no distribution of Δ_V gives here); write the "
+            "phases, or choose other profiles with {profiles}", ("yield_target", "profiles"))
+            for j in searched],
             reason="a yield with phase: worst")
 
 

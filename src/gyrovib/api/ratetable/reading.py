@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 
 from gyrovib import units as rate_units
 from gyrovib.core._types import FloatArray
-from gyrovib.errors import GyrovibError, Problem
+from gyrovib.errors import GyrovibError, Problem, literal
 from gyrovib.frozen import Frozen
 
 COLUMNS: tuple[str, ...] = ("unit", "rate", "output", "rate_x1", "rate_x2")
@@ -75,8 +75,8 @@ def output_unit_label(text: str | None) -> str | None:
         return None
     label = text.strip()
     if not label or len(label) > 32 or not label.isprintable():
-        raise RateTableError(Problem.naming(f"{{output_unit}} {text!r}: give a short unit "
-                                            "name such as mV, V, LSB or a rate unit",
+        raise RateTableError(Problem.naming(f"{{output_unit}} {literal(repr(text))}: give a "
+                                            "short unit name such as mV, V, LSB or a rate unit",
                                             ("output_unit",)))
     try:
         return rate_units.canonical_unit(label)

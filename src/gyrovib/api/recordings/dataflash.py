@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 
 from gyrovib.api.recordings.quiet import as_notes, captured
 from gyrovib.api.recordings.readers import ArrayColumns, ColumnNames, Columns, problem
+from gyrovib.errors import literal
 from gyrovib.frozen import Frozen
 
 #: The DataFlash sources and the columns they give.
@@ -231,7 +232,8 @@ def _choose(path: str, what: str, instance: int | None,
             raise problem(path, f"{what} has no instance {instance}: {shown}")
         return instance
     if len(found) > 1:
-        raise problem(path, f"{what} is logged by {len(found)} instances: {shown}; "
+        raise problem(path, f"{literal(what)} is logged by {len(found)} instances: "
+                            f"{literal(shown)}; "
                             "choose one with {instance} N", arguments=("instance",))
     return next(iter(found))
 
@@ -343,8 +345,9 @@ def open_dataflash(path: str, topic: str | None = None,
     """An ArduPilot DataFlash log's IMU or batch-sampler samples, with its damage."""
     topic = topic or DF_TOPIC
     if topic not in (DF_TOPIC, DF_BATCH):
-        raise problem(path, f"{{topic}} {topic!r}: a DataFlash log is read as {DF_TOPIC} "
-                            f"(the default) or {DF_BATCH} (the batch sampler's raw samples)",
+        raise problem(path, f"{{topic}} {literal(repr(topic))}: a DataFlash log is read as "
+                            f"{DF_TOPIC} (the default) or {DF_BATCH} (the batch sampler's raw "
+                            "samples)",
                       arguments=("topic",))
     log = _Log(path)
     if topic == DF_TOPIC:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from gyrovib.errors import GyrovibError, Problem
+from gyrovib.errors import GyrovibError, Problem, literal
 
 
 class RecordingError(GyrovibError):
@@ -61,7 +61,7 @@ def unplaced(path: str, names: Sequence[str]) -> RecordingError:
     lone ``gz`` is not X), the user does; an axis not recorded is ``-`` (unknown, never 0)."""
     shown = ", ".join(repr(n) for n in names)
     example = ",".join(["-"] * (3 - len(names)) + list(names))
-    return problem(path, f"{len(names)} rate column(s) ({shown}) besides the time, and no "
-                         "rule says which axis each is: place them with {rate_columns} X,Y,Z, "
-                         f"e.g. {{rate_columns}} {example} (- for an axis not recorded: it is "
-                         "then unknown, never taken as 0)", arguments=("rate_columns",))
+    return problem(path, f"{len(names)} rate column(s) ({literal(shown)}) besides the time, and "
+                         "no rule says which axis each is: place them with {rate_columns} X,Y,Z, "
+                         f"e.g. {{rate_columns}} {literal(example)} (- for an axis not recorded: "
+                         "it is then unknown, never taken as 0)", arguments=("rate_columns",))

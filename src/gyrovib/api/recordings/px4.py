@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 from gyrovib.api.recordings.quiet import as_notes, captured
 from gyrovib.api.recordings.readers import ArrayColumns, ColumnNames, Columns, problem
 from gyrovib.core._types import FloatArray
+from gyrovib.errors import literal
 
 #: ULog's default topic and its fields (rad/s, m/s², timestamps in µs).
 ULOG_TOPIC = "sensor_combined"
@@ -187,7 +188,8 @@ def _instance(path: str, log: Any, topic: str,
     """The data of the topic's chosen instance, and its multi_id."""
     found = sorted((d for d in log.data_list if d.name == topic), key=lambda d: d.multi_id)
     if not found:
-        raise problem(path, f"no topic {topic!r} in this log (choose one with {{topic}})",
+        raise problem(path, f"no topic {literal(repr(topic))} in this log (choose one with "
+                            "{topic})",
                       arguments=("topic",))
     if instance is not None:
         chosen = [d for d in found if d.multi_id == instance]
@@ -196,8 +198,9 @@ def _instance(path: str, log: Any, topic: str,
                                 f"{_listing(topic, found)}")
         return chosen[0].data, instance
     if len(found) > 1:
-        raise problem(path, f"{topic} is logged by {len(found)} instances: "
-                            f"{_listing(topic, found)}; choose one with {{instance}} N",
+        raise problem(path, f"{literal(topic)} is logged by {len(found)} instances: "
+                            f"{literal(_listing(topic, found))}; choose one with "
+                            "{instance} N",
                       arguments=("instance",))
     return found[0].data, int(found[0].multi_id)
 

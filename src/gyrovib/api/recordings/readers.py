@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 
 from gyrovib.api.recordings.located import RecordingError, check_magic, csv_where, problem, unplaced
 from gyrovib.core._types import FloatArray
+from gyrovib.errors import literal
 
 #: Columns as a user names them, per axis X, Y, Z: a name, a 0-based index, or None (an
 #: axis not recorded).
@@ -227,8 +228,8 @@ class Columns:
         if column in self.names:
             return self.names.index(column)
         shown = ", ".join(self.names[:20]) + (" ..." if len(self.names) > 20 else "")
-        raise problem(self.path, f"{{{argument}}}: no column named {column!r} (the columns "
-                                 f"are: {shown})", arguments=(argument,))
+        raise problem(self.path, f"{{{argument}}}: no column named {literal(repr(column))} "
+                                 f"(the columns are: {literal(shown)})", arguments=(argument,))
 
     def where(self, sample: int) -> tuple[int | None, int | None]:
         """Line and column of sample ``sample``'s time stamp in the file (None, None where

@@ -37,7 +37,7 @@ from gyrovib.api.recordings.registry import LOGS, Opener, reader_for
 from gyrovib.api.recordings.results import source_words
 from gyrovib.core._types import FloatArray
 from gyrovib.core.recording import gap_segments
-from gyrovib.errors import Note, OptionError, headed
+from gyrovib.errors import Note, OptionError, headed, literal
 from gyrovib.frozen import Frozen
 
 #: A gap is an interval longer than this many median intervals (docs/model.md section 13).
@@ -148,7 +148,7 @@ def read_recording(path: str, *, fs: float | None = None,
     reader = (open_betaflight(path, accel_unit is not None) if preset is not None
               else opener(path, topic, instance))
     if strict and reader.warnings:
-        raise problem(path, f"{reader.warnings[0]} (refused under {{strict}})",
+        raise problem(path, f"{literal(reader.warnings[0])} (refused under {{strict}})",
                       arguments=("strict",))
     axes = _axes(reader, rate_columns, accel_columns)
     n = reader.rows()
@@ -161,7 +161,8 @@ def read_recording(path: str, *, fs: float | None = None,
         file=path, sha256=file_sha256(path), fs=rate_fs,
         rate_axes=_recorded(axes["rate"]), accel_axes=_recorded(axes["accel"]),
         segments=segments, time_given=time is not None, store=store,
-        warnings=tuple(Note(f"{base}: {w} ({{strict}} refuses such a file)", ("strict", True))
+        warnings=tuple(Note(f"{literal(base)}: {literal(w)} ({{strict}} refuses such a file)",
+                            ("strict", True))
                        for w in reader.warnings)
         + tuple(headed(f"{base}: ", note) for note in reader.notes),
         topic=reader.topic, instance=reader.instance)

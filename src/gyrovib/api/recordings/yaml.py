@@ -17,7 +17,7 @@ import numpy as np
 
 from gyrovib.catalog.loader import merge, parse_catalog
 from gyrovib.catalog.writer import flow_list, measured, measured_list, measured_table, quoted
-from gyrovib.errors import GyrovibError, OptionError
+from gyrovib.errors import GyrovibError, OptionError, literal
 from gyrovib.models.profile import correlation_problem
 
 if TYPE_CHECKING:
@@ -186,7 +186,7 @@ def with_fitted_profile(catalog: Any, fit: RecordingFit) -> Any:
     try:
         return merge([*catalog.sources, source])
     except GyrovibError as exc:
-        raise OptionError(reason=f"the fitted profile's id {fit.profile_id!r} (or its "
-                                 f"mission's, {mission_id(fit)!r}) is already used in the "
-                                 "catalogue: choose another with {profile_id}",
+        raise OptionError(reason=f"the fitted profile's id {literal(repr(fit.profile_id))} (or "
+                                 f"its mission's, {literal(repr(mission_id(fit)))}) is already "
+                                 "used in the catalogue: choose another with {profile_id}",
                           others=("profile_id",)) from exc

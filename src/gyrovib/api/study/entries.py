@@ -21,7 +21,7 @@ from gyrovib.catalog.loader import (
     bundled_files,
     load_catalog,
 )
-from gyrovib.errors import OptionError
+from gyrovib.errors import OptionError, literal
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -79,7 +79,7 @@ def select_entries(
     if missing:
         files = ", ".join(s.name for s in catalog.sources) or "the catalogue"
         raise OptionError(reason=(
-            f"no {' and no '.join(missing)} in {files}: give a file that has them too, "
+            f"no {' and no '.join(missing)} in {literal(files)}: give a file that has them too, "
             "or add the bundled ones ({bundled} "
             f"{missing[0] if len(missing) == 1 else 'all'}), "
             "or no FILE at all for the bundled catalogues"), others=("bundled",))

@@ -36,7 +36,7 @@ from gyrovib.core.phases import MAX_SEARCH_COST, search_cost, worst_phase_multip
 from gyrovib.core.saturation import DEFAULT_PEAK_FACTOR, group_peak, saturation_reach
 from gyrovib.core.statistics import Vibration, vibration_at_sensor
 from gyrovib.core.transmissibility import as_table, loglog_interp
-from gyrovib.errors import Problem, RangeError
+from gyrovib.errors import Problem, RangeError, literal
 from gyrovib.frozen import Frozen
 
 #: Python's and numpy's ways of saying a number left floating-point range.
@@ -208,7 +208,8 @@ def refusal_problem(profile: ProfileEntry, method: str, reason: str) -> Problem:
     """A method's refusal of a profile (:class:`ModelError`), worded for the user."""
     advice = ("; use {method} exact, or choose other profiles with {profiles}"
               if method == "paper" else "")
-    return profile_problem(profile, f"profile {profile.profile.id!r}: {reason}{advice}",
+    said = f"profile {profile.profile.id!r}: {reason}"
+    return profile_problem(profile, (literal(said) if advice else said) + advice,
                            ("method", "profiles") if advice else ())
 
 
