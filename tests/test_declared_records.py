@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import io
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,6 +23,7 @@ from gyrovib.records import Column, frame_of, names
 from gyrovib.render import mission as render_mission
 from gyrovib.render.formats import csv_of
 from tests.test_recording_unknown import SENSORS as UNKNOWN_SENSORS
+from tests.test_yield_select import CATALOGUE as LOT
 
 pd = pytest.importorskip("pandas")
 
@@ -47,9 +49,9 @@ MISSION_CSV = ("sensor", "mission", "placement", "axis", "mean", "angle", "rms",
 
 
 def test_mission_csv_header_and_frame_columns_are_the_declaration(mission_result) -> None:
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
 
-    declared = names(in_csv(mission_result.records()))
+    declared = names(written(mission_result.records(), "csv"))
     # the declaration is in the JSON's order; csv_after puts axis, source and typical
     # where the documented header has them
     assert declared == MISSION_CSV != names(mission_result.records())[:len(MISSION_CSV)]
@@ -86,10 +88,10 @@ def test_mission_csv_cells_are_the_frame_values(mission_result) -> None:
 def test_a_column_moved_in_the_declaration_moves_in_csv_and_frame(mission_result) -> None:
     from dataclasses import replace
 
-    from gyrovib.records import in_csv
+    from gyrovib.records import written
 
     moved: tuple[Column, ...] = tuple(replace(c, csv_after=None) for c in
-                                      reversed(in_csv(mission_result.records())))
+                                      reversed(written(mission_result.records(), "csv")))
     rows = mission_result.rows
     header = _csv(csv_of(moved, rows))[0]
     assert tuple(header) == names(moved) == tuple(frame_of(moved, rows).columns)
@@ -241,15 +243,15 @@ def _leaves(value: object, keys: set[str], prefix: str = "") -> list[tuple[str, 
 
 @pytest.mark.parametrize("case", list(ANALYZE_CASES))
 def test_analyze_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path) -> None:
-    # analyze declares its records once (presentation.frames.analysis_columns): the CSV
+    # analyze declares its records once (api.evaluation.records.analysis_columns): the CSV
     # takes the columns that do not skip it, the frame and the JSON every column, in one
     # order; a JSON entry has exactly the declared key paths of the columns on its row
     # (``only``), in the declared order, each holding the frame's value (NaN: null)
     import json
     import math
 
-    from gyrovib.presentation.frames import analysis_cells, analysis_columns
-    from gyrovib.records import in_csv, written
+    from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
+    from gyrovib.records import written
     from gyrovib.render import analysis as render_analysis
 
     result = _analysis(case, tmp_path)
@@ -257,7 +259,7 @@ def test_analyze_json_csv_and_frame_come_from_one_declaration(case: str, tmp_pat
     rows = analysis_cells(result)
     table = _csv(render_analysis.to_csv(result))
     frame = result.to_frame()
-    assert tuple(table[0]) == names(in_csv(columns))
+    assert tuple(table[0]) == names(written(columns, "csv"))
     assert tuple(frame.columns) == names(written(columns, "frame")) == names(columns)
     # every record is in the JSON: a column added without a JSON key fails here
     assert written(columns, "json") == columns
@@ -294,7 +296,7 @@ def test_analyze_json_csv_and_frame_come_from_one_declaration(case: str, tmp_pat
 def test_analyze_columns_read_alike_one_row_or_many(case: str, tmp_path) -> None:
     # a column that reads many rows at once (``many``, the fast writers' path) reads what
     # it reads one row at a time (``value``): the JSON, the CSV and the frame agree
-    from gyrovib.presentation.frames import analysis_cells, analysis_columns
+    from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
 
     result = _analysis(case, tmp_path)
     rows = analysis_cells(result)
@@ -317,7 +319,7 @@ def test_a_column_added_to_analyze_records_is_in_json_csv_and_frame() -> None:
     import json
     from dataclasses import replace
 
-    from gyrovib.presentation.frames import analysis_cells, analysis_columns
+    from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
     from gyrovib.render.formats import json_text
 
     result = gyrovib.analyze(sensors="adxrs453")
@@ -341,23 +343,27 @@ def _frame_and_csv_agree(columns, rows, frame, text: str) -> int:
     columns the whole declaration, in order; each CSV cell is its frame value as the
     column writes it (a number as its repr, unknown empty, a flag true/false or
     True/False). Returns how many cells were compared."""
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
 
     table = _csv(text)
-    assert tuple(table[0]) == names(in_csv(columns))
+    assert tuple(table[0]) == names(written(columns, "csv"))
     assert tuple(frame.columns) == names(written(columns, "frame"))
     assert len(table) - 1 == len(rows) == len(frame)
     compared = 0
     for k, cells in enumerate(table[1:]):
-        for column, cell in zip(in_csv(columns), cells, strict=True):
+        for column, cell in zip(written(columns, "csv"), cells, strict=True):
             value = frame[column.name].iloc[k]
+            if column.blank is not None and column.blank(rows[k]):
+                value = None  # a check the CSV does not make on this row: empty
             shown = column.cell(value) if column.cell is not None else value
             if shown is None or (isinstance(shown, float) and np.isnan(shown)):
                 assert cell == "", column.name
             elif isinstance(shown, (bool, np.bool_)):
                 assert cell.lower() == str(bool(shown)).lower(), column.name
             elif isinstance(shown, float):
-                assert cell == repr(float(shown)), column.name
+                # a count with unknown rows is a float column in the frame: 0.0 for 0
+                assert cell == repr(float(shown)) or (
+                    shown.is_integer() and cell == str(int(shown))), column.name
             elif isinstance(shown, (list, tuple)):
                 assert cell in (" ".join(shown), "; ".join(shown)), column.name
             else:
@@ -367,7 +373,7 @@ def _frame_and_csv_agree(columns, rows, frame, text: str) -> int:
 
 
 def test_bounds_csv_and_frame_come_from_one_declaration() -> None:
-    from gyrovib.presentation.frames import bounds_columns
+    from gyrovib.api.evaluation.records import bounds_columns
     from gyrovib.render import bounds as render_bounds
 
     result = gyrovib.bounds(budget="10deg/h", range_=100)
@@ -377,34 +383,112 @@ def test_bounds_csv_and_frame_come_from_one_declaration() -> None:
                                 render_bounds.to_csv(result)) > 100
 
 
-@pytest.mark.parametrize("kwargs", [{"budget": "10deg/h", "criterion": "both"},
-                                    {"budget": "1deg/h", "profiles": "engine-harmonics",
-                                     "assume_unknown": "zero"},
-                                    {"budget": "10deg/h", "profiles": "flat-random-hover"}])
-def test_select_csv_and_frame_come_from_one_declaration(kwargs: dict) -> None:
-    # the frame's values and the CSV's may differ only where the declaration says so
-    # (selection_columns(csv=...): lists joined, cells a datasheet row has no check for
-    # left empty); everything else is one value
-    from gyrovib.presentation.frames import selection_cells, selection_columns
-    from gyrovib.records import in_csv
+EXAMPLES = Path(__file__).resolve().parent.parent / "docs" / "examples"
+
+# select's cases: the bundled catalogues (datasheet parts, linear vibration: the VRE check
+# binds on every row), an unknown figure taken as 0, a profile without linear vibration
+# (a coefficient row's VRE check is not in the CSV), lots judged by a Monte-Carlo and by
+# an exact yield (its interval null), and a profile fitted from a recording without x1,
+# x2 and the accelerations (unknown bounds: checks that decide nothing)
+SELECT_CASES = {
+    "both": {"budget": "10deg/h", "criterion": "both"},
+    "assumed": {"budget": "1deg/h", "profiles": "engine-harmonics", "assume_unknown": "zero"},
+    "no-linear": {"budget": "10deg/h", "profiles": "flat-random-hover"},
+    "monte-carlo": {"catalog": LOT, "budget": 6e-3, "criterion": "rms", "yield_target": 0.9},
+    "exact-yield": {"catalog": [str(EXAMPLES / "rate-table-gx100.gyrovib.yaml"),
+                                str(EXAMPLES / "rotor-tone.gyrovib.yaml")],
+                    "budget": "36deg/h", "criterion": "worst", "yield_target": 0.99},
+    "unrecorded": {"catalog": UNRECORDED, "budget": 1.0},
+}
+
+#: The columns select's JSON keeps in a sensor's entry (at these keys), outside its
+#: sensor × profile entries; the others outside them are in the document's ``profiles``,
+#: at their declared keys.
+SENSOR_KEYS = {"sensor": "sensor", "source": "source", "sensor_pass": "pass",
+               "sensor_status": "status"}
+
+
+def _selection(case: str, tmp_path) -> object:
+    kwargs = dict(SELECT_CASES[case])
+    text = kwargs.get("catalog")
+    if isinstance(text, str) and "\n" in text:
+        path = tmp_path / "catalogue.gyrovib.yaml"
+        path.write_text(text, encoding="utf-8")
+        kwargs["catalog"] = str(path)
+    return gyrovib.select(**kwargs)
+
+
+def _json_equal(value: object, want: object) -> bool:
+    """A JSON value against the frame's: null where the frame's is None, NaN or an
+    infinity (unknown, unbounded), a list where it is a list; else equal."""
+    import math
+
+    want = want.item() if hasattr(want, "item") else want
+    if value is None:
+        return want is None or (isinstance(want, float) and not math.isfinite(want))
+    return value == want
+
+
+@pytest.mark.parametrize("case", list(SELECT_CASES))
+def test_select_json_csv_and_frame_come_from_one_declaration(case: str, tmp_path) -> None:
+    # select declares its records once (api.evaluation.records.selection_columns), without
+    # a variant per output: the CSV takes the columns that do not skip it, each cell the
+    # frame's value as the column writes it (names joined, empty on its ``blank`` rows);
+    # a JSON sensor × profile entry has exactly the key paths of the columns that do not
+    # skip json, on the rows they are on (``only``), each holding the frame's value; the
+    # others are in the sensor's entry and in ``profiles``, and nothing else is in the frame
+    import json
+
+    from gyrovib.api.evaluation.records import selection_cells, selection_columns
+    from gyrovib.records import written
     from gyrovib.render import select as render_select
 
-    result = gyrovib.select(**kwargs)
+    result = _selection(case, tmp_path)
+    columns, rows = selection_columns(result), selection_cells(result)
     frame = result.to_frame()
-    csv_columns = selection_columns(result, csv=True)
-    table = _csv(render_select.to_csv(result))
-    assert tuple(table[0]) == names(in_csv(csv_columns))
-    assert tuple(frame.columns) == names(selection_columns(result, csv=False))
-    assert [c for c in frame.columns if c in table[0]] == table[0]  # the frame's order
-    assert len(table) - 1 == len(frame) == len(selection_cells(result))
-    # the probe meets datasheet sensors (their checks) and the VRE check
-    assert "value_nonlinearity" in table[0] and "pass_vre" in frame.columns
+    assert _frame_and_csv_agree(columns, rows, frame,
+                                render_select.to_csv(result)) > 10 * len(rows)
+    blank = sum(1 for c in written(columns, "csv") if c.blank is not None for row in rows
+                if c.blank(row))
+    # the probes: a coefficient row's VRE check the CSV makes only with linear vibration
+    assert blank if case == "no-linear" else case != "both" or not blank
+    document = json.loads(render_select.to_json(result))
+    entries = [cell for sensor in document["sensors"] for cell in sensor["profiles"]]
+    in_entry = written(columns, "json")
+    keys = {c.key or c.name: c for c in in_entry}
+    assert len(keys) == len(in_entry)  # one key path per column
+    per_profile = [c for c in columns if "json" in c.skip and c.name not in SENSOR_KEYS]
+    assert all(c.key for c in per_profile)  # each at its key in the profile's entry
+    assert len(in_entry) + len(per_profile) + len(SENSOR_KEYS) == len(columns)
+    partial = nulls = 0
+    for k, (row, entry) in enumerate(zip(rows, entries, strict=True)):
+        found = dict(_leaves(entry, set(keys)))
+        if "yield.interval" in found:  # an exact yield has no interval: null for its ends
+            assert found.pop("yield.interval") is None
+            found["yield.interval.0"] = found["yield.interval.1"] = None
+        expected = {p for p, c in keys.items() if c.only is None or c.only(row)}
+        assert set(found) == expected  # no key outside the declaration, none missing
+        partial += len(expected) < len(keys)
+        for path, value in found.items():
+            assert _json_equal(value, frame[keys[path].name].iloc[k]), path
+            nulls += value is None
+        sensor = document["sensors"][row[0]]
+        for name, key in SENSOR_KEYS.items():
+            assert _json_equal(sensor[key], frame[name].iloc[k]), name
+        for column in per_profile:
+            value = document["profiles"][row[1]]
+            for part in column.key.split("."):
+                value = value[int(part)] if part.isdigit() else value[part]
+            assert _json_equal(value, frame[column.name].iloc[k]), column.name
+    # the probes: datasheet rows and lots have keys of their own; nulls are met
+    assert nulls and (partial or case == "unrecorded")
+    assert tuple(frame.columns) == names(columns)
 
 
 def test_sweep_csv_writer_and_frame_are_the_declaration() -> None:
     # sweep's CSV is written column by column for speed: it must equal the generic writer
     # over the declaration, byte for byte (the paper refuses engine-harmonics: empty cells)
-    from gyrovib.presentation.frames import sweep_cells, sweep_columns
+    from gyrovib.api.evaluation.records import sweep_cells, sweep_columns
     from gyrovib.render import sweep as render_sweep
 
     result = gyrovib.sweep(rates=(-10, 10), points=5)
@@ -495,7 +579,7 @@ def test_several_recordings_csv_and_json_are_the_recording_declaration(tmp_path)
     from gyrovib.api.recordings.analysis import analyze_recording
     from gyrovib.api.recordings.reading import read_recording
     from gyrovib.cli.main import cli
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
 
     fs, n = 250.0, 5000
     t = np.arange(n) / fs
@@ -509,7 +593,7 @@ def test_several_recordings_csv_and_json_are_the_recording_declaration(tmp_path)
     analyses = [analyze_recording(read_recording(p, fs=fs), gyrovib.load()) for p in paths]
     columns = analyses[0].records()
     table = _csv(CliRunner().invoke(cli, [*args, "--format", "csv"]).stdout)
-    assert tuple(table[0]) == ("recording", *names(in_csv(columns)))
+    assert tuple(table[0]) == ("recording", *names(written(columns, "csv")))
     assert len(table) - 1 == sum(len(a.sensors) for a in analyses)
     document = json.loads(CliRunner().invoke(cli, [*args, "--format", "json"]).stdout)
     for analysis, entry in zip(analyses, document["recordings"], strict=True):
@@ -534,14 +618,14 @@ def test_runup_csv_sections_are_the_declarations() -> None:
 
     from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
     from gyrovib.cli.main import cli
-    from gyrovib.records import in_csv, written
+    from gyrovib.records import written
 
     example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "runup-quad.npz"
     done = CliRunner().invoke(cli, ["runup", str(example), "--fs", "200", "--accel-columns",
                                     "ax,ay,az", "--estimate", "k2,vre", "--format", "csv"])
     assert done.exit_code in (0, 1), done.output
     steps, estimates = done.stdout.split("\n\n")
-    assert tuple(_csv(steps)[0]) == names(in_csv(STEP_RECORDS))
+    assert tuple(_csv(steps)[0]) == names(written(STEP_RECORDS, "csv"))
     assert tuple(_csv(estimates)[0]) == names(ESTIMATE_RECORDS)
     assert len(_csv(estimates)) == 3  # k2 and vre
     # the JSON's steps are the same declaration: its keys in order, the CSV's values
@@ -564,7 +648,7 @@ def test_bounds_json_entries_are_the_declaration() -> None:
     import json
     import math
 
-    from gyrovib.presentation.frames import bounds_columns
+    from gyrovib.api.evaluation.records import bounds_columns
     from gyrovib.render import bounds as render_bounds
 
     result = gyrovib.bounds(budget="10deg/h", range_=100)
@@ -704,7 +788,7 @@ def test_mission_segments_markdown_is_its_declaration(mission_result) -> None:
 def test_analyze_markdown_names_its_records(case: str, tmp_path) -> None:
     # "unrecorded": the sensors that need x1 or the accelerations have unknown errors,
     # which the Markdown must show as '?', never as a number
-    from gyrovib.presentation.frames import analysis_cells, analysis_columns
+    from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
     from gyrovib.render import analysis as render_analysis
 
     result = _analysis(case, tmp_path)

@@ -21,8 +21,8 @@ import pytest
 from click.testing import CliRunner
 
 import gyrovib
+from gyrovib.api.evaluation.records import declared
 from gyrovib.cli.main import cli
-from gyrovib.presentation.frames import column_name
 
 pd = pytest.importorskip("pandas", reason="to_frame needs the pandas extra")
 
@@ -44,16 +44,23 @@ def same(frame_value: Any, json_value: Any) -> bool:
     return frame_value == json_value
 
 
-def check_row(frame_row: Any, expected: dict[str, Any], kind: str) -> None:
-    """Each JSON value (key path → value) in its column (named as the CSV names it)."""
+def namer(result: Any) -> Any:
+    """The frame column of a JSON key path: the declared record kept at that key (its name
+    where it has no key), else the path joined by ``_`` (docs/output.md)."""
+    by_key = {c.key or c.name: c.name for c in declared(result)[0]}
+    return lambda path: by_key.get(path, path.replace(".", "_"))
+
+
+def check_row(frame_row: Any, expected: dict[str, Any], name: Any) -> None:
+    """Each JSON value (key path → value) in its column (``name``: :func:`namer`)."""
     for path, value in expected.items():
-        column = column_name(kind, path)
+        column = name(path)
         got = frame_row[column]
         assert same(got, value), f"{column} ({path}): frame {got!r} != JSON {value!r}"
 
 
-def columns(kind: str, paths: Any) -> set[str]:
-    return {column_name(kind, p) for p in paths}
+def columns(name: Any, paths: Any) -> set[str]:
+    return {name(p) for p in paths}
 
 
 def flatten(prefix: str, value: Any) -> dict[str, Any]:
@@ -71,15 +78,16 @@ def flatten(prefix: str, value: Any) -> dict[str, Any]:
 @pytest.mark.parametrize("unit", ["deg/s", "deg/h"])
 def test_analyze_frame_equals_json(unit):
     document = cli_json("analyze", "--unit", unit)
-    frame = gyrovib.analyze(unit=unit).to_frame()
+    result = gyrovib.analyze(unit=unit)
+    frame, name = result.to_frame(), namer(result)
     rows = document["results"]
     assert len(frame) == len(rows) == 9 * 14  # bundled: 9 sensors × 14 profiles
     for k, row in enumerate(rows):
         expected = flatten("", row)
         expected["warnings"] = row["warnings"]
-        check_row(frame.iloc[k], expected, "analyze")
+        check_row(frame.iloc[k], expected, name)
     # a spec-form row adds its envelope: the frame has the union of the rows' keys
-    assert set(frame.columns) == columns("analyze", set().union(*(flatten("", row)
+    assert set(frame.columns) == columns(name, set().union(*(flatten("", row)
                                                                   for row in rows)))
     assert frame.attrs["method"] == document["method"] and frame.attrs["unit"] == unit
 
@@ -88,19 +96,21 @@ def test_analyze_numeric_frame_has_stderr_samples_and_seed():
     args = ["--method", "numeric", "--samples", "20000", "--seed", "3", "--sensor", "adxrs645",
             "--profile", "engine-harmonics"]
     document = cli_json("analyze", *args)
-    frame = gyrovib.analyze(sensors="adxrs645", profiles="engine-harmonics", method="numeric",
-                            samples=20000, seed=3).to_frame()
-    check_row(frame.iloc[0], flatten("", document["results"][0]), "analyze")
+    result = gyrovib.analyze(sensors="adxrs645", profiles="engine-harmonics", method="numeric",
+                             samples=20000, seed=3)
+    frame = result.to_frame()
+    check_row(frame.iloc[0], flatten("", document["results"][0]), namer(result))
     assert (frame.attrs["samples"], frame.attrs["seed"]) == (document["samples"],
                                                              document["seed"])
 
 
 def test_bounds_frame_equals_json():
     document = cli_json("bounds", "--budget", "10deg/h", "--unit", "deg/h")
-    frame = gyrovib.bounds(budget="10deg/h", unit="deg/h").to_frame()
+    result = gyrovib.bounds(budget="10deg/h", unit="deg/h")
+    frame = result.to_frame()
     assert len(frame) == len(document["profiles"]) == 14
     for k, row in enumerate(document["profiles"]):
-        check_row(frame.iloc[k], flatten("", row), "bounds")
+        check_row(frame.iloc[k], flatten("", row), namer(result))
     # An unconstrained bound (JSON null) is +inf: k3 of a still profile (Ω_K3 = 0 →
     # no Δ(1)·Ω term, eq. 25) is the bundled flat-random-hover's.
     hover = frame.set_index("profile").loc["flat-random-hover"]
@@ -110,7 +120,8 @@ def test_bounds_frame_equals_json():
 
 def test_select_frame_equals_json():
     document = cli_json("select", "--budget", "10deg/h", "--criterion", "both")
-    frame = gyrovib.select(budget="10deg/h", criterion="both").to_frame()
+    result = gyrovib.select(budget="10deg/h", criterion="both")
+    frame, name = result.to_frame(), namer(result)
     profiles = {p["profile"]: p for p in document["profiles"]}
     k = 0
     for sensor in document["sensors"]:
@@ -123,7 +134,7 @@ def test_select_frame_equals_json():
             expected.update(flatten("", {"rate": entry["rate"]}))
             expected.update(flatten("profile_bounds", entry["bounds"]))
             expected.update(flatten("profile_parts", entry["parts"]))
-            check_row(frame.iloc[k], expected, "select")
+            check_row(frame.iloc[k], expected, name)
             k += 1
     assert k == len(frame) == 9 * 14  # 9 sensors × 14 profiles
     assert "passed" in frame.columns  # the JSON's pass: a keyword df.query cannot use
@@ -133,26 +144,28 @@ def test_select_frame_equals_json():
 def test_sweep_frame_equals_json():
     document = cli_json("sweep", "--rate-range", "-10:10:5", "--profile", "engine-harmonics",
                         "--profile", "uav-blade-pass-tone")
-    frame = gyrovib.sweep(rates=(-10, 10), points=5,
-                          profiles=["engine-harmonics", "uav-blade-pass-tone"]).to_frame()
+    result = gyrovib.sweep(rates=(-10, 10), points=5,
+                           profiles=["engine-harmonics", "uav-blade-pass-tone"])
+    frame = result.to_frame()
     rates = document["rates"]
     k = 0
     for series in document["series"]:
         for r, rate in enumerate(rates):
-            expected = {"sensor": series["sensor"], "profile": series["profile"], "rate": rate}
+            expected = {"sensor": series["sensor"], "profile": series["profile"],
+                        "rate_x3": rate}
             for method in ("exact", "paper"):
                 values = series[method]
                 for name in ("total", "rms"):
                     # paper null: the paper's formulas do not cover engine-harmonics (3 tones)
                     expected[f"{method}.{name}"] = None if values is None else values[name][r]
-            check_row(frame.iloc[k], expected, "sweep")
+            check_row(frame.iloc[k], expected, namer(result))
             k += 1
     assert k == len(frame) == 9 * 2 * 5
     assert frame["paper_rms"][frame["profile"] == "engine-harmonics"].isna().all()
 
 
 def test_missing_pandas_names_the_extra(monkeypatch):
-    from gyrovib.presentation.frames import MissingDependency
+    from gyrovib.records import MissingDependency
 
     result = gyrovib.bounds(budget=0.01, profiles="flat-random-hover")
     monkeypatch.setitem(sys.modules, "pandas", None)  # import pandas → ImportError
@@ -199,12 +212,12 @@ def test_bounds_range_frame_equals_json():
     args = ["--budget", "10deg/h", "--unit", "deg/h", "--range", "360000", "--nl-fit",
             "minimax"]
     document = cli_json("bounds", *args)
-    frame = gyrovib.bounds(budget="10deg/h", unit="deg/h", range_=360000,
-                           nl_fit="minimax").to_frame()
+    result = gyrovib.bounds(budget="10deg/h", unit="deg/h", range_=360000, nl_fit="minimax")
+    frame, name = result.to_frame(), namer(result)
     for k, row in enumerate(document["profiles"]):
         assert "spec_bounds" in row
-        check_row(frame.iloc[k], flatten("", row), "bounds")
-    assert set(frame.columns) == columns("bounds", flatten("", document["profiles"][0]))
+        check_row(frame.iloc[k], flatten("", row), name)
+    assert set(frame.columns) == columns(name, flatten("", document["profiles"][0]))
 
 
 @pytest.mark.parametrize("command", [

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from gyrovib import api
+from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
 from gyrovib.catalog.loader import merge, parse_catalog
-from gyrovib.presentation.frames import analysis_cells, analysis_columns
 from gyrovib.render import analysis as render
 from gyrovib.render import formats
 from gyrovib.render.common import dumps

@@ -214,7 +214,7 @@ def test_saturating_datasheet_part_never_ranks_as_passing(tmp_path: Path,
     assert result.limits[sheet].ratio == pytest.approx(REACH / 12.0, rel=1e-12)
     passing = [result.sensors[i] for i in result.ranking if result.sensor_pass[i]]
     assert passing == ["ok"]
-    # the reason is worded by gyrovib.presentation.reasons, in the output unit (here the budget's,
+    # the reason is worded by gyrovib.reasons, in the output unit (here the budget's,
     # deg/h: 21 deg/s = 75600 deg/h, 12 deg/s = 43200 deg/h)
     code, doc = select_doc(path, "--criterion", criterion, "--budget", "36deg/h")
     cell = next(s for s in doc["sensors"] if s["sensor"] == "sheet")["profiles"][0]

@@ -115,7 +115,7 @@ def test_select_mixes_the_coefficient_vre_check_and_the_datasheet_checks(
     # The profile and budget of test_linear_api.test_select_fails_a_part_whose_vre_exceeds_
     # its_bound: the coefficient part's vre bound is 3.2019e-4 deg/s/g², and its effective
     # VRE is |v| = 4e-4 (its other coefficients are 0), so it fails on the vre check
-    # alone; the reason comes from gyrovib.presentation.reasons, the same text in JSON and frame.
+    # alone; the reason comes from gyrovib.reasons, the same text in JSON and frame.
     path = tmp_path / "mixed.yaml"
     path.write_text(MIXED, encoding="utf-8")
     bound = (1.5 / 3.25**0.5) / 4.5**0.5 * 0.01 / 12.25

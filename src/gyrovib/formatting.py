@@ -1,5 +1,5 @@
 """Numbers written for people: the one definition shared by the library's sentences
-(:mod:`gyrovib.presentation.reasons`) and the renderers' tables (:mod:`gyrovib.render.common`)."""
+(:mod:`gyrovib.reasons`) and the renderers' tables (:mod:`gyrovib.render.common`)."""
 
 from __future__ import annotations
 

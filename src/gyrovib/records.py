@@ -41,7 +41,9 @@ class Column(Generic[Row]):
     whose JSON has the key (a spec-form row's envelope, a lot's ``lot_mean``); None:
     every row. The JSON writes NaN (unknown) as null, and an infinity too (an unbounded
     figure) unless ``finite``: then an infinity is an overflow, which the JSON refuses
-    (ValueError) rather than write as a number it is not. ``many``: every value of a list
+    (ValueError) rather than write as a number it is not. ``blank``: the rows whose CSV
+    cell is empty whatever the value (a check the CSV does not make on that row, where
+    the frame and the JSON hold its figures); None: none. ``many``: every value of a list
     of rows at once, for the fast writers (:func:`columns_of`,
     :func:`gyrovib.render.formats.json_text`); it must read what ``value`` reads (made
     from the same data: a test compares them), and without it each row is read alone.
@@ -59,6 +61,7 @@ class Column(Generic[Row]):
     only: Callable[[Row], bool] | None = None
     finite: bool = False
     many: Callable[[Sequence[Row]], Sequence[Any]] | None = None
+    blank: Callable[[Row], bool] | None = None
     csv_after: str | None = None
     json_value: Callable[[Row], Any] | None = None
     each: tuple[Column[Any], ...] | None = None
@@ -80,11 +83,6 @@ def written(columns: Sequence[Column[Row]], output: str) -> tuple[Column[Row], .
     for c in (c for c in shown if c.csv_after is not None):
         placed.insert(names(placed).index(str(c.csv_after)) + 1, c)
     return tuple(placed)
-
-
-def in_csv(columns: Sequence[Column[Row]]) -> tuple[Column[Row], ...]:
-    """The columns the CSV writes, in order."""
-    return written(columns, "csv")
 
 
 def names(columns: Sequence[Column[Any]]) -> tuple[str, ...]:

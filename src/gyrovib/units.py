@@ -80,6 +80,13 @@ def coefficient_factor(name: str, source: str, target: str) -> float:
     return float((scale(target) / scale(source)) ** (-power))
 
 
+def coefficient_unit(name: str, unit: str) -> str:
+    """The unit of coefficient ``name`` (or its bound) in rate unit ``unit``: ``1`` for A1,
+    ``(deg/s)^-2`` for k3, …"""
+    power = COEFFICIENT_RATE_POWER[name.split("_")[0]]
+    return "1" if power == 0 else f"({unit})^{power}"
+
+
 def quantity_unit(text: str) -> str | None:
     """The canonical unit a quantity such as ``"36deg/h"`` carries, or None for a bare number.
 

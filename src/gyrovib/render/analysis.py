@@ -9,7 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from gyrovib.api import AnalysisResult
-from gyrovib.presentation.frames import analysis_cells, analysis_columns
+from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
 from gyrovib.render.analysis_cells import (  # noqa: F401  (the face of the renderers)
     _SPECS_NOTE,
     _UNCERTAINTY_NOTE,
@@ -55,7 +55,7 @@ def _head(result: AnalysisResult) -> dict[str, Any]:
 def to_json(result: AnalysisResult) -> str:
     """``analyze --format json`` (docs/output.md): the document's head, then its
     ``results``, one entry per row of ``analyze``'s records
-    (:func:`gyrovib.presentation.frames.analysis_columns`, which the CSV and the
+    (:func:`gyrovib.api.evaluation.records.analysis_columns`, which the CSV and the
     DataFrame share), written by the fast JSON writer (:func:`json_text`: the text
     ``json.dumps`` gives)."""
     head = dumps(_head(result))[:-2]
@@ -65,7 +65,7 @@ def to_json(result: AnalysisResult) -> str:
 
 def to_csv(result: AnalysisResult) -> str:
     """One row per sensor × profile, every number at full precision: ``analyze``'s
-    records (:func:`gyrovib.presentation.frames.analysis_columns`, which the DataFrame
+    records (:func:`gyrovib.api.evaluation.records.analysis_columns`, which the DataFrame
     shares).
 
     With the numeric method a ``stderr`` column (of ``total``) follows ``rms``;
@@ -77,7 +77,7 @@ def to_csv(result: AnalysisResult) -> str:
 
 def markdown_cells(result: AnalysisResult) -> tuple[Cell[tuple[int, int]], ...]:
     """The Markdown table's columns, one row per sensor × profile, each naming the record
-    it shows (:func:`~gyrovib.presentation.frames.analysis_columns`), each with its own
+    it shows (:func:`~gyrovib.api.evaluation.records.analysis_columns`), each with its own
     text (the records are not built for the Markdown): a row's numbers
     at 4 significant figures, those negligible beside its largest as 0 (:func:`row_cells`),
     an unknown term '?'."""

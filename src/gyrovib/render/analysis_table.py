@@ -30,6 +30,7 @@ from gyrovib.render.analysis_cells import (
     unknown_term,
 )
 from gyrovib.render.common import fmt, rich_text
+from gyrovib.units import coefficient_unit
 
 #: Short names of the terms of eq. (13) for the "dominant term" of the matrix: the
 #: additive terms (JSON order), then Δ(1)·Ω, Δ(2)·Ω², Δ(3)·Ω³.
@@ -73,9 +74,6 @@ def worst_case_text(result: AnalysisResult, i: int, j: int) -> str | None:
     term = dominant_term(result, i, j)
     if not term:
         return None
-    # lazy: a datasheet part's explanation only
-    from gyrovib.presentation.reasons import coefficient_unit
-
     x = dict(zip(_WORST, (float(v) for v in result.worst_coefficients[i, j]), strict=True))
     shown = [f"{name} = {fmt(x[name], 2)}"
              + (f" (a {fmt(abs(x[name]) * 100, 2)} % scale-factor asymmetry)" if name == "A1"

@@ -10,15 +10,15 @@ import numpy as np
 from rich.text import Text
 
 from gyrovib.api import BoundsResult
+from gyrovib.api.evaluation.records import bounds_columns
 from gyrovib.core.synthesis import (
     BOUNDED,
     AllocationConstants,
     CoefficientBounds,
 )
-from gyrovib.presentation.frames import bounds_columns
-from gyrovib.presentation.reasons import coefficient_unit as coefficient_unit
 from gyrovib.render.common import dumps, fmt, header, rich_text
 from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
+from gyrovib.units import coefficient_unit
 
 
 #: Unit of the VRE bound in an output rate unit (rate per g², docs/model.md section 8).
@@ -29,7 +29,7 @@ def vre_unit(unit: str) -> str:
 
 def to_json(result: BoundsResult) -> str:
     """``bounds --format json`` (docs/output.md): its ``profiles`` are the result's records
-    (:func:`gyrovib.presentation.frames.bounds_columns`, as the CSV and the frame)."""
+    (:func:`gyrovib.api.evaluation.records.bounds_columns`, as the CSV and the frame)."""
     document = header(result.method, result.unit)
     document["budget"] = result.budget
     document["profiles"] = json_of(bounds_columns(result), range(len(result.profiles)))
@@ -38,7 +38,7 @@ def to_json(result: BoundsResult) -> str:
 
 def to_csv(result: BoundsResult) -> str:
     """One row per profile: the result's records
-    (:func:`gyrovib.presentation.frames.bounds_columns`, which the DataFrame shares); an
+    (:func:`gyrovib.api.evaluation.records.bounds_columns`, which the DataFrame shares); an
     unconstrained bound is written ``inf``."""
     return csv_of(bounds_columns(result), range(len(result.profiles)))
 

@@ -9,10 +9,10 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
-from gyrovib.records import Column, in_csv, names, records, values_of, written
+from gyrovib.records import Column, names, records, values_of, written
 from gyrovib.render.common import csv_text, fmt, markdown_table, number
 
 if TYPE_CHECKING:  # at run time rich is imported by table_of
@@ -43,11 +43,19 @@ def csv_of(columns: Sequence[Column[Row]], rows: Iterable[Row], *,
     """CSV of the records: the columns' names as the header, one line per row (the
     frame-only columns left out). A flag is ``true``/``false``, or with ``title_flags``
     ``True``/``False`` (as ``bounds``, ``select`` and ``sweep`` have always written it)."""
-    written = in_csv(columns)
+    in_csv = written(columns, "csv")
     default = _joined if title_flags else _cell
-    cells = [default if c.cell is None else c.cell for c in written]
-    return csv_text(names(written), ([cell(v) for cell, v in zip(cells, values, strict=True)]
-                                     for values in records(written, rows)))
+    cells = [default if c.cell is None else c.cell for c in in_csv]
+    shown = [c if c.blank is None else _blanked(c) for c in in_csv]
+    return csv_text(names(in_csv), ([cell(v) for cell, v in zip(cells, values, strict=True)]
+                                     for values in records(shown, rows)))
+
+
+def _blanked(column: Column[Row]) -> Column[Row]:
+    """The column as the CSV reads it: None (an empty cell) on its ``blank`` rows."""
+    blank, read = column.blank, column.value
+    assert blank is not None
+    return replace(column, value=lambda row: None if blank(row) else read(row))
 
 
 def _json_value(value: Any, finite: bool) -> Any:

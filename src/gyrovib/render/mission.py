@@ -10,7 +10,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api.missions.results import BUDGET_TERMS, COLUMNS
-from gyrovib.presentation.reasons import unverified_text
+from gyrovib.reasons import unverified_text
 from gyrovib.records import Column, names
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
 from gyrovib.render.formats import Cell, csv_of, json_of, junit_of, known, markdown_of, table_of

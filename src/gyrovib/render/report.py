@@ -22,7 +22,6 @@ import numpy as np
 from gyrovib import units
 from gyrovib.api.report.views import TradeStudy
 from gyrovib.core.analysis import ADDITIVE_TERMS, EXTRA_TERMS, MULTIPLICATIVE_TERMS
-from gyrovib.presentation.reasons import unknown_label
 from gyrovib.render.analysis_cells import cells_text, grouped_warnings
 from gyrovib.render.analysis_table import worst_case_text
 from gyrovib.render.bounds import shares_text
@@ -36,6 +35,7 @@ from gyrovib.render.select import (
     cell_margin,
     limit_text,
     ranking_margin,
+    unknown_label,
 )
 from gyrovib.render.svg import (
     SIZES,

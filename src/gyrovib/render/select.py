@@ -12,13 +12,12 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api import SelectionResult
+from gyrovib.api.evaluation.records import profile_columns, selection_cells, selection_columns
 from gyrovib.core.synthesis import BOUNDED
-from gyrovib.presentation.frames import profile_columns, selection_cells, selection_columns
-from gyrovib.presentation.reasons import failures as _failures
-from gyrovib.presentation.reasons import reason, saturation_text, unknown_label, yield_text
+from gyrovib.reasons import reason as reason_text
+from gyrovib.reasons import saturation_reason, worded, yield_text
 from gyrovib.render.analysis_cells import SATURATED_MARK
 from gyrovib.render.bounds import (
-    coefficient_unit,
     shares_text,
     unit_note,
     vre_unit,
@@ -32,6 +31,7 @@ from gyrovib.render.common import (
     rich_text,
 )
 from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
+from gyrovib.units import coefficient_unit
 
 _CRITERION = {
     "bounds": "every |coefficient| within its bound (eq. 23, 25; sufficient, not necessary)",
@@ -45,9 +45,23 @@ _CRITERION = {
 
 
 def failures(result: SelectionResult, i: int, j: int) -> list[str]:
-    """Why sensor ``i`` fails under profile ``j``, as the tables write it
-    (:func:`gyrovib.presentation.reasons.failures` with coefficients in the catalogue's unit)."""
-    return _failures(result, i, j, table=True)
+    """Why sensor ``i`` fails under profile ``j``, as the tables write it (coefficients in
+    the catalogue's unit: :meth:`~gyrovib.api.SelectionResult.failures`)."""
+    return worded(result.failures(i, j, table=True))
+
+
+def reason(result: SelectionResult, i: int, j: int) -> str | None:
+    """Why sensor ``i`` fails under profile ``j``, one line in :attr:`~SelectionResult.unit`
+    (the JSON's ``reason``, as the frame's); None where it passes."""
+    return None if result.passed[i, j] else reason_text(result.failures(i, j))
+
+
+def unknown_label(result: SelectionResult, i: int, name: str) -> str:
+    """An unknown figure of sensor ``i`` as tables name it: ``VRE`` (a datasheet part's),
+    ``g²`` (a coefficient-form sensor's g² sensitivity), ``m31``, ``m32``."""
+    if name != "vre":
+        return name
+    return "VRE" if result.source(i) == "specs" else "g²"
 
 __all__ = ["failures", "limit_text", "reason", "to_csv", "to_json", "to_markdown", "to_table"]
 
@@ -72,9 +86,11 @@ def limit_text(result: SelectionResult, i: int) -> str:
     profile = result.profiles[j]
     ratio = fmt(limit.ratio, 3)
     if limit.name == "saturated":
-        return f"its range under {profile}: {saturation_text(result, i, j)}"
+        reach, range_ = result.saturation[i, j]
+        return (f"its range under {profile}: "
+                f"{saturation_reason(reach, range_, result.peak_factor, result.unit)}")
     if limit.name == "yield" and result.yields is not None:
-        return (f"yield {yield_text(result.yields, i, j)} under {profile}, below "
+        return (f"yield {yield_text(result.yields.at(i, j))} under {profile}, below "
                 f"{result.yields.target:g}")
     if limit.name == "rms":
         return (f"Δ_V(RMS) = {fmt_budget(result.rms[i, j], result.budget)} {result.unit} is "
@@ -320,14 +336,14 @@ def _spec_checks(result: SelectionResult, i: int, j: int) -> dict[str, Any]:
 
 def to_csv(result: SelectionResult) -> str:
     """One row per sensor × profile: the result's records
-    (:func:`gyrovib.presentation.frames.selection_columns`, which the DataFrame shares); an
+    (:func:`gyrovib.api.evaluation.records.selection_columns`, which the DataFrame shares); an
     unconstrained bound or margin is ``inf``.
 
     With datasheet (spec-form) sensors the rows gain ``source``, ``total`` and
     their checks (``value_nonlinearity``… in %FS, ``value_vre``… per g²; empty on
     coefficient rows, whose coefficient columns are empty on spec rows).
     """
-    return csv_of(selection_columns(result, csv=True), selection_cells(result),
+    return csv_of(selection_columns(result), selection_cells(result),
                   title_flags=True)
 
 

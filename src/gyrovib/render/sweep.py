@@ -10,8 +10,8 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib.api import SweepResult
-from gyrovib.presentation.frames import sweep_columns
-from gyrovib.records import in_csv, names
+from gyrovib.api.evaluation.records import sweep_columns
+from gyrovib.records import names, written
 from gyrovib.render.common import (
     csv_cell,
     csv_head,
@@ -76,13 +76,13 @@ def to_csv_chunks(result: SweepResult, budget: float | None = None) -> Iterator[
     """:func:`to_csv` in pieces: the header, then one piece per sensor × profile series.
 
     The records are those the DataFrame declares
-    (:func:`gyrovib.presentation.frames.sweep_columns`; a test holds this writer to them),
+    (:func:`gyrovib.api.evaluation.records.sweep_columns`; a test holds this writer to them),
     written column by column (each number ``repr`` of its float, as
     :func:`~gyrovib.render.common.csv_text` writes it): the rate column is
     written once for every series, a series' sensor and profile cells once as
     its rows' common prefix, and only one series' text is held at a time.
     """
-    yield csv_head(names(in_csv(sweep_columns(result))))
+    yield csv_head(names(written(sweep_columns(result), "csv")))
     rates = float_cells(result.rates)
     n = len(rates)
     if not n:

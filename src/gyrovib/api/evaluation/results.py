@@ -27,8 +27,11 @@ from gyrovib import units
 from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import ALL_TERMS, VibrationError
 from gyrovib.core.synthesis import BOUNDED
+from gyrovib.formatting import NEGLIGIBLE
 from gyrovib.frozen import Frozen
 from gyrovib.limits import DEFAULT_PEAK_FACTOR
+from gyrovib.reasons import Failure
+from gyrovib.records import frame_of
 
 if TYPE_CHECKING:
     from gyrovib.api import LotYields
@@ -72,12 +75,13 @@ class Result(Frozen):
         return (type(self), tuple(dict(v) if isinstance(v, Mapping) else v for v in values))
 
     def to_frame(self) -> Any:
-        """Tidy pandas DataFrame, columns named as the JSON keys
-        (:mod:`gyrovib.presentation.frames`)."""
-        # lazy: the DataFrame (pandas) only on request
-        from gyrovib.presentation.frames import to_frame
+        """Tidy pandas DataFrame of the result's records, declared once
+        (:mod:`gyrovib.api.evaluation.records`): one row per record, the CSV's columns and
+        what only the JSON has; the document-level fields in ``frame.attrs``."""
+        # lazy: the start-up budget; the records (datasheet envelope names) for a frame only
+        from gyrovib.api.evaluation.records import declared
 
-        return to_frame(self)
+        return frame_of(*declared(self))
 
     def __repr__(self) -> str:
         method = getattr(self, "method", "exact+paper")
@@ -445,6 +449,72 @@ class SelectionResult(SensorsByProfiles):
         found = {n for (k, _), names in self.unknown.items() if k == i for n in names}
         return tuple(n for n in ("vre", "m31", "m32", "spread", "x1", "x2", "x3",
                                  "acceleration") if n in found)
+
+    def failures(self, i: int, j: int, *, table: bool = False) -> tuple[Failure, ...]:
+        """Why sensor ``i`` fails under profile ``j`` (empty where it passes), as codes and
+        numbers (:mod:`gyrovib.reasons` words them): an unknown figure first, saturation
+        (it fails a sensor whatever the criterion), a lot's yield, then only the criteria
+        that count. ``table``: as the tables show it, coefficients in :attr:`table_unit`
+        and a negligible Δ_V(RMS) as 0."""
+        out = [*self._unverified(i, j)]
+        if (i, j) in self.saturation:
+            out.append(Failure("saturated", (*self.saturation[i, j], self.peak_factor),
+                               unit=self.unit))
+        if self.yields is not None and self.yields.is_lot(i):  # judged by its yield
+            found = self.yields.at(i, j)
+            return (*out, *([Failure("yield", (self.yields.target,), lot=found)]
+                            if not found.value >= self.yields.target else []))
+        if self.criterion in ("bounds", "both"):
+            out += (self._datasheet_failures(i, j) if self.source(i) == "specs"
+                    else self._coefficient_failures(i, j, table))
+        if self.criterion in ("rms", "both") and not self.rms_pass[i, j]:
+            rms = float(self.rms[i, j])
+            negligible = table and abs(rms) < NEGLIGIBLE * self.budget
+            out.append(Failure("rms", (0.0 if negligible else rms, self.budget), unit=self.unit))
+        if self.criterion == "worst" and not self.passed[i, j] and self.total is not None:
+            out.append(Failure("worst", (float(self.total[i, j]), self.budget), unit=self.unit,
+                               spec=self.source(i) == "specs"))
+        return tuple(out)
+
+    def _unverified(self, i: int, j: int) -> list[Failure]:
+        """The unknown figures that leave cell ``(i, j)`` open, with (a lot whose spread is
+        not measured) its yield, which is no measurement (docs/model.md sections 11, 14)."""
+        if not self.is_unverified(i, j):
+            return []
+        names = self.unknown.get((i, j), ())
+        y = self.yields if "spread" in names else None
+        return [Failure("unverified", names=tuple(n for n in names if n != "spread"),
+                        spec=self.source(i) == "specs", lot=None if y is None else y.at(i, j),
+                        note="" if y is None else f"{y.unmeasured[i]}")]
+
+    def _coefficient_failures(self, i: int, j: int, table: bool) -> list[Failure]:
+        """The coefficient checks a coefficient sensor fails, then its effective VRE above
+        its bound (docs/model.md section 8)."""
+        values = self.table_values if table else self.values
+        bounds = self.table_bounds if table else self.bounds
+        out = [Failure("coefficient", (float(values[i, j, b]), float(bounds[i, j, b])),
+                       (name,), self.table_unit if table else self.unit)
+               for b, name in enumerate(BOUNDED) if not self.check_pass[i, j, b]]
+        if self.vre_pass is not None and not self.vre_pass[i, j]:
+            assert self.vre_value is not None and self.vre_bound is not None
+            out.append(Failure("vre", (float(self.vre_value[i, j]),
+                                       float(self.vre_bound[i, j])), unit=self.unit))
+        return out
+
+    def _datasheet_failures(self, i: int, j: int) -> list[Failure]:
+        """A datasheet part's figures above their allowable values (docs/model.md
+        section 11)."""
+        assert self.nl_pass is not None and self.nl_value is not None
+        assert self.nl_bound is not None and self.vre_pass is not None
+        assert self.vre_value is not None and self.vre_bound is not None
+        out = []
+        if not self.nl_pass[i, j]:
+            out.append(Failure("nonlinearity", (float(self.nl_value[i, j]),
+                                                float(self.nl_bound[i, j]))))
+        if not self.vre_pass[i, j] and not np.isnan(self.vre_value[i, j]):
+            out.append(Failure("datasheet_vre", (float(self.vre_value[i, j]),
+                                                 float(self.vre_bound[i, j])), unit=self.unit))
+        return out
 
     @property
     def table_unit(self) -> str:

@@ -54,6 +54,7 @@ from gyrovib.core.lot import (
 )
 from gyrovib.core.synthesis import BOUNDED
 from gyrovib.errors import ModelError, Note, OptionError, literal
+from gyrovib.reasons import Yield
 
 #: Seed of the Monte-Carlo yields unless told otherwise.
 DEFAULT_SEED = 0
@@ -90,6 +91,11 @@ class LotYields(Result):
     def is_lot(self, i: int) -> bool:
         """Whether sensor ``i`` is a lot (judged by its yield)."""
         return self.lots[i]
+
+    def at(self, i: int, j: int) -> Yield:
+        """Sensor ``i``'s yield under profile ``j``, as :mod:`gyrovib.reasons` words it."""
+        return Yield(float(self.value[i, j]), float(self.low[i, j]), float(self.high[i, j]),
+                     self.method, self.draws)
 
     def shortfall(self, i: int, j: int) -> float:
         """(1 − yield)/(1 − Y): the fraction failing over the fraction allowed (> 1 fails)."""

@@ -1,12 +1,7 @@
-"""Results as tidy pandas DataFrames (optional extra ``gyrovib[pandas]``).
-
-Each function takes a result of :mod:`gyrovib.api` and returns one row per
-observation, with the columns of the command's ``--format csv`` (the same
-names, docs/output.md); what only the JSON has is added, its nested keys
-joined with ``_``. :func:`column_name` maps a JSON key path to its column
-(``additive_terms.k2`` → ``additive_k2``, ``checks.k3.bound`` → ``bound_k3``,
-``exact.rms`` → ``exact_rms``, ``pass`` → ``passed``: a Python keyword
-cannot be used in ``DataFrame.query``):
+"""The records of analyze, bounds, select and sweep, each declared once next to its result:
+its columns in order, with units, read from one row (:class:`~gyrovib.records.Column`).
+The renderers write the CSV and the JSON entries from them (:mod:`gyrovib.render.formats`)
+and ``to_frame()`` the tidy DataFrame (:func:`declared`), so their names cannot drift:
 
 ==========================  =================================================
 result                      one row per
@@ -17,17 +12,12 @@ result                      one row per
 ``SweepResult``             sensor × profile × rate (``sweep``)
 ==========================  =================================================
 
-The JSON ``rate`` list Ω_K is split into ``rate_x1``, ``rate_x2``,
-``rate_x3`` (a sweep's rate is ``rate_x3``). Where the JSON writes ``null``
-for an unbounded number (a bound or a margin that is +inf), the frame keeps
-the float: ``inf``; the paper's
-values for a profile the paper's formulas do not cover are ``NaN``. The
-JSON's document-level fields (tool, version, method, unit, budget, ...) are
-in ``frame.attrs``. Term names are taken from the result's term tuples, so a
-new term appears as a new column without changes here.
-
-pandas is imported when a frame is built, never at ``import gyrovib``; when it
-is missing the error names the extra to install.
+A column is named as the command's ``--format csv`` names it (docs/output.md); one that
+only the JSON has is named by its key path joined with ``_``. The JSON ``rate`` list Ω_K
+is split into ``rate_x1``, ``rate_x2``, ``rate_x3`` (a sweep's rate is ``rate_x3``). The
+frame keeps the float where the JSON writes ``null`` for an unbounded number: ``inf``;
+an unknown one is NaN. Term names are taken from the result's term tuples, so a new term
+appears as a new column without changes here.
 """
 
 from __future__ import annotations
@@ -44,10 +34,9 @@ from gyrovib.core.analysis import ALL_TERMS as JSON_TERMS
 from gyrovib.core.analysis import MULTIPLICATIVE_TERMS
 from gyrovib.core.envelope import COEFFICIENTS as WORST_COEFFICIENTS
 from gyrovib.core.synthesis import BOUNDED, ODD_PARTS, PARTS
-from gyrovib.presentation.reasons import coefficient_unit, reason
-from gyrovib.records import MISSING_PANDAS as MISSING_PANDAS
-from gyrovib.records import Column, frame_of
-from gyrovib.records import MissingDependency as MissingDependency
+from gyrovib.reasons import reason
+from gyrovib.records import Column, known
+from gyrovib.units import coefficient_unit
 
 if TYPE_CHECKING:
     from gyrovib.api import AnalysisResult, BoundsResult, SelectionResult, SweepResult
@@ -56,48 +45,6 @@ AXES = ("x1", "x2", "x3")
 
 #: A row of a sensors × profiles result: (sensor index, profile index).
 Cell = tuple[int, int]
-
-
-def column_name(kind: str, path: str) -> str:
-    """The column of the JSON key path ``path`` (dots between keys) in the frame and the
-    CSV of command ``kind`` (``analyze``, ``bounds``, ``select``, ``sweep``)."""
-    parts = path.split(".")
-    if path == "pass":
-        return "passed"
-    if parts[0] == "rate" and len(parts) == 2:
-        return f"rate_{parts[1]}"
-    own = _COLUMNS.get(kind)
-    named = None if own is None else own(parts)
-    return "_".join(parts) if named is None else named
-
-
-def _sweep_column(parts: list[str]) -> str | None:
-    return "rate_x3" if parts == ["rate"] else None
-
-
-def _analyze_column(parts: list[str]) -> str | None:
-    if len(parts) == 2 and parts[0] in ("additive_terms", "multiplicative_coefficients"):
-        return f"{parts[0].split('_')[0]}_{parts[1]}"
-    return None
-
-
-def _bounds_column(parts: list[str]) -> str | None:
-    if len(parts) == 2 and parts[0] in ("bounds", "parts"):
-        return parts[1]
-    if parts[0] == "spec_bounds":
-        rest = parts[1:-1] if parts[-1] == "value" else parts[1:]
-        return "spec_" + "_".join(rest)
-    return None
-
-
-def _select_column(parts: list[str]) -> str | None:
-    return f"{parts[2]}_{parts[1]}" if len(parts) == 3 and parts[0] == "checks" else None
-
-
-#: Each command's own column names, where they differ from the key path joined by ``_``.
-_COLUMNS: dict[str, Callable[[list[str]], str | None]] = {
-    "sweep": _sweep_column, "analyze": _analyze_column, "bounds": _bounds_column,
-    "select": _select_column}
 
 
 def _of_cell(values: list[Any], k: int | None = None) -> Callable[[Cell], Any]:
@@ -134,28 +81,12 @@ def _cells(array: Any, index: _Index) -> dict[str, Any]:
     return {"value": lambda c: listed()[c[0]][c[1]], "many": lambda rows: values[index(rows)]}
 
 
-def _number(value: Any) -> bool:
-    """Whether a column's values are floats (an array of them), else kept as objects."""
-    return isinstance(value, float)
-
-
-def _per_sensor(values: Sequence[Any], index: _Index) -> dict[str, Any]:
-    """``value`` and ``many`` of a column that is the row's sensor's entry of ``values``."""
-    array = np.array(values, dtype=float if values and _number(values[0]) else object)
-    return {"value": lambda c: values[c[0]], "many": lambda rows: array[index(rows)[0]]}
-
-
-def _per_profile(values: Sequence[Any], index: _Index) -> dict[str, Any]:
-    """``value`` and ``many`` of a column that is the row's profile's entry of ``values``."""
-    array = np.array(values, dtype=float if values and _number(values[0]) else object)
-    return {"value": lambda c: values[c[1]], "many": lambda rows: array[index(rows)[1]]}
-
-
-def _of_profile(values: list[Any], k: int,
-                profile: Callable[[Any], int] = lambda c: c[1]) -> Callable[[Any], Any]:
-    """Read a (profiles, k) nested list at a row's profile (``profile``: where the row
-    keeps it)."""
-    return lambda c: values[profile(c)][k]
+def _per(values: Sequence[Any], index: _Index, axis: int) -> dict[str, Any]:
+    """``value`` and ``many`` of a column that is the entry of ``values`` of the row's
+    sensor (``axis`` 0) or profile (1); floats kept as an array of them, else objects."""
+    floats = bool(values) and isinstance(values[0], float)
+    array = np.array(values, dtype=float if floats else object)
+    return {"value": lambda c: values[c[axis]], "many": lambda rows: array[index(rows)[axis]]}
 
 
 def _of_profile_row(read: Callable[[int], Any]) -> Callable[[Cell], Any]:
@@ -166,10 +97,6 @@ def _of_profile_row(read: Callable[[int], Any]) -> Callable[[Cell], Any]:
 def _constant(value: Any) -> Callable[[Any], Any]:
     """The same value on every row."""
     return lambda _: value
-
-
-def _always(_: Cell) -> bool:
-    return True
 
 
 def analysis_columns(result: AnalysisResult) -> tuple[Column[Cell], ...]:
@@ -195,10 +122,10 @@ def _value_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
     rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
     g2 = () if result.has_linear else ("csv",)  # the CSV's g² column: with linear vibration
     columns: list[Column[Cell]] = [
-        Column("sensor", None, **_per_sensor(result.sensors, index)),
-        Column("profile", None, **_per_profile(result.profiles, index)),
+        Column("sensor", None, **_per(result.sensors, index, 0)),
+        Column("profile", None, **_per(result.profiles, index, 1)),
         *(Column(f"rate_{axis}", "rate", key=f"rate.{k}", finite=True,
-                 **_per_profile([rate[k] for rate in rates], index))
+                 **_per([rate[k] for rate in rates], index, 1))
           for k, axis in enumerate(AXES)),
         *(Column(f"additive_{t}", "rate", skip=g2 if t == "g2" else (),
                  key=f"additive_terms.{t}", finite=True, **_cells(terms[k], index))
@@ -219,11 +146,11 @@ def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
     lot's uncertainty, saturation, the phases found (not in the CSV) and the warnings."""
     sources = [result.source(i) for i in range(len(result.sensors))]
     columns: list[Column[Cell]] = [Column("source", None, skip=("csv",),
-                                          **_per_sensor(sources, index))]
+                                          **_per(sources, index, 0))]
     columns += _envelope_columns(result)
     if result.uncertainty is not None:
         u = np.asarray(result.uncertainty).tolist()
-        columns += [Column("uncertainty_total", "rate", lambda c: u[c[0]][c[1]], cell=_known,
+        columns += [Column("uncertainty_total", "rate", lambda c: u[c[0]][c[1]], cell=known,
                            key="uncertainty.total",
                            only=lambda c: math.isfinite(u[c[0]][c[1]])),
                     Column("lot_mean", None, lambda c: result.is_lot(c[0]),
@@ -241,11 +168,6 @@ def _tail_columns(result: AnalysisResult, index: _Index) -> list[Column[Cell]]:
                           many=lambda rows: [tuple(warnings.get(c, ())) for c in zip(
                               *(a.tolist() for a in index(rows)), strict=True)]))
     return columns
-
-
-def _known(value: float) -> float | None:
-    """A finite number, or None (unknown)."""
-    return value if math.isfinite(value) else None
 
 
 class _Cells(Sequence[Cell]):
@@ -292,13 +214,12 @@ def analysis_cells(result: AnalysisResult) -> Sequence[Cell]:
     return _Cells(n_s, 0, n_s * len(result.profiles))
 
 
-def analysis_frame(result: AnalysisResult) -> Any:
-    """``analyze``: one row per sensor × profile, profiles outermost (the JSON's order)."""
-    cells = analysis_cells(result)
+def _analysis_attrs(result: AnalysisResult) -> dict[str, Any]:
+    """``analyze``'s document-level fields, the frame's ``attrs``."""
     attrs: dict[str, Any] = {"method": result.method, "unit": result.unit}
     if result.samples is not None:
         attrs.update(samples=result.samples, seed=result.seed)
-    return frame_of(analysis_columns(result), cells, attrs)
+    return attrs
 
 
 def _envelope_columns(result: AnalysisResult) -> list[Column[Cell]]:
@@ -343,16 +264,16 @@ def _limit_columns(b: Any, unit: str, bounds: str = "",
             if b.vre is None else Column(bounds + "vre", vre, _of_row(b.vre), key="bounds.vre")]
 
 
-def profile_columns(profiles: tuple[str, ...], rates: Any, b: Any,
-                    unit: str) -> list[Column[int]]:
+def profile_columns(profiles: tuple[str, ...], rates: Any, b: Any, unit: str,
+                    prefix: str = "") -> list[Column[int]]:
     """One row per profile (its index): its id, its carrier rate Ω_K (JSON: the ``rate``
-    list) and its bounds (:func:`_limit_columns`): the ``profiles`` entries of ``bounds``
-    and ``select``."""
-    listed = np.asarray(rates, dtype=float).reshape(-1, 3).tolist()
+    list) and its bounds (:func:`_limit_columns`, their names after ``prefix``): the
+    ``profiles`` entries of ``bounds`` and ``select``."""
+    table = np.asarray(rates, dtype=float).reshape(-1, 3)
     return [Column("profile", None, lambda j: profiles[j]),
-            *(Column(f"rate_{axis}", "rate", _of_profile(listed, k, lambda j: j),
-                     key=f"rate.{k}") for k, axis in enumerate(AXES)),
-            *_limit_columns(b, unit)]
+            *(Column(f"rate_{axis}", "rate", _of_row(table[:, k]), key=f"rate.{k}")
+              for k, axis in enumerate(AXES)),
+            *_limit_columns(b, unit, prefix and prefix + "bounds_", prefix and prefix + "parts_")]
 
 
 def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
@@ -377,22 +298,6 @@ def bounds_columns(result: BoundsResult) -> tuple[Column[int], ...]:
     return tuple(columns)
 
 
-def bounds_frame(result: BoundsResult) -> Any:
-    """``bounds``: one row per profile; an unconstrained bound is ``inf``."""
-    return frame_of(bounds_columns(result), range(len(result.profiles)),
-                    {"method": result.method, "unit": result.unit, "budget": result.budget})
-
-
-def selection_frame(result: SelectionResult) -> Any:
-    """``select``: one row per sensor × profile (:func:`selection_columns`)."""
-    attrs = {"method": result.method, "unit": result.unit, "budget": result.budget,
-             "criterion": result.criterion, "require": result.require,
-             "requirement_met": result.requirement_met}
-    if result.yields is not None:
-        attrs.update({"yield": result.yields.target, "seed": result.yields.seed})
-    return frame_of(selection_columns(result, csv=False), selection_cells(result), attrs)
-
-
 def selection_cells(result: SelectionResult) -> list[Cell]:
     """The rows of ``select``'s records: (sensor, profile), sensors outermost."""
     return [(i, j) for i in range(len(result.sensors)) for j in range(len(result.profiles))]
@@ -403,46 +308,51 @@ def _float_cell(values: Any) -> Callable[[Cell], float]:
     return lambda c: listed[c[0]][c[1]]
 
 
-def selection_columns(result: SelectionResult, *, csv: bool) -> tuple[Column[Cell], ...]:
+#: Outside a sensor × profile entry of ``select``'s JSON: the sensor's (its ``sensor``,
+#: ``pass``, ``status``, ``source``) and the profile's (``rate``, its bounds and parts).
+_ENTRY = ("json",)
+
+
+def selection_columns(result: SelectionResult) -> tuple[Column[Cell], ...]:
     """``select``'s records, declared once, one row per sensor × profile (sensors
-    outermost): the columns of ``--format csv`` (``csv``) or of the DataFrame.
+    outermost): the columns of the DataFrame and of ``--format csv`` (those that do not
+    skip it), and the keys of the JSON's sensor × profile entries (those that do not skip
+    ``json``; the JSON keeps the others in the sensor's entry and in ``profiles``).
 
     ``passed`` is the JSON's ``pass`` (a Python keyword breaks ``df.query("not pass")``);
     ``value_<coefficient>``, ``bound_…``, ``pass_…`` its ``checks.<coefficient>``, empty
     (NaN, None) on a datasheet sensor's rows; the frame adds the sensor's ``status``, the
     profile's ``rate_*`` and ``profile_bounds_*``/``profile_parts_*`` (the JSON's
-    ``profiles`` entry), and keeps ``unknown`` and ``disagrees`` as lists."""
+    ``profiles`` entry), and keeps ``unknown`` and ``disagrees`` as lists (the CSV: their
+    names joined by spaces)."""
     specs = [result.source(i) == "specs" for i in range(len(result.sensors))]
-    words: Callable[[tuple[str, ...]], Any] = " ".join if csv else list
     margin = result.margin if result.criterion_margin is None else result.criterion_margin
     sensor_pass = np.asarray(result.sensor_pass, dtype=bool).tolist()
-    columns: list[Column[Cell]] = [
-        Column("sensor", None, lambda c: result.sensors[c[0]]),
+    columns: tuple[Column[Cell], ...] = (
+        Column("sensor", None, lambda c: result.sensors[c[0]], skip=_ENTRY),
         Column("profile", None, lambda c: result.profiles[c[1]]),
-        Column("passed", None, lambda c: bool(result.passed[c[0], c[1]])),
-        Column("sensor_pass", None, lambda c: sensor_pass[c[0]]),
-        Column("sensor_status", None, lambda c: result.sensor_status(c[0]), skip=("csv",)),
+        Column("passed", None, lambda c: bool(result.passed[c[0], c[1]]), key="pass"),
+        Column("sensor_pass", None, lambda c: sensor_pass[c[0]], skip=_ENTRY),
+        Column("sensor_status", None, lambda c: result.sensor_status(c[0]),
+               skip=("csv", *_ENTRY)),
         Column("rms", "rate", _float_cell(result.rms)),
         Column("margin", None, _float_cell(result.margin)),
         *_coefficient_checks(result, specs),
-        *_datasheet_checks(result, specs, csv),
-        *_yield_cells(result, csv),
+        *_datasheet_checks(result, specs),
+        *_yield_cells(result),
         Column("saturated", None, lambda c: bool(result.saturated is not None
                                                  and result.saturated[c[0], c[1]])),
         Column("status", None, lambda c: result.status(*c)),
-        Column("unknown", None, lambda c: words(result.unknown.get(c, ()))),
+        Column("unknown", None, lambda c: list(result.unknown.get(c, ())), cell=" ".join),
         Column("criterion_margin", None, _float_cell(margin)),
-        Column("disagrees", None, lambda c: words(result.disagrees.get(c, ()))),
-        Column("reason", None, (lambda c: reason(result, *c) or "") if csv
-               else (lambda c: reason(result, *c))),
-    ]
-    rates = np.asarray(result.rates, dtype=float).reshape(-1, 3).tolist()
-    columns += [Column(f"rate_{axis}", "rate", _of_profile(rates, k), skip=("csv",))
-                for k, axis in enumerate(AXES)]
-    columns += [Column(c.name, c.unit, _of_profile_row(c.value), skip=("csv",))
-                for c in _limit_columns(result.profile_bounds, result.unit, "profile_bounds_",
-                                        "profile_parts_")]
-    return tuple(columns)
+        Column("disagrees", None, lambda c: list(result.disagrees.get(c, ())), cell=" ".join),
+        Column("reason", None, lambda c: None if result.passed[c[0], c[1]]
+               else reason(result.failures(*c))),
+    )
+    profiles = profile_columns(result.profiles, result.rates, result.profile_bounds,
+                               result.unit, "profile_")
+    return (*columns, *(Column(c.name, c.unit, _of_profile_row(c.value), key=c.key,
+                               skip=("csv", *_ENTRY)) for c in profiles[1:]))
 
 
 def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
@@ -458,11 +368,18 @@ def _coefficient_checks(result: SelectionResult, specs: list[bool]) -> list[Colu
     def read(table: list[Any], b: int, empty: Any) -> Callable[[Cell], Any]:
         return lambda c: empty if specs[c[0]] else table[c[0]][c[1]][b]
 
+    def coefficient_row(c: Cell) -> bool:
+        return not specs[c[0]]
+
     columns: list[Column[Cell]] = []
     for b, name in enumerate(BOUNDED):
-        columns += [Column(f"value_{name}", None, read(values, b, math.nan)),
-                    Column(f"bound_{name}", None, read(bounds, b, math.nan)),
-                    Column(f"pass_{name}", None, _check(checks, unknown, specs, b))]
+        key = f"checks.{name}."
+        columns += [Column(f"value_{name}", None, read(values, b, math.nan),
+                           key=key + "value", only=coefficient_row),
+                    Column(f"bound_{name}", None, read(bounds, b, math.nan),
+                           key=key + "bound", only=coefficient_row),
+                    Column(f"pass_{name}", None, _check(checks, unknown, specs, b),
+                           key=key + "pass", only=coefficient_row)]
     return columns
 
 
@@ -473,67 +390,76 @@ def _check(checks: list[Any], unknown: list[Any], specs: list[bool],
                       else checks[c[0]][c[1]][b])
 
 
-def _datasheet_checks(result: SelectionResult, specs: list[bool],
-                      csv: bool) -> list[Column[Cell]]:
+def _datasheet_checks(result: SelectionResult, specs: list[bool]) -> list[Column[Cell]]:
     """A datasheet sensor's ``source``, ``total`` and nonlinearity check (%FS; NaN, None
     on coefficient rows), then the VRE check (docs/model.md section 8). The CSV has them
     with datasheet sensors (the VRE check also where it can bind: linear vibration); its
     cells are empty where a row has no such check."""
     with_specs = "specs" in result.sources
     vre = result.has_linear and result.vre_pass is not None
+    csv = () if with_specs else ("csv",)
     columns: list[Column[Cell]] = [Column("source", None, lambda c: result.source(c[0]),
-                                          skip=() if with_specs else ("csv",))]
+                                          skip=(*csv, *_ENTRY))]
     if result.total is not None:
-        columns.append(Column("total", "rate", _float_cell(result.total),
-                              skip=() if with_specs else ("csv",)))
-    if result.nl_value is not None and (with_specs or not csv):
+        columns.append(Column("total", "rate", _float_cell(result.total), skip=csv))
+    if result.nl_value is not None:
         columns += _nonlinearity_checks(result, specs, csv)
-    if result.vre_pass is not None and (with_specs or vre or not csv):
-        columns += _vre_checks(result, specs, csv, vre)
+    if result.vre_pass is not None:
+        columns += _vre_checks(result, specs, () if with_specs or vre else ("csv",), vre)
     return columns
 
 
 def _nonlinearity_checks(result: SelectionResult, specs: list[bool],
-                         csv: bool) -> list[Column[Cell]]:
-    """A datasheet sensor's nonlinearity check (%FS): the CSV's cells empty on coefficient
-    rows; the frame has the values throughout and the unit on datasheet rows."""
-    value, bound = _float_cell(result.nl_value), _float_cell(result.nl_bound)
-    shown: Callable[[Cell], bool] = (lambda c: specs[c[0]]) if csv else _always
-    return [Column("value_nonlinearity", "%FS", lambda c: value(c) if shown(c) else math.nan),
-            Column("bound_nonlinearity", "%FS", lambda c: bound(c) if shown(c) else math.nan),
+                         csv: tuple[str, ...]) -> list[Column[Cell]]:
+    """A datasheet sensor's nonlinearity check (%FS; NaN, None on coefficient rows), with
+    its unit on datasheet rows (not in the CSV)."""
+    def spec_row(c: Cell) -> bool:
+        return specs[c[0]]
+
+    key = "checks.nonlinearity."
+    return [Column("value_nonlinearity", "%FS", _float_cell(result.nl_value), skip=csv,
+                   key=key + "value", only=spec_row),
+            Column("bound_nonlinearity", "%FS", _float_cell(result.nl_bound), skip=csv,
+                   key=key + "bound", only=spec_row),
             Column("pass_nonlinearity", None,
-                   lambda c: result.nl_check(*c) if specs[c[0]] else None),
+                   lambda c: result.nl_check(*c) if specs[c[0]] else None, skip=csv,
+                   key=key + "pass", only=spec_row),
             Column("unit_nonlinearity", None, lambda c: "%FS" if specs[c[0]] else None,
-                   skip=("csv",))]
+                   skip=("csv",), key=key + "unit", only=spec_row)]
 
 
-def _vre_checks(result: SelectionResult, specs: list[bool], csv: bool,
+def _vre_checks(result: SelectionResult, specs: list[bool], csv: tuple[str, ...],
                 vre: bool) -> list[Column[Cell]]:
     """The VRE check (docs/model.md section 8): the CSV's cells empty on a coefficient row
     where it cannot bind (no linear vibration)."""
-    checked: Callable[[Cell], bool] = (lambda c: specs[c[0]] or vre) if csv else _always
-    value, bound = _float_cell(result.vre_value), _float_cell(result.vre_bound)
-    return [Column("value_vre", None, lambda c: value(c) if checked(c) else math.nan),
-            Column("bound_vre", None, lambda c: bound(c) if checked(c) else math.nan),
-            Column("pass_vre", None, lambda c: result.vre_check(*c) if checked(c) else None)]
+    blank = None if vre else (lambda c: not specs[c[0]])
+    return [Column("value_vre", None, _float_cell(result.vre_value), skip=csv,
+                   key="checks.vre.value", blank=blank),
+            Column("bound_vre", None, _float_cell(result.vre_bound), skip=csv,
+                   key="checks.vre.bound", blank=blank),
+            Column("pass_vre", None, lambda c: result.vre_check(*c), skip=csv,
+                   key="checks.vre.pass", blank=blank)]
 
 
-def _yield_cells(result: SelectionResult, csv: bool) -> list[Column[Cell]]:
-    """``--yield`` (docs/model.md section 14): NaN, None off the lots; the CSV leaves an
-    exact yield's interval empty."""
+def _yield_cells(result: SelectionResult) -> list[Column[Cell]]:
+    """``--yield`` (docs/model.md section 14): NaN, None off the lots; an exact yield's
+    interval NaN."""
     y = result.yields
     if y is None:
         return []
     value, low, high = (_float_cell(a) for a in (y.value, y.low, y.high))
-    lot: Callable[[Cell], bool] = (lambda c: y.is_lot(c[0])) if csv else _always
-    interval: Callable[[Cell], bool] = ((lambda c: lot(c) and y.method != "exact") if csv
-                                        else lot)
+
+    def lot(c: Cell) -> bool:
+        return y.is_lot(c[0])
+
     return [
-        Column("yield_value", None, lambda c: value(c) if lot(c) else math.nan),
-        Column("yield_method", None, lambda c: y.method if y.is_lot(c[0]) else None),
-        Column("yield_interval_low", None, lambda c: low(c) if interval(c) else math.nan),
-        Column("yield_interval_high", None, lambda c: high(c) if interval(c) else math.nan),
-        Column("yield_draws", None, lambda c: y.draws if y.is_lot(c[0]) else None)]
+        Column("yield_value", None, value, key="yield.value", only=lot),
+        Column("yield_method", None, lambda c: y.method if lot(c) else None,
+               key="yield.method", only=lot),
+        Column("yield_interval_low", None, low, key="yield.interval.0", only=lot),
+        Column("yield_interval_high", None, high, key="yield.interval.1", only=lot),
+        Column("yield_draws", None, lambda c: y.draws if lot(c) else None, key="yield.draws",
+               only=lot)]
 
 
 #: A row of a sweep: (sensor, profile, rate) indices.
@@ -573,21 +499,39 @@ def sweep_columns(result: SweepResult) -> tuple[Column[SweepCell], ...]:
                    and bool(saturated[c])))
 
 
-def sweep_frame(result: SweepResult) -> Any:
-    """``sweep``: one row per sensor × profile × rate Ω_K3, exact and paper
-    (:func:`sweep_columns`)."""
-    return frame_of(sweep_columns(result), sweep_cells(result),
-                    {"method": "exact", "unit": result.unit, "methods": ["exact", "paper"],
-                     "paper_refused": dict(result.paper_refused)})
+def _bounds_attrs(result: BoundsResult) -> dict[str, Any]:
+    return {"method": result.method, "unit": result.unit, "budget": result.budget}
 
 
-def to_frame(result: Any) -> Any:
-    """The tidy DataFrame of any result of :mod:`gyrovib.api` (dispatch on its type)."""
-    builders: dict[str, Callable[[Any], Any]] = {
-        "AnalysisResult": analysis_frame, "BoundsResult": bounds_frame,
-        "SelectionResult": selection_frame, "SweepResult": sweep_frame,
-    }
-    builder = builders.get(type(result).__name__)
-    if builder is None:
+def _selection_attrs(result: SelectionResult) -> dict[str, Any]:
+    attrs = {"method": result.method, "unit": result.unit, "budget": result.budget,
+             "criterion": result.criterion, "require": result.require,
+             "requirement_met": result.requirement_met}
+    if result.yields is not None:
+        attrs.update({"yield": result.yields.target, "seed": result.yields.seed})
+    return attrs
+
+
+def _sweep_attrs(result: SweepResult) -> dict[str, Any]:
+    return {"method": "exact", "unit": result.unit, "methods": ["exact", "paper"],
+            "paper_refused": dict(result.paper_refused)}
+
+
+#: Each result's records, its rows and its document-level fields (the frame's ``attrs``).
+_DECLARED: dict[str, tuple[Callable[[Any], Sequence[Column[Any]]],
+                           Callable[[Any], Sequence[Any]], Callable[[Any], dict[str, Any]]]] = {
+    "AnalysisResult": (analysis_columns, analysis_cells, _analysis_attrs),
+    "BoundsResult": (bounds_columns, lambda r: range(len(r.profiles)), _bounds_attrs),
+    "SelectionResult": (selection_columns, selection_cells, _selection_attrs),
+    "SweepResult": (sweep_columns, sweep_cells, _sweep_attrs),
+}
+
+
+def declared(result: Any) -> tuple[Sequence[Column[Any]], Sequence[Any], dict[str, Any]]:
+    """A result's records, its rows and its document-level fields (the frame's ``attrs``):
+    what ``to_frame()`` makes its DataFrame of."""
+    found = _DECLARED.get(type(result).__name__)
+    if found is None:
         raise TypeError(f"no DataFrame form for {type(result).__name__}")
-    return builder(result)
+    columns, rows, attrs = found
+    return columns(result), rows(result), attrs(result)
