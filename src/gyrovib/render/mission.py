@@ -271,17 +271,13 @@ def _triads_json(result: MissionResult) -> list[dict[str, Any]]:
     return triads
 
 
-def _optional_number(value: float | None) -> float | None:
-    return None if value is None else number(value)
-
-
 def to_json(result: MissionResult) -> str:
     """The JSON document of docs/output.md (mission): one entry per sensor × mission
     (× axis), then each triad's summary and each sensor's verdict."""
     document = {
         **header("exact", result.unit), "angle_unit": result.angle_unit,
-        "budget": _optional_number(result.budget),
-        "angle_budget": _optional_number(result.angle_budget),
+        "budget": None if result.budget is None else number(result.budget),
+        "angle_budget": None if result.angle_budget is None else number(result.angle_budget),
         "require": result.require, "assume_unknown": result.assume_unknown,
         "mission": json_of(json_columns(result), result.rows),
         "triads": _triads_json(result),

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from operator import attrgetter
 from typing import TYPE_CHECKING, Any
 
 from gyrovib.frozen import Frozen
@@ -300,18 +301,15 @@ def _figure(of: Callable[[Any], Any], name: str) -> Callable[[Any], Any]:
 #: end (``theta_*``, ``budget_total``) is in deg: θ_V summed segment by segment so far,
 #: each noise term over the time flown so far, their total with the coverage factor.
 SEGMENT_COLUMNS: tuple[Column[SegmentRecord], ...] = (
-    Column("sensor", None, lambda r: r.row.sensor, skip=("json",)),
-    Column("mission", None, lambda r: r.row.mission, skip=("json",)),
-    Column("placement", None, lambda r: r.row.placement, skip=("json",)),
-    Column("axis", None, lambda r: r.row.axis, skip=("json",)),
+    *(Column(n, None, attrgetter(f"row.{n}"), skip=("json",))
+      for n in ("sensor", "mission", "placement", "axis")),
     Column("segment", None, lambda r: r.index + 1, skip=("json",)),
     Column("profile", None, lambda r: r.segment.profile),
     Column("start", "s", lambda r: r.start, skip=("json",)),
     Column("duration", "s", lambda r: r.segment.duration),
     *(Column(f"rate_x{k + 1}", "rate", _rate(k), key=f"rate.{k}") for k in range(3)),
-    Column("total", "rate", lambda r: r.segment.total),
-    Column("rms", "rate", lambda r: r.segment.rms),
-    Column("saturated", None, lambda r: r.segment.saturated),
+    *(Column(n, u, attrgetter(f"segment.{n}")) for n, u in (("total", "rate"), ("rms", "rate"),
+                                                            ("saturated", None))),
     Column("end", "s", lambda r: r.start + r.segment.duration, only=_timed,
            csv_after="duration"),
     *_budget_columns(lambda r: r.budget, _timed, vibration=()),
@@ -324,12 +322,9 @@ SEGMENT_COLUMNS: tuple[Column[SegmentRecord], ...] = (
 #: ``angle`` its angle unit; the budget's terms are in deg, the allowance in each
 #: figure's unit. The JSON's ``reason`` (words) is the renderer's.
 COLUMNS: tuple[Column[MissionRow], ...] = (
-    Column("sensor", None, lambda r: r.sensor),
-    Column("mission", None, lambda r: r.mission),
-    Column("placement", None, lambda r: r.placement),
-    Column("mean", "rate", lambda r: r.mean),
-    Column("angle", "angle", lambda r: r.angle),
-    Column("rms", "rate", lambda r: r.rms),
+    *(Column(n, u, attrgetter(n)) for n, u in (("sensor", None), ("mission", None),
+                                              ("placement", None), ("mean", "rate"),
+                                              ("angle", "angle"), ("rms", "rate"))),
     Column("worst_segment", None, lambda r: r.worst_index + 1, key="worst_segment.index",
            json_value=lambda r: r.worst_index),
     Column("worst_profile", None, lambda r: r.worst_profile, key="worst_segment.profile"),
