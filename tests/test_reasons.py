@@ -74,3 +74,22 @@ def test_wording_of_codes_and_numbers() -> None:
         "yield 0.9123 [0.9, 0.92] (monte-carlo, 2000 draws) is below 0.99"]
     exact = Yield(0.5, float("nan"), float("nan"), "exact", 0)
     assert worded([Failure("yield", (0.9,), lot=exact)]) == ["yield 0.5 (exact) is below 0.9"]
+
+
+def test_the_tables_reason_is_in_the_catalogues_unit(both) -> None:
+    """The tables and JUnit word a coefficient's bound in the catalogue's unit (deg/s),
+    the JSON in the output unit (deg/h): the label follows the numbers. k2's bound per
+    deg/s is 3600 times its bound per deg/h (k2 multiplies Ω²: 1/(deg/s) = 3600/(deg/h))."""
+    i = both.sensors.index("generic-rate-mems")
+    j = both.profiles.index("manoeuvre-saturation")
+    table = {f.names: f for f in both.failures(i, j, table=True) if f.code == "coefficient"}
+    plain = {f.names: f for f in both.failures(i, j) if f.code == "coefficient"}
+    assert both.table_unit == "deg/s" and both.unit == "deg/h"
+    assert {f.unit for f in table.values()} == {"deg/s"}
+    assert {f.unit for f in plain.values()} == {"deg/h"}
+    assert table[("k2",)].numbers[1] == pytest.approx(3600 * plain[("k2",)].numbers[1],
+                                                      rel=1e-12)
+    r = invoke("select", "--budget", "10deg/h", "--criterion", "both", "--format", "junit",
+               "--sensor", "generic-rate-mems", "--profile", "manoeuvre-saturation")
+    bound = table[("k2",)].numbers[1]  # |k2| = 8e-5 (deg/s)^-1: the bundled catalogue
+    assert f"|k2| = 8e-05 exceeds its bound {bound:.4g} (deg/s)^-1" in r.stdout, r.stdout
