@@ -7,6 +7,7 @@ Run on demand (it is not part of the test suite)::
     python benchmarks/bench_allan_coverage.py --seed 1001     # records not seen before
     python benchmarks/bench_allan_coverage.py --sim-cap 4096  # the long records' bootstrap
     python benchmarks/bench_allan_coverage.py --cases 2,3     # only the cases with K
+    python benchmarks/bench_allan_coverage.py --save r.pkl    # and keep the roots (below)
 
 Records of known terms are simulated (white rate noise, flicker, a rate random walk, a
 rate ramp, angle quantization, in combinations cycled over the records; the numbers are
@@ -21,7 +22,10 @@ out as bounds (or values whose interval is counted as a miss). Every interval me
 named (--interval) is computed from the same replicates, and each is also counted over
 every record whose truth has the term, resolved or not ("every record"): the coverage
 before the choice between a value and a bound, which otherwise leaves out the records
-where the term came out lowest.
+where the term came out lowest. gyrovib's intervals are read at the levels
+``gyrovib.core.allan_levels`` sets per term; ``--save`` keeps, per record and term, what
+decides whether the interval holds at any level, which benchmarks/allan_coverage_levels.py
+reads (the coverage at other levels, and the levels that give 68 % and 95 %).
 """
 
 from __future__ import annotations
@@ -29,6 +33,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import pickle
 import sys
 import time
 
@@ -46,12 +51,17 @@ from gyrovib.core.allan_fit import (
     Curve,
     Fit,
     bootstrap,
+    design,
     double_bootstrap,
+    envelope_bound,
     fit,
     intervals,
+    resolution,
     roll_off,
+    studentized_root,
     terms,
 )
+from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
 
 TAU0 = 1.0
@@ -75,7 +85,8 @@ def truth_values(truth: Truth) -> tuple[float, ...]:
 
 
 def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
-        sim_cap: int = SIM_CAP, cases: tuple[int, ...] = tuple(range(len(CASES)))
+        sim_cap: int = SIM_CAP, cases: tuple[int, ...] = tuple(range(len(CASES))),
+        saved: list[dict[str, object]] | None = None
         ) -> dict[str, dict[str, list[tuple[str, bool, bool]]]]:
     """Per interval method and term: (case, held at 68 %, held at 95 %) for resolved
     terms, and ('bound', holds, holds) for bounds — every method from the same fit and
@@ -101,6 +112,9 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
         else:
             coefs = bootstrap(fitted, tau, m, samples, TAU0, seed=boot, sim_cap=sim_cap)
         curve = Curve(tau, var, m, samples + 1, fitted)
+        if saved is not None:
+            saved.extend(_roots(first_seed + r, cases[r % len(cases)], truth, fitted, coefs,
+                                curve))
         for meth in methods:
             found = terms(fitted, tau, var, coefs, (0.68, 0.95), meth, curve, inner)
             for term, got, true in zip(TERMS, found, truth_values(truth), strict=False):
@@ -121,6 +135,38 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
     return out
 
 
+def _roots(seed: int, case: int, truth: Truth, fitted: Fit, coefs: np.ndarray,
+           curve: Curve) -> list[dict[str, object]]:
+    """What decides, at any level, whether each term's interval holds its truth (--save):
+    the replicates' studentized roots and the record's root at the truth, at 0 and far
+    above (where the interval has no upper end), and the replicates' ratios θ*/θ̂ (the
+    pivot); as the term's own interval (its resolved neighbours refitted) and with every
+    fitted term refitted (the study's "every record")."""
+    resolved = resolution(fitted, curve.tau, coefs)
+    basis = design(curve.tau, fitted.tau_c)
+    everything = fitted.coef > 0
+    out: list[dict[str, object]] = []
+    for j, true in enumerate(truth_values(truth)):
+        c_hat = float(fitted.coef[j])
+        value = math.sqrt(max(c_hat, 0.0))
+        row: dict[str, object] = {
+            "seed": seed, "case": case, "term": j, "true": true, "value": value,
+            "resolved": bool(resolved[j]),
+            "bound": max(envelope_bound(basis[:, j], curve.var, fitted.nu), value),
+            "ratio": np.sqrt(np.maximum(coefs[:, j], 0.0)) / value if value > 0 else None}
+        for key, which in (("own", resolved), ("every", everything)):
+            found = studentized_root(curve, j, coefs, which) if c_hat > 0 else None
+            if found is None:
+                row[key] = None
+                continue
+            t_star, root, _ = found
+            row[key] = {"t_star": t_star,
+                        "t_true": root(true * true) if true > 0 else math.nan,
+                        "t_zero": root(c_hat * 1e-12), "t_top": root(c_hat * 2.0 ** 40)}
+        out.append(row)
+    return out
+
+
 def _held(fitted: Fit, coefs: np.ndarray, curve: Curve, j: int, true: float,
           method: str, inner: np.ndarray | None = None) -> tuple[bool, bool]:
     """Whether term j's 68 % and 95 % intervals hold ``true``, resolved or not."""
@@ -128,8 +174,9 @@ def _held(fitted: Fit, coefs: np.ndarray, curve: Curve, j: int, true: float,
         return False, False          # no interval around a value (a term fitted at 0)
     value = float(np.sqrt(fitted.coef[j]))
     everything = np.ones(fitted.coef.size, dtype=bool) & (fitted.coef > 0)
-    (lo68, hi68), (lo95, hi95) = intervals(value, j, coefs, (0.68, 0.95), method, curve,
-                                           everything, inner)
+    levels = (read_level(j, 0.68), read_level(j, 0.95)) if method == METHOD else (0.68, 0.95)
+    (lo68, hi68), (lo95, hi95) = intervals(value, j, coefs, levels, method, curve, everything,
+                                           inner)
     return bool(lo68 <= true <= hi68), bool(lo95 <= true <= hi95)
 
 
@@ -163,6 +210,10 @@ def main() -> None:
     parser.add_argument("--sim-cap", type=int, default=SIM_CAP,
                         help="the longest record the bootstrap simulates whole: below "
                              "--samples it exercises the shortened bootstrap of long records")
+    parser.add_argument("--save", metavar="FILE",
+                        help="write, per record and term, the roots that decide at which "
+                             "level its interval first holds the truth (a pickle), so that "
+                             "any level's coverage can be computed afterwards")
     args = parser.parse_args()
     methods = tuple(args.interval.split(","))
     unknown = [m for m in methods if m not in METHODS]
@@ -170,8 +221,12 @@ def main() -> None:
         parser.error(f"--interval: unknown {', '.join(unknown)} (one of {', '.join(METHODS)})")
     start = time.perf_counter()
     cases = tuple(int(k) for k in args.cases.split(","))
-    result = run(args.records, args.samples, args.seed, methods, args.sim_cap, cases)
+    saved: list[dict[str, object]] | None = [] if args.save else None
+    result = run(args.records, args.samples, args.seed, methods, args.sim_cap, cases, saved)
     took = time.perf_counter() - start
+    if args.save:
+        with open(args.save, "wb") as out:
+            pickle.dump(saved, out)
     short = (f", shortened bootstrap (whole records simulated up to {args.sim_cap} samples)"
              if args.sim_cap < args.samples else "")
     print(f"{args.records} records of {args.samples} samples at {TAU0} s "

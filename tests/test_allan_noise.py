@@ -12,6 +12,7 @@ import pytest
 from gyrovib.core.allan import oadev, tau_grid
 from gyrovib.core.allan_edf import confidence_interval, edf_one
 from gyrovib.core.allan_fit import TERMS, gm_basis, noise_model
+from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
 
 ALPHAS = (2, 1, 0, -1, -2)
@@ -158,10 +159,12 @@ def test_a_term_alone_in_its_model_gets_the_pivot_interval() -> None:
     # White noise alone: the fit's information gives N² a standard error proportional to
     # N² (every weight is ν/(2·(N²/τ)²)), so inverting (ĉ − c)/s(c) between the
     # replicates' quantiles of (c* − ĉ)/s(ĉ) gives ĉ/r_hi … ĉ/r_lo, r = c*/ĉ: the ratio
-    # pivot, by algebra. The same replicates (same seed) must give the same interval.
+    # pivot, by algebra. The same replicates (same seed) must give the same interval,
+    # the pivot read at the levels the studentized root is read at (core/allan_levels).
     truth = Truth(arw=0.2 / 60)
     studentized = _model(truth, 20_000, 0.1, seed=4, method="studentized").terms[1]
-    pivot = _model(truth, 20_000, 0.1, seed=4, method="pivot").terms[1]
+    pivot = _model(truth, 20_000, 0.1, seed=4, method="pivot",
+                   confidences=(read_level(1, 0.68), read_level(1, 0.95))).terms[1]
     assert studentized.resolved and pivot.resolved
     for got, ref in zip(studentized.intervals, pivot.intervals, strict=True):
         assert got == pytest.approx(ref, rel=1e-6)

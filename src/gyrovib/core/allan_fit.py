@@ -34,13 +34,9 @@ replicates' ratios θ*/θ̂; where s hardly moves with c (a rate random walk see
 white noise and flicker, whose scatter is the other terms') it is the difference
 interval; and where a term's scatter grows with another term that the record knows
 poorly (bias instability with a random walk beside it), holding the term lower lets
-the other grow, and the interval follows. The pivot ("pivot") and the percentile
-interval ("percentile") remain for the coverage study's comparison.
-
-**Calibrated level** ("calibrated", for the coverage study's comparison): the same root
-read at the level the fast double bootstrap sets (:func:`double_bootstrap`,
-:mod:`.allan_fdb`), at twice the cost; measured, it did not cover better (docs/error-budget.md
-section 5), so the studentized interval is gyrovib's.
+the other grow, and the interval follows, read at the level the coverage study set per
+term (:func:`terms`, :mod:`.allan_levels`). For the study's comparison: the pivot ("pivot"),
+the percentile interval, and the fast double bootstrap's level (:mod:`.allan_fdb`).
 
 **Roll-off.** A sensor's low-pass filter flattens the curve below a few times its time
 constant: read there, N would come out too small. A leading stretch flatter than white
@@ -63,6 +59,7 @@ hold in only 6 of 11 records).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,6 +69,7 @@ from gyrovib.core import allan_edf as edfs
 from gyrovib.core._types import FloatArray
 from gyrovib.core.allan import oadev
 from gyrovib.core.allan_fdb import calibrated, inverted
+from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
 
 IntArray = NDArray[np.int64]
@@ -368,6 +366,30 @@ def profile(curve: Curve, j: int, cj: float, free: NDArray[np.bool_]) -> FloatAr
     return coef
 
 
+def studentized_root(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[np.bool_]
+                     ) -> tuple[FloatArray, Callable[[float], float], NDArray[np.bool_]] | None:
+    """Term j's studentized root (:func:`studentized`): the replicates' (c* − ĉ)/s(ĉ), the
+    record's c ↦ (ĉ − c)/s(c), the columns s is taken over; None: s(ĉ) is not finite."""
+    fitted = curve.fitted
+    free = resolved.copy()
+    free[j] = False
+    free[0] |= fitted.filtered
+    if fitted.tau_c is not None:
+        free[5] = True
+    active = free.copy()
+    active[j] = True
+    c_hat = float(fitted.coef[j])
+    s_hat = scale(curve, fitted.coef, j, active)
+    if not math.isfinite(s_hat):
+        return None
+    t_star: FloatArray = (replicates[:, j] - c_hat) / s_hat
+
+    def root(c: float) -> float:
+        return (c_hat - c) / scale(curve, profile(curve, j, c, free), j, active)
+
+    return t_star, root, active
+
+
 def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[np.bool_],
                 confidences: tuple[float, ...], inner: FloatArray | None = None
                 ) -> list[tuple[float, float] | None]:
@@ -377,32 +399,17 @@ def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[
     replicates' (c* − ĉ)/s(ĉ) — with ``inner`` (:func:`double_bootstrap`) read at the
     levels the inner roots (c** − c*)/s(c*) calibrate. None where it has no upper end or
     the fit no standard error (the pivot's interval is then used)."""
-    fitted = curve.fitted
-    free = resolved.copy()
-    free[j] = False
-    if fitted.filtered:
-        free[0] = True
-    if fitted.tau_c is not None:
-        free[5] = True
-    active = free.copy()
-    active[j] = True
-    c_hat = float(fitted.coef[j])
-    s_hat = scale(curve, fitted.coef, j, active)
-    if not math.isfinite(s_hat):  # no information at the fit itself: the pivot's
-        return [None] * len(confidences)
-    t_star = (replicates[:, j] - c_hat) / s_hat
+    if (found := studentized_root(curve, j, replicates, resolved)) is None:
+        return [None] * len(confidences)  # no information at the fit itself: the pivot's
+    t_star, root, active = found
     t_inner = np.array([] if inner is None else [
         (c2[j] - c1[j]) / scale(curve, c1, j, active)
         for c1, c2 in zip(replicates, inner, strict=True)])
-
-    def root(c: float) -> float:
-        return (c_hat - c) / scale(curve, profile(curve, j, c, free), j, active)
-
     out: list[tuple[float, float] | None] = []
     for confidence in confidences:
         q_lo, q_hi = calibrated(t_star, t_inner, [(1.0 - confidence) / 2.0,
                                                   (1.0 + confidence) / 2.0])
-        out.append(inverted(root, c_hat, q_lo, q_hi))
+        out.append(inverted(root, float(curve.fitted.coef[j]), q_lo, q_hi))
     return out
 
 
@@ -411,13 +418,15 @@ def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
           curve: Curve | None = None, inner: FloatArray | None = None) -> tuple[Term, ...]:
     """Each of the five terms (and the Gauss–Markov σ, sixth, when fitted) from the fit
     and the replicates' coefficients (rows), see the module docstring; ``method``
-    "studentized" needs the ``curve``, "calibrated" also the ``inner`` replicates."""
+    "studentized" needs the ``curve`` (and is read at :func:`.allan_levels.read_level`'s
+    levels), "calibrated" also the ``inner`` replicates."""
     resolved = resolution(fitted, tau, replicates)
     basis = design(tau, fitted.tau_c)  # quantization's own column for its bound
     out = []
     for j in range(fitted.coef.size):
         value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(max(fitted.coef[j], 0.0))
-        found = intervals(value, j, replicates, confidences, method, curve,
+        levels = tuple(read_level(j, c) for c in confidences) if method == METHOD else confidences
+        found = intervals(value, j, replicates, levels, method, curve,
                           resolved, inner) if resolved[j] else None
         if found is None or found[-1][0] <= 0.0:  # its 95 % interval reaches 0
             bound = max(envelope_bound(basis[:, j], var, fitted.nu), value)
