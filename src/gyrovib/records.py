@@ -46,7 +46,11 @@ class Column(Generic[Row]):
     the frame and the JSON hold its figures); None: none. ``many``: every value of a list
     of rows at once, for the fast writers (:func:`columns_of`,
     :func:`gyrovib.render.formats.json_text`); it must read what ``value`` reads (made
-    from the same data: a test compares them), and without it each row is read alone."""
+    from the same data: a test compares them), and without it each row is read alone.
+    A nested JSON (a mission row) is declared in its order: ``csv_after``, the column the
+    CSV and the frame put this one after; ``json_value``, the JSON's own reading of the
+    row (a 0-based index, a list the CSV joins); ``each``, the columns of the sub-records
+    a value lists (a row's segments)."""
 
     name: str
     unit: str | None
@@ -58,6 +62,9 @@ class Column(Generic[Row]):
     finite: bool = False
     many: Callable[[Sequence[Row]], Sequence[Any]] | None = None
     blank: Callable[[Row], bool] | None = None
+    csv_after: str | None = None
+    json_value: Callable[[Row], Any] | None = None
+    each: tuple[Column[Any], ...] | None = None
 
 
 def known(value: float) -> float | None:
@@ -66,8 +73,16 @@ def known(value: float) -> float | None:
 
 
 def written(columns: Sequence[Column[Row]], output: str) -> tuple[Column[Row], ...]:
-    """The columns ``output`` (``csv``, ``frame``, ``json``) has, in order."""
-    return tuple(c for c in columns if output not in c.skip)
+    """The columns ``output`` (``csv``, ``frame``, ``json``) has, in its order: the
+    declaration's, but in the CSV and the frame a column with ``csv_after`` right after
+    that column (ValueError where it has none; it may be one moved before it)."""
+    shown = [c for c in columns if output not in c.skip]
+    if output == "json" or all(c.csv_after is None for c in shown):
+        return tuple(shown)
+    placed = [c for c in shown if c.csv_after is None]
+    for c in (c for c in shown if c.csv_after is not None):
+        placed.insert(names(placed).index(str(c.csv_after)) + 1, c)
+    return tuple(placed)
 
 
 def names(columns: Sequence[Column[Any]]) -> tuple[str, ...]:

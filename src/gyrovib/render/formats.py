@@ -66,10 +66,12 @@ def _json_value(value: Any, finite: bool) -> Any:
     return number(value)
 
 
-def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[str, Any]]:
+def json_of(columns: Sequence[Column[Any]], rows: Iterable[Any]) -> list[dict[str, Any]]:
     """One JSON object per row: each column's value at its key path (:attr:`Column.key`,
     else its name; a column that skips ``json`` left out, and one with ``only`` on the
-    rows it does not hold for), nested objects and lists made in the columns' order."""
+    rows it does not hold for), nested objects and lists made in the columns' order; the
+    value read by ``json_value`` where the column has one, a list of sub-records
+    (``each``) written as their objects."""
     shown = written(columns, "json")
     paths = [(c.key or c.name).split(".") for c in shown]
     out = []
@@ -81,7 +83,8 @@ def json_of(columns: Sequence[Column[Row]], rows: Iterable[Row]) -> list[dict[st
             node: Any = entry
             for part, after in itertools.pairwise(path):
                 node = node.setdefault(part, [] if after.isdigit() else {})
-            value = _json_value(c.value(row), c.finite)
+            value = (c.value if c.json_value is None else c.json_value)(row)
+            value = _json_value(value, c.finite) if c.each is None else json_of(c.each, value)
             if path[-1].isdigit():
                 node.append(value)
             else:
@@ -106,8 +109,13 @@ def json_text(columns: Sequence[Column[Row]], rows: Sequence[Row]) -> str:
     encoder writes for a float), the rows filled into one template made from the key
     paths, a block of rows at a time. A key on some rows only (``only``) fills a slot of
     its own with its text, or nothing; every column under one key shares it, and the
-    first key is on every row."""
+    first key is on every row. A nested document (``json_value``, ``each``) is written
+    from :func:`json_of`."""
     shown = written(columns, "json")
+    if any(c.json_value is not None or c.each is not None for c in shown):
+        import json  # a nested document: one dict per row
+
+        return json.dumps(json_of(columns, rows), allow_nan=False)
     keys = _keys(shown)
     template = "{" + "".join(("%s" if shown[found[0]].only is not None
                               else (", " if k else "") + _key_text(name, text))
