@@ -1,7 +1,9 @@
 """A result that declares its records (gyrovib/records.py: Column) gets its CSV header and
 cells (render/formats.py) and its DataFrame columns from that one declaration: they cannot
-drift apart, and a column moved in the declaration moves in both. Every result with a CSV
-is checked here (analyze, mission, bounds, select, sweep, fit, a recording, runup); the
+drift apart, and a column moved in the declaration moves in both; where the JSON rows are
+written from it too (analyze, mission with its segments, a recording, several recordings,
+bounds, runup), their key paths are the declaration's, in its order. Every result with a
+CSV is checked here (analyze, mission, bounds, select, sweep, fit, a recording, runup); the
 expected cells are the frame's own values, written as docs/output.md says a CSV writes
 them. Likewise its human tables: their Markdown header is the declared cells' titles
 (render/formats.py: Cell), each cell names a declared record and shows its value, and
@@ -37,12 +39,26 @@ def _csv(text: str) -> list[list[str]]:
     return list(csv.reader(io.StringIO(text)))
 
 
+#: The mission CSV's header as docs/output.md lists it (the frame's columns too).
+MISSION_CSV = ("sensor", "mission", "placement", "axis", "mean", "angle", "rms",
+               "worst_segment", "worst_profile", "worst_total", "duration", "saturated",
+               "source", "passed", "status", "unknown", "theta_arw", "theta_bias_instability",
+               "theta_rrw", "theta_repeatability", "budget_total", "coverage",
+               "allowed_vibration", "allowed_arw", "allowed_bias_instability", "allowed_rrw",
+               "allowed_repeatability", "typical")
+
+
 def test_mission_csv_header_and_frame_columns_are_the_declaration(mission_result) -> None:
-    declared = names(mission_result.records())
-    assert len(declared) == 28  # the probe works: every column of docs/output.md
+    from gyrovib.records import written
+
+    declared = names(written(mission_result.records(), "csv"))
+    # the declaration is in the JSON's order; csv_after puts axis, source and typical
+    # where the documented header has them
+    assert declared == MISSION_CSV != names(mission_result.records())[:len(MISSION_CSV)]
     table = _csv(render_mission.to_csv(mission_result))
     assert tuple(table[0]) == declared
-    assert tuple(mission_result.to_frame().columns) == declared
+    assert tuple(mission_result.to_frame().columns) == declared == names(
+        written(mission_result.records(), "frame"))
     assert len(table) - 1 == len(mission_result.rows) == len(mission_result.to_frame())
 
 
@@ -70,50 +86,84 @@ def test_mission_csv_cells_are_the_frame_values(mission_result) -> None:
 
 
 def test_a_column_moved_in_the_declaration_moves_in_csv_and_frame(mission_result) -> None:
-    moved: tuple[Column, ...] = tuple(reversed(mission_result.records()))
+    from dataclasses import replace
+
+    from gyrovib.records import written
+
+    moved: tuple[Column, ...] = tuple(replace(c, csv_after=None) for c in
+                                      reversed(written(mission_result.records(), "csv")))
     rows = mission_result.rows
     header = _csv(csv_of(moved, rows))[0]
     assert tuple(header) == names(moved) == tuple(frame_of(moved, rows).columns)
-    assert header[0] == names(mission_result.records())[-1] and header[-1] == "sensor"
+    assert header[0] == "typical" and header[-1] == "sensor"
+    # a CSV place declared after a column moves with that column
+    declared = mission_result.records()
+    at = names(declared).index("unknown")
+    shifted = (*declared[:at], replace(declared[at], csv_after="sensor"), *declared[at + 1:])
+    assert _csv(csv_of(shifted, rows))[0][:2] == ["sensor", "unknown"]
 
 
-def test_mission_json_entries_hold_the_records_values(mission_result) -> None:
-    # mission's JSON stays a nested document (its segments, its budget object; keys in
-    # another order than the CSV's: docs/architecture.md), so its keys are not the
-    # declaration's; every figure it shares with the declared records is the frame's
-    # value, read where the document keeps it (null: None or NaN in the frame)
-    import json
+def _check_entries(entries: list, columns, rows, frame) -> tuple[int, int]:
+    """Each JSON entry has exactly the declared key paths of its row (``only``), in the
+    declaration's order; each value is the frame's (null: unknown) or, where the JSON
+    reads the row its own way (``json_value``), that reading; sub-records (``each``)
+    are checked likewise. Returns how many values were compared and how many were null."""
     import math
 
-    shared = {"sensor": "sensor", "mission": "mission", "placement": "placement",
-              "mean": "mean", "angle": "angle", "rms": "rms", "saturated": "saturated",
-              "source": "source", "pass": "passed", "status": "status",
-              "worst_segment.profile": "worst_profile", "worst_segment.total": "worst_total",
-              "budget.arw": "theta_arw", "budget.bias_instability": "theta_bias_instability",
-              "budget.rrw": "theta_rrw", "budget.repeatability": "theta_repeatability",
-              "budget.total": "budget_total", "budget.coverage": "coverage"}
-    entries = json.loads(render_mission.to_json(mission_result))["mission"]
-    frame = mission_result.to_frame()
-    assert set(shared.values()) <= set(frame.columns)
-    unknown = 0
-    for k, entry in enumerate(entries):
-        for path, name in shared.items():
-            value: object = entry
-            for part in path.split("."):
-                value = value[part]  # type: ignore[index]
-            want = frame[name].iloc[k]
-            want = want.item() if hasattr(want, "item") else want
-            if value is None:
-                assert want is None or (isinstance(want, float) and math.isnan(want)), name
-                unknown += 1
+    from gyrovib.records import written
+
+    shown = written(columns, "json")
+    by_path = {c.key or c.name: c for c in shown}
+    compared = nulls = 0
+    assert len(entries) == len(rows)
+    for k, (entry, row) in enumerate(zip(entries, rows, strict=True)):
+        found = _leaves(entry, set(by_path))
+        assert [p for p, _ in found] == [c.key or c.name for c in shown
+                                         if c.only is None or c.only(row)]
+        for path, value in found:
+            c = by_path[path]
+            if c.each is not None:
+                n, z = _check_entries(value, c.each, c.value(row), None)
+                compared, nulls = compared + n, nulls + z
+                continue
+            if c.json_value is not None or frame is None or c.name not in frame.columns:
+                want = (c.value if c.json_value is None else c.json_value)(row)
             else:
-                assert value == want, name
-        # the two that the document writes its own way: a 0-based index, a list of words
-        assert entry["worst_segment"]["index"] + 1 == frame["worst_segment"].iloc[k]
-        assert " ".join(entry["unknown"]) == frame["unknown"].iloc[k]
-        assert sum(s["duration"] for s in entry["segments"]) == pytest.approx(
-            frame["duration"].iloc[k], rel=1e-12)
-    assert len(entries) == len(frame) and unknown  # the probe meets unknown figures
+                want = frame[c.name].iloc[k]
+                want = want.item() if hasattr(want, "item") else want
+            if want is None or (isinstance(want, float) and not math.isfinite(want)):
+                assert value is None, path
+                nulls += 1
+            else:
+                assert value == (list(want) if isinstance(want, tuple) else want), path
+            compared += 1
+    return compared, nulls
+
+
+@pytest.mark.parametrize("kwargs", [{"angle_budget": "0.5deg"}, {"budget": "36deg/h"},
+                                    {"budget": "1deg/h", "placement": "x1=+Y,x2=+Z,x3=+X"}])
+def test_mission_json_entries_are_the_declaration(kwargs: dict) -> None:
+    # mission's JSON rows are written from the same declaration as its CSV and frame, in
+    # the declaration's order: nested (its worst segment, its budget), with its segments
+    # as sub-records; the renderer adds the one key in words (reason) after unknown
+    import json
+
+    from gyrovib.api.missions.results import COLUMNS
+
+    result = gyrovib.mission(**kwargs)
+    columns = render_mission.json_columns(result)
+    assert [c for c in columns if c.name != "reason"] == list(COLUMNS)
+    entries = json.loads(render_mission.to_json(result))["mission"]
+    compared, nulls = _check_entries(entries, columns, result.rows, result.to_frame())
+    assert compared > 20 * len(result.rows) and nulls  # the probe meets unknown figures
+    # the JSON counts segments from 0, the CSV from 1; both read one declared column
+    frame = result.to_frame()
+    assert [e["worst_segment"]["index"] + 1 for e in entries] == list(frame["worst_segment"])
+    assert [" ".join(e["unknown"]) for e in entries] == list(frame["unknown"])
+    # the probes: every row has its budget; the bundled missions' triad has an axis on
+    # each row, a rotation none
+    assert all("budget" in e for e in entries)
+    assert all(("axis" in e) == ("placement" not in kwargs) for e in entries)
 
 
 # analyze's cases: the bundled catalogues (spec-form sensors and their envelope, saturated
@@ -574,10 +624,61 @@ def test_recording_csv_and_frame_come_from_one_declaration(tmp_path) -> None:
         assert row["source"] in ("specs", "coefficients") and "unit" not in row
     assert unknown  # the probe meets unknown figures (null) as well as numbers
     assert known  # the probe compares numbers, not only nulls
+    # every key of an entry is declared, in the declaration's order: the profile at its
+    # mean rate, one declaration, nested after the ratio in the JSON and last in the CSV
+    compared, _ = _check_entries(rows, result.records(), range(len(result.sensors)), frame)
+    assert compared >= 15 * len(rows)
+    assert list(rows[0])[list(rows[0]).index("ratio") + 1] == "at_mean_rate"
+    assert _csv(render_recording.to_csv(result))[0][-3:] == ["unit", "at_mean_rate",
+                                                             "at_mean_ratio"]
     # and its Markdown is its declared cells, each the frame's value of its record
     assert _check_cells(render_recording.table_cells(result), result.records(),
                         range(len(result.sensors)), frame,
                         render_recording.to_markdown(result)) >= 2 * len(result.sensors)
+
+
+def test_several_recordings_csv_and_json_are_the_recording_declaration(tmp_path) -> None:
+    # analyze over several recordings writes each recording's rows from the one-recording
+    # declaration: the CSV its header after ``recording``, the JSON each recording's
+    # results and each sensor's worst row (then the recording, its index, saturations)
+    pytest.importorskip("scipy.signal")
+    import json
+
+    from click.testing import CliRunner
+
+    from gyrovib.api.recordings.analysis import analyze_recording
+    from gyrovib.api.recordings.reading import read_recording
+    from gyrovib.cli.main import cli
+    from gyrovib.records import written
+
+    fs, n = 250.0, 5000
+    t = np.arange(n) / fs
+    paths = []
+    for k, carrier in enumerate((2.0, 6.0)):
+        rate = np.random.default_rng(k).normal(0.0, 0.2, (n, 3))
+        rate[:, 2] += carrier + np.sin(2 * np.pi * 31.3 * t)
+        paths.append(str(tmp_path / f"log{k}.npy"))
+        np.save(paths[-1], rate)
+    args = ["analyze", "--recording", paths[0], "--recording", paths[1], "--fs", "250"]
+    analyses = [analyze_recording(read_recording(p, fs=fs), gyrovib.load()) for p in paths]
+    columns = analyses[0].records()
+    table = _csv(CliRunner().invoke(cli, [*args, "--format", "csv"]).stdout)
+    assert tuple(table[0]) == ("recording", *names(written(columns, "csv")))
+    assert len(table) - 1 == sum(len(a.sensors) for a in analyses)
+    document = json.loads(CliRunner().invoke(cli, [*args, "--format", "json"]).stdout)
+    for analysis, entry in zip(analyses, document["recordings"], strict=True):
+        rows = range(len(analysis.sensors))
+        compared, _ = _check_entries(entry["results"], analysis.records(), rows,
+                                     analysis.to_frame())
+        assert compared >= 15 * len(rows)
+    keys = [(c.key or c.name).split(".")[0] for c in written(columns, "json")]
+    found = 0
+    for worst in document["worst"]:
+        # a sensor unknown on some recording has no worst row: its name only
+        row = dict.fromkeys(keys) if worst["recording"] is not None else ["sensor"]
+        assert list(worst) == [*row, "recording", "index", "saturated_on"]
+        found += worst["recording"] is not None
+    assert found  # the probe meets worst rows
 
 
 def test_runup_csv_sections_are_the_declarations() -> None:

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from gyrovib.api.missions.results import SEGMENT_COLUMNS
-from gyrovib.records import names
+from gyrovib.records import names, written
 from tests.conftest import invoke
 from tests.test_noise_budget import CATALOGUE
 
@@ -29,7 +29,7 @@ def test_segment_records_are_the_budget_at_each_segments_end(tmp_path: Path) -> 
                "--format", "csv")
     assert r.exit_code == 0, r.stderr
     rows = list(csv.DictReader(io.StringIO(r.stdout)))
-    assert tuple(rows[0]) == names(SEGMENT_COLUMNS)
+    assert tuple(rows[0]) == names(written(SEGMENT_COLUMNS, "csv"))
     assert [(x["sensor"], x["segment"]) for x in rows] == [
         ("full", "1"), ("full", "2"), ("silent", "1"), ("silent", "2")]
     full = [x for x in rows if x["sensor"] == "full"]
@@ -83,5 +83,5 @@ def test_segment_csv_and_frame_come_from_one_declaration() -> None:
     result = api.mission(merge([parse_catalog(CATALOGUE, "<c>")]), coverage=2.0)
     table = list(csv.reader(io.StringIO(segments_csv(result))))
     frame = result.segments_frame()
-    assert tuple(table[0]) == tuple(frame.columns) == names(SEGMENT_COLUMNS)
+    assert tuple(table[0]) == tuple(frame.columns) == names(written(SEGMENT_COLUMNS, "csv"))
     assert len(table) - 1 == len(frame) == sum(len(r.segments) for r in result.rows) == 4

@@ -47,10 +47,11 @@ class Column(Generic[Row]):
     of rows at once, for the fast writers (:func:`columns_of`,
     :func:`gyrovib.render.formats.json_text`); it must read what ``value`` reads (made
     from the same data: a test compares them), and without it each row is read alone.
-    A nested JSON is declared in its order: ``csv_after``, the column the CSV and the
-    frame put this one after; ``json_value``, the JSON's own reading of the row;
-    ``each``, the columns of the sub-records a value lists (:func:`flattened`: the table
-    of them)."""
+    A nested JSON (a mission row, a select sensor) is declared in its order:
+    ``csv_after``, the column the CSV and the frame put this one after; ``json_value``,
+    the JSON's own reading of the row (a 0-based index, a list the CSV joins); ``each``,
+    the columns of the sub-records a value lists (a row's segments, a sensor's profiles;
+    :func:`flattened`: their table)."""
 
     name: str
     unit: str | None

@@ -3,7 +3,7 @@ calibration set by simulation on the coverage study, not derived (docs/error-bud
 section 5; docs/model.md section 15).
 
 The studentized interval of :mod:`gyrovib.core.allan_fit`, read at the nominal level,
-covered its truth too often at 68 % for the rate ramp (83 % over 800 simulated records)
+covered its truth too often at 68 % for the rate ramp (83 % of the 160 records with a ramp)
 and the rate random walk (73 %), and too rarely at 95 % for quantization (92 %). Scaled
 by the spread of its replicates' roots, the record's root at the truth is spread
 differently from the replicates' (for the ramp its 68 % point 0.80, theirs 0.98): the

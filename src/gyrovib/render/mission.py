@@ -9,16 +9,17 @@ from typing import TYPE_CHECKING, Any
 from rich.table import Table
 from rich.text import Text
 
-from gyrovib.api.missions.results import COLUMNS
+from gyrovib.api.missions.results import BUDGET_TERMS, COLUMNS
 from gyrovib.reasons import unverified_text
+from gyrovib.records import Column, names
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
-from gyrovib.render.formats import Case, Cell, csv_of, junit_of, known, markdown_of, table_of
-from gyrovib.render.mission_answer import allowance_cells, allowance_json
+from gyrovib.render.formats import Cell, csv_of, json_of, junit_of, known, markdown_of, table_of
+from gyrovib.render.mission_answer import allowance_cells
 from gyrovib.render.mission_segments import segments_csv, segments_markdown, segments_table
 
 if TYPE_CHECKING:
     from gyrovib.api.missions.results import MissionResult, MissionRow
-    from gyrovib.api.noise.results import Budget
+    from gyrovib.render.formats import Case
 
 
 #: The verdict cell of each row status (None: no budget).
@@ -64,9 +65,7 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
     return f"Δ̄_RMS = {fmt(row.rms)} {result.unit} > {fmt(result.budget)} {result.unit}"
 
 
-#: The budget's noise terms, in the order of the table's columns, with their headings
-#: and records.
-_NOISE = ("arw", "bias_instability", "rrw", "repeatability")
+#: The headings of the budget's noise terms (:data:`BUDGET_TERMS`) in the table.
 _NOISE_HEAD = ("θ_ARW", "θ_B", "θ_RRW", "θ_R")
 
 
@@ -118,7 +117,7 @@ def table_cells(result: MissionResult) -> tuple[Cell[MissionRow], ...]:
             Cell(f"angle θ_V{angle}", justify="right", of="angle"),
             Cell(f"mean RMS Δ̄_RMS{rate}", justify="right", of="rms"),
             *(Cell(f"{title} (deg)", _noise_cell(name), "right", of=f"theta_{name}")
-              for title, name in zip(_NOISE_HEAD, _NOISE, strict=True)),
+              for title, name in zip(_NOISE_HEAD, BUDGET_TERMS, strict=True)),
             Cell("total (deg)", budget_total, "right", of="budget_total"),
             Cell("worst segment", _worst, of="worst_segment"),
             Cell("verdict", _verdict_cell, of="status"))
@@ -244,83 +243,32 @@ def _allowance_table(result: MissionResult) -> Table:
                     "an upper limit, a figure being unknown)", title_justify="left")
 
 
-def _row_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
-    out: dict[str, Any] = {
-        "sensor": row.sensor, "mission": row.mission, "placement": row.placement,
-        "mean": number(row.mean), "angle": number(row.angle), "rms": number(row.rms),
-        "worst_segment": {"index": row.worst_index, "profile": row.worst_profile,
-                          "total": number(row.worst_total)},
-        "segments": [{"profile": s.profile, "duration": s.duration,
-                      "rate": [number(v) for v in s.rate], "total": number(s.total),
-                      "rms": number(s.rms), "saturated": s.saturated,
-                      **_timeline_json(row, k)} for k, s in enumerate(row.segments)],
-        "saturated": row.saturated, "pass": row.passed, "status": row.status,
-        "unknown": list(row.unknown), "reason": _reason(result, row) or None,
-        "source": row.source,
-    }
-    if row.budget is not None:
-        out["budget"] = {**_budget_json(row.budget), "typical": list(row.budget.typical)}
-        allowed = allowance_json(row)
-        if allowed is not None:
-            out["budget"]["allowed"] = allowed
-    if row.axis is not None:
-        out["axis"] = row.axis
-        out["worst_axis"] = row.worst_axis
-    return out
-
-
-def _budget_json(b: Budget) -> dict[str, Any]:
-    return {"vibration": number(b.vibration),
-            **{name: None if getattr(b, name) is None else number(getattr(b, name))
-               for name in _NOISE},
-            "total": number(b.total), "coverage": b.coverage, "unit": b.unit,
-            "lower_bound": b.lower_bound, "rests_on_bound": bool(b.bounds),
-            "bounds": list(b.bounds)}
-
-
-def _timeline_json(row: MissionRow, k: int) -> dict[str, Any]:
-    """Segment ``k``'s ``end`` (s from the start) and the ``budget`` there: θ_V(t)
-    summed so far and the noise over t (deg; the cone is ±coverage·RSS of the terms)."""
-    if not row.timeline:
-        return {}
-    return {"end": sum(s.duration for s in row.segments[:k + 1]),
-            "budget": _budget_json(row.timeline[k])}
-
-
-def _group_status(group: list[MissionRow], passed: bool | None) -> str | None:
-    """A triad's status: None without a budget, else its axes' worst (fail, then
-    unverified, then pass)."""
-    if passed is None:
-        return None
-    statuses = {r.status for r in group}
-    for status in ("fail", "unverified"):
-        if status in statuses:
-            return status
-    return "pass"
-
-
-def _triad_json(result: MissionResult, row: MissionRow) -> dict[str, Any]:
-    """The summary of the triad (a sensor × mission on several axes) ``row`` opens."""
-    key = (row.sensor, row.mission)
-    group = [r for r in result.rows if (r.sensor, r.mission) == key]
-    passed = None if row.passed is None else all(bool(r.passed) for r in group)
-    return {"sensor": row.sensor, "mission": row.mission, "worst_axis": row.worst_axis,
-            "pass": passed, "status": _group_status(group, passed)}
+def json_columns(result: MissionResult) -> tuple[Column[MissionRow], ...]:
+    """The columns of the JSON's rows: the result's records (:data:`COLUMNS`) with,
+    after ``unknown``, the words the library leaves to the renderer: why the row fails."""
+    at = names(COLUMNS).index("unknown") + 1
+    reason: Column[MissionRow] = Column("reason", None, lambda r: _reason(result, r) or None,
+                                        skip=("csv", "frame"))
+    return (*COLUMNS[:at], reason, *COLUMNS[at:])
 
 
 def _triads_json(result: MissionResult) -> list[dict[str, Any]]:
-    """One summary per triad, in the order of its first row."""
-    triads = []
-    seen: set[tuple[str, str]] = set()
+    """One summary per triad (a sensor × mission on several axes), in the order of its
+    first row: its worst axis, whether every axis passes, and its status, its axes' worst
+    (fail, then unverified, then pass; None without a budget)."""
+    groups: dict[tuple[str, str], list[MissionRow]] = {}
     for row in result.rows:
-        if row.axis is not None and (row.sensor, row.mission) not in seen:
-            seen.add((row.sensor, row.mission))
-            triads.append(_triad_json(result, row))
+        groups.setdefault((row.sensor, row.mission), []).append(row)
+    triads = []
+    for (sensor, mission), group in groups.items():
+        if all(r.axis is None for r in group):
+            continue
+        passed = None if group[0].passed is None else all(bool(r.passed) for r in group)
+        statuses = {r.status for r in group}
+        status = next((s for s in ("fail", "unverified") if s in statuses), "pass")
+        triads.append({"sensor": sensor, "mission": mission, "worst_axis": group[0].worst_axis,
+                       "pass": passed, "status": None if passed is None else status})
     return triads
-
-
-def _optional_number(value: float | None) -> float | None:
-    return None if value is None else number(value)
 
 
 def to_json(result: MissionResult) -> str:
@@ -328,10 +276,10 @@ def to_json(result: MissionResult) -> str:
     (× axis), then each triad's summary and each sensor's verdict."""
     document = {
         **header("exact", result.unit), "angle_unit": result.angle_unit,
-        "budget": _optional_number(result.budget),
-        "angle_budget": _optional_number(result.angle_budget),
+        "budget": None if result.budget is None else number(result.budget),
+        "angle_budget": None if result.angle_budget is None else number(result.angle_budget),
         "require": result.require, "assume_unknown": result.assume_unknown,
-        "mission": [_row_json(result, r) for r in result.rows],
+        "mission": json_of(json_columns(result), result.rows),
         "triads": _triads_json(result),
         "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k),
                      **({} if result.ranks is None else {"rank": result.ranks[k]})}

@@ -1,7 +1,7 @@
 """The words of a mission result that the numbers alone do not say: the answer first
 (which part to buy, by what margin, or the one figure that would change a failure),
 and each row's allowance — the largest figure that still meets the angle budget
-(:class:`gyrovib.api.noise.Allowance`) — as table cells and JSON."""
+(:class:`gyrovib.api.noise.Allowance`) — as table cells."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from gyrovib.api.noise.results import ALLOWANCE_UNITS
-from gyrovib.render.common import fmt, number
+from gyrovib.render.common import fmt
 from gyrovib.render.formats import Cell
 
 if TYPE_CHECKING:
@@ -19,22 +19,6 @@ if TYPE_CHECKING:
 #: The allowance's terms, their symbol and the word for the term that limits them.
 TERMS = {"vibration": ("|θ_V|", "θ_V"), "arw": ("N", "ARW"),
          "bias_instability": ("B", "B"), "rrw": ("K", "RRW"), "repeatability": ("R", "R")}
-#: Each term's figure in the budget (the noise block's name, or the angle itself).
-FIGURE = {"vibration": "vibration", "arw": "arw", "bias_instability": "bias_instability",
-          "rrw": "rrw", "repeatability": "repeatability"}
-
-
-def allowance_json(row: MissionRow) -> dict[str, Any] | None:
-    """``budget.allowed``: per term its largest passing value (null: none passes, with
-    the term that alone uses the allowance under ``limited_by``), the units, and which
-    values are only upper limits (``upper``: another noise figure is unknown)."""
-    if row.budget is None or row.budget.allowed is None:
-        return None
-    a = row.budget.allowed
-    values = {name: None if getattr(a, name) is None else number(getattr(a, name))
-              for name in TERMS}
-    return {**values, "unit": dict(ALLOWANCE_UNITS), "limited_by": dict(a.limited_by),
-            "upper": list(a.upper)}
 
 
 def _allowed(name: str) -> Callable[[MissionRow], str]:

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from operator import attrgetter
+from typing import TYPE_CHECKING, Any
 
 from gyrovib.frozen import Frozen
 from gyrovib.records import Column, frame_of
@@ -47,6 +48,11 @@ class Budget(Frozen):
         """Whether ``total`` is only a lower bound (a noise figure is unknown)."""
         return bool(self.unknown)
 
+    @property
+    def rests_on_bound(self) -> bool:
+        """Whether ``total`` rests on a figure given only as an upper bound."""
+        return bool(self.bounds)
+
 
 @dataclass(frozen=True, eq=False, repr=False)
 class Allowance(Frozen):
@@ -73,6 +79,9 @@ class Allowance(Frozen):
         """The term that alone uses the allowance where ``term`` has no passing value."""
         return dict(self.limited_by).get(term)
 
+
+#: The budget's noise terms (docs/model.md section 15), in the order it lists them.
+BUDGET_TERMS = ("arw", "bias_instability", "rrw", "repeatability")
 
 #: Each budget term's figure unit in an :class:`Allowance` (vibration: the angle, deg).
 ALLOWANCE_UNITS = {"vibration": "deg", "arw": "deg/sqrt(h)", "bias_instability": "deg/h",
@@ -194,7 +203,7 @@ class MissionResult(Frozen):
         return "pass"
 
     def records(self) -> tuple[Column[MissionRow], ...]:
-        """The columns of the CSV and the DataFrame, in order, with their units: one
+        """The columns of the JSON rows, the CSV and the DataFrame, with their units: one
         row per sensor × mission × axis (:data:`COLUMNS`)."""
         return COLUMNS
 
@@ -213,51 +222,18 @@ class MissionResult(Frozen):
         return frame_of(SEGMENT_COLUMNS, self.segment_rows())
 
 
-def _budget(name: str) -> Callable[[MissionRow], float | None]:
-    """A figure of a row's budget (None: unknown, or no budget computed)."""
-    return lambda r: None if r.budget is None else getattr(r.budget, name)
+def _has_budget(row: MissionRow) -> bool:
+    return row.budget is not None
 
 
-def _allowed(name: str) -> Callable[[MissionRow], float | None]:
-    """The largest value of a budget figure that meets the angle budget (None: none passes,
-    or no angle budget)."""
-    return lambda r: (None if r.budget is None or r.budget.allowed is None
-                      else getattr(r.budget.allowed, name))
+def _allowance(row: MissionRow) -> Allowance | None:
+    """The largest values of the budget's figures that meet the angle budget (None: no
+    angle budget)."""
+    return None if row.budget is None else row.budget.allowed
 
 
-#: The records of a mission result, declared once: the CSV's header and cells and the
-#: DataFrame's columns come from here. Units: ``rate`` is the result's unit, ``angle``
-#: its angle unit; the budget's terms are in deg, the allowance in each figure's unit.
-COLUMNS: tuple[Column[MissionRow], ...] = (
-    Column("sensor", None, lambda r: r.sensor),
-    Column("mission", None, lambda r: r.mission),
-    Column("placement", None, lambda r: r.placement),
-    Column("axis", None, lambda r: r.axis),
-    Column("mean", "rate", lambda r: r.mean),
-    Column("angle", "angle", lambda r: r.angle),
-    Column("rms", "rate", lambda r: r.rms),
-    Column("worst_segment", None, lambda r: r.worst_index + 1),
-    Column("worst_profile", None, lambda r: r.worst_profile),
-    Column("worst_total", "rate", lambda r: r.worst_total),
-    Column("duration", "s", lambda r: r.duration),
-    Column("saturated", None, lambda r: r.saturated),
-    Column("source", None, lambda r: r.source),
-    Column("passed", None, lambda r: r.passed),
-    Column("status", None, lambda r: r.status),
-    Column("unknown", None, lambda r: " ".join(r.unknown)),
-    Column("theta_arw", "deg", _budget("arw")),
-    Column("theta_bias_instability", "deg", _budget("bias_instability")),
-    Column("theta_rrw", "deg", _budget("rrw")),
-    Column("theta_repeatability", "deg", _budget("repeatability")),
-    Column("budget_total", "deg", _budget("total")),
-    Column("coverage", None, _budget("coverage")),
-    Column("allowed_vibration", "deg", _allowed("vibration")),
-    Column("allowed_arw", "deg/sqrt(h)", _allowed("arw")),
-    Column("allowed_bias_instability", "deg/h", _allowed("bias_instability")),
-    Column("allowed_rrw", "deg/h/sqrt(h)", _allowed("rrw")),
-    Column("allowed_repeatability", "deg/h", _allowed("repeatability")),
-    Column("typical", None, lambda r: "" if r.budget is None else " ".join(r.budget.typical)),
-)
+def _has_allowance(row: MissionRow) -> bool:
+    return _allowance(row) is not None
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -284,36 +260,98 @@ class SegmentRecord(Frozen):
         return self.row.timeline[self.index] if self.row.timeline else None
 
 
-def _at_end(name: str) -> Callable[[SegmentRecord], float | None]:
-    """A figure of the budget at a segment's end (None: unknown, or no budget)."""
-    return lambda r: None if r.budget is None else getattr(r.budget, name)
+def _rate(k: int) -> Callable[[SegmentRecord], float]:
+    """The segment's carrier rate about x(k+1)."""
+    return lambda r: r.segment.rate[k]
+
+
+def _timed(record: SegmentRecord) -> bool:
+    return bool(record.row.timeline)
+
+
+#: What only the JSON has (the CSV and the frame leave it out).
+_JSON = ("csv", "frame")
+
+
+def _budget_columns(of: Callable[[Any], Budget | None], only: Callable[[Any], bool],
+                    vibration: tuple[str, ...]) -> tuple[Column[Any], ...]:
+    """The columns of a budget (deg; None without one): θ_V (``vibration``: the outputs
+    that leave it out), each noise term, the total and the coverage factor; and what only
+    the JSON has: the unit, whether the total is a lower bound (a figure unknown) or rests
+    on a figure given as a bound, and which."""
+    named = {"vibration": "theta_vibration", "total": "budget_total", "coverage": "coverage"}
+    return (*(Column(named.get(n, f"theta_{n}"), None if n == "coverage" else "deg",
+                     _figure(of, n), key=f"budget.{n}", only=only,
+                     skip=vibration if n == "vibration" else ())
+              for n in ("vibration", *BUDGET_TERMS, "total", "coverage")),
+            *(Column(f"budget.{n}", None, _figure(of, n), skip=_JSON, only=only)
+              for n in ("unit", "lower_bound", "rests_on_bound", "bounds")))
+
+
+def _figure(of: Callable[[Any], Any], name: str) -> Callable[[Any], Any]:
+    """A figure of a row's budget or allowance (``of``): None where it has none, or the
+    figure is unknown (an allowance: no value passes)."""
+    return lambda r: None if (b := of(r)) is None else getattr(b, name)
 
 
 #: The per-segment records (``mission --segments``), declared once: one line per sensor ×
-#: mission × axis × segment. ``rate`` is the result's unit; the budget at the segment's
+#: mission × axis × segment in the CSV and the frame, and each JSON row's ``segments``
+#: (in the JSON's order; the row's keys and ``segment`` only in the CSV, ``end`` placed
+#: after ``duration`` there). ``rate`` is the result's unit; the budget at the segment's
 #: end (``theta_*``, ``budget_total``) is in deg: θ_V summed segment by segment so far,
 #: each noise term over the time flown so far, their total with the coverage factor.
 SEGMENT_COLUMNS: tuple[Column[SegmentRecord], ...] = (
-    Column("sensor", None, lambda r: r.row.sensor),
-    Column("mission", None, lambda r: r.row.mission),
-    Column("placement", None, lambda r: r.row.placement),
-    Column("axis", None, lambda r: r.row.axis),
-    Column("segment", None, lambda r: r.index + 1),
+    *(Column(n, None, attrgetter(f"row.{n}"), skip=("json",))
+      for n in ("sensor", "mission", "placement", "axis")),
+    Column("segment", None, lambda r: r.index + 1, skip=("json",)),
     Column("profile", None, lambda r: r.segment.profile),
-    Column("start", "s", lambda r: r.start),
+    Column("start", "s", lambda r: r.start, skip=("json",)),
     Column("duration", "s", lambda r: r.segment.duration),
-    Column("end", "s", lambda r: r.start + r.segment.duration),
-    Column("rate_x1", "rate", lambda r: r.segment.rate[0]),
-    Column("rate_x2", "rate", lambda r: r.segment.rate[1]),
-    Column("rate_x3", "rate", lambda r: r.segment.rate[2]),
-    Column("total", "rate", lambda r: r.segment.total),
-    Column("rms", "rate", lambda r: r.segment.rms),
-    Column("saturated", None, lambda r: r.segment.saturated),
-    Column("theta_vibration", "deg", _at_end("vibration")),
-    Column("theta_arw", "deg", _at_end("arw")),
-    Column("theta_bias_instability", "deg", _at_end("bias_instability")),
-    Column("theta_rrw", "deg", _at_end("rrw")),
-    Column("theta_repeatability", "deg", _at_end("repeatability")),
-    Column("budget_total", "deg", _at_end("total")),
-    Column("coverage", None, _at_end("coverage")),
+    *(Column(f"rate_x{k + 1}", "rate", _rate(k), key=f"rate.{k}") for k in range(3)),
+    *(Column(n, u, attrgetter(f"segment.{n}")) for n, u in (("total", "rate"), ("rms", "rate"),
+                                                            ("saturated", None))),
+    Column("end", "s", lambda r: r.start + r.segment.duration, only=_timed,
+           csv_after="duration"),
+    *_budget_columns(lambda r: r.budget, _timed, vibration=()),
+)
+
+
+#: The records of a mission result, declared once, in the order of a JSON row
+#: (docs/output.md): the CSV's header and cells and the DataFrame's columns come from
+#: here too, in their own order (``csv_after``). Units: ``rate`` is the result's unit,
+#: ``angle`` its angle unit; the budget's terms are in deg, the allowance in each
+#: figure's unit. The JSON's ``reason`` (words) is the renderer's.
+COLUMNS: tuple[Column[MissionRow], ...] = (
+    *(Column(n, u, attrgetter(n)) for n, u in (("sensor", None), ("mission", None),
+                                              ("placement", None), ("mean", "rate"),
+                                              ("angle", "angle"), ("rms", "rate"))),
+    Column("worst_segment", None, lambda r: r.worst_index + 1, key="worst_segment.index",
+           json_value=lambda r: r.worst_index),
+    Column("worst_profile", None, lambda r: r.worst_profile, key="worst_segment.profile"),
+    Column("worst_total", "rate", lambda r: r.worst_total, key="worst_segment.total"),
+    Column("duration", "s", lambda r: r.duration, skip=("json",)),
+    Column("segments", None, lambda r: tuple(SegmentRecord(r, k)
+                                             for k in range(len(r.segments))),
+           skip=_JSON, each=SEGMENT_COLUMNS),
+    Column("saturated", None, lambda r: r.saturated),
+    Column("passed", None, lambda r: r.passed, key="pass"),
+    Column("status", None, lambda r: r.status),
+    Column("unknown", None, lambda r: " ".join(r.unknown), json_value=lambda r: list(r.unknown)),
+    Column("source", None, lambda r: r.source, csv_after="saturated"),
+    *_budget_columns(lambda r: r.budget, _has_budget, vibration=_JSON),
+    Column("typical", None, lambda r: "" if r.budget is None else " ".join(r.budget.typical),
+           key="budget.typical", only=_has_budget, csv_after="allowed_repeatability",
+           json_value=lambda r: [] if r.budget is None else list(r.budget.typical)),
+    *(Column(f"allowed_{name}", ALLOWANCE_UNITS[name], _figure(_allowance, name),
+             key=f"budget.allowed.{name}", only=_has_allowance) for name in ALLOWANCE_UNITS),
+    Column("budget.allowed.unit", None, lambda r: dict(ALLOWANCE_UNITS), skip=_JSON,
+           only=_has_allowance),
+    Column("budget.allowed.limited_by", None,
+           lambda r: dict(_figure(_allowance, "limited_by")(r)), skip=_JSON, only=_has_allowance),
+    Column("budget.allowed.upper", None, _figure(_allowance, "upper"), skip=_JSON,
+           only=_has_allowance),
+    Column("axis", None, lambda r: r.axis, only=lambda r: r.axis is not None,
+           csv_after="placement"),
+    Column("worst_axis", None, lambda r: r.worst_axis, skip=_JSON,
+           only=lambda r: r.axis is not None),
 )

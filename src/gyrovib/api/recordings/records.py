@@ -38,14 +38,14 @@ def recording_columns(a: Any) -> tuple[Column[int], ...]:
             *(Column(name, None if name == "ratio" else "rate", of(values), cell=known,
                      key=key) for name, key, values in numbers),
             # the profile at its mean rate: nested after the ratio in JSON, last in CSV
-            Column("at_mean_rate.total", "rate", at_mean, skip=json),
-            Column("at_mean_rate.ratio", None, at_ratio, skip=json),
+            Column("at_mean_rate", "rate", at_mean, cell=known, key="at_mean_rate.total",
+                   csv_after="unit"),
+            Column("at_mean_ratio", None, at_ratio, cell=known, key="at_mean_rate.ratio",
+                   csv_after="at_mean_rate"),
             Column("at_mean_rate.outside", None, lambda i: outside[i], skip=json),
             Column("saturated", None, lambda i: bool(a.saturated[i])),
             Column("peak_rate", "rate", of(a.peak_rate)),
             Column("unit", None, lambda i: a.unit, skip=("json",)),
-            Column("at_mean_rate", "rate", at_mean, cell=known, skip=("json",)),
-            Column("at_mean_ratio", None, at_ratio, cell=known, skip=("json",)),
             Column("source", None, lambda i: "specs" if a.spec[i] else "coefficients",
                    skip=json),
             Column("warnings", None, lambda i: list(a.warnings.get(i, ())), skip=json))
