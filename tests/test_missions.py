@@ -348,6 +348,11 @@ def test_angle_budget_exits_1_when_no_sensor_passes() -> None:
     open_ = invoke("mission", "--sensor", "generic-navigation-fog", "--angle-budget", "0.5deg",
                    "--format", "junit")
     assert open_.exit_code == 1 and "Unverified" in open_.stdout
+    # the row's reason names the option that takes the unknown as 0 (the command line's)
+    rows = json.loads(invoke("mission", "--sensor", "generic-navigation-fog", "--angle-budget",
+                             "0.5deg", "--format", "json").stdout)["mission"]
+    assert any(r["reason"] and r["reason"].endswith(
+        "-- ask the vendor, or --assume-unknown zero to take it as 0") for r in rows)
     ok = invoke("mission", "--sensor", "generic-navigation-fog", "--angle-budget", "0.5deg",
                 "--format", "junit", "--assume-unknown", "zero")
     assert ok.exit_code == 0 and 'failures="0"' in ok.stdout

@@ -19,8 +19,6 @@ from gyrovib.units import coefficient_unit
 #: How a reason names taking an unpublished figure as 0: a note naming the argument, which
 #: a result hands to its failures (the command line's copy of it names the option).
 ASSUME_ZERO = Note("{assume_unknown}", ("assume_unknown", "zero"))
-#: The same for mission's renderer, which words its rows for the command line.
-_MISSION_ADVICE = "--assume-unknown zero"
 
 
 class Yield(NamedTuple):
@@ -100,13 +98,13 @@ G2_WORDS = ("g² sensitivity not given (no g2_sensitivity or vre in the catalogu
             "section 8)")
 
 
-def unverified_text(names: Sequence[str], spec: bool = True,
-                    advice: str = _MISSION_ADVICE) -> str:
+def unverified_text(names: Sequence[str], spec: bool, advice: str) -> str:
     """The reason of an unverified verdict whose unpublished figures are ``names``
     (``select`` and ``mission`` alike); ``spec``: a datasheet part (else a coefficient
     sensor, whose missing g² figure is "not given" rather than "not published"). Names of
     :data:`NOT_RECORDED_WORDS` are parts a fitted profile's recording did not record.
-    ``advice``: how to take the figures as 0 (select's: :attr:`Failure.advice`)."""
+    ``advice``: how to take the figures as 0 (select's: :attr:`Failure.advice`; mission's
+    renderer: the command line's option)."""
     parts = [n for n in names if n in NOT_RECORDED_WORDS]
     figures = [n for n in names if n not in NOT_RECORDED_WORDS]
     out = []

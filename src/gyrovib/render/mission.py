@@ -24,6 +24,9 @@ if TYPE_CHECKING:
 
 #: The verdict cell of each row status (None: no budget).
 VERDICT = {None: "-", "pass": "pass", "fail": "FAIL", "unverified": "UNVERIFIED"}
+#: How an unverified row's reason says to take its unpublished figures as 0: the
+#: command line's option (mission's rows are worded for the command line).
+ASSUME_ZERO = "--assume-unknown zero"
 
 
 def _verdict(row: MissionRow) -> str:
@@ -44,7 +47,7 @@ def unverified_reason(row: MissionRow) -> str | None:
     when the row is not unverified."""
     if not row.unverified:
         return None
-    return unverified_text(row.unknown, spec=row.source == "specs")
+    return unverified_text(row.unknown, spec=row.source == "specs", advice=ASSUME_ZERO)
 
 
 def _reason(result: MissionResult, row: MissionRow) -> str:
