@@ -946,3 +946,58 @@ def test_select_and_bounds_markdown_headers_are_their_cells() -> None:
     table = _markdown(render_bounds.to_markdown(bounds))
     assert table[0] == [c.title for c in render_bounds._cells(bounds, 0)]
     assert [line[0] for line in table[1:]] == render_bounds._rows(bounds, 0)
+
+
+#: mission's JSON key order as docs/output.md and docs/missions.md give it, written out
+#: here (not read from the declaration under test): a row, its budget, what the budget
+#: allows, its worst segment, a segment; each entry has these keys or some of them, in
+#: this order. And the CSV header of ``mission --segments`` (docs/missions.md).
+MISSION_JSON = {
+    "row": ("sensor", "mission", "placement", "mean", "angle", "rms", "worst_segment",
+            "segments", "saturated", "pass", "status", "unknown", "reason", "source",
+            "budget", "axis", "worst_axis"),
+    "budget": ("vibration", "arw", "bias_instability", "rrw", "repeatability", "total",
+               "coverage", "unit", "lower_bound", "rests_on_bound", "bounds", "typical",
+               "allowed"),
+    "allowed": ("vibration", "arw", "bias_instability", "rrw", "repeatability", "unit",
+                "limited_by", "upper"),
+    "worst_segment": ("index", "profile", "total"),
+    "segment": ("profile", "duration", "rate", "total", "rms", "saturated", "end", "budget"),
+}
+SEGMENTS_CSV = ("sensor", "mission", "placement", "axis", "segment", "profile", "start",
+                "duration", "end", "rate_x1", "rate_x2", "rate_x3", "total", "rms",
+                "saturated", "theta_vibration", "theta_arw", "theta_bias_instability",
+                "theta_rrw", "theta_repeatability", "budget_total", "coverage")
+
+
+def _in_order(entry: dict, kind: str, always: tuple[str, ...] = ()) -> None:
+    keys = list(entry)
+    assert keys == [k for k in MISSION_JSON[kind] if k in entry], (kind, keys)
+    assert set(always) <= set(keys), kind
+
+
+@pytest.mark.parametrize("kwargs", [{"angle_budget": "0.5deg"}, {"budget": "36deg/h"},
+                                    {"angle_budget": "0.5deg", "assume_unknown": "zero"}])
+def test_mission_json_and_segments_csv_keep_their_documented_order(kwargs: dict) -> None:
+    import json
+
+    result = gyrovib.mission(**kwargs)
+    rows = json.loads(render_mission.to_json(result))["mission"]
+    budgets = 0
+    for row in rows:
+        _in_order(row, "row", ("sensor", "mission", "placement", "mean", "angle", "rms",
+                               "segments", "pass", "status", "unknown", "source", "axis"))
+        if isinstance(row.get("worst_segment"), dict):
+            _in_order(row["worst_segment"], "worst_segment", MISSION_JSON["worst_segment"])
+        for budget in [row.get("budget"), *(s.get("budget") for s in row["segments"])]:
+            if isinstance(budget, dict):
+                budgets += 1
+                _in_order(budget, "budget", ("vibration", "total", "coverage"))
+                if isinstance(budget.get("allowed"), dict):
+                    _in_order(budget["allowed"], "allowed")
+        for segment in row["segments"]:
+            _in_order(segment, "segment", ("profile", "duration", "total", "rms"))
+    assert budgets or "angle_budget" not in kwargs  # the probe: budgets were checked
+    from gyrovib.render.mission_segments import segments_csv
+
+    assert tuple(_csv(segments_csv(result))[0]) == SEGMENTS_CSV

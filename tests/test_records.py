@@ -350,3 +350,20 @@ def test_fast_yaml_construction_equals_pyyaml(text):
     finally:
         loader.dispose()
     assert repr(got) == repr(expected)
+
+
+def test_columns_declared_after_one_column_keep_their_order_and_a_missing_one_is_named() -> None:
+    """``csv_after``: two columns placed after the same one follow it in the declaration's
+    order; one placed after a column the output lacks (absent, or skipped there) is a
+    ValueError naming both."""
+    from dataclasses import replace
+
+    from gyrovib.records import Column, names, written
+
+    a, x = Column("a", None, str), Column("x", None, str)
+    b, c = Column("b", None, str, csv_after="a"), Column("c", None, str, csv_after="a")
+    assert names(written((a, x, b, c), "csv")) == ("a", "b", "c", "x")
+    assert names(written((a, x, b, c), "json")) == ("a", "x", "b", "c")
+    with pytest.raises(ValueError, match="'b' is declared after 'a', which the csv"):
+        written((replace(a, skip=("csv",)), x, b), "csv")
+    assert names(written((replace(a, skip=("csv",)), x, b), "frame")) == ("a", "b", "x")

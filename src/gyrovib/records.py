@@ -76,13 +76,21 @@ def known(value: float) -> float | None:
 def written(columns: Sequence[Column[Row]], output: str) -> tuple[Column[Row], ...]:
     """The columns ``output`` (``csv``, ``frame``, ``json``) has, in its order: the
     declaration's, but in the CSV and the frame a column with ``csv_after`` right after
-    that column (ValueError where it has none; it may be one moved before it)."""
+    that column, several after one in the declaration's order (ValueError naming both
+    where the output lacks that column; it may be one moved before it)."""
     shown = [c for c in columns if output not in c.skip]
     if output == "json" or all(c.csv_after is None for c in shown):
         return tuple(shown)
     placed = [c for c in shown if c.csv_after is None]
+    behind: dict[str, str] = {}  # a target → the last column placed behind it
     for c in (c for c in shown if c.csv_after is not None):
-        placed.insert(names(placed).index(str(c.csv_after)) + 1, c)
+        target = str(c.csv_after)
+        at = behind.get(target, target)
+        if at not in names(placed):
+            raise ValueError(f"column {c.name!r} is declared after {target!r}, which the "
+                             f"{output} does not have")
+        placed.insert(names(placed).index(at) + 1, c)
+        behind[target] = c.name
     return tuple(placed)
 
 

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 from rich.table import Table
 from rich.text import Text
 
-from gyrovib.api.missions.results import BUDGET_TERMS, COLUMNS
+from gyrovib.api.missions.results import BUDGET_NOISE_TERMS, COLUMNS
 from gyrovib.reasons import unverified_text
 from gyrovib.records import Column, names
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
@@ -68,7 +68,7 @@ def _reason(result: MissionResult, row: MissionRow) -> str:
     return f"Δ̄_RMS = {fmt(row.rms)} {result.unit} > {fmt(result.budget)} {result.unit}"
 
 
-#: The headings of the budget's noise terms (:data:`BUDGET_TERMS`) in the table.
+#: The headings of the budget's noise terms (:data:`BUDGET_NOISE_TERMS`) in the table.
 _NOISE_HEAD = ("θ_ARW", "θ_B", "θ_RRW", "θ_R")
 
 
@@ -120,7 +120,7 @@ def table_cells(result: MissionResult) -> tuple[Cell[MissionRow], ...]:
             Cell(f"angle θ_V{angle}", justify="right", of="angle"),
             Cell(f"mean RMS Δ̄_RMS{rate}", justify="right", of="rms"),
             *(Cell(f"{title} (deg)", _noise_cell(name), "right", of=f"theta_{name}")
-              for title, name in zip(_NOISE_HEAD, BUDGET_TERMS, strict=True)),
+              for title, name in zip(_NOISE_HEAD, BUDGET_NOISE_TERMS, strict=True)),
             Cell("total (deg)", budget_total, "right", of="budget_total"),
             Cell("worst segment", _worst, of="worst_segment"),
             Cell("verdict", _verdict_cell, of="status"))

@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from gyrovib.api.missions.results import BUDGET_TERMS, SEGMENT_COLUMNS
+from gyrovib.api.missions.results import BUDGET_NOISE_TERMS, SEGMENT_COLUMNS
 from gyrovib.render.common import fmt
 from gyrovib.render.formats import Cell, csv_of, known, markdown_of, table_of
 
@@ -47,7 +47,8 @@ def _cells(result: MissionResult) -> tuple[Cell[SegmentRecord], ...]:
             Cell("θ_V (deg)", _budget(lambda b: known(b.vibration)), "right",
                  of="theta_vibration"),
             *(Cell(f"{title} (deg)", _budget(noise(name)), "right", of=f"theta_{name}")
-              for title, name in zip(("θ_ARW", "θ_B", "θ_RRW", "θ_R"), BUDGET_TERMS, strict=True)),
+              for title, name in zip(("θ_ARW", "θ_B", "θ_RRW", "θ_R"), BUDGET_NOISE_TERMS,
+                                     strict=True)),
             Cell("total (deg)", _budget(_total), "right", of="budget_total"))
 
 

@@ -81,7 +81,7 @@ class Allowance(Frozen):
 
 
 #: The budget's noise terms (docs/model.md section 15), in the order it lists them.
-BUDGET_TERMS = ("arw", "bias_instability", "rrw", "repeatability")
+BUDGET_NOISE_TERMS = ("arw", "bias_instability", "rrw", "repeatability")
 
 #: Each budget term's figure unit in an :class:`Allowance` (vibration: the angle, deg).
 ALLOWANCE_UNITS = {"vibration": "deg", "arw": "deg/sqrt(h)", "bias_instability": "deg/h",
@@ -283,7 +283,7 @@ def _budget_columns(of: Callable[[Any], Budget | None], only: Callable[[Any], bo
     return (*(Column(named.get(n, f"theta_{n}"), None if n == "coverage" else "deg",
                      _figure(of, n), key=f"budget.{n}", only=only,
                      skip=vibration if n == "vibration" else ())
-              for n in ("vibration", *BUDGET_TERMS, "total", "coverage")),
+              for n in ("vibration", *BUDGET_NOISE_TERMS, "total", "coverage")),
             *(Column(f"budget.{n}", None, _figure(of, n), skip=_JSON, only=only)
               for n in ("unit", "lower_bound", "rests_on_bound", "bounds")))
 
@@ -296,10 +296,11 @@ def _figure(of: Callable[[Any], Any], name: str) -> Callable[[Any], Any]:
 
 #: The per-segment records (``mission --segments``), declared once: one line per sensor ×
 #: mission × axis × segment in the CSV and the frame, and each JSON row's ``segments``
-#: (in the JSON's order; the row's keys and ``segment`` only in the CSV, ``end`` placed
-#: after ``duration`` there). ``rate`` is the result's unit; the budget at the segment's
-#: end (``theta_*``, ``budget_total``) is in deg: θ_V summed segment by segment so far,
-#: each noise term over the time flown so far, their total with the coverage factor.
+#: (in the JSON's order; the row's keys, ``segment`` and ``start`` only in the CSV,
+#: ``end`` placed after ``duration`` there). ``rate`` is the result's unit; the budget at
+#: the segment's end (``theta_*``, ``budget_total``) is in deg: θ_V summed segment by
+#: segment so far, each noise term over the time flown so far, their total with the
+#: coverage factor.
 SEGMENT_COLUMNS: tuple[Column[SegmentRecord], ...] = (
     *(Column(n, None, attrgetter(f"row.{n}"), skip=("json",))
       for n in ("sensor", "mission", "placement", "axis")),
