@@ -299,18 +299,30 @@ def test_analyze_columns_read_alike_one_row_or_many(case: str, tmp_path) -> None
     from gyrovib.api.evaluation.records import analysis_cells, analysis_columns
 
     result = _analysis(case, tmp_path)
-    rows = analysis_cells(result)
+    # the probe: the numbers of a row are read at once
+    assert _read_alike(analysis_columns(result), analysis_cells(result)) > 15
+
+
+def _read_alike(columns, rows, types: bool = False) -> int:
+    """Each column that reads many rows at once (``many``) reads what ``value`` reads row
+    by row, NaN for NaN; with ``types``, as the same Python types, and a column of flags
+    as an array of flags. Returns how many such columns there are."""
     fast = 0
-    for column in analysis_columns(result):
+    for column in columns:
         if column.many is None:
             continue
         many = list(column.many(rows))
         one = [column.value(row) for row in rows]
+        if types:
+            assert list(map(type, np.asarray(many).tolist())) == list(map(type, one)), \
+                column.name
+            if all(type(v) is bool for v in one):  # flags: the frame's column is of flags
+                assert np.asarray(column.many(rows)).dtype == bool, column.name
         assert np.array_equal(np.asarray(many, dtype=object), np.asarray(one, dtype=object)) \
             or np.allclose(np.asarray(many, float), np.asarray(one, float), rtol=0, atol=0,
                            equal_nan=True), column.name
         fast += 1
-    assert fast > 15  # the probe: the numbers of a row are read at once
+    return fast
 
 
 def test_a_column_added_to_analyze_records_is_in_json_csv_and_frame() -> None:
@@ -502,21 +514,8 @@ def test_select_columns_read_alike_one_row_or_many(case: str, tmp_path) -> None:
     from gyrovib.api.evaluation.records import selection_cells, selection_columns
 
     result = _selection(case, tmp_path)
-    rows = selection_cells(result)
-    fast = 0
-    for column in selection_columns(result):
-        if column.many is None:
-            continue
-        many = list(column.many(rows))
-        one = [column.value(row) for row in rows]
-        assert list(map(type, np.asarray(many).tolist())) == list(map(type, one)), column.name
-        if all(type(v) is bool for v in one):  # flags: the frame's column is of flags
-            assert np.asarray(column.many(rows)).dtype == bool, column.name
-        assert np.array_equal(np.asarray(many, dtype=object), np.asarray(one, dtype=object)) \
-            or np.allclose(np.asarray(many, float), np.asarray(one, float), rtol=0, atol=0,
-                           equal_nan=True), column.name
-        fast += 1
-    assert fast > 15  # the probe: the numbers and checks of a row are read at once
+    # the probe: the numbers and checks of a row are read at once
+    assert _read_alike(selection_columns(result), selection_cells(result), types=True) > 15
 
 
 def _at(entry: object, key: str) -> object:
