@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 from rich.table import Table
 from rich.text import Text
 
-from gyrovib.api.missions.results import BUDGET_NOISE_TERMS, COLUMNS
+from gyrovib.api.missions.results import BUDGET_NOISE_TERMS, COLUMNS, TRIAD_COLUMNS
 from gyrovib.reasons import unverified_text
 from gyrovib.records import Column, names
 from gyrovib.render.common import dumps, fmt, header, number, rich_text
@@ -255,25 +255,6 @@ def json_columns(result: MissionResult) -> tuple[Column[MissionRow], ...]:
     return (*COLUMNS[:at], reason, *COLUMNS[at:])
 
 
-def _triads_json(result: MissionResult) -> list[dict[str, Any]]:
-    """One summary per triad (a sensor × mission on several axes), in the order of its
-    first row: its worst axis, whether every axis passes, and its status, its axes' worst
-    (fail, then unverified, then pass; None without a budget)."""
-    groups: dict[tuple[str, str], list[MissionRow]] = {}
-    for row in result.rows:
-        groups.setdefault((row.sensor, row.mission), []).append(row)
-    triads = []
-    for (sensor, mission), group in groups.items():
-        if all(r.axis is None for r in group):
-            continue
-        passed = None if group[0].passed is None else all(bool(r.passed) for r in group)
-        statuses = {r.status for r in group}
-        status = next((s for s in ("fail", "unverified") if s in statuses), "pass")
-        triads.append({"sensor": sensor, "mission": mission, "worst_axis": group[0].worst_axis,
-                       "pass": passed, "status": None if passed is None else status})
-    return triads
-
-
 def to_json(result: MissionResult) -> str:
     """The JSON document of docs/output.md (mission): one entry per sensor × mission
     (× axis), then each triad's summary and each sensor's verdict."""
@@ -283,11 +264,8 @@ def to_json(result: MissionResult) -> str:
         "angle_budget": None if result.angle_budget is None else number(result.angle_budget),
         "require": result.require, "assume_unknown": result.assume_unknown,
         "mission": json_of(json_columns(result), result.rows),
-        "triads": _triads_json(result),
-        "sensors": [{"sensor": s, "pass": p, "status": result.sensor_status(k),
-                     **({} if result.ranks is None else {"rank": result.ranks[k]})}
-                    for k, (s, p) in enumerate(zip(result.sensors, result.sensor_pass,
-                                                   strict=True))],
+        "triads": json_of(TRIAD_COLUMNS, result.triads()),
+        "sensors": json_of(result.sensor_records(), range(len(result.sensors))),
         "requirement_met": result.requirement_met,
     }
     return dumps(document)

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
+from gyrovib.api.missions.results import worst_status
 from gyrovib.core._types import FloatArray
 from gyrovib.core.analysis import ALL_TERMS, VibrationError
 from gyrovib.core.synthesis import BOUNDED
@@ -440,11 +441,7 @@ class SelectionResult(SensorsByProfiles):
     def sensor_status(self, i: int) -> str:
         """Sensor ``i`` over every profile: ``fail`` if it fails one, else ``unverified``
         if one is unverified, else ``pass``."""
-        found = {self.status(i, j) for j in range(len(self.profiles))}
-        for status in ("fail", "unverified"):
-            if status in found:
-                return status
-        return "pass"
+        return worst_status(self.status(i, j) for j in range(len(self.profiles)))
 
     def sensor_unknown(self, i: int) -> tuple[str, ...]:
         """The unknown figures of sensor ``i`` that matter under some profile, in order."""

@@ -3,7 +3,7 @@ sensor × mission × axis, each with its segments and its angle budget (section 
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from operator import attrgetter
 from typing import TYPE_CHECKING, Any
@@ -191,16 +191,23 @@ class MissionResult(Frozen):
     ranks: tuple[int | None, ...] | None = None
 
     def sensor_status(self, k: int) -> str | None:
-        """Sensor ``k`` over every mission and axis: ``fail`` if a row fails on its
-        published figures, else ``unverified`` if one is, else ``pass`` (None without a
-        budget)."""
-        if self.sensor_pass[k] is None:
-            return None
-        statuses = {r.status for r in self.rows if r.sensor == self.sensors[k]}
-        for status in ("fail", "unverified"):
-            if status in statuses:
-                return status
-        return "pass"
+        """Sensor ``k`` over every mission and axis (:func:`worst_status`); None: no budget."""
+        return None if self.sensor_pass[k] is None else worst_status(
+            r.status for r in self.rows if r.sensor == self.sensors[k])
+
+    def sensor_records(self) -> tuple[Column[int], ...]:
+        """The JSON's ``sensors``: a row per sensor (its index); its rank if ranked."""
+        return (Column("sensor", None, self.sensors.__getitem__),
+                Column("pass", None, self.sensor_pass.__getitem__),
+                Column("status", None, self.sensor_status),
+                *(() if self.ranks is None else (Column("rank", None, self.ranks.__getitem__),)))
+
+    def triads(self) -> tuple[tuple[MissionRow, ...], ...]:
+        """The rows of each triad (a sensor × mission on several axes): :data:`TRIAD_COLUMNS`."""
+        groups: dict[tuple[str, str], tuple[MissionRow, ...]] = {}
+        for r in self.rows:
+            groups[r.sensor, r.mission] = (*groups.get((r.sensor, r.mission), ()), r)
+        return tuple(g for g in groups.values() if any(r.axis is not None for r in g))
 
     def records(self) -> tuple[Column[MissionRow], ...]:
         """The columns of the JSON rows, the CSV and the DataFrame, with their units: one
@@ -220,6 +227,23 @@ class MissionResult(Frozen):
         """One row per segment (pandas): the columns of ``--segments --format csv``
         (:data:`SEGMENT_COLUMNS`)."""
         return frame_of(SEGMENT_COLUMNS, self.segment_rows())
+
+
+def worst_status(statuses: Iterable[str | None]) -> str:
+    """Several verdicts as one: fail if one fails, else unverified if one is, else pass."""
+    found = set(statuses)
+    return next((s for s in ("fail", "unverified") if s in found), "pass")
+
+
+#: The JSON's ``triads``, a row per triad (:meth:`MissionResult.triads`): its worst axis, verdict.
+TRIAD_COLUMNS: tuple[Column[tuple[MissionRow, ...]], ...] = (
+    Column("sensor", None, lambda g: g[0].sensor),
+    Column("mission", None, lambda g: g[0].mission),
+    Column("worst_axis", None, lambda g: g[0].worst_axis),
+    Column("pass", None, lambda g: None if g[0].passed is None else all(r.passed for r in g)),
+    Column("status", None,
+           lambda g: None if g[0].passed is None else worst_status(r.status for r in g)),
+)
 
 
 def _has_budget(row: MissionRow) -> bool:
