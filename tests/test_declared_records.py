@@ -1,13 +1,13 @@
 """A result that declares its records (gyrovib/records.py: Column) gets its CSV header and
 cells (render/formats.py) and its DataFrame columns from that one declaration: they cannot
 drift apart, and a column moved in the declaration moves in both; where the JSON rows are
-written from it too (analyze, mission with its segments, a recording, several recordings,
-bounds, runup), their key paths are the declaration's, in its order. Every result with a
-CSV is checked here (analyze, mission, bounds, select, sweep, fit, a recording, runup); the
-expected cells are the frame's own values, written as docs/output.md says a CSV writes
-them. Likewise its human tables: their Markdown header is the declared cells' titles
-(render/formats.py: Cell), each cell names a declared record and shows its value, and
-JUnit has one case per verdict row."""
+written from it too (analyze, mission with its segments, its triads and sensors, a
+recording, several recordings, bounds, runup), their key paths are the declaration's, in
+its order. Every result with a CSV is checked here (analyze, mission, bounds, select,
+sweep, fit, a recording, runup); the expected cells are the frame's own values, written as
+docs/output.md says a CSV writes them. Likewise its human tables: their Markdown header is
+the declared cells' titles (render/formats.py: Cell), each cell names a declared record and
+shows its value, and JUnit has one case per verdict row."""
 
 from __future__ import annotations
 
@@ -164,6 +164,56 @@ def test_mission_json_entries_are_the_declaration(kwargs: dict) -> None:
     # each row, a rotation none
     assert all("budget" in e for e in entries)
     assert all(("axis" in e) == ("placement" not in kwargs) for e in entries)
+
+
+#: The keys of mission's ``triads`` and ``sensors`` entries, in order, as its JSON writes
+#: them (docs/output.md; ``rank`` only from ``select --mission``, which ranks).
+TRIAD_KEYS = ("sensor", "mission", "worst_axis", "pass", "status")
+SENSOR_KEYS = ("sensor", "pass", "status")
+
+
+@pytest.mark.parametrize("kwargs", [{"angle_budget": "0.5deg"}, {},
+                                    {"budget": "36deg/h", "placement": "x1=+Y,x2=+Z,x3=+X"}])
+@pytest.mark.parametrize("rank", [False, True])
+def test_mission_triads_and_sensors_are_their_declarations(kwargs: dict, rank: bool) -> None:
+    # the triads' and the sensors' entries are written from their declarations in api
+    # (TRIAD_COLUMNS, MissionResult.sensor_records): their keys are the literal tuples
+    # above, and their values the rows' own: a triad passes when every axis does, its
+    # status the worst of its axes' (fail, then unverified, then pass), None without a
+    # budget; a rotation has no triad
+    import json
+
+    from gyrovib.api.missions.results import TRIAD_COLUMNS
+    from gyrovib.api.noise import ranked
+
+    result = gyrovib.mission(**kwargs)
+    result = ranked(result) if rank else result
+    document = json.loads(render_mission.to_json(result))
+    assert names(TRIAD_COLUMNS) == TRIAD_KEYS
+    assert names(result.sensor_records()) == SENSOR_KEYS + (("rank",) if rank else ())
+    triad = "placement" not in kwargs
+    assert len(document["triads"]) == (len(result.sensors) * len(result.missions) if triad
+                                       else 0)
+    for entry in document["triads"]:
+        assert tuple(entry) == TRIAD_KEYS
+        rows = [r for r in result.rows if (r.sensor, r.mission) == (entry["sensor"],
+                                                                     entry["mission"])]
+        assert [r.axis for r in rows] == ["X", "Y", "Z"]
+        judged = bool(kwargs)
+        assert entry["pass"] == (all(r.passed for r in rows) if judged else None)
+        statuses = [r.status for r in rows]
+        assert entry["status"] == (None if not judged else "fail" if "fail" in statuses
+                                   else "unverified" if "unverified" in statuses else "pass")
+        assert entry["worst_axis"] == rows[0].worst_axis in ("X", "Y", "Z")
+    assert [e["sensor"] for e in document["sensors"]] == list(result.sensors)
+    for k, entry in enumerate(document["sensors"]):
+        assert tuple(entry) == SENSOR_KEYS + (("rank",) if rank else ())
+        assert entry["pass"] == result.sensor_pass[k]
+        assert entry["status"] == result.sensor_status(k)
+        assert entry.get("rank") == (result.ranks[k] if rank else None)
+    statuses = {e["status"] for e in document["triads"] + document["sensors"]}
+    assert statuses >= ({"fail", "unverified"} if kwargs.get("angle_budget") else {None}
+                        if not kwargs else {"fail"})  # the probes meet these verdicts
 
 
 # analyze's cases: the bundled catalogues (spec-form sensors and their envelope, saturated
