@@ -648,3 +648,15 @@ def test_the_fitted_shape_is_reported_and_warned(tmp_path: Path,
     assert r.exit_code == 0, r.stderr
     assert "gyrovib: warning: res.npy: the fitted rate PSD of axis X is off" in r.stderr
     assert json.loads(r.stdout)["recording"]["axes"]["X"]["shape_db"] > 2.0
+
+
+def test_analyze_recording_warnings_name_their_file(tmp_path: Path) -> None:
+    """With the JSON on standard output, each warning on standard error names the log it
+    is about (the bundled ULog has a segment too short for f_c = 5 Hz: one warning)."""
+    pytest.importorskip("pyulog")
+    r = invoke("analyze", "--recording", ULOG, _sensor_file(tmp_path), "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    json.loads(r.stdout)  # the document alone
+    warnings = [w for w in r.stderr.splitlines() if w.startswith("gyrovib: warning: ")]
+    assert warnings and all(w.startswith("gyrovib: warning: px4-sample.ulg: ")
+                            for w in warnings), r.stderr

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -127,8 +128,10 @@ def analyze_recording(paths: tuple[str, ...], catalog: Any, sensors: tuple[str, 
                          **options.fit_arguments())
         result = as_options(result)  # its notes name the options, not the arguments
         if fmt != "table" or output is not None:  # the table on the terminal lists them itself
+            base = f"{os.path.basename(result.fit.file)}: "  # every warning names its file
             for warning in result.fit.warnings:
-                click.echo(f"gyrovib: warning: {warning}", err=True)
+                named = warning if warning.startswith(base) else base + warning
+                click.echo(f"gyrovib: warning: {named}", err=True)
         write_output(rendered(render, result, fmt, output), output)
         return
 
