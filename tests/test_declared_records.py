@@ -1050,3 +1050,24 @@ def test_mission_json_and_segments_csv_keep_their_documented_order(kwargs: dict)
     from gyrovib.render.mission_segments import segments_csv
 
     assert tuple(_csv(segments_csv(result))[0]) == SEGMENTS_CSV
+
+
+#: select's JSON keys of a sensor and of a sensor × profile entry, in order, as
+#: docs/output.md lists them (written out: not read from the declaration under test);
+#: an entry has these or some of them (a spec-form part, a lot, a yield add theirs).
+SELECT_SENSOR_KEYS = ("sensor", "source", "pass", "status", "unknown", "questions",
+                      "profiles")
+SELECT_ENTRY_KEYS = ("profile", "pass", "status", "unknown", "rms", "margin",
+                     "criterion_margin", "disagrees", "checks", "total", "saturated", "reason")
+
+
+def test_select_json_keys_are_the_documented_ones() -> None:
+    import json
+
+    from gyrovib.render import select as render_select
+
+    document = json.loads(render_select.to_json(gyrovib.select(budget="10deg/h")))
+    for sensor in document["sensors"]:
+        assert tuple(sensor) == SELECT_SENSOR_KEYS
+        for entry in sensor["profiles"]:
+            assert tuple(entry) == SELECT_ENTRY_KEYS, tuple(entry)
