@@ -184,11 +184,6 @@ def fit(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
     return best
 
 
-def refit(a: FloatArray, var: FloatArray, weight: FloatArray) -> FloatArray:
-    """One curve's coefficients with the design and weights held (no reweighting)."""
-    return _weighted(a, var, weight)[0]
-
-
 def simulated_truth(fitted: Fit) -> Truth:
     """The bootstrap's world: the fitted terms as a record's truth (a filter's tail is
     not a noise term: the simulation has no filter)."""
@@ -559,6 +554,5 @@ __all__ = [
     "nnls",
     "noise_model",
     "pivot",
-    "refit",
     "terms",
 ]

@@ -378,28 +378,6 @@ def _tone_on_gauss_excess(w: FloatArray, a: float, sigma: float) -> FloatArray:
     return out
 
 
-def _gauss_legendre(n: int) -> tuple[FloatArray, FloatArray]:
-    """Gauss-Legendre nodes and weights on [−1, 1] by Newton's method on P_n
-    (numpy.polynomial would import numpy.ma and numpy.linalg at start-up)."""
-    x = np.cos(math.pi * (np.arange(1, n + 1) - 0.25) / (n + 0.5))
-    for _ in range(100):
-        p0, p1 = np.ones_like(x), x
-        for k in range(2, n + 1):
-            p0, p1 = p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k
-        derivative = n * (x * p1 - p0) / (x * x - 1.0)
-        step = p1 / derivative
-        x = x - step
-        if np.max(np.abs(step)) < 1e-16:
-            break
-    p0, p1 = np.ones_like(x), x
-    for k in range(2, n + 1):
-        p0, p1 = p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k
-    derivative = n * (x * p1 - p0) / (x * x - 1.0)
-    weights: FloatArray = 2.0 / ((1.0 - x * x) * derivative**2)
-    nodes: FloatArray = x[::-1].copy()
-    return nodes, weights[::-1].copy()
-
-
 #: Gauss-Legendre nodes per piece of :func:`_pieces`.
 _GL_N = 24
 #: Values one :func:`_pair_mean` / :func:`_triple_mean` argument makes (3 and 5 pieces).
@@ -407,8 +385,8 @@ _PAIR_NODES = 3 * _GL_N
 _TRIPLE_NODES = 5 * _GL_N * _PAIR_NODES
 
 
-#: :func:`_gauss_legendre` (``_GL_N``) written out, as it computes them to the last bit
-#: (tests/test_statistics.py checks it): Newton's method is ~1 ms of a first run.
+#: The ``_GL_N``-point Gauss-Legendre nodes and weights on [−1, 1], written out: Newton's
+#: method on P_n gives them to the last bit (tests/test_statistics.py checks it).
 _GL24_X = (
     -0.9951872199970213, -0.9747285559713095, -0.9382745520027328, -0.8864155270044011,
     -0.820001985973903, -0.7401241915785544, -0.6480936519369755, -0.5454214713888396,
