@@ -22,21 +22,13 @@ from typing import Any, NamedTuple, cast
 from pydantic import ValidationError
 
 from gyrovib.catalog import messages
-from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
-    MAX_DEPTH,
-    MAX_EXPANDED_NODES,
-    Loader,
-    _gc_paused,
-    _Unusual,
-)
+from gyrovib.catalog.dialect import _gc_paused
 from gyrovib.catalog.dialect import parse as _parse
 from gyrovib.catalog.locate import Index
 from gyrovib.catalog.messages import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY, Error
 from gyrovib.errors import CatalogError, Problem
 from gyrovib.frozen import Frozen
 from gyrovib.models import Allocation, Catalogue, Mission, Profile, Sensor, validate_document
-
-_Loader = Loader
 
 #: Most problems reported for one file; the rest are summarised.
 MAX_PROBLEMS = 50

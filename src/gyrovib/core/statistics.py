@@ -135,14 +135,13 @@ def folded_normal_excess(omega: ArrayLike, sigma: float) -> FloatArray:
     """``E(Ω) = <|Ω + σZ|> − |Ω|`` for Gaussian Z (folded normal mean).
 
     ``<|Ω+σZ|> = σ·√(2/π)·exp(−Ω²/2σ²) + Ω·erf(Ω/(σ√2))``, written with erfc
-    so that the difference keeps its precision for large |Ω|/σ.
+    so that the difference keeps its precision for large |Ω|/σ (:func:`_gauss_kernel`
+    at m = |Ω|).
     """
     w = np.abs(np.asarray(omega, dtype=float))
     if sigma <= 0:
         return np.zeros_like(w)
-    u = w / (sigma * math.sqrt(2.0))
-    out: FloatArray = sigma * SQRT_2_OVER_PI * np.exp(-(u**2)) - w * erfc(u)
-    return out
+    return _gauss_kernel(w, sigma)
 
 
 def arcsine_excess(omega: ArrayLike, a: float) -> FloatArray:
