@@ -17,11 +17,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numpy.typing import NDArray
 
-from gyrovib.core._types import FloatArray
-
-IntArray = NDArray[np.int64]
+from gyrovib.core._types import FloatArray, IntArray
 
 #: k values summed at once: the working memory is a few blocks of this many floats
 #: (64 KiB each, in a core's cache). Below OpenBLAS's threading threshold of its dot

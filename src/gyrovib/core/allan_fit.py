@@ -42,12 +42,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib.core import allan_edf as edfs
-from gyrovib.core._types import FloatArray
+from gyrovib.core._types import FloatArray, IntArray
 from gyrovib.core.allan import oadev
 from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
-
-IntArray = NDArray[np.int64]
 
 #: The five terms, in the model's order.
 TERMS = ("quantization", "arw", "bias_instability", "rrw", "rate_ramp")
