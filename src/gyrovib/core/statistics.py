@@ -281,7 +281,7 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
             if a.size > 3:
                 raise
             # a Gaussian part so small against two or three tones that the
-            # contour would be long: their phase grid, as before the contour
+            # contour would be long: their phase grid instead
             out[live] = _grid_on_gauss_excess(wl, a, sigma)
     return out
 
