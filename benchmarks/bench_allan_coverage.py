@@ -17,12 +17,13 @@ does, and for each term present in the truth the fraction of records whose 68 % 
 intervals hold it is printed, with the number of records where the term was resolved (a
 value) and where it was given as a bound (then whether the bound holds). Terms absent
 from the truth must come out as bounds (or values whose interval is counted as a miss).
-Every interval method named (--interval) is computed from the same replicates, and each
-is also counted over every record whose truth has the term, resolved or not ("every
-record"): the coverage before the choice between a value and a bound, which otherwise
-leaves out the records where the term came out lowest. gyrovib's intervals are read at
-the levels ``gyrovib.core.allan_levels`` sets per term; ``--save`` keeps, per record and
-term, what decides whether the interval holds at any level, which
+Every interval method named (--interval; those other than gyrovib's are in
+benchmarks/allan_methods.py) is computed from the same replicates, and each is also
+counted over every record whose truth has the term, resolved or not ("every record"):
+the coverage before the choice between a value and a bound, which otherwise leaves out
+the records where the term came out lowest. gyrovib's intervals are read at the levels
+``gyrovib.core.allan_levels`` sets per term; ``--save`` keeps, per record and term, what
+decides whether the interval holds at any level, which
 benchmarks/allan_coverage_levels.py reads (the coverage at other levels, and the levels
 that give 68 % and 95 %).
 """
@@ -41,24 +42,21 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "src"))
 
+from allan_methods import METHOD, METHODS, double_bootstrap, intervals, terms
+
 from gyrovib.core.allan import oadev, tau_grid
 from gyrovib.core.allan_fit import (
-    METHOD,
-    METHODS,
     SIM_CAP,
     TERMS,
     Curve,
     Fit,
     bootstrap,
     design,
-    double_bootstrap,
     envelope_bound,
     fit,
-    intervals,
     resolution,
     roll_off,
     studentized_root,
-    terms,
 )
 from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
@@ -126,7 +124,7 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
             saved.extend(_roots(first_seed + r, cases[r % len(cases)], truth, fitted, coefs,
                                 curve))
         for meth in methods:
-            found = terms(fitted, tau, var, coefs, (0.68, 0.95), meth, curve, inner)
+            found = terms(curve, coefs, (0.68, 0.95), meth, inner)
             for term, got, true in zip(TERMS, found, truth_values(truth), strict=False):
                 if got.resolved:
                     (lo68, hi68), (lo95, hi95) = got.intervals

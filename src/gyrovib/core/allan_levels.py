@@ -1,18 +1,9 @@
-"""The level at which each term's studentized interval is read for a confidence: a
-calibration set by simulation on the coverage study, not derived (docs/error-budget.md
-section 5; docs/model.md section 15).
-
-The studentized interval of :mod:`gyrovib.core.allan_fit`, read at the nominal level,
-covered its truth too often at 68 % for the rate ramp (83 % of the 160 records with a ramp)
-and the rate random walk (73 %), and too rarely at 95 % for quantization (92 %). Scaled
-by the spread of its replicates' roots, the record's root at the truth is spread
-differently from the replicates' (for the ramp its 68 % point 0.80, theirs 0.98): the
-replicates are drawn from the fitted model, and a little flicker or random walk that
-the fit puts where the truth has none widens its neighbours' replicates, so their
-spread follows the fitted nuisance terms from record to record more than the error
-does. The study's roots, saved per record and term, give the coverage at any level;
-each term is read at the level at which it covered as asked. Checked on ranges run after they
-were frozen (docs/error-budget.md section 5).
+"""The level at which each term's studentized interval (:mod:`gyrovib.core.allan_fit`) is
+read for a confidence: a calibration set by simulation on the coverage study, not derived.
+Read at the nominal level, the intervals covered some terms' truths too often or too
+rarely; docs/error-budget.md section 5 gives why, the study's design these levels hold
+for, and the coverage they achieve on records they were not set on (docs/model.md
+section 15).
 """
 
 from __future__ import annotations
