@@ -75,9 +75,10 @@ def test_a_part_without_a_vre_under_linear_vibration_is_unverified(catalog: str)
     assert (cell["pass"], cell["status"], cell["unknown"]) == (False, "unverified", ["vre"])
     assert cell["reason"].startswith("unverified: passes on its published figures, but VRE "
                                      "not published")
-    # the VRE check is not shown to pass: its value is not known
+    # the VRE check neither passes nor fails: its value is not known (the cell is
+    # unverified, and its own "pass" false)
     assert cell["checks"]["vre"] == {"value": None, "bound": cell["checks"]["vre"]["bound"],
-                                     "pass": False}
+                                     "pass": None}
     assert (parts["no-vre"]["pass"], parts["no-vre"]["status"]) == (False, "unverified")
     # the vendor question: the VRE that still passes. The worst case on the published
     # figures is 0 here (no angular vibration), so VRE_max = Δ*/Σ⟨a_j²⟩ = 0.01/3
@@ -156,7 +157,7 @@ def test_a_coefficient_sensor_without_a_g2_figure_is_unverified_under_linear_vib
                 if s["sensor"] == "no-g2")["profiles"][shaker]
     assert (cell["status"], cell["unknown"], cell["pass"]) == ("unverified", ["vre"], False)
     assert "g² sensitivity not given" in cell["reason"]
-    assert cell["checks"]["vre"]["value"] is None and cell["checks"]["vre"]["pass"] is False
+    assert cell["checks"]["vre"]["value"] is None and cell["checks"]["vre"]["pass"] is None
     table = invoke("select", coefficient_catalog, "--budget", str(BUDGET),
                    env={"COLUMNS": "200"}).stdout
     row = next(line for line in table.splitlines() if "│ no-g2" in line)
@@ -209,6 +210,40 @@ def test_table_junit_csv_and_github_show_it(catalog: str) -> None:
     assert (row["passed"], row["status"], row["unknown"]) == ("False", "unverified", "vre")
     github = invoke(*args, "--format", "github").stdout
     assert "no-vre is unverified" in github and "Ask the vendor: VRE" in github
+
+
+def test_the_vre_check_of_an_unknown_figure_is_neither_passed_nor_failed(
+        catalog: str, coefficient_catalog: str) -> None:
+    # A VRE the datasheet does not publish (no-vre), or a g² sensitivity the catalogue
+    # does not give (no-g2), under 'shaker', whose linear vibration sets a VRE bound:
+    # the check has no value, so no verdict either (null, empty, None), while the cell
+    # itself is unverified and its own "pass" false (INTERFACE.md, third round).
+    for path, sensor in ((catalog, "no-vre"), (coefficient_catalog, "no-g2")):
+        _, doc = select_json(path, "--profile", "shaker")
+        cell = {s["sensor"]: s for s in doc["sensors"]}[sensor]["profiles"][0]
+        assert cell["checks"]["vre"]["value"] is None
+        assert cell["checks"]["vre"]["bound"] > 0  # the bound applies here
+        assert cell["checks"]["vre"]["pass"] is None
+        assert (cell["pass"], cell["status"]) == (False, "unverified")
+        csv = invoke("select", path, "--budget", str(BUDGET), "--profile", "shaker",
+                     "--format", "csv").stdout.splitlines()
+        row = dict(zip(csv[0].split(","), next(r for r in csv if r.startswith(sensor + ","))
+                       .split(","), strict=False))
+        assert (row["value_vre"], row["pass_vre"], row["passed"]) == ("", "", "False")
+        result = gyrovib.select(path, budget=BUDGET, profiles="shaker")
+        i = result.sensors.index(sensor)
+        assert result.vre_check(i, 0) is None
+        assert result.to_frame()["pass_vre"].iloc[i] is None
+        # --assume-unknown zero takes the figure as 0 (and says so): 0 ≤ bound, a pass
+        zero = gyrovib.select(path, budget=BUDGET, profiles="shaker", assume_unknown="zero")
+        assert zero.vre_check(i, 0) is True and zero.to_frame()["pass_vre"].iloc[i]
+    # a published VRE keeps its verdict: 1e-3 deg/s/g² passes under 'shaker' (as in
+    # test_a_part_without_a_vre_under_linear_vibration_is_unverified)
+    with_vre = gyrovib.select(catalog, budget=BUDGET, profiles="shaker")
+    assert with_vre.vre_check(with_vre.sensors.index("with-vre"), 0) is True
+    # without linear vibration there is no VRE bound: an unknown VRE cannot matter (pass)
+    calm = gyrovib.select(coefficient_catalog, budget=BUDGET, profiles="calm")
+    assert calm.vre_check(calm.sensors.index("no-g2"), 0) is True
 
 
 def test_cross_axis_m31_is_unknown_where_c31_is_not_zero(catalog: str) -> None:
