@@ -226,6 +226,9 @@ def test_the_vre_check_of_an_unknown_figure_is_neither_passed_nor_failed(
         assert cell["checks"]["vre"]["bound"] > 0  # the bound applies here
         assert cell["checks"]["vre"]["pass"] is None
         assert (cell["pass"], cell["status"]) == (False, "unverified")
+        # the reason names the unknown figure, and no comparison of it ("nan exceeds")
+        assert cell["reason"].startswith("unverified: passes on its published figures")
+        assert "nan" not in cell["reason"] and "effective VRE" not in cell["reason"]
         csv = invoke("select", path, "--budget", str(BUDGET), "--profile", "shaker",
                      "--format", "csv").stdout.splitlines()
         row = dict(zip(csv[0].split(","), next(r for r in csv if r.startswith(sensor + ","))

@@ -495,7 +495,8 @@ class SelectionResult(SensorsByProfiles):
 
     def _coefficient_failures(self, i: int, j: int, table: bool) -> list[Failure]:
         """The coefficient checks a coefficient sensor fails, then its effective VRE above
-        its bound (docs/model.md section 8)."""
+        its bound (docs/model.md section 8); a VRE not given is no such failure (its
+        unknown figure is reported as such, never as 'nan exceeds its bound')."""
         values = self.table_values if table else self.values
         bounds = self.table_bounds if table else self.bounds
         out = [Failure("coefficient", (float(values[i, j, b]), float(bounds[i, j, b])),
@@ -503,6 +504,8 @@ class SelectionResult(SensorsByProfiles):
                for b, name in enumerate(BOUNDED) if not self.check_pass[i, j, b]]
         if self.vre_pass is not None and not self.vre_pass[i, j]:
             assert self.vre_value is not None and self.vre_bound is not None
+            if np.isnan(self.vre_value[i, j]):
+                return out
             out.append(Failure("vre", (float(self.vre_value[i, j]),
                                        float(self.vre_bound[i, j])), unit=self.unit))
         return out
