@@ -218,7 +218,7 @@ def test_the_vre_check_of_an_unknown_figure_is_neither_passed_nor_failed(
     # A VRE the datasheet does not publish (no-vre), or a g² sensitivity the catalogue
     # does not give (no-g2), under 'shaker', whose linear vibration sets a VRE bound:
     # the check has no value, so no verdict either (null, empty, None), while the cell
-    # itself is unverified and its own "pass" false (INTERFACE.md, third round).
+    # itself is unverified and its own "pass" false (docs/output.md, select's checks).
     for path, sensor in ((catalog, "no-vre"), (coefficient_catalog, "no-g2")):
         _, doc = select_json(path, "--profile", "shaker")
         cell = {s["sensor"]: s for s in doc["sensors"]}[sensor]["profiles"][0]
