@@ -11,21 +11,21 @@ Run on demand (it is not part of the test suite)::
 
 Records of known terms are simulated (white rate noise, flicker, a rate random walk, a
 rate ramp, angle quantization, in combinations cycled over the records; the numbers are
-synthetic, drawn by ``gyrovib.core.allan_sim``), each analysed as ``gyrovib allan`` does
-(the bootstrap's seed BOOT_SEED + the record's seed: a range of seeds not run before is
-new in its bootstrap too — the study once drew every range's bootstrap from the same
-seeds 10 000 + r), and for each term present in
-the truth the fraction of records whose 68 % and 95 % intervals hold it is printed,
-with the number of records where the term was resolved (a value) and where it was
-given as a bound (then whether the bound holds). Terms absent from the truth must come
-out as bounds (or values whose interval is counted as a miss). Every interval method
-named (--interval) is computed from the same replicates, and each is also counted over
-every record whose truth has the term, resolved or not ("every record"): the coverage
-before the choice between a value and a bound, which otherwise leaves out the records
-where the term came out lowest. gyrovib's intervals are read at the levels
+synthetic, drawn by ``gyrovib.core.allan_sim``; record r of the range ``--seed S`` from
+the entropy (S, r), its bootstrap from (S, r, 1)), each analysed as ``gyrovib allan``
+does, and for each term present in the truth the fraction of records whose 68 % and 95 %
+intervals hold it is printed, with the number of records where the term was resolved (a
+value) and where it was given as a bound (then whether the bound holds). Terms absent
+from the truth must come out as bounds (or values whose interval is counted as a miss).
+Every interval method named (--interval; those other than gyrovib's are in
+benchmarks/allan_methods.py) is computed from the same replicates, and each is also
+counted over every record whose truth has the term, resolved or not ("every record"):
+the coverage before the choice between a value and a bound, which otherwise leaves out
+the records where the term came out lowest. gyrovib's intervals are read at the levels
 ``gyrovib.core.allan_levels`` sets per term; ``--save`` keeps, per record and term, what
-decides whether the interval holds at any level, which benchmarks/allan_coverage_levels.py
-reads (the coverage at other levels, and the levels that give 68 % and 95 %).
+decides whether the interval holds at any level, which
+benchmarks/allan_coverage_levels.py reads (the coverage at other levels, and the levels
+that give 68 % and 95 %).
 """
 
 from __future__ import annotations
@@ -42,31 +42,26 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "src"))
 
+from allan_methods import METHOD, METHODS, double_bootstrap, intervals, terms
+
 from gyrovib.core.allan import oadev, tau_grid
 from gyrovib.core.allan_fit import (
-    METHOD,
-    METHODS,
     SIM_CAP,
     TERMS,
     Curve,
     Fit,
     bootstrap,
     design,
-    double_bootstrap,
     envelope_bound,
     fit,
-    intervals,
     resolution,
     roll_off,
     studentized_root,
-    terms,
 )
 from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
 
 TAU0 = 1.0
-#: The bootstrap of the record of seed s runs on seed BOOT_SEED + s.
-BOOT_SEED = 1_000_000_000
 #: Truths in the kernel's units (deg, deg/√s, deg/s, deg/s/√s, deg/s²): N = 0.1 deg/√h,
 #: B = 1 deg/h, K = 3 deg/h/√h, R = 10 deg/h², Q = 3e-3 deg: over 2¹⁵ s (9.1 h) each
 #: term present rules a stretch of the curve (N below 80 s, B to 530 s, K above).
@@ -78,6 +73,19 @@ CASES = (
     ("white+flicker+random walk", Truth(arw=N, bias_instability=B, rrw=K)),
     ("quantization+white+ramp", Truth(quantization=Q, arw=N, rate_ramp=R)),
 )
+
+
+def record_seed(first_seed: int, r: int) -> list[int]:
+    """The entropy of record r of the range ``first_seed``: the pair, hashed by numpy's
+    SeedSequence (records seeded with the integers first_seed + r had B's fit errors
+    over-dispersed between ranges: docs/error-budget.md section 5)."""
+    return [first_seed, r]
+
+
+def boot_seed(first_seed: int, r: int) -> int:
+    """The seed of record r's bootstrap: drawn from the entropy (first_seed, r, 1), apart
+    from the record's own."""
+    return int(np.random.SeedSequence([first_seed, r, 1]).generate_state(1)[0])
 
 
 def truth_values(truth: Truth) -> tuple[float, ...]:
@@ -99,8 +107,8 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
     m_all = tau_grid(samples)
     for r in range(records):
         name, truth = CASES[cases[r % len(cases)]]
-        y = simulate(truth, samples, TAU0, np.random.default_rng(first_seed + r))
-        boot = BOOT_SEED + first_seed + r
+        y = simulate(truth, samples, TAU0, np.random.default_rng(record_seed(first_seed, r)))
+        boot = boot_seed(first_seed, r)
         tau, adev = oadev(y, TAU0, m_all)
         start = roll_off(tau, adev)
         tau, var, m = tau[start:], adev[start:] ** 2, m_all[start:]
@@ -116,7 +124,7 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
             saved.extend(_roots(first_seed + r, cases[r % len(cases)], truth, fitted, coefs,
                                 curve))
         for meth in methods:
-            found = terms(fitted, tau, var, coefs, (0.68, 0.95), meth, curve, inner)
+            found = terms(curve, coefs, (0.68, 0.95), meth, inner)
             for term, got, true in zip(TERMS, found, truth_values(truth), strict=False):
                 if got.resolved:
                     (lo68, hi68), (lo95, hi95) = got.intervals
@@ -230,7 +238,7 @@ def main() -> None:
     short = (f", shortened bootstrap (whole records simulated up to {args.sim_cap} samples)"
              if args.sim_cap < args.samples else "")
     print(f"{args.records} records of {args.samples} samples at {TAU0} s "
-          f"(seeds {args.seed}…{args.seed + args.records - 1}){short}, {took:.0f} s")
+          f"(range {args.seed}, records 0…{args.records - 1}){short}, {took:.0f} s")
     for meth in result:
         print(f"\n{meth} intervals" + (" (gyrovib's)" if meth == METHOD else ""))
         table(result[meth])

@@ -12,7 +12,6 @@ import pytest
 
 from gyrovib.core.allan import oadev, tau_grid
 from gyrovib.core.allan_fit import (
-    METHOD,
     TERMS,
     Curve,
     bootstrap,
@@ -75,17 +74,17 @@ def test_each_term_is_read_at_its_own_level(case: int) -> None:
     fitted = fit(tau, var, m, n + 1, True)
     coefs = bootstrap(fitted, tau, m, n, tau0, seed=950)
     curve = Curve(tau, var, m, n + 1, fitted)
-    got = terms(fitted, tau, var, coefs, (0.68, 0.95), METHOD, curve)
+    got = terms(curve, coefs, (0.68, 0.95))
     resolved = resolution(fitted, tau, coefs)
     checked = 0
     for j, term in enumerate(got[:len(TERMS)]):
         if term.value is None:
             continue
-        own = intervals(term.value, j, coefs, READ_LEVELS[j], METHOD, curve, resolved)
+        own = intervals(term.value, j, coefs, READ_LEVELS[j], curve, resolved)
         np.testing.assert_array_equal(term.intervals, own, err_msg=TERMS[j])
         checked += 1
         if TERMS[j] == "rate_ramp":
-            nominal = intervals(term.value, j, coefs, (0.68, 0.95), METHOD, curve, resolved)
+            nominal = intervals(term.value, j, coefs, (0.68, 0.95), curve, resolved)
             assert not np.allclose(nominal, own, rtol=1e-6, atol=0)
     assert checked >= 2
 

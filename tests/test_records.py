@@ -21,7 +21,8 @@ from pydantic import AllowInfNan, Field, Strict, ValidationError
 
 from gyrovib import models
 from gyrovib.catalog import messages
-from gyrovib.catalog.loader import _Loader, bundled_paths, parse_catalog
+from gyrovib.catalog.dialect import Loader
+from gyrovib.catalog.loader import bundled_paths, parse_catalog
 from gyrovib.errors import CatalogError
 from gyrovib.models.schema import catalog_schema
 
@@ -307,7 +308,7 @@ EXAMPLE = Path(__file__).parents[1] / "docs" / "examples" / "select-example.yaml
 def test_real_catalogues_are_valid_for_both(path, schema_validator):
     if not path.exists():
         pytest.skip("no such example")
-    data = yaml.load(path.read_text(encoding="utf-8"), Loader=_Loader)
+    data = yaml.load(path.read_text(encoding="utf-8"), Loader=Loader)
     assert verdicts(data, schema_validator) == (None, True)
 
 
@@ -336,13 +337,13 @@ def test_records_are_immutable():
 def test_fast_yaml_construction_equals_pyyaml(text):
     from gyrovib.catalog.dialect import _stream, _Unusual
 
-    loader = _Loader(text)
+    loader = Loader(text)
     try:
         node = loader.get_single_node()
         expected = loader.construct_document(node)
     finally:
         loader.dispose()
-    loader = _Loader(text)
+    loader = Loader(text)
     try:
         got = _stream(loader)
     except _Unusual:  # the slow path takes over: nothing to compare

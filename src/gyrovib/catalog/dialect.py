@@ -182,7 +182,6 @@ _SCALARS: dict[str, Any] = {
     "tag:yaml.org,2002:bool": lambda v: v.lower() == "true",
     "tag:yaml.org,2002:null": lambda v: None,
 }
-_SEQ, _MAP = "tag:yaml.org,2002:seq", "tag:yaml.org,2002:map"
 _MERGE_TAG = "tag:yaml.org,2002:merge"
 
 
@@ -387,15 +386,18 @@ _NON_PRINTABLE = re.compile(
 )
 
 
+def line_column(text: str, at: int) -> tuple[int, int]:
+    """The 1-based line and column of character ``at`` of ``text`` (of byte ``at`` for
+    bytes decoded as latin-1, one character a byte)."""
+    return text.count("\n", 0, at) + 1, at - (text.rfind("\n", 0, at) + 1) + 1
+
+
 def check_characters(text: str, name: str) -> None:
     bad = _NON_PRINTABLE.search(text)
     if bad is not None:
-        at = bad.start()
-        line = text.count("\n", 0, at) + 1
-        column = at - (text.rfind("\n", 0, at) + 1) + 1
         raise CatalogError(Problem(
             f"the character U+{ord(bad.group()):04X} (a control character) is not allowed "
-            "in YAML; remove it", name, line, column))
+            "in YAML; remove it", name, *line_column(text, bad.start())))
 
 
 def parse(text: str, name: str, skip: frozenset[str] = frozenset()) -> Any:

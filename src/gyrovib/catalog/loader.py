@@ -22,21 +22,13 @@ from typing import Any, NamedTuple, cast
 from pydantic import ValidationError
 
 from gyrovib.catalog import messages
-from gyrovib.catalog.dialect import (  # noqa: F401  (re-exported for tests and tools)
-    MAX_DEPTH,
-    MAX_EXPANDED_NODES,
-    Loader,
-    _gc_paused,
-    _Unusual,
-)
+from gyrovib.catalog.dialect import _gc_paused, line_column
 from gyrovib.catalog.dialect import parse as _parse
 from gyrovib.catalog.locate import Index
 from gyrovib.catalog.messages import ID_KEY, SECTIONS, SHARED_KEY, VERSION_KEY, Error
 from gyrovib.errors import CatalogError, Problem
 from gyrovib.frozen import Frozen
 from gyrovib.models import Allocation, Catalogue, Mission, Profile, Sensor, validate_document
-
-_Loader = Loader
 
 #: Most problems reported for one file; the rest are summarised.
 MAX_PROBLEMS = 50
@@ -266,21 +258,17 @@ def _decode(raw: bytes, name: str) -> str:
                                    name, 1, 1))
     if b"\0" in raw:
         at = raw.index(b"\0")
-        before = raw[:at]
         raise CatalogError(
             Problem("binary data (a NUL byte), not a YAML text file", name,
-                    before.count(b"\n") + 1, at - (before.rfind(b"\n") + 1) + 1)
+                    *line_column(raw[:at].decode("latin-1"), at))
         )
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
-        before = raw[: exc.start]
-        line = before.count(b"\n") + 1
-        column = exc.start - (before.rfind(b"\n") + 1) + 1
         raise CatalogError(
             Problem(
                 f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); save the catalogue as UTF-8",
-                name, line, column,
+                name, *line_column(raw[:exc.start].decode("latin-1"), exc.start),
             )
         ) from None
 

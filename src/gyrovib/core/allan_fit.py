@@ -1,5 +1,5 @@
-"""The noise model fitted to an Allan variance curve, each term with an honest interval
-or an upper bound (docs/model.md section 15; IEEE Std 952-1997 Annex C).
+"""The noise model fitted to an Allan variance curve, each term with an interval or an
+upper bound (docs/model.md section 15; IEEE Std 952-1997 Annex C).
 
 Rate in deg/s, τ in s, the model is linear in its non-negative coefficients::
 
@@ -9,51 +9,27 @@ with g the Allan variance of a unit first-order Gauss–Markov process of correl
 τ_c, g = (2/x)·(1 − (3 − 4e^{−x} + e^{−2x})/(2x)), x = τ/τ_c (→ 2x/3 for x → 0: a rate
 random walk; → 2/x for x → ∞: white noise).
 
-**Fit.** Non-negative weighted least squares on all σ̂²(τ) (``scipy.optimize.nnls``), each
-point weighted by the inverse variance of its estimate, ν/(2·model²), ν its equivalent
-degrees of freedom (:mod:`gyrovib.core.allan_edf`) for the noise type that dominates the
-fitted model there; refined three times from an unweighted start. The Gauss–Markov term
-is tried on a grid of τ_c only where the five terms leave a weighted misfit of more than
-:data:`MISFIT` per point, and kept where it more than halves it (a curve that bends the
-way the five terms cannot).
+**Fit** (:func:`fit`): non-negative least squares on all σ̂²(τ), each point weighted by
+ν/(2·model²), ν its EDF (:mod:`gyrovib.core.allan_edf`) for the noise type that
+dominates the model there, refined three times; a Gauss–Markov term only where the five
+terms leave more than :data:`MISFIT` per point and it more than halves that.
 
-**Intervals: a parametric bootstrap.** Records of the fitted model, as long as the
-record (beyond :data:`SIM_CAP` samples: see :func:`_replicate_curves`), are
-simulated (:mod:`gyrovib.core.allan_sim`), their Allan variance taken at the same τ and
-refitted by the record's own estimator (weights refined from each replicate, as the
-record's were): so each replicate carries the correlation between neighbouring τ,
-every other term's pull on the term and the weights' own variability, which a formula
-per point does not. The interval of a term inverts a studentized root
-(:func:`studentized`): c = θ² is in it where q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) the
-standard error the fit's information gives c with the term held at c and the other
-resolved terms refitted, q the quantiles of the replicates' (c* − ĉ)/s(ĉ). Only s's
-dependence on c is taken from the information (which ignores the correlation between
-τ); its scale, the skew and any bias come from the replicates. Where s grows as c (a
-term alone in its stretch of the curve) this is the pivot θ̂/q'_hi … θ̂/q'_lo of the
-replicates' ratios θ*/θ̂; where s hardly moves with c (a rate random walk seen against
-white noise and flicker, whose scatter is the other terms') it is the difference
-interval; and where a term's scatter grows with another term that the record knows
-poorly (bias instability with a random walk beside it), holding the term lower lets
-the other grow, and the interval follows, read at the level the coverage study set per
-term (:func:`terms`, :mod:`.allan_levels`). For the study's comparison: the pivot ("pivot"),
-the percentile interval, and the fast double bootstrap's level (:mod:`.allan_fdb`).
+**Intervals** (:func:`bootstrap`, :func:`studentized`): a parametric bootstrap of the
+fitted model, each replicate refitted as the record was; a term's interval holds the
+c = θ² with q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) the standard error the fit's information
+gives c with the other resolved terms refitted, q the replicates' quantiles of
+(c* − ĉ)/s(ĉ) read at the level :mod:`.allan_levels` sets per term; the ratio pivot
+θ̂/q'_hi … θ̂/q'_lo where that root has no interval. docs/error-budget.md sections 2 and 5
+explain the choice and the coverage measured (benchmarks/bench_allan_coverage.py).
 
-**Roll-off.** A sensor's low-pass filter flattens the curve below a few times its time
-constant: read there, N would come out too small. A leading stretch flatter than white
-noise and below the −½ line of the first white point (:func:`roll_off`) is left out of
-the fit (and said), and past it the filter's tail, σ² lowered by about c/τ², takes the
-place of quantization in the fit (c·(−1/τ²), c of either sign: the filter's tail
-less any quantization behind it, so that the estimate is never held at a limit the
-bootstrap would not reproduce; quantization behind a filter is then only bounded).
+**Roll-off** (:func:`roll_off`): a leading stretch flatter than white noise and below its
+−½ line is left out, and the filter's tail c·(−1/τ²), c of either sign, takes
+quantization's column.
 
-**Bounds.** A term is *unresolved* when it is absent from the fit, when 2.5 % or more of
-the replicates fit it at 0 or its 95 % interval reaches 0, or when it dominates the model
-(half its σ²) at no τ of the record (its slope region is absent). It is then given as an
-upper bound at 95 %: the least, over τ, of the one-sided χ² upper limit of σ²(τ)
-divided by the term's basis function — each point alone caps the term, since the other
-terms are non-negative — each limit at 1 − 5 %/P for the P points, so that the least of
-them still holds at 95 % (the first study, with 95 % per point, saw such bounds of K
-hold in only 6 of 11 records).
+**Bounds** (:func:`envelope_bound`): a term absent from the fit, fitted at 0 by 2.5 % or
+more of the replicates, whose 95 % interval reaches 0, or that is half the model at no τ,
+is an upper bound at 95 %: the least over τ of the one-sided χ² limit of σ²(τ) (each at
+1 − 5 %/P for P points) over the term's basis function.
 """
 
 from __future__ import annotations
@@ -66,13 +42,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib.core import allan_edf as edfs
-from gyrovib.core._types import FloatArray
+from gyrovib.core._types import FloatArray, IntArray
 from gyrovib.core.allan import oadev
-from gyrovib.core.allan_fdb import calibrated, inverted
 from gyrovib.core.allan_levels import read_level
 from gyrovib.core.allan_sim import Truth, simulate
-
-IntArray = NDArray[np.int64]
 
 #: The five terms, in the model's order.
 TERMS = ("quantization", "arw", "bias_instability", "rrw", "rate_ramp")
@@ -87,10 +60,6 @@ SIM_CAP = 1 << 15
 #: Weighted misfit per point above which the five terms are said not to fit (and a
 #: Gauss–Markov term is tried): twice what a fitting model leaves on average.
 MISFIT = 2.0
-#: The interval of a resolved term (:func:`terms`), and every method :func:`intervals`
-#: knows (the others for the coverage study's comparison).
-METHOD = "studentized"
-METHODS = ("studentized", "calibrated", "pivot", "percentile")
 #: Confidence of a bound; share of the model a term must reach somewhere to be resolved.
 BOUND_CONFIDENCE, RESOLVED_SHARE = 0.95, 0.5
 
@@ -211,11 +180,6 @@ def fit(tau: FloatArray, var: FloatArray, m: IntArray, points: int,
                 and trial.cost < best.cost - 10):  # the best τ_c: the first, or a better one
             best = trial
     return best
-
-
-def refit(a: FloatArray, var: FloatArray, weight: FloatArray) -> FloatArray:
-    """One curve's coefficients with the design and weights held (no reweighting)."""
-    return _weighted(a, var, weight)[0]
 
 
 def simulated_truth(fitted: Fit) -> Truth:
@@ -390,46 +354,86 @@ def studentized_root(curve: Curve, j: int, replicates: FloatArray, resolved: NDA
     return t_star, root, active
 
 
+def quantiles(values: FloatArray, levels: list[float]) -> list[float]:
+    """The quantiles of the finite ``values`` at each of ``levels``."""
+    return [float(q) for q in np.quantile(values[np.isfinite(values)], levels)]
+
+
+def bisect(f: Callable[[float], float], lo: float, hi: float, target: float) -> float:
+    """x in [lo, hi] where the decreasing f crosses ``target`` (bisection)."""
+    for _ in range(48):
+        mid = 0.5 * (lo + hi)
+        if f(mid) > target:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def inverted(root: Callable[[float], float], c_hat: float, q_lo: float, q_hi: float
+             ) -> tuple[float, float] | None:
+    """√ of the c where q_lo ≤ root(c) ≤ q_hi (root decreasing, 0 at ĉ); None where it
+    has no upper end. Where both quantiles lie on one side of 0 (q_hi ≤ 0 or q_lo ≥ 0)
+    that set lies wholly on one side of ĉ; the interval is then taken from ĉ itself to
+    its far end, so that it always holds the estimate."""
+    # the least c tried is a little above 0: at 0 a term alone in its model has none
+    floor = c_hat * 1e-12
+    lo = c_hat if q_hi <= 0 else (0.0 if root(floor) <= q_hi
+                                  else bisect(root, floor, c_hat, q_hi))
+    if q_lo >= 0:
+        return math.sqrt(lo), math.sqrt(c_hat)
+    top = 2.0 * c_hat
+    while root(top) > q_lo:
+        top *= 2.0
+        if top > c_hat * 2.0 ** 40:
+            return None
+    return math.sqrt(lo), math.sqrt(bisect(root, c_hat, top, q_lo))
+
+
 def studentized(curve: Curve, j: int, replicates: FloatArray, resolved: NDArray[np.bool_],
-                confidences: tuple[float, ...], inner: FloatArray | None = None
-                ) -> list[tuple[float, float] | None]:
+                confidences: tuple[float, ...]) -> list[tuple[float, float] | None]:
     """The interval of θ_j = √c_j at each confidence by inverting the studentized root:
     the c with q_lo ≤ (ĉ − c)/s(c) ≤ q_hi, s(c) = :func:`scale` at the fit with c_j = c
     and the other resolved terms refitted (:func:`profile`), q the quantiles of the
-    replicates' (c* − ĉ)/s(ĉ) — with ``inner`` (:func:`double_bootstrap`) read at the
-    levels the inner roots (c** − c*)/s(c*) calibrate. None where it has no upper end or
-    the fit no standard error (the pivot's interval is then used)."""
+    replicates' (c* − ĉ)/s(ĉ). None where it has no upper end or the fit no standard
+    error (the pivot's interval is then used)."""
     if (found := studentized_root(curve, j, replicates, resolved)) is None:
         return [None] * len(confidences)  # no information at the fit itself: the pivot's
-    t_star, root, active = found
-    t_inner = np.array([] if inner is None else [
-        (c2[j] - c1[j]) / scale(curve, c1, j, active)
-        for c1, c2 in zip(replicates, inner, strict=True)])
+    t_star, root, _ = found
     out: list[tuple[float, float] | None] = []
     for confidence in confidences:
-        q_lo, q_hi = calibrated(t_star, t_inner, [(1.0 - confidence) / 2.0,
-                                                  (1.0 + confidence) / 2.0])
+        q_lo, q_hi = quantiles(t_star, [(1.0 - confidence) / 2.0, (1.0 + confidence) / 2.0])
         out.append(inverted(root, float(curve.fitted.coef[j]), q_lo, q_hi))
     return out
 
 
-def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
-          confidences: tuple[float, ...], method: str = "pivot",
-          curve: Curve | None = None, inner: FloatArray | None = None) -> tuple[Term, ...]:
+def pivot(value: float, j: int, replicates: FloatArray, confidences: tuple[float, ...]
+          ) -> tuple[tuple[float, float], ...]:
+    """The ratio pivot θ̂/q_hi … θ̂/q_lo of term j at each confidence, q the quantiles of
+    the replicates' θ*/θ̂ (no upper end where q_lo is 0)."""
+    ratio = np.sqrt(np.maximum(replicates[:, j], 0.0)) / value
+    out = []
+    for c in confidences:
+        lo_q, hi_q = quantiles(ratio, [(1.0 - c) / 2.0, (1.0 + c) / 2.0])
+        out.append((value / hi_q, value / lo_q if lo_q > 0 else math.inf))
+    return tuple(out)
+
+
+def terms(curve: Curve, replicates: FloatArray, confidences: tuple[float, ...]
+          ) -> tuple[Term, ...]:
     """Each of the five terms (and the Gauss–Markov σ, sixth, when fitted) from the fit
-    and the replicates' coefficients (rows), see the module docstring; ``method``
-    "studentized" needs the ``curve`` (and is read at :func:`.allan_levels.read_level`'s
-    levels), "calibrated" also the ``inner`` replicates."""
-    resolved = resolution(fitted, tau, replicates)
-    basis = design(tau, fitted.tau_c)  # quantization's own column for its bound
+    and the replicates' coefficients (rows), see the module docstring; each interval read
+    at :func:`.allan_levels.read_level`'s levels."""
+    fitted = curve.fitted
+    resolved = resolution(fitted, curve.tau, replicates)
+    basis = design(curve.tau, fitted.tau_c)  # quantization's own column for its bound
     out = []
     for j in range(fitted.coef.size):
         value = 0.0 if (j == 0 and fitted.filtered) else math.sqrt(max(fitted.coef[j], 0.0))
-        levels = tuple(read_level(j, c) for c in confidences) if method == METHOD else confidences
-        found = intervals(value, j, replicates, levels, method, curve,
-                          resolved, inner) if resolved[j] else None
+        levels = tuple(read_level(j, c) for c in confidences)
+        found = intervals(value, j, replicates, levels, curve, resolved) if resolved[j] else None
         if found is None or found[-1][0] <= 0.0:  # its 95 % interval reaches 0
-            bound = max(envelope_bound(basis[:, j], var, fitted.nu), value)
+            bound = max(envelope_bound(basis[:, j], curve.var, fitted.nu), value)
             out.append(Term(None, (), bound))
             continue
         out.append(Term(value, found, None))
@@ -437,35 +441,13 @@ def terms(fitted: Fit, tau: FloatArray, var: FloatArray, replicates: FloatArray,
 
 
 def intervals(value: float, j: int, replicates: FloatArray, confidences: tuple[float, ...],
-              method: str, curve: Curve | None, resolved: NDArray[np.bool_],
-              inner: FloatArray | None = None) -> tuple[tuple[float, float], ...]:
-    """Term j's interval at each confidence (see :func:`terms`); "calibrated" without
-    ``inner`` is "studentized", and its pivot (where the studentized root has none) is
-    read at the calibrated levels too, the inner ratios θ**/θ* beside the θ*/θ̂."""
-    if method not in METHODS:
-        raise ValueError(f"unknown interval method {method!r}: one of {', '.join(METHODS)}")
-    root = np.sqrt(np.maximum(replicates[:, j], 0.0))
-    ratio = root / value
-    inner = inner if method == "calibrated" else None
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio2 = np.array([]) if inner is None else np.sqrt(np.maximum(inner[:, j], 0.0)) / root
-    tried = (studentized(curve, j, replicates, resolved, confidences, inner)
-             if method in ("studentized", "calibrated") and curve is not None else None)
-    # one construction for every confidence, so that the intervals nest: the pivot for
-    # all of them where the studentized root has no interval at one
-    found = (None if tried is None or any(f is None for f in tried)
-             else [f for f in tried if f is not None])
-    out = []
-    for k, c in enumerate(confidences):
-        lo_q, hi_q = calibrated(ratio, ratio2, [(1.0 - c) / 2.0, (1.0 + c) / 2.0])
-        pivot = (value / hi_q, value / lo_q if lo_q > 0 else math.inf)
-        if found is not None:
-            out.append(found[k])
-        elif method == "percentile":  # for the coverage study's comparison
-            out.append((value * lo_q, value * hi_q))
-        else:
-            out.append(pivot)
-    return tuple(out)
+              curve: Curve, resolved: NDArray[np.bool_]) -> tuple[tuple[float, float], ...]:
+    """Term j's interval at each confidence: the studentized one (:func:`studentized`), or
+    the :func:`pivot` at every confidence where it has none at one, so that they nest."""
+    found = studentized(curve, j, replicates, resolved, confidences)
+    if any(f is None for f in found):
+        return pivot(value, j, replicates, confidences)
+    return tuple(f for f in found if f is not None)
 
 
 @dataclass(frozen=True, slots=True)
@@ -526,45 +508,21 @@ def bootstrap(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
                      for curve in curves])
 
 
-def double_bootstrap(fitted: Fit, tau: FloatArray, m: IntArray, n: int, tau0: float,
-                     replicates: int = REPLICATES, seed: int = 0,
-                     sim_cap: int = SIM_CAP) -> tuple[FloatArray, FloatArray]:
-    """:func:`bootstrap`'s replicates (the same for the same seed) and, row for row, the
-    coefficients of one record of each replicate's own fit, refitted the same way: the
-    fast double bootstrap's second level (:mod:`gyrovib.core.allan_fdb`)."""
-    curves = _replicate_curves(fitted, tau, m, n, tau0, replicates,
-                               np.random.default_rng(seed), sim_cap)
-    rng = np.random.default_rng([seed, 1])
-    outer, inner = [], []
-    for curve in curves:
-        once = _refine(tau, curve, m, n + 1, fitted.tau_c, fitted.filtered)
-        again = _replicate_curves(once, tau, m, n, tau0, 1, rng, sim_cap)[0]
-        outer.append(once.coef)
-        inner.append(_refine(tau, again, m, n + 1, fitted.tau_c, fitted.filtered).coef)
-    return np.array(outer), np.array(inner)
-
-
 def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: float,
                 confidences: tuple[float, ...] = (0.68, 0.95), seed: int = 0,
                 replicates: int = REPLICATES, gauss_markov: bool = True,
-                method: str = METHOD, sim_cap: int = SIM_CAP) -> Model:
+                sim_cap: int = SIM_CAP) -> Model:
     """The fit, bootstrap and bounds of the module docstring for the Allan deviation
     ``adev`` (deg/s, all > 0) at τ = m·τ0 of a record of ``n`` samples; a leading
-    stretch on a filter's roll-off (:func:`roll_off`) is left out of the fit. ``method``:
-    the interval ("calibrated", "studentized", "pivot" or "percentile"); ``sim_cap``: the
-    longest record the bootstrap simulates whole (:func:`_replicate_curves`)."""
+    stretch on a filter's roll-off (:func:`roll_off`) is left out of the fit. ``sim_cap``:
+    the longest record the bootstrap simulates whole (:func:`_replicate_curves`)."""
     m_all = np.asarray(m, dtype=np.int64)
     start = roll_off(tau, np.asarray(adev, dtype=float))
     var_all = np.asarray(adev, dtype=float) ** 2
     tau, var, m = tau[start:], var_all[start:], m[start:]
     fitted = fit(tau, var, m, n + 1, gauss_markov, filtered=start > 0)
-    inner = None
-    if method == "calibrated":
-        coefs, inner = double_bootstrap(fitted, tau, m, n, tau0, replicates, seed, sim_cap)
-    else:
-        coefs = bootstrap(fitted, tau, m, n, tau0, replicates, seed, sim_cap)
-    found = terms(fitted, tau, var, coefs, confidences, method,
-                  Curve(tau, var, m, n + 1, fitted), inner)
+    coefs = bootstrap(fitted, tau, m, n, tau0, replicates, seed, sim_cap)
+    found = terms(Curve(tau, var, m, n + 1, fitted), coefs, confidences)
     # the points left out (a roll-off) get the EDF of white noise, the type they follow
     nu = np.concatenate([edfs.edf(np.full(start, edfs.WHITE), m_all[:start], n + 1),
                          fitted.nu])
@@ -578,7 +536,6 @@ def noise_model(tau: FloatArray, adev: FloatArray, m: IntArray, n: int, tau0: fl
 __all__ = [
     "BOUND_CONFIDENCE",
     "FLICKER_FLOOR",
-    "METHOD",
     "REPLICATES",
     "TERMS",
     "Curve",
@@ -587,13 +544,13 @@ __all__ = [
     "Term",
     "bootstrap",
     "design",
-    "double_bootstrap",
     "envelope_bound",
     "fit",
     "gm_basis",
     "intervals",
+    "inverted",
     "nnls",
     "noise_model",
-    "refit",
+    "pivot",
     "terms",
 ]

@@ -29,8 +29,8 @@ phase-locked harmonics, which give k3·M3, k5·M5 and
 
 These terms (:data:`EXTRA_TERMS`: g2, k3, k5) are kept apart from the five of
 :data:`ADDITIVE_TERMS` in ``VibrationError.extra_terms``; where a profile has
-neither (the fields are None) every other result is computed by the same
-expressions as before, bit for bit.
+neither (the fields are None) every other result is that of the five terms alone,
+bit for bit.
 """
 
 from __future__ import annotations
@@ -238,7 +238,7 @@ def _locked_asymmetry(w: FloatArray, locked: Sequence[LockedGroup], a: FloatArra
     if s3 > 0 and (len(locked) > 1 or (a.size and table_size(a, s3) <= MAX_SHIFT_TABLE)):
         # tones and the Gaussian part tabulated once, the groups' periods on a grid (one
         # group with tones on a random part too narrow for the table: the group's grid
-        # of direct evaluations below, as before)
+        # of direct evaluations below)
         return 0.5 * locked_mixture_excess(w, locked, a, s3)
     return _grid_asymmetry(w, locked, a, s3)
 

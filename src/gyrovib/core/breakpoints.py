@@ -37,8 +37,7 @@ across it (:func:`candidate_knots`):
 |dB| between fit and measurement, and the share of the power in bins off by
 more than 3 dB.
 
-Cost: O(K²) for the pair costs and O(B·K²) for the programme (K ≤ 160), a
-few milliseconds per axis.
+Cost: O(K²) for the pair costs and O(B·K²) for the programme (K ≤ 160).
 """
 
 from __future__ import annotations

@@ -71,19 +71,6 @@ def term_functionals(g_a: ArrayLike, m2: ArrayLike, m3: ArrayLike, m4: ArrayLike
     return out
 
 
-def nonlinearity_limit(value: ArrayLike, range_: ArrayLike, of: str) -> FloatArray:
-    """b, the residual limit in rate: value% of R (range), of 2R (span), or value (rate)."""
-    v = np.asarray(value, dtype=float)
-    r = np.asarray(range_, dtype=float)
-    if of == "range":
-        return np.asarray(v / 100.0 * r, dtype=float)
-    if of == "span":
-        return np.asarray(v / 100.0 * 2.0 * r, dtype=float)
-    if of == "rate":
-        return np.asarray(v + 0.0 * r, dtype=float)
-    raise ModelError(f"nonlinearity is relative to one of {', '.join(OF)}, not {of!r}")
-
-
 def _codes(name: str, words: str | Sequence[str], allowed: tuple[str, ...],
            n: int) -> NDArray[np.int_]:
     seq = [words] * n if isinstance(words, str) else list(words)
@@ -241,7 +228,7 @@ def worst_case(terms: ArrayLike, g2: ArrayLike, range_: ArrayLike, limit: ArrayL
 
     terms: (P, 8, 5) from :func:`term_functionals` (one row per profile or
     profile-rate); g2: (P,) S = Σ_j⟨a_j²⟩ in g². Per sensor (N,): range_ R
-    (rate, > 0), limit b (rate, ≥ 0, see :func:`nonlinearity_limit`), fit and
+    (rate, > 0), limit b (rate, ≥ 0: the datasheet's nonlinearity as a rate), fit and
     measure (a word or one per sensor), asymmetry a_max = max |A1|
     (dimensionless; inf or None: no spec), vre |v| (rate/g²; 0 or None: no
     spec). The max measure is a semi-infinite LP solved on a grid and refined

@@ -20,7 +20,7 @@ carries its own certificate: for any feasible y, dᵀy = Σ s_j·λ_j·r(v_j) + 
 while ỹ scaled onto the envelope (its true max |r| from every critical
 point) bounds it from below. The grid exchange
 (:mod:`gyrovib.core.envelope_lp`) accepts a polished pair only when the two
-bounds agree to its tolerance; otherwise it refines the grid as before.
+bounds agree to its tolerance; otherwise it refines the grid.
 """
 
 from __future__ import annotations

@@ -11,17 +11,11 @@ K1·Ω + h·|Ω|). Ordinary least squares gives θ̂ and
 
     Cov(θ̂) = s²·(XᵀX)⁻¹,   s² = RSS/(n − p),
 
-computed on a scaled design matrix: Ω divided by the largest |Ω| (and ωi by
-the largest |ωi|), then every column divided by its Euclidean norm, solved by
-a QR factorisation formed block by block (the triangle R of [X | U] is updated
-with each block of rows, so a table of millions of points needs O(p²) memory
-beside the points themselves); the scales are undone on θ̂ and its covariance. The
-output is divided by a power of two near its largest |U| first (exact), so
-that RSS and s² neither overflow (outputs near 1e300) nor underflow (near
-1e-300, which would give σ = 0); eq. (2) does not depend on that scale.
-Rates so large or small that R^(±n) leaves 1e±100 (the variance of kn scales
-as R^(2−2n)) are refused, as are results that are not finite or whose
-variance underflowed.
+computed block by block (O(p²) memory beside the points) on a scaled design: rates
+over their largest magnitude, columns normalised (:func:`_scaling`, :func:`_factor`),
+the output over a power of two (:func:`_output_scale`), the scales undone on θ̂ and its
+covariance; rates whose powers leave 1e±100 are refused (:func:`_check_magnitude`), as
+are results that are not finite or whose variance underflowed (docs/rate-table.md).
 
 Eq. (2) follows by division by K1: k0 = K0/K1, A1 = 2h/K1, kn = Kn/K1,
 mi = Mi/K1, m3i = M3i/K1 (k1 = 1 exactly), with the delta-method covariance

@@ -12,9 +12,8 @@ from functools import partial
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core._types import FloatArray
+from gyrovib.core._types import ComplexArray, FloatArray
 from gyrovib.core.harmonics import (
-    ComplexArray,
     LockedGroup,
     _x3_at,
     _x3_coefficients,

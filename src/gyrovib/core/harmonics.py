@@ -28,12 +28,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from gyrovib.core._types import FloatArray
+from gyrovib.core._types import ComplexArray, FloatArray
 from gyrovib.core.statistics import rectified_excess
 from gyrovib.frozen import Frozen
 from gyrovib.progress import advance
-
-ComplexArray = NDArray[np.complex128]
 
 #: Most locked groups of a profile with no random part: E(Ω) averages over the joint
 #: phases of the groups beyond the first (two groups alone: exactly; three would take

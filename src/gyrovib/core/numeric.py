@@ -1,4 +1,5 @@
-"""Brute force of the vibration error: averaging eq. (2) itself (docs/model.md).
+"""Brute force of the vibration error: averaging eq. (2) itself (docs/model.md section 7;
+docs/numeric.md gives the schemes' reasons and measurements).
 
 No closed form is used here. For every sensor the conversion function of
 eq. (2), in rate units,
@@ -13,57 +14,22 @@ vibration) is subtracted (eq. 12, 13):
     Δ_V = <Ω_F3(Ω_K + x)> − Ω_F3(Ω_K)
 
 The vibration ``x`` is drawn from :class:`~gyrovib.core.statistics.Vibration`:
+tones ``x_i = Σ_k a_ik·sin(θ_k + φ_ik)`` (``a_ik·exp(jφ_ik)`` the phasor of tone k on
+axis i); a Gaussian part ``x3 = σ3·z3``, ``xi = σi·(ρ3i·z3 + √(1 − ρ3i²)·zi)`` from
+independent standard normals z; phase-locked groups (docs/model.md section 10)
+``x_i = Σ_n |p_ni|·sin(n·θ_g + arg p_ni)``, one phase θ_g each.
 
-* tones, ``x_i = Σ_k a_ik·sin(θ_k + φ_ik)`` with ``a_ik·exp(jφ_ik)`` the phasor
-  of tone k on axis i, averaged over the phases θ_k;
-* a Gaussian part with per-axis σ_i and coherence ρ_3i, built as
-  ``x3 = σ3·z3``, ``xi = σi·(ρ3i·z3 + √(1 − ρ3i²)·zi)`` from independent
-  standard normals z (docs/model.md gives only the 3–i correlations; this choice
-  makes x1 and x2 correlate only through x3).
+Schemes, chosen from the vibration and ``samples`` (evaluations of eq. (2) per sensor):
+``grid`` (tones and locked groups only: the mean of 16 randomly shifted product grids of
+phases, ``stderr`` their standard deviation over √16, 0 where the rule is exact),
+``monte-carlo`` (antithetic pairs ``x``, ``−x``; a locked group's θ_g is shared by the
+pair, not negated) and ``none`` (0 exactly). A linear vibration (docs/model.md section 8)
+adds the exact average of ``Σ_{j≤k} G_jk·a_j·a_k`` (4 phases per tone, 3-point
+Gauss–Hermite per Gaussian axis) to every estimate.
 
-Schemes, chosen from the vibration and the sample budget ``samples`` (the
-number of points at which eq. (2) is evaluated per sensor):
-
-``grid``
-    Tones only, and 16 product grids of phases θ_k = 2πj/m + u_k with m ≥ 6
-    nodes per tone fit in ``samples``; each grid has its own uniform random
-    shift u_k ∈ [0, 2π/m), so each grid average is unbiased. The rule is exact
-    for the polynomial part of eq. (2) (a trigonometric polynomial of degree
-    ≤ 5 in each θ_k, whatever the shift); only the ``|ω3|`` asymmetry term
-    varies between grids. The estimate is the mean of the 16 grid averages and
-    ``stderr`` their standard deviation over √16; it is 0 where the rule is
-    exact: ``k1·A1 = 0`` or ``|Ω_K3| ≥ Σ_k a_3k`` (ω3 never changes sign).
-    (A fixed grid compared with its half-grid was tried first: for several
-    tones that difference understated the true error by up to 2.5×, because
-    the error of a kinked integrand does not fall smoothly with m.)
-``monte-carlo``
-    Random tone phases (uniform) and/or Gaussian samples, in antithetic pairs
-    ``x`` and ``−x`` (phases θ + π, normals −z): both are equally likely, so
-    the pair mean is unbiased and every odd term of eq. (2) cancels exactly
-    within a pair. ``stderr`` is the sample standard deviation of the pair
-    means over √pairs.
-``none``
-    No vibration reaches x1..x3: the error is 0 exactly.
-
-Phase-locked harmonic groups (docs/model.md section 10) are one more phase
-dimension each, ``x_i = Σ_n |p_ni|·sin(n·θ_g + arg p_ni)``: on the grid with
-more than 5·n_max nodes (exact for the polynomial part), in Monte Carlo with
-a uniform θ_g shared by both members of an antithetic pair (only the
-independent tones and the Gaussian part are negated: a locked waveform need
-not be symmetric).
-
-A linear vibration (docs/model.md section 8) adds ``Σ_{j≤k} G_jk·a_j·a_k`` to
-eq. (2); it is independent of the angular vibration, so its average is taken
-on its own: over a product grid of 4 phases per tone (exact for a quadratic)
-and the 3-point Gauss–Hermite rule per axis of the correlated Gaussian part
-(a = L·z with L·Lᵀ the covariance; exact for a quadratic), then added to
-every estimate (it has no statistical error).
-
-The samples are shared by all sensors and drawn in fixed-size blocks, so a
-sensor's estimate does not depend on which other sensors are evaluated with
-it; eq. (2) is evaluated as a (sensors × samples) array in chunks of bounded
-size. Units: whatever rate unit the coefficients, ``rate`` and the vibration
-share (gyrovib uses deg/s).
+The samples are shared by all sensors and drawn in fixed-size blocks, so a sensor's
+estimate does not depend on which others are evaluated with it. Units: whatever rate
+unit the coefficients, ``rate`` and the vibration share (gyrovib uses deg/s).
 """
 
 from __future__ import annotations

@@ -26,8 +26,8 @@ import copy
 import math
 from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
-from functools import partial
-from typing import Any
+from functools import partial, wraps
+from typing import Any, ParamSpec, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -343,18 +343,30 @@ def _search_key(*parts: object) -> bytes:
 #: same profile's worst phases, and ``bounds`` and ``sweep`` its worst multipliers.
 _SEARCHES: dict[bytes, Any] = {}
 _KEPT_SEARCHES = 32
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
 
 
-def _remembered(key: bytes, compute: Callable[[], Any]) -> Any:
-    """``compute()``, or a copy of what it gave for ``key`` before (kept for the last few
-    keys; a copy, so that a caller's changes never reach the next one)."""
-    if key not in _SEARCHES:
-        if len(_SEARCHES) >= _KEPT_SEARCHES:
-            _SEARCHES.pop(next(iter(_SEARCHES)))
-        _SEARCHES[key] = compute()
-    return copy.deepcopy(_SEARCHES[key])
+def _remembered(kind: str) -> Callable[[Callable[_P, _R]], Callable[_P, _R]]:
+    """A search not made again for the same inputs as one of the last few: a copy of
+    what it gave then, so that a caller's changes never reach the next one."""
+
+    def wrap(compute: Callable[_P, _R]) -> Callable[_P, _R]:
+        @wraps(compute)
+        def search(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+            key = _search_key(kind, *args, *sorted(kwargs.items()))
+            if key not in _SEARCHES:
+                if len(_SEARCHES) >= _KEPT_SEARCHES:
+                    _SEARCHES.pop(next(iter(_SEARCHES)))
+                _SEARCHES[key] = compute(*args, **kwargs)
+            return cast(_R, copy.deepcopy(_SEARCHES[key]))
+
+        return search
+
+    return wrap
 
 
+@_remembered("errors")
 def worst_phase_errors(
     coefficients: ArrayLike,
     vibration: Vibration,
@@ -377,25 +389,6 @@ def worst_phase_errors(
     :func:`~gyrovib.core.analysis.profile_multipliers`, the one-point path. A search
     with the same inputs as one of the last few is not made again.
     """
-    key = _search_key("errors", np.asarray(coefficients, dtype=float), vibration,
-                      list(groups), np.asarray(omegas, dtype=float), acceleration,
-                      g2_sensitivity)
-    found: list[WorstPhases] = _remembered(key, lambda: _worst_phase_errors(
-        coefficients, vibration, groups, omegas, acceleration=acceleration,
-        g2_sensitivity=g2_sensitivity))
-    return list(found)
-
-
-def _worst_phase_errors(
-    coefficients: ArrayLike,
-    vibration: Vibration,
-    groups: Sequence[LockedGroup],
-    omegas: ArrayLike,
-    *,
-    acceleration: ArrayLike | None = None,
-    g2_sensitivity: ArrayLike | None = None,
-) -> list[WorstPhases]:
-    """:func:`worst_phase_errors`, computed."""
     c = np.asarray(coefficients, dtype=float)
     rates = np.asarray(omegas, dtype=float).reshape(-1)
     free = free_offsets(groups)
@@ -450,13 +443,10 @@ def _found(c: FloatArray, g2: FloatArray | None, free: Sequence[tuple[int, int]]
     return WorstPhases(offsets=best, free=tuple(free), error=error, multipliers=stacked)
 
 
-def worst_phase_multipliers(
-    vibration: Vibration,
-    groups: Sequence[LockedGroup],
-    omega: ArrayLike,
-    *,
-    acceleration: ArrayLike | None = None,
-) -> Multipliers:
+@_remembered("multipliers")
+def worst_phase_multipliers(vibration: Vibration, groups: Sequence[LockedGroup],
+                            omega: ArrayLike, *, acceleration: ArrayLike | None = None
+                            ) -> Multipliers:
     """Per term, the largest |multiplier| over the unknown phases (synthesis, exact).
 
     g_A = ½E(Ω), M4, |M3| and |M5| are each maximised on their own: M3, M4 and
@@ -467,17 +457,6 @@ def worst_phase_multipliers(
     The result bounds every phase's share. A search with the same inputs as one of the
     last few is not made again.
     """
-    key = _search_key("multipliers", vibration, list(groups), np.asarray(omega, float),
-                      acceleration)
-    found: Multipliers = _remembered(key, lambda: _worst_phase_multipliers(
-        vibration, groups, omega, acceleration=acceleration))
-    return found
-
-
-def _worst_phase_multipliers(vibration: Vibration, groups: Sequence[LockedGroup],
-                             omega: ArrayLike, *, acceleration: ArrayLike | None = None
-                             ) -> Multipliers:
-    """:func:`worst_phase_multipliers`, computed."""
     w = np.asarray(omega, dtype=float)
     free = free_offsets(groups)
     flat = w.ravel()

@@ -135,14 +135,13 @@ def folded_normal_excess(omega: ArrayLike, sigma: float) -> FloatArray:
     """``E(Ω) = <|Ω + σZ|> − |Ω|`` for Gaussian Z (folded normal mean).
 
     ``<|Ω+σZ|> = σ·√(2/π)·exp(−Ω²/2σ²) + Ω·erf(Ω/(σ√2))``, written with erfc
-    so that the difference keeps its precision for large |Ω|/σ.
+    so that the difference keeps its precision for large |Ω|/σ (:func:`_gauss_kernel`
+    at m = |Ω|).
     """
     w = np.abs(np.asarray(omega, dtype=float))
     if sigma <= 0:
         return np.zeros_like(w)
-    u = w / (sigma * math.sqrt(2.0))
-    out: FloatArray = sigma * SQRT_2_OVER_PI * np.exp(-(u**2)) - w * erfc(u)
-    return out
+    return _gauss_kernel(w, sigma)
 
 
 def arcsine_excess(omega: ArrayLike, a: float) -> FloatArray:
@@ -282,7 +281,7 @@ def rectified_excess(omega: ArrayLike, amplitudes: ArrayLike, sigma: float) -> F
             if a.size > 3:
                 raise
             # a Gaussian part so small against two or three tones that the
-            # contour would be long: their phase grid, as before the contour
+            # contour would be long: their phase grid instead
             out[live] = _grid_on_gauss_excess(wl, a, sigma)
     return out
 
@@ -378,28 +377,6 @@ def _tone_on_gauss_excess(w: FloatArray, a: float, sigma: float) -> FloatArray:
     return out
 
 
-def _gauss_legendre(n: int) -> tuple[FloatArray, FloatArray]:
-    """Gauss-Legendre nodes and weights on [−1, 1] by Newton's method on P_n
-    (numpy.polynomial would import numpy.ma and numpy.linalg at start-up)."""
-    x = np.cos(math.pi * (np.arange(1, n + 1) - 0.25) / (n + 0.5))
-    for _ in range(100):
-        p0, p1 = np.ones_like(x), x
-        for k in range(2, n + 1):
-            p0, p1 = p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k
-        derivative = n * (x * p1 - p0) / (x * x - 1.0)
-        step = p1 / derivative
-        x = x - step
-        if np.max(np.abs(step)) < 1e-16:
-            break
-    p0, p1 = np.ones_like(x), x
-    for k in range(2, n + 1):
-        p0, p1 = p1, ((2 * k - 1) * x * p1 - (k - 1) * p0) / k
-    derivative = n * (x * p1 - p0) / (x * x - 1.0)
-    weights: FloatArray = 2.0 / ((1.0 - x * x) * derivative**2)
-    nodes: FloatArray = x[::-1].copy()
-    return nodes, weights[::-1].copy()
-
-
 #: Gauss-Legendre nodes per piece of :func:`_pieces`.
 _GL_N = 24
 #: Values one :func:`_pair_mean` / :func:`_triple_mean` argument makes (3 and 5 pieces).
@@ -407,8 +384,8 @@ _PAIR_NODES = 3 * _GL_N
 _TRIPLE_NODES = 5 * _GL_N * _PAIR_NODES
 
 
-#: :func:`_gauss_legendre` (``_GL_N``) written out, as it computes them to the last bit
-#: (tests/test_statistics.py checks it): Newton's method is ~1 ms of a first run.
+#: The ``_GL_N``-point Gauss-Legendre nodes and weights on [−1, 1], written out: Newton's
+#: method on P_n gives them to the last bit (tests/test_statistics.py checks it).
 _GL24_X = (
     -0.9951872199970213, -0.9747285559713095, -0.9382745520027328, -0.8864155270044011,
     -0.820001985973903, -0.7401241915785544, -0.6480936519369755, -0.5454214713888396,

@@ -1,18 +1,24 @@
-"""The fast double bootstrap's level calibration (core/allan_fdb.py) and its second level
-of replicates (core/allan_fit.double_bootstrap): the closed form of the calibration where
-the replicates' spread shrinks by the same factor at each level, and the inner records
-drawn from each replicate's own fit."""
+"""The interval constructions the coverage study compares with gyrovib's own
+(benchmarks/allan_methods.py): the fast double bootstrap's level calibration, in closed
+form where the replicates' spread shrinks by the same factor at each level, and its second
+level of replicates drawn from each replicate's own fit; and the inversion of a root that
+gyrovib's studentized interval uses (core/allan_fit.inverted)."""
 
 import math
+import sys
 from statistics import NormalDist
 
 import numpy as np
 import pytest
 
 from gyrovib.core.allan import oadev, tau_grid
-from gyrovib.core.allan_fdb import calibrated, inverted, level
-from gyrovib.core.allan_fit import bootstrap, double_bootstrap, fit
+from gyrovib.core.allan_fit import bootstrap, fit, inverted
 from gyrovib.core.allan_sim import Truth, simulate
+from tests.docpages import ROOT
+
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+from allan_methods import calibrated, double_bootstrap, intervals, level
 
 #: Evenly spread quantiles of the standard normal: a sample without sampling noise.
 Z = np.array([NormalDist().inv_cdf((i + 0.5) / 20_001) for i in range(20_001)])
@@ -21,7 +27,7 @@ Z = np.array([NormalDist().inv_cdf((i + 0.5) / 20_001) for i in range(20_001)])
 @pytest.mark.parametrize("a", [0.6, 0.8, 1.25])
 def test_a_spread_too_small_by_a_is_undone(a: float) -> None:
     # The root T is N(0, 1); the replicates are a·T (outer) and a²·T (inner), as where each
-    # level of the bootstrap shrinks the spread by a. By hand (allan_fdb's docstring):
+    # level of the bootstrap shrinks the spread by a. By hand (allan_methods' docstring):
     # γ' = F**(F*⁻¹(γ)) = Φ(a·z_γ/a²) = Φ(z_γ/a), and F*⁻¹(γ') = a·z_γ/a = z_γ: the root's
     # own quantile, where the single bootstrap reads a·z_γ.
     for gamma in (0.025, 0.16, 0.5, 0.84, 0.975):
@@ -92,11 +98,7 @@ def test_double_bootstrap_outer_level_is_the_bootstrap() -> None:
 
 
 def test_an_unknown_interval_method_is_refused() -> None:
-    # a misspelt method used to fall through to the pivot and be reported under its name
-    import numpy as np
-
-    from gyrovib.core.allan_fit import intervals
-
+    # a misspelt method must not fall through to the pivot and be reported under its name
     with pytest.raises(ValueError, match="unknown interval method 'studentised'"):
         intervals(1.0, 0, np.ones((10, 5)), (0.68,), "studentised", None,
                   np.ones(5, dtype=bool))
