@@ -21,7 +21,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import AnalysisResult
-from gyrovib.api.evaluation.unknown import unknown_cells
+from gyrovib.api.evaluation.unknown import unknown_cells, unknown_g2
 from gyrovib.api.lots.uncertainty import distributions, with_uncertainty
 from gyrovib.api.study.convert import catalog_unit, error_arrays, to_unit
 from gyrovib.api.study.prepare import (
@@ -129,8 +129,12 @@ def analyze(
 def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
                 samples: int = DEFAULT_SAMPLES, seed: int = DEFAULT_SEED,
                 progress: ProgressCallback | None = None,
-                peak_factor: float = DEFAULT_PEAK_FACTOR) -> AnalysisResult:
-    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.study.Study`."""
+                peak_factor: float = DEFAULT_PEAK_FACTOR,
+                g2_unknown_as_zero: bool = False) -> AnalysisResult:
+    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.study.Study`.
+    ``g2_unknown_as_zero``: a g² term whose figure is unknown is left out of the numbers
+    (a mission's totals, whose rows name the figure themselves); by default that term,
+    Δ_VA, Δ_V and Δ_V(RMS) are NaN there (unknown)."""
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
     numeric = method == "numeric"
@@ -158,6 +162,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         check_finite([*error_arrays(error), *([] if stderr_out is None else [stderr_out])],
                      prepared)
         unknown_cells(prepared, error, warnings)
+        fields = _spec_fields(prepared, spec, unit, error, g2_unknown_as_zero)
         locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
         spread = _spread(study, prepared, method, unit, peak_factor)
     return AnalysisResult(
@@ -172,7 +177,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         samples=samples if numeric else None,
         seed=seed if numeric else None,
         linear=tuple(_shaken(prepared)),
-        **specs.analysis_fields(len(prepared.sensors), n_p, spec, unit),
+        **fields,
         saturated=saturated,
         peak_factor=peak_factor,
         locked=locked,
@@ -180,6 +185,17 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         rate_unit=catalog_unit([p.unit for p in prepared.profiles]),
         **spread,
     )
+
+
+def _spec_fields(prepared: Prepared, spec: Any, unit: str, error: VibrationError,
+                 g2_unknown_as_zero: bool) -> dict[str, Any]:
+    """The spec-form fields of the result; unless ``g2_unknown_as_zero``, the numbers that
+    hold a g² term whose figure is unknown made NaN, in ``error`` and the RMS bound."""
+    fields = specs.analysis_fields(len(prepared.sensors), len(prepared.profiles), spec, unit)
+    if not g2_unknown_as_zero:
+        unknown_g2(error, fields.get("rms_bound"),
+                   specs.unknown_g2_cells(prepared.sensors, spec, _shaken(prepared)))
+    return fields
 
 
 def _spread(study: Study, prepared: Prepared, method: str, unit: str,

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.commands.analyze import analyze
+from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.commands.mission import mission
 from gyrovib.api.datasheet.specs import figures, is_spec
 from gyrovib.api.evaluation.unknown import depends_on, not_recorded
@@ -37,6 +37,7 @@ from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
 from gyrovib.api.study.entries import select_entries
 from gyrovib.api.study.linear import g2_matrix
 from gyrovib.api.study.prepare import input_response
+from gyrovib.api.study.study import Study
 from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.envelope import worst_case
 from gyrovib.core.recording import recorded_error
@@ -62,10 +63,11 @@ class RecordingAnalysis(Frozen):
     ``saturated`` (N,), ``peak_rate`` (N,) max |ω3| at the element;
     ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope);
     ``at_mean`` (N,) the fitted profile's closed form at its own (mean) rate, the
-    number ``analyze`` gives on the written file, and ``at_mean_ratio`` (N,) its ratio
-    to Δ_V,rec (NaN where either is 0 or unknown), warned of outside
-    :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the fitted mission
-    keeps it).
+    number ``analyze`` gives on the written file (a g² term whose figure is unknown
+    taken as 0 there, as in Δ_V,rec, where ``analyze`` writes it unknown), and
+    ``at_mean_ratio`` (N,) its ratio to Δ_V,rec (NaN where either is 0 or unknown),
+    warned of outside :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the
+    fitted mission keeps it).
     """
 
     unit: str
@@ -257,7 +259,9 @@ def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str]
     rows = {r.sensor: r for r in result.rows}
     total = np.array([rows[s].mean for s in sensor_ids], dtype=float)
     rms = np.array([rows[s].rms for s in sensor_ids], dtype=float)
-    at_rate = analyze(combined, sensors=sensor_ids, profiles=(fit.profile_id,), unit="deg/s")
+    # Δ_V,rec takes a g² figure not given as 0, so the ratio compares it with the same
+    at_rate = analysis_of(Study.of(combined, sensors=sensor_ids, profiles=(fit.profile_id,)),
+                          unit="deg/s", g2_unknown_as_zero=True)
     where = {s: i for i, s in enumerate(at_rate.sensors)}
     at_mean = np.array([at_rate.error.total[where[s], 0] for s in sensor_ids], dtype=float)
     return total, rms, at_mean
