@@ -20,12 +20,13 @@ from numpy.typing import NDArray
 from gyrovib import units
 from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.commands.mission import mission
-from gyrovib.api.datasheet.specs import figures, is_spec
+from gyrovib.api.datasheet.specs import figures, g2_unknown, is_spec
 from gyrovib.api.evaluation.unknown import depends_on, not_recorded
 from gyrovib.api.recordings.fit import fit_recording
 from gyrovib.api.recordings.honesty import (
     RATIO_RANGE,
     at_mean_warnings,
+    g2_warnings,
     ratio_warnings,
     unknown_warnings,
 )
@@ -177,18 +178,35 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
         if parts:  # unknown, never 0 (docs/model.md section 13)
             total[i] = terms[i] = g2_part[i] = fitted[i] = fitted_rms[i] = np.nan
             at_mean[i] = np.nan
+    no_g2 = g2_not_given(entries, fit)
+    for i in no_g2:  # the g² term and every sum holding it: unknown, never 0
+        total[i] = g2_part[i] = fitted[i] = fitted_rms[i] = at_mean[i] = np.nan
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
         at_mean_ratio = np.where((total != 0) & (at_mean != 0), at_mean / total, np.nan)
     s = units.scale(unit)
     warnings = unknown_warnings(unknown, ratio_warnings(fit, ratio, saturated, peak / s,
                                                     ranges / s, unit))
+    g2_warnings(no_g2, spec, warnings)
     at_mean_warnings(fit, at_mean_ratio, warnings)
     return RecordingAnalysis(
         unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
         warnings=warnings, at_mean=at_mean / s, at_mean_ratio=at_mean_ratio)
+
+
+def g2_not_given(entries: Sequence[Any], fit: RecordingFit) -> list[int]:
+    """The rows whose g² term is unknown on this recording: it recorded the accelerations
+    of a linear vibration, and the sensor gives no g² figure (a coefficient-form sensor
+    without ``g2_sensitivity`` or ``vre``, a datasheet part that publishes no VRE;
+    docs/model.md sections 8 and 13)."""
+    shaken = (fit.linear is not None and bool(np.all(np.isfinite(fit.linear.variance)))
+              and bool(np.any(np.asarray(fit.linear.variance) > 0)))
+    if not shaken:
+        return []
+    return [i for i, e in enumerate(entries)
+            if (e.sensor.specs.vre is None if is_spec(e) else g2_unknown(e.sensor))]
 
 
 def fit_missing(fit: RecordingFit) -> tuple[str, ...]:
@@ -259,9 +277,8 @@ def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str]
     rows = {r.sensor: r for r in result.rows}
     total = np.array([rows[s].mean for s in sensor_ids], dtype=float)
     rms = np.array([rows[s].rms for s in sensor_ids], dtype=float)
-    # Δ_V,rec takes a g² figure not given as 0, so the ratio compares it with the same
     at_rate = analysis_of(Study.of(combined, sensors=sensor_ids, profiles=(fit.profile_id,)),
-                          unit="deg/s", g2_unknown_as_zero=True)
+                          unit="deg/s")
     where = {s: i for i, s in enumerate(at_rate.sensors)}
     at_mean = np.array([at_rate.error.total[where[s], 0] for s in sensor_ids], dtype=float)
     return total, rms, at_mean
