@@ -387,6 +387,33 @@ def test_analyze_writes_an_unknown_g2_term_and_its_sums_unknown_in_every_format(
     assert report.count('class="lg">? unknown</text>') == 2
 
 
+def test_the_uncertainty_of_an_unknown_total_is_unknown(tmp_path: Path) -> None:
+    # no-g2 with a standard uncertainty on k2 (σ = 1e-7): under 'shaker' its Δ_V is
+    # unknown (no g² figure, linear vibration), and so is Δ_V's uncertainty (left out of the JSON,
+    # NaN in the result), never the spread of the known terms alone; under 'calm' both
+    # are numbers, and with-g2 keeps its own under both profiles.
+    path = tmp_path / "spread.yaml"
+    path.write_text(COEFFICIENTS.replace(
+        "  - id: no-g2\n    coefficients: {k2: 1.0e-6}\n",
+        "  - id: no-g2\n    coefficients: {k2: 1.0e-6}\n"
+        "    uncertainty:\n      sigma: {k2: 1.0e-7}\n").replace(
+        "    vre: 1.0e-4\n",
+        "    vre: 1.0e-4\n    uncertainty:\n      sigma: {k2: 1.0e-7}\n"), encoding="utf-8")
+    result = gyrovib.analyze(str(path))
+    assert result.uncertainty is not None
+    shaker, calm = result.profiles.index("shaker"), result.profiles.index("calm")
+    no_g2, with_g2 = result.sensors.index("no-g2"), result.sensors.index("with-g2")
+    assert math.isnan(result.error.total[no_g2, shaker])
+    assert math.isnan(result.uncertainty[no_g2, shaker])
+    assert result.uncertainty[no_g2, calm] > 0
+    assert result.uncertainty[with_g2, shaker] > 0 and result.uncertainty[with_g2, calm] > 0
+    rows = {(r["sensor"], r["profile"]): r for r in json.loads(
+        invoke("analyze", str(path), "--format", "json").stdout)["results"]}
+    assert rows[("no-g2", "shaker")]["total"] is None
+    assert "uncertainty" not in rows[("no-g2", "shaker")]  # left out, as docs/output.md says
+    assert rows[("no-g2", "calm")]["uncertainty"]["total"] > 0
+
+
 # ---------------------------------------------------------------- missions
 # The same parts over missions (docs/model.md section 12): 'trip' flies a quiet tone
 # along x3 only (a = (0, 0, 2) deg/s: C31 = C32 = 0, no linear vibration) for 100 s,

@@ -165,6 +165,9 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         fields = _spec_fields(prepared, spec, unit, error, g2_unknown_as_zero)
         locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
         spread = _spread(study, prepared, method, unit, peak_factor)
+        if "uncertainty" in spread:  # the uncertainty of an unknown Δ_V is unknown too
+            spread["uncertainty"] = np.where(np.isnan(error.total), np.nan,
+                                             spread["uncertainty"])
     return AnalysisResult(
         method=method,
         unit=unit,
