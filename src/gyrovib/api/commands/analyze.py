@@ -164,10 +164,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         unknown_cells(prepared, error, warnings)
         fields = _spec_fields(prepared, spec, unit, error, g2_unknown_as_zero)
         locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
-        spread = _spread(study, prepared, method, unit, peak_factor)
-        if "uncertainty" in spread:  # the uncertainty of an unknown Δ_V is unknown too
-            spread["uncertainty"] = np.where(np.isnan(error.total), np.nan,
-                                             spread["uncertainty"])
+        spread = _spread(study, prepared, method, unit, peak_factor, error.total)
     return AnalysisResult(
         method=method,
         unit=unit,
@@ -202,14 +199,18 @@ def _spec_fields(prepared: Prepared, spec: Any, unit: str, error: VibrationError
 
 
 def _spread(study: Study, prepared: Prepared, method: str, unit: str,
-            peak_factor: float) -> dict[str, Any]:
+            peak_factor: float, total: FloatArray) -> dict[str, Any]:
     """The uncertainty fields of the result
     (:func:`~gyrovib.api.lots.uncertainty.with_uncertainty`); under ``numeric``, g comes
-    from the Study's exact multipliers (the closed form's)."""
+    from the Study's exact multipliers (the closed form's). The uncertainty of an unknown
+    Δ_V (NaN in ``total``) is unknown too."""
     if method == "numeric" and any(d is not None for d in distributions(prepared)):
         prepared = study.prepare(methods=("exact",), peak_factor=peak_factor,
                                  phase_search=False)
-    return with_uncertainty(prepared, method, unit)
+    spread = with_uncertainty(prepared, method, unit)
+    if "uncertainty" in spread:
+        spread["uncertainty"] = np.where(np.isnan(total), np.nan, spread["uncertainty"])
+    return spread
 
 
 def _shaken(prepared: Prepared) -> list[bool]:

@@ -174,13 +174,8 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     fitted, fitted_rms, at_mean = _fitted_mission(fit, catalog,
                                                   [e.sensor.id for e in entries])
     unknown = depends_on(entries, fit_missing(fit), spec_cross=False)
-    for i, parts in enumerate(unknown):
-        if parts:  # unknown, never 0 (docs/model.md section 13)
-            total[i] = terms[i] = g2_part[i] = fitted[i] = fitted_rms[i] = np.nan
-            at_mean[i] = np.nan
     no_g2 = g2_not_given(entries, fit)
-    for i in no_g2:  # the g² term and every sum holding it: unknown, never 0
-        total[i] = g2_part[i] = fitted[i] = fitted_rms[i] = at_mean[i] = np.nan
+    _unknown_rows(unknown, no_g2, (total, g2_part, fitted, fitted_rms, at_mean), terms)
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
         at_mean_ratio = np.where((total != 0) & (at_mean != 0), at_mean / total, np.nan)
@@ -194,6 +189,23 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
         warnings=warnings, at_mean=at_mean / s, at_mean_ratio=at_mean_ratio)
+
+
+def _unknown_rows(unknown: Sequence[tuple[str, ...]], no_g2: Sequence[int],
+                  sums: Sequence[FloatArray], terms: FloatArray) -> None:
+    """NaN, in place, where a row is unknown (never 0; docs/model.md section 13): every
+    number of a row that depends on a part the recording lacks (``unknown``), and the
+    g² term and every sum holding it on a row whose g² figure is not given (``no_g2``;
+    its other terms stay, known). ``sums``: Δ_V,rec, its g² part, the fitted Δ̄_V and
+    mean RMS, the at-mean total."""
+    for i, parts in enumerate(unknown):
+        if parts:
+            terms[i] = np.nan
+            for a in sums:
+                a[i] = np.nan
+    for i in no_g2:
+        for a in sums:
+            a[i] = np.nan
 
 
 def g2_not_given(entries: Sequence[Any], fit: RecordingFit) -> list[int]:
