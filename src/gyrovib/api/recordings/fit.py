@@ -355,10 +355,3 @@ def shape_warnings(part: FittedPart | None, kind: str,
                             f"by more than 3 dB: its shape is not {spectrum} (raise "
                             "{breakpoints}, or read the plot)", ("breakpoints", None)))
     return out
-    for axis, db, off in zip("XYZ", part.shape_db, part.off_3db, strict=True):
-        if db > SHAPE_DB_LIMIT or off > OFF_3DB_LIMIT:
-            out.append(Note(f"the fitted {kind} PSD of axis {axis} is off the measured one "
-                            f"by {db:.2g} dB (power-weighted), {100 * off:.0f} % of the power "
-                            "by more than 3 dB: its shape is not the recording's (raise "
-                            "{breakpoints}, or read the plot)", ("breakpoints", None)))
-    return out
