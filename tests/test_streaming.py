@@ -24,7 +24,7 @@ from gyrovib.cli.options import as_options
 from gyrovib.errors import ModelError
 from gyrovib.render import select as render_select
 from gyrovib.render import sweep as render_sweep
-from gyrovib.render.common import csv_cell, csv_lines, float_cells
+from gyrovib.render.common import csv_cell, float_cells
 from tests.conftest import invoke
 
 # ---------------------------------------------------------------- references
@@ -80,6 +80,11 @@ def test_select_json_in_blocks_is_the_whole_document(criterion: str,
 @given(st.text(alphabet=st.sampled_from('ab ,"\r\n;é\t'), max_size=8))
 def test_csv_cell_quotes_as_the_csv_module(text: str) -> None:
     assert "x," + csv_cell(text) + ",y\n" == csv_reference(["x", text, "y"], [])
+
+
+def csv_lines(columns: list[list[str]]) -> str:
+    """CSV rows from columns of cells already written as text, column-wise."""
+    return "\n".join(map(",".join, zip(*columns, strict=True))) + "\n"
 
 
 @settings(deadline=None, max_examples=200)

@@ -88,15 +88,6 @@ def float_cells(values: Any) -> list[str]:
     return cells
 
 
-def csv_lines(columns: Sequence[Sequence[str]]) -> str:
-    """CSV rows from columns of cells already written as text (:func:`csv_cell`,
-    :func:`float_cells`, ``"True"``/``"False"``, ``""`` for none): the same text
-    :func:`csv_text` makes row by row, at a fraction of its cost per value."""
-    if not columns or not len(columns[0]):
-        return ""
-    return "\n".join(map(",".join, zip(*columns, strict=True))) + "\n"
-
-
 def csv_head(header_row: Iterable[str]) -> str:
     """The header line of :func:`csv_text`."""
     return ",".join(csv_cell(h) for h in header_row) + "\n"
