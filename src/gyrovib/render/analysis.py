@@ -15,18 +15,13 @@ from gyrovib.render.analysis_cells import (  # noqa: F401  (the face of the rend
     _UNCERTAINTY_NOTE,
     G2_INDEX,
     JSON_TERMS,
-    LOT_MARK,
-    NEGLIGIBLE_IN_ROW,
-    ODD_TERMS,
     SATURATED_MARK,
     _labels,
     _lot_name,
     _numeric_note,
-    _rows,
     _saturated,
     _shown,
     _terms,
-    _u,
     _u_text,
     cells_text,
     grouped_warnings,
@@ -35,7 +30,6 @@ from gyrovib.render.analysis_cells import (  # noqa: F401  (the face of the rend
 )
 from gyrovib.render.analysis_table import (  # noqa: F401  (the face of the renderers)
     dominant_term,
-    next_step,
     to_table,
     worst_case_text,
 )
