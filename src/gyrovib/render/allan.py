@@ -4,7 +4,6 @@ Kalibr's ``imu.yaml`` (render/kalibr.py)."""
 
 from __future__ import annotations
 
-import io
 import os
 import warnings
 from typing import TYPE_CHECKING, Any
@@ -14,7 +13,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib import units
-from gyrovib.render.common import dumps, fmt, header, number, rich_text
+from gyrovib.render.common import dumps, fmt, header, number, png, rich_text
 
 if TYPE_CHECKING:
     from gyrovib.api.noise import AllanResult, AxisAllan, Figure
@@ -172,10 +171,9 @@ def plot(result: AllanResult) -> bytes:
         axes[-1, 0].set_xlabel("τ, s")
         fig.suptitle(f"{os.path.basename(result.file)}: Allan deviation", fontsize=10)
         fig.tight_layout()
-        out = io.BytesIO()
-        fig.savefig(out, format="png", dpi=100)
+        data = png(fig, dpi=100)
     plt.close(fig)
-    return out.getvalue()
+    return data
 
 
 def _panel(panel: Any, ax: AxisAllan, confidence: float) -> None:

@@ -378,3 +378,10 @@ def to_ascii(text: str) -> str:
     """``text`` in ASCII: ``Δ_V`` → ``Delta_V``, box lines → ``+ - = |``, ticks → ``v``/``x``;
     any other character outside ASCII becomes ``?``."""
     return text.translate(_ASCII).encode("ascii", "replace").decode("ascii")
+
+
+def png(fig: Any, **savefig: Any) -> bytes:
+    """The PNG bytes of a matplotlib figure (``savefig``'s keywords)."""
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", **savefig)
+    return buffer.getvalue()

@@ -3,7 +3,6 @@ table, JSON, CSV, Markdown, the catalogue YAML of ``-o`` and the residual plot."
 
 from __future__ import annotations
 
-import io
 from typing import Any
 
 from rich.text import Text
@@ -15,7 +14,7 @@ from gyrovib.api.ratetable.results import (
     pairs,
 )
 from gyrovib.core.fit import SIGNIFICANT_T
-from gyrovib.render.common import dumps, fmt, header, number, rich_text
+from gyrovib.render.common import dumps, fmt, header, number, png, rich_text
 from gyrovib.render.formats import Cell, csv_of, markdown_of, table_of
 from gyrovib.render.plot import _figure_class
 
@@ -178,6 +177,4 @@ def residuals_png(result: FitResult, dpi: int = 100) -> bytes:
         ax.set_xlabel(f"rate ({result.unit})")
     for k in range(n, rows * columns):
         axes[k // columns][k % columns].set_visible(False)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png")
-    return buffer.getvalue()
+    return png(fig)

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gyrovib.render.common import png
 from gyrovib.render.plot import _figure_class
 
 if TYPE_CHECKING:
@@ -54,8 +55,6 @@ def _rows_to_draw(result: MissionResult) -> list[MissionRow]:
 
 def theta_png(result: MissionResult, *, dpi: int = 100) -> bytes:
     """θ(t) per sensor (and mission): one panel each, the staircase and its cone."""
-    import io
-
     figure_class = _figure_class()
     rows = _rows_to_draw(result)
     n = max(1, len(rows))
@@ -91,6 +90,4 @@ def theta_png(result: MissionResult, *, dpi: int = 100) -> bytes:
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8, loc="upper left")
     axes[-1].set_xlabel("time (h)")
-    out = io.BytesIO()
-    fig.savefig(out, format="png")
-    return out.getvalue()
+    return png(fig)

@@ -7,7 +7,6 @@ GUI backend or global figure state is involved.
 
 from __future__ import annotations
 
-import io
 from typing import Any
 
 import numpy as np
@@ -15,6 +14,7 @@ import numpy as np
 from gyrovib.api import SweepResult
 from gyrovib.api.datasheet.specs import worst_residual
 from gyrovib.errors import GyrovibError
+from gyrovib.render.common import png
 
 MISSING_MATPLOTLIB = (
     "plotting needs matplotlib, which is not installed: pip install 'gyrovib[plot]'"
@@ -80,9 +80,7 @@ def sweep_png(result: SweepResult, budget: float | None = None, *, log: bool = F
     if handles:
         fig.legend(handles, labels, loc="outside lower center", ncol=min(4, len(labels)),
                    fontsize=8, frameon=False)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=dpi)
-    return buffer.getvalue()
+    return png(fig, dpi=dpi)
 
 
 def _linthresh(result: SweepResult, j: int) -> float:
@@ -129,6 +127,4 @@ def envelope_png(result: SweepResult, *, dpi: int = 100) -> bytes | None:
     if handles:
         fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8,
                    frameon=False)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=dpi)
-    return buffer.getvalue()
+    return png(fig, dpi=dpi)

@@ -6,7 +6,6 @@ An unknown figure is '?' in tables, null in JSON and empty in CSV.
 
 from __future__ import annotations
 
-import io
 import math
 import os
 from typing import TYPE_CHECKING, Any
@@ -14,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 from rich.text import Text
 
 from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
-from gyrovib.render.common import dumps, fmt, header, number, rich_text
+from gyrovib.render.common import dumps, fmt, header, number, png, rich_text
 from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
 
 if TYPE_CHECKING:
@@ -223,10 +222,9 @@ def plot(result: RunupResult) -> bytes:
     ax.grid(True, lw=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    out = io.BytesIO()
-    fig.savefig(out, format="png", dpi=100)
+    data = png(fig, dpi=100)
     plt.close(fig)
-    return out.getvalue()
+    return data
 
 
 __all__ = ["plot", "to_csv", "to_json", "to_markdown", "to_table"]
