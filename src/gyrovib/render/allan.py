@@ -13,7 +13,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gyrovib import units
-from gyrovib.render.common import dumps, fmt, header, number, png, rich_text
+from gyrovib.render.common import dumps, fmt, header, number, png, pyplot, rich_text
 
 if TYPE_CHECKING:
     from gyrovib.api.noise import AllanResult, AxisAllan, Figure
@@ -154,13 +154,7 @@ def _curve_table(ax: AxisAllan, pct: str) -> Any:
 def plot(result: AllanResult) -> bytes:
     """The Allan deviation per axis, log-log, with its confidence error bars, the fitted
     model and each resolved term's line (PNG bytes)."""
-
-    # lazy: matplotlib is optional, for --plot only
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     fig, axes = plt.subplots(len(result.axes), 1, figsize=(8, 3.4 * len(result.axes)),
                              squeeze=False)
     with warnings.catch_warnings():

@@ -385,3 +385,14 @@ def png(fig: Any, **savefig: Any) -> bytes:
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", **savefig)
     return buffer.getvalue()
+
+
+def pyplot() -> Any:
+    """matplotlib.pyplot on the Agg backend, imported only when a plot is asked for
+    (matplotlib is optional: ``pip install 'gyrovib[plot]'``)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt

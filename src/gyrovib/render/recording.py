@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from gyrovib import units
-from gyrovib.render.common import dumps, header, html_table
+from gyrovib.render.common import dumps, header, html_table, pyplot
 from gyrovib.render.formats import Cell, cell_texts, csv_of, json_of, markdown_of
 from gyrovib.render.svg import LineChart, Marker, Series, color
 
@@ -189,12 +189,7 @@ def to_markdown(result: RecordingAnalysis) -> str:
 
 def plot_fit(fit: RecordingFit, path: str) -> None:
     """Measured PSD against the fitted breakpoints and tones, one panel per axis (PNG)."""
-    # lazy: matplotlib is optional, for --plot only
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     part = fit.angular
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
     f = part.frequencies

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 from rich.text import Text
 
 from gyrovib.api.runup.results import ESTIMATE_RECORDS, STEP_RECORDS
-from gyrovib.render.common import dumps, fmt, header, number, png, rich_text
+from gyrovib.render.common import dumps, fmt, header, number, png, pyplot, rich_text
 from gyrovib.render.formats import Cell, csv_of, json_of, markdown_of, table_of
 
 if TYPE_CHECKING:
@@ -193,12 +193,7 @@ def _leading(result: RunupResult) -> Estimate:
 def plot(result: RunupResult) -> bytes:
     """Shift against the regressor of the term that moves it most (:func:`_leading`):
     measured with 2u error bars, the fit, and the catalogue sensor's prediction (PNG)."""
-    # lazy: matplotlib is optional, for --plot only
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     first = _leading(result)
     x = [dict(s.regressors)[first.name] for s in result.steps]
     fig, ax = plt.subplots(figsize=(7, 4.2))
