@@ -9,18 +9,3 @@ module                                      what it holds
                                             bounds and select (``Result``)
 ==========================================  =====================================
 """
-
-from __future__ import annotations
-
-from gyrovib.api.evaluation.evaluate import ERROR_PARTS, errors, saturation, worst_case
-from gyrovib.api.evaluation.results import (
-    AnalysisResult,
-    BoundsResult,
-    Limit,
-    Result,
-    SelectionResult,
-    SweepResult,
-)
-
-__all__ = ["ERROR_PARTS", "AnalysisResult", "BoundsResult", "Limit", "Result",
-           "SelectionResult", "SweepResult", "errors", "saturation", "worst_case"]
