@@ -371,14 +371,12 @@ def _fill(status: str) -> str:
 def margins_chart(study: TradeStudy, j: int) -> str:
     s = study.selection
     fills = [_fill(s.status(i, j)) for i in range(len(s.sensors))]
+    name, axis, values = "Δ_V(RMS)", f"Δ_V(RMS) ({s.unit}, log)", s.rms
     if s.criterion == "worst" and s.total is not None:  # what the verdict compares
-        return bar_chart(f"|Δ_V| against the budget: {s.profiles[j]}",
-                         f"|Δ_V| ({s.unit}, log; a datasheet part: its worst case)",
-                         s.sensors, [float(v) for v in s.total[:, j]], fills,
-                         Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
-    return bar_chart(f"Δ_V(RMS) against the budget: {s.profiles[j]}",
-                     f"Δ_V(RMS) ({s.unit}, log)",
-                     s.sensors, [float(v) for v in s.rms[:, j]], fills,
+        name, values = "|Δ_V|", s.total
+        axis = f"|Δ_V| ({s.unit}, log; a datasheet part: its worst case)"
+    return bar_chart(f"{name} against the budget: {s.profiles[j]}", axis, s.sensors,
+                     [float(v) for v in values[:, j]], fills,
                      Marker(f"Δ* = {fmt(s.budget, 3)}", x=float(s.budget)))
 
 
