@@ -51,8 +51,6 @@ EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 EXIT_WRITE_FAILED = 74  # EX_IOERR of sysexits.h
 EXIT_INTERRUPTED = 128 + signal.SIGINT
 EXIT_BROKEN_PIPE = 128 + 13
-EXIT_TERMINATED = 128 + signal.SIGTERM
-EXIT_HUNG_UP = 128 + signal.SIGHUP
 
 #: The signals turned into exceptions (so ``finally`` blocks clean up), and their words.
 _SIGNALS = {signal.SIGINT: "interrupted", signal.SIGTERM: "terminated",

@@ -21,7 +21,6 @@ from gyrovib.cli.options import (
     parse_angle_budget,
     parse_budget,
     parse_placement,
-    parse_unit,
     peak_factor_option,
     placement_option,
 )
@@ -104,7 +103,7 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
         raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
                           "not both")
     if unit is not None:
-        unit = parse_unit(unit)
+        unit = units.canonical_unit(unit)
     else:
         unit = (units.quantity_unit(budget) if budget is not None else None) or "deg/s"
     catalog = load_catalog(files)
@@ -168,7 +167,7 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
                           "(on the angle), one of them")
     if fmt == "github":
         raise OptionError("--mission: use --format table, json, csv, markdown or junit")
-    unit = parse_unit(unit) if unit is not None else (
+    unit = units.canonical_unit(unit) if unit is not None else (
         (units.quantity_unit(budget) if budget is not None else None) or "deg/s")
 
     result = ranked(api.mission(
