@@ -1,6 +1,7 @@
 """The datasheet form (``specs:``): a sensor known by its datasheet figures.
 
-Its modules are listed in docs/architecture.md. It reads a prepared :class:`~gyrovib.api.study.Study`; it evaluates no view.
+Its modules are listed in docs/architecture.md. It reads a prepared
+:class:`~gyrovib.api.study.Study`; it evaluates no view.
 """
 
 from __future__ import annotations

@@ -51,8 +51,6 @@ from gyrovib.core.analysis import (
 from gyrovib.core.linear import mean_square
 from gyrovib.frozen import Frozen
 
-#: Order of the worst polynomial's coefficients (core.envelope.COEFFICIENTS).
-WORST_COEFFICIENTS = POLYNOMIAL
 #: Rate powers of (A1, k2…k5): a coefficient in U is q[deg/s]·s**(-p).
 _POWERS = np.array([0.0, -1.0, -2.0, -3.0, -4.0])
 #: The words the nonlinearity's ``of`` may take when the value is %FS.
@@ -222,7 +220,7 @@ def coefficient_rows(worst_x: FloatArray) -> FloatArray:
     x = np.asarray(worst_x, dtype=float)
     out = np.zeros((*x.shape[:-1], len(COLUMN)))
     out[..., COLUMN["k1"]] = 1.0
-    for k, name in enumerate(WORST_COEFFICIENTS):
+    for k, name in enumerate(POLYNOMIAL):
         out[..., COLUMN[name]] = x[..., k]
     return out
 

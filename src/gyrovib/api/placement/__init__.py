@@ -1,4 +1,6 @@
-"""Placements: a profile mapped into a sensor's axes, and the triad of three axes (docs/architecture.md)."""
+"""Placements: a profile mapped into a sensor's axes, and the triad of three axes.
+
+Its modules are listed in docs/architecture.md."""
 
 from __future__ import annotations
 

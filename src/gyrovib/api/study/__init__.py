@@ -1,8 +1,9 @@
 """The Study: a catalogue's chosen sensors and profiles in deg/s, prepared once.
 
-Its modules are listed in docs/architecture.md. ``gyrovib.api.prepare`` is ``Study.of(...).prepare(...)``. Every view of the library
-(analyze, sweep, bounds, select, report, mission) asks a ``Study`` for what it needs;
-nothing here evaluates the model's error.
+Its modules are listed in docs/architecture.md. ``gyrovib.api.prepare`` is
+``Study.of(...).prepare(...)``. Every view of the library (analyze, sweep, bounds,
+select, report, mission) asks a ``Study`` for what it needs; nothing here evaluates
+the model's error.
 """
 
 from __future__ import annotations
