@@ -28,7 +28,7 @@ statistics). The numeric method averages eq. (2) of the worst polynomial
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -280,6 +280,16 @@ class SpecResults(Frozen):
     cross_axis: NDArray[np.bool_]
 
 
+def spec_groups(prepared: Prepared, index: NDArray[np.intp]) -> Iterator[tuple[Group, list[int]]]:
+    """Each response group of ``prepared`` that holds spec sensors of ``index`` (rows of
+    ``prepared.sensors``), with their positions in ``index``; none without profiles."""
+    position = {int(i): k for k, i in enumerate(index.tolist())}
+    for group in prepared.groups:
+        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
+        if rows and prepared.profiles:
+            yield group, rows
+
+
 def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = None,
                  *, total: bool = True) -> SpecResults | None:
     """The worst case of every spec-form sensor of ``prepared`` (None when there are none).
@@ -291,7 +301,6 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
     if index.size == 0:
         return None
     figs = figures([prepared.sensors[i] for i in index.tolist()])
-    position = {int(i): k for k, i in enumerate(index.tolist())}
     n_p = len(prepared.profiles)
     tail = () if omega is None else (np.asarray(omega).size,)
     shape = (index.size, n_p, *tail)
@@ -303,10 +312,7 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
     nonlinearity = np.zeros(shape)
     g2 = np.zeros(shape)
     cross = np.zeros((n_p, *tail), dtype=bool)
-    for group in prepared.groups:
-        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
-        if not rows or not n_p:
-            continue
+    for group, rows in spec_groups(prepared, index):
         m = multipliers_of(group, prepared, method, omega)
         _fill(parts, {"coefficients": coefficients, "nonlinearity": nonlinearity, "g2": g2},
               _subset(figs, rows), m, rows, omega is not None, total)
