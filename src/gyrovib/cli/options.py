@@ -129,11 +129,11 @@ def budget_unit_option(f: F) -> F:
     )(f)
 
 
-def resolve_unit(unit: str | None, budget: str) -> str:
+def resolve_unit(unit: str | None, budget: str | None) -> str:
     """``--unit`` as given, else the unit ``--budget`` carries, else deg/s (README, "Units")."""
     if unit is not None:
         return units.canonical_unit(unit)
-    return units.quantity_unit(budget) or "deg/s"
+    return (None if budget is None else units.quantity_unit(budget)) or "deg/s"
 
 
 def peak_factor_option(f: F) -> F:
