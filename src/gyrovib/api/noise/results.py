@@ -16,8 +16,6 @@ FIGURE_UNITS = {"arw": "deg/sqrt(h)", "bias_instability": "deg/h", "rrw": "deg/h
                 "bias_repeatability": "deg/h", "quantization": "deg", "rate_ramp": "deg/h^2"}
 #: The five terms of IEEE Std 952's model, as ``gyrovib allan`` reports them.
 NOISE_TERMS = ("quantization", "arw", "bias_instability", "rrw", "rate_ramp")
-#: The terms of a mission budget, in the order they are reported.
-BUDGET_TERMS = ("vibration", "arw", "bias_instability", "rrw", "repeatability")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
