@@ -5,27 +5,14 @@ to a renderer. Heavy modules (numpy, yaml, rich) are imported inside the
 commands, so ``gyrovib --help`` stays instant. Every :class:`GyrovibError` is
 caught here, once: one line per problem on standard error, exit status 2.
 
-Exit status (the contract; no environment variable changes it):
-
-* 0 success; 1 ``select``'s (or ``mission``'s, or ``runup --require``'s) requirement not met;
-  2 bad usage or bad input;
-* 3 an internal error (a bug in gyrovib), reported in one line asking for a
-  report; ``GYROVIB_DEBUG=1`` (or ``true``, ``yes``; any case) adds the
-  traceback, the status stays 3;
-* 74 (``EX_IOERR``) the output could not be written (standard output closed or
-  on a full disk, ``--output`` on a failing device): one line naming it;
-  an ``--output`` that cannot be a file (no such directory, a name too long,
-  no permission) is bad usage, 2, naming it too;
-* 129 hung up (SIGHUP), 130 interrupted (Ctrl-C, SIGINT), 143 terminated
-  (SIGTERM): one line, ``--output`` is left as it was and no temporary file
-  remains; a signal once the output is in place (renamed over ``--output``)
-  no longer interrupts: the run has succeeded, and exits as it would have;
-* 141 standard output closed before everything was written (``| head``), as
-  for a process killed by SIGPIPE; nothing is printed.
-
-A standard error that cannot be written (``2>/dev/full``) costs the messages,
-never the status. Names in messages are written with their control characters
-escaped (:func:`~gyrovib.cli.common.printable`).
+Exit status is the contract docs/ci.md sets out: 0 success; 1 a requirement not met
+(``select``, ``mission``, ``runup --require``); 2 bad usage or bad input; 3 an internal
+error, in one line (``GYROVIB_DEBUG=1`` adds the traceback); 74 the output could not be
+written; 129, 130, 143 hung up, interrupted, terminated (``--output`` left as it was, and
+once it is in place a signal no longer interrupts); 141 standard output closed early.
+A standard error that cannot be written (``2>/dev/full``) costs the messages, never the
+status. Names in messages are written with their control characters escaped
+(:func:`~gyrovib.cli.common.printable`).
 """
 
 from __future__ import annotations
