@@ -8,22 +8,11 @@ asymmetry from ppm or %, A1 = 1e-6 per ppm; the VRE from rate per the file's
 acceleration unit² to deg/s per g²), and the profile multipliers of each
 sensor group feed :func:`gyrovib.core.envelope.worst_case`.
 
-What a spec-form sensor reports (JSON ``"source": "specs"``):
-
-* ``total``: the worst |Δ_V(Ω_K3)| over every conversion function the datasheet
-  permits (the worst polynomial's cᵀx plus |v|·Σ⟨a_j²⟩ where the profile has
-  a linear vibration);
-* ``rms``: the per-term RMS upper bound √(Σ per-term maxima²);
-* ``additive_terms`` / ``multiplicative_coefficients``: those of the worst
-  polynomial (A1, k2…k5) that attains ``total``; m31 = m32 = 0 (datasheets do
-  not give them: a warning says so where the profile has cross-axis vibration);
-* ``envelope``: ``worst_coefficients`` (A1, k2…k5 in the output unit's powers)
-  and ``rms_bound``.
-
-Either method's multipliers may feed the programme: ``paper`` gives the worst
-case under the paper's multipliers (the same envelope, the printed
-statistics). The numeric method averages eq. (2) of the worst polynomial
-(found with the exact multipliers) by brute force.
+What a spec-form sensor reports (JSON ``"source": "specs"``, docs/output.md): ``total``
+the worst |Δ_V(Ω_K3)| over the polynomials the datasheet permits (the worst one's cᵀx plus
+|v|·Σ⟨a_j²⟩ under linear vibration), ``rms`` the bound √(Σ per-term maxima²), and the worst
+polynomial's terms and coefficients (m31 = m32 = 0). How each method uses the
+programme: docs/datasheets.md.
 """
 
 from __future__ import annotations
