@@ -131,11 +131,17 @@ def _report(exc: GyrovibError, settings: Settings | None) -> None:
     if settings is not None and settings.github:
         from gyrovib.render.github import problems_to_github
 
-        try:
-            sys.stdout.write(problems_to_github(exc.problems))
-            sys.stdout.flush()
-        except (OSError, AttributeError, ValueError):
-            silence_stdout()  # the verdict (exit 2) stands; the annotations are a courtesy
+        _annotate(problems_to_github(exc.problems))
+
+
+def _annotate(text: str) -> None:
+    """GitHub annotations on standard output; one that cannot be written is dropped (the
+    verdict, exit 2, stands; the annotations are a courtesy)."""
+    try:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    except (OSError, AttributeError, ValueError):
+        silence_stdout()
 
 
 def _unexpected(exc: Exception) -> int:
@@ -265,12 +271,7 @@ class _Group(click.Group):
             if _wants_github(sys.argv[1:] if self._argv is None else self._argv):
                 from gyrovib.render.github import annotation
 
-                try:
-                    sys.stdout.write(annotation(exc.format_message(), title="gyrovib usage")
-                                     + "\n")
-                    sys.stdout.flush()
-                except (OSError, AttributeError, ValueError):
-                    silence_stdout()
+                _annotate(annotation(exc.format_message(), title="gyrovib usage") + "\n")
             raise
         except (click.exceptions.ClickException, *_CLICK_FLOW):
             raise
