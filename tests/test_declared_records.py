@@ -45,7 +45,8 @@ MISSION_CSV = ("sensor", "mission", "placement", "axis", "mean", "angle", "rms",
                "source", "passed", "status", "unknown", "theta_arw", "theta_bias_instability",
                "theta_rrw", "theta_repeatability", "budget_total", "coverage",
                "allowed_vibration", "allowed_arw", "allowed_bias_instability", "allowed_rrw",
-               "allowed_repeatability", "typical")
+               "allowed_repeatability", "typical", "lower_bound", "rests_on_bound", "bounds",
+               "allowed_upper")
 
 
 def test_mission_csv_header_and_frame_columns_are_the_declaration(mission_result) -> None:
@@ -53,7 +54,8 @@ def test_mission_csv_header_and_frame_columns_are_the_declaration(mission_result
 
     declared = names(written(mission_result.records(), "csv"))
     # the declaration is in the JSON's order; csv_after puts axis, source and typical
-    # where the documented header has them
+    # where the documented header has them, and the budget's marks (lower_bound,
+    # rests_on_bound, bounds, allowed_upper) last
     assert declared == MISSION_CSV != names(mission_result.records())[:len(MISSION_CSV)]
     table = _csv(render_mission.to_csv(mission_result))
     assert tuple(table[0]) == declared
@@ -95,7 +97,7 @@ def test_a_column_moved_in_the_declaration_moves_in_csv_and_frame(mission_result
     rows = mission_result.rows
     header = _csv(csv_of(moved, rows))[0]
     assert tuple(header) == names(moved) == tuple(frame_of(moved, rows).columns)
-    assert header[0] == "typical" and header[-1] == "sensor"
+    assert header[0] == "allowed_upper" and header[-1] == "sensor"
     # a CSV place declared after a column moves with that column
     declared = mission_result.records()
     at = names(declared).index("unknown")
@@ -336,9 +338,15 @@ def test_analyze_json_csv_and_frame_come_from_one_declaration(case: str, tmp_pat
             else:
                 assert value == want, path
     # the probes: the spec-form, lot, worst-phase and unrecorded cases have keys on some
-    # rows only; the unrecorded case has unknown errors, written null
+    # rows only; the unrecorded case has unknown errors, written null, and so have the
+    # bundled profiles with linear vibration for the sensors without a g² figure (the
+    # bundled catalogue has such sensors, adxrs453 among them: 'bundled', 'numeric')
+    from gyrovib.api.datasheet.specs import UNKNOWN_TERM_NOTES
+
+    g2_unknown = any(w in UNKNOWN_TERM_NOTES for ws in result.warnings.values() for w in ws)
+    assert g2_unknown == (case in ("bundled", "numeric"))
     assert bool(seen_only) == (case == "lot-and-worst" or "specs" in result.sources)
-    assert bool(seen_null) == (case == "unrecorded")
+    assert bool(seen_null) == (case == "unrecorded" or g2_unknown)
     assert ("stderr" in table[0]) == (case == "numeric")
 
 
@@ -1016,7 +1024,8 @@ MISSION_JSON = {
 SEGMENTS_CSV = ("sensor", "mission", "placement", "axis", "segment", "profile", "start",
                 "duration", "end", "rate_x1", "rate_x2", "rate_x3", "total", "rms",
                 "saturated", "theta_vibration", "theta_arw", "theta_bias_instability",
-                "theta_rrw", "theta_repeatability", "budget_total", "coverage")
+                "theta_rrw", "theta_repeatability", "budget_total", "coverage", "lower_bound",
+                "rests_on_bound", "bounds")
 
 
 def _in_order(entry: dict, kind: str, always: tuple[str, ...] = ()) -> None:
@@ -1071,3 +1080,46 @@ def test_select_json_keys_are_the_documented_ones() -> None:
         assert tuple(sensor) == SELECT_SENSOR_KEYS
         for entry in sensor["profiles"]:
             assert tuple(entry) == SELECT_ENTRY_KEYS, tuple(entry)
+
+
+def test_mission_csv_and_frame_carry_the_budget_marks_the_json_and_tables_have() -> None:
+    # A total that is only a lower bound (a noise figure unknown), one that rests on a
+    # figure given only as an upper bound (docs/examples/gx100-budget: its bias
+    # instability and rate random walk are bounds from an Allan record), and an allowance
+    # that is only an upper limit: the JSON's budget.lower_bound, rests_on_bound, bounds
+    # and allowed.upper are the CSV's and the frame's lower_bound, rests_on_bound, bounds
+    # and allowed_upper (names joined by spaces), row for row; the tables mark them '≥',
+    # '≤' and '*'. They come last, so every other column keeps its place.
+    import json
+
+    from gyrovib.catalog.loader import bundled_paths
+    from gyrovib.render.mission_segments import segments_csv
+
+    root = Path(__file__).resolve().parents[1]
+    files = [str(root / "docs" / "examples" / "gx100-budget.gyrovib.yaml"),
+             *map(str, bundled_paths())]
+    result = gyrovib.mission(files, angle_budget="0.5deg")
+    rows = json.loads(render_mission.to_json(result))["mission"]
+    table = _csv(render_mission.to_csv(result))
+    frame = result.to_frame()
+    marks = ("lower_bound", "rests_on_bound", "bounds", "allowed_upper")
+    assert tuple(table[0][-4:]) == tuple(frame.columns[-4:]) == marks
+    assert tuple(table[0][:-4]) == MISSION_CSV[:-4]
+    seen = set()
+    for k, (row, cells) in enumerate(zip(rows, table[1:], strict=True)):
+        budget = row["budget"]
+        want = (budget["lower_bound"], budget["rests_on_bound"], " ".join(budget["bounds"]),
+                " ".join(budget["allowed"]["upper"]))
+        assert tuple(cells[-4:]) == (str(want[0]).lower(), str(want[1]).lower(), *want[2:])
+        assert tuple(frame[m].iloc[k] for m in marks) == want
+        seen.add(want[:3])
+    # the probe met each kind: a lower bound, a total resting on bounds (named)
+    assert (True, False, "") in seen and (False, True, "bias_instability rrw") in seen
+    # the segments' CSV and frame end with the same marks, as each segment's JSON budget
+    segments = _csv(segments_csv(result))
+    assert tuple(segments[0][-3:]) == marks[:3]
+    flat = [s["budget"] for row in rows for s in row["segments"]]
+    assert [tuple(line[-3:]) for line in segments[1:]] == [
+        (str(b["lower_bound"]).lower(), str(b["rests_on_bound"]).lower(), " ".join(b["bounds"]))
+        for b in flat]
+    assert tuple(result.segments_frame().columns[-3:]) == marks[:3]

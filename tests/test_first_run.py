@@ -47,9 +47,10 @@ def test_a_matrix_cell_is_the_error_and_its_dominant_term() -> None:
     cell = f"{fmt(float(result.error.rms[i, j]), 3)} A1"
     row = next(line for line in out.splitlines() if line.startswith("│ uav-blade-pass-tone"))
     assert cell in row
-    # a datasheet part without a VRE under a linear profile: a lower bound, not 0
+    # a datasheet part without a VRE under a linear profile: unknown ('?'), never 0 nor
+    # the error of its other figures
     vre = next(line for line in out.splitlines() if line.startswith("│ adis16460-vre-test"))
-    assert "≥0 ⚠" in vre
+    assert "? ⚠" in vre and "≥" not in vre
 
 
 def test_detail_and_one_or_two_profiles_give_the_per_term_tables() -> None:

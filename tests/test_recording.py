@@ -121,8 +121,20 @@ def test_recorded_error_matches_the_definition(tmp_path: Path) -> None:
     assert result.recorded[0] == pytest.approx(expected, rel=1e-9)
     assert result.terms[0].sum() + result.g2[0] == pytest.approx(expected, rel=1e-9)
     assert abs(result.g2[0]) > 0.1 * abs(expected)  # the g² term is really exercised
-    # eq. (2)'s linear terms are the measured rate itself: nothing rectifies
-    assert result.sensors[2] == "linear-only" and result.recorded[2] == 0.0
+    # eq. (2)'s linear terms are the measured rate itself: nothing rectifies; but the
+    # sensor gives no g² figure and the log holds a linear vibration, so its g² term, and
+    # Δ_V,rec with it, is unknown (docs/model.md section 8), never the rate part alone
+    assert result.sensors[2] == "linear-only" and not result.terms[2].any()
+    assert np.isnan(result.recorded[2]) and np.isnan(result.g2[2])
+    assert np.isnan(result.fitted[2]) and np.isnan(result.ratio[2])
+    assert result.warnings[2][0].startswith("Δ_V,rec unknown: the sensor gives no g² ")
+    # stated as a known zero (`vre: 0`), the same sensor rectifies nothing: exactly 0
+    stated = tmp_path / "stated.gyrovib.yaml"
+    stated.write_text(SENSOR.replace("m2: -0.1}", "m2: -0.1}\n    vre: 0"))
+    again = analyze_recording(rec, load([str(stated)]), crossover=fc)
+    assert again.sensors[2] == "linear-only" and again.recorded[2] == 0.0
+    assert again.recorded[0] == result.recorded[0]
+    assert not any(w.startswith("Δ_V,rec unknown") for w in again.warnings.get(2, ()))
 
 
 def test_fit_recovers_tones_noise_and_the_ratio(tmp_path: Path) -> None:

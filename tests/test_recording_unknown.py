@@ -130,6 +130,8 @@ def test_report_shows_unknown_as_a_question_mark(tmp_path: Path) -> None:
     assert r.exit_code in (0, 1), r.stderr
     html = out.read_text(encoding="utf-8")
     assert "<td>cross</td><td>?</td><td>?</td>" in html
+    # the honesty of the fit: the axes not recorded are '?' throughout, never '—'
+    assert "<td>X</td>" + "<td>?</td>" * 6 in html and "<td>Y</td>" + "<td>?</td>" * 6 in html
 
 
 def test_several_recordings_one_without_an_axis_leave_the_worst_unknown(
@@ -570,3 +572,42 @@ def test_a_datasheet_part_without_the_sensitive_axis_has_no_allowable_figures(
     cells = dict(zip(head, row, strict=False))
     assert [cells[k] for k in ("bound_nonlinearity", "pass_nonlinearity", "bound_vre",
                                "pass_vre")] == ["", "", "", ""]
+
+
+def test_the_stderr_tables_write_an_axis_not_recorded_as_unknown(tmp_path: Path) -> None:
+    # profile's honesty table (standard error) for a lone x3 column: the X and Y rows and
+    # their mean rates are '?', never '—' (a figure that does not apply) or 0; a note
+    # says why. Z, recorded, keeps its numbers, and a complete recording has no '?'.
+    lone = _csv(tmp_path, "gz", name="lone.csv")
+    r = invoke("profile", lone, "--rate-columns", "-,-,gz", "-o", tmp_path / "p.yaml")
+    assert r.exit_code == 0, r.stderr
+    rows = {line.split()[0]: line.split() for line in r.stderr.splitlines()
+            if line[:2] in ("X ", "Y ", "Z ")}
+    assert rows["X"][1:] == rows["Y"][1:] == ["?"] * 6
+    assert "?" not in rows["Z"] and float(rows["Z"][1]) > 0
+    rate = r.stderr.split("mean rate Ω_K = [")[1].split("]")[0].split(", ")
+    assert rate[:2] == ["?", "?"] and rate[2] != "?"
+    assert "?: an axis the recording did not record: unknown, never 0" in r.stderr
+    full = _csv(tmp_path, "gx,gy,gz", name="full.csv", seed=2)
+    r = invoke("profile", full, "--rate-columns", "gx,gy,gz", "-o", tmp_path / "f.yaml")
+    assert r.exit_code == 0 and "?" not in r.stderr
+    # the envelope of both: x1 and x2 known only where every recording recorded them
+    r = invoke("profile", full, lone, "--rate-columns", "-,-,gz", "-o", tmp_path / "e.yaml")
+    assert r.exit_code == 0, r.stderr
+    envelope = r.stderr.split("envelope of 2 recordings")[1]
+    rows = {line.split()[0]: line.split() for line in envelope.splitlines()
+            if line[:2] in ("X ", "Y ", "Z ")}
+    assert rows["X"][1:] == rows["Y"][1:] == ["?", "?"] and "?" not in rows["Z"]
+    assert envelope.split("mean rate Ω_K = [")[1].startswith("?, ?, ")
+
+
+def test_analyze_recording_writes_a_ratio_to_an_unknown_closed_form_as_unknown() -> None:
+    # A datasheet part on a log with x3 alone: Δ_V,rec is known (its worst case needs x3
+    # only), the fitted mission's closed form is not (its envelope reads m31, m32 with
+    # x1, x2 unrecorded): their ratio is '?', never '—' (which says one of them is 0)
+    root = Path(__file__).resolve().parents[1]
+    r = invoke("analyze", "--bundled", "sensors", "--sensor", "adxrs645", "--recording",
+               root / "tests" / "data" / "px4-sample.ulg", "--rate-columns", "-,-,gyro_rad[2]")
+    assert r.exit_code == 0, r.stderr
+    row = next(line for line in r.stdout.splitlines() if line.startswith("adxrs645")).split()
+    assert row[2:4] == ["?", "?"] and float(row[1]) > 0

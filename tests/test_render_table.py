@@ -46,14 +46,16 @@ def expected_rows(result: api.AnalysisResult, j: int) -> list[list[str]]:
                   float(e.multiplicative[i, j]), float(e.total[i, j]), float(e.rms[i, j])]
         # a value below 1e-12 of the row's largest finite one is rounding noise: "0"
         scale = max((abs(v) for v in values if math.isfinite(v)), default=0.0)
-        cells = ["0" if math.isfinite(v) and abs(v) < 1e-12 * scale else fmt(v)
-                 for v in values]
+        # NaN, unknown, reads "?" (never 'nan' or 0)
+        cells = ["?" if v != v else "0" if math.isfinite(v) and abs(v) < 1e-12 * scale
+                 else fmt(v) for v in values]
         if render.unknown_term(result, i, j):
-            # the g² term of a sensor whose g² figure is unknown reads "?", not 0
-            # (the unknown-figure notes of gyrovib.api.datasheet.specs)
+            # the g² term of a sensor whose g² figure is unknown reads "?", not 0 (the
+            # unknown-figure notes of gyrovib.api.datasheet.specs), and so do Δ_VA, Δ_V
+            # and Δ_V(RMS), which hold it
             at = [t for k, t in enumerate(render.JSON_TERMS)
                   if k in render._shown(bool(result.has_linear), odd)].index("g2")
-            cells[at] = "?"
+            assert [cells[k] for k in (at, -4, -2, -1)] == ["?"] * 4
         if result.stderr is not None:
             cells.insert(-1, fmt(result.stderr[i, j], 2))
         rows.append(cells)

@@ -180,6 +180,29 @@ def test_a_datasheet_without_a_vre_leaves_the_verdict_unverified(record: Path) -
     assert "verdict: unverified" in table.stdout and "│ unverified │" in table.stdout
 
 
+def test_a_sensor_without_a_g2_figure_predicts_unknown_under_linear_vibration(
+        record: Path, tmp_path: Path) -> None:
+    # 'bare' gives k2 but no g² figure (neither g2_sensitivity nor vre): on a recording with
+    # linear vibration its prediction's g² part is unknown, so each prediction is null and
+    # every vibrating step unverified, as for a datasheet without a VRE; 'stated' is the
+    # same sensor with `vre: 0`, a known zero, and predicts numbers (not all 0: k2 acts)
+    catalogue = tmp_path / "bare.yaml"
+    catalogue.write_text(
+        "gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n"
+        "  - id: bare\n    coefficients: {k2: 0.002}\n"
+        "  - id: stated\n    coefficients: {k2: 0.002}\n    vre: 0\n", encoding="utf-8")
+    docs = {}
+    for sensor in ("bare", "stated"):
+        out = invoke("runup", record, *READ, catalogue, "--estimate", "k2,vre", "--sensor",
+                     sensor, "--format", "json")
+        assert out.exit_code == 0, out.stderr
+        docs[sensor] = json.loads(out.stdout)
+    assert all(s["predicted"] is None for s in docs["bare"]["steps"])
+    assert "unverified" in {s["status"] for s in docs["bare"]["steps"]}
+    assert all(s["predicted"] is not None for s in docs["stated"]["steps"])
+    assert max(abs(s["predicted"]) for s in docs["stated"]["steps"]) > 0
+
+
 def test_an_input_response_of_unit_gain_predicts_as_none(record: Path,
                                                          tmp_path: Path) -> None:
     # the same coefficients with a response acting at the input whose gain is 1 at every

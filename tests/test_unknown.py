@@ -11,6 +11,7 @@ the reading of old and says so.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -75,9 +76,10 @@ def test_a_part_without_a_vre_under_linear_vibration_is_unverified(catalog: str)
     assert (cell["pass"], cell["status"], cell["unknown"]) == (False, "unverified", ["vre"])
     assert cell["reason"].startswith("unverified: passes on its published figures, but VRE "
                                      "not published")
-    # the VRE check is not shown to pass: its value is not known
+    # the VRE check neither passes nor fails: its value is not known (the cell is
+    # unverified, and its own "pass" false)
     assert cell["checks"]["vre"] == {"value": None, "bound": cell["checks"]["vre"]["bound"],
-                                     "pass": False}
+                                     "pass": None}
     assert (parts["no-vre"]["pass"], parts["no-vre"]["status"]) == (False, "unverified")
     # the vendor question: the VRE that still passes. The worst case on the published
     # figures is 0 here (no angular vibration), so VRE_max = Δ*/Σ⟨a_j²⟩ = 0.01/3
@@ -156,7 +158,7 @@ def test_a_coefficient_sensor_without_a_g2_figure_is_unverified_under_linear_vib
                 if s["sensor"] == "no-g2")["profiles"][shaker]
     assert (cell["status"], cell["unknown"], cell["pass"]) == ("unverified", ["vre"], False)
     assert "g² sensitivity not given" in cell["reason"]
-    assert cell["checks"]["vre"]["value"] is None and cell["checks"]["vre"]["pass"] is False
+    assert cell["checks"]["vre"]["value"] is None and cell["checks"]["vre"]["pass"] is None
     table = invoke("select", coefficient_catalog, "--budget", str(BUDGET),
                    env={"COLUMNS": "200"}).stdout
     row = next(line for line in table.splitlines() if "│ no-g2" in line)
@@ -211,6 +213,43 @@ def test_table_junit_csv_and_github_show_it(catalog: str) -> None:
     assert "no-vre is unverified" in github and "Ask the vendor: VRE" in github
 
 
+def test_the_vre_check_of_an_unknown_figure_is_neither_passed_nor_failed(
+        catalog: str, coefficient_catalog: str) -> None:
+    # A VRE the datasheet does not publish (no-vre), or a g² sensitivity the catalogue
+    # does not give (no-g2), under 'shaker', whose linear vibration sets a VRE bound:
+    # the check has no value, so no verdict either (null, empty, None), while the cell
+    # itself is unverified and its own "pass" false (docs/output.md, select's checks).
+    for path, sensor in ((catalog, "no-vre"), (coefficient_catalog, "no-g2")):
+        _, doc = select_json(path, "--profile", "shaker")
+        cell = {s["sensor"]: s for s in doc["sensors"]}[sensor]["profiles"][0]
+        assert cell["checks"]["vre"]["value"] is None
+        assert cell["checks"]["vre"]["bound"] > 0  # the bound applies here
+        assert cell["checks"]["vre"]["pass"] is None
+        assert (cell["pass"], cell["status"]) == (False, "unverified")
+        # the reason names the unknown figure, and no comparison of it ("nan exceeds")
+        assert cell["reason"].startswith("unverified: passes on its published figures")
+        assert "nan" not in cell["reason"] and "effective VRE" not in cell["reason"]
+        csv = invoke("select", path, "--budget", str(BUDGET), "--profile", "shaker",
+                     "--format", "csv").stdout.splitlines()
+        row = dict(zip(csv[0].split(","), next(r for r in csv if r.startswith(sensor + ","))
+                       .split(","), strict=False))
+        assert (row["value_vre"], row["pass_vre"], row["passed"]) == ("", "", "False")
+        result = gyrovib.select(path, budget=BUDGET, profiles="shaker")
+        i = result.sensors.index(sensor)
+        assert result.vre_check(i, 0) is None
+        assert result.to_frame()["pass_vre"].iloc[i] is None
+        # --assume-unknown zero takes the figure as 0 (and says so): 0 ≤ bound, a pass
+        zero = gyrovib.select(path, budget=BUDGET, profiles="shaker", assume_unknown="zero")
+        assert zero.vre_check(i, 0) is True and zero.to_frame()["pass_vre"].iloc[i]
+    # a published VRE keeps its verdict: 1e-3 deg/s/g² passes under 'shaker' (as in
+    # test_a_part_without_a_vre_under_linear_vibration_is_unverified)
+    with_vre = gyrovib.select(catalog, budget=BUDGET, profiles="shaker")
+    assert with_vre.vre_check(with_vre.sensors.index("with-vre"), 0) is True
+    # without linear vibration there is no VRE bound: an unknown VRE cannot matter (pass)
+    calm = gyrovib.select(coefficient_catalog, budget=BUDGET, profiles="calm")
+    assert calm.vre_check(calm.sensors.index("no-g2"), 0) is True
+
+
 def test_cross_axis_m31_is_unknown_where_c31_is_not_zero(catalog: str) -> None:
     result = gyrovib.select(catalog, budget=BUDGET, profiles="tone", criterion="worst")
     i = result.sensors.index("with-vre")
@@ -258,28 +297,121 @@ def test_analyze_says_the_vre_is_left_out(catalog: str) -> None:
     assert any("publishes no VRE" in w for w in result.warnings[(i, 0)])
     assert not any("publishes no VRE" in w
                    for w in result.warnings.get((result.sensors.index("with-vre"), 0), ()))
+    # the datasheet's worst case and its RMS bound hold the g² term: unknown without a VRE
+    # (JSON null), where the published 1e-3 deg/s/g² gives |v|·Σ⟨a_j²⟩ = 3e-3 deg/s (the
+    # NL envelope adds nothing without angular vibration)
+    entries = {r["sensor"]: r for r in json.loads(invoke(
+        "analyze", catalog, "--profile", "shaker", "--format", "json").stdout)["results"]}
+    assert [entries["no-vre"][k] for k in ("additive_terms", "total", "rms", "envelope")] == [
+        {**entries["no-vre"]["additive_terms"], "g2": None}, None, None,
+        {**entries["no-vre"]["envelope"], "rms_bound": None}]
+    assert entries["with-vre"]["total"] == pytest.approx(3e-3, rel=1e-9)
 
 
 
 def test_analyze_says_a_g2_figure_not_given_is_left_out(coefficient_catalog: str) -> None:
     # the coefficient sensor with neither g2_sensitivity nor vre: its g² term under
-    # 'shaker' is unknown, and analyze says so (the value is a lower bound, "≥");
-    # one that states its figure, or a profile without linear vibration, gets no note
+    # 'shaker' is unknown, and analyze says so; one that states its figure, or a profile
+    # without linear vibration, gets no note
     result = gyrovib.analyze(coefficient_catalog)
     shaker, calm = result.profiles.index("shaker"), result.profiles.index("calm")
     no_g2, with_g2 = result.sensors.index("no-g2"), result.sensors.index("with-g2")
     assert any("gives no g² sensitivity" in w for w in result.warnings[(no_g2, shaker)])
     for cell in ((with_g2, shaker), (no_g2, calm)):
         assert not any("g² sensitivity" in w for w in result.warnings.get(cell, ()))
-    table = invoke("analyze", coefficient_catalog, "--matrix").stdout
-    assert "≥" in table and "not given" in table
-    # the per-term forms: its g² term reads "?", never 0 (the stated one is a number)
+
+
+#: The numbers of an analyze row that hold the g² term Δ0(6) (eq. 13, 15, 16).
+G2_SUMS = ("additive", "total", "rms")
+
+
+def test_analyze_writes_an_unknown_g2_term_and_its_sums_unknown_in_every_format(
+        coefficient_catalog: str) -> None:
+    # no-g2 under 'shaker' (linear vibration): Δ0(6), and Δ_VA, Δ_V, Δ_V(RMS) that sum it,
+    # are unknown: null in JSON, empty in CSV, NaN in the frame and the result, '?' in the
+    # tables; never the 0 (or the sum without it) of a figure not given. Its other terms
+    # are known: k2·⟨x3²⟩-type terms equal with-g2's (the same k2 = 1e-6 and profile).
+    # with-g2 (vre 1e-4 deg/s/g²: Δ0(6) = 1e-4·Σ⟨a_j²⟩ = 1e-4·3 = 3e-4 deg/s) and 'calm'
+    # (no linear vibration: Δ0(6) = 0, a known zero) keep their numbers.
+    result = gyrovib.analyze(coefficient_catalog)
+    shaker, calm = result.profiles.index("shaker"), result.profiles.index("calm")
+    no_g2, with_g2 = result.sensors.index("no-g2"), result.sensors.index("with-g2")
+    e = result.error
+    assert math.isnan(e.extra_terms[no_g2, shaker, 0])
+    assert all(math.isnan(getattr(e, name)[no_g2, shaker]) for name in G2_SUMS)
+    assert e.additive_terms[no_g2, shaker].tolist() == e.additive_terms[with_g2, shaker].tolist()
+    assert e.extra_terms[with_g2, shaker, 0] == pytest.approx(3e-4, rel=1e-12)
+    assert e.extra_terms[no_g2, calm, 0] == 0.0
+    assert e.total[no_g2, calm] == e.total[with_g2, calm]  # g² cannot act there: known
+    done = invoke("analyze", coefficient_catalog, "--format", "json")
+    rows = {(r["sensor"], r["profile"]): r for r in json.loads(done.stdout)["results"]}
+    unknown = rows[("no-g2", "shaker")]
+    assert unknown["additive_terms"]["g2"] is None
+    assert [unknown[k] for k in G2_SUMS] == [None, None, None]
+    assert unknown["additive_terms"]["k2"] == rows[("with-g2", "shaker")]["additive_terms"]["k2"]
+    assert rows[("with-g2", "shaker")]["additive_terms"]["g2"] == pytest.approx(3e-4, rel=1e-12)
+    assert rows[("no-g2", "calm")]["additive_terms"]["g2"] == 0.0
+    assert all(isinstance(rows[("no-g2", "calm")][k], float) for k in G2_SUMS)
+    csv = invoke("analyze", coefficient_catalog, "--format", "csv").stdout.splitlines()
+    head = csv[0].split(",")
+    line = dict(zip(head, next(r for r in csv if r.startswith("no-g2,shaker,")).split(","),
+                    strict=False))
+    assert [line[k] for k in ("additive_g2", *G2_SUMS)] == ["", "", "", ""]
+    assert line["additive_k2"] != ""
+    frame = result.to_frame()
+    at = frame[(frame["sensor"] == "no-g2") & (frame["profile"] == "shaker")].iloc[0]
+    assert all(math.isnan(at[k]) for k in ("additive_g2", *G2_SUMS))
+    # the tables: every such cell '?', and the matrix's cell '?' (no '≥' lower bound: the
+    # g² term has a sign, so the sum without it bounds nothing)
     detail = invoke("analyze", coefficient_catalog, "--profile", "shaker",
                     "--format", "markdown").stdout
-    rows = {line.split("|")[1].split()[0]: line.split("|") for line in detail.splitlines()
-            if line.startswith("| no-g2") or line.startswith("| with-g2")}
-    g2 = detail.splitlines()[2].split("|").index(" Δ0 g² ")
-    assert rows["no-g2"][g2].strip() == "?" and rows["with-g2"][g2].strip() not in ("?", "0")
+    lines = detail.splitlines()
+    header = [c.strip() for c in lines[2].split("|")]
+    cells = {line.split("|")[1].split()[0]: [c.strip() for c in line.split("|")]
+             for line in lines if line.startswith(("| no-g2", "| with-g2"))}
+    for label in ("Δ0 g²", "Δ_VA", "Δ_V", "Δ_V(RMS)"):
+        assert cells["no-g2"][header.index(label)] == "?", label
+        assert cells["with-g2"][header.index(label)] not in ("?", "0"), label
+    table = invoke("analyze", coefficient_catalog, "--matrix", env={"COLUMNS": "200"}).stdout
+    row = next(line for line in table.splitlines() if line.startswith("│ shaker"))
+    assert [c.strip().split()[0] for c in row.split("│")[2:4]] == ["?", "0.0003"]
+    assert "≥" not in table and "not given" in table
+    text = invoke("analyze", coefficient_catalog, "--profile", "shaker",
+                  env={"COLUMNS": "200"}).stdout
+    row = next(line for line in text.splitlines() if line.startswith("│ no-g2"))
+    # g², Δ_VA, Δ_VM (0 at Ω_K3 = 0, known), Δ_V, Δ_V(RMS)
+    assert [c.strip() for c in row.split("│")[-6:-1]] == ["?", "?", "0", "?", "?"]
+    # the report's share of each term in Δ_V(RMS)² (eq. 16): unknown for the rows of
+    # no-g2 and 'failing' (no g² figure either) under shaker, and those only
+    report = invoke("report", coefficient_catalog, "--budget", str(BUDGET), "-o", "-").stdout
+    assert report.count('class="lg">? unknown</text>') == 2
+
+
+def test_the_uncertainty_of_an_unknown_total_is_unknown(tmp_path: Path) -> None:
+    # no-g2 with a standard uncertainty on k2 (σ = 1e-7): under 'shaker' its Δ_V is
+    # unknown (no g² figure, linear vibration), and so is Δ_V's uncertainty (left out of the JSON,
+    # NaN in the result), never the spread of the known terms alone; under 'calm' both
+    # are numbers, and with-g2 keeps its own under both profiles.
+    path = tmp_path / "spread.yaml"
+    path.write_text(COEFFICIENTS.replace(
+        "  - id: no-g2\n    coefficients: {k2: 1.0e-6}\n",
+        "  - id: no-g2\n    coefficients: {k2: 1.0e-6}\n"
+        "    uncertainty:\n      sigma: {k2: 1.0e-7}\n").replace(
+        "    vre: 1.0e-4\n",
+        "    vre: 1.0e-4\n    uncertainty:\n      sigma: {k2: 1.0e-7}\n"), encoding="utf-8")
+    result = gyrovib.analyze(str(path))
+    assert result.uncertainty is not None
+    shaker, calm = result.profiles.index("shaker"), result.profiles.index("calm")
+    no_g2, with_g2 = result.sensors.index("no-g2"), result.sensors.index("with-g2")
+    assert math.isnan(result.error.total[no_g2, shaker])
+    assert math.isnan(result.uncertainty[no_g2, shaker])
+    assert result.uncertainty[no_g2, calm] > 0
+    assert result.uncertainty[with_g2, shaker] > 0 and result.uncertainty[with_g2, calm] > 0
+    rows = {(r["sensor"], r["profile"]): r for r in json.loads(
+        invoke("analyze", str(path), "--format", "json").stdout)["results"]}
+    assert rows[("no-g2", "shaker")]["total"] is None
+    assert "uncertainty" not in rows[("no-g2", "shaker")]  # left out, as docs/output.md says
+    assert rows[("no-g2", "calm")]["uncertainty"]["total"] > 0
 
 
 # ---------------------------------------------------------------- missions

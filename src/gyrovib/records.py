@@ -76,21 +76,29 @@ def known(value: float) -> float | None:
 def written(columns: Sequence[Column[Row]], output: str) -> tuple[Column[Row], ...]:
     """The columns ``output`` (``csv``, ``frame``, ``json``) has, in its order: the
     declaration's, but in the CSV and the frame a column with ``csv_after`` right after
-    that column, several after one in the declaration's order (ValueError naming both
-    where the output lacks that column; it may be one moved before it)."""
+    that column, several after one in the declaration's order; the target may itself be
+    placed by its ``csv_after``, declared later (ValueError naming both where the output
+    lacks that column)."""
     shown = [c for c in columns if output not in c.skip]
     if output == "json" or all(c.csv_after is None for c in shown):
         return tuple(shown)
     placed = [c for c in shown if c.csv_after is None]
     behind: dict[str, str] = {}  # a target → the last column placed behind it
-    for c in (c for c in shown if c.csv_after is not None):
-        target = str(c.csv_after)
-        at = behind.get(target, target)
-        if at not in names(placed):
-            raise ValueError(f"column {c.name!r} is declared after {target!r}, which the "
-                             f"{output} does not have")
-        placed.insert(names(placed).index(at) + 1, c)
-        behind[target] = c.name
+    waiting = [c for c in shown if c.csv_after is not None]
+    while waiting:  # a target itself placed by csv_after, later in the declaration: again
+        left = []
+        for c in waiting:
+            target = str(c.csv_after)
+            at = behind.get(target, target)
+            if at not in names(placed):
+                left.append(c)
+                continue
+            placed.insert(names(placed).index(at) + 1, c)
+            behind[target] = c.name
+        if len(left) == len(waiting):
+            raise ValueError(f"column {left[0].name!r} is declared after "
+                             f"{left[0].csv_after!r}, which the {output} does not have")
+        waiting = left
     return tuple(placed)
 
 

@@ -27,9 +27,9 @@ SATURATED_MARK = "SAT"
 
 
 def unknown_term(result: AnalysisResult, i: int, j: int) -> bool:
-    """Whether a term of sensor ``i`` under profile ``j`` is left out because its figure
-    is unknown (a VRE not published, a g² sensitivity not given): the value shown is
-    then a lower bound, and the term itself reads "?", never 0."""
+    """Whether the g² term of sensor ``i`` under profile ``j`` is unknown because its
+    figure is (a VRE not published, a g² sensitivity not given): the term reads "?",
+    never 0, and so do Δ_VA, Δ_V and Δ_V(RMS), which hold it (NaN in the result)."""
     return any(w in UNKNOWN_TERM_NOTES for w in result.warnings.get((i, j), ()))
 
 

@@ -49,7 +49,7 @@ def dominant_term(result: AnalysisResult, i: int, j: int) -> str:
     qs = [float(q) for q in e.multiplicative_coefficients[i, j]]
     values += [q * omega ** (k + 1) for k, q in enumerate(qs)]
     names += list(_MULTIPLICATIVE)
-    magnitudes = [abs(v) for v in values]
+    magnitudes = [abs(v) if v == v else -1.0 for v in values]  # NaN, unknown: not a candidate
     k = int(np.argmax(magnitudes))
     return names[k] if magnitudes[k] > 0 else ""
 
@@ -253,10 +253,11 @@ def _matrix_cell(result: AnalysisResult, i: int, j: int, number_of: dict[str, in
     # lazy: rich only draws tables; csv and json output never load it
     from rich.text import Text
 
-    value = result.error.total[i, j] if result.source(i) == "specs" else result.error.rms[i, j]
-    # a term left out because its figure is unknown: the value is a lower bound
-    at_least = "≥" if unknown_term(result, i, j) else ""
-    text = Text(f"{at_least}{fmt(abs(float(value)), 3)} "
+    value = float(result.error.total[i, j] if result.source(i) == "specs"
+                  else result.error.rms[i, j])
+    # unknown (a g² figure not given or not published, an axis not recorded): '?' alone,
+    # no dominant term among the terms that are known
+    text = Text("?" if value != value else f"{fmt(abs(value), 3)} "
                 f"{dominant_term(result, i, j)}".rstrip())
     if (i, j) in result.warnings:
         marks = ",".join(str(number_of[w]) for w in result.warnings[(i, j)])
@@ -273,8 +274,8 @@ def _matrix_legend(result: AnalysisResult, spec: bool) -> str:
     if spec:
         legend += " " + _SPECS_NOTE
     if any(w in UNKNOWN_TERM_NOTES for ws in result.warnings.values() for w in ws):
-        legend += (" ≥: at least this much; a term whose figure is unknown (not published, "
-                   "or not given) is left out.")
+        legend += (" ?: unknown, the sensor's g² figure being unknown (not published, or "
+                   "not given) under a linear vibration.")
     return legend
 
 

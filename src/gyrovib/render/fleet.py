@@ -115,15 +115,18 @@ def envelope_table(env: Envelope) -> str:
     lines = [f"envelope of {n} recordings: profile {fit.profile_id}, f_c {fit.crossover:g} Hz, "
              f"{fit.duration:.6g} s analysed in all",
              f"{'axis':<5} {'variance (deg/s)²':>18} {'held':>8}"]
-    for axis, h in zip(one.AXES, fit.honesty, strict=True):
+    for axis, h, on in zip(one.AXES, fit.honesty, fit.rate_axes, strict=True):
         held = "—" if not math.isfinite(h.held) else f"{100 * h.held:.1f} %"
-        lines.append(f"{axis:<5} {one._fmt(h.variance):>18} {held:>8}")
+        variance = one._fmt(h.variance) if on else "?"  # not recorded: unknown
+        lines.append(f"{axis:<5} {variance:>18} {held if on else '?':>8}")
     part = fit.angular
     lines.append(f"fitted: {len(part.tones)} tone(s), {len(part.harmonics)} harmonic group(s), "
                  f"mission of {len(fit.mission_rates)} segment(s), mean rate Ω_K = "
-                 f"[{', '.join(f'{v:.4g}' for v in fit.rate)}] deg/s")
+                 f"[{one.rate_text(fit)}] deg/s")
     lines.append("variance: of the envelope spectrum over f_c…fs/2 and its lines; held: the "
                  "share of it the fitted profile holds")
+    if not all(fit.rate_axes):
+        lines.append(one.NOT_RECORDED_NOTE)
     lines += [f"warning: {w}" for w in fit.warnings]
     return "\n".join(parts) + "\n" + "\n".join(lines) + "\n"
 

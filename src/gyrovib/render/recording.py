@@ -73,22 +73,45 @@ def _named(fit: RecordingFit) -> str:
     return base if fit.source is None else f"{base} ({fit.source})"
 
 
+def rate_text(fit: RecordingFit) -> str:
+    """The fit's mean rate Ω_K, deg/s, as the tables write it: '?' about an axis the
+    recording did not record (unknown, never 0)."""
+    return ", ".join(f"{v:.4g}" if on else "?"
+                     for v, on in zip(fit.rate, fit.rate_axes, strict=True))
+
+
+#: The line under a table with an axis not recorded.
+NOT_RECORDED_NOTE = "?: an axis the recording did not record: unknown, never 0"
+
+
+def _honesty_cells(h: AxisHonesty, recorded: bool) -> tuple[str, ...]:
+    """An axis's honesty figures as the tables write them; '?' throughout for an axis the
+    recording did not record."""
+    if not recorded:
+        return ("?",) * 6
+    return (_fmt(h.variance), _percent(h.held), _fmt(h.skewness, 3),
+            _fmt(h.excess_kurtosis, 3), _decibels(h.shape_db), _percent(h.off_3db))
+
+
 def honesty_table(fit: RecordingFit) -> str:
-    """The honesty of the fit (docs/model.md section 13), one row per axis, as plain text."""
+    """The honesty of the fit (docs/model.md section 13), one row per axis, as plain text;
+    an axis not recorded is '?' throughout ('—': a figure that does not apply, as the
+    shape of a random part that was not fitted)."""
     lines = [f"recording {_named(fit)}: {fit.samples} samples, "
              f"fs {fit.fs:.6g} Hz, f_c {fit.crossover:g} Hz, {fit.segments} segment(s), "
              f"{fit.duration:.6g} s analysed",
              f"{'axis':<5} {'variance (deg/s)²':>18} {'held':>8} {'skewness':>9} "
              f"{'excess kurtosis':>16} {'shape dB':>9} {'off 3 dB':>9}"]
-    for axis, h in zip(AXES, fit.honesty, strict=True):
-        lines.append(f"{axis:<5} {_fmt(h.variance):>18} {_percent(h.held):>8} "
-                     f"{_fmt(h.skewness, 3):>9} {_fmt(h.excess_kurtosis, 3):>16} "
-                     f"{_decibels(h.shape_db):>9} {_percent(h.off_3db):>9}")
+    for axis, h, on in zip(AXES, fit.honesty, fit.rate_axes, strict=True):
+        cells = _honesty_cells(h, on)
+        lines.append(f"{axis:<5} {cells[0]:>18} {cells[1]:>8} {cells[2]:>9} {cells[3]:>16} "
+                     f"{cells[4]:>9} {cells[5]:>9}")
     tones = len(fit.angular.tones) + sum(len(h.orders) for h in fit.angular.harmonics)
     lines.append(f"fitted: {len(fit.angular.tones)} tone(s), {len(fit.angular.harmonics)} "
                  f"harmonic group(s) ({tones} lines in all), carrier {len(fit.mission_rates)} "
-                 f"histogram bin(s), mean rate Ω_K = [{', '.join(f'{v:.4g}' for v in fit.rate)}]"
-                 " deg/s")
+                 f"histogram bin(s), mean rate Ω_K = [{rate_text(fit)}] deg/s")
+    if not all(fit.rate_axes):
+        lines.append(NOT_RECORDED_NOTE)
     lines += [f"warning: {w}" for w in fit.warnings]
     return "\n".join(lines) + "\n"
 
@@ -117,8 +140,9 @@ def to_csv(result: RecordingAnalysis) -> str:
 def table_cells(result: RecordingAnalysis) -> tuple[Cell[int], ...]:
     """The columns of the table (plain text, Markdown, HTML alike): one row per sensor
     (its index), the records (:meth:`RecordingAnalysis.records`) they show."""
-    def ratio(i: int) -> str:
-        return "?" if math.isnan(result.recorded[i]) else _fmt(result.ratio[i], 3)
+    def ratio(i: int) -> str:  # '?' where either side is unknown ('—': one of them is 0)
+        unknown = math.isnan(result.recorded[i]) or math.isnan(result.fitted[i])
+        return "?" if unknown else _fmt(result.ratio[i], 3)
 
     return (Cell("sensor", of="sensor"),
             Cell("Δ_V,rec", lambda i: _known(result.recorded[i]), of="recorded"),
@@ -244,9 +268,8 @@ def report_section(result: RecordingAnalysis) -> str:
                                 ylog=True, markers=markers).svg())
     head = ["axis", "variance (deg/s)²", "held", "skewness", "excess kurtosis", "shape dB",
             "off 3 dB"]
-    rows = [[a, _fmt(h.variance), _percent(h.held), _fmt(h.skewness, 3),
-             _fmt(h.excess_kurtosis, 3), _decibels(h.shape_db), _percent(h.off_3db)]
-            for a, h in zip(AXES, fit.honesty, strict=True)]
+    rows = [[a, *_honesty_cells(h, on)]
+            for a, h, on in zip(AXES, fit.honesty, fit.rate_axes, strict=True)]
     honesty = html_table(head, rows)
     cells = table_cells(result)
     compare = html_table([c.title for c in cells],

@@ -161,6 +161,8 @@ def term_squares(study: TradeStudy) -> np.ndarray:
 
 
 def _dominant(squares: np.ndarray, names: Sequence[str]) -> str:
+    if np.isnan(squares).any():  # a term unknown (a g² figure not given or published)
+        return "Δ_V unknown"
     total = float(np.sum(squares))
     if not total > 0:
         return "no error"
@@ -291,7 +293,8 @@ def _uncertainty(study: TradeStudy, i: int, j: int) -> str:
     """``Δ_V = m ± u`` (docs/model.md section 14) under a cell, for a sensor with uncertainty
     or a lot (then the spread over the lot, at its mean)."""
     a = study.analysis
-    if a.uncertainty is None or not np.isfinite(a.uncertainty[i, j]):
+    if (a.uncertainty is None or not np.isfinite(a.uncertainty[i, j])
+            or not np.isfinite(a.error.total[i, j])):  # no number to give it to
         return ""
     what = "lot mean Δ_V" if a.is_lot(i) else "Δ_V"
     return (f'<br><span class="small">{what} = {_e(fmt(a.error.total[i, j]))} ± '

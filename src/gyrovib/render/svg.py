@@ -391,7 +391,8 @@ def bar_chart(title: str, xlabel: str, names: Sequence[str], values: Sequence[fl
 
 def share_chart(title: str, names: Sequence[str], parts: Sequence[str],
                 shares: Sequence[Sequence[float]]) -> str:
-    """100 % stacked horizontal bars: row k splits into ``shares[k]`` (summing to 1 or 0)."""
+    """100 % stacked horizontal bars: row k splits into ``shares[k]`` (summing to 1 or 0;
+    a row with a NaN part, unknown, says so instead of a bar)."""
     row = 18
     height = max(TOP + BOTTOM + row * max(len(names), 1), legend_bottom(len(parts)))
     left, right = 170, WIDTH - RIGHT - 10
@@ -403,6 +404,9 @@ def share_chart(title: str, names: Sequence[str], parts: Sequence[str],
         out.append(f'<text x="{left - 5}" y="{y + 13}" class="ty">{escape(text)}</text>')
         start = float(left)
         total = sum(v for v in shares[k] if math.isfinite(v))
+        if any(v != v for v in shares[k]):  # a part unknown (NaN): so is every share
+            out.append(f'<text x="{left + 4}" y="{y + 13}" class="lg">? unknown</text>')
+            continue
         if total <= 0:
             out.append(f'<text x="{left + 4}" y="{y + 13}" class="lg">no error</text>')
             continue

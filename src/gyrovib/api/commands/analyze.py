@@ -21,7 +21,7 @@ from gyrovib.api.evaluation.evaluate import (
     worst_case,
 )
 from gyrovib.api.evaluation.results import AnalysisResult
-from gyrovib.api.evaluation.unknown import unknown_cells
+from gyrovib.api.evaluation.unknown import unknown_cells, unknown_g2
 from gyrovib.api.lots.uncertainty import distributions, with_uncertainty
 from gyrovib.api.study.convert import catalog_unit, error_arrays, to_unit
 from gyrovib.api.study.prepare import (
@@ -129,8 +129,12 @@ def analyze(
 def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
                 samples: int = DEFAULT_SAMPLES, seed: int = DEFAULT_SEED,
                 progress: ProgressCallback | None = None,
-                peak_factor: float = DEFAULT_PEAK_FACTOR) -> AnalysisResult:
-    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.study.Study`."""
+                peak_factor: float = DEFAULT_PEAK_FACTOR,
+                g2_unknown_as_zero: bool = False) -> AnalysisResult:
+    """:func:`analyze` as a view of a :class:`~gyrovib.api.study.study.Study`.
+    ``g2_unknown_as_zero``: a g² term whose figure is unknown is left out of the numbers
+    (a mission's totals, whose rows name the figure themselves); by default that term,
+    Δ_VA, Δ_V and Δ_V(RMS) are NaN there (unknown)."""
     _check_options(method, samples, seed)
     unit = units.canonical_unit(unit)
     numeric = method == "numeric"
@@ -158,8 +162,9 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         check_finite([*error_arrays(error), *([] if stderr_out is None else [stderr_out])],
                      prepared)
         unknown_cells(prepared, error, warnings)
+        fields = _spec_fields(prepared, spec, unit, error, g2_unknown_as_zero)
         locked = tuple(any(bool(g.locked[j]) for g in prepared.groups) for j in range(n_p))
-        spread = _spread(study, prepared, method, unit, peak_factor)
+        spread = _spread(study, prepared, method, unit, peak_factor, error.total)
     return AnalysisResult(
         method=method,
         unit=unit,
@@ -172,7 +177,7 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
         samples=samples if numeric else None,
         seed=seed if numeric else None,
         linear=tuple(_shaken(prepared)),
-        **specs.analysis_fields(len(prepared.sensors), n_p, spec, unit),
+        **fields,
         saturated=saturated,
         peak_factor=peak_factor,
         locked=locked,
@@ -182,15 +187,30 @@ def analysis_of(study: Study, *, method: str = "exact", unit: str = "deg/s",
     )
 
 
+def _spec_fields(prepared: Prepared, spec: Any, unit: str, error: VibrationError,
+                 g2_unknown_as_zero: bool) -> dict[str, Any]:
+    """The spec-form fields of the result; unless ``g2_unknown_as_zero``, the numbers that
+    hold a g² term whose figure is unknown made NaN, in ``error`` and the RMS bound."""
+    fields = specs.analysis_fields(len(prepared.sensors), len(prepared.profiles), spec, unit)
+    if not g2_unknown_as_zero:
+        unknown_g2(error, fields.get("rms_bound"),
+                   specs.unknown_g2_cells(prepared.sensors, spec, _shaken(prepared)))
+    return fields
+
+
 def _spread(study: Study, prepared: Prepared, method: str, unit: str,
-            peak_factor: float) -> dict[str, Any]:
+            peak_factor: float, total: FloatArray) -> dict[str, Any]:
     """The uncertainty fields of the result
     (:func:`~gyrovib.api.lots.uncertainty.with_uncertainty`); under ``numeric``, g comes
-    from the Study's exact multipliers (the closed form's)."""
+    from the Study's exact multipliers (the closed form's). The uncertainty of an unknown
+    Δ_V (NaN in ``total``) is unknown too."""
     if method == "numeric" and any(d is not None for d in distributions(prepared)):
         prepared = study.prepare(methods=("exact",), peak_factor=peak_factor,
                                  phase_search=False)
-    return with_uncertainty(prepared, method, unit)
+    spread = with_uncertainty(prepared, method, unit)
+    if "uncertainty" in spread:
+        spread["uncertainty"] = np.where(np.isnan(total), np.nan, spread["uncertainty"])
+    return spread
 
 
 def _shaken(prepared: Prepared) -> list[bool]:

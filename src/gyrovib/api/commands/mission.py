@@ -243,7 +243,8 @@ def _evaluate(catalog: Catalog, chosen: Sequence[MissionEntry], sensors: Sequenc
     # one Study of the segments' distinct placed profiles: the analysis and the
     # datasheet sensors' mission worst cases share its vibrations
     study = Study.of(derived, sensors=sensors, profiles=[e.profile.id for e in entries])
-    result = analysis_of(study, unit=unit, peak_factor=peak_factor)
+    result = analysis_of(study, unit=unit, peak_factor=peak_factor,
+                         g2_unknown_as_zero=True)
     saturated = (np.zeros(result.error.total.shape, dtype=bool) if result.saturated is None
                  else np.asarray(result.saturated))
     sources = tuple(result.sources or ("coefficients",) * len(result.sensors))

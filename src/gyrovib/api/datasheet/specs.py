@@ -391,12 +391,13 @@ def place_analysis(parts: dict[str, FloatArray], spec: SpecResults, *, numeric: 
 
 
 NO_VRE_NOTE = ("spec-form sensor: the datasheet publishes no VRE, so the g² term of this "
-               "profile's linear vibration is left out (the figure is unknown, not zero: "
-               "`select` calls such a part unverified)")
+               "profile's linear vibration is unknown, and with it Δ_VA, Δ_V and Δ_V(RMS) "
+               "(unknown, not zero: `select` calls such a part unverified)")
 NO_G2_NOTE = ("the sensor gives no g² sensitivity (g2_sensitivity or vre), so the g² term of "
-              "this profile's linear vibration is left out (the figure is unknown, not zero: "
-              "`select` calls such a sensor unverified; write `vre: 0` for a known zero)")
-#: The notes that make a value a lower bound: a term left out because its figure is unknown.
+              "this profile's linear vibration is unknown, and with it Δ_VA, Δ_V and "
+              "Δ_V(RMS) (unknown, not zero: `select` calls such a sensor unverified; write "
+              "`vre: 0` for a known zero)")
+#: The notes of a g² term whose figure is unknown (and every sum of it with it).
 UNKNOWN_TERM_NOTES = (NO_VRE_NOTE, NO_G2_NOTE)
 
 
@@ -418,6 +419,19 @@ def with_unknown_g2(warnings: dict[tuple[int, int], tuple[str, ...]], sensors: S
             if shaken:
                 warnings[(i, j)] = (*warnings.get((i, j), ()), NO_G2_NOTE)
     return warnings
+
+
+def unknown_g2_cells(sensors: Sequence[Any], spec: SpecResults | None,
+                     linear: Sequence[bool]) -> list[tuple[int, int]]:
+    """The (sensor, profile) cells whose g² term is unknown: a coefficient-form sensor
+    without a g² figure (:func:`g2_unknown`) or a datasheet part that publishes no VRE,
+    under a profile with linear vibration (``linear``): the cells :data:`NO_G2_NOTE` and
+    :data:`NO_VRE_NOTE` are said of."""
+    unpublished = set() if spec is None else {
+        int(i) for k, i in enumerate(spec.index.tolist()) if not spec.figures.has_vre[k]}
+    rows = [i for i, entry in enumerate(sensors)
+            if i in unpublished or g2_unknown(entry.sensor)]
+    return [(i, j) for i in rows for j, shaken in enumerate(linear) if shaken]
 
 
 def with_cross_axis(warnings: dict[tuple[int, int], tuple[str, ...]],

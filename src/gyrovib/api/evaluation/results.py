@@ -422,13 +422,19 @@ class SelectionResult(SensorsByProfiles):
         return bool(self.check_pass[i, j, b])
 
     def vre_check(self, i: int, j: int) -> bool | None:
-        """The VRE check of cell ``(i, j)`` as :meth:`check` (None: no VRE check, or its
-        bound unknown for a VRE that is not 0)."""
+        """The VRE check of cell ``(i, j)`` as :meth:`check` (None: no VRE check, its
+        bound unknown for a VRE that is not 0, or the VRE itself unknown, an unpublished
+        or ungiven figure, where a bound applies, unless :attr:`assume_unknown` takes it
+        as 0)."""
         if self.vre_pass is None:
             return None
         if self.vre_bound is not None and np.isnan(self.vre_bound[i, j]) and (
                 self.vre_value is None or self.vre_value[i, j] != 0):
             return None
+        if (self.vre_value is not None and self.vre_bound is not None
+                and np.isnan(self.vre_value[i, j]) and np.isfinite(self.vre_bound[i, j])
+                and self.assume_unknown != "zero"):
+            return None  # an unknown figure against a bound: neither passed nor failed
         return bool(self.vre_pass[i, j])
 
     def nl_check(self, i: int, j: int) -> bool | None:
@@ -489,7 +495,8 @@ class SelectionResult(SensorsByProfiles):
 
     def _coefficient_failures(self, i: int, j: int, table: bool) -> list[Failure]:
         """The coefficient checks a coefficient sensor fails, then its effective VRE above
-        its bound (docs/model.md section 8)."""
+        its bound (docs/model.md section 8); a VRE not given is no such failure (its
+        unknown figure is reported as such, never as 'nan exceeds its bound')."""
         values = self.table_values if table else self.values
         bounds = self.table_bounds if table else self.bounds
         out = [Failure("coefficient", (float(values[i, j, b]), float(bounds[i, j, b])),
@@ -497,6 +504,8 @@ class SelectionResult(SensorsByProfiles):
                for b, name in enumerate(BOUNDED) if not self.check_pass[i, j, b]]
         if self.vre_pass is not None and not self.vre_pass[i, j]:
             assert self.vre_value is not None and self.vre_bound is not None
+            if np.isnan(self.vre_value[i, j]):
+                return out
             out.append(Failure("vre", (float(self.vre_value[i, j]),
                                        float(self.vre_bound[i, j])), unit=self.unit))
         return out

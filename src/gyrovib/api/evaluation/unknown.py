@@ -26,6 +26,7 @@ import numpy as np
 from gyrovib.api.datasheet.specs import is_spec
 from gyrovib.api.study.convert import coefficient_matrix
 from gyrovib.api.study.linear import g2_matrix
+from gyrovib.core.analysis import EXTRA_TERMS
 
 #: The parts of a recording, in order: its rate axes (as the profile's x1, x2, x3) and
 #: its accelerations.
@@ -134,6 +135,21 @@ def unknown_cells(prepared: Any, error: Any,
                                     f"without {', '.join(parts)}, and this sensor's error "
                                     "depends on it (docs/model.md section 13)",
                                     *warnings.get((i, j), ()))
+
+
+def unknown_g2(error: Any, rms_bound: Any, cells: Sequence[tuple[int, int]]) -> None:
+    """``analyze`` where a sensor's g² figure is unknown (an unpublished VRE, a g²
+    sensitivity not given) under linear vibration (``cells``): the g² term Δ0(6) and what
+    sums it, Δ_VA, Δ_V and Δ_V(RMS) (a datasheet part's RMS bound too), are NaN in
+    ``error``: unknown, never the numbers computed with the term left out
+    (docs/model.md sections 8 and 11)."""
+    g2 = EXTRA_TERMS.index("g2")
+    for i, j in cells:
+        error.extra_terms[i, j, g2] = np.nan
+        for a in (error.additive, error.total, error.rms):
+            a[i, j] = np.nan
+        if rms_bound is not None:
+            rms_bound[i, j] = np.nan
 
 
 def _bound_needs(name: str, gone: set[str]) -> bool:

@@ -298,18 +298,29 @@ _JSON = ("csv", "frame")
 
 
 def _budget_columns(of: Callable[[Any], Budget | None], only: Callable[[Any], bool],
-                    vibration: tuple[str, ...]) -> tuple[Column[Any], ...]:
+                    vibration: tuple[str, ...],
+                    after: str | None = None) -> tuple[Column[Any], ...]:
     """The columns of a budget (deg; None without one): θ_V (``vibration``: the outputs
-    that leave it out), each noise term, the total and the coverage factor; and what only
-    the JSON has: the unit, whether the total is a lower bound (a figure unknown) or rests
-    on a figure given as a bound, and which."""
+    that leave it out), each noise term, the total and the coverage factor; its unit (the
+    JSON's only); then its marks, which the CSV and the frame put last (after ``after``,
+    None: where declared): ``lower_bound`` (the total is only a lower bound, a noise
+    figure being unknown), ``rests_on_bound`` (it rests on a figure given only as an upper
+    bound) and ``bounds``, the terms that do (the CSV: space-separated)."""
     named = {"vibration": "theta_vibration", "total": "budget_total", "coverage": "coverage"}
+
+    def bounds(r: Any) -> tuple[str, ...] | None:
+        return None if (b := of(r)) is None else b.bounds
+
     return (*(Column(named.get(n, f"theta_{n}"), None if n == "coverage" else "deg",
                      _figure(of, n), key=f"budget.{n}", only=only,
                      skip=vibration if n == "vibration" else ())
               for n in ("vibration", *BUDGET_NOISE_TERMS, "total", "coverage")),
-            *(Column(f"budget.{n}", None, _figure(of, n), skip=_JSON, only=only)
-              for n in ("unit", "lower_bound", "rests_on_bound", "bounds")))
+            Column("budget.unit", None, _figure(of, "unit"), skip=_JSON, only=only),
+            *(Column(n, None, _figure(of, n), key=f"budget.{n}", only=only, csv_after=after)
+              for n in ("lower_bound", "rests_on_bound")),
+            Column("bounds", None, lambda r: None if (b := bounds(r)) is None else " ".join(b),
+                   key="budget.bounds", only=only, csv_after=after,
+                   json_value=lambda r: None if (b := bounds(r)) is None else list(b)))
 
 
 def _figure(of: Callable[[Any], Any], name: str) -> Callable[[Any], Any]:
@@ -363,7 +374,7 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
     Column("status", None, lambda r: r.status),
     Column("unknown", None, lambda r: " ".join(r.unknown), json_value=lambda r: list(r.unknown)),
     Column("source", None, lambda r: r.source, csv_after="saturated"),
-    *_budget_columns(lambda r: r.budget, _has_budget, vibration=_JSON),
+    *_budget_columns(lambda r: r.budget, _has_budget, vibration=_JSON, after="typical"),
     Column("typical", None, lambda r: "" if r.budget is None else " ".join(r.budget.typical),
            key="budget.typical", only=_has_budget, csv_after="allowed_repeatability",
            json_value=lambda r: [] if r.budget is None else list(r.budget.typical)),
@@ -373,8 +384,9 @@ COLUMNS: tuple[Column[MissionRow], ...] = (
            only=_has_allowance),
     Column("budget.allowed.limited_by", None,
            lambda r: dict(_figure(_allowance, "limited_by")(r)), skip=_JSON, only=_has_allowance),
-    Column("budget.allowed.upper", None, _figure(_allowance, "upper"), skip=_JSON,
-           only=_has_allowance),
+    Column("allowed_upper", None, lambda r: None if (a := _allowance(r)) is None
+           else " ".join(a.upper), key="budget.allowed.upper", only=_has_allowance,
+           csv_after="bounds", json_value=lambda r: _figure(_allowance, "upper")(r)),
     Column("axis", None, lambda r: r.axis, only=lambda r: r.axis is not None,
            csv_after="placement"),
     Column("worst_axis", None, lambda r: r.worst_axis, skip=_JSON,

@@ -18,14 +18,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gyrovib import units
-from gyrovib.api.commands.analyze import analyze
+from gyrovib.api.commands.analyze import analysis_of
 from gyrovib.api.commands.mission import mission
-from gyrovib.api.datasheet.specs import figures, is_spec
+from gyrovib.api.datasheet.specs import figures, g2_unknown, is_spec
 from gyrovib.api.evaluation.unknown import depends_on, not_recorded
 from gyrovib.api.recordings.fit import fit_recording
 from gyrovib.api.recordings.honesty import (
     RATIO_RANGE,
     at_mean_warnings,
+    g2_warnings,
     ratio_warnings,
     unknown_warnings,
 )
@@ -37,6 +38,7 @@ from gyrovib.api.study.convert import coefficient_matrix, sensor_ranges
 from gyrovib.api.study.entries import select_entries
 from gyrovib.api.study.linear import g2_matrix
 from gyrovib.api.study.prepare import input_response
+from gyrovib.api.study.study import Study
 from gyrovib.core._types import FloatArray, Table
 from gyrovib.core.envelope import worst_case
 from gyrovib.core.recording import recorded_error
@@ -62,10 +64,11 @@ class RecordingAnalysis(Frozen):
     ``saturated`` (N,), ``peak_rate`` (N,) max |ω3| at the element;
     ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope);
     ``at_mean`` (N,) the fitted profile's closed form at its own (mean) rate, the
-    number ``analyze`` gives on the written file, and ``at_mean_ratio`` (N,) its ratio
-    to Δ_V,rec (NaN where either is 0 or unknown), warned of outside
-    :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the fitted mission
-    keeps it).
+    number ``analyze`` gives on the written file (a g² term whose figure is unknown
+    taken as 0 there, as in Δ_V,rec, where ``analyze`` writes it unknown), and
+    ``at_mean_ratio`` (N,) its ratio to Δ_V,rec (NaN where either is 0 or unknown),
+    warned of outside :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the
+    fitted mission keeps it).
     """
 
     unit: str
@@ -171,22 +174,51 @@ def analysis_of_fit(fit: RecordingFit, catalog: Any, entries: Sequence[Any], *,
     fitted, fitted_rms, at_mean = _fitted_mission(fit, catalog,
                                                   [e.sensor.id for e in entries])
     unknown = depends_on(entries, fit_missing(fit), spec_cross=False)
-    for i, parts in enumerate(unknown):
-        if parts:  # unknown, never 0 (docs/model.md section 13)
-            total[i] = terms[i] = g2_part[i] = fitted[i] = fitted_rms[i] = np.nan
-            at_mean[i] = np.nan
+    no_g2 = g2_not_given(entries, fit)
+    _unknown_rows(unknown, no_g2, (total, g2_part, fitted, fitted_rms, at_mean), terms)
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where((total != 0) & (fitted != 0), fitted / total, np.nan)
         at_mean_ratio = np.where((total != 0) & (at_mean != 0), at_mean / total, np.nan)
     s = units.scale(unit)
     warnings = unknown_warnings(unknown, ratio_warnings(fit, ratio, saturated, peak / s,
                                                     ranges / s, unit))
+    g2_warnings(no_g2, spec, warnings)
     at_mean_warnings(fit, at_mean_ratio, warnings)
     return RecordingAnalysis(
         unit=unit, sensors=tuple(e.sensor.id for e in entries), recorded=total / s,
         terms=terms / s, g2=g2_part / s, fitted=fitted / s, fitted_rms=fitted_rms / s,
         ratio=ratio, saturated=saturated, peak_rate=peak / s, spec=spec, fit=fit,
         warnings=warnings, at_mean=at_mean / s, at_mean_ratio=at_mean_ratio)
+
+
+def _unknown_rows(unknown: Sequence[tuple[str, ...]], no_g2: Sequence[int],
+                  sums: Sequence[FloatArray], terms: FloatArray) -> None:
+    """NaN, in place, where a row is unknown (never 0; docs/model.md section 13): every
+    number of a row that depends on a part the recording lacks (``unknown``), and the
+    g² term and every sum holding it on a row whose g² figure is not given (``no_g2``;
+    its other terms stay, known). ``sums``: Δ_V,rec, its g² part, the fitted Δ̄_V and
+    mean RMS, the at-mean total."""
+    for i, parts in enumerate(unknown):
+        if parts:
+            terms[i] = np.nan
+            for a in sums:
+                a[i] = np.nan
+    for i in no_g2:
+        for a in sums:
+            a[i] = np.nan
+
+
+def g2_not_given(entries: Sequence[Any], fit: RecordingFit) -> list[int]:
+    """The rows whose g² term is unknown on this recording: it recorded the accelerations
+    of a linear vibration, and the sensor gives no g² figure (a coefficient-form sensor
+    without ``g2_sensitivity`` or ``vre``, a datasheet part that publishes no VRE;
+    docs/model.md sections 8 and 13)."""
+    shaken = (fit.linear is not None and bool(np.all(np.isfinite(fit.linear.variance)))
+              and bool(np.any(np.asarray(fit.linear.variance) > 0)))
+    if not shaken:
+        return []
+    return [i for i, e in enumerate(entries)
+            if (e.sensor.specs.vre is None if is_spec(e) else g2_unknown(e.sensor))]
 
 
 def fit_missing(fit: RecordingFit) -> tuple[str, ...]:
@@ -257,7 +289,8 @@ def _fitted_mission(fit: RecordingFit, catalog: Any, sensor_ids: Sequence[str]
     rows = {r.sensor: r for r in result.rows}
     total = np.array([rows[s].mean for s in sensor_ids], dtype=float)
     rms = np.array([rows[s].rms for s in sensor_ids], dtype=float)
-    at_rate = analyze(combined, sensors=sensor_ids, profiles=(fit.profile_id,), unit="deg/s")
+    at_rate = analysis_of(Study.of(combined, sensors=sensor_ids, profiles=(fit.profile_id,)),
+                          unit="deg/s")
     where = {s: i for i, s in enumerate(at_rate.sensors)}
     at_mean = np.array([at_rate.error.total[where[s], 0] for s in sensor_ids], dtype=float)
     return total, rms, at_mean

@@ -30,6 +30,19 @@ def unknown_warnings(unknown: Sequence[tuple[str, ...]],
     return warnings
 
 
+def g2_warnings(rows: Sequence[int], spec: NDArray[np.bool_],
+                warnings: dict[int, tuple[str, ...]]) -> None:
+    """First on each row of ``rows`` (:func:`~gyrovib.api.recordings.analysis.g2_not_given`),
+    why its Δ_V,rec is unknown: the recording's accelerations meet a g² figure not given."""
+    for i in rows:
+        what = ("the datasheet publishes no VRE" if spec[i] else
+                "the sensor gives no g² sensitivity (g2_sensitivity or vre; write `vre: 0` "
+                "for a known zero)")
+        warnings[i] = (f"Δ_V,rec unknown: {what}, and the recording holds the accelerations "
+                       "of a linear vibration, so its g² term is unknown, not zero",
+                       *warnings.get(i, ()))
+
+
 def ratio_warnings(fit: RecordingFit, ratio: FloatArray, saturated: NDArray[np.bool_],
               peak: FloatArray, ranges: FloatArray, unit: str) -> dict[int, tuple[str, ...]]:
     """Per sensor row the warnings of ``analyze --recording`` (peak and range in ``unit``)."""

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from gyrovib.api.datasheet.specs import figures, is_spec
+from gyrovib.api.datasheet.specs import figures, g2_unknown, is_spec
 from gyrovib.api.ratetable.results import coefficient_unit
 from gyrovib.api.recordings.analysis import recorded_totals
 from gyrovib.api.recordings.reading import Recording
@@ -252,13 +252,16 @@ def _predictions(measured: list[Measured], base: np.ndarray, entry: Any,
 
 
 def _g2_unknown(entry: Any, measured: list[Measured], spec: bool) -> bool:
-    """Whether the prediction's g² part is unknown: a datasheet without a VRE figure on a
+    """Whether the prediction's g² part is unknown: a datasheet without a VRE figure or a
+    sensor that gives no g² figure (:func:`~gyrovib.api.datasheet.specs.g2_unknown`) on a
     recording with accelerations, or a sensor with a g² sensitivity (or a datasheet) on a
     recording without them."""
     has_accel = measured[0].g2_moments is not None
     if spec:
         return not has_accel or not bool(figures([entry]).has_vre[0])
-    return not has_accel and bool(np.any(g2_matrix([entry]) != 0))
+    if has_accel:
+        return g2_unknown(entry.sensor)
+    return bool(np.any(g2_matrix([entry]) != 0))
 
 
 def _catalogue(entry: Any, terms: tuple[str, ...]) -> tuple[list[float], list[bool]]:
