@@ -292,7 +292,7 @@ def test_no_environment_variable_changes_an_exit_status(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("samples", ["10000000000", "100000001", "1e85", "31"])
 def test_samples_has_a_documented_range(samples: str) -> None:
-    # SAMPLES_MAX = 10^8 in cli/options.py, shown in --help
+    # gyrovib.limits.MAX_SAMPLES = 10^8, shown in --help
     result = CliRunner().invoke(cli, ["analyze", "--method", "numeric", "--samples", samples])
     assert result.exit_code == 2
     assert "--samples" in result.stderr and "Traceback" not in result.stderr

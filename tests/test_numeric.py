@@ -230,4 +230,4 @@ def test_numeric_csv_and_table_show_stderr(catalog_path: str) -> None:
 def test_too_few_samples_is_a_usage_error(catalog_path: str) -> None:
     result = invoke("analyze", catalog_path, "--method", "numeric", "--samples", "5")
     assert result.exit_code == 2 and result.stdout == ""
-    assert "--samples" in result.stderr and "32<=x<=100000000" in result.stderr  # SAMPLES_MAX
+    assert "--samples" in result.stderr and "32<=x<=100000000" in result.stderr  # MAX_SAMPLES

@@ -533,10 +533,7 @@ def mission(catalog: CatalogLike = None, *, missions: str | Sequence[str] = (),
     gyrovib.api.MissionResult
         ``to_frame()`` gives one row per sensor × mission × axis.
     """
-    if unit is not None:
-        unit = _unit("unit", unit)
-    else:
-        unit = (units.quantity_unit(budget) if isinstance(budget, str) else None) or "deg/s"
+    unit = _budget_unit(unit, budget)
     theta = None
     if angle_budget is not None:
         try:

@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 
-from gyrovib.cli.common import page_width, plain_ascii, say, use_color
+from gyrovib.cli.common import rendered, say
 from gyrovib.cli.options import as_options, format_option
 from gyrovib.cli.output import write_binary, write_output
 from gyrovib.cli.recording import reader_options, recording_of
@@ -68,14 +68,7 @@ def allan(recording: str, unit: str, per_decade: int | None, plot: str | None, o
         write_output(noise_yaml(result), output)
         if output == "-":
             return
-    if fmt == "json":
-        text = render.to_json(result)
-    elif fmt == "kalibr":
-        text = to_kalibr(result)
-    else:
-        text = render.to_table(result, color=use_color(), width=page_width(),
-                               ascii=plain_ascii())
-    write_output(text, None)
+    write_output(to_kalibr(result) if fmt == "kalibr" else rendered(render, result, fmt), None)
 
 
 def parse_confidence(text: str) -> float:

@@ -6,6 +6,7 @@ from typing import Any
 
 import click
 
+from gyrovib import units
 from gyrovib.cli.common import (
     load_catalog,
     note_slow_table,
@@ -13,13 +14,11 @@ from gyrovib.cli.common import (
     say,
 )
 from gyrovib.cli.options import (
-    SAMPLES_MAX,
     as_options,
     files_argument,
     format_option,
     output_option,
     parse_rate_option,
-    parse_unit,
     peak_factor_option,
     placement_option,
     rate_option,
@@ -37,7 +36,7 @@ from gyrovib.cli.recording import (
     refuse_with_recording,
 )
 from gyrovib.errors import OptionError
-from gyrovib.limits import MIN_SAMPLES
+from gyrovib.limits import MAX_SAMPLES, MIN_SAMPLES
 
 
 @click.command()
@@ -47,10 +46,10 @@ from gyrovib.limits import MIN_SAMPLES
               show_default=True,
               help="exact: exact moments; paper: the paper's printed formulas; "
                    "numeric: brute-force average of eq. (2) (total ± stderr).")
-@click.option("--samples", type=click.IntRange(min=MIN_SAMPLES, max=SAMPLES_MAX), default=200_000,
+@click.option("--samples", type=click.IntRange(min=MIN_SAMPLES, max=MAX_SAMPLES), default=200_000,
               show_default=True, metavar="N",
               help=f"numeric: evaluations of eq. (2) per sensor × profile, "
-                   f"{MIN_SAMPLES} to {SAMPLES_MAX:,}.")
+                   f"{MIN_SAMPLES} to {MAX_SAMPLES:,}.")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               metavar="S", help="numeric: random seed; the same seed gives the same numbers.")
 @rate_option
@@ -91,7 +90,7 @@ def analyze(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[st
     from gyrovib import api
     from gyrovib.render import analysis as render
 
-    unit = parse_unit(unit)
+    unit = units.canonical_unit(unit)
     catalog = load_catalog(files)
     if jobs != 1 and not recordings:
         raise OptionError("--jobs runs recordings in processes: give it with --recording")

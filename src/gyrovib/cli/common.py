@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import importlib
 import os
 import shutil
@@ -14,6 +13,7 @@ from typing import Any
 
 import click
 
+from gyrovib.cli.output import silence
 from gyrovib.errors import CatalogError, OptionError, Problem
 
 
@@ -81,13 +81,8 @@ def say(line: str) -> None:
 
 
 def silence_stderr() -> None:
-    """Point standard error (the descriptor and ``sys.stderr``) at the null device."""
-    with contextlib.suppress(OSError, ValueError):
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, 2)
-        os.close(devnull)
-    with contextlib.suppress(OSError):
-        sys.stderr = open(os.devnull, "w", encoding="utf-8")  # noqa: SIM115
+    """Point standard error at the null device (:func:`gyrovib.cli.output.silence`)."""
+    silence(2, "stderr")
 
 
 def _settings() -> Settings:

@@ -5,27 +5,14 @@ to a renderer. Heavy modules (numpy, yaml, rich) are imported inside the
 commands, so ``gyrovib --help`` stays instant. Every :class:`GyrovibError` is
 caught here, once: one line per problem on standard error, exit status 2.
 
-Exit status (the contract; no environment variable changes it):
-
-* 0 success; 1 ``select``'s (or ``mission``'s, or ``runup --require``'s) requirement not met;
-  2 bad usage or bad input;
-* 3 an internal error (a bug in gyrovib), reported in one line asking for a
-  report; ``GYROVIB_DEBUG=1`` (or ``true``, ``yes``; any case) adds the
-  traceback, the status stays 3;
-* 74 (``EX_IOERR``) the output could not be written (standard output closed or
-  on a full disk, ``--output`` on a failing device): one line naming it;
-  an ``--output`` that cannot be a file (no such directory, a name too long,
-  no permission) is bad usage, 2, naming it too;
-* 129 hung up (SIGHUP), 130 interrupted (Ctrl-C, SIGINT), 143 terminated
-  (SIGTERM): one line, ``--output`` is left as it was and no temporary file
-  remains; a signal once the output is in place (renamed over ``--output``)
-  no longer interrupts: the run has succeeded, and exits as it would have;
-* 141 standard output closed before everything was written (``| head``), as
-  for a process killed by SIGPIPE; nothing is printed.
-
-A standard error that cannot be written (``2>/dev/full``) costs the messages,
-never the status. Names in messages are written with their control characters
-escaped (:func:`~gyrovib.cli.common.printable`).
+Exit status is the contract docs/ci.md sets out: 0 success; 1 a requirement not met
+(``select``, ``mission``, ``runup --require``); 2 bad usage or bad input; 3 an internal
+error, in one line (``GYROVIB_DEBUG=1`` adds the traceback); 74 the output could not be
+written; 129, 130, 143 hung up, interrupted, terminated (``--output`` left as it was, and
+once it is in place a signal no longer interrupts); 141 standard output closed early.
+A standard error that cannot be written (``2>/dev/full``) costs the messages, never the
+status. Names in messages are written with their control characters escaped
+(:func:`~gyrovib.cli.common.printable`).
 """
 
 from __future__ import annotations
@@ -51,8 +38,6 @@ EXIT_OK, EXIT_NOT_MET, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 EXIT_WRITE_FAILED = 74  # EX_IOERR of sysexits.h
 EXIT_INTERRUPTED = 128 + signal.SIGINT
 EXIT_BROKEN_PIPE = 128 + 13
-EXIT_TERMINATED = 128 + signal.SIGTERM
-EXIT_HUNG_UP = 128 + signal.SIGHUP
 
 #: The signals turned into exceptions (so ``finally`` blocks clean up), and their words.
 _SIGNALS = {signal.SIGINT: "interrupted", signal.SIGTERM: "terminated",
@@ -146,11 +131,17 @@ def _report(exc: GyrovibError, settings: Settings | None) -> None:
     if settings is not None and settings.github:
         from gyrovib.render.github import problems_to_github
 
-        try:
-            sys.stdout.write(problems_to_github(exc.problems))
-            sys.stdout.flush()
-        except (OSError, AttributeError, ValueError):
-            silence_stdout()  # the verdict (exit 2) stands; the annotations are a courtesy
+        _annotate(problems_to_github(exc.problems))
+
+
+def _annotate(text: str) -> None:
+    """GitHub annotations on standard output; one that cannot be written is dropped (the
+    verdict, exit 2, stands; the annotations are a courtesy)."""
+    try:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    except (OSError, AttributeError, ValueError):
+        silence_stdout()
 
 
 def _unexpected(exc: Exception) -> int:
@@ -280,12 +271,7 @@ class _Group(click.Group):
             if _wants_github(sys.argv[1:] if self._argv is None else self._argv):
                 from gyrovib.render.github import annotation
 
-                try:
-                    sys.stdout.write(annotation(exc.format_message(), title="gyrovib usage")
-                                     + "\n")
-                    sys.stdout.flush()
-                except (OSError, AttributeError, ValueError):
-                    silence_stdout()
+                _annotate(annotation(exc.format_message(), title="gyrovib usage") + "\n")
             raise
         except (click.exceptions.ClickException, *_CLICK_FLOW):
             raise

@@ -21,9 +21,9 @@ from gyrovib.cli.options import (
     parse_angle_budget,
     parse_budget,
     parse_placement,
-    parse_unit,
     peak_factor_option,
     placement_option,
+    resolve_unit,
 )
 from gyrovib.cli.output import write_binary, write_output
 from gyrovib.cli.spec_options import assume_unknown_option
@@ -97,16 +97,13 @@ def mission(ctx: click.Context, files: tuple[str, ...], missions: tuple[str, ...
     --require condition is not met.
     """
     # lazy: the library and the renderers load when the command runs, not for --help
-    from gyrovib import api, units
+    from gyrovib import api
     from gyrovib.render.mission_plot import theta_png
 
     if budget is not None and angle_budget is not None:
         raise OptionError("give --budget (on the mean RMS) or --angle-budget (on the angle), "
                           "not both")
-    if unit is not None:
-        unit = parse_unit(unit)
-    else:
-        unit = (units.quantity_unit(budget) if budget is not None else None) or "deg/s"
+    unit = resolve_unit(unit, budget)
     catalog = load_catalog(files)
     result = api.mission(
         catalog, missions=missions, sensors=sensors,
@@ -156,7 +153,7 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
     """``select --mission ID``: the mission's verdicts in select's formats, the sensors
     ranked on their budget total; returns whether the --require condition is met."""
     # lazy: the library and the renderers load when it runs, not for --help
-    from gyrovib import api, units
+    from gyrovib import api
     from gyrovib.api.noise import ranked
 
     if mission_id is None:
@@ -168,8 +165,7 @@ def select_mission(files: tuple[str, ...], mission_id: str | None, sensors: tupl
                           "(on the angle), one of them")
     if fmt == "github":
         raise OptionError("--mission: use --format table, json, csv, markdown or junit")
-    unit = parse_unit(unit) if unit is not None else (
-        (units.quantity_unit(budget) if budget is not None else None) or "deg/s")
+    unit = resolve_unit(unit, budget)
 
     result = ranked(api.mission(
         load_catalog(files), missions=(mission_id,), sensors=sensors,

@@ -11,16 +11,12 @@ import click
 
 from gyrovib import units
 from gyrovib.errors import GyrovibError, Note, OptionError, Problem
-from gyrovib.limits import DEFAULT_PEAK_FACTOR, MAX_SAMPLES
+from gyrovib.limits import DEFAULT_PEAK_FACTOR
 
 F = TypeVar("F", bound=Callable[..., Any])
 T = TypeVar("T")
 
 UNIT_CHOICES = tuple(units.RATE_UNITS)
-
-#: The most samples ``analyze --method numeric`` takes per sensor × profile
-#: (:data:`gyrovib.limits.MAX_SAMPLES`, which the library enforces too).
-SAMPLES_MAX = MAX_SAMPLES
 
 
 #: The option of each library argument whose flag is not ``--`` + its name with dashes.
@@ -133,11 +129,11 @@ def budget_unit_option(f: F) -> F:
     )(f)
 
 
-def resolve_unit(unit: str | None, budget: str) -> str:
+def resolve_unit(unit: str | None, budget: str | None) -> str:
     """``--unit`` as given, else the unit ``--budget`` carries, else deg/s (README, "Units")."""
     if unit is not None:
-        return parse_unit(unit)
-    return units.quantity_unit(budget) or "deg/s"
+        return units.canonical_unit(unit)
+    return (None if budget is None else units.quantity_unit(budget)) or "deg/s"
 
 
 def peak_factor_option(f: F) -> F:
@@ -171,10 +167,6 @@ def format_option(*choices: str) -> Callable[[F], F]:
         )(f)
 
     return decorate
-
-
-def parse_unit(text: str) -> str:
-    return units.canonical_unit(text)
 
 
 def parse_rate_option(text: str | None, unit: str) -> list[float] | None:

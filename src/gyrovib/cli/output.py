@@ -50,15 +50,21 @@ def start_run() -> None:
     _in_place = False
 
 
-def silence_stdout() -> None:
-    """Point standard output at the null device, so that nothing more is written
-    (nor fails again when Python flushes it on exit)."""
+def silence(fd: int, name: str) -> None:
+    """Point a standard stream (its descriptor ``fd`` and ``sys.<name>``) at the null
+    device, so that nothing more is written (nor fails again when Python flushes it on
+    exit)."""
     with contextlib.suppress(OSError, ValueError):
         devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, 1)
+        os.dup2(devnull, fd)
         os.close(devnull)
     with contextlib.suppress(OSError):
-        sys.stdout = open(os.devnull, "w", encoding="utf-8")  # noqa: SIM115
+        setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
+
+
+def silence_stdout() -> None:
+    """Point standard output at the null device (:func:`silence`)."""
+    silence(1, "stdout")
 
 
 def encodable(text: str, encoding: str | None) -> str:

@@ -91,7 +91,7 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
     from gyrovib.render import sweep as render
     from gyrovib.render.plot import envelope_png, sweep_png
 
-    unit = resolve_unit(unit, budget or "")
+    unit = resolve_unit(unit, budget)
     start, stop, count = parse_rate_range(rate_range, unit)
     budget_value = parse_budget(budget, unit) / units.scale(unit) if budget is not None else None
 

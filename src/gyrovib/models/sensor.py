@@ -138,9 +138,8 @@ G2Unit = Literal[
     "deg/s/g^2", "deg/s/g²", "deg/s/(m/s^2)^2", "deg/s/(m/s²)²", "deg/h/g^2", "deg/h/g²",
     "deg/h/(m/s^2)^2", "deg/h/(m/s²)²", "rad/s/g^2", "rad/s/g²", "rad/s/(m/s^2)^2",
     "rad/s/(m/s²)²", "rpm/g^2", "rpm/g²", "rpm/(m/s^2)^2", "rpm/(m/s²)²"]
-_NUMBER = NUMBER_TEXT
 #: A g² sensitivity written as text: a number, spaces, a unit ("0.0004 deg/s/g^2").
-G2_TEXT = (rf"^ *({_NUMBER}) +((?:{'|'.join(re.escape(r) for r in get_args(RateUnit))})/"
+G2_TEXT = (rf"^ *({NUMBER_TEXT}) +((?:{'|'.join(re.escape(r) for r in get_args(RateUnit))})/"
            rf"(?:{'|'.join(re.escape(a) for a in G2_PER)})) *$")
 
 
@@ -185,9 +184,6 @@ def _g2_text(value: str) -> G2Quantity:
     return G2Quantity(value=float(match.group(1)), unit=match.group(2))
 
 
-_g2_kind = value_kind
-
-
 def _in_band(q: G2Quantity, low: float) -> G2Quantity:
     if not low <= q.value <= MAX_MAGNITUDE:
         raise rule_error(f"{q.value!r} {q.unit} is outside [{low:g}, {MAX_MAGNITUDE:g}]{G2_WHY}")
@@ -202,7 +198,7 @@ def _non_negative(q: G2Quantity) -> G2Quantity:
     return _in_band(q, 0.0)
 
 
-_G2_KIND = Discriminator(_g2_kind, custom_error_type="kind", custom_error_message=(
+_G2_KIND = Discriminator(value_kind, custom_error_type="kind", custom_error_message=(
     "a number (rate per g²), a text such as '0.0004 deg/s/g^2' or a mapping {value, unit}"))
 _G2_TEXT_SCHEMA = WithJsonSchema({"type": "string", "pattern": G2_TEXT})
 

@@ -1,15 +1,7 @@
 """The datasheet form (``specs:``): a sensor known by its datasheet figures.
 
-=========================================  ======================================
-module                                     what it holds
-=========================================  ======================================
-:mod:`gyrovib.api.datasheet.specs`         the figures in deg/s, the worst case
-                                           over the envelope, its numeric rows
-:mod:`gyrovib.api.datasheet.spec_bounds`   the spec checks of ``select`` and the
-                                           ``spec_bounds`` of ``bounds --range``
-=========================================  ======================================
-
-It reads a prepared :class:`~gyrovib.api.study.Study`; it evaluates no view.
+Its modules are listed in docs/architecture.md. It reads a prepared
+:class:`~gyrovib.api.study.Study`; it evaluates no view.
 """
 
 from __future__ import annotations

@@ -19,6 +19,7 @@ from gyrovib.api.datasheet.specs import (
     SpecResults,
     mean_square_acceleration,
     multipliers_of,
+    spec_groups,
     terms_of,
 )
 from gyrovib.api.study.prepare import Prepared
@@ -65,11 +66,7 @@ def spec_checks(prepared: Prepared, spec: SpecResults, method: str, budget: floa
     m_count, n_p = spec.index.size, len(prepared.profiles)
     nl_bound = np.full((m_count, n_p), np.inf)
     vre_bound = np.full((m_count, n_p), np.inf)
-    position = {int(i): k for k, i in enumerate(spec.index.tolist())}
-    for group in prepared.groups:
-        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
-        if not rows or not n_p:
-            continue
+    for group, rows in spec_groups(prepared, spec.index):
         m = multipliers_of(group, prepared, method)
         t = terms_of(m)
         s = mean_square_acceleration(m)
@@ -170,11 +167,7 @@ def unknown_figures_at(prepared: Prepared, index: NDArray[np.intp], has_vre: NDA
                    dtype=float).reshape(n_p)
     c31 = np.zeros((m_count, n_p))
     c32 = np.zeros((m_count, n_p))
-    position = {int(i): k for k, i in enumerate(index.tolist())}
-    for group in prepared.groups:
-        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
-        if not rows or not n_p:
-            continue
+    for group, rows in spec_groups(prepared, index):
         m = multipliers_of(group, prepared, method)
         c31[rows] = np.broadcast_to(np.asarray(m.c31, dtype=float), (n_p,))[None]
         c32[rows] = np.broadcast_to(np.asarray(m.c32, dtype=float), (n_p,))[None]

@@ -8,27 +8,16 @@ asymmetry from ppm or %, A1 = 1e-6 per ppm; the VRE from rate per the file's
 acceleration unit² to deg/s per g²), and the profile multipliers of each
 sensor group feed :func:`gyrovib.core.envelope.worst_case`.
 
-What a spec-form sensor reports (JSON ``"source": "specs"``):
-
-* ``total``: the worst |Δ_V(Ω_K3)| over every conversion function the datasheet
-  permits (the worst polynomial's cᵀx plus |v|·Σ⟨a_j²⟩ where the profile has
-  a linear vibration);
-* ``rms``: the per-term RMS upper bound √(Σ per-term maxima²);
-* ``additive_terms`` / ``multiplicative_coefficients``: those of the worst
-  polynomial (A1, k2…k5) that attains ``total``; m31 = m32 = 0 (datasheets do
-  not give them: a warning says so where the profile has cross-axis vibration);
-* ``envelope``: ``worst_coefficients`` (A1, k2…k5 in the output unit's powers)
-  and ``rms_bound``.
-
-Either method's multipliers may feed the programme: ``paper`` gives the worst
-case under the paper's multipliers (the same envelope, the printed
-statistics). The numeric method averages eq. (2) of the worst polynomial
-(found with the exact multipliers) by brute force.
+What a spec-form sensor reports (JSON ``"source": "specs"``, docs/output.md): ``total``
+the worst |Δ_V(Ω_K3)| over the polynomials the datasheet permits (the worst one's cᵀx plus
+|v|·Σ⟨a_j²⟩ under linear vibration), ``rms`` the bound √(Σ per-term maxima²), and the worst
+polynomial's terms and coefficients (m31 = m32 = 0). How each method uses the
+programme: docs/datasheets.md.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -51,8 +40,6 @@ from gyrovib.core.analysis import (
 from gyrovib.core.linear import mean_square
 from gyrovib.frozen import Frozen
 
-#: Order of the worst polynomial's coefficients (core.envelope.COEFFICIENTS).
-WORST_COEFFICIENTS = POLYNOMIAL
 #: Rate powers of (A1, k2…k5): a coefficient in U is q[deg/s]·s**(-p).
 _POWERS = np.array([0.0, -1.0, -2.0, -3.0, -4.0])
 #: The words the nonlinearity's ``of`` may take when the value is %FS.
@@ -222,7 +209,7 @@ def coefficient_rows(worst_x: FloatArray) -> FloatArray:
     x = np.asarray(worst_x, dtype=float)
     out = np.zeros((*x.shape[:-1], len(COLUMN)))
     out[..., COLUMN["k1"]] = 1.0
-    for k, name in enumerate(WORST_COEFFICIENTS):
+    for k, name in enumerate(POLYNOMIAL):
         out[..., COLUMN[name]] = x[..., k]
     return out
 
@@ -282,6 +269,16 @@ class SpecResults(Frozen):
     cross_axis: NDArray[np.bool_]
 
 
+def spec_groups(prepared: Prepared, index: NDArray[np.intp]) -> Iterator[tuple[Group, list[int]]]:
+    """Each response group of ``prepared`` that holds spec sensors of ``index`` (rows of
+    ``prepared.sensors``), with their positions in ``index``; none without profiles."""
+    position = {int(i): k for k, i in enumerate(index.tolist())}
+    for group in prepared.groups:
+        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
+        if rows and prepared.profiles:
+            yield group, rows
+
+
 def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = None,
                  *, total: bool = True) -> SpecResults | None:
     """The worst case of every spec-form sensor of ``prepared`` (None when there are none).
@@ -293,7 +290,6 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
     if index.size == 0:
         return None
     figs = figures([prepared.sensors[i] for i in index.tolist()])
-    position = {int(i): k for k, i in enumerate(index.tolist())}
     n_p = len(prepared.profiles)
     tail = () if omega is None else (np.asarray(omega).size,)
     shape = (index.size, n_p, *tail)
@@ -305,10 +301,7 @@ def spec_results(prepared: Prepared, method: str, omega: FloatArray | None = Non
     nonlinearity = np.zeros(shape)
     g2 = np.zeros(shape)
     cross = np.zeros((n_p, *tail), dtype=bool)
-    for group in prepared.groups:
-        rows = [position[int(i)] for i in group.index.tolist() if int(i) in position]
-        if not rows or not n_p:
-            continue
+    for group, rows in spec_groups(prepared, index):
         m = multipliers_of(group, prepared, method, omega)
         _fill(parts, {"coefficients": coefficients, "nonlinearity": nonlinearity, "g2": g2},
               _subset(figs, rows), m, rows, omega is not None, total)

@@ -4,20 +4,11 @@ The envelope is a reduction: :func:`envelope_part` turns a fit into an
 :class:`EnvelopePart`, :func:`combine` joins two parts (associative and, but for
 the order of the joined mission segments and recordings, commutative: maxima and
 concatenations), and :func:`fit_envelope` fits the catalogue profile to the joined
-part as :func:`fit_recording` fits one recording:
-
-* per frequency bin the largest random PSD (lines replaced by the running median)
-  over the recordings, per axis; recordings on different Welch grids are put on the
-  coarsest one (linear interpolation of each PSD; a bin above a recording's Nyquist
-  frequency is unknown for it, not zero), then fitted by the same breakpoint fit;
-* every spectral line of every recording, lines within max(Δf, 1 % of f) of each
-  other taken as one line at its largest amplitude per axis (frequency and phases
-  of the recording where it is strongest), grouped into harmonics as for one
-  recording unless ``independent_tones``;
-* the coherences of the recording with the largest x3 (or, for accelerations, total)
-  vibration variance — one recording's, so they stay a correlation matrix;
-* the mission: every recording's carrier-histogram segments, in order — as written,
-  their own carrier histogram once they number more than 16 (:func:`fleet_mission`).
+part as :func:`fit_recording` fits one recording. What each part of the profile is over
+the recordings (per bin the largest random PSD on the coarsest grid, lines within
+max(Δf, 1 % of f) merged at their largest amplitude, the coherences of the recording with
+the largest vibration variance, the joined mission re-binned past 16 segments by
+:func:`fleet_mission`) is docs/fleet.md's table.
 """
 
 from __future__ import annotations

@@ -120,10 +120,15 @@ def group_multipliers(prepared: Prepared, group: Group, method: str) -> Multipli
 def sensor_sensitivity(multipliers: Multipliers, dist: Distribution) -> FloatArray:
     """g with Δ_V = gᵀc over ``dist.names`` (docs/model.md section 14), deg/s per coefficient
     unit, shape ``multipliers.omega.shape + (p,)``; the A1 entry at the sensor's k1."""
-    g = sensitivity(multipliers, dist.names)
-    if "A1" in dist.names:
-        g = g.copy()
-        g[..., dist.names.index("A1")] *= dist.k1
+    return at_k1(sensitivity(multipliers, dist.names), dist)
+
+
+def at_k1(g: FloatArray, dist: Distribution) -> FloatArray:
+    """``g`` (..., p) over ``dist.names`` with its A1 entry times the sensor's k1."""
+    if "A1" not in dist.names:
+        return g
+    g = g.copy()
+    g[..., dist.names.index("A1")] *= dist.k1
     return g
 
 

@@ -35,6 +35,7 @@ from gyrovib.api.datasheet.spec_bounds import is_unverified
 from gyrovib.api.evaluation.results import Limit, Result
 from gyrovib.api.lots.uncertainty import (
     Distribution,
+    at_k1,
     distributions,
     group_multipliers,
     has_worst_phases,
@@ -145,10 +146,7 @@ def _terms(multipliers: Multipliers, dist: Distribution,
     """(profiles, terms, p + 1): the terms of eq. (16) as G·c over the lot's coefficients
     and, last, the fixed part (deg/s); the terms at the mean are the view's own
     (``parts`` of row ``i``, as :func:`_direct`)."""
-    g = term_matrix(multipliers, dist.names)
-    if "A1" in dist.names:
-        g = g.copy()
-        g[..., dist.names.index("A1")] *= dist.k1
+    g = at_k1(term_matrix(multipliers, dist.names), dist)
     powers = np.stack([multipliers.omega ** q for q in (1, 2, 3)], axis=-1)
     terms = np.concatenate([parts["additive_terms"][i], parts["extra_terms"][i],
                             parts["multiplicative_coefficients"][i] * powers], axis=-1)

@@ -21,7 +21,6 @@ from gyrovib.api.noise.figures import FIGURES, noise_values
 from gyrovib.api.noise.mission import check_coverage, mission, ranked
 from gyrovib.api.noise.results import (
     ALLOWANCE_UNITS,
-    BUDGET_TERMS,
     FIGURE_UNITS,
     NOISE_TERMS,
     AllanResult,
@@ -35,7 +34,6 @@ from gyrovib.api.noise.yaml import noise_yaml
 
 __all__ = [
     "ALLOWANCE_UNITS",
-    "BUDGET_TERMS",
     "FIGURES",
     "FIGURE_UNITS",
     "NOISE_TERMS",

@@ -20,7 +20,7 @@ from gyrovib.api.commands.mission import mission as vibration_mission
 from gyrovib.api.datasheet import spec_bounds
 from gyrovib.api.evaluation.unknown import any_missing
 from gyrovib.api.missions.results import MissionResult, MissionRow
-from gyrovib.api.noise.budget import allowance, budget, timeline
+from gyrovib.api.noise.budget import TERM_OF, allowance, budget, timeline
 from gyrovib.api.noise.figures import FIGURES, noise_bounds, noise_values, typical_figures
 from gyrovib.catalog.loader import Catalog
 from gyrovib.core.mission import ANGLE_IN_RAD, ANGLE_UNITS
@@ -82,8 +82,7 @@ def _refuse_overflow(catalog: Catalog, rows: Sequence[MissionRow]) -> None:
         b = row.budget
         if b is None or math.isnan(b.vibration):  # unknown θ_V: not an overflow
             continue
-        terms = {name: getattr(b, name) for name in ("arw", "bias_instability", "rrw",
-                                                     "repeatability")}
+        terms = {name: getattr(b, name) for name in TERM_OF.values()}
         bad = [n for n, v in terms.items() if v is not None and not math.isfinite(v)]
         if not bad and math.isfinite(b.total):
             continue
@@ -100,16 +99,12 @@ def _refuse_overflow(catalog: Catalog, rows: Sequence[MissionRow]) -> None:
 def _judged(row: MissionRow, theta_deg: float, assume_unknown: str) -> MissionRow:
     """The row's verdict on its total; noise figures not given join its unknown."""
     assert row.budget is not None
-    names = row.unknown + tuple(n for n in FIGURES if _term(n) in row.budget.unknown)
+    names = row.unknown + tuple(n for n in FIGURES if TERM_OF[n] in row.budget.unknown)
     passed = not row.saturated and row.budget.total <= theta_deg
     open_ = any_missing(names) or spec_bounds.is_unverified(passed, names, assume_unknown)
     allowed = allowance(row.budget, theta_deg, row.duration)
     return replace(row, passed=passed and not open_, unverified=open_, unknown=names,
                    budget=replace(row.budget, allowed=allowed))
-
-
-def _term(figure: str) -> str:
-    return "repeatability" if figure == "bias_repeatability" else figure
 
 
 def _verdicts(result: MissionResult, rows: Sequence[MissionRow], coverage: float

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from gyrovib.api.missions.results import ALLOWANCE_UNITS as ALLOWANCE_UNITS
 from gyrovib.api.missions.results import Allowance as Allowance
 from gyrovib.api.missions.results import Budget as Budget
+from gyrovib.api.recordings.results import source_words
 from gyrovib.core._types import FloatArray
 from gyrovib.frozen import Frozen
 
@@ -16,8 +17,6 @@ FIGURE_UNITS = {"arw": "deg/sqrt(h)", "bias_instability": "deg/h", "rrw": "deg/h
                 "bias_repeatability": "deg/h", "quantization": "deg", "rate_ramp": "deg/h^2"}
 #: The five terms of IEEE Std 952's model, as ``gyrovib allan`` reports them.
 NOISE_TERMS = ("quantization", "arw", "bias_instability", "rrw", "rate_ramp")
-#: The terms of a mission budget, in the order they are reported.
-BUDGET_TERMS = ("vibration", "arw", "bias_instability", "rrw", "repeatability")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -122,6 +121,4 @@ class AllanResult(Frozen):
     @property
     def source(self) -> str | None:
         """``sensor_gyro instance 1``: the topic and instance read, or None."""
-        if self.topic is None:
-            return None
-        return self.topic if self.instance is None else f"{self.topic} instance {self.instance}"
+        return source_words(self.topic, self.instance)

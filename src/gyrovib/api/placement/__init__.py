@@ -1,12 +1,6 @@
 """Placements: a profile mapped into a sensor's axes, and the triad of three axes.
 
-=========================================  =======================================
-module                                     what it holds
-=========================================  =======================================
-:mod:`gyrovib.api.placement.placement`     ``place_profile``, ``place_catalog``
-:mod:`gyrovib.api.placement.triad`         a command run per axis, ``TriadResult``
-=========================================  =======================================
-"""
+Its modules are listed in docs/architecture.md."""
 
 from __future__ import annotations
 

@@ -137,8 +137,7 @@ def spectrum(entry: ProfileEntry, unit: str) -> Spectrum:
     if p.random is not None and p.random.psd is not None:
         psd = _psd_tables(p.random.psd, f * f)
     elif p.random is not None and p.random.rms is not None:
-        a, b, c = (float(v) * f for v in p.random.rms)
-        rms = (a, b, c)
+        rms = _triple(p.random.rms, f)
     mount = None
     if p.mount is not None:
         mount = (tuple(float(a) for a, _ in p.mount), tuple(float(b) for _, b in p.mount))
@@ -275,9 +274,7 @@ def trade_study(
     if sweep_rates is None:
         half = envelope(study)
         sweep_rates = api.rate_range(-half, half, SWEEP_POINTS)
-    # the rate-envelope charts are for comparing a few candidates: past
-    # SWEEP_SENSORS, only the best-ranked are swept (a line per sensor of 3,000
-    # is no chart, and their sweep held more than a sweep may)
+    # a line per sensor of 3,000 is no chart, and their sweep held more than a sweep may
     charted = study
     if len(study.sensors) > SWEEP_SENSORS:
         charted = study.narrowed(sorted(selection.ranking[:SWEEP_SENSORS]))

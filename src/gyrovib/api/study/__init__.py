@@ -1,18 +1,9 @@
 """The Study: a catalogue's chosen sensors and profiles in deg/s, prepared once.
 
-=====================================  ==========================================
-module                                 what it holds
-=====================================  ==========================================
-:mod:`gyrovib.api.study.entries`       ``load``, choosing entries, their file lines
-:mod:`gyrovib.api.study.convert`       unit conversions (deg/s in, output unit out)
-:mod:`gyrovib.api.study.linear`        linear vibration (g) and g²-sensitivities
-:mod:`gyrovib.api.study.prepare`       the preparation's pieces and overflow checks
-:mod:`gyrovib.api.study.study`         the ``Study`` and its memory; ``prepare``
-=====================================  ==========================================
-
-``gyrovib.api.prepare`` is ``Study.of(...).prepare(...)``. Every view of the library
-(analyze, sweep, bounds, select, report, mission) asks a ``Study`` for what it needs;
-nothing here evaluates the model's error.
+Its modules are listed in docs/architecture.md. ``gyrovib.api.prepare`` is
+``Study.of(...).prepare(...)``. Every view of the library (analyze, sweep, bounds,
+select, report, mission) asks a ``Study`` for what it needs; nothing here evaluates
+the model's error.
 """
 
 from __future__ import annotations
