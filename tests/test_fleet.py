@@ -234,3 +234,29 @@ def test_progress_counts_the_recordings_in_order(logs: list[Path]) -> None:
     assert [c for c in calls if c[0] == "recordings"] == [("recordings", 1, 2),
                                                           ("recordings", 2, 2)]
     assert [Path(f.file).name for f in fits] == ["a.npy", "b.npy"]
+
+
+def test_a_sensor_without_a_g2_figure_has_no_worst_recording(tmp_path: Path) -> None:
+    """Two recordings with accelerations (synthetic: noise of 0.5 g on each axis beside
+    the rates of _write): generic-rate-mems gives no g² figure, so its Δ_V,rec is unknown
+    on each (docs/output.md), its worst recording unknown (`recording` null), and the
+    summary table writes every figure of its row '?' (the ratio too), never '—' or 0;
+    adxrs645 (a datasheet VRE) keeps its worst recording."""
+    rng = np.random.default_rng(31)
+    paths = []
+    for name, sigma in (("a.npy", 0.2), ("b.npy", 0.5)):
+        rate = np.load(_write(tmp_path / name, rng, sigma=sigma, tones=[(31.3, 0.4)]))
+        np.save(tmp_path / name, np.column_stack([rate, rng.normal(0.0, 0.5, rate.shape)]))
+        paths.append(tmp_path / name)
+    read = ("--fs", FS, "--rate-columns", "0,1,2", "--accel-columns", "3,4,5",
+            "--sensor", "generic-rate-mems", "--sensor", "adxrs645")
+    r = invoke("analyze", "--recording", paths[0], "--recording", paths[1], *read,
+               "--format", "json")
+    assert r.exit_code == 0, r.stderr
+    worst = {w["sensor"]: w for w in json.loads(r.stdout)["worst"]}
+    assert worst["generic-rate-mems"]["recording"] is None
+    assert worst["adxrs645"]["recording"] in ("a.npy", "b.npy")
+    table = invoke("analyze", "--recording", paths[0], "--recording", paths[1], *read)
+    summary = table.stdout[table.stdout.index("worst recording per sensor"):]
+    row = next(line for line in summary.splitlines() if line.startswith("generic-rate-mems"))
+    assert row.split()[1:5] == ["?", "—", "?", "?"]  # Δ_V,rec, recording, fitted, ratio

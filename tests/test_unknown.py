@@ -387,6 +387,30 @@ def test_analyze_writes_an_unknown_g2_term_and_its_sums_unknown_in_every_format(
     assert report.count('class="lg">? unknown</text>') == 2
 
 
+def test_sweep_writes_an_unknown_g2_cell_as_analyze_does(coefficient_catalog: str) -> None:
+    # a value of sweep at a rate equals analyze --rate at that rate (sweep --help): for
+    # no-g2 under 'shaker' both are unknown at every rate (null, '?'), with a note on
+    # standard error naming the pair; with-g2 and no-g2 under 'calm' keep their numbers,
+    # equal to analyze's (the same closed form)
+    done = invoke("sweep", coefficient_catalog, "--rate-range", "0:4:3", "--format", "json")
+    assert done.exit_code == 0, done.stderr
+    series = {(r["sensor"], r["profile"]): r for r in json.loads(done.stdout)["series"]}
+    unknown = series[("no-g2", "shaker")]["exact"]
+    assert unknown["total"] == [None] * 3 and unknown["rms"] == [None] * 3
+    assert "unknown ('?', null) for no-g2 under shaker; failing under shaker" in done.stderr
+    for rate, k in ((0.0, 0), (2.0, 1), (4.0, 2)):
+        rows = {(r["sensor"], r["profile"]): r for r in json.loads(invoke(
+            "analyze", coefficient_catalog, "--rate", str(rate), "--format", "json"
+        ).stdout)["results"]}
+        for cell in (("with-g2", "shaker"), ("no-g2", "calm")):
+            assert series[cell]["exact"]["total"][k] == pytest.approx(rows[cell]["total"],
+                                                                      rel=1e-12, abs=0)
+        assert rows[("no-g2", "shaker")]["total"] is None
+    table = invoke("sweep", coefficient_catalog, "--rate-range", "0:4:3", "--sensor", "no-g2",
+                   "--profile", "shaker", env={"COLUMNS": "120"}).stdout
+    assert table.count("?") >= 6
+
+
 def test_the_uncertainty_of_an_unknown_total_is_unknown(tmp_path: Path) -> None:
     # no-g2 with a standard uncertainty on k2 (σ = 1e-7): under 'shaker' its Δ_V is
     # unknown (no g² figure, linear vibration), and so is Δ_V's uncertainty (left out of the JSON,

@@ -110,6 +110,15 @@ def sweep(files: tuple[str, ...], sensors: tuple[str, ...], profiles: tuple[str,
             by_reason.setdefault(why, []).append(p)
         listed = "; ".join(f"{', '.join(ps)} ({why})" for why, ps in by_reason.items())
         say(f"gyrovib: note: the paper's columns are empty for {listed}")
+    if result.g2_unknown:
+        under: dict[str, list[str]] = {}  # each sensor once, with every profile it has
+        for sensor, profile in result.g2_unknown:
+            under.setdefault(sensor, []).append(profile)
+        pairs = "; ".join(f"{s} under {', '.join(ps)}" for s, ps in under.items())
+        say(f"gyrovib: note: Δ_V and Δ_V(RMS) are unknown ('?', null) for {pairs}: the "
+            "sensor gives no g² figure (g2_sensitivity or vre; a datasheet, no VRE) and the "
+            "profile has linear vibration, so its g² term is unknown, not zero (`vre: 0` "
+            "states a known zero)")
     if plot is not None:
         if plot == "-":
             raise OptionError("--plot writes a PNG file: give a file name, not '-'")

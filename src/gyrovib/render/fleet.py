@@ -81,7 +81,7 @@ def _worst_cells(result: RecordingsAnalysis) -> tuple[Cell[int], ...]:
             Cell("worst Δ_V,rec", of_worst(lambda a, k: one._known(a.recorded[k]), "?")),
             Cell("recording", of_worst(lambda a, k: _name(a), "—")),
             Cell("fitted Δ̄_V", of_worst(lambda a, k: one._known(a.fitted[k]), "?")),
-            Cell("ratio", of_worst(lambda a, k: one._fmt(a.ratio[k], 3), "—")),
+            Cell("ratio", of_worst(lambda a, k: one._fmt(a.ratio[k], 3), "?")),
             Cell("saturated on", lambda k: ", ".join(_saturated_on(result, k)) or "—"))
 
 

@@ -10,7 +10,7 @@ from gyrovib import units
 from gyrovib.api.datasheet import specs
 from gyrovib.api.evaluation.evaluate import ERROR_PARTS, errors, saturation, sources, worst_case
 from gyrovib.api.evaluation.results import SweepResult
-from gyrovib.api.evaluation.unknown import unknown_cells
+from gyrovib.api.evaluation.unknown import unknown_cells, unknown_g2
 from gyrovib.api.study.convert import error_arrays, to_unit
 from gyrovib.api.study.prepare import check_finite, float_guard
 from gyrovib.api.study.study import Study, check_peak_factor
@@ -150,6 +150,10 @@ def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "
             check_finite(checked(paper), prepared, exclude=sorted(refused))
         unknown_cells(prepared, exact, {})  # a profile fitted from a recording that lacks
         unknown_cells(prepared, paper, {})  # a part: unknown, not 0
+        g2_cells = specs.unknown_g2_cells(prepared.sensors, spec,
+                                          [v is not None for v in prepared.linear])
+        unknown_g2(exact, None, g2_cells)  # a g² figure not given: unknown, as in analyze
+        unknown_g2(paper, None, g2_cells)
     return SweepResult(
         unit=unit,
         sensors=tuple(e.sensor.id for e in prepared.sensors),
@@ -158,6 +162,8 @@ def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "
         exact=exact,
         paper=paper,
         paper_refused={prepared.profiles[j].profile.id: refused[j] for j in sorted(refused)},
+        g2_unknown=tuple((prepared.sensors[i].sensor.id, prepared.profiles[j].profile.id)
+                         for i, j in g2_cells),
         **(worst_x or {}),
         saturated=saturation(prepared, omega).saturated,
         peak_factor=peak_factor,

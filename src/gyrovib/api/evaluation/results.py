@@ -216,6 +216,9 @@ class SweepResult(SensorsByProfiles):
     exact: VibrationError
     paper: VibrationError
     paper_refused: Mapping[str, str] = field(default_factory=dict)
+    #: (sensor, profile) pairs whose g² figure is not given under the profile's linear
+    #: vibration: their Δ_V and Δ_V(RMS) are NaN at every rate (unknown, as in analyze).
+    g2_unknown: tuple[tuple[str, str], ...] = ()
     #: Per sensor ``"coefficients"`` or ``"specs"`` (empty: every sensor has coefficients).
     sources: tuple[str, ...] = ()
     #: Spec-form sensors: the exact method's worst polynomial (A1, k2…k5) at each

@@ -138,14 +138,14 @@ def unknown_cells(prepared: Any, error: Any,
 
 
 def unknown_g2(error: Any, rms_bound: Any, cells: Sequence[tuple[int, int]]) -> None:
-    """``analyze`` where a sensor's g² figure is unknown (an unpublished VRE, a g²
+    """``analyze`` and ``sweep`` where a sensor's g² figure is unknown (an unpublished VRE, a g²
     sensitivity not given) under linear vibration (``cells``): the g² term Δ0(6) and what
     sums it, Δ_VA, Δ_V and Δ_V(RMS) (a datasheet part's RMS bound too), are NaN in
     ``error``: unknown, never the numbers computed with the term left out
     (docs/model.md sections 8 and 11)."""
     g2 = EXTRA_TERMS.index("g2")
-    for i, j in cells:
-        error.extra_terms[i, j, g2] = np.nan
+    for i, j in cells:  # a sweep's arrays carry a rate axis after the profile's: all NaN
+        error.extra_terms[i, j, ..., g2] = np.nan
         for a in (error.additive, error.total, error.rms):
             a[i, j] = np.nan
         if rms_bound is not None:

@@ -64,8 +64,8 @@ class RecordingAnalysis(Frozen):
     ``saturated`` (N,), ``peak_rate`` (N,) max |ω3| at the element;
     ``spec`` (N,) bool: a datasheet sensor (worst case over its envelope);
     ``at_mean`` (N,) the fitted profile's closed form at its own (mean) rate, the
-    number ``analyze`` gives on the written file (a g² term whose figure is unknown
-    taken as 0 there, as in Δ_V,rec, where ``analyze`` writes it unknown), and
+    number ``analyze`` gives on the written file (NaN where a g² figure is not given
+    under the recorded linear vibration, as Δ_V,rec is), and
     ``at_mean_ratio`` (N,) its ratio to Δ_V,rec (NaN where either is 0 or unknown),
     warned of outside :data:`RATIO_RANGE` (one mean rate hides the carrier's spread: the
     fitted mission keeps it).
