@@ -112,7 +112,9 @@ def main() -> None:
     for name in args.files:
         with open(name, "rb") as f:
             rows.extend(pickle.load(f))
-    seeds = sorted({int(r["seed"]) for r in rows})  # type: ignore[call-overload]
+    # a record is (range, record) where saved so (its "seed" is range + record, a label)
+    seeds = {(r.get("range"), r.get("record"), int(r["seed"]))  # type: ignore[call-overload]
+             for r in rows}
     print(f"{len(seeds)} records from {len(args.files)} file(s)")
     print(f"{'term':18} {'levels read':>13} {'values':>7} {'68 % cover':>16} "
           f"{'95 % cover':>16} {'bounds':>7} {'hold':>7} {'every 68/95':>13}")

@@ -75,16 +75,23 @@ CASES = (
 )
 
 
-def record_seed(first_seed: int, r: int) -> list[int]:
+#: The bootstrap seed of record r of range S under ``--integer-seeds``: INTEGER_BOOT + S + r.
+INTEGER_BOOT = 1_000_000_000
+
+
+def record_seed(first_seed: int, r: int, integer: bool = False) -> int | list[int]:
     """The entropy of record r of the range ``first_seed``: the pair, hashed by numpy's
     SeedSequence (records seeded with the integers first_seed + r had B's fit errors
-    over-dispersed between ranges: docs/error-budget.md section 5)."""
-    return [first_seed, r]
+    over-dispersed between ranges: docs/error-budget.md section 5). ``integer``: that
+    integer seeding, with which the ranges the levels were set on were drawn."""
+    return first_seed + r if integer else [first_seed, r]
 
 
-def boot_seed(first_seed: int, r: int) -> int:
+def boot_seed(first_seed: int, r: int, integer: bool = False) -> int:
     """The seed of record r's bootstrap: drawn from the entropy (first_seed, r, 1), apart
-    from the record's own."""
+    from the record's own; ``integer``: INTEGER_BOOT + first_seed + r."""
+    if integer:
+        return INTEGER_BOOT + first_seed + r
     return int(np.random.SeedSequence([first_seed, r, 1]).generate_state(1)[0])
 
 
@@ -94,7 +101,7 @@ def truth_values(truth: Truth) -> tuple[float, ...]:
 
 def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
         sim_cap: int = SIM_CAP, cases: tuple[int, ...] = tuple(range(len(CASES))),
-        saved: list[dict[str, object]] | None = None
+        saved: list[dict[str, object]] | None = None, integer_seeds: bool = False
         ) -> dict[str, dict[str, list[tuple[str, bool, bool]]]]:
     """Per interval method and term: (case, held at 68 %, held at 95 %) for resolved
     terms, and ('bound', holds, holds) for bounds — every method from the same fit and
@@ -107,8 +114,9 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
     m_all = tau_grid(samples)
     for r in range(records):
         name, truth = CASES[cases[r % len(cases)]]
-        y = simulate(truth, samples, TAU0, np.random.default_rng(record_seed(first_seed, r)))
-        boot = boot_seed(first_seed, r)
+        y = simulate(truth, samples, TAU0,
+                     np.random.default_rng(record_seed(first_seed, r, integer_seeds)))
+        boot = boot_seed(first_seed, r, integer_seeds)
         tau, adev = oadev(y, TAU0, m_all)
         start = roll_off(tau, adev)
         tau, var, m = tau[start:], adev[start:] ** 2, m_all[start:]
@@ -121,8 +129,8 @@ def run(records: int, samples: int, first_seed: int, methods: tuple[str, ...],
             coefs = bootstrap(fitted, tau, m, samples, TAU0, seed=boot, sim_cap=sim_cap)
         curve = Curve(tau, var, m, samples + 1, fitted)
         if saved is not None:
-            saved.extend(_roots(first_seed + r, cases[r % len(cases)], truth, fitted, coefs,
-                                curve))
+            saved.extend(dict(row, range=first_seed, record=r) for row in _roots(
+                first_seed + r, cases[r % len(cases)], truth, fitted, coefs, curve))
         for meth in methods:
             found = terms(curve, coefs, (0.68, 0.95), meth, inner)
             for term, got, true in zip(TERMS, found, truth_values(truth), strict=False):
@@ -208,6 +216,10 @@ def main() -> None:
     parser.add_argument("--records", type=int, default=200)
     parser.add_argument("--samples", type=int, default=1 << 15)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--integer-seeds", action="store_true",
+                        help="seed record r with the integer SEED + r and its bootstrap with "
+                             f"{INTEGER_BOOT} + SEED + r, as the ranges the levels were set "
+                             "on were drawn (docs/error-budget.md section 5)")
     parser.add_argument("--interval", default=f"{METHOD},pivot",
                         help="the bootstrap intervals to compare, comma-separated "
                              "(calibrated, studentized, pivot, percentile; gyrovib's: "
@@ -230,7 +242,8 @@ def main() -> None:
     start = time.perf_counter()
     cases = tuple(int(k) for k in args.cases.split(","))
     saved: list[dict[str, object]] | None = [] if args.save else None
-    result = run(args.records, args.samples, args.seed, methods, args.sim_cap, cases, saved)
+    result = run(args.records, args.samples, args.seed, methods, args.sim_cap, cases, saved,
+                 args.integer_seeds)
     took = time.perf_counter() - start
     if args.save:
         with open(args.save, "wb") as out:
