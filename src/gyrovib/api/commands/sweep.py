@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -112,6 +113,21 @@ def _rates(rates: Sequence[float] | FloatArray) -> FloatArray:
     return omega
 
 
+def _unknown(prepared: Any, spec: Any, exact: VibrationError,
+             paper: VibrationError) -> tuple[tuple[str, str], ...]:
+    """NaN, in place, where a cell is unknown, as in analyze: a profile fitted from a
+    recording that lacks a part the sensor needs, and a g² figure not given under a
+    linear vibration (those cells returned as (sensor, profile) ids)."""
+    for error in (exact, paper):
+        unknown_cells(prepared, error, {})
+    cells = specs.unknown_g2_cells(prepared.sensors, spec,
+                                   [v is not None for v in prepared.linear])
+    for error in (exact, paper):
+        unknown_g2(error, None, cells)
+    return tuple((prepared.sensors[i].sensor.id, prepared.profiles[j].profile.id)
+                 for i, j in cells)
+
+
 def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "deg/s",
              peak_factor: float = DEFAULT_PEAK_FACTOR,
              methods: Sequence[str] = METHODS, rms_only: bool = False) -> SweepResult:
@@ -148,12 +164,7 @@ def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "
             check_finite(checked(exact), prepared)
         if "paper" in methods:
             check_finite(checked(paper), prepared, exclude=sorted(refused))
-        unknown_cells(prepared, exact, {})  # a profile fitted from a recording that lacks
-        unknown_cells(prepared, paper, {})  # a part: unknown, not 0
-        g2_cells = specs.unknown_g2_cells(prepared.sensors, spec,
-                                          [v is not None for v in prepared.linear])
-        unknown_g2(exact, None, g2_cells)  # a g² figure not given: unknown, as in analyze
-        unknown_g2(paper, None, g2_cells)
+        g2_cells = _unknown(prepared, spec, exact, paper)
     return SweepResult(
         unit=unit,
         sensors=tuple(e.sensor.id for e in prepared.sensors),
@@ -162,8 +173,7 @@ def sweep_of(study: Study, rates: Sequence[float] | FloatArray, *, unit: str = "
         exact=exact,
         paper=paper,
         paper_refused={prepared.profiles[j].profile.id: refused[j] for j in sorted(refused)},
-        g2_unknown=tuple((prepared.sensors[i].sensor.id, prepared.profiles[j].profile.id)
-                         for i, j in g2_cells),
+        g2_unknown=g2_cells,
         **(worst_x or {}),
         saturated=saturation(prepared, omega).saturated,
         peak_factor=peak_factor,
