@@ -7,6 +7,7 @@ import csv
 import io
 import json
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -180,6 +181,15 @@ def test_a_datasheet_without_a_vre_leaves_the_verdict_unverified(record: Path) -
     assert "verdict: unverified" in table.stdout and "│ unverified │" in table.stdout
 
 
+def _steps(record: Path, catalogue: Path, sensor: str) -> list[dict[str, Any]]:
+    """The JSON steps of the run-up estimating k2 and the VRE against ``sensor``."""
+    out = invoke("runup", record, *READ, catalogue, "--estimate", "k2,vre", "--sensor", sensor,
+                 "--format", "json")
+    assert out.exit_code == 0, out.stderr
+    steps: list[dict[str, Any]] = json.loads(out.stdout)["steps"]
+    return steps
+
+
 def test_a_sensor_without_a_g2_figure_predicts_unknown_under_linear_vibration(
         record: Path, tmp_path: Path) -> None:
     # 'bare' gives k2 but no g² figure (neither g2_sensitivity nor vre): on a recording with
@@ -191,16 +201,11 @@ def test_a_sensor_without_a_g2_figure_predicts_unknown_under_linear_vibration(
         "gyrovib: 1\nunits: {rate: deg/s}\nsensors:\n"
         "  - id: bare\n    coefficients: {k2: 0.002}\n"
         "  - id: stated\n    coefficients: {k2: 0.002}\n    vre: 0\n", encoding="utf-8")
-    docs = {}
-    for sensor in ("bare", "stated"):
-        out = invoke("runup", record, *READ, catalogue, "--estimate", "k2,vre", "--sensor",
-                     sensor, "--format", "json")
-        assert out.exit_code == 0, out.stderr
-        docs[sensor] = json.loads(out.stdout)
-    assert all(s["predicted"] is None for s in docs["bare"]["steps"])
-    assert "unverified" in {s["status"] for s in docs["bare"]["steps"]}
-    assert all(s["predicted"] is not None for s in docs["stated"]["steps"])
-    assert max(abs(s["predicted"]) for s in docs["stated"]["steps"]) > 0
+    bare, stated = (_steps(record, catalogue, sensor) for sensor in ("bare", "stated"))
+    assert all(s["predicted"] is None for s in bare)
+    assert "unverified" in {s["status"] for s in bare}
+    assert all(s["predicted"] is not None for s in stated)
+    assert max(abs(s["predicted"]) for s in stated) > 0
 
 
 def test_an_input_response_of_unit_gain_predicts_as_none(record: Path,
@@ -214,12 +219,8 @@ def test_an_input_response_of_unit_gain_predicts_as_none(record: Path,
         "  - id: plain\n    coefficients: {k2: 0.002}\n    vre: 0.01\n"
         "  - id: filtered\n    coefficients: {k2: 0.002}\n    vre: 0.01\n"
         "    response: {at: input, table: [[1, 1.0], [1000, 1.0]]}\n", encoding="utf-8")
-    shifts = {}
-    for sensor in ("plain", "filtered"):
-        out = invoke("runup", record, *READ, catalogue, "--estimate", "k2,vre", "--sensor",
-                     sensor, "--format", "json")
-        assert out.exit_code == 0, out.stderr
-        shifts[sensor] = [s["predicted"] for s in json.loads(out.stdout)["steps"]]
+    shifts = {sensor: [s["predicted"] for s in _steps(record, catalogue, sensor)]
+              for sensor in ("plain", "filtered")}
     assert np.allclose(shifts["plain"], shifts["filtered"], rtol=1e-9, atol=1e-12)
     assert max(shifts["plain"]) > 0.01                  # a real prediction, not zeros
 
